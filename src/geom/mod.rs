@@ -1,0 +1,16 @@
+//! Exact geometry shared by every stage: predicates (the only place orientation and
+//! inside/outside decisions are taken), the one `Tolerances` struct, bounding boxes and
+//! triangle meshes with f64 coordinates as read (never rescaled).
+
+pub mod bbox;
+pub mod predicates;
+pub mod tolerances;
+pub mod trimesh;
+
+pub use bbox::BBox;
+pub use predicates::{Orientation, orient2d, orient3d, insphere};
+pub use tolerances::Tolerances;
+pub use trimesh::TriMesh;
+
+/// A point in model coordinates (metres, or the recipe's units), as read from the input.
+pub type Point3 = [f64; 3];

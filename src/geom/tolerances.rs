@@ -1,0 +1,40 @@
+//! The one place tolerances live. Exact predicates decide every orientation and inside/outside
+//! question; these values only steer *constructions* and *reports* where no exact answer exists
+//! (how far a mesh node may sit from its support, what kink angle makes a corner...). Every field
+//! is part of the cache key of every operation that receives a `Tolerances`, so changing one
+//! re-runs exactly the operations that depend on it.
+
+use serde::{Deserialize, Serialize};
+
+/// Tolerances, with units. Defaults are documented per field and in the README's recipe reference.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Tolerances {
+    /// Boundary vertices where the polyline turns by more than this angle (degrees) become
+    /// topological vertices (corners) that split boundary loops into curves. Default 30°.
+    pub kink_angle_deg: f64,
+    /// Vertices of one surface closer than this distance (model units) are reported as
+    /// coincident duplicates by validation and merged by repair. 0.0 (the default) means
+    /// bit-identical coordinates only.
+    pub merge_distance: f64,
+    /// Largest distance (model units, relative to the local element size) a generated mesh node
+    /// may lie from its support surface, as a fraction of the local element size. Default 1e-6.
+    pub support_distance_rel: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Tolerances { kink_angle_deg: 30.0, merge_distance: 0.0, support_distance_rel: 1e-6 }
+    }
+}
+
+impl Tolerances {
+    /// The fields as (name, value) pairs in a fixed order, for cache keys and reports.
+    pub fn fields(&self) -> [(&'static str, f64); 3] {
+        [
+            ("kink_angle_deg", self.kink_angle_deg),
+            ("merge_distance", self.merge_distance),
+            ("support_distance_rel", self.support_distance_rel),
+        ]
+    }
+}

@@ -1,0 +1,1 @@
+//! `recipe`: not yet implemented.

@@ -1,0 +1,1 @@
+//! Stage `discretize`: not yet implemented (see the issue that introduces it).

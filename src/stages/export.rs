@@ -1,0 +1,1 @@
+//! Stage `export`: not yet implemented (see the issue that introduces it).

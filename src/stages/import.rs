@@ -1,0 +1,1 @@
+//! Stage `import`: not yet implemented (see the issue that introduces it).

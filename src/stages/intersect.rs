@@ -1,0 +1,1 @@
+//! Stage `intersect`: not yet implemented (see the issue that introduces it).

@@ -1,0 +1,1 @@
+//! Stage `quality`: not yet implemented (see the issue that introduces it).

@@ -1,0 +1,1 @@
+//! Stage `surface_mesh`: not yet implemented (see the issue that introduces it).

@@ -1,0 +1,1 @@
+//! Stage `topology`: not yet implemented (see the issue that introduces it).

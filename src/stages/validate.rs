@@ -1,0 +1,1 @@
+//! Stage `validate`: not yet implemented (see the issue that introduces it).
