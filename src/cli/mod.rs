@@ -1,5 +1,134 @@
-//! `cli`: not yet implemented.
+//! `cli`: the `recipe` command line (clap). With the engine's store, the only code that touches
+//! the filesystem. `watch.rs` is the only user of `notify`.
+//!
+//! Exit codes: 0 success; 1 the recipe is invalid, a node failed, or `--locked` found a
+//! difference; 2 a usage error (from clap).
+
+mod build;
+mod cache;
+mod load;
+mod render;
+mod tetmesh;
+mod watch;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(name = "recipe", version, about = "Compile a geological model recipe into finite-element meshes")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct CacheArgs {
+    /// Cache directory [default: `.recipe/` beside the recipe; env RECIPE_CACHE_DIR]
+    #[arg(long, env = "RECIPE_CACHE_DIR")]
+    pub cache_dir: Option<PathBuf>,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct BuildArgs {
+    /// The recipe (TOML)
+    pub recipe: PathBuf,
+    #[command(flatten)]
+    pub cache: CacheArgs,
+    /// Parallel jobs [default: number of cores]
+    #[arg(short = 'j', long)]
+    pub jobs: Option<usize>,
+    /// Fail if any node key, output hash or output file differs from the lock file; never update it
+    #[arg(long)]
+    pub locked: bool,
+    /// Rebuild on every save of the recipe or an imported file
+    #[arg(long)]
+    pub watch: bool,
+    /// Print only errors and the final line
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Print a machine-readable report of every node on stdout
+    #[arg(long)]
+    pub json: bool,
+    /// Print why each node re-ran
+    #[arg(long)]
+    pub explain: bool,
+    /// In watch mode, exit after this many builds (for scripts and tests)
+    #[arg(long, hide = true)]
+    pub max_builds: Option<usize>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Build the recipe's outputs (cached, incremental)
+    Build(BuildArgs),
+    /// Validate a recipe without building
+    Check {
+        recipe: PathBuf,
+    },
+    /// Say why each node of the last build re-ran
+    Explain {
+        recipe: PathBuf,
+        #[command(flatten)]
+        cache: CacheArgs,
+    },
+    /// Print the build graph (DOT) with each node's state in the last build
+    Graph {
+        recipe: PathBuf,
+        #[command(flatten)]
+        cache: CacheArgs,
+    },
+    /// Delete the recipe's cache directory
+    Clean {
+        recipe: PathBuf,
+        #[command(flatten)]
+        cache: CacheArgs,
+    },
+    /// Remove cache entries that the lock file and the last build do not reference
+    Gc {
+        recipe: PathBuf,
+        #[command(flatten)]
+        cache: CacheArgs,
+    },
+    /// Mesh one closed boundary (Gmsh .msh, .off, .obj) into tetrahedra, without a recipe
+    Tetmesh(tetmesh::TetmeshArgs),
+}
+
+/// Runs the command line; returns the process exit code.
 pub fn main() -> i32 {
-    eprintln!("recipe: not yet implemented");
-    2
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { 2 } else { 0 };
+        }
+    };
+    let result = match cli.command {
+        Command::Build(a) if a.watch => watch::run(&a),
+        Command::Build(a) => build::run(&a).map(|_| ()),
+        Command::Check { recipe } => load::check(&recipe),
+        Command::Explain { recipe, cache } => cache::explain(&recipe, &cache),
+        Command::Graph { recipe, cache } => cache::graph(&recipe, &cache),
+        Command::Clean { recipe, cache } => cache::clean(&recipe, &cache),
+        Command::Gc { recipe, cache } => cache::gc(&recipe, &cache),
+        Command::Tetmesh(a) => tetmesh::run(&a),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(Failure(msg)) => {
+            if !msg.is_empty() {
+                eprintln!("{msg}");
+            }
+            1
+        }
+    }
+}
+
+/// A failure already explained to the user (the message is printed once, by `main`).
+#[derive(Debug)]
+pub struct Failure(pub String);
+
+impl<E: std::fmt::Display> From<E> for Failure {
+    fn from(e: E) -> Self {
+        Failure(format!("error: {e}"))
+    }
 }

@@ -1,0 +1,81 @@
+//! `recipe build`: load, lower, run the engine, keep the lock file and the last report.
+
+use super::cache::{cache_dir, last_report_path, lock_path, recipe_dir};
+use super::render::Renderer;
+use super::{BuildArgs, Failure, load};
+use crate::engine::{self, BuildOptions, BuildReport, LockFile, NodeState};
+use crate::plan;
+use std::path::Path;
+
+/// One build of `args.recipe`. Returns the report when the build succeeded.
+pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
+    let recipe = load::load(&args.recipe)?;
+    let graph = plan::lower(&recipe).map_err(|e| Failure(format!("error: {e}")))?;
+    let cache = cache_dir(&args.recipe, &args.cache);
+    let output_dir = recipe_dir(&args.recipe).join(&recipe.output.dir);
+    let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)).max(1);
+    let opts = BuildOptions { cache_dir: cache.clone(), output_dir: output_dir.clone(), jobs, keep_going: true };
+    let renderer = Renderer::new(args.quiet, args.explain);
+    let report = engine::build(graph, &opts, &|e| renderer.event(e))?;
+
+    write_atomic(&last_report_path(&cache), report.to_json().to_string().as_bytes())?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report.to_json()).unwrap_or_default());
+    }
+    let count = |s: NodeState| report.nodes.iter().filter(|n| n.state == s).count();
+    let summary = format!(
+        "{} ran, {} cached, {} cut off, {} failed, {} skipped",
+        count(NodeState::Ran),
+        count(NodeState::Cached),
+        count(NodeState::CutOff),
+        count(NodeState::Failed),
+        count(NodeState::Skipped)
+    );
+    if !report.ok {
+        return Err(Failure(format!("error: build of {} failed: {summary}", args.recipe.display())));
+    }
+
+    let lock_file = lock_path(&args.recipe);
+    let new_lock = LockFile::from_report(&report);
+    if args.locked {
+        let text = std::fs::read_to_string(&lock_file).map_err(|_| {
+            Failure(format!("error: --locked, but there is no lock file {}: build once without --locked and commit it", lock_file.display()))
+        })?;
+        let old = LockFile::parse(&text).map_err(|e| Failure(format!("error: {}: {e}", lock_file.display())))?;
+        let diff = old.diff(&new_lock);
+        if !diff.is_empty() {
+            let mut msg = format!("error: the build differs from {} (--locked):", lock_file.display());
+            for d in &diff {
+                msg.push_str("\n  ");
+                msg.push_str(d);
+            }
+            return Err(Failure(msg));
+        }
+    } else {
+        let text = new_lock.to_text();
+        if std::fs::read_to_string(&lock_file).ok().as_deref() != Some(text.as_str()) {
+            write_atomic(&lock_file, text.as_bytes())?;
+        }
+    }
+    if !args.quiet || !args.watch {
+        eprintln!(
+            "{:>12} {} in {:.2}s: {summary}; outputs in {}",
+            "Finished",
+            recipe.model.name,
+            report.duration_ms / 1000.0,
+            output_dir.display()
+        );
+    }
+    Ok(report)
+}
+
+/// Writes a file atomically: a temporary file in the same directory, then a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    use std::io::Write;
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| Failure(format!("error: cannot create {}: {e}", dir.display())))?;
+    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| Failure(format!("error: cannot write in {}: {e}", dir.display())))?;
+    tmp.write_all(bytes).map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
+    tmp.persist(path).map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
+    Ok(())
+}

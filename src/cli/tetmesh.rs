@@ -1,0 +1,195 @@
+//! `recipe tetmesh`: the tetrahedral mesher on its own, for one closed boundary given as a file
+//! (Gmsh .msh, .off, .obj), with optional embedded (dangling) faces.
+
+use super::Failure;
+use super::build::write_atomic;
+use crate::geom::predicates::signed_volume;
+use crate::mesh::read::{BoundaryMesh, read_by_extension};
+use crate::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
+use crate::stages::export::{Format, export};
+use crate::stages::quality;
+use crate::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct TetmeshArgs {
+    /// Closed boundary surface (.msh, .off, .obj); either orientation
+    pub boundary: PathBuf,
+    /// Output mesh; the format follows the extension: .msh (4.1), .vtu, .mesh (MEDIT), .node (TetGen)
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Triangles of the boundary file with these tags (msh entity, obj group) are embedded faces
+    #[arg(long, value_delimiter = ',')]
+    pub embedded_tags: Vec<i32>,
+    /// A further file whose triangles are all embedded faces (a dangling fault); vertices are
+    /// matched to the boundary's by exact coordinates
+    #[arg(long)]
+    pub embed: Option<PathBuf>,
+    /// Take only the triangles with these tags from the --embed file
+    #[arg(long, value_delimiter = ',')]
+    pub embed_tags: Vec<i32>,
+    /// Weld --embed vertices to boundary vertices closer than this (model units); files written
+    /// with fewer digits need it [default: 1e-9 × the boundary's bounding-box diagonal]
+    #[arg(long)]
+    pub weld: Option<f64>,
+    /// Target element size [default: the mean boundary edge length]
+    #[arg(long)]
+    pub size: Option<f64>,
+    /// Size growth away from the boundary
+    #[arg(long, default_value_t = 1.3)]
+    pub growth: f64,
+    /// Skip quality optimization
+    #[arg(long)]
+    pub no_optimize: bool,
+    /// Region name [default: the boundary file's stem]
+    #[arg(long)]
+    pub name: Option<String>,
+}
+
+fn read(path: &PathBuf) -> Result<BoundaryMesh, Failure> {
+    let bytes = std::fs::read(path).map_err(|e| Failure(format!("error: cannot read {}: {e}", path.display())))?;
+    read_by_extension(&path.display().to_string(), &bytes).map_err(|e| Failure(format!("error: {e}")))
+}
+
+/// Merges vertices by exact coordinates (bit patterns), so faces from several files share nodes;
+/// after `weld_to_existing`, a new vertex within the weld distance of an earlier one reuses it.
+#[derive(Default)]
+struct VertexPool {
+    index: BTreeMap<[u64; 3], u32>,
+    vertices: Vec<[f64; 3]>,
+    weld: Option<(f64, rstar::RTree<rstar::primitives::GeomWithData<[f64; 3], u32>>)>,
+}
+
+impl VertexPool {
+    fn add(&mut self, p: [f64; 3]) -> u32 {
+        let key = p.map(|c| (if c == 0.0 { 0.0 } else { c }).to_bits());
+        if let Some(&i) = self.index.get(&key) {
+            return i;
+        }
+        if let Some((tol, tree)) = &self.weld {
+            if let Some(n) = tree.nearest_neighbor(&p) {
+                let q = n.geom();
+                let d2 = (0..3).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>();
+                if d2 <= tol * tol {
+                    return n.data;
+                }
+            }
+        }
+        self.vertices.push(p);
+        let i = (self.vertices.len() - 1) as u32;
+        self.index.insert(key, i);
+        i
+    }
+    /// From now on, vertices within `tol` of one already in the pool are welded to it.
+    fn weld_to_existing(&mut self, tol: f64) {
+        let pts = self.vertices.iter().enumerate().map(|(i, &p)| rstar::primitives::GeomWithData::new(p, i as u32)).collect();
+        self.weld = Some((tol, rstar::RTree::bulk_load(pts)));
+    }
+    fn triangles(&mut self, m: &BoundaryMesh, keep: impl Fn(i32) -> bool) -> Vec<[u32; 3]> {
+        let map: Vec<u32> = m.vertices.iter().map(|&p| self.add(p)).collect();
+        m.triangles
+            .iter()
+            .zip(&m.triangle_tag)
+            .filter(|(_, tag)| keep(**tag))
+            .map(|(t, _)| t.map(|v| map[v as usize]))
+            .collect()
+    }
+}
+
+pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
+    let format = output_format(&a.output)?;
+    let b = read(&a.boundary)?;
+    let mut pool = VertexPool::default();
+    let mut boundary = pool.triangles(&b, |t| !a.embedded_tags.contains(&t));
+    let mut embedded = pool.triangles(&b, |t| a.embedded_tags.contains(&t));
+    if let Some(e) = &a.embed {
+        let diag = {
+            let b = crate::geom::BBox::from_points(pool.vertices.iter());
+            let e = b.extent();
+            (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
+        };
+        let weld = a.weld.unwrap_or(1e-9 * diag);
+        pool.weld_to_existing(weld);
+        embedded.extend(pool.triangles(&read(e)?, |t| a.embed_tags.is_empty() || a.embed_tags.contains(&t)));
+    }
+    if boundary.is_empty() {
+        return Err(Failure(format!("error: {}: no boundary triangles", a.boundary.display())));
+    }
+    // Orientation: the caller's triangles may point inwards; the enclosed volume's sign says.
+    let o = pool.vertices[boundary[0][0] as usize];
+    let vol: f64 = boundary.iter().map(|t| signed_volume(&o, &pool.vertices[t[0] as usize], &pool.vertices[t[1] as usize], &pool.vertices[t[2] as usize])).sum();
+    if vol < 0.0 {
+        for t in &mut boundary {
+            t.swap(1, 2);
+        }
+    }
+    let name = a.name.clone().unwrap_or_else(|| a.boundary.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "region".into()));
+    let size = match a.size {
+        Some(s) if s > 0.0 && s.is_finite() => s,
+        Some(s) => return Err(Failure(format!("error: --size must be positive, got {s}"))),
+        None => mean_edge(&pool.vertices, &boundary),
+    };
+    let input = RegionInput { name: name.clone(), vertices: pool.vertices, boundary, embedded };
+    let field = SizeField { size, min_size: size / 20.0, max_size: size * 20.0, growth: a.growth };
+    let opts = TetMeshOptions { optimize: !a.no_optimize, ..TetMeshOptions::default() };
+    let t0 = std::time::Instant::now();
+    let out = mesh_region(&input, &field, &opts).map_err(|e| Failure(format!("error: {e}")))?;
+    let secs = t0.elapsed().as_secs_f64();
+
+    let mut triangles = input.boundary.clone();
+    triangles.extend(&input.embedded);
+    let mut triangle_group = vec![0u32; input.boundary.len()];
+    triangle_group.extend(std::iter::repeat_n(1u32, input.embedded.len()));
+    let mut surface_groups = vec![SurfaceGroup { name: "boundary".into(), kind: SurfaceKind::Other }];
+    if !input.embedded.is_empty() {
+        surface_groups.push(SurfaceGroup { name: "embedded".into(), kind: SurfaceKind::Fault });
+    }
+    let mesh = VolumeMesh {
+        nodes: out.nodes,
+        tet_region: vec![0; out.tets.len()],
+        tets: out.tets,
+        regions: vec![RegionGroup { name: name.clone(), material: None, properties: BTreeMap::new() }],
+        triangles,
+        triangle_group,
+        surface_groups,
+    };
+    let stem = a.output.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| name.clone());
+    let dir = a.output.parent().filter(|p| !p.as_os_str().is_empty()).map(PathBuf::from).unwrap_or_else(|| PathBuf::from("."));
+    for (file, bytes) in export(&mesh, &stem, format).map_err(|e| Failure(format!("error: export: {e}")))? {
+        write_atomic(&dir.join(&file), &bytes)?;
+        eprintln!("       Wrote {}", dir.join(&file).display());
+    }
+    eprintln!(
+        "    Finished {}: {} tets, {} nodes in {:.2}s ({:.0} tets/s)",
+        name,
+        mesh.tets.len(),
+        mesh.nodes.len(),
+        secs,
+        mesh.tets.len() as f64 / secs.max(1e-9)
+    );
+    eprint!("{}", quality::render_table2(&quality::table2(&mesh)));
+    Ok(())
+}
+
+fn output_format(p: &std::path::Path) -> Result<Format, Failure> {
+    let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("");
+    match ext {
+        "msh" => Ok(Format::Msh),
+        "vtu" => Ok(Format::Vtu),
+        "mesh" => Ok(Format::Medit),
+        "node" | "ele" => Ok(Format::TetGen),
+        _ => Err(Failure(format!("error: {}: unknown output format `.{ext}` (use .msh, .vtu, .mesh or .node)", p.display()))),
+    }
+}
+
+fn mean_edge(v: &[[f64; 3]], tris: &[[u32; 3]]) -> f64 {
+    let mut sum = 0.0;
+    for t in tris {
+        for k in 0..3 {
+            let (a, b) = (v[t[k] as usize], v[t[(k + 1) % 3] as usize]);
+            sum += ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+        }
+    }
+    sum / (3 * tris.len()).max(1) as f64
+}

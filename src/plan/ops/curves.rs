@@ -1,0 +1,227 @@
+//! `curves`, `curve:<name>` and `discretize:<name>`: the model's curves, one extraction node per
+//! curve (so that a curve whose polyline did not change cuts its dependents off early), and the
+//! per-curve 1D discretization. The expander attached to `curves` creates the per-curve nodes
+//! and the export node once the curves are known.
+//!
+//! Until splitting and trimming land (issue 4), the model's curves are the intersection curves
+//! of the recipe's pairs and the free borders of every imported surface, before trimming.
+
+use super::{ExportOp, SurfaceData};
+use crate::engine::{Artifact, Expander, Expansion, OpError, Operation, Output, Params, RunContext};
+use crate::geom::Tolerances;
+use crate::stages::discretize::{Grading, Subdivision, discretize};
+use crate::stages::{intersect, topology};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+/// One named curve of the model.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ModelCurve {
+    /// Stable name: `a/b` (or `a/b#k`) for an intersection, `s#k` for a free border of `s`.
+    pub name: String,
+    /// The surfaces that meet along the curve, sorted.
+    pub surfaces: Vec<String>,
+    pub polyline: Vec<[f64; 3]>,
+    pub closed: bool,
+}
+
+/// The output of `curves`: every curve, sorted by name.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CurveSet {
+    pub curves: Vec<ModelCurve>,
+}
+
+/// `curves`: inputs are the imported surfaces (`n_surfaces` of them) then the intersections.
+pub struct CurvesOp {
+    pub n_surfaces: usize,
+    pub tolerances: Tolerances,
+}
+
+impl Operation for CurvesOp {
+    fn kind(&self) -> &'static str {
+        "curves"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        for (k, v) in self.tolerances.fields() {
+            p.set(&format!("tolerances.{k}"), v).expect("validated finite");
+        }
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        if inputs.len() < self.n_surfaces {
+            return Err("curves needs its surfaces".into());
+        }
+        let mut curves = Vec::new();
+        for a in &inputs[..self.n_surfaces] {
+            let s: SurfaceData = a.decode()?;
+            let topo = topology::SurfaceTopology::build(&s.mesh, &s.bstones, &self.tolerances);
+            let mut borders: Vec<(Vec<[f64; 3]>, bool)> = topo
+                .curves()
+                .into_iter()
+                .map(|c| {
+                    let pts: Vec<[f64; 3]> = c.vertices.iter().map(|&v| s.mesh.vertices[v as usize]).collect();
+                    (canonical_direction(pts, c.closed), c.closed)
+                })
+                .collect();
+            borders.sort_by(|x, y| geometric_key(&x.0).cmp(&geometric_key(&y.0)));
+            for (k, (polyline, closed)) in borders.into_iter().enumerate() {
+                curves.push(ModelCurve { name: format!("{}#{}", s.name, k + 1), surfaces: vec![s.name.clone()], polyline, closed });
+            }
+        }
+        for a in &inputs[self.n_surfaces..] {
+            let x: intersect::Intersection = a.decode()?;
+            let many = x.curves.len() > 1;
+            for (k, c) in x.curves.iter().enumerate() {
+                let base = format!("{}/{}", x.a, x.b);
+                let mut polyline: Vec<[f64; 3]> = c.points.iter().map(|p| p.xyz).collect();
+                if c.closed && polyline.first() != polyline.last() {
+                    polyline.push(polyline[0]);
+                }
+                curves.push(ModelCurve {
+                    name: if many { format!("{base}#{}", k + 1) } else { base },
+                    surfaces: vec![x.a.clone(), x.b.clone()],
+                    polyline,
+                    closed: c.closed,
+                });
+            }
+        }
+        curves.sort_by(|a, b| a.name.cmp(&b.name));
+        let n = curves.len() as u64;
+        Ok(Output::new(Artifact::encode(&CurveSet { curves })?).count("curves", n))
+    }
+}
+
+/// Open curves start at their lexicographically smaller end, so the direction (and "from the
+/// start" gradings) does not depend on how the curve was found.
+fn canonical_direction(mut pts: Vec<[f64; 3]>, closed: bool) -> Vec<[f64; 3]> {
+    if !closed && pts.len() > 1 && point_key(&pts[pts.len() - 1]) < point_key(&pts[0]) {
+        pts.reverse();
+    }
+    pts
+}
+
+/// A total order on points that every machine agrees on.
+fn point_key(p: &[f64; 3]) -> [i64; 3] {
+    p.map(|c| {
+        let b = c.to_bits() as i64;
+        if b < 0 { i64::MIN - b } else { b } // monotonic map of f64 order onto i64
+    })
+}
+
+fn geometric_key(pts: &[[f64; 3]]) -> [i64; 3] {
+    pts.iter().map(point_key).min().unwrap_or([0; 3])
+}
+
+/// `curve:<name>`: extracts one curve from the curve set.
+pub struct CurveExtractOp {
+    pub name: String,
+}
+
+impl Operation for CurveExtractOp {
+    fn kind(&self) -> &'static str {
+        "curve"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        Params::new().with("curve", self.name.as_str()).expect("string")
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let set: CurveSet = inputs.first().ok_or("curve needs the curve set")?.decode()?;
+        let c = set
+            .curves
+            .into_iter()
+            .find(|c| c.name == self.name)
+            .ok_or_else(|| OpError::from(format!("the model has no curve `{}`", self.name)))?;
+        let n = c.polyline.len() as u64;
+        Ok(Output::new(Artifact::encode(&c)?).count("points", n))
+    }
+}
+
+/// The output of `discretize:<name>`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CurveNodes {
+    pub name: String,
+    pub nodes: Vec<[f64; 3]>,
+}
+
+/// `discretize:<name>`: the curve's FE nodes under the rule the recipe gives it.
+pub struct DiscretizeOp {
+    pub name: String,
+    /// Recipe path of the rule that applies (`mesh.curves."F1/H1"` or `mesh.size`).
+    pub rule_path: String,
+    pub rule: Subdivision,
+}
+
+impl Operation for DiscretizeOp {
+    fn kind(&self) -> &'static str {
+        "discretize"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        match &self.rule {
+            Subdivision::Count(n) => {
+                p.set(&format!("{}.count", self.rule_path), *n).expect("int");
+            }
+            Subdivision::Size { size, ratio, grading } => {
+                p.set(&format!("{}.size", self.rule_path), *size).expect("validated finite");
+                p.set(&format!("{}.ratio", self.rule_path), *ratio).expect("validated finite");
+                let g = if *grading == Grading::Bump { "bump" } else { "geometric" };
+                p.set(&format!("{}.grading", self.rule_path), g).expect("string");
+            }
+        }
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let c: ModelCurve = inputs.first().ok_or("discretize needs its curve")?.decode()?;
+        let nodes = discretize(&c.polyline, &self.rule).map_err(|e| OpError::from(format!("curve `{}`: {e}", self.name)))?;
+        let n = nodes.len() as u64;
+        Ok(Output::new(Artifact::encode(&CurveNodes { name: self.name.clone(), nodes })?).count("nodes", n))
+    }
+}
+
+/// Picks the subdivision rule of a curve from its name. Returns the rule's recipe path and rule.
+pub type RuleResolver = dyn Fn(&str) -> (String, Subdivision) + Send + Sync;
+
+/// Attached to `curves`: adds the per-curve nodes and the export node.
+pub struct DiscretizeExpander {
+    pub resolve: Arc<RuleResolver>,
+    /// Curve selectors of the recipe with the diagnostic to show when one matches no curve.
+    pub selectors: Vec<(Arc<dyn Fn(&str) -> bool + Send + Sync>, String)>,
+    /// Names of the import nodes whose validation reports the export writes.
+    pub import_nodes: Vec<String>,
+    pub export: Arc<dyn Fn() -> ExportOp + Send + Sync>,
+}
+
+impl Expander for DiscretizeExpander {
+    fn expand(&self, output: &Artifact, x: &mut Expansion) -> Result<(), OpError> {
+        let set: CurveSet = output.decode()?;
+        for (matches, diagnostic) in &self.selectors {
+            if !set.curves.iter().any(|c| matches(&c.name)) {
+                let names: Vec<&str> = set.curves.iter().map(|c| c.name.as_str()).collect();
+                return Err(format!("{diagnostic}\n  the model's curves are: {}", names.join(", ")).into());
+            }
+        }
+        let curves_node = x.node("curves").ok_or("no `curves` node")?;
+        let mut export_inputs = Vec::new();
+        for name in &self.import_nodes {
+            export_inputs.push(x.node(name).ok_or_else(|| OpError::from(format!("no node `{name}`")))?);
+        }
+        for c in &set.curves {
+            let extract = x.add_op(&format!("curve:{}", c.name), Arc::new(CurveExtractOp { name: c.name.clone() }), &[curves_node])?;
+            let (rule_path, rule) = (self.resolve)(&c.name);
+            let d = x.add_op(&format!("discretize:{}", c.name), Arc::new(DiscretizeOp { name: c.name.clone(), rule_path, rule }), &[extract])?;
+            export_inputs.push(d);
+        }
+        x.add_op("export", Arc::new((self.export)()), &export_inputs)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,55 @@
+//! `export`: writes the build's output files. Inputs: the import nodes (their validation
+//! reports), then every `discretize:<curve>` node. Output: a `FileSet` the engine writes
+//! atomically under the recipe's output directory.
+
+use super::{CurveNodes, SurfaceData};
+use crate::engine::{Artifact, FileSet, OpError, Operation, Output, Params, RunContext};
+use crate::stages::export::curves::write_curves_vtu;
+use std::collections::BTreeMap;
+
+pub struct ExportOp {
+    pub model: String,
+    pub formats: Vec<String>,
+    pub n_imports: usize,
+}
+
+impl Operation for ExportOp {
+    fn kind(&self) -> &'static str {
+        "export"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        p.set("model.name", self.model.as_str()).expect("string");
+        p.set("output.formats", self.formats.clone()).expect("strings");
+        p
+    }
+    fn emits_files(&self) -> bool {
+        true
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        if inputs.len() < self.n_imports {
+            return Err("export needs the import nodes".into());
+        }
+        let mut reports = serde_json::Map::new();
+        for a in &inputs[..self.n_imports] {
+            let s: SurfaceData = a.decode()?;
+            let v: serde_json::Value = serde_json::from_str(&s.report_json).unwrap_or(serde_json::Value::Null);
+            reports.insert(s.name, v);
+        }
+        let mut curves = Vec::new();
+        for a in &inputs[self.n_imports..] {
+            let c: CurveNodes = a.decode()?;
+            curves.push((c.name, c.nodes));
+        }
+        let mut files = BTreeMap::new();
+        let validation = serde_json::to_string_pretty(&serde_json::Value::Object(reports)).map_err(|e| OpError::from(e.to_string()))?;
+        files.insert("validation.json".to_string(), validation.into_bytes());
+        files.insert(format!("{}.curves.vtu", self.model), write_curves_vtu(&curves));
+        let n = files.len() as u64;
+        let nodes: usize = curves.iter().map(|(_, n)| n.len()).sum();
+        Ok(Output::new(Artifact::encode(&FileSet { files })?).count("files", n).count("curve_nodes", nodes as u64))
+    }
+}

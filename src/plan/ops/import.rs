@@ -1,0 +1,95 @@
+//! `import:<surface>`: reads one gOcad file's bytes into a validated, optionally repaired surface.
+
+use super::SurfaceData;
+use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use crate::geom::Tolerances;
+use crate::mesh::SurfaceKind;
+use crate::stages::{import, validate};
+
+/// What to do when validation finds problems (the recipe's `on_invalid`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum OnInvalid {
+    /// Repair what is safe, keep the report.
+    Repair,
+    /// Fail the node with the report.
+    Stop,
+}
+
+pub struct ImportOp {
+    pub surface: String,
+    pub kind: SurfaceKind,
+    /// The file as the recipe names it (for messages).
+    pub file_label: String,
+    pub object: Option<String>,
+    pub skip_other_types: bool,
+    /// Multiplier from the file's units to the recipe's units (1.0 when they agree).
+    pub units_scale: f64,
+    pub on_invalid: OnInvalid,
+    pub tolerances: Tolerances,
+}
+
+impl Operation for ImportOp {
+    fn kind(&self) -> &'static str {
+        "import"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        let key = |k: &str| format!("surfaces.{}.{k}", self.surface);
+        p.set(&key("kind"), format!("{:?}", self.kind).to_lowercase()).expect("finite");
+        p.set(&key("file"), self.file_label.as_str()).expect("finite");
+        p.set(&key("object"), self.object.clone().unwrap_or_default()).expect("finite");
+        p.set(&key("skip_other_types"), self.skip_other_types).expect("finite");
+        p.set(&key("on_invalid"), if self.on_invalid == OnInvalid::Repair { "repair" } else { "stop" }).expect("finite");
+        p.set("model.units_scale", self.units_scale).expect("validated finite");
+        for (k, v) in self.tolerances.fields() {
+            p.set(&format!("tolerances.{k}"), v).expect("validated finite");
+        }
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let bytes = inputs.first().ok_or("import needs its file")?.bytes();
+        let opts = import::ImportOptions {
+            object: self.object.clone(),
+            skip_other_types: self.skip_other_types,
+            units_scale: self.units_scale,
+        };
+        let imported = import::import_surface(bytes, &self.file_label, &opts).map_err(|e| OpError::from(e.to_string()))?;
+        let report = validate::validate(&imported, &self.tolerances);
+        let findings = report.findings.len() as u64;
+        let (surface, repaired) = if report.is_clean() {
+            (imported, false)
+        } else if self.on_invalid == OnInvalid::Stop {
+            return Err(OpError::from(format!(
+                "surface `{}` ({}) is invalid and the recipe says on_invalid = \"stop\":\n{}",
+                self.surface,
+                self.file_label,
+                report.render_text()
+            )));
+        } else {
+            let (fixed, _log) = validate::repair(&imported, &report, &self.tolerances);
+            (fixed, true)
+        };
+        let data = SurfaceData {
+            name: self.surface.clone(),
+            kind: self.kind,
+            mesh: surface.mesh,
+            triangle_part: surface.triangle_part,
+            bstones: surface.bstones,
+            report_json: report.to_json().to_string(),
+            report_text: if report.is_clean() { String::new() } else { report.render_text() },
+            findings,
+        };
+        let mut out = Output::new(Artifact::encode(&data)?)
+            .count("vertices", data.mesh.vertices.len() as u64)
+            .count("triangles", data.mesh.triangles.len() as u64)
+            .count("parts", surface.parts.len() as u64)
+            .count("findings", findings);
+        if repaired {
+            out.notes.push(format!("{findings} validation findings repaired (see validation.json)"));
+        }
+        Ok(out)
+    }
+}

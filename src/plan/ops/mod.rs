@@ -1,0 +1,36 @@
+//! The operations of the build graph: thin adapters from the engine's `Operation` trait to the
+//! pure stage functions, plus the artifact types they exchange. Each operation declares exactly
+//! the parameters it reads; its `version` is bumped whenever its output for the same inputs changes.
+
+mod curves;
+mod export;
+mod geometry;
+mod import;
+
+pub use curves::{CurveExtractOp, CurvesOp, DiscretizeOp, DiscretizeExpander, ModelCurve, CurveSet, CurveNodes};
+pub use export::ExportOp;
+pub use geometry::{BoxOp, BoxSideOp, IntersectOp, BoxSpecParams};
+pub use import::{ImportOp, OnInvalid};
+
+use crate::geom::TriMesh;
+use crate::mesh::SurfaceKind;
+use serde::{Deserialize, Serialize};
+
+/// A surface as the geometric stages see it: an imported surface (after validation and repair)
+/// or a box side. The output artifact of `import:<name>` and `surface:box.<side>` nodes.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SurfaceData {
+    pub name: String,
+    pub kind: SurfaceKind,
+    pub mesh: TriMesh,
+    /// Part (TFACE) index of each triangle.
+    pub triangle_part: Vec<u32>,
+    /// Vertices the file marks as corners (BSTONE).
+    pub bstones: Vec<u32>,
+    /// The validation report as JSON text (empty for box sides).
+    pub report_json: String,
+    /// The validation report, readable.
+    pub report_text: String,
+    /// Number of validation findings before repair.
+    pub findings: u64,
+}

@@ -1,0 +1,121 @@
+//! The `recipe build` command on the shipped example: caching, incremental rebuilds, the lock
+//! file, reproducibility across job counts, and cache repair.
+
+mod common_cli;
+use common_cli::*;
+
+#[test]
+fn a_second_build_with_nothing_changed_runs_nothing() {
+    let s = Scratch::didactic();
+    let (ok, first, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert!(!nodes_in_state(&first, "ran").is_empty());
+    let (ok, second, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert_eq!(nodes_in_state(&second, "ran"), Vec::<String>::new());
+    assert_eq!(all_nodes(&first), all_nodes(&second));
+    assert!(s.path("out/didactic/didactic.curves.vtu").is_file());
+    assert!(s.path("out/didactic/validation.json").is_file());
+    assert!(s.path("didactic.toml.lock").is_file());
+}
+
+#[test]
+fn one_and_two_jobs_give_byte_identical_outputs_and_lock_files() {
+    let a = Scratch::didactic();
+    let b = Scratch::didactic();
+    assert!(a.build(&["-j", "1"]).0);
+    assert!(b.build(&["-j", "2"]).0);
+    assert_eq!(read_tree(&a.path("out")), read_tree(&b.path("out")));
+    assert_eq!(std::fs::read(a.path("didactic.toml.lock")).unwrap(), std::fs::read(b.path("didactic.toml.lock")).unwrap());
+}
+
+#[test]
+fn editing_one_curve_rule_reruns_only_those_curves_and_the_export() {
+    let s = Scratch::didactic();
+    assert!(s.build(&[]).0);
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 50.0 }");
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&r, "ran");
+    assert!(!ran.is_empty());
+    for n in &ran {
+        assert!(n == "export" || n.starts_with("discretize:F2"), "`{n}` re-ran but does not depend on the F2 curve rule");
+    }
+    for n in all_nodes(&r) {
+        if n.starts_with("import:") || n.starts_with("intersect:") || n == "curves" || n.starts_with("discretize:H") {
+            assert!(!ran.contains(&n), "`{n}` re-ran");
+        }
+    }
+}
+
+#[test]
+fn a_comment_or_whitespace_edit_reruns_nothing() {
+    let s = Scratch::didactic();
+    assert!(s.build(&[]).0);
+    s.edit("[mesh]\n", "# a new comment\n\n[mesh]   \n");
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert_eq!(nodes_in_state(&r, "ran"), Vec::<String>::new());
+}
+
+#[test]
+fn touching_an_imported_file_reruns_nothing_but_changing_it_reruns_its_import() {
+    let s = Scratch::didactic();
+    assert!(s.build(&[]).0);
+    let f = s.path("data/didactic/F2_dangling.ts");
+    let text = std::fs::read(&f).unwrap();
+    std::fs::write(&f, &text).unwrap();
+    let (_, r, _) = s.build(&[]);
+    assert_eq!(nodes_in_state(&r, "ran"), Vec::<String>::new());
+    let mut changed = text.clone();
+    changed.extend_from_slice(b"\n# an appended comment changes the bytes, not the surface\n");
+    std::fs::write(&f, &changed).unwrap();
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&r, "ran");
+    assert!(ran.contains(&"import:F2".to_string()), "{ran:?}");
+    // The surface is the same, so nothing downstream of the import re-runs (early cutoff).
+    assert!(ran.iter().all(|n| n == "import:F2" || n == "file:F2"), "{ran:?}");
+}
+
+#[test]
+fn a_locked_build_fails_with_a_readable_diff_when_a_size_changes() {
+    let s = Scratch::didactic();
+    assert!(s.build(&[]).0);
+    assert!(s.build(&["--locked"]).0, "an unchanged recipe passes --locked");
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 75.0 }");
+    let (ok, _, err) = s.build(&["--locked"]);
+    assert!(!ok);
+    assert!(err.contains("discretize:F2"), "{err}");
+    assert!(err.contains("didactic.toml.lock"), "{err}");
+}
+
+#[test]
+fn corrupt_or_truncated_cache_entries_are_detected_and_repaired() {
+    let s = Scratch::didactic();
+    let (ok, first, _) = s.build(&[]);
+    assert!(ok);
+    let mut n = 0;
+    for (i, (rel, bytes)) in read_tree(&s.path(".recipe")).into_iter().enumerate() {
+        if rel.contains("lock") || rel.ends_with(".json") || bytes.is_empty() {
+            continue;
+        }
+        let p = s.path(".recipe").join(&rel);
+        if i % 2 == 0 {
+            std::fs::write(&p, &bytes[..bytes.len() / 2]).unwrap();
+        } else {
+            let mut b = bytes.clone();
+            b[0] ^= 0xff;
+            std::fs::write(&p, b).unwrap();
+        }
+        n += 1;
+    }
+    assert!(n > 0, "the cache has entries");
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert!(err.contains("corrupt"), "the corruption is reported: {err}");
+    let (ok, third, _) = s.build(&[]);
+    assert!(ok);
+    assert_eq!(nodes_in_state(&third, "ran"), Vec::<String>::new());
+    assert_eq!(all_nodes(&first), all_nodes(&third));
+}

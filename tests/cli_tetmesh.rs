@@ -1,0 +1,52 @@
+//! `recipe tetmesh` on boundaries that no one here wrote (meshed by Gmsh), checked by the
+//! independent checker `../shared/tools/check_mesh.py`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn shared() -> Option<PathBuf> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared");
+    if p.join("data/peer-boundaries").is_dir() {
+        Some(p)
+    } else {
+        eprintln!("skipping: ../shared is absent");
+        None
+    }
+}
+
+fn has_checker() -> bool {
+    let ok = Command::new("python3").args(["-c", "import numpy, meshio"]).status().map(|s| s.success()).unwrap_or(false);
+    if !ok {
+        eprintln!("skipping the independent check: python3 with numpy and meshio is absent");
+    }
+    ok
+}
+
+fn mesh_region(region: &str, embed_entity: Option<&str>) {
+    let Some(shared) = shared() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join(format!("{region}.msh"));
+    let pb = shared.join("data/peer-boundaries");
+    let mut args: Vec<String> = vec!["tetmesh".into(), pb.join(format!("region_L1_{region}.off")).display().to_string(), "-o".into(), out.display().to_string()];
+    if let Some(e) = embed_entity {
+        args.extend(["--embed".into(), pb.join("didactic_L1_surface.msh").display().to_string(), "--embed-tags".into(), e.into(), "--weld".into(), "1e-5".into()]);
+    }
+    let run = Command::new(env!("CARGO_BIN_EXE_recipe")).args(&args).output().unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{err}");
+    assert!(out.is_file());
+    if has_checker() {
+        let check = Command::new("python3").arg(shared.join("tools/check_mesh.py")).arg(&out).args(["--regions", "1"]).output().unwrap();
+        assert!(check.status.success(), "check_mesh.py failed:\n{}", String::from_utf8_lossy(&check.stdout));
+    }
+}
+
+#[test]
+fn the_peer_meshed_overburden_west_block_meshes_and_passes_the_independent_checker() {
+    mesh_region("overburden_W", None);
+}
+
+#[test]
+fn the_peer_meshed_reservoir_east_block_with_its_dangling_fault_meshes_and_passes_the_checker() {
+    mesh_region("reservoir_E", Some("27"));
+}

@@ -1,0 +1,90 @@
+//! Shared helpers for the command-line integration tests (included with `mod common_cli;`).
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A scratch copy of the shipped didactic recipe and its data.
+pub struct Scratch {
+    pub dir: tempfile::TempDir,
+}
+
+impl Scratch {
+    pub fn didactic() -> Scratch {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("recipes");
+        copy_dir(&src.join("data/didactic"), &dir.path().join("data/didactic"));
+        std::fs::copy(src.join("didactic.toml"), dir.path().join("didactic.toml")).expect("copy recipe");
+        Scratch { dir }
+    }
+    pub fn recipe(&self) -> PathBuf {
+        self.dir.path().join("didactic.toml")
+    }
+    pub fn path(&self, rel: &str) -> PathBuf {
+        self.dir.path().join(rel)
+    }
+    pub fn edit(&self, from: &str, to: &str) {
+        let p = self.recipe();
+        let s = std::fs::read_to_string(&p).unwrap();
+        assert!(s.contains(from), "the recipe has no `{from}`");
+        std::fs::write(&p, s.replacen(from, to, 1)).unwrap();
+    }
+    pub fn recipe_cmd(&self, args: &[&str]) -> Output {
+        Command::new(env!("CARGO_BIN_EXE_recipe")).args(args).current_dir(self.dir.path()).env_remove("RECIPE_CACHE_DIR").output().expect("run recipe")
+    }
+    /// `recipe build --json ARGS didactic.toml`; returns (success, report JSON, stderr).
+    pub fn build(&self, extra: &[&str]) -> (bool, serde_json::Value, String) {
+        let mut args = vec!["build", "--json"];
+        args.extend_from_slice(extra);
+        args.push("didactic.toml");
+        let out = self.recipe_cmd(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        let json = serde_json::from_slice(&out.stdout).unwrap_or(serde_json::Value::Null);
+        (out.status.success(), json, stderr)
+    }
+}
+
+pub fn copy_dir(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.file_type().unwrap().is_dir() {
+            copy_dir(&e.path(), &to.join(e.file_name()));
+        } else {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
+/// Node names in the report whose state is `state`, sorted.
+pub fn nodes_in_state(report: &serde_json::Value, state: &str) -> Vec<String> {
+    let mut v: Vec<String> = report["nodes"]
+        .as_array()
+        .map(|a| a.iter().filter(|n| n["state"] == state).filter_map(|n| n["name"].as_str().map(String::from)).collect())
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+pub fn all_nodes(report: &serde_json::Value) -> Vec<String> {
+    let mut v: Vec<String> = report["nodes"].as_array().map(|a| a.iter().filter_map(|n| n["name"].as_str().map(String::from)).collect()).unwrap_or_default();
+    v.sort();
+    v
+}
+
+/// Every file under `dir`, relative path → bytes.
+pub fn read_tree(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    let mut m = std::collections::BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                m.insert(p.strip_prefix(dir).unwrap().display().to_string(), std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    m
+}
