@@ -56,7 +56,11 @@ impl fmt::Display for Diagnostic {
             .take(self.col.saturating_sub(1))
             .map(|c| if c == '\t' { '\t' } else { ' ' })
             .collect();
-        let avail = self.snippet.chars().count().saturating_sub(self.col.saturating_sub(1));
+        let avail = self
+            .snippet
+            .chars()
+            .count()
+            .saturating_sub(self.col.saturating_sub(1));
         let width = self.len.min(avail).max(1);
         write!(f, "{pad} | {lead}{}", "^".repeat(width))?;
         if let Some(help) = &self.help {
@@ -84,7 +88,11 @@ impl SourceText {
                 line_starts.push(i + 1);
             }
         }
-        SourceText { label, text: text.to_string(), line_starts }
+        SourceText {
+            label,
+            text: text.to_string(),
+            line_starts,
+        }
     }
 
     /// The largest char boundary not after `i` (input-derived offsets never split a character).
@@ -100,10 +108,22 @@ impl SourceText {
     pub fn span(&self, range: Range<usize>) -> Span {
         let start = self.floor(range.start);
         let end = self.floor(range.end.max(start));
-        let line_idx = self.line_starts.partition_point(|&s| s <= start).saturating_sub(1);
+        let line_idx = self
+            .line_starts
+            .partition_point(|&s| s <= start)
+            .saturating_sub(1);
         let line_start = self.line_starts.get(line_idx).copied().unwrap_or(0);
-        let col = self.text.get(line_start..start).map_or(0, |s| s.chars().count()) + 1;
-        Span { start, end, line: line_idx + 1, col }
+        let col = self
+            .text
+            .get(line_start..start)
+            .map_or(0, |s| s.chars().count())
+            + 1;
+        Span {
+            start,
+            end,
+            line: line_idx + 1,
+            col,
+        }
     }
 
     /// The text of a line (1-based), without `\r\n` / `\n`.
@@ -111,7 +131,11 @@ impl SourceText {
         let Some(&start) = self.line_starts.get(line.saturating_sub(1)) else {
             return "";
         };
-        let end = self.line_starts.get(line).copied().unwrap_or(self.text.len());
+        let end = self
+            .line_starts
+            .get(line)
+            .copied()
+            .unwrap_or(self.text.len());
         let s = self.text.get(start..end).unwrap_or("");
         s.trim_end_matches(['\n', '\r'])
     }
@@ -141,8 +165,8 @@ impl SourceText {
 
 /// The closest candidate to `word`, if it is close enough to be a plausible typo.
 ///
-/// Closeness is the normalised Damerau-Levenshtein similarity (>= 0.6), or a case-insensitive
-/// match, or one being a prefix of the other (`reservoir` for `reserv`); ties go to the first
+/// Closeness is the normalised Damerau-Levenshtein similarity (>= 0.6), or a single edit on a
+/// name of two or more characters (`fl` for `f1`), or a case-insensitive match, or one being a prefix of the other (`reservoir` for `reserv`); ties go to the first
 /// candidate in the order given, so the answer is deterministic.
 pub fn did_you_mean<'a, I>(word: &str, candidates: I) -> Option<String>
 where
@@ -158,6 +182,8 @@ where
         let mut score = strsim::normalized_damerau_levenshtein(&lower, &cl);
         if cl == lower {
             score = 1.0;
+        } else if lower.chars().count() >= 2 && strsim::damerau_levenshtein(&lower, &cl) == 1 {
+            score = score.max(0.6);
         } else if lower.len() >= 3 && (cl.starts_with(&lower) || lower.starts_with(&cl)) {
             score = score.max(0.75);
         }

@@ -32,7 +32,17 @@ use reader::Ctx;
 use sections::Names;
 
 /// Top-level keys a recipe may have.
-const ROOT_KEYS: &[&str] = &["model", "tolerances", "surfaces", "box", "intersect", "trim", "mesh", "regions", "output"];
+const ROOT_KEYS: &[&str] = &[
+    "model",
+    "tolerances",
+    "surfaces",
+    "box",
+    "intersect",
+    "trim",
+    "mesh",
+    "regions",
+    "output",
+];
 
 /// A validated recipe.
 #[derive(Clone, Debug)]
@@ -61,7 +71,12 @@ pub struct Recipe {
 impl Recipe {
     /// A diagnostic at a recipe location, for errors found after parsing (e.g. a curve rule
     /// whose selector matches no curve of the built model).
-    pub fn diagnostic_at(&self, span: Span, message: impl Into<String>, help: Option<String>) -> Diagnostic {
+    pub fn diagnostic_at(
+        &self,
+        span: Span,
+        message: impl Into<String>,
+        help: Option<String>,
+    ) -> Diagnostic {
         self.src.diagnostic(span, message.into(), help)
     }
 
@@ -89,7 +104,10 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     if !errors.is_empty() {
         return Err(syntax::diagnostics(&src, &errors));
     }
-    let base_dir = path_label.parent().map(Path::to_path_buf).unwrap_or_default();
+    let base_dir = path_label
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
     let root = doc.get_ref();
     let root_span = 0..0;
     let mut ctx = Ctx::new(&src);
@@ -105,18 +123,25 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     // Names declared under [surfaces] but rejected still count as known, so one bad entry does
     // not cascade into "unknown surface" errors everywhere it is used.
     let mut declared: Vec<String> = match root.get("surfaces").map(|v| v.get_ref()) {
-        Some(toml::de::DeValue::Table(t)) => t.iter().map(|(k, _)| k.get_ref().to_string()).collect(),
+        Some(toml::de::DeValue::Table(t)) => {
+            t.iter().map(|(k, _)| k.get_ref().to_string()).collect()
+        }
         _ => Vec::new(),
     };
     declared.sort();
     let has_box_table = root.get("box").is_some();
     let bbox = sections::bbox::read(&mut ctx, root.get("box"), &declared);
-    let names = Names { surfaces: declared, has_box: has_box_table };
+    let names = Names {
+        surfaces: declared,
+        has_box: has_box_table,
+    };
     let pairs = sections::intersect::read(&mut ctx, root.get("intersect"), &names);
     let trims = sections::trim::read(&mut ctx, root.get("trim"), &names);
     let regions = sections::regions::read(&mut ctx, root.get("regions"));
     let mut region_names: Vec<String> = match root.get("regions").map(|v| v.get_ref()) {
-        Some(toml::de::DeValue::Table(t)) => t.iter().map(|(k, _)| k.get_ref().to_string()).collect(),
+        Some(toml::de::DeValue::Table(t)) => {
+            t.iter().map(|(k, _)| k.get_ref().to_string()).collect()
+        }
         _ => Vec::new(),
     };
     region_names.sort();
@@ -124,7 +149,9 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     let output = sections::output::read(&mut ctx, root.get("output"), &base_dir);
 
     let mut diags = ctx.diags;
-    if let (true, Some(model), Some(mesh), Some(output)) = (diags.is_empty(), model.clone(), mesh, output) {
+    if let (true, Some(model), Some(mesh), Some(output)) =
+        (diags.is_empty(), model.clone(), mesh, output)
+    {
         let (intersect, intersect_spans) = pairs.into_iter().unzip();
         return Ok(Recipe {
             path: path_label.to_path_buf(),

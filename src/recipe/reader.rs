@@ -19,11 +19,24 @@ pub(crate) type Value<'i> = Spanned<DeValue<'i>>;
 pub(crate) struct Ctx<'s> {
     pub src: &'s SourceText,
     pub diags: Vec<Diagnostic>,
+    /// Tables (by address, as identity only) that had an unknown key: a missing required key
+    /// there is most likely the misspelled one, already reported with its did-you-mean.
+    misspelled_in: Vec<*const ()>,
 }
 
 impl<'s> Ctx<'s> {
     pub fn new(src: &'s SourceText) -> Ctx<'s> {
-        Ctx { src, diags: Vec::new() }
+        Ctx {
+            src,
+            diags: Vec::new(),
+            misspelled_in: Vec::new(),
+        }
+    }
+
+    /// True when `table` had an unknown key (see `check_keys`).
+    pub fn had_unknown_key(&self, table: &DeTable<'_>) -> bool {
+        self.misspelled_in
+            .contains(&(table as *const DeTable<'_> as *const ()))
     }
 
     pub fn span(&self, r: Range<usize>) -> Span {
@@ -50,9 +63,19 @@ impl<'s> Ctx<'s> {
 /// A key path such as `mesh.curves."top/f1"`, quoting keys that are not bare TOML keys.
 pub(crate) fn path_join(parent: &str, key: &str) -> String {
     let bare = !key.is_empty()
-        && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
-    let k = if bare { key.to_string() } else { format!("{key:?}") };
-    if parent.is_empty() { k } else { format!("{parent}.{k}") }
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    let k = if bare {
+        key.to_string()
+    } else {
+        format!("{key:?}")
+    };
+    if parent.is_empty() {
+        k
+    } else {
+        format!("{parent}.{k}")
+    }
 }
 
 /// Describes a TOML value's type for "expected X, found Y" messages.
@@ -82,10 +105,40 @@ pub(crate) fn check_keys(
         if valid.contains(&key) {
             continue;
         }
-        let place = if path.is_empty() { "the recipe".to_string() } else { format!("`{path}`") };
-        let help = extra_help(key).or_else(|| suggest(key, valid, "valid keys are"));
+        let place = if path.is_empty() {
+            "the recipe".to_string()
+        } else {
+            format!("`{path}`")
+        };
+        let help = extra_help(key)
+            .or_else(|| misplaced(key, path))
+            .or_else(|| suggest(key, valid, "valid keys are"));
         ctx.error(k.span(), format!("unknown key `{key}` in {place}"), help);
+        let id = table as *const DeTable<'_> as *const ();
+        if !ctx.misspelled_in.contains(&id) {
+            ctx.misspelled_in.push(id);
+        }
     }
+}
+
+/// A top-level table's name written inside a table: TOML puts every `key = value` after a
+/// `[table]` header into that table, a classic trap.
+fn misplaced(key: &str, path: &str) -> Option<String> {
+    let top = [
+        "model",
+        "tolerances",
+        "surfaces",
+        "box",
+        "intersect",
+        "trim",
+        "mesh",
+        "regions",
+        "output",
+    ];
+    let header = path.split('.').next().unwrap_or(path);
+    (!path.is_empty() && top.contains(&key)).then(|| {
+        format!("`{key}` belongs to the top level, but TOML puts it in `[{header}]` because it follows that header: move it above `[{header}]`, or write it as its own `[{key}]` table")
+    })
 }
 
 /// The value as a table, or an error at its span.
@@ -119,9 +172,17 @@ pub(crate) fn required<'a, 'i>(
     help: &str,
 ) -> Option<&'a Value<'i>> {
     let v = table.get(key);
-    if v.is_none() {
-        let place = if path.is_empty() { "the recipe".to_string() } else { format!("`{path}`") };
-        ctx.error(table_span, format!("missing key `{key}` in {place}"), Some(help.to_string()));
+    if v.is_none() && !ctx.had_unknown_key(table) {
+        let place = if path.is_empty() {
+            "the recipe".to_string()
+        } else {
+            format!("`{path}`")
+        };
+        ctx.error(
+            table_span,
+            format!("missing key `{key}` in {place}"),
+            Some(help.to_string()),
+        );
     }
     v
 }
@@ -149,16 +210,25 @@ pub(crate) fn int(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<i64> {
             match i64::from_str_radix(&digits, i.radix()) {
                 Ok(x) => Some(x),
                 Err(_) => {
-                    let msg = format!("`{path}` = `{}` does not fit in a 64-bit integer", ctx.text(v.span()));
+                    let msg = format!(
+                        "`{path}` = `{}` does not fit in a 64-bit integer",
+                        ctx.text(v.span())
+                    );
                     ctx.error(v.span(), msg, None);
                     None
                 }
             }
         }
         other => {
-            let msg = format!("`{path}` must be an integer, found {} `{}`", type_name(other), ctx.text(v.span()));
+            let msg = format!(
+                "`{path}` must be an integer, found {} `{}`",
+                type_name(other),
+                ctx.text(v.span())
+            );
             let help = match other {
-                DeValue::Float(_) => Some("write a whole number without a decimal point".to_string()),
+                DeValue::Float(_) => {
+                    Some("write a whole number without a decimal point".to_string())
+                }
                 DeValue::String(_) => Some("write the number without quotes".to_string()),
                 _ => None,
             };
@@ -175,7 +245,11 @@ pub(crate) fn number(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<f64
         DeValue::Float(f) => parse_float_text(f.as_str()),
         DeValue::Integer(_) => return int(ctx, v, path).map(|i| i as f64),
         other => {
-            let msg = format!("`{path}` must be a number, found {} `{}`", type_name(other), ctx.text(v.span()));
+            let msg = format!(
+                "`{path}` must be a number, found {} `{}`",
+                type_name(other),
+                ctx.text(v.span())
+            );
             let help = match other {
                 DeValue::String(s) if parse_float_text(s.trim()).is_some() => {
                     Some(format!("write the number without quotes: `{}`", s.trim()))
@@ -190,14 +264,24 @@ pub(crate) fn number(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<f64
         Some(x) if x.is_finite() => Some(if x == 0.0 { 0.0 } else { x }),
         _ => {
             let msg = format!("`{path}` = `{}` is not a finite number", ctx.text(v.span()));
-            ctx.error(v.span(), msg, Some("use a finite value such as `100.0`".to_string()));
+            ctx.error(
+                v.span(),
+                msg,
+                Some("use a finite value such as `100.0`".to_string()),
+            );
             None
         }
     }
 }
 
 /// A finite number strictly greater than `min` (`min` = 0 for sizes).
-pub(crate) fn number_above(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str, min: f64, what: &str) -> Option<f64> {
+pub(crate) fn number_above(
+    ctx: &mut Ctx<'_>,
+    v: &Value<'_>,
+    path: &str,
+    min: f64,
+    what: &str,
+) -> Option<f64> {
     let x = number(ctx, v, path)?;
     if x > min {
         Some(x)
@@ -218,8 +302,16 @@ pub(crate) fn string<'a>(ctx: &mut Ctx<'_>, v: &'a Value<'_>, path: &str) -> Opt
     match v.get_ref() {
         DeValue::String(s) => Some(s),
         other => {
-            let msg = format!("`{path}` must be a string, found {} `{}`", type_name(other), ctx.text(v.span()));
-            ctx.error(v.span(), msg, Some("put the text in double quotes".to_string()));
+            let msg = format!(
+                "`{path}` must be a string, found {} `{}`",
+                type_name(other),
+                ctx.text(v.span())
+            );
+            ctx.error(
+                v.span(),
+                msg,
+                Some("put the text in double quotes".to_string()),
+            );
             None
         }
     }
@@ -230,7 +322,11 @@ pub(crate) fn boolean(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<bo
     match v.get_ref() {
         DeValue::Boolean(b) => Some(*b),
         other => {
-            let msg = format!("`{path}` must be `true` or `false`, found {} `{}`", type_name(other), ctx.text(v.span()));
+            let msg = format!(
+                "`{path}` must be `true` or `false`, found {} `{}`",
+                type_name(other),
+                ctx.text(v.span())
+            );
             ctx.error(v.span(), msg, None);
             None
         }
@@ -238,11 +334,20 @@ pub(crate) fn boolean(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<bo
 }
 
 /// An array, or an error.
-pub(crate) fn array<'a, 'i>(ctx: &mut Ctx<'_>, v: &'a Value<'i>, path: &str, what: &str) -> Option<&'a [Value<'i>]> {
+pub(crate) fn array<'a, 'i>(
+    ctx: &mut Ctx<'_>,
+    v: &'a Value<'i>,
+    path: &str,
+    what: &str,
+) -> Option<&'a [Value<'i>]> {
     match v.get_ref() {
         DeValue::Array(a) => Some(a),
         other => {
-            let msg = format!("`{path}` must be {what}, found {} `{}`", type_name(other), ctx.text(v.span()));
+            let msg = format!(
+                "`{path}` must be {what}, found {} `{}`",
+                type_name(other),
+                ctx.text(v.span())
+            );
             ctx.error(v.span(), msg, None);
             None
         }
@@ -253,7 +358,11 @@ pub(crate) fn array<'a, 'i>(ctx: &mut Ctx<'_>, v: &'a Value<'i>, path: &str, wha
 pub(crate) fn vec3(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<[f64; 3]> {
     let a = array(ctx, v, path, "a point `[x, y, z]`")?;
     if a.len() != 3 {
-        let msg = format!("`{path}` must have 3 coordinates `[x, y, z]`, found {}: `{}`", a.len(), ctx.text(v.span()));
+        let msg = format!(
+            "`{path}` must have 3 coordinates `[x, y, z]`, found {}: `{}`",
+            a.len(),
+            ctx.text(v.span())
+        );
         ctx.error(v.span(), msg, None);
         return None;
     }
@@ -269,7 +378,11 @@ pub(crate) fn vec3(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<[f64;
 }
 
 /// An array of strings, each with its span.
-pub(crate) fn strings(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<Vec<(String, Range<usize>)>> {
+pub(crate) fn strings(
+    ctx: &mut Ctx<'_>,
+    v: &Value<'_>,
+    path: &str,
+) -> Option<Vec<(String, Range<usize>)>> {
     let a = array(ctx, v, path, "an array of strings")?;
     let mut out = Vec::with_capacity(a.len());
     let mut ok = true;
@@ -283,18 +396,33 @@ pub(crate) fn strings(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<Ve
 }
 
 /// One word among `choices`, with a did-you-mean on a miss.
-pub(crate) fn choice<T: Copy>(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str, choices: &[(&str, T)]) -> Option<T> {
+pub(crate) fn choice<T: Copy>(
+    ctx: &mut Ctx<'_>,
+    v: &Value<'_>,
+    path: &str,
+    choices: &[(&str, T)],
+) -> Option<T> {
     let s = string(ctx, v, path)?;
     if let Some((_, t)) = choices.iter().find(|(name, _)| *name == s) {
         return Some(*t);
     }
     let names: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
     let help = suggest(s, &names, "valid values are");
-    ctx.error(v.span(), format!("`{path}` = `{}` is not one of the valid values", ctx.text(v.span())), help);
+    ctx.error(
+        v.span(),
+        format!(
+            "`{path}` = `{}` is not one of the valid values",
+            ctx.text(v.span())
+        ),
+        help,
+    );
     None
 }
 
 /// The closest of `names` to `word` as a "did you mean" help text.
-pub(crate) fn name_help<'a, I: IntoIterator<Item = &'a str>>(word: &str, names: I) -> Option<String> {
+pub(crate) fn name_help<'a, I: IntoIterator<Item = &'a str>>(
+    word: &str,
+    names: I,
+) -> Option<String> {
     did_you_mean(word, names).map(|c| format!("did you mean `{c}`?"))
 }

@@ -54,7 +54,9 @@ pub struct SurfaceSelector {
 
 impl SurfaceSelector {
     pub fn new(pattern: &str) -> SurfaceSelector {
-        SurfaceSelector { pattern: pattern.to_string() }
+        SurfaceSelector {
+            pattern: pattern.to_string(),
+        }
     }
 
     /// Whether the surface (or box side) `name` is selected.
@@ -69,7 +71,10 @@ impl SurfaceSelector {
 
     /// Number of non-wildcard characters: more means more specific.
     pub fn literal_len(&self) -> usize {
-        self.pattern.chars().filter(|c| *c != '*' && *c != '?').count()
+        self.pattern
+            .chars()
+            .filter(|c| *c != '*' && *c != '?')
+            .count()
     }
 }
 
@@ -108,14 +113,18 @@ impl CurveSelector {
         let (body, component) = match text.rsplit_once('#') {
             Some((b, k)) => {
                 let k: u32 = k.parse().map_err(|_| {
-                    SelectorError(format!("the component after `#` must be a whole number, found `{k}`"))
+                    SelectorError(format!(
+                        "the component after `#` must be a whole number, found `{k}`"
+                    ))
                 })?;
                 (b, Some(k))
             }
             None => (text, None),
         };
         if body.contains('#') {
-            return Err(SelectorError("a curve selector has at most one `#k` suffix".into()));
+            return Err(SelectorError(
+                "a curve selector has at most one `#k` suffix".into(),
+            ));
         }
         let parts: Vec<&str> = body.split('/').collect();
         if parts.len() > 2 {
@@ -145,7 +154,11 @@ impl CurveSelector {
             sides.push(SurfaceSelector::new("*"));
         }
         sides.sort();
-        Ok(CurveSelector { text: text.to_string(), sides, component })
+        Ok(CurveSelector {
+            text: text.to_string(),
+            sides,
+            component,
+        })
     }
 
     /// Whether the curve named `curve_name` (as produced by the model) is selected.
@@ -160,7 +173,10 @@ impl CurveSelector {
         match self.sides.as_slice() {
             [a] => names.iter().any(|n| a.matches(n)),
             [a, b] => names.iter().enumerate().any(|(i, x)| {
-                names.iter().enumerate().any(|(j, y)| i != j && a.matches(x) && b.matches(y))
+                names
+                    .iter()
+                    .enumerate()
+                    .any(|(j, y)| i != j && a.matches(x) && b.matches(y))
             }),
             _ => false,
         }

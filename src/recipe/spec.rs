@@ -14,7 +14,9 @@ use super::diagnostic::Span;
 use super::selector::{CurveSelector, SurfaceSelector};
 
 /// The six box sides, in this order: the surfaces a `[box]` contributes to the model.
-pub const BOX_SIDES: [&str; 6] = ["box.xmin", "box.xmax", "box.ymin", "box.ymax", "box.zmin", "box.zmax"];
+pub const BOX_SIDES: [&str; 6] = [
+    "box.xmin", "box.xmax", "box.ymin", "box.ymax", "box.zmin", "box.zmax",
+];
 
 /// Length unit of model coordinates (as read from the files; never rescaled).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -107,7 +109,10 @@ pub enum BoxExtent {
     /// Explicit corners, `min < max` on every axis.
     Explicit { min: [f64; 3], max: [f64; 3] },
     /// The extent of the named surfaces, grown by `margin` (>= 0) on each axis, both sides.
-    Around { surfaces: Vec<String>, margin: [f64; 3] },
+    Around {
+        surfaces: Vec<String>,
+        margin: [f64; 3],
+    },
 }
 
 /// `[box]`: its six sides are the surfaces [`BOX_SIDES`].
@@ -162,7 +167,11 @@ pub enum Subdivision {
     /// Exactly this many segments (>= 1).
     Count(u32),
     /// Segments of about `size` (> 0), graded by `ratio` (> 0; 1 = uniform).
-    Size { size: f64, ratio: f64, grading: Grading },
+    Size {
+        size: f64,
+        ratio: f64,
+        grading: Grading,
+    },
 }
 
 /// One `[mesh.curves]` entry.
@@ -217,7 +226,11 @@ impl MeshSpec {
     /// [`CurveSelector::specificity`]); among equally specific ones, the one written last.
     pub fn curve_rule(&self, curve_name: &str) -> Option<&CurveRule> {
         let mut best: Option<&CurveRule> = None;
-        for r in self.curves.iter().filter(|r| r.selector.matches(curve_name)) {
+        for r in self
+            .curves
+            .iter()
+            .filter(|r| r.selector.matches(curve_name))
+        {
             if best.is_none_or(|b| r.selector.specificity() >= b.selector.specificity()) {
                 best = Some(r);
             }
@@ -276,7 +289,10 @@ impl Format {
     ];
 
     pub fn as_str(self) -> &'static str {
-        Format::ALL.iter().find(|(_, f)| *f == self).map_or("msh", |(s, _)| s)
+        Format::ALL
+            .iter()
+            .find(|(_, f)| *f == self)
+            .map_or("msh", |(s, _)| s)
     }
 }
 

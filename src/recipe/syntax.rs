@@ -22,7 +22,9 @@ fn one(src: &SourceText, e: &toml::de::Error) -> Diagnostic {
         let header = enclosing_header(src, span.line);
         let is_header_dup = line_of(src, span.line).trim_start().starts_with('[');
         let what = match header.as_deref() {
-            _ if is_header_dup => format!("table `[{}]` is defined twice", header_text(src, span.line)),
+            _ if is_header_dup => {
+                format!("table `[{}]` is defined twice", header_text(src, span.line))
+            }
             Some("surfaces") => format!("duplicate surface name `{key}`"),
             Some("regions") => format!("duplicate region name `{key}`"),
             Some(h) => format!("duplicate key `{key}` in `[{h}]`"),
@@ -35,7 +37,9 @@ fn one(src: &SourceText, e: &toml::de::Error) -> Diagnostic {
         };
         let help = match first {
             Some(l) if is_header_dup => format!("first defined on line {l}: merge the two tables"),
-            Some(l) => format!("`{key}` is first defined on line {l}: each name may appear once; rename or remove one"),
+            Some(l) => format!(
+                "`{key}` is first defined on line {l}: each name may appear once; rename or remove one"
+            ),
             None => "each key may appear once in a table; rename or remove one".to_string(),
         };
         return src.diagnostic(span, what, Some(help));
@@ -43,9 +47,16 @@ fn one(src: &SourceText, e: &toml::de::Error) -> Diagnostic {
     let message = if text.trim().is_empty() {
         format!("TOML syntax error: {message}")
     } else {
-        format!("TOML syntax error: {message}, at `{}`", text.lines().next().unwrap_or(""))
+        format!(
+            "TOML syntax error: {message}, at `{}`",
+            text.lines().next().unwrap_or("")
+        )
     };
-    src.diagnostic(span, message, Some("see https://toml.io for the syntax".into()))
+    src.diagnostic(
+        span,
+        message,
+        Some("see https://toml.io for the syntax".into()),
+    )
 }
 
 fn line_of(src: &SourceText, line: usize) -> &str {
@@ -56,25 +67,36 @@ fn line_of(src: &SourceText, line: usize) -> &str {
 fn header_text(src: &SourceText, line: usize) -> String {
     let l = line_of(src, line).trim();
     let l = l.split('#').next().unwrap_or("").trim();
-    l.trim_start_matches('[').trim_end_matches(']').trim().to_string()
+    l.trim_start_matches('[')
+        .trim_end_matches(']')
+        .trim()
+        .to_string()
 }
 
 /// The name of the table whose header precedes `line` (a heuristic, for messages only).
 fn enclosing_header(src: &SourceText, line: usize) -> Option<String> {
-    (1..=line).rev().find(|&l| line_of(src, l).trim_start().starts_with('[')).map(|l| header_text(src, l))
+    (1..=line)
+        .rev()
+        .find(|&l| line_of(src, l).trim_start().starts_with('['))
+        .map(|l| header_text(src, l))
 }
 
 /// The first line before `line` that defines the header `name`.
 fn find_header(src: &SourceText, line: usize, name: &str) -> Option<usize> {
-    (1..line).find(|&l| line_of(src, l).trim_start().starts_with('[') && header_text(src, l) == name)
+    (1..line)
+        .find(|&l| line_of(src, l).trim_start().starts_with('[') && header_text(src, l) == name)
 }
 
 /// The first line, between the enclosing header and `line`, that starts with `key`.
 fn find_first(src: &SourceText, line: usize, key: &str) -> Option<usize> {
-    let start = (1..=line).rev().find(|&l| line_of(src, l).trim_start().starts_with('[')).unwrap_or(1);
+    let start = (1..=line)
+        .rev()
+        .find(|&l| line_of(src, l).trim_start().starts_with('['))
+        .unwrap_or(1);
     (start..line).find(|&l| {
         let t = line_of(src, l).trim_start();
-        t.strip_prefix(key).is_some_and(|rest| rest.trim_start().starts_with(['=', '.']))
+        t.strip_prefix(key)
+            .is_some_and(|rest| rest.trim_start().starts_with(['=', '.']))
             || t.contains(&format!("{{ {key} ="))
             || t.contains(&format!(", {key} ="))
     })

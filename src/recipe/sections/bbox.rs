@@ -9,18 +9,19 @@ use crate::recipe::spec::{BoxExtent, BoxSpec};
 
 const KEYS: &[&str] = &["min", "max", "around", "margin"];
 
-/// A key written under `[box]` that belongs to the top level: TOML puts every `key = value`
-/// after a `[table]` header into that table, a classic trap.
-fn misplaced(key: &str) -> Option<String> {
-    matches!(key, "intersect" | "trim" | "mesh" | "regions" | "output" | "surfaces" | "model").then(|| {
-        format!("`{key}` belongs to the top level, but TOML puts it in `[box]` because it follows that header: move it above `[box]`, or write it as its own `[{key}]` table")
-    })
-}
-
-pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, surfaces: &[String]) -> Option<BoxSpec> {
+pub(crate) fn read(
+    ctx: &mut Ctx<'_>,
+    v: Option<&Value<'_>>,
+    surfaces: &[String],
+) -> Option<BoxSpec> {
     let v = v?;
-    let t = rd::as_table(ctx, v, "box", Some("write `[box]` with `min = [x, y, z]` and `max = [x, y, z]`"))?;
-    rd::check_keys(ctx, t, "box", KEYS, &misplaced);
+    let t = rd::as_table(
+        ctx,
+        v,
+        "box",
+        Some("write `[box]` with `min = [x, y, z]` and `max = [x, y, z]`"),
+    )?;
+    rd::check_keys(ctx, t, "box", KEYS, &|_| None);
     let span = ctx.span(v.span());
     let explicit = t.get("min").is_some() || t.get("max").is_some();
     let around = t.get("around").is_some() || t.get("margin").is_some();
@@ -33,10 +34,21 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, surfaces: &[String]
         return None;
     }
     if around {
-        let list = rd::required(ctx, t, v.span(), "box", "around", "add `around = [\"top\", \"base\"]`")?;
+        let list = rd::required(
+            ctx,
+            t,
+            v.span(),
+            "box",
+            "around",
+            "add `around = [\"top\", \"base\"]`",
+        )?;
         let names = rd::strings(ctx, list, "box.around")?;
         if names.is_empty() {
-            ctx.error(list.span(), "`box.around` is empty".into(), Some("name at least one surface".into()));
+            ctx.error(
+                list.span(),
+                "`box.around` is empty".into(),
+                Some("name at least one surface".into()),
+            );
             return None;
         }
         let mut ok = true;
@@ -44,7 +56,11 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, surfaces: &[String]
         for (n, s) in &names {
             if !surfaces.iter().any(|x| x == n) {
                 let help = name_help(n, surfaces.iter().map(String::as_str));
-                ctx.error(s.clone(), format!("`box.around` names unknown surface `{n}`"), help);
+                ctx.error(
+                    s.clone(),
+                    format!("`box.around` names unknown surface `{n}`"),
+                    help,
+                );
                 ok = false;
             } else if seen.contains(&n.as_str()) {
                 ctx.error(s.clone(), format!("`box.around` lists `{n}` twice"), None);
@@ -61,10 +77,15 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, surfaces: &[String]
             return None;
         }
         let surfaces = names.into_iter().map(|(n, _)| n).collect();
-        return Some(BoxSpec { extent: BoxExtent::Around { surfaces, margin }, span });
+        return Some(BoxSpec {
+            extent: BoxExtent::Around { surfaces, margin },
+            span,
+        });
     }
-    let min = rd::required(ctx, t, v.span(), "box", "min", "add `min = [x, y, z]`").and_then(|m| rd::vec3(ctx, m, "box.min"));
-    let max = rd::required(ctx, t, v.span(), "box", "max", "add `max = [x, y, z]`").and_then(|m| rd::vec3(ctx, m, "box.max"));
+    let min = rd::required(ctx, t, v.span(), "box", "min", "add `min = [x, y, z]`")
+        .and_then(|m| rd::vec3(ctx, m, "box.min"));
+    let max = rd::required(ctx, t, v.span(), "box", "max", "add `max = [x, y, z]`")
+        .and_then(|m| rd::vec3(ctx, m, "box.max"));
     let (min, max) = (min?, max?);
     let mut ok = true;
     for (i, axis) in ["x", "y", "z"].iter().enumerate() {
@@ -72,13 +93,19 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, surfaces: &[String]
             let at = t.get("max").map_or(v.span(), |m| m.span());
             ctx.error(
                 at,
-                format!("box `min` {axis} = {} is not less than `max` {axis} = {}", min[i], max[i]),
+                format!(
+                    "box `min` {axis} = {} is not less than `max` {axis} = {}",
+                    min[i], max[i]
+                ),
                 Some("`min` must be the low corner and `max` the high corner on every axis".into()),
             );
             ok = false;
         }
     }
-    ok.then_some(BoxSpec { extent: BoxExtent::Explicit { min, max }, span })
+    ok.then_some(BoxSpec {
+        extent: BoxExtent::Explicit { min, max },
+        span,
+    })
 }
 
 fn margin(ctx: &mut Ctx<'_>, m: &Value<'_>) -> Option<[f64; 3]> {
@@ -90,7 +117,14 @@ fn margin(ctx: &mut Ctx<'_>, m: &Value<'_>) -> Option<[f64; 3]> {
         }
     };
     if xyz.iter().any(|x| *x < 0.0) {
-        ctx.error(m.span(), format!("`box.margin` = `{}` must not be negative", ctx.text(m.span())), None);
+        ctx.error(
+            m.span(),
+            format!(
+                "`box.margin` = `{}` must not be negative",
+                ctx.text(m.span())
+            ),
+            None,
+        );
         return None;
     }
     Some(xyz)

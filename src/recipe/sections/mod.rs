@@ -41,7 +41,14 @@ impl Names {
 
     /// Checks that a name or glob matches at least one known surface; reports it otherwise.
     /// `whole` is the full text the pattern came from (for the message), `span` its location.
-    pub fn check_pattern(&self, ctx: &mut Ctx<'_>, pattern: &str, whole: &str, span: Range<usize>, what: &str) -> bool {
+    pub fn check_pattern(
+        &self,
+        ctx: &mut Ctx<'_>,
+        pattern: &str,
+        whole: &str,
+        span: Range<usize>,
+        what: &str,
+    ) -> bool {
         let sel = SurfaceSelector::new(pattern);
         let all = self.all();
         if all.iter().any(|n| sel.matches(n)) {
@@ -52,12 +59,18 @@ impl Names {
             candidates.push("box.*");
         }
         let help = if pattern.starts_with("box") && !self.has_box {
-            Some("the box sides `box.xmin` .. `box.zmax` exist only when a `[box]` is given".to_string())
+            Some(
+                "the box sides `box.xmin` .. `box.zmax` exist only when a `[box]` is given"
+                    .to_string(),
+            )
         } else {
             name_help(pattern, candidates.iter().copied()).or_else(|| {
                 Some(format!(
                     "known surfaces: {}",
-                    all.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+                    all.iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ))
             })
         };

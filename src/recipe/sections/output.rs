@@ -8,18 +8,31 @@ use crate::recipe::spec::{Format, OutputSpec};
 
 const KEYS: &[&str] = &["dir", "formats"];
 
-pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, base_dir: &Path) -> Option<OutputSpec> {
+pub(crate) fn read(
+    ctx: &mut Ctx<'_>,
+    v: Option<&Value<'_>>,
+    base_dir: &Path,
+) -> Option<OutputSpec> {
     let default_formats = vec![Format::Msh, Format::Vtu];
     let Some(v) = v else {
         let dir = PathBuf::from("out");
-        return Some(OutputSpec { path: base_dir.join(&dir), dir, formats: default_formats, span: Default::default() });
+        return Some(OutputSpec {
+            path: base_dir.join(&dir),
+            dir,
+            formats: default_formats,
+            span: Default::default(),
+        });
     };
     let t = rd::as_table(ctx, v, "output", None)?;
     rd::check_keys(ctx, t, "output", KEYS, &|_| None);
     let dir = match t.get("dir") {
         Some(d) => rd::string(ctx, d, "output.dir").and_then(|s| {
             if s.trim().is_empty() {
-                ctx.error(d.span(), "`output.dir` must not be empty".into(), Some("e.g. `dir = \"out\"` (relative to the recipe)".into()));
+                ctx.error(
+                    d.span(),
+                    "`output.dir` must not be empty".into(),
+                    Some("e.g. `dir = \"out\"` (relative to the recipe)".into()),
+                );
                 None
             } else {
                 Some(PathBuf::from(s))
@@ -32,13 +45,22 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, base_dir: &Path) ->
         None => Some(default_formats),
     };
     let dir = dir?;
-    Some(OutputSpec { path: base_dir.join(&dir), dir, formats: formats?, span: ctx.span(v.span()) })
+    Some(OutputSpec {
+        path: base_dir.join(&dir),
+        dir,
+        formats: formats?,
+        span: ctx.span(v.span()),
+    })
 }
 
 fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
     let list = rd::array(ctx, v, "output.formats", "an array of format names")?;
     if list.is_empty() {
-        ctx.error(v.span(), "`output.formats` is empty".into(), Some("list at least one of `msh`, `msh-binary`, `vtu`, `tetgen`, `medit`".into()));
+        ctx.error(
+            v.span(),
+            "`output.formats` is empty".into(),
+            Some("list at least one of `msh`, `msh-binary`, `vtu`, `tetgen`, `medit`".into()),
+        );
         return None;
     }
     let mut out = Vec::new();
@@ -46,7 +68,14 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
     for (i, e) in list.iter().enumerate() {
         match rd::choice(ctx, e, &format!("output.formats[{i}]"), &Format::ALL) {
             Some(f) if out.contains(&f) => {
-                ctx.error(e.span(), format!("format `{}` is listed twice in `output.formats`", f.as_str()), Some("remove the repeated format".into()));
+                ctx.error(
+                    e.span(),
+                    format!(
+                        "format `{}` is listed twice in `output.formats`",
+                        f.as_str()
+                    ),
+                    Some("remove the repeated format".into()),
+                );
                 ok = false;
             }
             Some(f) => out.push(f),

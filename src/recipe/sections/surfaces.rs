@@ -11,30 +11,57 @@ use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
 use crate::recipe::selector::valid_name_char;
 use crate::recipe::spec::{ImportFormat, OnInvalid, SurfaceSpec};
 
-const KEYS: &[&str] = &["file", "kind", "object", "retriangulate", "on_invalid", "skip_other_types"];
+const KEYS: &[&str] = &[
+    "file",
+    "kind",
+    "object",
+    "retriangulate",
+    "on_invalid",
+    "skip_other_types",
+];
 
 /// Checks a user-chosen name (surface or region); reports and returns false when illegal.
-pub(crate) fn check_name(ctx: &mut Ctx<'_>, name: &str, span: std::ops::Range<usize>, what: &str) -> bool {
+pub(crate) fn check_name(
+    ctx: &mut Ctx<'_>,
+    name: &str,
+    span: std::ops::Range<usize>,
+    what: &str,
+) -> bool {
     if name.is_empty() {
-        ctx.error(span, format!("empty {what} name"), Some("names use letters, digits, `_`, `.` and `-`".into()));
+        ctx.error(
+            span,
+            format!("empty {what} name"),
+            Some("names use letters, digits, `_`, `.` and `-`".into()),
+        );
         return false;
     }
     if let Some(c) = name.chars().find(|c| !valid_name_char(*c)) {
-        let fixed: String = name.chars().map(|c| if valid_name_char(c) { c } else { '_' }).collect();
+        let fixed: String = name
+            .chars()
+            .map(|c| if valid_name_char(c) { c } else { '_' })
+            .collect();
         ctx.error(
             span,
             format!("{what} name `{name}` contains `{c}`, which is not allowed"),
-            Some(format!("names use letters, digits, `_`, `.` and `-`; e.g. `{fixed}`")),
+            Some(format!(
+                "names use letters, digits, `_`, `.` and `-`; e.g. `{fixed}`"
+            )),
         );
         return false;
     }
     true
 }
 
-pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, base_dir: &Path) -> BTreeMap<String, SurfaceSpec> {
+pub(crate) fn read(
+    ctx: &mut Ctx<'_>,
+    v: Option<&Value<'_>>,
+    base_dir: &Path,
+) -> BTreeMap<String, SurfaceSpec> {
     let mut out = BTreeMap::new();
     let Some(v) = v else { return out };
-    let Some(t) = rd::as_table(ctx, v, "surfaces", None) else { return out };
+    let Some(t) = rd::as_table(ctx, v, "surfaces", None) else {
+        return out;
+    };
     for (k, e) in t.iter() {
         let name: &str = k.get_ref();
         let path = path_join("surfaces", name);
@@ -48,9 +75,18 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, base_dir: &Path) ->
             ok = false;
         }
         let help = format!("write `{name} = {{ file = \"data/{name}.ts\", kind = \"horizon\" }}`");
-        let Some(st) = rd::as_table(ctx, e, &path, Some(&help)) else { continue };
+        let Some(st) = rd::as_table(ctx, e, &path, Some(&help)) else {
+            continue;
+        };
         rd::check_keys(ctx, st, &path, KEYS, &|_| None);
-        let file = rd::required(ctx, st, e.span(), &path, "file", "add `file = \"path/to/surface.ts\"` (relative to the recipe)");
+        let file = rd::required(
+            ctx,
+            st,
+            e.span(),
+            &path,
+            "file",
+            "add `file = \"path/to/surface.ts\"` (relative to the recipe)",
+        );
         let file = file.and_then(|f| {
             let s = rd::string(ctx, f, &path_join(&path, "file"))?;
             let fmt = import_format(ctx, s, f)?;
@@ -61,14 +97,22 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, base_dir: &Path) ->
                 ctx,
                 x,
                 &path_join(&path, "kind"),
-                &[("horizon", SurfaceKind::Horizon), ("fault", SurfaceKind::Fault), ("other", SurfaceKind::Other)],
+                &[
+                    ("horizon", SurfaceKind::Horizon),
+                    ("fault", SurfaceKind::Fault),
+                    ("other", SurfaceKind::Other),
+                ],
             ),
             None => Some(SurfaceKind::Other),
         };
         let object = match st.get("object") {
             Some(x) => match rd::string(ctx, x, &path_join(&path, "object")) {
                 Some(s) if s.trim().is_empty() => {
-                    ctx.error(x.span(), format!("`{}` must not be empty", path_join(&path, "object")), Some("remove `object` to take every TSurf object of the file".into()));
+                    ctx.error(
+                        x.span(),
+                        format!("`{}` must not be empty", path_join(&path, "object")),
+                        Some("remove `object` to take every TSurf object of the file".into()),
+                    );
                     None
                 }
                 Some(s) => Some(Some(s.to_string())),
@@ -81,15 +125,27 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, base_dir: &Path) ->
             None => Some(None),
         };
         let on_invalid = match st.get("on_invalid") {
-            Some(x) => rd::choice(ctx, x, &path_join(&path, "on_invalid"), &[("repair", OnInvalid::Repair), ("stop", OnInvalid::Stop)]),
+            Some(x) => rd::choice(
+                ctx,
+                x,
+                &path_join(&path, "on_invalid"),
+                &[("repair", OnInvalid::Repair), ("stop", OnInvalid::Stop)],
+            ),
             None => Some(OnInvalid::Repair),
         };
         let skip = match st.get("skip_other_types") {
             Some(x) => rd::boolean(ctx, x, &path_join(&path, "skip_other_types")),
             None => Some(false),
         };
-        if let (true, Some((file, format, fspan)), Some(kind), Some(object), Some(retriangulate), Some(on_invalid), Some(skip_other_types)) =
-            (ok, file, kind, object, retriangulate, on_invalid, skip)
+        if let (
+            true,
+            Some((file, format, fspan)),
+            Some(kind),
+            Some(object),
+            Some(retriangulate),
+            Some(on_invalid),
+            Some(skip_other_types),
+        ) = (ok, file, kind, object, retriangulate, on_invalid, skip)
         {
             let file = PathBuf::from(file);
             out.insert(
@@ -115,17 +171,26 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, base_dir: &Path) ->
 
 fn import_format(ctx: &mut Ctx<'_>, file: &str, v: &Value<'_>) -> Option<ImportFormat> {
     if file.trim().is_empty() {
-        ctx.error(v.span(), "empty file name".into(), Some("e.g. `file = \"data/top.ts\"`".into()));
+        ctx.error(
+            v.span(),
+            "empty file name".into(),
+            Some("e.g. `file = \"data/top.ts\"`".into()),
+        );
         return None;
     }
-    let ext = Path::new(file).extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let ext = Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
     match ext.as_deref() {
         Some("ts") => Some(ImportFormat::TSurf),
         Some("ml") => Some(ImportFormat::Model3d),
         Some("gp") => Some(ImportFormat::Group),
         other => {
             let msg = match other {
-                Some(e) => format!("file `{file}` has extension `.{e}`, which is not a gOcad format this tool imports"),
+                Some(e) => format!(
+                    "file `{file}` has extension `.{e}`, which is not a gOcad format this tool imports"
+                ),
                 None => format!("file `{file}` has no extension: cannot tell its format"),
             };
             let kinds = "imports are gOcad TSurf `.ts`, Model3d `.ml` or group `.gp` files";
