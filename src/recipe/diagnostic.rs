@@ -195,7 +195,7 @@ where
 }
 
 /// "did you mean `x`?" for the closest candidate, else a list of the valid choices.
-pub fn suggest<'a>(word: &str, candidates: &[&'a str], what: &str) -> Option<String> {
+pub fn suggest(word: &str, candidates: &[&str], what: &str) -> Option<String> {
     if let Some(c) = did_you_mean(word, candidates.iter().copied()) {
         return Some(format!("did you mean `{c}`?"));
     }

@@ -7,7 +7,7 @@ use super::diagnostic::{Diagnostic, SourceText};
 /// The diagnostics for the parser's errors, in source order.
 pub(crate) fn diagnostics(src: &SourceText, errors: &[toml::de::Error]) -> Vec<Diagnostic> {
     let mut out: Vec<Diagnostic> = errors.iter().map(|e| one(src, e)).collect();
-    out.sort_by(|a, b| (a.line, a.col).cmp(&(b.line, b.col)));
+    out.sort_by_key(|d| (d.line, d.col));
     out.dedup();
     out
 }
