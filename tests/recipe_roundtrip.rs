@@ -263,3 +263,62 @@ fn the_real_recipes_of_the_shared_data_parse_if_present() {
         "{d:#?}"
     );
 }
+
+#[test]
+fn a_surface_given_as_a_bare_file_string_takes_every_default() {
+    let text = "[model]\nname = \"t\"\n[surfaces]\ntop = \"data/top.TS\"\n[mesh]\nsize = 1\n";
+    let r = ok(Path::new("r/t.toml"), text);
+    let top = &r.surfaces["top"];
+    assert_eq!(top.path, Path::new("r/data/top.TS"));
+    assert_eq!(
+        (top.format, top.kind, top.on_invalid),
+        (ImportFormat::TSurf, SurfaceKind::Other, OnInvalid::Repair)
+    );
+    assert_eq!(top.file_span.line, 4);
+    let d = parse(Path::new("t.toml"), &text.replace("top.TS", "top.tsurf")).unwrap_err();
+    assert_eq!(d.len(), 1);
+    assert!(
+        d[0].help
+            .as_deref()
+            .is_some_and(|h| h.starts_with("did you mean `.ts`?")),
+        "{}",
+        d[0]
+    );
+}
+
+#[test]
+fn check_reports_missing_files_and_render_counts_the_errors() {
+    let (_, text) = load("didactic.toml");
+    let label = Path::new("recipes/didactic.toml");
+    let exists = |p: &Path| !p.ends_with("f2.ts") && !p.ends_with("top.ts");
+    let d = georecipe::recipe::check(label, &text, &exists).unwrap_err();
+    assert_eq!(d.len(), 2);
+    assert!(d[0].line < d[1].line, "source order");
+    let out = georecipe::recipe::render(&d);
+    assert!(
+        out.ends_with("error: could not use `recipes/didactic.toml`: 2 errors\n"),
+        "{out}"
+    );
+    assert!(georecipe::recipe::check(label, &text, &|_| true).is_ok());
+}
+
+#[test]
+fn spans_do_not_reach_the_serialized_specs() {
+    let (_, text) = load("didactic.toml");
+    let a = ok(Path::new("d.toml"), &text);
+    let b = ok(Path::new("d.toml"), &format!("\n\n# moved\n{text}"));
+    assert_ne!(a.surfaces["f2"].span, b.surfaces["f2"].span);
+    let ser = |r: &Recipe| {
+        serde_json::to_string(&(
+            &r.surfaces,
+            &r.mesh,
+            &r.trims,
+            &r.regions,
+            &r.output,
+            &r.bbox,
+        ))
+        .unwrap_or_default()
+    };
+    assert!(!ser(&a).is_empty());
+    assert_eq!(ser(&a), ser(&b));
+}

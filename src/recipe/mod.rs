@@ -177,3 +177,39 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     }
     Err(diags)
 }
+
+/// What `recipe check` does: [`parse`], then [`check_files`]; every diagnostic in source order.
+pub fn check(
+    path_label: &Path,
+    text: &str,
+    exists: &dyn Fn(&Path) -> bool,
+) -> Result<Recipe, Vec<Diagnostic>> {
+    let recipe = parse(path_label, text)?;
+    let missing = check_files(&recipe, exists);
+    if missing.is_empty() {
+        Ok(recipe)
+    } else {
+        let mut d = missing;
+        d.sort_by_key(|d| (d.line, d.col));
+        Err(d)
+    }
+}
+
+/// All diagnostics rendered for a terminal, separated by blank lines, with a closing count:
+/// "error: could not use `FILE`: N errors".
+pub fn render(diags: &[Diagnostic]) -> String {
+    let mut out = String::new();
+    for d in diags {
+        out.push_str(&d.to_string());
+        out.push_str("\n\n");
+    }
+    if let Some(first) = diags.first() {
+        let n = diags.len();
+        let s = if n == 1 { "" } else { "s" };
+        out.push_str(&format!(
+            "error: could not use `{}`: {n} error{s}\n",
+            first.file
+        ));
+    }
+    out
+}

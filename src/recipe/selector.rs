@@ -46,7 +46,7 @@ pub fn is_glob(s: &str) -> bool {
 }
 
 /// A surface name or glob, e.g. `f2`, `f*`, `box.*`.
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
 pub struct SurfaceSelector {
     /// The pattern as written.
     pub pattern: String,
@@ -92,7 +92,7 @@ impl fmt::Display for SurfaceSelector {
 /// * `a` (same as `a/*` or `*/a`) matches every curve that has a surface matched by `a`,
 ///   including the free boundary curves `a#k` of that surface;
 /// * `#k` restricts to the curve whose name ends in `#k`; without it all components match.
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
 pub struct CurveSelector {
     /// The selector as written.
     pub text: String,

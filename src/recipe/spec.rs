@@ -4,9 +4,13 @@
 //! so later stages never re-check the recipe; every user-written item keeps the [`Span`] of
 //! where it was written so errors found later (a curve rule that matches no curve of the built
 //! model) can still point at the recipe. Defaults are documented per field and in REFERENCE.md.
+//! The specs are `Serialize` with every span skipped, so a planner can hash a spec as a cache-key
+//! parameter without moving a line of the recipe changing any key.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+
+use serde::Serialize;
 
 pub use crate::mesh::SurfaceKind;
 
@@ -19,7 +23,7 @@ pub const BOX_SIDES: [&str; 6] = [
 ];
 
 /// Length unit of model coordinates (as read from the files; never rescaled).
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum Units {
     Metre,
     Kilometre,
@@ -47,17 +51,18 @@ impl Units {
 }
 
 /// `[model]`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ModelSpec {
     /// Required, non-empty: used in output file names.
     pub name: String,
     /// Default `m`.
     pub units: Units,
+    #[serde(skip)]
     pub span: Span,
 }
 
 /// The format of an import, from the file extension (case-insensitive).
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum ImportFormat {
     /// `.ts`: gOcad TSurf.
     TSurf,
@@ -68,7 +73,7 @@ pub enum ImportFormat {
 }
 
 /// What the importer does with a triangulation that fails validation.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum OnInvalid {
     /// Repair what can be repaired (duplicate vertices, degenerate triangles...) and report it.
     Repair,
@@ -77,7 +82,7 @@ pub enum OnInvalid {
 }
 
 /// One `[surfaces]` entry.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SurfaceSpec {
     /// The surface name (the key).
     pub name: String,
@@ -98,13 +103,15 @@ pub struct SurfaceSpec {
     /// Skip objects of other gOcad types in the file instead of failing. Default `false`.
     pub skip_other_types: bool,
     /// Span of the name (the key).
+    #[serde(skip)]
     pub span: Span,
     /// Span of the `file` value.
+    #[serde(skip)]
     pub file_span: Span,
 }
 
 /// How the bounding box is given.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum BoxExtent {
     /// Explicit corners, `min < max` on every axis.
     Explicit { min: [f64; 3], max: [f64; 3] },
@@ -116,14 +123,15 @@ pub enum BoxExtent {
 }
 
 /// `[box]`: its six sides are the surfaces [`BOX_SIDES`].
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BoxSpec {
     pub extent: BoxExtent,
+    #[serde(skip)]
     pub span: Span,
 }
 
 /// Which side of a surface to keep.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum Side {
     /// Larger z (towards the surface's upward side).
     Above,
@@ -131,7 +139,7 @@ pub enum Side {
 }
 
 /// What a `[[trim]]` does to the patches of the selected surfaces.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum TrimAction {
     /// Keep the patches on `side` of surface `of`; discard the others.
     Keep { side: Side, of: String },
@@ -144,16 +152,17 @@ pub enum TrimAction {
 }
 
 /// One `[[trim]]`, applied in recipe order after splitting (outside the box is always discarded).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TrimSpec {
     pub surface: SurfaceSelector,
     pub action: TrimAction,
     /// Span of the `[[trim]]` header.
+    #[serde(skip)]
     pub span: Span,
 }
 
 /// Grading of a sized curve subdivision.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum Grading {
     /// Segment lengths grow by `ratio` from the curve's start.
     Geometric,
@@ -162,7 +171,7 @@ pub enum Grading {
 }
 
 /// How a curve is subdivided.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Subdivision {
     /// Exactly this many segments (>= 1).
     Count(u32),
@@ -175,34 +184,37 @@ pub enum Subdivision {
 }
 
 /// One `[mesh.curves]` entry.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CurveRule {
     pub selector: CurveSelector,
     pub subdivision: Subdivision,
     /// Span of the selector key.
+    #[serde(skip)]
     pub span: Span,
 }
 
 /// One `[mesh.surfaces]` entry.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SurfaceSizeRule {
     pub selector: SurfaceSelector,
     pub size: f64,
+    #[serde(skip)]
     pub span: Span,
 }
 
 /// Sizes for one region (`[mesh.regions]`), each defaulting to the global `[mesh]` value.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RegionMeshSpec {
     pub size: f64,
     pub min_size: f64,
     pub max_size: f64,
     pub growth: f64,
+    #[serde(skip)]
     pub span: Span,
 }
 
 /// `[mesh]`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MeshSpec {
     /// Global element size, required, > 0.
     pub size: f64,
@@ -218,6 +230,7 @@ pub struct MeshSpec {
     pub surfaces: Vec<SurfaceSizeRule>,
     /// Keyed by region name (every key is a `[regions]` name).
     pub regions: BTreeMap<String, RegionMeshSpec>,
+    #[serde(skip)]
     pub span: Span,
 }
 
@@ -253,18 +266,19 @@ impl MeshSpec {
 }
 
 /// One `[regions]` entry: a name and attributes for the region containing `point`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RegionSpec {
     pub name: String,
     pub point: [f64; 3],
     pub material: Option<i64>,
     /// Numeric attributes, by name.
     pub properties: BTreeMap<String, f64>,
+    #[serde(skip)]
     pub span: Span,
 }
 
 /// An output format.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum Format {
     /// Gmsh msh 4.1 ASCII.
     Msh,
@@ -297,7 +311,7 @@ impl Format {
 }
 
 /// `[output]`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct OutputSpec {
     /// As written; default `out`.
     pub dir: PathBuf,
@@ -305,5 +319,6 @@ pub struct OutputSpec {
     pub path: PathBuf,
     /// Without duplicates, in recipe order; default `["msh", "vtu"]`.
     pub formats: Vec<Format>,
+    #[serde(skip)]
     pub span: Span,
 }

@@ -3,7 +3,10 @@
 //! file extension, and the per-import options with their defaults.
 
 use std::collections::BTreeMap;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
+
+use toml::de::DeValue;
 
 use crate::mesh::SurfaceKind;
 use crate::recipe::diagnostic::did_you_mean;
@@ -73,6 +76,14 @@ pub(crate) fn read(
                 Some(format!("rename it, e.g. `{}`", name.replacen("box", "bx", 1))),
             );
             ok = false;
+        }
+        if let DeValue::String(file) = e.get_ref() {
+            // Shorthand: `name = "file.ts"`, every option at its default.
+            if let (true, Some(format)) = (ok, import_format(ctx, file, e)) {
+                let spec = spec(ctx, base_dir, (name, k.span()), (file, e.span()), format);
+                out.insert(name.to_string(), spec);
+            }
+            continue;
         }
         let help = format!("write `{name} = {{ file = \"data/{name}.ts\", kind = \"horizon\" }}`");
         let Some(st) = rd::as_table(ctx, e, &path, Some(&help)) else {
@@ -147,26 +158,40 @@ pub(crate) fn read(
             Some(skip_other_types),
         ) = (ok, file, kind, object, retriangulate, on_invalid, skip)
         {
-            let file = PathBuf::from(file);
-            out.insert(
-                name.to_string(),
-                SurfaceSpec {
-                    name: name.to_string(),
-                    path: base_dir.join(&file),
-                    file,
-                    format,
-                    kind,
-                    object,
-                    retriangulate,
-                    on_invalid,
-                    skip_other_types,
-                    span: ctx.span(k.span()),
-                    file_span: ctx.span(fspan),
-                },
-            );
+            let mut spec = spec(ctx, base_dir, (name, k.span()), (&file, fspan), format);
+            spec.kind = kind;
+            spec.object = object;
+            spec.retriangulate = retriangulate;
+            spec.on_invalid = on_invalid;
+            spec.skip_other_types = skip_other_types;
+            out.insert(name.to_string(), spec);
         }
     }
     out
+}
+
+/// A spec with every option at its default.
+fn spec(
+    ctx: &Ctx<'_>,
+    base_dir: &Path,
+    (name, name_span): (&str, Range<usize>),
+    (file, file_span): (&str, Range<usize>),
+    format: ImportFormat,
+) -> SurfaceSpec {
+    let file = PathBuf::from(file);
+    SurfaceSpec {
+        name: name.to_string(),
+        path: base_dir.join(&file),
+        file,
+        format,
+        kind: SurfaceKind::Other,
+        object: None,
+        retriangulate: None,
+        on_invalid: OnInvalid::Repair,
+        skip_other_types: false,
+        span: ctx.span(name_span),
+        file_span: ctx.span(file_span),
+    }
 }
 
 fn import_format(ctx: &mut Ctx<'_>, file: &str, v: &Value<'_>) -> Option<ImportFormat> {
