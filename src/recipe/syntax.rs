@@ -44,6 +44,9 @@ fn one(src: &SourceText, e: &toml::de::Error) -> Diagnostic {
         };
         return src.diagnostic(span, what, Some(help));
     }
+    if let Some(d) = unterminated_string(src, range_of(e), &message) {
+        return d;
+    }
     let message = if text.trim().is_empty() {
         format!("TOML syntax error: {message}")
     } else {
@@ -100,4 +103,39 @@ fn find_first(src: &SourceText, line: usize, key: &str) -> Option<usize> {
             || t.contains(&format!("{{ {key} ="))
             || t.contains(&format!(", {key} ="))
     })
+}
+
+fn range_of(e: &toml::de::Error) -> std::ops::Range<usize> {
+    e.span().unwrap_or(0..0)
+}
+
+/// An unterminated string is reported by the parser at the end of the line; point at its
+/// opening quote instead, where the user has to look.
+fn unterminated_string(
+    src: &SourceText,
+    range: std::ops::Range<usize>,
+    message: &str,
+) -> Option<Diagnostic> {
+    let quote = if message.starts_with("invalid basic string") {
+        '"'
+    } else if message.starts_with("invalid literal string") {
+        '\''
+    } else {
+        return None;
+    };
+    let at = src.span(range.clone());
+    let line_start = src.text.get(..at.start)?.rfind('\n').map_or(0, |p| p + 1);
+    let before = src.text.get(line_start..at.start)?;
+    let rel = before.rfind(quote)?;
+    let open = src.span(line_start + rel..at.start);
+    Some(src.diagnostic(
+        open,
+        format!(
+            "TOML syntax error: unterminated string `{}`",
+            before.get(rel..).unwrap_or("").trim_end()
+        ),
+        Some(format!(
+            "close the string with `{quote}` on the same line (use triple quotes for several lines)"
+        )),
+    ))
 }
