@@ -184,7 +184,7 @@ fn a_duplicate_curve_rule_written_in_the_other_order_is_an_error() {
 #[test]
 fn a_selector_that_matches_no_surface_suggests_the_closest_name() {
     let text = format!("{BASE}[mesh.curves]\n\"topp/f1\" = {{ size = 2.0 }}\n");
-    let (d, r) = single_at(&text, "\"topp/f1\"", 0);
+    let (d, r) = single_at(&text, "topp", 0);
     assert!(
         d.message.contains("`topp`") && d.message.contains("matches no surface"),
         "{r}"
@@ -195,7 +195,7 @@ fn a_selector_that_matches_no_surface_suggests_the_closest_name() {
 #[test]
 fn a_glob_over_box_sides_with_a_typo_suggests_the_box_glob() {
     let text = format!("{BASE}[mesh.curves]\n\"f1/bx.*\" = {{ count = 4 }}\n");
-    let (d, r) = single_at(&text, "\"f1/bx.*\"", 0);
+    let (d, r) = single_at(&text, "bx.*", 0);
     assert_eq!(d.help.as_deref(), Some("did you mean `box.*`?"), "{r}");
 }
 
@@ -260,7 +260,7 @@ fn a_missing_file_suggests_the_closest_name_from_a_directory_listing() {
 #[test]
 fn a_box_whose_min_is_not_below_max_names_the_axis() {
     let text = BASE.replace("max = [10.0, 10.0, 0.0]", "max = [10.0, 0.0, 0.0]");
-    let (d, r) = single_at(&text, "[10.0, 0.0, 0.0]", 0);
+    let (d, r) = single_at(&text, "0.0, 0.0]", 0);
     assert!(
         d.message
             .contains("`min` y = 0 is not less than `max` y = 0"),

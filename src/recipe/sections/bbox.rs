@@ -90,7 +90,14 @@ pub(crate) fn read(
     let mut ok = true;
     for (i, axis) in ["x", "y", "z"].iter().enumerate() {
         if min[i] >= max[i] {
-            let at = t.get("max").map_or(v.span(), |m| m.span());
+            // Point at the offending coordinate of `max`.
+            let at = match t.get("max").map(|m| (m.get_ref(), m.span())) {
+                Some((DeValue::Array(a), _)) if a.len() == 3 => {
+                    a.get(i).map_or(v.span(), |c| c.span())
+                }
+                Some((_, s)) => s,
+                None => v.span(),
+            };
             ctx.error(
                 at,
                 format!(

@@ -80,7 +80,37 @@ impl Names {
         } else {
             format!("{kind} `{pattern}` in {what} `{whole}` matches no surface")
         };
+        // Underline just the offending side when it can be found in the written key.
+        let span = if pattern == whole {
+            span
+        } else {
+            side_span(ctx, span, pattern)
+        };
         ctx.error(span, msg, help);
         false
     }
+}
+
+/// The span of the side `pattern` inside a written curve selector key (`"top/f1#2"`), or the
+/// whole key when the side cannot be located (e.g. written with escapes).
+fn side_span(ctx: &Ctx<'_>, key: Range<usize>, pattern: &str) -> Range<usize> {
+    let written = ctx.src.slice(ctx.span(key.clone()));
+    let mut offset = 0;
+    for (i, part) in written.split('/').enumerate() {
+        let mut core = part;
+        let mut lead = 0;
+        if i == 0 {
+            let t = core.trim_start_matches(['"', '\'']);
+            lead = core.len() - t.len();
+            core = t;
+        }
+        let core = core.trim_end_matches(['"', '\'']);
+        let core = core.split('#').next().unwrap_or(core);
+        if core == pattern {
+            let start = key.start + offset + lead;
+            return start..start + pattern.len();
+        }
+        offset += part.len() + 1;
+    }
+    key
 }
