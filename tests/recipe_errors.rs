@@ -512,3 +512,20 @@ fn the_diagnostic_at_a_stored_span_points_back_at_the_recipe() {
     assert_eq!((d.line, d.col), loc(&text, "\"top/f1\"", 0));
     assert!(d.to_string().contains("^^^^^^^^"), "{d}");
 }
+
+#[test]
+fn a_model_name_that_cannot_be_a_file_name_is_rejected() {
+    let text = BASE.replace("name = \"t\"", "name = \"../north field\"");
+    let (d, r) = single_at(&text, "\"../north field\"", 0);
+    assert!(d.message.contains("model name `../north field` contains `/`"), "{r}");
+    assert!(d.help.as_deref().is_some_and(|h| h.contains("`.._north_field`")), "{r}");
+}
+
+#[test]
+fn a_tolerance_out_of_range_or_unknown_is_reported() {
+    let text = format!("[tolerances]\nkink_angle_deg = 200\nmerge_dist = 1\n{BASE}");
+    let d = errors(&text);
+    assert_eq!(d.len(), 2, "{d:#?}");
+    assert!(d[0].message.contains("between 0 and 180"));
+    assert_eq!(d[1].help.as_deref(), Some("did you mean `merge_distance`?"));
+}

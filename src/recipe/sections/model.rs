@@ -1,4 +1,6 @@
 //! `[model]` (name and units) and `[tolerances]` (the fields of `crate::geom::Tolerances`).
+//! Decides that the model name is a portable file-name stem and that every tolerance is in its
+//! documented range.
 
 use toml::de::DeTable;
 
@@ -41,7 +43,8 @@ pub(crate) fn read_model(
             );
             return None;
         }
-        Some(s.to_string())
+        // The name becomes part of output file names: keep it to a portable character set.
+        super::surfaces::check_name(ctx, s, n.span(), "model").then(|| s.to_string())
     });
     let units = match t.get("units") {
         Some(u) => rd::choice(
