@@ -322,3 +322,37 @@ fn spans_do_not_reach_the_serialized_specs() {
     assert!(!ser(&a).is_empty());
     assert_eq!(ser(&a), ser(&b));
 }
+
+#[test]
+fn a_curve_rule_that_matches_no_curve_of_the_built_model_is_reported_at_the_rule() {
+    let (_, text) = load("didactic.toml");
+    let r = ok(Path::new("recipes/didactic.toml"), &text);
+    let curves: Vec<String> = [
+        "f1/top#1",
+        "f1/top#2",
+        "base/box.xmin",
+        "box.xmin/top",
+        "box.zmax/top",
+        "f1/box.xmin",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let d = r.check_curve_rules(&curves);
+    // `base/f1` does not exist in this model; every other rule matches something.
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!(
+        d[0].line,
+        text.lines()
+            .position(|l| l.starts_with("\"base/f1\""))
+            .map_or(0, |i| i + 1)
+    );
+    assert!(d[0].message.contains("`base/f1` matches no curve"));
+    assert!(
+        d[0].help
+            .as_deref()
+            .is_some_and(|h| h.contains("`base/box.xmin`")),
+        "{}",
+        d[0]
+    );
+}

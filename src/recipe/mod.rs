@@ -8,6 +8,7 @@
 //! `file:line:col`, quotes the offending text and, where it can, suggests the intended name;
 //! errors are collected, not stopped at, and returned in source order.
 
+mod curves;
 mod diagnostic;
 mod files;
 mod reader;
