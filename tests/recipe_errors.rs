@@ -517,8 +517,17 @@ fn the_diagnostic_at_a_stored_span_points_back_at_the_recipe() {
 fn a_model_name_that_cannot_be_a_file_name_is_rejected() {
     let text = BASE.replace("name = \"t\"", "name = \"../north field\"");
     let (d, r) = single_at(&text, "\"../north field\"", 0);
-    assert!(d.message.contains("model name `../north field` contains `/`"), "{r}");
-    assert!(d.help.as_deref().is_some_and(|h| h.contains("`.._north_field`")), "{r}");
+    assert!(
+        d.message
+            .contains("model name `../north field` contains `/`"),
+        "{r}"
+    );
+    assert!(
+        d.help
+            .as_deref()
+            .is_some_and(|h| h.contains("`.._north_field`")),
+        "{r}"
+    );
 }
 
 #[test]
