@@ -538,3 +538,25 @@ fn a_tolerance_out_of_range_or_unknown_is_reported() {
     assert!(d[0].message.contains("between 0 and 180"));
     assert_eq!(d[1].help.as_deref(), Some("did you mean `merge_distance`?"));
 }
+
+#[test]
+fn a_misspelled_trim_condition_gets_only_its_did_you_mean() {
+    let text = format!(
+        "{BASE}[[trim]]\nsurface = \"f1\"\nkeep = {{ bellow = \"top\" }}\n[[trim]]\nsurface = \"f*\"\ndiscard = {{ area = 10.0 }}\n"
+    );
+    let d = errors(&text);
+    assert_eq!(d.len(), 2, "{d:#?}");
+    assert_eq!((d[0].line, d[0].col), loc(&text, "bellow", 0));
+    assert_eq!(d[0].help.as_deref(), Some("did you mean `below`?"));
+    assert_eq!((d[1].line, d[1].col), loc(&text, "area", 0));
+    assert_eq!(d[1].help.as_deref(), Some("did you mean `area_below`?"));
+}
+
+#[test]
+fn a_surface_table_header_form_is_accepted_and_checked_like_the_inline_form() {
+    let text = format!("{BASE}[surfaces.f2]\nfile = \"data/f2.ts\"\nkind = \"fualt\"\n");
+    let (d, _) = single_at(&text, "\"fualt\"", 0);
+    assert!(d.message.contains("`surfaces.f2.kind`"));
+    let r = ok(&text.replace("fualt", "fault"));
+    assert_eq!(r.surfaces["f2"].kind, georecipe::recipe::SurfaceKind::Fault);
+}

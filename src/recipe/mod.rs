@@ -7,6 +7,22 @@
 //! I/O: [`parse`] takes the text, [`check_files`] takes an `exists` probe. Every error names
 //! `file:line:col`, quotes the offending text and, where it can, suggests the intended name;
 //! errors are collected, not stopped at, and returned in source order.
+//!
+//! How the command line uses it (`recipe check`; `recipe build` continues with the plan):
+//!
+//! ```
+//! use std::path::Path;
+//! use georecipe::recipe;
+//!
+//! let text = "[model]\nname = \"demo\"\n[mesh]\nsize = 10\n[mesh.curves]\n\"top\" = { cuont = 3 }\n";
+//! match recipe::check(Path::new("demo.toml"), text, &|p| p.exists()) {
+//!     Ok(r) => println!("{}: ok", r.model.name),
+//!     Err(diags) => {
+//!         eprint!("{}", recipe::render(&diags)); // then exit non-zero
+//!         assert!(diags[0].to_string().contains("demo.toml:6:"));
+//!     }
+//! }
+//! ```
 
 mod curves;
 mod diagnostic;
