@@ -535,7 +535,12 @@ fn a_tolerance_out_of_range_or_unknown_is_reported() {
     let text = format!("[tolerances]\nkink_angle_deg = 200\nmerge_dist = 1\n{BASE}");
     let d = errors(&text);
     assert_eq!(d.len(), 2, "{d:#?}");
-    assert!(d[0].message.contains("between 0 and 180"));
+    assert!(
+        d[0].message
+            .contains("`tolerances.kink_angle_deg` = `200` must be between 0 and 180"),
+        "{}",
+        d[0]
+    );
     assert_eq!(d[1].help.as_deref(), Some("did you mean `merge_distance`?"));
 }
 
@@ -559,4 +564,18 @@ fn a_surface_table_header_form_is_accepted_and_checked_like_the_inline_form() {
     assert!(d.message.contains("`surfaces.f2.kind`"));
     let r = ok(&text.replace("fualt", "fault"));
     assert_eq!(r.surfaces["f2"].kind, georecipe::recipe::SurfaceKind::Fault);
+}
+
+#[test]
+fn windows_line_endings_and_a_byte_order_mark_keep_positions_right() {
+    let text = format!(
+        "\u{feff}{}",
+        BASE.replace("size = 1.0", "size = -1.0")
+            .replace('\n', "\r\n")
+    );
+    let d = errors(&text);
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!((d[0].line, d[0].col), (14, 8));
+    assert_eq!(d[0].snippet, "size = -1.0");
+    assert!(d[0].to_string().contains("|        ^^^^"), "{}", d[0]);
 }

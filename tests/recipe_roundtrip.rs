@@ -356,3 +356,15 @@ fn a_curve_rule_that_matches_no_curve_of_the_built_model_is_reported_at_the_rule
         d[0]
     );
 }
+
+#[test]
+fn tolerances_given_in_the_recipe_replace_the_defaults_field_by_field() {
+    let text = "[model]\nname = \"t\"\n[tolerances]\nkink_angle_deg = 45\nmerge_distance = 0.01\n[mesh]\nsize = 1\n";
+    let r = ok(Path::new("t.toml"), text);
+    assert_eq!(r.tolerances.kink_angle_deg, 45.0);
+    assert_eq!(r.tolerances.merge_distance, 0.01);
+    assert_eq!(
+        r.tolerances.support_distance_rel,
+        georecipe::geom::Tolerances::default().support_distance_rel
+    );
+}

@@ -66,49 +66,58 @@ pub(crate) fn read_model(
     })
 }
 
+/// The range each known tolerance must lie in (lower bound, inclusive?, upper bound), checked
+/// here so the message can name the field; a field added to `Tolerances` later is accepted as
+/// any finite number until a range is added here.
+fn range(field: &str) -> Option<(f64, bool, f64)> {
+    match field {
+        "kink_angle_deg" => Some((0.0, false, 180.0)),
+        "merge_distance" => Some((0.0, true, f64::INFINITY)),
+        "support_distance_rel" => Some((0.0, false, f64::INFINITY)),
+        _ => None,
+    }
+}
+
+/// `[tolerances]`: every field of `Tolerances` (as listed by `Tolerances::fields`) may be given;
+/// values are set through `Tolerances`' own deserializer, so fields added to the struct are
+/// picked up without touching the recipe code.
 pub(crate) fn read_tolerances(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>) -> Tolerances {
-    let mut tol = Tolerances::default();
+    let tol = Tolerances::default();
     let Some(v) = v else { return tol };
     let Some(t) = rd::as_table(ctx, v, "tolerances", None) else {
         return tol;
     };
-    // The fields handled below; a field added to `Tolerances` must be added here too.
-    rd::check_keys(
-        ctx,
-        t,
-        "tolerances",
-        &["kink_angle_deg", "merge_distance", "support_distance_rel"],
-        &|_| None,
-    );
-    if let Some(x) = t.get("kink_angle_deg") {
-        let path = "tolerances.kink_angle_deg";
-        if let Some(a) = rd::number(ctx, x, path) {
-            if a > 0.0 && a < 180.0 {
-                tol.kink_angle_deg = a;
-            } else {
-                let msg = format!(
-                    "`{path}` = `{}` must be between 0 and 180 degrees (exclusive)",
-                    ctx.text(x.span())
-                );
+    let fields = tol.fields();
+    let names: Vec<&str> = fields.iter().map(|(n, _)| *n).collect();
+    rd::check_keys(ctx, t, "tolerances", &names, &|_| None);
+    let mut given = toml::Table::new();
+    for name in &names {
+        let Some(x) = t.get(*name) else { continue };
+        let path = format!("tolerances.{name}");
+        let Some(value) = rd::number(ctx, x, &path) else {
+            continue;
+        };
+        if let Some((lo, lo_incl, hi)) = range(name) {
+            let above = if lo_incl { value >= lo } else { value > lo };
+            if !above || value >= hi {
+                let bound = match (lo_incl, hi.is_finite()) {
+                    (_, true) => format!("between {lo} and {hi} (exclusive)"),
+                    (true, false) => format!("{lo} or more"),
+                    (false, false) => format!("greater than {lo}"),
+                };
+                let msg = format!("`{path}` = `{}` must be {bound}", ctx.text(x.span()));
                 ctx.error(x.span(), msg, None);
+                continue;
             }
         }
+        given.insert(name.to_string(), toml::Value::Float(value));
     }
-    if let Some(x) = t.get("merge_distance") {
-        let path = "tolerances.merge_distance";
-        if let Some(d) = rd::number(ctx, x, path) {
-            if d >= 0.0 {
-                tol.merge_distance = d;
-            } else {
-                let msg = format!("`{path}` = `{}` must be 0 or more", ctx.text(x.span()));
-                ctx.error(x.span(), msg, None);
-            }
+    match toml::Value::Table(given).try_into::<Tolerances>() {
+        Ok(tol) => tol,
+        Err(e) => {
+            let msg = format!("`tolerances` could not be applied: {}", e.message());
+            ctx.error(v.span(), msg, None);
+            tol
         }
     }
-    if let Some(x) = t.get("support_distance_rel")
-        && let Some(d) = rd::size(ctx, x, "tolerances.support_distance_rel")
-    {
-        tol.support_distance_rel = d;
-    }
-    tol
 }
