@@ -1,0 +1,84 @@
+//! Missing import files. The library never touches the filesystem: the caller passes an
+//! `exists` probe (and optionally a directory listing), and this module decides which imports
+//! are missing and what the user most likely meant: the closest name in the same directory, or
+//! the same file name in a directory other imports use, or another letter case or extension.
+
+use std::path::{Path, PathBuf};
+
+use super::Recipe;
+use super::diagnostic::{Diagnostic, did_you_mean};
+
+/// One diagnostic per import whose file does not exist, in surface-name order.
+pub fn check_files(r: &Recipe, exists: &dyn Fn(&Path) -> bool) -> Vec<Diagnostic> {
+    check_files_with_listing(r, exists, &|_| Vec::new())
+}
+
+/// As [`check_files`], with `list_dir(dir)` giving the file names in `dir` (empty if unknown)
+/// to suggest the closest existing name.
+pub fn check_files_with_listing(
+    r: &Recipe,
+    exists: &dyn Fn(&Path) -> bool,
+    list_dir: &dyn Fn(&Path) -> Vec<String>,
+) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    for s in r.surfaces.values() {
+        if exists(&s.path) {
+            continue;
+        }
+        let written = s.file.display().to_string();
+        let message = if s.path == s.file {
+            format!("file `{written}` of surface `{}` not found", s.name)
+        } else {
+            format!(
+                "file `{written}` of surface `{}` not found (looked for `{}`)",
+                s.name,
+                s.path.display()
+            )
+        };
+        let help = suggestion(r, &s.file, exists, list_dir)
+            .map(|p| format!("did you mean `{}`?", p.display()))
+            .or_else(|| Some("paths are relative to the recipe file's directory".into()));
+        out.push(r.diagnostic_at(s.file_span, message, help));
+    }
+    out
+}
+
+/// The likely intended path, as the user would write it (relative to the recipe).
+fn suggestion(
+    r: &Recipe,
+    file: &Path,
+    exists: &dyn Fn(&Path) -> bool,
+    list_dir: &dyn Fn(&Path) -> Vec<String>,
+) -> Option<PathBuf> {
+    let name = file.file_name()?.to_str()?;
+    let parent = file.parent().unwrap_or(Path::new(""));
+    let listing = list_dir(&r.base_dir.join(parent));
+    if let Some(best) = did_you_mean(name, listing.iter().map(String::as_str)) {
+        return Some(parent.join(best));
+    }
+    let mut candidates: Vec<PathBuf> = Vec::new();
+    // The same name in a directory another import uses.
+    let mut dirs: Vec<&Path> = r
+        .surfaces
+        .values()
+        .filter_map(|o| o.file.parent())
+        .filter(|d| *d != parent)
+        .collect();
+    dirs.sort();
+    dirs.dedup();
+    candidates.extend(dirs.iter().map(|d| d.join(name)));
+    // Another letter case, or another gOcad extension.
+    let stem = Path::new(name)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or(name);
+    for n in [name.to_lowercase(), name.to_uppercase()] {
+        candidates.push(parent.join(n));
+    }
+    for ext in ["ts", "TS", "ml", "gp"] {
+        candidates.push(parent.join(format!("{stem}.{ext}")));
+    }
+    candidates
+        .into_iter()
+        .find(|c| c != file && exists(&r.base_dir.join(c)))
+}

@@ -1,0 +1,116 @@
+//! One reader per recipe section, each turning its part of the spanned TOML tree into typed
+//! specs and reporting every problem it finds. Sections that refer to names (selectors,
+//! intersections, trims, region sizes) resolve them against [`Names`], built from `[surfaces]`
+//! and `[box]` first.
+
+pub(crate) mod bbox;
+pub(crate) mod intersect;
+pub(crate) mod mesh;
+pub(crate) mod model;
+pub(crate) mod output;
+pub(crate) mod regions;
+pub(crate) mod surfaces;
+pub(crate) mod trim;
+
+use std::ops::Range;
+
+use super::reader::{Ctx, name_help};
+use super::selector::{SurfaceSelector, is_glob};
+use super::spec::BOX_SIDES;
+
+/// The surface names a selector or a reference may use: the `[surfaces]` keys, plus the six
+/// box sides when a `[box]` is given.
+pub(crate) struct Names {
+    pub surfaces: Vec<String>,
+    pub has_box: bool,
+}
+
+impl Names {
+    /// Every known name, sorted: surfaces then box sides.
+    pub fn all(&self) -> Vec<&str> {
+        let mut v: Vec<&str> = self.surfaces.iter().map(String::as_str).collect();
+        if self.has_box {
+            v.extend(BOX_SIDES);
+        }
+        v
+    }
+
+    pub fn is_known(&self, name: &str) -> bool {
+        self.surfaces.iter().any(|s| s == name) || (self.has_box && BOX_SIDES.contains(&name))
+    }
+
+    /// Checks that a name or glob matches at least one known surface; reports it otherwise.
+    /// `whole` is the full text the pattern came from (for the message), `span` its location.
+    pub fn check_pattern(
+        &self,
+        ctx: &mut Ctx<'_>,
+        pattern: &str,
+        whole: &str,
+        span: Range<usize>,
+        what: &str,
+    ) -> bool {
+        let sel = SurfaceSelector::new(pattern);
+        let all = self.all();
+        if all.iter().any(|n| sel.matches(n)) {
+            return true;
+        }
+        let mut candidates: Vec<&str> = all.clone();
+        if self.has_box {
+            candidates.push("box.*");
+        }
+        let help = if pattern.starts_with("box") && !self.has_box {
+            Some(
+                "the box sides `box.xmin` .. `box.zmax` exist only when a `[box]` is given"
+                    .to_string(),
+            )
+        } else {
+            name_help(pattern, candidates.iter().copied()).or_else(|| {
+                Some(format!(
+                    "known surfaces: {}",
+                    all.iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+            })
+        };
+        let kind = if is_glob(pattern) { "pattern" } else { "name" };
+        let msg = if pattern == whole {
+            format!("{what} `{pattern}` matches no surface")
+        } else {
+            format!("{kind} `{pattern}` in {what} `{whole}` matches no surface")
+        };
+        // Underline just the offending side when it can be found in the written key.
+        let span = if pattern == whole {
+            span
+        } else {
+            side_span(ctx, span, pattern)
+        };
+        ctx.error(span, msg, help);
+        false
+    }
+}
+
+/// The span of the side `pattern` inside a written curve selector key (`"top/f1#2"`), or the
+/// whole key when the side cannot be located (e.g. written with escapes).
+fn side_span(ctx: &Ctx<'_>, key: Range<usize>, pattern: &str) -> Range<usize> {
+    let written = ctx.src.slice(ctx.span(key.clone()));
+    let mut offset = 0;
+    for (i, part) in written.split('/').enumerate() {
+        let mut core = part;
+        let mut lead = 0;
+        if i == 0 {
+            let t = core.trim_start_matches(['"', '\'']);
+            lead = core.len() - t.len();
+            core = t;
+        }
+        let core = core.trim_end_matches(['"', '\'']);
+        let core = core.split('#').next().unwrap_or(core);
+        if core == pattern {
+            let start = key.start + offset + lead;
+            return start..start + pattern.len();
+        }
+        offset += part.len() + 1;
+    }
+    key
+}

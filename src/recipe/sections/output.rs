@@ -1,0 +1,86 @@
+//! `[output]`: where results go (relative to the recipe file) and in which formats. Decides the
+//! defaults (`out`, `["msh", "vtu"]`) and that every format is known and listed once.
+
+use std::path::{Path, PathBuf};
+
+use crate::recipe::reader::{self as rd, Ctx, Value};
+use crate::recipe::spec::{Format, OutputSpec};
+
+const KEYS: &[&str] = &["dir", "formats"];
+
+pub(crate) fn read(
+    ctx: &mut Ctx<'_>,
+    v: Option<&Value<'_>>,
+    base_dir: &Path,
+) -> Option<OutputSpec> {
+    let default_formats = vec![Format::Msh, Format::Vtu];
+    let Some(v) = v else {
+        let dir = PathBuf::from("out");
+        return Some(OutputSpec {
+            path: base_dir.join(&dir),
+            dir,
+            formats: default_formats,
+            span: Default::default(),
+        });
+    };
+    let t = rd::as_table(ctx, v, "output", None)?;
+    rd::check_keys(ctx, t, "output", KEYS, &|_| None);
+    let dir = match t.get("dir") {
+        Some(d) => rd::string(ctx, d, "output.dir").and_then(|s| {
+            if s.trim().is_empty() {
+                ctx.error(
+                    d.span(),
+                    "`output.dir` must not be empty".into(),
+                    Some("e.g. `dir = \"out\"` (relative to the recipe)".into()),
+                );
+                None
+            } else {
+                Some(PathBuf::from(s))
+            }
+        }),
+        None => Some(PathBuf::from("out")),
+    };
+    let formats = match t.get("formats") {
+        Some(f) => formats(ctx, f),
+        None => Some(default_formats),
+    };
+    let dir = dir?;
+    Some(OutputSpec {
+        path: base_dir.join(&dir),
+        dir,
+        formats: formats?,
+        span: ctx.span(v.span()),
+    })
+}
+
+fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
+    let list = rd::array(ctx, v, "output.formats", "an array of format names")?;
+    if list.is_empty() {
+        ctx.error(
+            v.span(),
+            "`output.formats` is empty".into(),
+            Some("list at least one of `msh`, `msh-binary`, `vtu`, `tetgen`, `medit`".into()),
+        );
+        return None;
+    }
+    let mut out = Vec::new();
+    let mut ok = true;
+    for (i, e) in list.iter().enumerate() {
+        match rd::choice(ctx, e, &format!("output.formats[{i}]"), &Format::ALL) {
+            Some(f) if out.contains(&f) => {
+                ctx.error(
+                    e.span(),
+                    format!(
+                        "format `{}` is listed twice in `output.formats`",
+                        f.as_str()
+                    ),
+                    Some("remove the repeated format".into()),
+                );
+                ok = false;
+            }
+            Some(f) => out.push(f),
+            None => ok = false,
+        }
+    }
+    ok.then_some(out)
+}

@@ -1,0 +1,230 @@
+//! `[surfaces]`: surface name -> import. Decides which names are legal (letters, digits, `_ . -`;
+//! nothing starting with `box`, which is reserved for the box sides), the import format from the
+//! file extension, and the per-import options with their defaults.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use toml::de::DeValue;
+
+use crate::mesh::SurfaceKind;
+use crate::recipe::diagnostic::did_you_mean;
+use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
+use crate::recipe::selector::valid_name_char;
+use crate::recipe::spec::{ImportFormat, OnInvalid, SurfaceSpec};
+
+const KEYS: &[&str] = &[
+    "file",
+    "kind",
+    "object",
+    "retriangulate",
+    "on_invalid",
+    "skip_other_types",
+];
+
+/// Checks a user-chosen name (surface or region); reports and returns false when illegal.
+pub(crate) fn check_name(
+    ctx: &mut Ctx<'_>,
+    name: &str,
+    span: std::ops::Range<usize>,
+    what: &str,
+) -> bool {
+    if name.is_empty() {
+        ctx.error(
+            span,
+            format!("empty {what} name"),
+            Some("names use letters, digits, `_`, `.` and `-`".into()),
+        );
+        return false;
+    }
+    if let Some(c) = name.chars().find(|c| !valid_name_char(*c)) {
+        let fixed: String = name
+            .chars()
+            .map(|c| if valid_name_char(c) { c } else { '_' })
+            .collect();
+        ctx.error(
+            span,
+            format!("{what} name `{name}` contains `{c}`, which is not allowed"),
+            Some(format!(
+                "names use letters, digits, `_`, `.` and `-`; e.g. `{fixed}`"
+            )),
+        );
+        return false;
+    }
+    true
+}
+
+pub(crate) fn read(
+    ctx: &mut Ctx<'_>,
+    v: Option<&Value<'_>>,
+    base_dir: &Path,
+) -> BTreeMap<String, SurfaceSpec> {
+    let mut out = BTreeMap::new();
+    let Some(v) = v else { return out };
+    let Some(t) = rd::as_table(ctx, v, "surfaces", None) else {
+        return out;
+    };
+    for (k, e) in t.iter() {
+        let name: &str = k.get_ref();
+        let path = path_join("surfaces", name);
+        let mut ok = check_name(ctx, name, k.span(), "surface");
+        if ok && name.starts_with("box") {
+            ctx.error(
+                k.span(),
+                format!("surface name `{name}` is reserved: names starting with `box` denote the box sides"),
+                Some(format!("rename it, e.g. `{}`", name.replacen("box", "bx", 1))),
+            );
+            ok = false;
+        }
+        if let DeValue::String(file) = e.get_ref() {
+            // Shorthand: `name = "file.ts"`, every option at its default.
+            if let (true, Some(format)) = (ok, import_format(ctx, file, e)) {
+                let spec = spec(ctx, base_dir, (name, k.span()), (file, e.span()), format);
+                out.insert(name.to_string(), spec);
+            }
+            continue;
+        }
+        let help = format!("write `{name} = {{ file = \"data/{name}.ts\", kind = \"horizon\" }}`");
+        let Some(st) = rd::as_table(ctx, e, &path, Some(&help)) else {
+            continue;
+        };
+        rd::check_keys(ctx, st, &path, KEYS, &|_| None);
+        let file = rd::required(
+            ctx,
+            st,
+            e.span(),
+            &path,
+            "file",
+            "add `file = \"path/to/surface.ts\"` (relative to the recipe)",
+        );
+        let file = file.and_then(|f| {
+            let s = rd::string(ctx, f, &path_join(&path, "file"))?;
+            let fmt = import_format(ctx, s, f)?;
+            Some((s.to_string(), fmt, f.span()))
+        });
+        let kind = match st.get("kind") {
+            Some(x) => rd::choice(
+                ctx,
+                x,
+                &path_join(&path, "kind"),
+                &[
+                    ("horizon", SurfaceKind::Horizon),
+                    ("fault", SurfaceKind::Fault),
+                    ("other", SurfaceKind::Other),
+                ],
+            ),
+            None => Some(SurfaceKind::Other),
+        };
+        let object = match st.get("object") {
+            Some(x) => match rd::string(ctx, x, &path_join(&path, "object")) {
+                Some(s) if s.trim().is_empty() => {
+                    ctx.error(
+                        x.span(),
+                        format!("`{}` must not be empty", path_join(&path, "object")),
+                        Some("remove `object` to take every TSurf object of the file".into()),
+                    );
+                    None
+                }
+                Some(s) => Some(Some(s.to_string())),
+                None => None,
+            },
+            None => Some(None),
+        };
+        let retriangulate = match st.get("retriangulate") {
+            Some(x) => rd::size(ctx, x, &path_join(&path, "retriangulate")).map(Some),
+            None => Some(None),
+        };
+        let on_invalid = match st.get("on_invalid") {
+            Some(x) => rd::choice(
+                ctx,
+                x,
+                &path_join(&path, "on_invalid"),
+                &[("repair", OnInvalid::Repair), ("stop", OnInvalid::Stop)],
+            ),
+            None => Some(OnInvalid::Repair),
+        };
+        let skip = match st.get("skip_other_types") {
+            Some(x) => rd::boolean(ctx, x, &path_join(&path, "skip_other_types")),
+            None => Some(false),
+        };
+        if let (
+            true,
+            Some((file, format, fspan)),
+            Some(kind),
+            Some(object),
+            Some(retriangulate),
+            Some(on_invalid),
+            Some(skip_other_types),
+        ) = (ok, file, kind, object, retriangulate, on_invalid, skip)
+        {
+            let mut spec = spec(ctx, base_dir, (name, k.span()), (&file, fspan), format);
+            spec.kind = kind;
+            spec.object = object;
+            spec.retriangulate = retriangulate;
+            spec.on_invalid = on_invalid;
+            spec.skip_other_types = skip_other_types;
+            out.insert(name.to_string(), spec);
+        }
+    }
+    out
+}
+
+/// A spec with every option at its default.
+fn spec(
+    ctx: &Ctx<'_>,
+    base_dir: &Path,
+    (name, name_span): (&str, Range<usize>),
+    (file, file_span): (&str, Range<usize>),
+    format: ImportFormat,
+) -> SurfaceSpec {
+    let file = PathBuf::from(file);
+    SurfaceSpec {
+        name: name.to_string(),
+        path: base_dir.join(&file),
+        file,
+        format,
+        kind: SurfaceKind::Other,
+        object: None,
+        retriangulate: None,
+        on_invalid: OnInvalid::Repair,
+        skip_other_types: false,
+        span: ctx.span(name_span),
+        file_span: ctx.span(file_span),
+    }
+}
+
+fn import_format(ctx: &mut Ctx<'_>, file: &str, v: &Value<'_>) -> Option<ImportFormat> {
+    if file.trim().is_empty() {
+        ctx.error(
+            v.span(),
+            "empty file name".into(),
+            Some("e.g. `file = \"data/top.ts\"`".into()),
+        );
+        return None;
+    }
+    let ext = Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("ts") => Some(ImportFormat::TSurf),
+        Some("ml") => Some(ImportFormat::Model3d),
+        Some("gp") => Some(ImportFormat::Group),
+        other => {
+            let msg = match other {
+                Some(e) => format!(
+                    "file `{file}` has extension `.{e}`, which is not a gOcad format this tool imports"
+                ),
+                None => format!("file `{file}` has no extension: cannot tell its format"),
+            };
+            let kinds = "imports are gOcad TSurf `.ts`, Model3d `.ml` or group `.gp` files";
+            let help = match other.and_then(|e| did_you_mean(e, ["ts", "ml", "gp"])) {
+                Some(c) => format!("did you mean `.{c}`? {kinds}"),
+                None => kinds.to_string(),
+            };
+            ctx.error(v.span(), msg, Some(help));
+            None
+        }
+    }
+}

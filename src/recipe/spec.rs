@@ -1,0 +1,324 @@
+//! The validated, typed recipe: what the planner reads.
+//!
+//! Every value here has passed validation (finite, in range, names resolved, defaults filled in),
+//! so later stages never re-check the recipe; every user-written item keeps the [`Span`] of
+//! where it was written so errors found later (a curve rule that matches no curve of the built
+//! model) can still point at the recipe. Defaults are documented per field and in REFERENCE.md.
+//! The specs are `Serialize` with every span skipped, so a planner can hash a spec as a cache-key
+//! parameter without moving a line of the recipe changing any key.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use serde::Serialize;
+
+pub use crate::mesh::SurfaceKind;
+
+use super::diagnostic::Span;
+use super::selector::{CurveSelector, SurfaceSelector};
+
+/// The six box sides, in this order: the surfaces a `[box]` contributes to the model.
+pub const BOX_SIDES: [&str; 6] = [
+    "box.xmin", "box.xmax", "box.ymin", "box.ymax", "box.zmin", "box.zmax",
+];
+
+/// Length unit of model coordinates (as read from the files; never rescaled).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum Units {
+    Metre,
+    Kilometre,
+    Foot,
+}
+
+impl Units {
+    /// Metres per model unit (for reports).
+    pub fn metres(self) -> f64 {
+        match self {
+            Units::Metre => 1.0,
+            Units::Kilometre => 1000.0,
+            Units::Foot => 0.3048,
+        }
+    }
+
+    /// The recipe spelling: `m`, `km`, `ft`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Units::Metre => "m",
+            Units::Kilometre => "km",
+            Units::Foot => "ft",
+        }
+    }
+}
+
+/// `[model]`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ModelSpec {
+    /// Required, non-empty: used in output file names.
+    pub name: String,
+    /// Default `m`.
+    pub units: Units,
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// The format of an import, from the file extension (case-insensitive).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum ImportFormat {
+    /// `.ts`: gOcad TSurf.
+    TSurf,
+    /// `.ml`: gOcad Model3d.
+    Model3d,
+    /// `.gp`: gOcad group of objects.
+    Group,
+}
+
+/// What the importer does with a triangulation that fails validation.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum OnInvalid {
+    /// Repair what can be repaired (duplicate vertices, degenerate triangles...) and report it.
+    Repair,
+    /// Stop the build with the validation report.
+    Stop,
+}
+
+/// One `[surfaces]` entry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SurfaceSpec {
+    /// The surface name (the key).
+    pub name: String,
+    /// The file as written in the recipe.
+    pub file: PathBuf,
+    /// `file` joined to the recipe's directory (absolute paths stay as written).
+    pub path: PathBuf,
+    pub format: ImportFormat,
+    /// Default `Other`; never `Box`.
+    pub kind: SurfaceKind,
+    /// The TSurf object to take from a multi-object file; `None` = every TSurf object, as parts
+    /// of one surface.
+    pub object: Option<String>,
+    /// Re-triangulate the support with this target edge length (> 0); `None` = keep as read.
+    pub retriangulate: Option<f64>,
+    /// Default `Repair`.
+    pub on_invalid: OnInvalid,
+    /// Skip objects of other gOcad types in the file instead of failing. Default `false`.
+    pub skip_other_types: bool,
+    /// Span of the name (the key).
+    #[serde(skip)]
+    pub span: Span,
+    /// Span of the `file` value.
+    #[serde(skip)]
+    pub file_span: Span,
+}
+
+/// How the bounding box is given.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum BoxExtent {
+    /// Explicit corners, `min < max` on every axis.
+    Explicit { min: [f64; 3], max: [f64; 3] },
+    /// The extent of the named surfaces, grown by `margin` (>= 0) on each axis, both sides.
+    Around {
+        surfaces: Vec<String>,
+        margin: [f64; 3],
+    },
+}
+
+/// `[box]`: its six sides are the surfaces [`BOX_SIDES`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BoxSpec {
+    pub extent: BoxExtent,
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// Which side of a surface to keep.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum Side {
+    /// Larger z (towards the surface's upward side).
+    Above,
+    Below,
+}
+
+/// What a `[[trim]]` does to the patches of the selected surfaces.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum TrimAction {
+    /// Keep the patches on `side` of surface `of`; discard the others.
+    Keep { side: Side, of: String },
+    /// Discard the patch containing this point (on the support, up to the support tolerance).
+    DiscardContaining([f64; 3]),
+    /// Discard the patch nearest to this point.
+    DiscardNearest([f64; 3]),
+    /// Discard every patch whose area is below this value (> 0, model units squared).
+    DiscardAreaBelow(f64),
+}
+
+/// One `[[trim]]`, applied in recipe order after splitting (outside the box is always discarded).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TrimSpec {
+    pub surface: SurfaceSelector,
+    pub action: TrimAction,
+    /// Span of the `[[trim]]` header.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// Grading of a sized curve subdivision.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum Grading {
+    /// Segment lengths grow by `ratio` from the curve's start.
+    Geometric,
+    /// Segments grow by `ratio` from both ends towards the middle (symmetric).
+    Bump,
+}
+
+/// How a curve is subdivided.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Subdivision {
+    /// Exactly this many segments (>= 1).
+    Count(u32),
+    /// Segments of about `size` (> 0), graded by `ratio` (> 0; 1 = uniform).
+    Size {
+        size: f64,
+        ratio: f64,
+        grading: Grading,
+    },
+}
+
+/// One `[mesh.curves]` entry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CurveRule {
+    pub selector: CurveSelector,
+    pub subdivision: Subdivision,
+    /// Span of the selector key.
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// One `[mesh.surfaces]` entry.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SurfaceSizeRule {
+    pub selector: SurfaceSelector,
+    pub size: f64,
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// Sizes for one region (`[mesh.regions]`), each defaulting to the global `[mesh]` value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RegionMeshSpec {
+    pub size: f64,
+    pub min_size: f64,
+    pub max_size: f64,
+    pub growth: f64,
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// `[mesh]`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MeshSpec {
+    /// Global element size, required, > 0.
+    pub size: f64,
+    /// Default `size / 100`; `0 < min_size <= size`.
+    pub min_size: f64,
+    /// Default `size * 10`; `max_size >= size`.
+    pub max_size: f64,
+    /// Size growth ratio between neighbouring elements in volumes, > 1, default 1.3.
+    pub growth: f64,
+    /// In recipe order; see [`MeshSpec::curve_rule`] for precedence.
+    pub curves: Vec<CurveRule>,
+    /// In recipe order; see [`MeshSpec::surface_size`] for precedence.
+    pub surfaces: Vec<SurfaceSizeRule>,
+    /// Keyed by region name (every key is a `[regions]` name).
+    pub regions: BTreeMap<String, RegionMeshSpec>,
+    #[serde(skip)]
+    pub span: Span,
+}
+
+impl MeshSpec {
+    /// The rule for the curve `curve_name`: among matching rules, the most specific (see
+    /// [`CurveSelector::specificity`]); among equally specific ones, the one written last.
+    pub fn curve_rule(&self, curve_name: &str) -> Option<&CurveRule> {
+        let mut best: Option<&CurveRule> = None;
+        for r in self
+            .curves
+            .iter()
+            .filter(|r| r.selector.matches(curve_name))
+        {
+            if best.is_none_or(|b| r.selector.specificity() >= b.selector.specificity()) {
+                best = Some(r);
+            }
+        }
+        best
+    }
+
+    /// The size for surface `name`: the most specific matching rule (exact name before glob,
+    /// then more literal characters; the last written wins a tie), else the global size.
+    pub fn surface_size(&self, name: &str) -> f64 {
+        let key = |r: &SurfaceSizeRule| (r.selector.is_exact(), r.selector.literal_len());
+        let mut best: Option<&SurfaceSizeRule> = None;
+        for r in self.surfaces.iter().filter(|r| r.selector.matches(name)) {
+            if best.is_none_or(|b| key(r) >= key(b)) {
+                best = Some(r);
+            }
+        }
+        best.map_or(self.size, |r| r.size)
+    }
+}
+
+/// One `[regions]` entry: a name and attributes for the region containing `point`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RegionSpec {
+    pub name: String,
+    pub point: [f64; 3],
+    pub material: Option<i64>,
+    /// Numeric attributes, by name.
+    pub properties: BTreeMap<String, f64>,
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// An output format.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum Format {
+    /// Gmsh msh 4.1 ASCII.
+    Msh,
+    /// Gmsh msh 4.1 binary.
+    MshBinary,
+    /// VTK unstructured grid XML.
+    Vtu,
+    /// TetGen `.node`/`.ele`/`.face`.
+    Tetgen,
+    /// MEDIT `.mesh`.
+    Medit,
+}
+
+impl Format {
+    /// Every format with its recipe spelling.
+    pub const ALL: [(&'static str, Format); 5] = [
+        ("msh", Format::Msh),
+        ("msh-binary", Format::MshBinary),
+        ("vtu", Format::Vtu),
+        ("tetgen", Format::Tetgen),
+        ("medit", Format::Medit),
+    ];
+
+    pub fn as_str(self) -> &'static str {
+        Format::ALL
+            .iter()
+            .find(|(_, f)| *f == self)
+            .map_or("msh", |(s, _)| s)
+    }
+}
+
+/// `[output]`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OutputSpec {
+    /// As written; default `out`.
+    pub dir: PathBuf,
+    /// `dir` joined to the recipe's directory.
+    pub path: PathBuf,
+    /// Without duplicates, in recipe order; default `["msh", "vtu"]`.
+    pub formats: Vec<Format>,
+    #[serde(skip)]
+    pub span: Span,
+}

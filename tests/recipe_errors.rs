@@ -1,0 +1,581 @@
+//! Every error class of the recipe language names `file:line:col`, shows the offending text and,
+//! where a likely intended name exists, suggests it.
+
+use std::path::Path;
+
+use georecipe::recipe::{Diagnostic, Recipe, check_files, parse};
+
+const FILE: &str = "recipes/bad.toml";
+
+/// A small valid recipe the tests extend or edit.
+const BASE: &str = r#"[model]
+name = "t"
+
+[surfaces]
+top = { file = "data/top.ts", kind = "horizon" }
+base = { file = "data/base.ts", kind = "horizon" }
+f1 = { file = "data/f1.ts", kind = "fault" }
+
+[box]
+min = [0.0, 0.0, -10.0]
+max = [10.0, 10.0, 0.0]
+
+[mesh]
+size = 1.0
+"#;
+
+fn errors(text: &str) -> Vec<Diagnostic> {
+    match parse(Path::new(FILE), text) {
+        Ok(_) => panic!("expected errors, the recipe parsed:\n{text}"),
+        Err(d) => d,
+    }
+}
+
+fn ok(text: &str) -> Recipe {
+    match parse(Path::new(FILE), text) {
+        Ok(r) => r,
+        Err(d) => panic!(
+            "expected Ok, got:\n{}",
+            d.iter()
+                .map(|d| d.to_string())
+                .collect::<Vec<_>>()
+                .join("\n")
+        ),
+    }
+}
+
+/// The 1-based line and column of the `nth` occurrence (0-based) of `needle` in `text`.
+fn loc(text: &str, needle: &str, nth: usize) -> (usize, usize) {
+    let at = text
+        .match_indices(needle)
+        .nth(nth)
+        .map(|(i, _)| i)
+        .expect("needle in text");
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+    (line, col)
+}
+
+/// The single error of `text`, checked to point at the `nth` occurrence of `needle`, to show it
+/// in the rendered snippet, and to name `file:line:col`.
+fn single_at(text: &str, needle: &str, nth: usize) -> (Diagnostic, String) {
+    let d = errors(text);
+    assert_eq!(
+        d.len(),
+        1,
+        "expected one error, got:\n{}",
+        d.iter()
+            .map(|d| d.to_string())
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+    let d = d.into_iter().next().unwrap_or_else(|| unreachable!());
+    let (line, col) = loc(text, needle, nth);
+    let rendered = d.to_string();
+    assert_eq!(
+        (d.line, d.col),
+        (line, col),
+        "wrong position in:\n{rendered}"
+    );
+    assert!(
+        rendered.contains(&format!("{FILE}:{line}:{col}")),
+        "{rendered}"
+    );
+    assert!(
+        d.snippet.contains(needle),
+        "snippet {:?} lacks {needle:?}",
+        d.snippet
+    );
+    (d, rendered)
+}
+
+#[test]
+fn an_unknown_top_level_key_names_the_position_and_suggests_the_table() {
+    let text = format!("{BASE}\n[outptu]\ndir = \"x\"\n");
+    let (d, r) = single_at(&text, "outptu", 0);
+    assert!(d.message.contains("unknown key `outptu`"), "{r}");
+    assert_eq!(d.help.as_deref(), Some("did you mean `output`?"), "{r}");
+}
+
+#[test]
+fn an_unknown_nested_key_is_underlined_and_gets_a_did_you_mean() {
+    let text = format!("{BASE}[mesh.curves]\n\"top/f1\" = {{ szie = 25.0 }}\n");
+    let (d, r) = single_at(&text, "szie", 0);
+    assert!(
+        d.message
+            .contains("unknown key `szie` in `mesh.curves.\"top/f1\"`"),
+        "{r}"
+    );
+    assert_eq!(d.help.as_deref(), Some("did you mean `size`?"));
+    assert!(r.contains("^^^^\n"), "four carets under `szie`:\n{r}");
+}
+
+#[test]
+fn the_rendering_is_rustc_style_with_gutter_snippet_caret_and_help() {
+    let text = format!("{BASE}[mesh.curves]\n\"top/f1\" = {{ szie = 25.0 }}\n");
+    let d = errors(&text);
+    let expected = "error: unknown key `szie` in `mesh.curves.\"top/f1\"`\n  --> recipes/bad.toml:16:14\n   |\n16 | \"top/f1\" = { szie = 25.0 }\n   |              ^^^^\n   = help: did you mean `size`?";
+    assert_eq!(d[0].to_string(), expected);
+}
+
+#[test]
+fn a_misspelled_surface_option_suggests_the_option() {
+    let text = BASE.replace("kind = \"fault\"", "knid = \"fault\"");
+    let (d, _) = single_at(&text, "knid", 0);
+    assert_eq!(d.help.as_deref(), Some("did you mean `kind`?"));
+}
+
+#[test]
+fn a_wrong_type_names_the_expected_type_and_the_value() {
+    let text = BASE.replace("size = 1.0", "size = \"1.0\"");
+    let (d, r) = single_at(&text, "\"1.0\"", 0);
+    assert!(
+        d.message
+            .contains("`mesh.size` must be a number, found a string `\"1.0\"`"),
+        "{r}"
+    );
+    assert!(
+        d.help
+            .as_deref()
+            .is_some_and(|h| h.contains("without quotes")),
+        "{r}"
+    );
+}
+
+#[test]
+fn a_misspelled_kind_value_suggests_the_valid_word() {
+    let text = BASE.replace("kind = \"fault\"", "kind = \"faut\"");
+    let (d, r) = single_at(&text, "\"faut\"", 0);
+    assert!(d.message.contains("`surfaces.f1.kind`"), "{r}");
+    assert_eq!(d.help.as_deref(), Some("did you mean `fault`?"));
+}
+
+#[test]
+fn a_duplicate_surface_name_points_at_the_second_and_names_the_first_line() {
+    let text = BASE.replace("f1 = {", "top = { file = \"data/t2.ts\" }\nf1 = {");
+    let (d, r) = single_at(&text, "top", 2);
+    assert!(d.message.contains("duplicate surface name `top`"), "{r}");
+    assert!(
+        d.help.as_deref().is_some_and(|h| h.contains("line 5")),
+        "{r}"
+    );
+}
+
+#[test]
+fn a_table_defined_twice_is_reported_with_its_first_line() {
+    let text = format!("{BASE}\n[mesh]\ngrowth = 1.2\n");
+    let d = errors(&text);
+    assert_eq!(d.len(), 1);
+    let r = d[0].to_string();
+    assert!(r.contains("`[mesh]` is defined twice"), "{r}");
+    assert!(r.contains("line 13"), "{r}");
+}
+
+#[test]
+fn a_duplicate_curve_rule_written_in_the_other_order_is_an_error() {
+    let text = format!(
+        "{BASE}[mesh.curves]\n\"top/f1\" = {{ size = 2.0 }}\n\"f1/top\" = {{ count = 3 }}\n"
+    );
+    let (d, r) = single_at(&text, "\"f1/top\"", 0);
+    assert!(d.message.contains("repeats `top/f1` (line 16)"), "{r}");
+}
+
+#[test]
+fn a_selector_that_matches_no_surface_suggests_the_closest_name() {
+    let text = format!("{BASE}[mesh.curves]\n\"topp/f1\" = {{ size = 2.0 }}\n");
+    let (d, r) = single_at(&text, "topp", 0);
+    assert!(
+        d.message.contains("`topp`") && d.message.contains("matches no surface"),
+        "{r}"
+    );
+    assert_eq!(d.help.as_deref(), Some("did you mean `top`?"));
+}
+
+#[test]
+fn a_glob_over_box_sides_with_a_typo_suggests_the_box_glob() {
+    let text = format!("{BASE}[mesh.curves]\n\"f1/bx.*\" = {{ count = 4 }}\n");
+    let (d, r) = single_at(&text, "bx.*", 0);
+    assert_eq!(d.help.as_deref(), Some("did you mean `box.*`?"), "{r}");
+}
+
+#[test]
+fn a_surface_size_selector_that_matches_nothing_is_an_error() {
+    let text = format!("{BASE}[mesh.surfaces]\n\"g*\" = {{ size = 2.0 }}\n");
+    let (d, r) = single_at(&text, "\"g*\"", 0);
+    assert!(d.message.contains("matches no surface"), "{r}");
+}
+
+#[test]
+fn a_missing_file_names_the_recipe_position_and_the_resolved_path() {
+    let r = ok(BASE);
+    let d = check_files(&r, &|p: &Path| p != Path::new("recipes/data/f1.ts"));
+    assert_eq!(d.len(), 1);
+    let (line, col) = loc(BASE, "\"data/f1.ts\"", 0);
+    let text = d[0].to_string();
+    assert!(text.contains(&format!("{FILE}:{line}:{col}")), "{text}");
+    assert!(
+        text.contains("`data/f1.ts`") && text.contains("`recipes/data/f1.ts`"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_missing_file_suggests_the_existing_file_in_another_case_or_directory() {
+    let r = ok(&BASE.replace("data/f1.ts", "dat/F1.ts"));
+    let exists = |p: &Path| p != Path::new("recipes/dat/F1.ts");
+    let d = check_files(&r, &exists);
+    assert_eq!(d.len(), 1);
+    assert_eq!(d[0].help.as_deref(), Some("did you mean `data/F1.ts`?"));
+    let d = check_files(&r, &|p: &Path| p == Path::new("recipes/dat/f1.ts"));
+    let f1 = d
+        .iter()
+        .find(|d| d.message.contains("`f1`"))
+        .expect("f1 reported");
+    assert_eq!(f1.help.as_deref(), Some("did you mean `dat/f1.ts`?"));
+}
+
+#[test]
+fn a_missing_file_suggests_the_closest_name_from_a_directory_listing() {
+    let r = ok(&BASE.replace("data/f1.ts", "data/fault1.ts"));
+    let list = |d: &Path| {
+        if d == Path::new("recipes/data") {
+            vec!["fault_1.ts".to_string(), "top.ts".to_string()]
+        } else {
+            vec![]
+        }
+    };
+    let d = georecipe::recipe::check_files_with_listing(
+        &r,
+        &|p: &Path| !p.ends_with("fault1.ts"),
+        &list,
+    );
+    assert_eq!(d.len(), 1);
+    assert_eq!(
+        d[0].help.as_deref(),
+        Some("did you mean `data/fault_1.ts`?")
+    );
+}
+
+#[test]
+fn a_box_whose_min_is_not_below_max_names_the_axis() {
+    let text = BASE.replace("max = [10.0, 10.0, 0.0]", "max = [10.0, 0.0, 0.0]");
+    let (d, r) = single_at(&text, "0.0, 0.0]", 0);
+    assert!(
+        d.message
+            .contains("`min` y = 0 is not less than `max` y = 0"),
+        "{r}"
+    );
+}
+
+#[test]
+fn a_bad_output_format_suggests_the_closest_format() {
+    let text = format!("{BASE}[output]\nformats = [\"msh\", \"vtk\"]\n");
+    let (d, r) = single_at(&text, "\"vtk\"", 0);
+    assert!(d.message.contains("`output.formats[1]`"), "{r}");
+    assert_eq!(d.help.as_deref(), Some("did you mean `vtu`?"));
+}
+
+#[test]
+fn nan_infinite_and_negative_sizes_are_each_reported_at_their_value() {
+    let text = BASE.replace(
+        "size = 1.0",
+        "size = nan\nmin_size = inf\nmax_size = -3.0\ngrowth = 1.0",
+    );
+    let d = errors(&text);
+    let r: Vec<String> = d.iter().map(|d| d.to_string()).collect();
+    assert_eq!(d.len(), 4, "{r:#?}");
+    assert!(
+        d[0].message
+            .contains("`mesh.size` = `nan` is not a finite number"),
+        "{r:#?}"
+    );
+    assert!(
+        d[1].message
+            .contains("`mesh.min_size` = `inf` is not a finite number"),
+        "{r:#?}"
+    );
+    assert!(
+        d[2].message
+            .contains("`mesh.max_size` = `-3.0` must be greater than 0"),
+        "{r:#?}"
+    );
+    assert!(
+        d[3].message
+            .contains("`mesh.growth` = `1.0` must be greater than 1"),
+        "{r:#?}"
+    );
+    assert_eq!((d[0].line, d[0].col), loc(&text, "nan", 0));
+    assert_eq!((d[2].line, d[2].col), loc(&text, "-3.0", 0));
+}
+
+#[test]
+fn an_overflowing_float_literal_is_not_finite() {
+    let text = BASE.replace("size = 1.0", "size = 1e400");
+    let (d, _) = single_at(&text, "1e400", 0);
+    assert!(d.message.contains("not a finite number"));
+}
+
+#[test]
+fn a_negative_retriangulation_size_is_rejected() {
+    let text = BASE.replace("kind = \"fault\"", "kind = \"fault\", retriangulate = -5");
+    let (d, _) = single_at(&text, "-5", 0);
+    assert!(
+        d.message
+            .contains("`surfaces.f1.retriangulate` = `-5` must be greater than 0")
+    );
+}
+
+#[test]
+fn a_surface_named_like_a_box_side_is_reserved() {
+    let text = BASE.replace("f1 = {", "\"box.x\" = {");
+    let (d, r) = single_at(&text, "\"box.x\"", 0);
+    assert!(
+        d.message.contains("surface name `box.x` is reserved"),
+        "{r}"
+    );
+    assert!(d.help.is_some());
+}
+
+#[test]
+fn a_surface_name_with_a_slash_is_rejected_with_a_fixed_name() {
+    let text = BASE.replace("f1 = {", "\"f/1\" = {");
+    let (d, r) = single_at(&text, "\"f/1\"", 0);
+    assert!(d.message.contains("contains `/`"), "{r}");
+    assert!(
+        d.help.as_deref().is_some_and(|h| h.contains("`f_1`")),
+        "{r}"
+    );
+}
+
+#[test]
+fn an_intersect_pair_of_a_surface_with_itself_is_an_error() {
+    let text = format!("{BASE}[intersect]\npairs = [[\"top\", \"f1\"], [\"f1\", \"f1\"]]\n");
+    let (d, r) = single_at(&text, "[\"f1\", \"f1\"]", 0);
+    assert!(d.message.contains("pairs `f1` with itself"), "{r}");
+}
+
+#[test]
+fn an_intersect_pair_with_an_unknown_name_suggests_the_known_one() {
+    let text = format!("{BASE}[intersect]\npairs = [[\"top\", \"fl\"]]\n");
+    let (d, r) = single_at(&text, "\"fl\"", 0);
+    assert!(d.message.contains("unknown surface `fl`"), "{r}");
+    assert_eq!(d.help.as_deref(), Some("did you mean `f1`?"));
+}
+
+#[test]
+fn a_surface_without_a_misspelled_file_key_gets_only_the_did_you_mean() {
+    let text = BASE.replace("{ file = \"data/f1.ts\"", "{ fiel = \"data/f1.ts\"");
+    let (d, _) = single_at(&text, "fiel", 0);
+    assert_eq!(d.help.as_deref(), Some("did you mean `file`?"));
+}
+
+#[test]
+fn the_design_sample_intersect_written_after_box_explains_the_toml_trap() {
+    let text = BASE.replace(
+        "max = [10.0, 10.0, 0.0]",
+        "max = [10.0, 10.0, 0.0]\nintersect = [[\"top\", \"f1\"]]",
+    );
+    let (d, r) = single_at(&text, "intersect", 0);
+    assert!(
+        d.message.contains("unknown key `intersect` in `box`"),
+        "{r}"
+    );
+    assert!(
+        d.help
+            .as_deref()
+            .is_some_and(|h| h.contains("move it above `[box]`")),
+        "{r}"
+    );
+}
+
+#[test]
+fn a_top_level_intersect_array_is_the_pairs_shorthand() {
+    let text = format!("intersect = [[\"top\", \"f1\"], [\"f1\", \"box\"]]\n{BASE}");
+    let r = ok(&text);
+    assert_eq!(r.intersect.len(), 7);
+    assert!(r.intersect.contains(&("f1".to_string(), "top".to_string())));
+}
+
+#[test]
+fn a_trim_referring_to_an_unknown_surface_suggests_the_name() {
+    let text = format!("{BASE}[[trim]]\nsurface = \"f1\"\nkeep = {{ below = \"tpo\" }}\n");
+    let (d, r) = single_at(&text, "\"tpo\"", 0);
+    assert!(d.message.contains("unknown surface `tpo`"), "{r}");
+    assert_eq!(d.help.as_deref(), Some("did you mean `top`?"));
+}
+
+#[test]
+fn a_trim_with_two_actions_is_an_error() {
+    let text = format!(
+        "{BASE}[[trim]]\nsurface = \"f1\"\nkeep = {{ below = \"top\" }}\ndiscard = {{ area_below = 3.0 }}\n"
+    );
+    let (d, _) = single_at(&text, "{ area_below = 3.0 }", 0);
+    assert!(d.message.contains("both `keep` and `discard`"));
+}
+
+#[test]
+fn a_region_size_for_an_unnamed_region_suggests_the_region() {
+    let text = format!(
+        "{BASE}[mesh.regions]\nreservior = {{ size = 0.5 }}\n[regions]\nreservoir = {{ point = [1.0, 1.0, -1.0] }}\n"
+    );
+    let (d, r) = single_at(&text, "reservior", 0);
+    assert!(d.message.contains("unknown region `reservior`"), "{r}");
+    assert_eq!(d.help.as_deref(), Some("did you mean `reservoir`?"));
+}
+
+#[test]
+fn a_toml_syntax_error_names_the_line_and_column() {
+    let text = BASE.replace("size = 1.0", "size = 1.0.0");
+    let d = errors(&text);
+    assert_eq!(d.len(), 1);
+    let r = d[0].to_string();
+    assert!(r.starts_with("error: TOML syntax error"), "{r}");
+    assert_eq!(d[0].line, loc(&text, "size = 1.0.0", 0).0, "{r}");
+    assert!(d[0].snippet.contains("1.0.0"), "{r}");
+}
+
+#[test]
+fn several_errors_are_reported_at_once_in_source_order() {
+    let text = BASE
+        .replace("kind = \"fault\"", "kind = \"faultt\"")
+        .replace("size = 1.0", "size = -1.0\nsizee = 2");
+    let d = errors(&text);
+    assert_eq!(d.len(), 3, "{d:#?}");
+    assert!(
+        d.windows(2)
+            .all(|w| (w[0].line, w[0].col) <= (w[1].line, w[1].col))
+    );
+}
+
+#[test]
+fn a_missing_model_and_mesh_are_reported_at_the_start() {
+    let d = errors("[surfaces]\n");
+    let msgs: Vec<&str> = d.iter().map(|d| d.message.as_str()).collect();
+    assert!(
+        msgs.contains(&"missing key `model` in the recipe"),
+        "{msgs:?}"
+    );
+    assert!(
+        msgs.contains(&"missing key `mesh` in the recipe"),
+        "{msgs:?}"
+    );
+    assert!(d.iter().all(|d| (d.line, d.col) == (1, 1)));
+}
+
+#[test]
+fn a_curve_count_with_a_ratio_is_rejected() {
+    let text = format!("{BASE}[mesh.curves]\n\"top\" = {{ count = 4, ratio = 1.2 }}\n");
+    let (d, _) = single_at(&text, "1.2", 0);
+    assert!(
+        d.message
+            .contains("`mesh.curves.top.ratio` applies to a sized subdivision"),
+        "{}",
+        d.message
+    );
+}
+
+#[test]
+fn a_zero_or_fractional_count_is_rejected() {
+    let text =
+        format!("{BASE}[mesh.curves]\n\"top\" = {{ count = 0 }}\n\"f1\" = {{ count = 2.5 }}\n");
+    let d = errors(&text);
+    assert_eq!(d.len(), 2);
+    assert!(d[0].message.contains("must be between 1 and"));
+    assert!(
+        d[1].message
+            .contains("must be an integer, found a float `2.5`")
+    );
+}
+
+#[test]
+fn a_trim_written_as_a_plain_table_asks_for_double_brackets() {
+    let text = format!("{BASE}[trim]\nsurface = \"f1\"\n");
+    let (d, r) = single_at(&text, "[trim]", 0);
+    assert!(
+        d.message
+            .contains("`trim` must be an array of tables, written `[[trim]]`"),
+        "{r}"
+    );
+}
+
+#[test]
+fn the_diagnostic_at_a_stored_span_points_back_at_the_recipe() {
+    let text = format!("{BASE}[mesh.curves]\n\"top/f1\" = {{ size = 2.0 }}\n");
+    let r = ok(&text);
+    let rule = &r.mesh.curves[0];
+    let d = r.diagnostic_at(
+        rule.span,
+        "curve selector `top/f1` matches no curve of the model",
+        Some("the model has `top/f1#1`".into()),
+    );
+    assert_eq!((d.line, d.col), loc(&text, "\"top/f1\"", 0));
+    assert!(d.to_string().contains("^^^^^^^^"), "{d}");
+}
+
+#[test]
+fn a_model_name_that_cannot_be_a_file_name_is_rejected() {
+    let text = BASE.replace("name = \"t\"", "name = \"../north field\"");
+    let (d, r) = single_at(&text, "\"../north field\"", 0);
+    assert!(
+        d.message
+            .contains("model name `../north field` contains `/`"),
+        "{r}"
+    );
+    assert!(
+        d.help
+            .as_deref()
+            .is_some_and(|h| h.contains("`.._north_field`")),
+        "{r}"
+    );
+}
+
+#[test]
+fn a_tolerance_out_of_range_or_unknown_is_reported() {
+    let text = format!("[tolerances]\nkink_angle_deg = 200\nmerge_dist = 1\n{BASE}");
+    let d = errors(&text);
+    assert_eq!(d.len(), 2, "{d:#?}");
+    assert!(
+        d[0].message
+            .contains("`tolerances.kink_angle_deg` = `200` must be between 0 and 180"),
+        "{}",
+        d[0]
+    );
+    assert_eq!(d[1].help.as_deref(), Some("did you mean `merge_distance`?"));
+}
+
+#[test]
+fn a_misspelled_trim_condition_gets_only_its_did_you_mean() {
+    let text = format!(
+        "{BASE}[[trim]]\nsurface = \"f1\"\nkeep = {{ bellow = \"top\" }}\n[[trim]]\nsurface = \"f*\"\ndiscard = {{ area = 10.0 }}\n"
+    );
+    let d = errors(&text);
+    assert_eq!(d.len(), 2, "{d:#?}");
+    assert_eq!((d[0].line, d[0].col), loc(&text, "bellow", 0));
+    assert_eq!(d[0].help.as_deref(), Some("did you mean `below`?"));
+    assert_eq!((d[1].line, d[1].col), loc(&text, "area", 0));
+    assert_eq!(d[1].help.as_deref(), Some("did you mean `area_below`?"));
+}
+
+#[test]
+fn a_surface_table_header_form_is_accepted_and_checked_like_the_inline_form() {
+    let text = format!("{BASE}[surfaces.f2]\nfile = \"data/f2.ts\"\nkind = \"fualt\"\n");
+    let (d, _) = single_at(&text, "\"fualt\"", 0);
+    assert!(d.message.contains("`surfaces.f2.kind`"));
+    let r = ok(&text.replace("fualt", "fault"));
+    assert_eq!(r.surfaces["f2"].kind, georecipe::recipe::SurfaceKind::Fault);
+}
+
+#[test]
+fn windows_line_endings_and_a_byte_order_mark_keep_positions_right() {
+    let text = format!(
+        "\u{feff}{}",
+        BASE.replace("size = 1.0", "size = -1.0")
+            .replace('\n', "\r\n")
+    );
+    let d = errors(&text);
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!((d[0].line, d[0].col), (14, 8));
+    assert_eq!(d[0].snippet, "size = -1.0");
+    assert!(d[0].to_string().contains("|        ^^^^"), "{}", d[0]);
+}
