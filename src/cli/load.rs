@@ -8,7 +8,14 @@ use std::path::Path;
 pub fn load(path: &Path) -> Result<Recipe, Failure> {
     let text = std::fs::read_to_string(path).map_err(|e| Failure(format!("error: cannot read recipe {}: {e}", path.display())))?;
     let r = recipe::parse(path, &text).map_err(|d| render(&d))?;
-    let missing = recipe::check_files(&r, &|p: &Path| p.is_file());
+    let list_dir = |d: &Path| -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .map(|it| it.filter_map(|e| e.ok()).map(|e| e.file_name().to_string_lossy().into_owned()).collect())
+            .unwrap_or_default();
+        v.sort();
+        v
+    };
+    let missing = recipe::check_files_with_listing(&r, &|p: &Path| p.is_file(), &list_dir);
     if !missing.is_empty() {
         return Err(render(&missing));
     }
@@ -16,13 +23,7 @@ pub fn load(path: &Path) -> Result<Recipe, Failure> {
 }
 
 fn render(diags: &[recipe::Diagnostic]) -> Failure {
-    let mut s = String::new();
-    for d in diags {
-        s.push_str(&d.to_string());
-        s.push('\n');
-    }
-    s.push_str(&format!("error: the recipe has {} error{}", diags.len(), if diags.len() == 1 { "" } else { "s" }));
-    Failure(s)
+    Failure(recipe::render(diags))
 }
 
 /// `recipe check`.
@@ -33,7 +34,7 @@ pub fn check(path: &Path) -> Result<(), Failure> {
         path.display(),
         r.surfaces.len(),
         r.intersect.len(),
-        r.curve_rules().len()
+        r.mesh.curves.len()
     );
     Ok(())
 }

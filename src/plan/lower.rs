@@ -2,7 +2,7 @@
 
 use super::ops::*;
 use crate::engine::{BuildGraph, GraphError, NodeId};
-use crate::recipe::Recipe;
+use crate::recipe::{self, Recipe};
 use crate::stages::discretize::{Grading, Subdivision};
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -22,24 +22,24 @@ impl From<GraphError> for PlanError {
     }
 }
 
-/// The six box sides, in the order every listing uses.
-pub const BOX_SIDES: [&str; 6] = ["box.xmin", "box.xmax", "box.ymin", "box.ymax", "box.zmin", "box.zmax"];
-
 /// Builds the graph for `recipe`. Paths of imported files are resolved against the recipe's directory.
 pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     let mut g = BuildGraph::new();
     let mut surface_nodes: BTreeMap<String, NodeId> = BTreeMap::new();
-    let units_scale = 1.0 / recipe.model.units.metres();
     for (name, spec) in &recipe.surfaces {
-        let file = g.add_file(&format!("file:{name}"), recipe.base_dir.join(&spec.file))?;
+        let file = g.add_file(&format!("file:{name}"), spec.path.clone())?;
         let op = ImportOp {
             surface: name.clone(),
             kind: spec.kind,
             file_label: spec.file.display().to_string(),
             object: spec.object.clone(),
             skip_other_types: spec.skip_other_types,
-            units_scale,
-            on_invalid: if spec.on_invalid_stop() { OnInvalid::Stop } else { OnInvalid::Repair },
+            // Coordinates are kept in the files' units (the recipe's `units` names them).
+            units_scale: 1.0,
+            on_invalid: match spec.on_invalid {
+                recipe::OnInvalid::Stop => OnInvalid::Stop,
+                recipe::OnInvalid::Repair => OnInvalid::Repair,
+            },
             tolerances: recipe.tolerances.clone(),
         };
         let id = g.add_op(&format!("import:{name}"), Arc::new(op), &[file])?;
@@ -49,18 +49,18 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     let import_ids: Vec<NodeId> = surface_nodes.values().copied().collect();
 
     if let Some(b) = &recipe.bbox {
-        let (params, inputs) = match b.around() {
-            None => (BoxSpecParams::Explicit { min: b.min(), max: b.max() }, vec![]),
-            Some((names, margin)) => {
-                let ids = names
+        let (params, inputs) = match &b.extent {
+            recipe::BoxExtent::Explicit { min, max } => (BoxSpecParams::Explicit { min: *min, max: *max }, vec![]),
+            recipe::BoxExtent::Around { surfaces, margin } => {
+                let ids = surfaces
                     .iter()
                     .map(|n| surface_nodes.get(n).copied().ok_or_else(|| PlanError(format!("box.around names unknown surface `{n}`"))))
                     .collect::<Result<Vec<_>, _>>()?;
-                (BoxSpecParams::Around { surfaces: names.to_vec(), margin }, ids)
+                (BoxSpecParams::Around { surfaces: surfaces.clone(), margin: *margin }, ids)
             }
         };
         let bx = g.add_op("box", Arc::new(BoxOp(params)), &inputs)?;
-        for side in BOX_SIDES {
+        for side in recipe::BOX_SIDES {
             let id = g.add_op(&format!("surface:{side}"), Arc::new(BoxSideOp { side: side.to_string() }), &[bx])?;
             surface_nodes.insert(side.to_string(), id);
         }
@@ -69,8 +69,8 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     let mut intersections = Vec::new();
     for (a, b) in &recipe.intersect {
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        let ia = *surface_nodes.get(a).ok_or_else(|| PlanError(format!("intersect names unknown surface `{a}` (is [box] given?)")))?;
-        let ib = *surface_nodes.get(b).ok_or_else(|| PlanError(format!("intersect names unknown surface `{b}` (is [box] given?)")))?;
+        let ia = *surface_nodes.get(a).ok_or_else(|| PlanError(format!("intersect names unknown surface `{a}`")))?;
+        let ib = *surface_nodes.get(b).ok_or_else(|| PlanError(format!("intersect names unknown surface `{b}`")))?;
         let id = g.add_op(&format!("intersect:{a}/{b}"), Arc::new(IntersectOp { a: a.clone(), b: b.clone() }), &[ia, ib])?;
         intersections.push(id);
     }
@@ -82,27 +82,29 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
         Arc::new(CurvesOp { n_surfaces: import_ids.len(), tolerances: recipe.tolerances.clone() }),
         &curve_inputs,
     )?;
-
-    let rules = recipe.curve_rules();
-    let default_size = recipe.mesh.size;
-    let resolve_rules = rules.clone();
-    let resolve: Arc<RuleResolver> = Arc::new(move |name: &str| {
-        // The last matching rule in recipe order wins; without one, the global size applies.
-        match resolve_rules.iter().rev().find(|r| (r.matches)(name)) {
-            Some(r) => (format!("mesh.curves.\"{}\"", r.selector), r.rule.clone()),
-            None => ("mesh.size".to_string(), Subdivision::Size { size: default_size, ratio: 1.0, grading: Grading::Geometric }),
-        }
-    });
-    let selectors = rules.iter().map(|r| (r.matches.clone(), r.unmatched_message.clone())).collect();
-    let model = recipe.model.name.clone();
-    let formats = recipe.output.formats.clone();
-    let n_imports = import_names.len();
-    let expander = DiscretizeExpander {
-        resolve,
-        selectors,
-        import_nodes: import_names,
-        export: Arc::new(move || ExportOp { model: model.clone(), formats: formats.clone(), n_imports }),
-    };
+    let expander = DiscretizeExpander { recipe: Arc::new(recipe.clone()), import_nodes: import_names };
     g.set_expander(curves, Arc::new(expander));
     Ok(g)
+}
+
+/// The subdivision of the curve `name`: the recipe rule that applies (see
+/// `MeshSpec::curve_rule` for precedence), else the global size. Returns the rule's recipe path.
+pub fn curve_subdivision(recipe: &Recipe, name: &str) -> (String, Subdivision) {
+    match recipe.mesh.curve_rule(name) {
+        Some(r) => {
+            let sub = match &r.subdivision {
+                recipe::Subdivision::Count(n) => Subdivision::Count(*n),
+                recipe::Subdivision::Size { size, ratio, grading } => Subdivision::Size {
+                    size: *size,
+                    ratio: *ratio,
+                    grading: match grading {
+                        recipe::Grading::Geometric => Grading::Geometric,
+                        recipe::Grading::Bump => Grading::Bump,
+                    },
+                },
+            };
+            (format!("mesh.curves.\"{}\"", r.selector.text), sub)
+        }
+        None => ("mesh.size".to_string(), Subdivision::Size { size: recipe.mesh.size, ratio: 1.0, grading: Grading::Geometric }),
+    }
 }

@@ -16,4 +16,4 @@
 mod lower;
 pub mod ops;
 
-pub use lower::{PlanError, lower};
+pub use lower::{PlanError, curve_subdivision, lower};

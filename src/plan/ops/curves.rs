@@ -7,6 +7,8 @@
 //! of the recipe's pairs and the free borders of every imported surface, before trimming.
 
 use super::{ExportOp, SurfaceData};
+use crate::plan::lower::curve_subdivision;
+use crate::recipe::{self, Recipe};
 use crate::engine::{Artifact, Expander, Expansion, OpError, Operation, Output, Params, RunContext};
 use crate::geom::Tolerances;
 use crate::stages::discretize::{Grading, Subdivision, discretize};
@@ -188,27 +190,20 @@ impl Operation for DiscretizeOp {
     }
 }
 
-/// Picks the subdivision rule of a curve from its name. Returns the rule's recipe path and rule.
-pub type RuleResolver = dyn Fn(&str) -> (String, Subdivision) + Send + Sync;
-
 /// Attached to `curves`: adds the per-curve nodes and the export node.
 pub struct DiscretizeExpander {
-    pub resolve: Arc<RuleResolver>,
-    /// Curve selectors of the recipe with the diagnostic to show when one matches no curve.
-    pub selectors: Vec<(Arc<dyn Fn(&str) -> bool + Send + Sync>, String)>,
+    pub recipe: Arc<Recipe>,
     /// Names of the import nodes whose validation reports the export writes.
     pub import_nodes: Vec<String>,
-    pub export: Arc<dyn Fn() -> ExportOp + Send + Sync>,
 }
 
 impl Expander for DiscretizeExpander {
     fn expand(&self, output: &Artifact, x: &mut Expansion) -> Result<(), OpError> {
         let set: CurveSet = output.decode()?;
-        for (matches, diagnostic) in &self.selectors {
-            if !set.curves.iter().any(|c| matches(&c.name)) {
-                let names: Vec<&str> = set.curves.iter().map(|c| c.name.as_str()).collect();
-                return Err(format!("{diagnostic}\n  the model's curves are: {}", names.join(", ")).into());
-            }
+        let names: Vec<String> = set.curves.iter().map(|c| c.name.clone()).collect();
+        let unmatched = self.recipe.check_curve_rules(&names);
+        if !unmatched.is_empty() {
+            return Err(recipe::render(&unmatched).into());
         }
         let curves_node = x.node("curves").ok_or("no `curves` node")?;
         let mut export_inputs = Vec::new();
@@ -217,11 +212,16 @@ impl Expander for DiscretizeExpander {
         }
         for c in &set.curves {
             let extract = x.add_op(&format!("curve:{}", c.name), Arc::new(CurveExtractOp { name: c.name.clone() }), &[curves_node])?;
-            let (rule_path, rule) = (self.resolve)(&c.name);
+            let (rule_path, rule) = curve_subdivision(&self.recipe, &c.name);
             let d = x.add_op(&format!("discretize:{}", c.name), Arc::new(DiscretizeOp { name: c.name.clone(), rule_path, rule }), &[extract])?;
             export_inputs.push(d);
         }
-        x.add_op("export", Arc::new((self.export)()), &export_inputs)?;
+        let export = ExportOp {
+            model: self.recipe.model.name.clone(),
+            formats: self.recipe.output.formats.iter().map(|f| f.as_str().to_string()).collect(),
+            n_imports: self.import_nodes.len(),
+        };
+        x.add_op("export", Arc::new(export), &export_inputs)?;
         Ok(())
     }
 }

@@ -7,7 +7,7 @@ mod export;
 mod geometry;
 mod import;
 
-pub use curves::{CurveExtractOp, CurvesOp, DiscretizeOp, DiscretizeExpander, ModelCurve, CurveSet, CurveNodes};
+pub use curves::{CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve};
 pub use export::ExportOp;
 pub use geometry::{BoxOp, BoxSideOp, IntersectOp, BoxSpecParams};
 pub use import::{ImportOp, OnInvalid};
