@@ -26,12 +26,22 @@ fn a_second_build_with_nothing_changed_runs_nothing() {
     let r1 = run(chain(1, 0, &runs), &o);
     assert!(r1.ok);
     assert_eq!(runs.total(), 5);
-    assert!(r1.nodes.iter().all(|n| n.state == NodeState::Ran && n.reason == RebuildReason::NewNode));
+    assert!(
+        r1.nodes
+            .iter()
+            .all(|n| n.state == NodeState::Ran && n.reason == RebuildReason::NewNode)
+    );
     assert_eq!(value(&r1, "t"), 0); // (1 + 2) % 3
     runs.reset();
     let r2 = run(chain(1, 0, &runs), &o);
     assert_eq!(runs.total(), 0);
-    assert!(r2.nodes.iter().all(|n| n.state == NodeState::Cached && n.reason == RebuildReason::UpToDate), "{:?}", states(&r2));
+    assert!(
+        r2.nodes
+            .iter()
+            .all(|n| n.state == NodeState::Cached && n.reason == RebuildReason::UpToDate),
+        "{:?}",
+        states(&r2)
+    );
     assert_eq!(value(&r2, "t"), 0);
     assert_eq!(r2.node("s").unwrap().counts.get("value"), Some(&3));
 }
@@ -53,11 +63,23 @@ fn changing_one_parameter_reruns_that_node_and_its_dependents_only_and_names_the
     let reason = &r.node("s").unwrap().reason;
     assert_eq!(
         *reason,
-        RebuildReason::ParamsChanged(vec![ParamChange { path: "extra".into(), old: Some("0".into()), new: Some("1".into()) }])
+        RebuildReason::ParamsChanged(vec![ParamChange {
+            path: "extra".into(),
+            old: Some("0".into()),
+            new: Some("1".into())
+        }])
     );
     assert_eq!(reason.to_string(), "extra: 0 → 1");
-    assert_eq!(r.node("m").unwrap().reason, RebuildReason::UpstreamChanged { inputs: vec!["s".into()] });
-    assert_eq!(r.node("m").unwrap().reason.to_string(), "upstream output changed: s");
+    assert_eq!(
+        r.node("m").unwrap().reason,
+        RebuildReason::UpstreamChanged {
+            inputs: vec!["s".into()]
+        }
+    );
+    assert_eq!(
+        r.node("m").unwrap().reason.to_string(),
+        "upstream output changed: s"
+    );
 }
 
 #[test]
@@ -90,7 +112,10 @@ fn an_operation_version_bump_reruns_with_the_version_as_reason() {
     };
     run(g(1), &o);
     let r = run(g(2), &o);
-    assert_eq!(r.node("x").unwrap().reason, RebuildReason::VersionChanged { old: 1, new: 2 });
+    assert_eq!(
+        r.node("x").unwrap().reason,
+        RebuildReason::VersionChanged { old: 1, new: 2 }
+    );
     assert_eq!(state(&r, "a"), NodeState::Cached);
 }
 
@@ -117,15 +142,29 @@ fn touching_a_file_without_changing_it_reruns_nothing_and_changing_it_names_the_
     std::fs::write(&input, "7\n").unwrap();
     let r2 = run(g(&runs), &o);
     assert_eq!(runs.total(), 0);
-    assert!(r2.nodes.iter().all(|n| n.state == NodeState::Cached), "{:?}", states(&r2));
+    assert!(
+        r2.nodes.iter().all(|n| n.state == NodeState::Cached),
+        "{:?}",
+        states(&r2)
+    );
     // Change: 9 -> x = 10, y = 0 (was 0): y re-runs, z is cut off.
     std::fs::write(&input, "9\n").unwrap();
     let r3 = run(g(&runs), &o);
     let f = r3.node("file:top").unwrap();
     assert_eq!(f.state, NodeState::Ran);
-    assert_eq!(f.reason, RebuildReason::InputFileChanged { path: input.display().to_string() });
+    assert_eq!(
+        f.reason,
+        RebuildReason::InputFileChanged {
+            path: input.display().to_string()
+        }
+    );
     assert_eq!(state(&r3, "x"), NodeState::Ran);
-    assert_eq!(r3.node("x").unwrap().reason, RebuildReason::UpstreamChanged { inputs: vec!["file:top".into()] });
+    assert_eq!(
+        r3.node("x").unwrap().reason,
+        RebuildReason::UpstreamChanged {
+            inputs: vec!["file:top".into()]
+        }
+    );
     assert_eq!(state(&r3, "y"), NodeState::Ran);
     assert_eq!(state(&r3, "z"), NodeState::CutOff);
     assert_eq!(runs.total(), 2);
@@ -144,14 +183,25 @@ fn a_missing_input_file_fails_its_node_with_the_path_and_skips_dependents() {
     assert!(!r.ok);
     let n = r.node("file:nope").unwrap();
     assert_eq!(n.state, NodeState::Failed);
-    assert!(n.error.as_deref().unwrap().contains(&missing.display().to_string()));
+    assert!(
+        n.error
+            .as_deref()
+            .unwrap()
+            .contains(&missing.display().to_string())
+    );
     assert_eq!(state(&r, "x"), NodeState::Skipped);
 }
 
 fn split_graph(n: i64, runs: &Runs, cascade: bool) -> BuildGraph {
     let mut g = BuildGraph::new();
     let c = g.add_op("count", konst(n, runs), &[]).unwrap();
-    g.set_expander(c, std::sync::Arc::new(Split { runs: runs.clone(), cascade }));
+    g.set_expander(
+        c,
+        std::sync::Arc::new(Split {
+            runs: runs.clone(),
+            cascade,
+        }),
+    );
     g
 }
 
@@ -185,7 +235,12 @@ fn an_expander_adds_nodes_that_are_cached_next_time_and_follow_its_input() {
     let lock3 = LockFile::from_report(&r3);
     assert!(!lock3.nodes.contains_key("part:2"));
     assert_eq!(value(&r3, "join"), 2 + 3);
-    assert!(lock2.diff(&lock3).iter().any(|l| l.starts_with("node `part:2` removed")));
+    assert!(
+        lock2
+            .diff(&lock3)
+            .iter()
+            .any(|l| l.starts_with("node `part:2` removed"))
+    );
 }
 
 #[test]
@@ -227,9 +282,17 @@ fn a_failing_node_does_not_stop_an_independent_branch_and_its_dependents_are_ski
     let r = run(g, &o);
     assert!(!r.ok);
     assert_eq!(state(&r, "bad"), NodeState::Failed);
-    assert_eq!(r.node("bad").unwrap().error.as_deref(), Some("toy failure: always fails"));
+    assert_eq!(
+        r.node("bad").unwrap().error.as_deref(),
+        Some("toy failure: always fails")
+    );
     assert_eq!(state(&r, "after-bad"), NodeState::Skipped);
-    assert_eq!(r.node("after-bad").unwrap().reason, RebuildReason::InputFailed { inputs: vec!["bad".into()] });
+    assert_eq!(
+        r.node("after-bad").unwrap().reason,
+        RebuildReason::InputFailed {
+            inputs: vec!["bad".into()]
+        }
+    );
     assert_eq!(state(&r, "after-after"), NodeState::Skipped);
     assert_eq!(state(&r, "after-good"), NodeState::Ran);
     assert_eq!(value(&r, "after-good"), 5);
@@ -263,7 +326,14 @@ fn a_panicking_operation_is_reported_as_a_failed_node() {
     g.add_op("k", konst(1, &runs), &[]).unwrap();
     let r = run(g, &opts(dir.path(), 2));
     assert_eq!(state(&r, "p"), NodeState::Failed);
-    assert!(r.node("p").unwrap().error.as_deref().unwrap().contains("boom at (1, 2, 3)"));
+    assert!(
+        r.node("p")
+            .unwrap()
+            .error
+            .as_deref()
+            .unwrap()
+            .contains("boom at (1, 2, 3)")
+    );
     assert_eq!(state(&r, "k"), NodeState::Ran);
 }
 
@@ -279,7 +349,10 @@ fn without_keep_going_a_failure_stops_further_dispatch() {
     let r = run(g, &o);
     assert!(!r.ok);
     assert_eq!(state(&r, "z-good"), NodeState::Skipped);
-    assert_eq!(r.node("z-good").unwrap().reason, RebuildReason::BuildStopped);
+    assert_eq!(
+        r.node("z-good").unwrap().reason,
+        RebuildReason::BuildStopped
+    );
 }
 
 #[test]
@@ -290,7 +363,15 @@ fn emitted_files_are_written_rewritten_when_deleted_and_locked() {
     let g = |v: i64, runs: &Runs| {
         let mut g = BuildGraph::new();
         let a = g.add_op("a", konst(v, runs), &[]).unwrap();
-        g.add_op("export", std::sync::Arc::new(Export { stem: "m".into(), runs: runs.clone() }), &[a]).unwrap();
+        g.add_op(
+            "export",
+            std::sync::Arc::new(Export {
+                stem: "m".into(),
+                runs: runs.clone(),
+            }),
+            &[a],
+        )
+        .unwrap();
         g
     };
     let r1 = run(g(41, &runs), &o);
@@ -302,7 +383,10 @@ fn emitted_files_are_written_rewritten_when_deleted_and_locked() {
     assert_eq!(lock.outputs.get("out/m.txt"), Some(&h));
     assert!(lock.to_text().contains("\"out/m.txt\""));
     // No temporary file left beside it.
-    let names: Vec<_> = std::fs::read_dir(out.parent().unwrap()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(names, vec![std::ffi::OsString::from("m.txt")]);
     // Deleted: the cached node rewrites it without running.
     std::fs::remove_file(&out).unwrap();
@@ -319,15 +403,23 @@ fn emitted_files_are_written_rewritten_when_deleted_and_locked() {
     let r3 = run(g(42, &runs), &o);
     let lock3 = LockFile::from_report(&r3);
     let d = lock.diff(&lock3);
-    assert!(d.iter().any(|l| l.starts_with("output file `out/m.txt`:")), "{d:?}");
-    assert!(d.iter().any(|l| l.starts_with("node `export`: output")), "{d:?}");
+    assert!(
+        d.iter().any(|l| l.starts_with("output file `out/m.txt`:")),
+        "{d:?}"
+    );
+    assert!(
+        d.iter().any(|l| l.starts_with("node `export`: output")),
+        "{d:?}"
+    );
 }
 
 #[test]
 fn a_second_concurrent_build_waits_for_the_lock_then_succeeds() {
     let dir = tempfile::tempdir().unwrap();
     let o = opts(dir.path(), 1);
-    let held = georecipe::engine::dirlock::DirLock::try_acquire(&o.cache_dir).unwrap().expect("lock free");
+    let held = georecipe::engine::dirlock::DirLock::try_acquire(&o.cache_dir)
+        .unwrap()
+        .expect("lock free");
     let runs = Runs::default();
     let waited = Mutex::new(None);
     let releaser = std::thread::spawn(move || {
@@ -351,15 +443,36 @@ fn events_report_start_progress_and_finish_of_running_nodes() {
     let o = opts(dir.path(), 2);
     let runs = Runs::default();
     let events = Mutex::new(Vec::new());
-    build(chain(1, 0, &runs), &o, &|e| events.lock().unwrap().push(e.clone())).unwrap();
+    build(chain(1, 0, &runs), &o, &|e| {
+        events.lock().unwrap().push(e.clone())
+    })
+    .unwrap();
     let ev = events.into_inner().unwrap();
-    let started = ev.iter().filter(|e| matches!(e, Event::Started { .. })).count();
-    let finished = ev.iter().filter(|e| matches!(e, Event::Finished(_))).count();
-    let progress = ev.iter().filter(|e| matches!(e, Event::Progress { name, done: 1, total: 1 } if name == "s")).count();
+    let started = ev
+        .iter()
+        .filter(|e| matches!(e, Event::Started { .. }))
+        .count();
+    let finished = ev
+        .iter()
+        .filter(|e| matches!(e, Event::Finished(_)))
+        .count();
+    let progress = ev
+        .iter()
+        .filter(|e| matches!(e, Event::Progress { name, done: 1, total: 1 } if name == "s"))
+        .count();
     assert_eq!((started, finished, progress), (5, 5, 1));
     let events = Mutex::new(Vec::new());
-    build(chain(1, 0, &runs), &o, &|e| events.lock().unwrap().push(e.clone())).unwrap();
-    assert!(!events.into_inner().unwrap().iter().any(|e| matches!(e, Event::Started { .. })));
+    build(chain(1, 0, &runs), &o, &|e| {
+        events.lock().unwrap().push(e.clone())
+    })
+    .unwrap();
+    assert!(
+        !events
+            .into_inner()
+            .unwrap()
+            .iter()
+            .any(|e| matches!(e, Event::Started { .. }))
+    );
 }
 
 #[test]
@@ -369,7 +482,10 @@ fn the_dot_rendering_shows_expanded_nodes_with_their_state() {
     let r = run(split_graph(2, &runs, false), &opts(dir.path(), 1));
     let dot = r.to_dot();
     assert!(dot.starts_with("digraph build {"));
-    assert!(dot.contains("\"part:1\" [label=\"part:1\\nadd · ran\""), "{dot}");
+    assert!(
+        dot.contains("\"part:1\" [label=\"part:1\\nadd · ran\""),
+        "{dot}"
+    );
     assert!(dot.contains("\"count\" -> \"part:1\";"));
     assert!(dot.contains("\"part:1\" -> \"join\";"));
     let json = r.to_json();
@@ -384,10 +500,44 @@ fn duplicate_names_and_foreign_inputs_are_refused_when_building_the_graph() {
     let runs = Runs::default();
     let mut g = BuildGraph::new();
     g.add_op("a", konst(1, &runs), &[]).unwrap();
-    assert_eq!(g.add_op("a", konst(2, &runs), &[]).unwrap_err(), GraphError::DuplicateName("a".into()));
-    assert!(matches!(g.add_file("a", "x".into()), Err(GraphError::DuplicateName(_))));
+    assert_eq!(
+        g.add_op("a", konst(2, &runs), &[]).unwrap_err(),
+        GraphError::DuplicateName("a".into())
+    );
+    assert!(matches!(
+        g.add_file("a", "x".into()),
+        Err(GraphError::DuplicateName(_))
+    ));
     let mut other = BuildGraph::new();
     other.add_op("x", konst(1, &runs), &[]).unwrap();
     let foreign = other.add_op("y", konst(1, &runs), &[]).unwrap();
-    assert!(matches!(g.add_op("b", konst(1, &runs), &[foreign]), Err(GraphError::UnknownInput { .. })));
+    assert!(matches!(
+        g.add_op("b", konst(1, &runs), &[foreign]),
+        Err(GraphError::UnknownInput { .. })
+    ));
+}
+
+#[test]
+fn nodes_sharing_a_key_are_computed_once_and_share_their_state() {
+    for jobs in [1, 3] {
+        let dir = tempfile::tempdir().unwrap();
+        let runs = Runs::default();
+        let g = || {
+            let mut g = BuildGraph::new();
+            for name in ["twin-a", "twin-b", "twin-c"] {
+                g.add_op(name, add(13, &runs), &[]).unwrap();
+            }
+            g
+        };
+        let r = run(g(), &opts(dir.path(), jobs));
+        assert_eq!(runs.total(), 1, "jobs = {jobs}");
+        assert!(
+            r.nodes.iter().all(|n| n.state == NodeState::Ran),
+            "jobs = {jobs}: {:?}",
+            states(&r)
+        );
+        let r2 = run(g(), &opts(dir.path(), jobs));
+        assert!(r2.nodes.iter().all(|n| n.state == NodeState::Cached));
+        assert_eq!(runs.total(), 1);
+    }
 }

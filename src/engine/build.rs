@@ -133,7 +133,7 @@ pub fn build(
         .save(&opts.cache_dir)
         .map_err(|e| EngineError::io(opts.cache_dir.join("manifest.bin"), e))?;
     let output_files = co.output_files.clone();
-    let results = co.into_results();
+    let results = co.into_results(&graph);
 
     // Topological order, ties broken by name (Kahn with a name-ordered ready set).
     let n = graph.len();

@@ -63,6 +63,11 @@ pub(crate) struct Coordinator<'a> {
     ready: BTreeSet<(String, usize)>,
     pub output_files: BTreeMap<String, Hash>,
     file_owner: BTreeMap<String, String>,
+    /// Keys being computed by a worker, with the nodes of the same key parked behind them.
+    inflight_keys: BTreeMap<Hash, Vec<usize>>,
+    /// Keys already resolved in this build: nodes sharing a key share the first resolution, so
+    /// whether they ran or were cached depends on the cache at build start, not on timing.
+    resolved: BTreeMap<Hash, Done>,
 }
 
 fn distinct_inputs(n: &NodeData) -> BTreeSet<usize> {
@@ -79,6 +84,8 @@ impl<'a> Coordinator<'a> {
             ready: BTreeSet::new(),
             output_files: BTreeMap::new(),
             file_owner: BTreeMap::new(),
+            inflight_keys: BTreeMap::new(),
+            resolved: BTreeMap::new(),
         }
     }
 
@@ -151,6 +158,23 @@ impl<'a> Coordinator<'a> {
                 match self.job_for(graph, id) {
                     Ok(job) => {
                         self.slots[id].phase = Phase::Running;
+                        if let JobWork::Op { key, .. } = &job.work {
+                            let key = *key;
+                            if let Some(res) = self.resolved.get(&key) {
+                                let done = Done {
+                                    id,
+                                    duration_ms: 0.0,
+                                    ..res.clone()
+                                };
+                                self.finish(graph, done, on_event);
+                                continue;
+                            }
+                            if let Some(parked) = self.inflight_keys.get_mut(&key) {
+                                parked.push(id);
+                                continue;
+                            }
+                            self.inflight_keys.insert(key, Vec::new());
+                        }
                         if tx.send(job).is_err() {
                             self.fail_now(graph, id, "no worker available".into(), on_event);
                             continue;
@@ -165,7 +189,30 @@ impl<'a> Coordinator<'a> {
             }
             let Ok(done) = rx.recv() else { break };
             in_flight -= 1;
-            self.finish(graph, done, on_event);
+            let id = done.id;
+            let key = self.slots.get(id).map(|s| s.key);
+            let parked = match (key, graph.nodes.get(id).map(|n| &n.work)) {
+                (Some(k), Some(Work::Op(_))) => self.inflight_keys.remove(&k).map(|p| (k, p)),
+                _ => None,
+            };
+            match parked {
+                Some((k, parked)) => {
+                    self.resolved.insert(k, done.clone());
+                    self.finish(graph, done.clone(), on_event);
+                    for twin in parked {
+                        self.finish(
+                            graph,
+                            Done {
+                                id: twin,
+                                duration_ms: 0.0,
+                                ..done.clone()
+                            },
+                            on_event,
+                        );
+                    }
+                }
+                None => self.finish(graph, done, on_event),
+            }
         }
         let reason = if self.stopped {
             RebuildReason::BuildStopped
@@ -495,8 +542,28 @@ impl<'a> Coordinator<'a> {
         }
     }
 
-    /// Final per-node reports (by id) and artifacts.
-    pub fn into_results(self) -> Vec<(Option<NodeReport>, Option<Artifact>)> {
+    /// Final per-node reports (by id) and artifacts. A skipped node's reason names every input
+    /// that ended failed or skipped (known only once all are done, whatever the finishing order).
+    pub fn into_results(
+        mut self,
+        graph: &BuildGraph,
+    ) -> Vec<(Option<NodeReport>, Option<Artifact>)> {
+        for id in 0..self.slots.len() {
+            let Some(RebuildReason::InputFailed { .. }) =
+                self.slots[id].report.as_ref().map(|r| &r.reason)
+            else {
+                continue;
+            };
+            let bad: Vec<String> = graph.nodes[id]
+                .inputs
+                .iter()
+                .filter(|i| !self.slots[i.0].ok())
+                .map(|i| graph.nodes[i.0].name.clone())
+                .collect();
+            if let Some(r) = self.slots[id].report.as_mut() {
+                r.reason = RebuildReason::InputFailed { inputs: dedup(bad) };
+            }
+        }
         self.slots
             .into_iter()
             .map(|s| (s.report, s.artifact))

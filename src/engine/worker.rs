@@ -25,12 +25,14 @@ pub(crate) struct Job {
     pub inputs: Vec<Artifact>,
 }
 
+#[derive(Clone)]
 pub(crate) struct Produced {
     pub artifact: Artifact,
     pub counts: BTreeMap<String, u64>,
     pub notes: Vec<String>,
 }
 
+#[derive(Clone)]
 pub(crate) struct Done {
     pub id: usize,
     pub result: Result<Produced, String>,

@@ -80,16 +80,34 @@ pub fn decode_int(a: &Artifact) -> Result<i64, OpError> {
 }
 
 pub fn konst(v: i64, runs: &Runs) -> Arc<dyn Operation> {
-    Arc::new(Toy { kind: "const", version: 1, params: Params::new().with("value", v).unwrap(), f: |p, _| Ok(int(p, "value")), runs: runs.clone() })
+    Arc::new(Toy {
+        kind: "const",
+        version: 1,
+        params: Params::new().with("value", v).unwrap(),
+        f: |p, _| Ok(int(p, "value")),
+        runs: runs.clone(),
+    })
 }
 
 /// Sum of inputs plus `extra`.
 pub fn add(extra: i64, runs: &Runs) -> Arc<dyn Operation> {
-    Arc::new(Toy { kind: "add", version: 1, params: Params::new().with("extra", extra).unwrap(), f: |p, v| Ok(v.iter().sum::<i64>() + int(p, "extra")), runs: runs.clone() })
+    Arc::new(Toy {
+        kind: "add",
+        version: 1,
+        params: Params::new().with("extra", extra).unwrap(),
+        f: |p, v| Ok(v.iter().sum::<i64>() + int(p, "extra")),
+        runs: runs.clone(),
+    })
 }
 
 pub fn add_v(extra: i64, version: u32, runs: &Runs) -> Arc<dyn Operation> {
-    Arc::new(Toy { kind: "add", version, params: Params::new().with("extra", extra).unwrap(), f: |p, v| Ok(v.iter().sum::<i64>() + int(p, "extra")), runs: runs.clone() })
+    Arc::new(Toy {
+        kind: "add",
+        version,
+        params: Params::new().with("extra", extra).unwrap(),
+        f: |p, v| Ok(v.iter().sum::<i64>() + int(p, "extra")),
+        runs: runs.clone(),
+    })
 }
 
 /// Sum of inputs modulo `m`.
@@ -98,14 +116,25 @@ pub fn modulo(m: i64, runs: &Runs) -> Arc<dyn Operation> {
         kind: "mod",
         version: 1,
         params: Params::new().with("m", m).unwrap(),
-        f: |p, v| v.iter().sum::<i64>().checked_rem_euclid(int(p, "m")).ok_or_else(|| "modulo by zero".to_string()),
+        f: |p, v| {
+            v.iter()
+                .sum::<i64>()
+                .checked_rem_euclid(int(p, "m"))
+                .ok_or_else(|| "modulo by zero".to_string())
+        },
         runs: runs.clone(),
     })
 }
 
 /// Always fails.
 pub fn fail(runs: &Runs) -> Arc<dyn Operation> {
-    Arc::new(Toy { kind: "fail", version: 1, params: Params::new(), f: |_, _| Err("toy failure: always fails".into()), runs: runs.clone() })
+    Arc::new(Toy {
+        kind: "fail",
+        version: 1,
+        params: Params::new(),
+        f: |_, _| Err("toy failure: always fails".into()),
+        runs: runs.clone(),
+    })
 }
 
 /// Emits `out/<stem>.txt` with the sum of its inputs.
@@ -130,7 +159,10 @@ impl Operation for Export {
         for a in inputs {
             sum += decode_int(a)?;
         }
-        let set = FileSet::new().with(&format!("out/{}.txt", self.stem), format!("{sum}\n").into_bytes());
+        let set = FileSet::new().with(
+            &format!("out/{}.txt", self.stem),
+            format!("{sum}\n").into_bytes(),
+        );
         Ok(Output::new(Artifact::encode(&set)?).count("files", 1))
     }
     fn emits_files(&self) -> bool {
@@ -149,18 +181,29 @@ impl Expander for Split {
     fn expand(&self, output: &Artifact, x: &mut Expansion) -> Result<(), OpError> {
         let n = decode_int(output)?;
         if n < 0 {
-            return Err(OpError::from("cannot split into a negative number of parts"));
+            return Err(OpError::from(
+                "cannot split into a negative number of parts",
+            ));
         }
         let parent = x.node("count").ok_or("no count node")?;
         let mut parts = Vec::new();
         for i in 0..n {
-            let id = x.add_op(&format!("part:{i}"), add(i, &self.runs), &[parent]).map_err(|e| e.to_string())?;
+            let id = x
+                .add_op(&format!("part:{i}"), add(i, &self.runs), &[parent])
+                .map_err(|e| e.to_string())?;
             if i == 0 && self.cascade {
-                x.set_expander(id, Arc::new(Sub { runs: self.runs.clone() })).map_err(|e| e.to_string())?;
+                x.set_expander(
+                    id,
+                    Arc::new(Sub {
+                        runs: self.runs.clone(),
+                    }),
+                )
+                .map_err(|e| e.to_string())?;
             }
             parts.push(id);
         }
-        x.add_op("join", add(0, &self.runs), &parts).map_err(|e| e.to_string())?;
+        x.add_op("join", add(0, &self.runs), &parts)
+            .map_err(|e| e.to_string())?;
         Ok(())
     }
 }
@@ -172,13 +215,19 @@ pub struct Sub {
 impl Expander for Sub {
     fn expand(&self, _output: &Artifact, x: &mut Expansion) -> Result<(), OpError> {
         let p = x.node("part:0").ok_or("no part:0")?;
-        x.add_op("sub:0", add(100, &self.runs), &[p]).map_err(|e| e.to_string())?;
+        x.add_op("sub:0", add(100, &self.runs), &[p])
+            .map_err(|e| e.to_string())?;
         Ok(())
     }
 }
 
 pub fn opts(dir: &Path, jobs: usize) -> BuildOptions {
-    BuildOptions { cache_dir: dir.join("cache"), output_dir: dir.join("work"), jobs, keep_going: true }
+    BuildOptions {
+        cache_dir: dir.join("cache"),
+        output_dir: dir.join("work"),
+        jobs,
+        keep_going: true,
+    }
 }
 
 pub fn quiet(_: &Event) {}
@@ -188,11 +237,17 @@ pub fn run(g: BuildGraph, o: &BuildOptions) -> BuildReport {
 }
 
 pub fn state(r: &BuildReport, name: &str) -> NodeState {
-    r.node(name).unwrap_or_else(|| panic!("no node {name}")).state
+    r.node(name)
+        .unwrap_or_else(|| panic!("no node {name}"))
+        .state
 }
 
 pub fn value(r: &BuildReport, name: &str) -> i64 {
-    decode_int(r.artifact(name).unwrap_or_else(|| panic!("no artifact {name}"))).unwrap()
+    decode_int(
+        r.artifact(name)
+            .unwrap_or_else(|| panic!("no artifact {name}")),
+    )
+    .unwrap()
 }
 
 /// Every state in the report, by name.
