@@ -1,6 +1,6 @@
 //! `recipe build`: load, lower, run the engine, keep the lock file and the last report.
 
-use super::cache::{cache_dir, last_report_path, lock_path, recipe_dir};
+use super::cache::{cache_dir, last_graph_path, last_report_path, lock_path, recipe_dir};
 use super::render::Renderer;
 use super::{BuildArgs, Failure, load};
 use crate::engine::{self, BuildOptions, BuildReport, LockFile, NodeState};
@@ -19,6 +19,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let report = engine::build(graph, &opts, &|e| renderer.event(e))?;
 
     write_atomic(&last_report_path(&cache), report.to_json().to_string().as_bytes())?;
+    write_atomic(&last_graph_path(&cache), report.to_dot().as_bytes())?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report.to_json()).unwrap_or_default());
     }

@@ -2,7 +2,7 @@
 //! (`explain`, `graph`, `clean`, `gc`).
 
 use super::{CacheArgs, Failure};
-use crate::engine::{self, BuildReport, LockFile};
+use crate::engine::{self, LockFile};
 use std::path::{Path, PathBuf};
 
 /// `--cache-dir`, else `RECIPE_CACHE_DIR` (clap reads it), else `.recipe/` beside the recipe.
@@ -24,30 +24,37 @@ pub fn lock_path(recipe: &Path) -> PathBuf {
     recipe_dir(recipe).join(name)
 }
 
-/// The last build's report, kept in the cache for `explain` and `graph`.
+/// The last build's report (JSON), kept in the cache for `explain`.
 pub fn last_report_path(cache: &Path) -> PathBuf {
     cache.join("last-report.json")
 }
 
-fn read_last_report(recipe: &Path, args: &CacheArgs) -> Result<BuildReport, Failure> {
-    let p = last_report_path(&cache_dir(recipe, args));
-    let text = std::fs::read_to_string(&p)
-        .map_err(|_| Failure(format!("error: no build recorded in {} yet: run `recipe build {}` first", p.display(), recipe.display())))?;
-    BuildReport::from_json_text(&text).map_err(|e| Failure(format!("error: {}: {e}", p.display())))
+/// The last build's graph (DOT), kept in the cache for `graph`.
+pub fn last_graph_path(cache: &Path) -> PathBuf {
+    cache.join("last-graph.dot")
+}
+
+fn read_last(recipe: &Path, args: &CacheArgs, path: fn(&Path) -> PathBuf) -> Result<String, Failure> {
+    let p = path(&cache_dir(recipe, args));
+    std::fs::read_to_string(&p).map_err(|_| Failure(format!("error: no build recorded in {} yet: run `recipe build {}` first", p.display(), recipe.display())))
 }
 
 /// `recipe explain`: why each node of the last build ran (or did not).
 pub fn explain(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
-    let r = read_last_report(recipe, args)?;
-    for n in &r.nodes {
-        println!("{:<40} {:<8} {}", n.name, super::render::state_word(n.state), n.reason);
+    let text = read_last(recipe, args, last_report_path)?;
+    let r: serde_json::Value = serde_json::from_str(&text).map_err(|e| Failure(format!("error: the last build's report is unreadable: {e}")))?;
+    let nodes = r["nodes"].as_array().cloned().unwrap_or_default();
+    let width = nodes.iter().filter_map(|n| n["name"].as_str()).map(str::len).max().unwrap_or(0);
+    for n in &nodes {
+        let (name, state, reason) = (n["name"].as_str().unwrap_or(""), n["state"].as_str().unwrap_or(""), n["reason"].as_str().unwrap_or(""));
+        println!("{name:<width$}  {state:<8} {reason}");
     }
     Ok(())
 }
 
-/// `recipe graph`: the last build's DAG in DOT, expanded part included.
+/// `recipe graph`: the last build's DAG in DOT, expanded part included, with node states.
 pub fn graph(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
-    print!("{}", read_last_report(recipe, args)?.to_dot());
+    print!("{}", read_last(recipe, args, last_graph_path)?);
     Ok(())
 }
 
@@ -64,10 +71,11 @@ pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     if let Ok(text) = std::fs::read_to_string(lock_path(recipe)) {
         keep = LockFile::parse(&text).map_err(|e| Failure(format!("error: {}: {e}", lock_path(recipe).display())))?;
     }
-    if let Ok(r) = read_last_report(recipe, args) {
-        keep.merge(&LockFile::from_report(&r));
+    if let Some(last) = engine::gc::last_build(&dir) {
+        keep.nodes.extend(last.nodes);
+        keep.outputs.extend(last.outputs);
     }
     let stats = engine::gc(&dir, &keep)?;
-    println!("{stats}");
+    println!("kept {} cache entries, removed {} ({} bytes freed)", stats.kept, stats.removed, stats.bytes_freed);
     Ok(())
 }

@@ -68,7 +68,7 @@ impl VertexPool {
             return i;
         }
         if let Some((tol, tree)) = &self.weld {
-            if let Some(n) = tree.nearest_neighbor(&p) {
+            if let Some(n) = tree.nearest_neighbor(p) {
                 let q = n.geom();
                 let d2 = (0..3).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>();
                 if d2 <= tol * tol {

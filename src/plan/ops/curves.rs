@@ -211,9 +211,9 @@ impl Expander for DiscretizeExpander {
             export_inputs.push(x.node(name).ok_or_else(|| OpError::from(format!("no node `{name}`")))?);
         }
         for c in &set.curves {
-            let extract = x.add_op(&format!("curve:{}", c.name), Arc::new(CurveExtractOp { name: c.name.clone() }), &[curves_node])?;
+            let extract = x.add_op(&format!("curve:{}", c.name), Arc::new(CurveExtractOp { name: c.name.clone() }), &[curves_node]).map_err(graph_error)?;
             let (rule_path, rule) = curve_subdivision(&self.recipe, &c.name);
-            let d = x.add_op(&format!("discretize:{}", c.name), Arc::new(DiscretizeOp { name: c.name.clone(), rule_path, rule }), &[extract])?;
+            let d = x.add_op(&format!("discretize:{}", c.name), Arc::new(DiscretizeOp { name: c.name.clone(), rule_path, rule }), &[extract]).map_err(graph_error)?;
             export_inputs.push(d);
         }
         let export = ExportOp {
@@ -221,7 +221,11 @@ impl Expander for DiscretizeExpander {
             formats: self.recipe.output.formats.iter().map(|f| f.as_str().to_string()).collect(),
             n_imports: self.import_nodes.len(),
         };
-        x.add_op("export", Arc::new(export), &export_inputs)?;
+        x.add_op("export", Arc::new(export), &export_inputs).map_err(graph_error)?;
         Ok(())
     }
+}
+
+fn graph_error(e: crate::engine::GraphError) -> OpError {
+    OpError::from(e.to_string())
 }
