@@ -1,7 +1,7 @@
 //! The recipe language: TOML text -> a validated, typed [`Recipe`], or every error found.
 //!
 //! This module decides what a recipe may say and what it means: the schema (every key, its type,
-//! default and meaning: see `REFERENCE.md` next to this file), the names and selectors that
+//! default and meaning: see the recipe reference in README.md), the names and selectors that
 //! refer to surfaces, curves and regions, and the normalisation of what the planner reads
 //! (intersection pairs sorted and deduplicated, defaults filled in). It does no geometry and no
 //! I/O: [`parse`] takes the text, [`check_files`] takes an `exists` probe. Every error names

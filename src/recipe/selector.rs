@@ -86,7 +86,7 @@ impl fmt::Display for SurfaceSelector {
 
 /// A curve selector: `a/b`, `a`, `a/*`, with globs on either side and an optional `#k`.
 ///
-/// Matching rules (documented in REFERENCE.md):
+/// Matching rules (documented in the README's recipe reference):
 /// * `a/b` matches a curve whose name lists (at least) two different surfaces, one matched by `a`
 ///   and another by `b`, in either order;
 /// * `a` (same as `a/*` or `*/a`) matches every curve that has a surface matched by `a`,

@@ -3,7 +3,7 @@
 //! Every value here has passed validation (finite, in range, names resolved, defaults filled in),
 //! so later stages never re-check the recipe; every user-written item keeps the [`Span`] of
 //! where it was written so errors found later (a curve rule that matches no curve of the built
-//! model) can still point at the recipe. Defaults are documented per field and in REFERENCE.md.
+//! model) can still point at the recipe. Defaults are documented per field and in the README's recipe reference.
 //! The specs are `Serialize` with every span skipped, so a planner can hash a spec as a cache-key
 //! parameter without moving a line of the recipe changing any key.
 
