@@ -44,7 +44,10 @@ impl BuildOptions {
     }
 }
 
-/// Status for the CLI to render (Cargo-style lines, progress bars).
+/// Status for the CLI to render (Cargo-style lines, progress bars). Events from worker threads
+/// arrive in timing order; only the final `BuildReport` is thread-count independent (a skipped
+/// node's `Finished` reason may name fewer failed inputs than its final report does).
+#[allow(clippy::large_enum_variant)] // `Finished` carries the report by value, as the CLI wants it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
     /// Another build holds the cache lock; this one waits for it.

@@ -101,24 +101,25 @@ pub(crate) fn run_job(
                 &mut done.ran,
                 &mut done.corrupt,
             );
-            if op.emits_files() {
-                if let Ok(p) = &done.result {
-                    match p
-                        .artifact
-                        .decode::<FileSet>()
-                        .map_err(|e| e.message)
-                        .and_then(|set| write_fileset(output_dir, &set))
-                    {
-                        Ok((hashes, written)) => {
-                            done.files = hashes;
-                            if !done.ran && !written.is_empty() {
-                                if let Ok(p) = &mut done.result {
-                                    p.notes.push(format!("rewrote {}", written.join(", ")));
-                                }
-                            }
+            if op.emits_files()
+                && let Ok(p) = &done.result
+            {
+                let written = p
+                    .artifact
+                    .decode::<FileSet>()
+                    .map_err(|e| e.message)
+                    .and_then(|set| write_fileset(output_dir, &set));
+                match written {
+                    Ok((hashes, written)) => {
+                        done.files = hashes;
+                        if !done.ran
+                            && !written.is_empty()
+                            && let Ok(p) = &mut done.result
+                        {
+                            p.notes.push(format!("rewrote {}", written.join(", ")));
                         }
-                        Err(e) => done.result = Err(format!("emitted files: {e}")),
                     }
+                    Err(e) => done.result = Err(format!("emitted files: {e}")),
                 }
             }
         }
