@@ -44,6 +44,19 @@ pub(crate) struct Done {
     pub duration_ms: f64,
 }
 
+impl Done {
+    pub(crate) fn failed(id: usize, error: String) -> Done {
+        Done {
+            id,
+            result: Err(error),
+            ran: false,
+            corrupt: None,
+            files: BTreeMap::new(),
+            duration_ms: 0.0,
+        }
+    }
+}
+
 struct Ctx<'a> {
     name: &'a str,
     on_event: &'a (dyn Fn(&Event) + Sync),
