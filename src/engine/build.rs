@@ -12,8 +12,9 @@ use crate::engine::executor::Coordinator;
 use crate::engine::graph::BuildGraph;
 use crate::engine::manifest::Manifest;
 use crate::engine::store::Store;
-use crate::engine::worker::{Done, Job, run_job};
+use crate::engine::worker::{Done, Job, panic_text, run_job};
 use std::collections::{BTreeMap, BTreeSet};
+use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::sync::mpsc;
@@ -44,7 +45,10 @@ impl BuildOptions {
     }
 }
 
-/// Status for the CLI to render (Cargo-style lines, progress bars).
+/// Status for the CLI to render (Cargo-style lines, progress bars). Events from worker threads
+/// arrive in timing order; only the final `BuildReport` is thread-count independent (a skipped
+/// node's `Finished` reason may name fewer failed inputs than its final report does).
+#[allow(clippy::large_enum_variant)] // `Finished` carries the report by value, as the CLI wants it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
     /// Another build holds the cache lock; this one waits for it.
@@ -115,10 +119,17 @@ pub fn build(
                         },
                         Err(_) => break,
                     };
-                    if done_tx
-                        .send(run_job(job, store, &opts.output_dir, on_event))
-                        .is_err()
-                    {
+                    let id = job.id;
+                    let done = catch_unwind(AssertUnwindSafe(|| {
+                        run_job(job, store, &opts.output_dir, on_event)
+                    }))
+                    .unwrap_or_else(|p| {
+                        Done::failed(
+                            id,
+                            format!("engine worker panicked: {}", panic_text(p.as_ref())),
+                        )
+                    });
+                    if done_tx.send(done).is_err() {
                         break;
                     }
                 }

@@ -44,6 +44,19 @@ pub(crate) struct Done {
     pub duration_ms: f64,
 }
 
+impl Done {
+    pub(crate) fn failed(id: usize, error: String) -> Done {
+        Done {
+            id,
+            result: Err(error),
+            ran: false,
+            corrupt: None,
+            files: BTreeMap::new(),
+            duration_ms: 0.0,
+        }
+    }
+}
+
 struct Ctx<'a> {
     name: &'a str,
     on_event: &'a (dyn Fn(&Event) + Sync),
@@ -101,24 +114,25 @@ pub(crate) fn run_job(
                 &mut done.ran,
                 &mut done.corrupt,
             );
-            if op.emits_files() {
-                if let Ok(p) = &done.result {
-                    match p
-                        .artifact
-                        .decode::<FileSet>()
-                        .map_err(|e| e.message)
-                        .and_then(|set| write_fileset(output_dir, &set))
-                    {
-                        Ok((hashes, written)) => {
-                            done.files = hashes;
-                            if !done.ran && !written.is_empty() {
-                                if let Ok(p) = &mut done.result {
-                                    p.notes.push(format!("rewrote {}", written.join(", ")));
-                                }
-                            }
+            if op.emits_files()
+                && let Ok(p) = &done.result
+            {
+                let written = p
+                    .artifact
+                    .decode::<FileSet>()
+                    .map_err(|e| e.message)
+                    .and_then(|set| write_fileset(output_dir, &set));
+                match written {
+                    Ok((hashes, written)) => {
+                        done.files = hashes;
+                        if !done.ran
+                            && !written.is_empty()
+                            && let Ok(p) = &mut done.result
+                        {
+                            p.notes.push(format!("rewrote {}", written.join(", ")));
                         }
-                        Err(e) => done.result = Err(format!("emitted files: {e}")),
                     }
+                    Err(e) => done.result = Err(format!("emitted files: {e}")),
                 }
             }
         }

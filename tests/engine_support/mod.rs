@@ -71,10 +71,10 @@ impl Operation for Toy {
 
 /// Inputs are postcard i64, or UTF-8 decimal text (file nodes).
 pub fn decode_int(a: &Artifact) -> Result<i64, OpError> {
-    if let Ok(s) = std::str::from_utf8(a.bytes()) {
-        if let Ok(v) = s.trim().parse::<i64>() {
-            return Ok(v);
-        }
+    if let Ok(s) = std::str::from_utf8(a.bytes())
+        && let Ok(v) = s.trim().parse::<i64>()
+    {
+        return Ok(v);
     }
     a.decode::<i64>()
 }
