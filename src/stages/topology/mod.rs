@@ -1,0 +1,1 @@
+//! Stage `topology` (in progress).
