@@ -30,9 +30,20 @@ pub fn import_surfaces(
         }
     }
     if out.is_empty() {
-        return Err(ImportError::new(file_label, 0, "the file holds no GOCAD TSurf object"));
+        return Err(no_surface(&file, file_label));
     }
     Ok(out)
+}
+
+fn no_surface(file: &GocadFile, label: &str) -> ImportError {
+    match file.objects.first() {
+        None => ImportError::new(label, 0, "the file holds no GOCAD object"),
+        Some(o) => ImportError::new(
+            label,
+            o.line,
+            format!("the file holds no GOCAD TSurf object (its first object is a GOCAD {})", o.kind),
+        ),
+    }
 }
 
 fn other_type(o: &GocadObject, label: &str) -> ImportError {
@@ -72,7 +83,7 @@ fn select<'a>(file: &'a GocadFile, label: &str, opts: &ImportOptions) -> Result<
     let surfaces: Vec<&GocadObject> = file.objects.iter().filter(|o| o.is_surface()).collect();
     match surfaces.as_slice() {
         [one] => Ok(one),
-        [] => Err(ImportError::new(label, 0, "the file holds no GOCAD TSurf object")),
+        [] => Err(no_surface(file, label)),
         many => Err(ImportError::new(
             label,
             many[1].line,
@@ -115,6 +126,10 @@ fn z_is_depth(o: &GocadObject, label: &str) -> Result<bool, ImportError> {
 }
 
 fn convert(o: &GocadObject, file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<ImportedSurface, ImportError> {
+    if o.triangles.is_empty() {
+        let name = if o.name.is_empty() { String::new() } else { format!(" '{}'", o.name) };
+        return Err(ImportError::new(label, o.line, format!("TSurf object{name} has no triangles")));
+    }
     let scale = axis_scale(o, label, opts.target_units)?;
     let zsign = if z_is_depth(o, label)? { -1.0 } else { 1.0 };
     let mut vertices = Vec::with_capacity(o.vertices.len());
