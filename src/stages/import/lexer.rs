@@ -155,9 +155,56 @@ pub enum NumberError {
     NotFinite,
 }
 
-/// Parses a finite binary64 value.
+/// Exact powers of ten representable in binary64.
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19,
+    1e20, 1e21, 1e22,
+];
+
+/// Clinger's fast path for plain decimals (`-123.4500`): when the digits form an integer
+/// m ≤ 2^53 and there are at most 22 fraction digits, m and 10^k are exact binary64 values and one
+/// IEEE division is correctly rounded, so the result equals the standard parser's. Anything else
+/// (exponents, long mantissas, words) returns `None` for the general parser.
+#[inline]
+fn fast_f64(tok: &[u8]) -> Option<f64> {
+    let (neg, s) = match tok.first()? {
+        b'-' => (true, &tok[1..]),
+        b'+' => (false, &tok[1..]),
+        _ => (false, tok),
+    };
+    let mut m: u64 = 0;
+    let mut digits = 0u32;
+    let mut frac = 0usize;
+    let mut seen_dot = false;
+    for &b in s {
+        if b.is_ascii_digit() {
+            digits += 1;
+            if digits > 19 {
+                return None;
+            }
+            m = m * 10 + u64::from(b - b'0');
+            if seen_dot {
+                frac += 1;
+            }
+        } else if b == b'.' && !seen_dot {
+            seen_dot = true;
+        } else {
+            return None;
+        }
+    }
+    if digits == 0 || m > (1u64 << 53) || frac >= POW10.len() {
+        return None;
+    }
+    let v = m as f64 / POW10[frac];
+    Some(if neg { -v } else { v })
+}
+
+/// Parses a finite binary64 value (correctly rounded).
 #[inline]
 pub fn parse_f64(tok: &[u8]) -> Result<f64, NumberError> {
+    if let Some(v) = fast_f64(tok) {
+        return Ok(v);
+    }
     let s = std::str::from_utf8(tok).map_err(|_| NumberError::NotNumeric)?;
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
@@ -243,6 +290,31 @@ mod tests {
         assert_eq!(parse_f64(b"1e999"), Err(NumberError::NotFinite));
         assert_eq!(parse_f64(b"blah"), Err(NumberError::NotNumeric));
         assert_eq!(parse_f64(b"868.21875"), Ok(868.21875));
+    }
+
+    #[test]
+    fn the_fast_decimal_path_agrees_with_the_standard_parser_bit_for_bit() {
+        let samples = [
+            "0", "-0", "1.", "868.21875", "-354.825653076171", "512345.125000", "7012345.5", "0.1", "0.3",
+            "9007199254740993", "123456789012.345678", "0.0000000000000000000001", "-1234.25", "+5.5", "99999999.99999999",
+        ];
+        for s in samples {
+            let want: f64 = s.parse().unwrap();
+            let got = parse_f64(s.as_bytes()).unwrap();
+            assert_eq!(got.to_bits(), want.to_bits(), "{s}");
+        }
+        // A pseudo-random sweep of short decimals.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let int = x % 10_000_000;
+            let frac = (x >> 24) % 1_000_000;
+            let s = format!("{}{int}.{frac:06}", if x & 1 == 1 { "-" } else { "" });
+            let want: f64 = s.parse().unwrap();
+            assert_eq!(parse_f64(s.as_bytes()).unwrap().to_bits(), want.to_bits(), "{s}");
+        }
     }
 
     #[test]

@@ -120,6 +120,10 @@ impl Builder {
 
 const ID_NONE: u32 = u32::MAX;
 
+/// Most property values a vertex may carry (Galapagos-style files have a few hundred); bounds the
+/// memory a hostile ESIZES line can claim.
+const MAX_STRIDE: usize = 4096;
+
 /// Maps gOcad vertex ids to vertex indices: a dense table when ids are compact, else a sorted list.
 enum IdMap {
     Dense(Vec<u32>),
@@ -256,6 +260,9 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
             }
             _ if eq_ci(kw, "PROPERTIES") => {
                 b.obj.property_names = quoted_tokens(toks.rest());
+                if b.obj.property_names.len() > MAX_STRIDE {
+                    return Err(err(n, format!("more than {MAX_STRIDE} PROPERTIES")));
+                }
             }
             _ if eq_ci(kw, "ESIZES") => {
                 let mut sizes = Vec::new();
@@ -264,6 +271,9 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
                         Some(s) if s <= 1 << 16 => sizes.push(s as usize),
                         _ => return Err(err(n, format!("ESIZES entry '{}' is not a size", text(tok)))),
                     }
+                }
+                if sizes.iter().sum::<usize>() > MAX_STRIDE {
+                    return Err(err(n, format!("ESIZES declare more than {MAX_STRIDE} values per vertex")));
                 }
                 b.obj.property_sizes = sizes;
             }
@@ -322,7 +332,7 @@ fn parse_surface_record(
     match kw {
         b"VRTX" | b"PVRTX" => {
             let kwname = if kw == b"VRTX" { "VRTX" } else { "PVRTX" };
-            let vid = id(toks.next(), &format!("{kwname} id"))?;
+            let vid = id(toks.next(), if kw == b"VRTX" { "VRTX id" } else { "PVRTX id" })?;
             let mut xyz = [0.0; 3];
             for (k, c) in xyz.iter_mut().enumerate() {
                 let axis = ["x", "y", "z"][k];

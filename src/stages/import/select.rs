@@ -8,9 +8,11 @@ use crate::geom::TriMesh;
 
 /// Imports the one surface of a file the options name.
 pub fn import_surface(bytes: &[u8], file_label: &str, opts: &ImportOptions) -> Result<ImportedSurface, ImportError> {
-    let file = parse_gocad(bytes, file_label)?;
-    let obj = select(&file, file_label, opts)?;
-    convert(obj, &file, file_label, opts)
+    let mut file = parse_gocad(bytes, file_label)?;
+    let idx = select(&file, file_label, opts)?;
+    let model = file.model3d.take();
+    let obj = file.objects.swap_remove(idx);
+    convert(obj, model.as_ref(), file_label, opts)
 }
 
 /// Imports every surface of a file (a Model3d, a group, a multi-object `.ts`), in file order.
@@ -20,17 +22,19 @@ pub fn import_surfaces(
     file_label: &str,
     opts: &ImportOptions,
 ) -> Result<Vec<ImportedSurface>, ImportError> {
-    let file = parse_gocad(bytes, file_label)?;
-    let mut out = Vec::new();
-    for o in &file.objects {
-        if o.is_surface() {
-            out.push(convert(o, &file, file_label, opts)?);
-        } else if !opts.skip_other_types {
-            return Err(other_type(o, file_label));
-        }
-    }
-    if out.is_empty() {
+    let mut file = parse_gocad(bytes, file_label)?;
+    if !file.objects.iter().any(|o| o.is_surface()) {
         return Err(no_surface(&file, file_label));
+    }
+    if !opts.skip_other_types
+        && let Some(o) = file.objects.iter().find(|o| !o.is_surface())
+    {
+        return Err(other_type(o, file_label));
+    }
+    let model = file.model3d.take();
+    let mut out = Vec::new();
+    for o in file.objects.into_iter().filter(|o| o.is_surface()) {
+        out.push(convert(o, model.as_ref(), file_label, opts)?);
     }
     Ok(out)
 }
@@ -58,11 +62,13 @@ fn other_type(o: &GocadObject, label: &str) -> ImportError {
     )
 }
 
-fn select<'a>(file: &'a GocadFile, label: &str, opts: &ImportOptions) -> Result<&'a GocadObject, ImportError> {
+/// Index of the object the options select.
+fn select(file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<usize, ImportError> {
+    let index_of = |o: &GocadObject| file.objects.iter().position(|x| std::ptr::eq(x, o)).unwrap_or(0);
     if let Some(want) = &opts.object {
         let named: Vec<&GocadObject> = file.objects.iter().filter(|o| &o.name == want).collect();
         return match named.as_slice() {
-            [one] if one.is_surface() => Ok(one),
+            [one] if one.is_surface() => Ok(index_of(one)),
             [one] => Err(other_type(one, label)),
             [] => {
                 let names: Vec<&str> = file.objects.iter().filter(|o| o.is_surface()).map(|o| o.name.as_str()).collect();
@@ -82,7 +88,7 @@ fn select<'a>(file: &'a GocadFile, label: &str, opts: &ImportOptions) -> Result<
     }
     let surfaces: Vec<&GocadObject> = file.objects.iter().filter(|o| o.is_surface()).collect();
     match surfaces.as_slice() {
-        [one] => Ok(one),
+        [one] => Ok(index_of(one)),
         [] => Err(no_surface(file, label)),
         many => Err(ImportError::new(
             label,
@@ -125,21 +131,15 @@ fn z_is_depth(o: &GocadObject, label: &str) -> Result<bool, ImportError> {
     }
 }
 
-fn convert(o: &GocadObject, file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<ImportedSurface, ImportError> {
+fn convert(
+    mut o: GocadObject,
+    model: Option<&super::Model3dInfo>,
+    label: &str,
+    opts: &ImportOptions,
+) -> Result<ImportedSurface, ImportError> {
     if o.triangles.is_empty() {
         let name = if o.name.is_empty() { String::new() } else { format!(" '{}'", o.name) };
         return Err(ImportError::new(label, o.line, format!("TSurf object{name} has no triangles")));
-    }
-    let scale = axis_scale(o, label, opts.target_units)?;
-    let zsign = if z_is_depth(o, label)? { -1.0 } else { 1.0 };
-    let mut vertices = Vec::with_capacity(o.vertices.len());
-    for (i, p) in o.vertices.iter().enumerate() {
-        let q = [p[0] * scale[0], p[1] * scale[1], zsign * p[2] * scale[2]];
-        if q.iter().any(|c| !c.is_finite()) {
-            let line = o.vertex_lines.get(i).copied().unwrap_or(0) as usize;
-            return Err(ImportError::new(label, line, "coordinate overflows after unit scaling"));
-        }
-        vertices.push(q);
     }
     let mut parts: Vec<PartInfo> = o
         .parts
@@ -158,29 +158,40 @@ fn convert(o: &GocadObject, file: &GocadFile, label: &str, opts: &ImportOptions)
             part.triangle_count += 1;
         }
     }
-    if let Some(model) = &file.model3d {
-        match_model_faces(o, model, &mut parts);
+    if let Some(model) = model {
+        match_model_faces(&o, model, &mut parts);
     }
-    let (property_names, properties) = property_columns(o);
+    let scale = axis_scale(&o, label, opts.target_units)?;
+    let zsign = if z_is_depth(&o, label)? { -1.0 } else { 1.0 };
+    let mut vertices = std::mem::take(&mut o.vertices);
+    for (i, p) in vertices.iter_mut().enumerate() {
+        let q = [p[0] * scale[0], p[1] * scale[1], zsign * p[2] * scale[2]];
+        if q.iter().any(|c| !c.is_finite()) {
+            let line = o.vertex_lines.get(i).copied().unwrap_or(0) as usize;
+            return Err(ImportError::new(label, line, "coordinate overflows after unit scaling"));
+        }
+        *p = q;
+    }
+    let (property_names, properties) = property_columns(&o, vertices.len());
     Ok(ImportedSurface {
-        name: o.name.clone(),
-        mesh: TriMesh::new(vertices, o.triangles.clone()),
-        triangle_part: o.triangle_part.clone(),
+        name: o.name,
+        mesh: TriMesh::new(vertices, o.triangles),
+        triangle_part: o.triangle_part,
         parts,
-        bstones: o.bstones.clone(),
-        borders: o.borders.clone(),
+        bstones: o.bstones,
+        borders: o.borders,
         property_names,
         properties,
         source: SourceMap {
             file: label.to_string(),
-            vertex_ids: o.vertex_ids.clone(),
-            vertex_lines: o.vertex_lines.clone(),
-            triangle_lines: o.triangle_lines.clone(),
+            vertex_ids: o.vertex_ids,
+            vertex_lines: o.vertex_lines,
+            triangle_lines: o.triangle_lines,
         },
     })
 }
 
-fn property_columns(o: &GocadObject) -> (Vec<String>, Vec<Vec<f64>>) {
+fn property_columns(o: &GocadObject, n: usize) -> (Vec<String>, Vec<Vec<f64>>) {
     let stride = o.property_stride;
     let mut names = Vec::with_capacity(stride);
     for (k, name) in o.property_names.iter().enumerate() {
@@ -195,14 +206,13 @@ fn property_columns(o: &GocadObject) -> (Vec<String>, Vec<Vec<f64>>) {
         names.push(format!("property{}", names.len()));
     }
     names.truncate(stride);
-    let n = o.vertices.len();
     let cols = (0..stride).map(|k| (0..n).map(|v| o.properties.get(v * stride + k).copied().unwrap_or(f64::NAN)).collect()).collect();
     (names, cols)
 }
 
 /// Gives each part of `o` the Model3d TFACE record of the same surface whose first key point is
-/// one of the part's vertices (exact equality on the coordinates as written); records that match
-/// no part are assigned in order to the parts left.
+/// one of the part's vertices (exact equality on the coordinates as written, before any
+/// transform); records that match no part are assigned in order to the parts left.
 fn match_model_faces(o: &GocadObject, model: &super::Model3dInfo, parts: &mut [PartInfo]) {
     let faces: Vec<&super::Model3dFace> = model.tfaces.iter().filter(|f| f.surface == o.name).collect();
     if faces.is_empty() {

@@ -1,13 +1,14 @@
 //! Self-intersection search: an R-tree of triangle boxes proposes candidate pairs (a box test can
 //! only skip pairs that cannot touch), and the exact tests of `intersect` decide each pair. The
-//! search runs in parallel over triangles; the result is sorted, so it does not depend on the
-//! thread count.
+//! candidate pairs come from one traversal of the tree against itself; they are judged in
+//! parallel in bounded batches, and the result is sorted, so it does not depend on the thread count.
 
 use super::checks::TriStatus;
 use super::intersect::{Contact, disjoint_pair, edge_pair, vertex_pair};
 use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
+
 
 type Entry = GeomWithData<Rectangle<[f64; 3]>, u32>;
 
@@ -61,27 +62,32 @@ pub fn find(v: &[[f64; 3]], tris: &[[u32; 3]], canon: &[u32], status: &[TriStatu
         })
         .collect();
     let tree = RTree::bulk_load(entries);
-    let mut hits: Vec<(u32, u32, Contact)> = (0..tris.len())
-        .into_par_iter()
-        .with_min_len(4096)
-        .filter(|&t| status[t] == TriStatus::Ok)
-        .flat_map_iter(|t| {
-            let tri = &tris[t];
-            let env = tri_box(v, tri);
-            let mut local = Vec::new();
-            for e in tree.locate_in_envelope_intersecting(env) {
-                let u = e.data as usize;
-                if u <= t {
-                    continue;
-                }
-                let c = judge(v, canon, tri, &tris[u]);
-                if c != Contact::None {
-                    local.push((t as u32, u as u32, c));
-                }
+    // A simultaneous traversal of the tree with itself proposes each overlapping pair (both ways);
+    // pairs are judged in parallel in fixed-size batches, so memory stays bounded.
+    const BATCH: usize = 1 << 18;
+    let mut batch: Vec<(u32, u32)> = Vec::with_capacity(BATCH);
+    let mut hits: Vec<(u32, u32, Contact)> = Vec::new();
+    let judge_batch = |batch: &[(u32, u32)], hits: &mut Vec<(u32, u32, Contact)>| {
+        let found: Vec<(u32, u32, Contact)> = batch
+            .par_iter()
+            .with_min_len(4096)
+            .filter_map(|&(t, u)| {
+                let c = judge(v, canon, &tris[t as usize], &tris[u as usize]);
+                (c != Contact::None).then_some((t, u, c))
+            })
+            .collect();
+        hits.extend(found);
+    };
+    for (a, b) in tree.intersection_candidates_with_other_tree(&tree) {
+        if a.data < b.data {
+            batch.push((a.data, b.data));
+            if batch.len() == BATCH {
+                judge_batch(&batch, &mut hits);
+                batch.clear();
             }
-            local
-        })
-        .collect();
+        }
+    }
+    judge_batch(&batch, &mut hits);
     hits.sort_unstable_by_key(|h| (h.0, h.1));
     hits
 }
