@@ -1,1 +1,0 @@
-//! Stage `import`: not yet implemented (see the issue that introduces it).

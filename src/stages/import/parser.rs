@@ -1,0 +1,499 @@
+//! The gOcad record parser: every object of a file, raw (coordinates as written), with vertex
+//! references resolved to indices.
+//!
+//! It decides object boundaries (`GOCAD <Type>` ... `END`, a missing END ends at the next `GOCAD`
+//! line or at the end of the file), group nesting (`BEGIN_MEMBERS`/`END_MEMBERS`), header names
+//! (`name:`, `name=`, `HEADER: {`), the coordinate-system block, property declarations, and the
+//! geometry records of TSurf objects (VRTX, PVRTX, ATOM, PATOM, TRGL, TFACE, BSTONE, BORDER).
+//! Objects of other types keep their header and a count of their records; their geometry is not
+//! parsed. Line numbers are 1-based and stored as u32 (files beyond 4 G lines saturate).
+
+use super::ImportError;
+use super::lexer::{Lines, NumberError, Tokens, eq_ci, parse_f64, parse_id, quoted_tokens, text, trim};
+use super::model3d::{Model3dBuilder, Model3dInfo};
+use serde::{Deserialize, Serialize};
+
+/// The `GOCAD_ORIGINAL_COORDINATE_SYSTEM` block of an object (defaults when absent).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CoordinateSystem {
+    pub name: Option<String>,
+    /// `AXIS_UNIT` values as written (quotes removed) and the line they are on.
+    pub axis_units: Option<([String; 3], usize)>,
+    /// `ZPOSITIVE` value as written and its line.
+    pub zpositive: Option<(String, usize)>,
+}
+
+/// A TFACE of a TSurf object.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RawPart {
+    pub line: usize,
+}
+
+/// One `GOCAD <Type>` object.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct GocadObject {
+    /// `TSurf` for any spelling of it (`Tsurf`, `TSURF`); other types as written (`PLine`, `SGrid`...).
+    pub kind: String,
+    pub name: String,
+    /// Line of the `GOCAD` signature.
+    pub line: usize,
+    /// Line of the closing `END`, `None` when it is missing.
+    pub end_line: Option<usize>,
+    /// Name of the enclosing group, if any (innermost).
+    pub group: Option<String>,
+    pub crs: CoordinateSystem,
+    pub geological_type: Option<String>,
+    pub geological_feature: Option<String>,
+    /// `PROPERTIES` names and their `ESIZES` (1 each when ESIZES is absent).
+    pub property_names: Vec<String>,
+    pub property_sizes: Vec<usize>,
+    /// Vertices in file order (VRTX and PVRTX; ATOMs are aliases, not vertices).
+    pub vertices: Vec<[f64; 3]>,
+    pub vertex_ids: Vec<u64>,
+    pub vertex_lines: Vec<u32>,
+    /// Flat property values: vertex `v` holds `properties[v*stride .. (v+1)*stride]`.
+    pub property_stride: usize,
+    pub properties: Vec<f64>,
+    /// ATOM/PATOM records: (id, index of the vertex it repeats, line).
+    pub atoms: Vec<(u64, u32, u32)>,
+    /// Triangles as vertex indices (aliases resolved), their lines and their part.
+    pub triangles: Vec<[u32; 3]>,
+    pub triangle_lines: Vec<u32>,
+    pub triangle_part: Vec<u32>,
+    /// TFACEs (one implicit part when triangles come before any TFACE).
+    pub parts: Vec<RawPart>,
+    pub bstones: Vec<u32>,
+    pub borders: Vec<[u32; 2]>,
+    /// Geometry records of objects whose geometry is not parsed (PLine, VSet...).
+    pub record_count: usize,
+}
+
+impl GocadObject {
+    pub fn is_surface(&self) -> bool {
+        self.kind == "TSurf"
+    }
+}
+
+/// Every object of a file, plus the Model3d records when the file is a Model3d.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct GocadFile {
+    pub objects: Vec<GocadObject>,
+    pub model3d: Option<Model3dInfo>,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Mode {
+    Body,
+    Header,
+    Crs,
+    /// Inside a `{ ... }` block that carries nothing we use (PROPERTY_CLASS_HEADER).
+    Skip,
+}
+
+/// An object being read: raw ids until `finish` resolves them.
+struct Builder {
+    obj: GocadObject,
+    raw_atoms: Vec<(u64, u64, u32)>,
+    raw_triangles: Vec<[u64; 3]>,
+    raw_bstones: Vec<(u64, u32)>,
+    raw_borders: Vec<(u64, u64, u32)>,
+    model: Option<Model3dBuilder>,
+    is_group: bool,
+}
+
+impl Builder {
+    fn new(kind: &[u8], line: usize, group: Option<String>) -> Self {
+        let kind = if eq_ci(kind, "TSurf") { "TSurf".to_string() } else { text(kind) };
+        let is_group = kind.ends_with("Group");
+        let model = if kind.eq_ignore_ascii_case("Model3d") { Some(Model3dBuilder::default()) } else { None };
+        Builder {
+            obj: GocadObject { kind, line, group, ..Default::default() },
+            raw_atoms: Vec::new(),
+            raw_triangles: Vec::new(),
+            raw_bstones: Vec::new(),
+            raw_borders: Vec::new(),
+            model,
+            is_group,
+        }
+    }
+}
+
+const ID_NONE: u32 = u32::MAX;
+
+/// Most property values a vertex may carry (Galapagos-style files have a few hundred); bounds the
+/// memory a hostile ESIZES line can claim.
+const MAX_STRIDE: usize = 4096;
+
+/// Maps gOcad vertex ids to vertex indices: a dense table when ids are compact, else a sorted list.
+enum IdMap {
+    Dense(Vec<u32>),
+    Sorted(Vec<(u64, u32)>),
+}
+
+impl IdMap {
+    fn get(&self, id: u64) -> Option<u32> {
+        match self {
+            IdMap::Dense(t) => usize::try_from(id).ok().and_then(|i| t.get(i)).copied().filter(|&v| v != ID_NONE),
+            IdMap::Sorted(s) => s.binary_search_by_key(&id, |e| e.0).ok().map(|k| s[k].1),
+        }
+    }
+}
+
+fn line32(n: usize) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
+/// Parses every object of a gOcad file. `file_label` names the file in errors.
+pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportError> {
+    let err = |line: usize, msg: String| ImportError::new(file_label, line, msg);
+    let mut file = GocadFile::default();
+    let mut cur: Option<Builder> = None;
+    let mut groups: Vec<String> = Vec::new();
+    let mut mode = Mode::Body;
+
+    for line in Lines::new(bytes) {
+        let n = line.number;
+        let t = trim(line.text);
+        if t.is_empty() || t[0] == b'#' {
+            continue;
+        }
+        let mut toks = Tokens::new(t);
+        let Some(kw) = toks.next() else { continue };
+
+        // A GOCAD signature always starts a new object, whatever block was left open.
+        if eq_ci(kw, "GOCAD") {
+            if let Some(b) = cur.take() {
+                finish(b, None, &mut file, file_label)?;
+            }
+            let kind = toks.next().unwrap_or(b"");
+            if kind.is_empty() {
+                return Err(err(n, "GOCAD signature without an object type".into()));
+            }
+            cur = Some(Builder::new(kind, n, groups.last().cloned()));
+            mode = Mode::Body;
+            continue;
+        }
+        match mode {
+            Mode::Header => {
+                if t.starts_with(b"}") {
+                    mode = Mode::Body;
+                } else if let Some(b) = cur.as_mut() {
+                    header_entry(t, &mut b.obj);
+                    if t.ends_with(b"}") {
+                        mode = Mode::Body;
+                    }
+                }
+                continue;
+            }
+            Mode::Skip => {
+                if t.contains(&b'}') {
+                    mode = Mode::Body;
+                }
+                continue;
+            }
+            Mode::Crs => {
+                if let Some(b) = cur.as_mut() {
+                    if eq_ci(kw, "END_ORIGINAL_COORDINATE_SYSTEM") {
+                        mode = Mode::Body;
+                    } else if eq_ci(kw, "AXIS_UNIT") {
+                        let q = quoted_tokens(toks.rest());
+                        let u = |k: usize| q.get(k).cloned().unwrap_or_default();
+                        b.obj.crs.axis_units = Some(([u(0), u(1), u(2)], n));
+                    } else if eq_ci(kw, "ZPOSITIVE") {
+                        b.obj.crs.zpositive = Some((text(toks.rest()), n));
+                    } else if eq_ci(kw, "NAME") {
+                        b.obj.crs.name = Some(text(toks.rest()));
+                    }
+                } else if eq_ci(kw, "END_ORIGINAL_COORDINATE_SYSTEM") {
+                    mode = Mode::Body;
+                }
+                continue;
+            }
+            Mode::Body => {}
+        }
+
+        if eq_ci(kw, "END_MEMBERS") {
+            if let Some(b) = cur.take() {
+                finish(b, None, &mut file, file_label)?;
+            }
+            groups.pop();
+            continue;
+        }
+        let Some(b) = cur.as_mut() else {
+            // Text outside any object (a group's END, stray words): nothing to read.
+            continue;
+        };
+        if b.obj.is_surface() && parse_surface_record(kw, &mut toks, n, b, file_label)? {
+            continue;
+        }
+        if let Some(m) = b.model.as_mut()
+            && m.record(kw, t, n, file_label)?
+        {
+            continue;
+        }
+        match kw {
+            _ if eq_ci(kw, "END") => {
+                if let Some(b) = cur.take() {
+                    finish(b, Some(n), &mut file, file_label)?;
+                }
+            }
+            _ if eq_ci(kw, "HEADER") || eq_ci(kw, "HEADER:") || kw.starts_with(b"HEADER{") => {
+                let after_open = t.iter().position(|&c| c == b'{').map(|p| &t[p + 1..]);
+                match after_open {
+                    Some(rest) if rest.contains(&b'}') => {
+                        let inner = &rest[..rest.iter().position(|&c| c == b'}').unwrap_or(rest.len())];
+                        for entry in inner.split(|&c| c == b';') {
+                            header_entry(trim(entry), &mut b.obj);
+                        }
+                    }
+                    Some(_) => mode = Mode::Header,
+                    None => {}
+                }
+            }
+            _ if eq_ci(kw, "GOCAD_ORIGINAL_COORDINATE_SYSTEM") => mode = Mode::Crs,
+            _ if eq_ci(kw, "BEGIN_MEMBERS") => {
+                if b.is_group {
+                    let name = if b.obj.name.is_empty() { b.obj.kind.clone() } else { b.obj.name.clone() };
+                    groups.push(name);
+                    cur = None;
+                }
+            }
+            _ if eq_ci(kw, "PROPERTIES") => {
+                b.obj.property_names = quoted_tokens(toks.rest());
+                if b.obj.property_names.len() > MAX_STRIDE {
+                    return Err(err(n, format!("more than {MAX_STRIDE} PROPERTIES")));
+                }
+            }
+            _ if eq_ci(kw, "ESIZES") => {
+                let mut sizes = Vec::new();
+                for tok in toks.by_ref() {
+                    match parse_id(tok) {
+                        Some(s) if s <= 1 << 16 => sizes.push(s as usize),
+                        _ => return Err(err(n, format!("ESIZES entry '{}' is not a size", text(tok)))),
+                    }
+                }
+                if sizes.iter().sum::<usize>() > MAX_STRIDE {
+                    return Err(err(n, format!("ESIZES declare more than {MAX_STRIDE} values per vertex")));
+                }
+                b.obj.property_sizes = sizes;
+            }
+            _ if eq_ci(kw, "GEOLOGICAL_TYPE") => b.obj.geological_type = Some(text(toks.rest())),
+            _ if eq_ci(kw, "GEOLOGICAL_FEATURE") => b.obj.geological_feature = Some(text(toks.rest())),
+            _ if t.ends_with(b"{") => mode = Mode::Skip,
+            _ if is_geometry_keyword(kw) => b.obj.record_count += 1,
+            _ => {}
+        }
+    }
+    if let Some(b) = cur.take() {
+        finish(b, None, &mut file, file_label)?;
+    }
+    Ok(file)
+}
+
+fn is_geometry_keyword(kw: &[u8]) -> bool {
+    matches!(kw, b"VRTX" | b"PVRTX" | b"ATOM" | b"PATOM" | b"SEG" | b"TRGL" | b"TETRA" | b"ILINE")
+}
+
+/// One `key: value` (or `key=value`) line of a HEADER block.
+fn header_entry(t: &[u8], obj: &mut GocadObject) {
+    let Some(p) = t.iter().position(|&c| c == b':' || c == b'=') else { return };
+    let key = trim(&t[..p]);
+    if !eq_ci(key, "name") {
+        return;
+    }
+    let mut v = trim(&t[p + 1..]);
+    if let Some(s) = v.strip_suffix(b"}") {
+        v = trim(s);
+    }
+    if v.len() >= 2 && v[0] == b'"' && v[v.len() - 1] == b'"' {
+        v = &v[1..v.len() - 1];
+    }
+    obj.name = text(v);
+}
+
+/// Reads one TSurf geometry record; returns whether `kw` was one.
+#[inline]
+fn parse_surface_record(
+    kw: &[u8],
+    toks: &mut Tokens<'_>,
+    n: usize,
+    b: &mut Builder,
+    file: &str,
+) -> Result<bool, ImportError> {
+    let err = |msg: String| ImportError::new(file, n, msg);
+    let id = |tok: Option<&[u8]>, what: &str| -> Result<u64, ImportError> {
+        match tok {
+            Some(t) => parse_id(t).ok_or_else(|| {
+                ImportError::new(file, n, format!("{what} '{}' is not a vertex id (a non-negative integer)", text(t)))
+            }),
+            None => Err(ImportError::new(file, n, format!("{what} is missing"))),
+        }
+    };
+    match kw {
+        b"VRTX" | b"PVRTX" => {
+            let kwname = if kw == b"VRTX" { "VRTX" } else { "PVRTX" };
+            let vid = id(toks.next(), if kw == b"VRTX" { "VRTX id" } else { "PVRTX id" })?;
+            let mut xyz = [0.0; 3];
+            for (k, c) in xyz.iter_mut().enumerate() {
+                let axis = ["x", "y", "z"][k];
+                let tok = toks.next().ok_or_else(|| err(format!("{kwname} {vid} has no {axis} coordinate")))?;
+                *c = parse_f64(tok).map_err(|e| match e {
+                    NumberError::NotFinite => {
+                        err(format!("{kwname} {vid}: {axis} coordinate '{}' is infinite or NaN", text(tok)))
+                    }
+                    NumberError::NotNumeric => {
+                        err(format!("{kwname} {vid}: {axis} coordinate '{}' is not a number", text(tok)))
+                    }
+                })?;
+            }
+            let o = &mut b.obj;
+            if o.vertices.is_empty() && o.property_stride == 0 {
+                o.property_stride = declared_stride(o);
+            }
+            if kw == b"PVRTX" {
+                let stride = o.property_stride;
+                for k in 0..stride {
+                    let tok = toks.next().ok_or_else(|| {
+                        err(format!("PVRTX {vid} has {k} property values; PROPERTIES/ESIZES declare {stride}"))
+                    })?;
+                    let v = parse_f64(tok)
+                        .map_err(|_| err(format!("PVRTX {vid}: property value '{}' is not a finite number", text(tok))))?;
+                    o.properties.push(v);
+                }
+            } else {
+                let stride = o.property_stride;
+                o.properties.extend(std::iter::repeat_n(f64::NAN, stride));
+            }
+            o.vertices.push(xyz);
+            o.vertex_ids.push(vid);
+            o.vertex_lines.push(line32(n));
+        }
+        b"TRGL" => {
+            let a = id(toks.next(), "TRGL corner")?;
+            let bb = id(toks.next(), "TRGL corner")?;
+            let c = id(toks.next(), "TRGL corner")?;
+            b.raw_triangles.push([a, bb, c]);
+            b.obj.triangle_lines.push(line32(n));
+            if b.obj.parts.is_empty() {
+                b.obj.parts.push(RawPart { line: b.obj.line });
+            }
+            b.obj.triangle_part.push((b.obj.parts.len() - 1) as u32);
+        }
+        b"TFACE" => b.obj.parts.push(RawPart { line: n }),
+        b"ATOM" | b"PATOM" => {
+            let aid = id(toks.next(), "ATOM id")?;
+            let target = id(toks.next(), "ATOM target")?;
+            b.raw_atoms.push((aid, target, line32(n)));
+        }
+        b"BSTONE" => {
+            let v = id(toks.next(), "BSTONE vertex")?;
+            b.raw_bstones.push((v, line32(n)));
+        }
+        b"BORDER" => {
+            let _border_id = id(toks.next(), "BORDER id")?;
+            let v0 = id(toks.next(), "BORDER vertex")?;
+            let v1 = id(toks.next(), "BORDER vertex")?;
+            b.raw_borders.push((v0, v1, line32(n)));
+        }
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+/// Number of property values a PVRTX carries: the ESIZES sum, else one per name.
+fn declared_stride(o: &GocadObject) -> usize {
+    if o.property_sizes.is_empty() { o.property_names.len() } else { o.property_sizes.iter().sum() }
+}
+
+/// Closes an object: resolves ids, checks references, appends it to the file.
+fn finish(mut b: Builder, end: Option<usize>, file: &mut GocadFile, label: &str) -> Result<(), ImportError> {
+    b.obj.end_line = end;
+    if let Some(m) = b.model.take() {
+        file.model3d = Some(m.finish(&b.obj));
+    }
+    if b.is_group {
+        return Ok(());
+    }
+    if b.obj.is_surface() {
+        if b.obj.property_sizes.is_empty() {
+            b.obj.property_sizes = vec![1; b.obj.property_names.len()];
+        }
+        resolve(&mut b, label)?;
+    }
+    file.objects.push(b.obj);
+    Ok(())
+}
+
+fn resolve(b: &mut Builder, label: &str) -> Result<(), ImportError> {
+    let o = &mut b.obj;
+    let nv = o.vertices.len();
+    if nv >= ID_NONE as usize {
+        return Err(ImportError::new(label, o.line, "more than 4 294 967 294 vertices in one object"));
+    }
+    let count = nv + b.raw_atoms.len();
+    let max_id = o.vertex_ids.iter().chain(b.raw_atoms.iter().map(|a| &a.0)).copied().max().unwrap_or(0);
+    let dense = max_id <= (2 * count as u64).saturating_add(1024);
+    let name = |id: u64, line: u32, what: &str| {
+        ImportError::new(label, line as usize, format!("duplicate vertex id {id}: {what} repeats an id already defined"))
+    };
+    let mut map = if dense {
+        let mut t = vec![ID_NONE; max_id as usize + 1];
+        for (i, (&id, &line)) in o.vertex_ids.iter().zip(&o.vertex_lines).enumerate() {
+            let slot = &mut t[id as usize];
+            if *slot != ID_NONE {
+                return Err(name(id, line, "this vertex"));
+            }
+            *slot = i as u32;
+        }
+        IdMap::Dense(t)
+    } else {
+        let mut s: Vec<(u64, u32)> = o.vertex_ids.iter().enumerate().map(|(i, &id)| (id, i as u32)).collect();
+        s.sort_unstable();
+        if let Some(w) = s.windows(2).find(|w| w[0].0 == w[1].0) {
+            let later = w[0].1.max(w[1].1);
+            return Err(name(w[0].0, o.vertex_lines[later as usize], "this vertex"));
+        }
+        IdMap::Sorted(s)
+    };
+    // Aliases in file order; an ATOM may repeat an earlier ATOM.
+    for &(aid, target, line) in &b.raw_atoms {
+        let Some(idx) = map.get(target) else {
+            return Err(ImportError::new(
+                label,
+                line as usize,
+                format!("ATOM {aid} repeats vertex {target}, which is not defined before it"),
+            ));
+        };
+        if map.get(aid).is_some() {
+            return Err(name(aid, line, "this ATOM"));
+        }
+        match &mut map {
+            IdMap::Dense(t) => t[aid as usize] = idx,
+            IdMap::Sorted(s) => {
+                let pos = s.partition_point(|e| e.0 < aid);
+                s.insert(pos, (aid, idx));
+            }
+        }
+        o.atoms.push((aid, idx, line));
+    }
+    let missing = |what: &str, id: u64, line: u32| {
+        ImportError::new(label, line as usize, format!("{what} points at vertex {id}, which is not defined"))
+    };
+    o.triangles.reserve_exact(b.raw_triangles.len());
+    for (tri, &line) in b.raw_triangles.iter().zip(&o.triangle_lines) {
+        let mut out = [0u32; 3];
+        for k in 0..3 {
+            out[k] = map.get(tri[k]).ok_or_else(|| missing("TRGL", tri[k], line))?;
+        }
+        o.triangles.push(out);
+    }
+    for &(v, line) in &b.raw_bstones {
+        o.bstones.push(map.get(v).ok_or_else(|| missing("BSTONE", v, line))?);
+    }
+    for &(v0, v1, line) in &b.raw_borders {
+        let a = map.get(v0).ok_or_else(|| missing("BORDER", v0, line))?;
+        let c = map.get(v1).ok_or_else(|| missing("BORDER", v1, line))?;
+        o.borders.push([a, c]);
+    }
+    Ok(())
+}

@@ -1,1 +1,0 @@
-//! Stage `topology`: not yet implemented (see the issue that introduces it).

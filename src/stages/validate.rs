@@ -1,1 +1,0 @@
-//! Stage `validate`: not yet implemented (see the issue that introduces it).
