@@ -30,7 +30,11 @@ fn surfaces() -> (TriMesh, TriMesh) {
     let (x0, y0) = (500_000.0, 7_000_000.0);
     let horizon = grid(707, |i, j| {
         let (x, y) = (i as f64 * 10.0, j as f64 * 10.0);
-        [x0 + x, y0 + y, -2000.0 + 40.0 * (x / 700.0).sin() * (y / 900.0).cos() + 0.001 * x]
+        [
+            x0 + x,
+            y0 + y,
+            -2000.0 + 40.0 * (x / 700.0).sin() * (y / 900.0).cos() + 0.001 * x,
+        ]
     });
     let fault = grid(707, |i, k| {
         let y = -100.0 + i as f64 * 10.2;
@@ -42,8 +46,17 @@ fn surfaces() -> (TriMesh, TriMesh) {
 
 fn bench(c: &mut Criterion) {
     let (h, f) = surfaces();
-    let x = intersect(SurfaceRef { name: "horizon", mesh: &h }, SurfaceRef { name: "fault", mesh: &f })
-        .expect("no coplanar contact");
+    let x = intersect(
+        SurfaceRef {
+            name: "horizon",
+            mesh: &h,
+        },
+        SurfaceRef {
+            name: "fault",
+            mesh: &f,
+        },
+    )
+    .expect("no coplanar contact");
     let pts: usize = x.curves.iter().map(|c| c.points.len()).sum();
     eprintln!(
         "{} + {} triangles: {} curves, {pts} points",
@@ -56,8 +69,14 @@ fn bench(c: &mut Criterion) {
     g.bench_function("two_1M_triangle_surfaces", |b| {
         b.iter(|| {
             intersect(
-                SurfaceRef { name: "horizon", mesh: black_box(&h) },
-                SurfaceRef { name: "fault", mesh: black_box(&f) },
+                SurfaceRef {
+                    name: "horizon",
+                    mesh: black_box(&h),
+                },
+                SurfaceRef {
+                    name: "fault",
+                    mesh: black_box(&f),
+                },
             )
         })
     });
