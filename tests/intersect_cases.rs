@@ -401,3 +401,43 @@ fn zero_area_triangles_are_skipped_and_listed() {
     assert_eq!(x.degenerate_a, vec![1]);
     assert_eq!(x.curves.len(), 1);
 }
+
+#[test]
+fn the_result_does_not_depend_on_the_thread_count() {
+    let a = grid(80, 80, |i, j| {
+        let (x, y) = (500_000.0 + 2.5 * i as f64, 7_000_000.0 + 2.5 * j as f64);
+        [
+            x,
+            y,
+            3.0 * ((x - 500_000.0) / 11.0).sin() + 2.0 * ((y - 7_000_000.0) / 7.0).cos(),
+        ]
+    });
+    let b = grid(40, 10, |i, k| {
+        [
+            500_000.0 + 5.0 * i as f64,
+            7_000_100.0 + 0.5 * (k as f64 - 5.0),
+            k as f64 - 5.0,
+        ]
+    });
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        pool.install(|| {
+            intersect(
+                SurfaceRef {
+                    name: "h",
+                    mesh: &a,
+                },
+                SurfaceRef {
+                    name: "f",
+                    mesh: &b,
+                },
+            )
+        })
+    };
+    let one = run(1).expect("no coplanar contact");
+    assert!(!one.curves.is_empty());
+    assert_eq!(Ok(one), run(3));
+}

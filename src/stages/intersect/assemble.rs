@@ -91,8 +91,7 @@ pub fn assemble(segments: &[(PointKey, PointKey, (u32, u32))]) -> Vec<KeyCurve> 
         if deg[n] == 2 {
             continue;
         }
-        for i in start[n]..start[n + 1] {
-            let ei = inc[i].1;
+        for &(_, ei) in &inc[start[n]..start[n + 1]] {
             if !used[ei] {
                 let (pts, faces) = walk(n, ei, &mut used);
                 curves.push(open_curve(&nodes, pts, faces));
@@ -100,8 +99,7 @@ pub fn assemble(segments: &[(PointKey, PointKey, (u32, u32))]) -> Vec<KeyCurve> 
         }
     }
     for n in 0..nodes.len() {
-        for i in start[n]..start[n + 1] {
-            let ei = inc[i].1;
+        for &(_, ei) in &inc[start[n]..start[n + 1]] {
             if !used[ei] {
                 let (mut pts, faces) = walk(n, ei, &mut used);
                 if pts.len() > 1 && pts.first() == pts.last() {

@@ -74,22 +74,22 @@ fn boundary_points(
     o: &[Orientation; 3],
     out: &mut Vec<(Location, Location)>,
 ) {
-    let proj = projection_axis(&other.p);
-    for k in 0..3 {
-        if o[k] == Orientation::Zero {
-            if let Some((axis, sign)) = proj {
-                if let Some(l) = locate_coplanar(&other.p, axis, sign, &own.p[k]) {
-                    out.push((Location::Vertex(own.v[k]), other.global(l)));
-                }
+    if let Some((axis, sign)) = projection_axis(&other.p) {
+        for (k, ok) in o.iter().enumerate() {
+            if *ok == Orientation::Zero
+                && let Some(l) = locate_coplanar(&other.p, axis, sign, &own.p[k])
+            {
+                out.push((Location::Vertex(own.v[k]), other.global(l)));
             }
         }
     }
     for k in 0..3 {
         let l = (k + 1) % 3;
-        if o[k] != Orientation::Zero && o[l] == o[k].flip() {
-            if let Some(loc) = locate_crossing(&other.p, &own.p[k], &own.p[l]) {
-                out.push((Location::edge(own.v[k], own.v[l]), other.global(loc)));
-            }
+        if o[k] != Orientation::Zero
+            && o[l] == o[k].flip()
+            && let Some(loc) = locate_crossing(&other.p, &own.p[k], &own.p[l])
+        {
+            out.push((Location::edge(own.v[k], own.v[l]), other.global(loc)));
         }
     }
 }
