@@ -441,3 +441,31 @@ fn the_result_does_not_depend_on_the_thread_count() {
     assert!(!one.curves.is_empty());
     assert_eq!(Ok(one), run(3));
 }
+
+/// The usual case where the box is the horizon's own extent: the horizon's border edges lie in
+/// the vertical box sides, and each side meets it along exactly that border.
+#[test]
+fn a_horizon_spanning_exactly_the_box_meets_each_vertical_side_along_its_border() {
+    let horizon = grid(20, 20, |i, j| {
+        let (x, y) = (500_000.0 + 5.0 * i as f64, 7_000_000.0 + 5.0 * j as f64);
+        [x, y, 3.0 * ((x - 500_000.0) / 9.0).sin() + ((y - 7_000_000.0) / 4.0).cos()]
+    });
+    let b = BBox { min: [500_000.0, 7_000_000.0, -10.0], max: [500_100.0, 7_000_100.0, 10.0] };
+    for (name, side) in box_sides(&b) {
+        let x = both("top", &horizon, &name, &side).expect("no coplanar contact");
+        if name.starts_with("box.z") {
+            assert!(x.curves.is_empty(), "{name}");
+            continue;
+        }
+        assert_eq!(x.curves.len(), 1, "{name}");
+        let c = &x.curves[0];
+        assert!(c.points.len() >= 21, "{name}: {} points", c.points.len());
+        let (axis, value) = match name.as_str() {
+            "box.xmin" => (0, b.min[0]),
+            "box.xmax" => (0, b.max[0]),
+            "box.ymin" => (1, b.min[1]),
+            _ => (1, b.max[1]),
+        };
+        assert!(c.points.iter().all(|p| p.xyz[axis] == value), "{name}: every point exactly on the side");
+    }
+}
