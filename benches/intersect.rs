@@ -44,6 +44,24 @@ fn surfaces() -> (TriMesh, TriMesh) {
     (horizon, fault)
 }
 
+/// Two horizons over the same 7 km × 7 km footprint that cross each other along many curves.
+fn crossing_horizons() -> (TriMesh, TriMesh) {
+    let (x0, y0) = (500_000.0, 7_000_000.0);
+    let h1 = grid(707, |i, j| {
+        let (x, y) = (i as f64 * 10.0, j as f64 * 10.0);
+        [
+            x0 + x,
+            y0 + y,
+            -2000.0 + 40.0 * (x / 700.0).sin() * (y / 900.0).cos(),
+        ]
+    });
+    let h2 = grid(707, |i, j| {
+        let (x, y) = (i as f64 * 10.0 + 3.0, j as f64 * 10.0 + 7.0);
+        [x0 + x, y0 + y, -1995.0 + 20.0 * (x / 500.0 + 1.0).sin()]
+    });
+    (h1, h2)
+}
+
 fn bench(c: &mut Criterion) {
     let (h, f) = surfaces();
     let x = intersect(
@@ -76,6 +94,37 @@ fn bench(c: &mut Criterion) {
                 SurfaceRef {
                     name: "fault",
                     mesh: black_box(&f),
+                },
+            )
+        })
+    });
+    let (h1, h2) = crossing_horizons();
+    let x = intersect(
+        SurfaceRef {
+            name: "h1",
+            mesh: &h1,
+        },
+        SurfaceRef {
+            name: "h2",
+            mesh: &h2,
+        },
+    )
+    .expect("no coplanar contact");
+    let pts: usize = x.curves.iter().map(|c| c.points.len()).sum();
+    eprintln!(
+        "two crossing horizons: {} curves, {pts} points",
+        x.curves.len()
+    );
+    g.bench_function("two_1M_triangle_horizons_crossing_many_times", |b| {
+        b.iter(|| {
+            intersect(
+                SurfaceRef {
+                    name: "h1",
+                    mesh: black_box(&h1),
+                },
+                SurfaceRef {
+                    name: "h2",
+                    mesh: black_box(&h2),
                 },
             )
         })

@@ -448,9 +448,16 @@ fn the_result_does_not_depend_on_the_thread_count() {
 fn a_horizon_spanning_exactly_the_box_meets_each_vertical_side_along_its_border() {
     let horizon = grid(20, 20, |i, j| {
         let (x, y) = (500_000.0 + 5.0 * i as f64, 7_000_000.0 + 5.0 * j as f64);
-        [x, y, 3.0 * ((x - 500_000.0) / 9.0).sin() + ((y - 7_000_000.0) / 4.0).cos()]
+        [
+            x,
+            y,
+            3.0 * ((x - 500_000.0) / 9.0).sin() + ((y - 7_000_000.0) / 4.0).cos(),
+        ]
     });
-    let b = BBox { min: [500_000.0, 7_000_000.0, -10.0], max: [500_100.0, 7_000_100.0, 10.0] };
+    let b = BBox {
+        min: [500_000.0, 7_000_000.0, -10.0],
+        max: [500_100.0, 7_000_100.0, 10.0],
+    };
     for (name, side) in box_sides(&b) {
         let x = both("top", &horizon, &name, &side).expect("no coplanar contact");
         if name.starts_with("box.z") {
@@ -466,6 +473,9 @@ fn a_horizon_spanning_exactly_the_box_meets_each_vertical_side_along_its_border(
             "box.ymin" => (1, b.min[1]),
             _ => (1, b.max[1]),
         };
-        assert!(c.points.iter().all(|p| p.xyz[axis] == value), "{name}: every point exactly on the side");
+        assert!(
+            c.points.iter().all(|p| p.xyz[axis] == value),
+            "{name}: every point exactly on the side"
+        );
     }
 }
