@@ -1,1 +1,0 @@
-//! Stage `intersect`: not yet implemented (see the issue that introduces it).
