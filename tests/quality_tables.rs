@@ -14,7 +14,14 @@ fn jittered() -> VolumeMesh {
     let [x0, y0, z0, x1, y1, z1] = box_bounds();
     let (hx, hz) = ((x1 - x0) / 6.0, (z1 - z0) / 6.0);
     for (i, p) in m.nodes.iter_mut().enumerate() {
-        let on_box = [p[0] == x0, p[0] == x1, p[1] == y0, p[1] == y1, p[2] == z0, p[2] == z1];
+        let on_box = [
+            p[0] == x0,
+            p[0] == x1,
+            p[1] == y0,
+            p[1] == y1,
+            p[2] == z0,
+            p[2] == z1,
+        ];
         if on_box.iter().any(|&b| b) {
             continue;
         }
@@ -31,11 +38,15 @@ fn get(v: &serde_json::Value, path: &[&str]) -> f64 {
     for k in path {
         x = &x[*k];
     }
-    x.as_f64().unwrap_or_else(|| panic!("no number at {path:?}"))
+    x.as_f64()
+        .unwrap_or_else(|| panic!("no number at {path:?}"))
 }
 
 fn close(a: f64, b: f64, what: &str) {
-    assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{what}: ours {a} vs check_mesh {b}");
+    assert!(
+        (a - b).abs() <= 1e-9 * (1.0 + b.abs()),
+        "{what}: ours {a} vs check_mesh {b}"
+    );
 }
 
 #[test]
@@ -63,7 +74,11 @@ fn tables_match_check_mesh_json_per_region_and_overall() {
         close(row.sd, get(reg, &["sd"]), "sd");
         close(row.min, get(reg, &["min"]), "min");
         close(row.pct_lt_0_3, get(reg, &["pct_lt_0.3"]), "% < 0.3");
-        close(row.avg_paper, get(reg, &["paper_scale", "avg"]), "paper avg");
+        close(
+            row.avg_paper,
+            get(reg, &["paper_scale", "avg"]),
+            "paper avg",
+        );
     }
     let all = &t2[3];
     assert_eq!(all.name, "all");
@@ -79,8 +94,16 @@ fn tables_match_check_mesh_json_per_region_and_overall() {
     close(tall.avg, get(&rep, &["tri_quality", "avg"]), "tri avg");
     close(tall.max, get(&rep, &["tri_quality", "max"]), "tri max");
     close(tall.sd, get(&rep, &["tri_quality", "sd"]), "tri sd");
-    close(tall.pct_gt_1_15, get(&rep, &["tri_quality", "pct_gt_1.15"]), "tri % > 1.15");
-    close(tall.pct_gt_1_5, get(&rep, &["tri_quality", "pct_gt_1.5"]), "tri % > 1.5");
+    close(
+        tall.pct_gt_1_15,
+        get(&rep, &["tri_quality", "pct_gt_1.15"]),
+        "tri % > 1.15",
+    );
+    close(
+        tall.pct_gt_1_5,
+        get(&rep, &["tri_quality", "pct_gt_1.5"]),
+        "tri % > 1.5",
+    );
 }
 
 #[test]
@@ -88,7 +111,10 @@ fn per_group_rows_count_their_own_triangles_and_nodes() {
     let mesh = layered_box(4, 3);
     let t1 = table1(&mesh);
     // Box side xmin: a 4 x 3 grid of squares, two triangles each, 5 x 4 nodes.
-    assert_eq!((t1[0].name.as_str(), t1[0].triangles, t1[0].nodes), ("xmin", 24, 20));
+    assert_eq!(
+        (t1[0].name.as_str(), t1[0].triangles, t1[0].nodes),
+        ("xmin", 24, 20)
+    );
     let t2 = table2(&mesh);
     assert_eq!(t2[1].name, "reservoir");
     assert_eq!(t2[1].elements, 4 * 4 * 6);
@@ -102,7 +128,10 @@ fn cubic_cells_give_kuhn_tets_of_one_known_quality() {
     let t2 = table2(&layered_box(6, 3));
     let all = t2.last().unwrap();
     let want = 1.2 * 0.5f64.powf(2.0 / 3.0);
-    assert!((all.avg - want).abs() < 1e-12 && (all.min - want).abs() < 1e-12, "{all:?}");
+    assert!(
+        (all.avg - want).abs() < 1e-12 && (all.min - want).abs() < 1e-12,
+        "{all:?}"
+    );
     assert!(all.sd < 1e-12);
     assert!((all.min_dihedral_deg - 45.0).abs() < 1e-9);
     assert_eq!((all.pct_lt_0_3, all.pct_lt_0_1), (0.0, 0.0));
@@ -120,7 +149,11 @@ fn rendered_tables_are_aligned_and_mark_empty_groups() {
     assert!(lines[0].starts_with("surface") && lines[0].contains("% > 1.15"));
     let unused = lines.iter().find(|l| l.starts_with("unused")).unwrap();
     assert!(unused.contains(" - "), "{unused}");
-    let widths: Vec<usize> = lines.iter().filter(|l| !l.contains(" - ")).map(|l| l.len()).collect();
+    let widths: Vec<usize> = lines
+        .iter()
+        .filter(|l| !l.contains(" - "))
+        .map(|l| l.len())
+        .collect();
     assert!(widths.windows(2).all(|w| w[0] == w[1]), "{t1}");
     let t2 = render_table2(&table2(&mesh));
     assert!(t2.contains("overburden") && t2.contains("min dihedral") && t2.contains("x0.79"));

@@ -41,10 +41,21 @@ fn each_region_off_has_the_counts_of_its_header_and_is_closed() {
             continue;
         }
         let bytes = std::fs::read(&p).unwrap();
-        let header = String::from_utf8_lossy(&bytes).lines().nth(1).unwrap().to_string();
-        let n: Vec<usize> = header.split_whitespace().map(|t| t.parse().unwrap()).collect();
+        let header = String::from_utf8_lossy(&bytes)
+            .lines()
+            .nth(1)
+            .unwrap()
+            .to_string();
+        let n: Vec<usize> = header
+            .split_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect();
         let m = read_off(&bytes, &name).unwrap();
-        assert_eq!((m.vertices.len(), m.triangles.len()), (n[0], n[1]), "{name}");
+        assert_eq!(
+            (m.vertices.len(), m.triangles.len()),
+            (n[0], n[1]),
+            "{name}"
+        );
         assert!(is_closed(&m), "{name} is not closed as read");
         seen += 1;
     }
@@ -58,32 +69,65 @@ fn meta(dir: &Path) -> serde_json::Value {
 #[test]
 fn the_surface_msh_has_entity_tags_named_as_in_the_meta_file() {
     let Some(dir) = peer_dir() else { return };
-    let m = read_msh(&std::fs::read(dir.join("didactic_L1_surface.msh")).unwrap(), "didactic_L1_surface.msh").unwrap();
+    let m = read_msh(
+        &std::fs::read(dir.join("didactic_L1_surface.msh")).unwrap(),
+        "didactic_L1_surface.msh",
+    )
+    .unwrap();
     let meta = meta(&dir);
     let surfaces = meta["surfaces"].as_object().unwrap();
     assert_eq!(m.tag_names.len(), surfaces.len());
     for (tag, name) in surfaces {
         let t: i32 = tag.parse().unwrap();
-        assert_eq!(m.tag_names.get(&t).map(String::as_str), name.as_str(), "entity {t}");
+        assert_eq!(
+            m.tag_names.get(&t).map(String::as_str),
+            name.as_str(),
+            "entity {t}"
+        );
     }
     assert_eq!(m.vertices.len(), 10453);
     assert_eq!(m.triangles.len(), 21619);
     // The dangling fault's patches carry the triangle counts the meta file gives per region.
     let count = |t: i32| m.triangle_tag.iter().filter(|&&x| x == t).count() as u64;
     let checks = &meta["region_checks"];
-    assert_eq!(count(17), checks["underburden_E"]["embedded_fault_triangles"].as_u64().unwrap());
-    assert_eq!(count(27), checks["reservoir_E"]["embedded_fault_triangles"].as_u64().unwrap());
-    assert_eq!(count(32), checks["overburden_E"]["embedded_fault_triangles"].as_u64().unwrap());
+    assert_eq!(
+        count(17),
+        checks["underburden_E"]["embedded_fault_triangles"]
+            .as_u64()
+            .unwrap()
+    );
+    assert_eq!(
+        count(27),
+        checks["reservoir_E"]["embedded_fault_triangles"]
+            .as_u64()
+            .unwrap()
+    );
+    assert_eq!(
+        count(32),
+        checks["overburden_E"]["embedded_fault_triangles"]
+            .as_u64()
+            .unwrap()
+    );
 }
 
 #[test]
 fn the_plc_obj_has_one_tag_per_gmsh_surface_and_the_same_triangles_as_the_msh() {
     let Some(dir) = peer_dir() else { return };
-    let obj = read_obj(&std::fs::read(dir.join("plc_L1.obj")).unwrap(), "plc_L1.obj").unwrap();
-    let msh = read_by_extension("didactic_L1_surface.msh", &std::fs::read(dir.join("didactic_L1_surface.msh")).unwrap())
-        .unwrap();
+    let obj = read_obj(
+        &std::fs::read(dir.join("plc_L1.obj")).unwrap(),
+        "plc_L1.obj",
+    )
+    .unwrap();
+    let msh = read_by_extension(
+        "didactic_L1_surface.msh",
+        &std::fs::read(dir.join("didactic_L1_surface.msh")).unwrap(),
+    )
+    .unwrap();
     assert_eq!(obj.tag_names.len(), 32);
-    assert_eq!(obj.tag_names.get(&17).map(String::as_str), Some("surf17_F2_dangling"));
+    assert_eq!(
+        obj.tag_names.get(&17).map(String::as_str),
+        Some("surf17_F2_dangling")
+    );
     assert_eq!(obj.triangles, msh.triangles);
     assert_eq!(obj.triangle_tag, msh.triangle_tag);
     for (a, b) in obj.vertices.iter().zip(&msh.vertices) {
@@ -94,7 +138,11 @@ fn the_plc_obj_has_one_tag_per_gmsh_surface_and_the_same_triangles_as_the_msh() 
 #[test]
 fn gmsh_rewrites_of_the_msh_in_binary_4_1_and_ascii_2_2_read_the_same() {
     let Some(dir) = peer_dir() else { return };
-    let ok = Command::new("python3").args(["-c", "import gmsh"]).output().map(|o| o.status.success()).unwrap_or(false);
+    let ok = Command::new("python3")
+        .args(["-c", "import gmsh"])
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false);
     if !ok {
         eprintln!("skipping: python3 with gmsh is absent");
         return;
@@ -116,32 +164,55 @@ gmsh.finalize()
 "#;
     let (bin, v22) = (tmp.path().join("bin.msh"), tmp.path().join("v22.msh"));
     let out = Command::new("python3")
-        .args(["-c", script, src.to_str().unwrap(), bin.to_str().unwrap(), v22.to_str().unwrap()])
+        .args([
+            "-c",
+            script,
+            src.to_str().unwrap(),
+            bin.to_str().unwrap(),
+            v22.to_str().unwrap(),
+        ])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for p in [bin, v22] {
         let m = read_msh(&std::fs::read(&p).unwrap(), p.to_str().unwrap()).unwrap();
         assert_eq!(m.triangles.len(), reference.triangles.len(), "{p:?}");
         // Same triangles (as coordinate triples) with the same entity tags, whatever the numbering.
         let key = |mm: &BoundaryMesh, i: usize| {
-            let mut c: Vec<[u64; 3]> = mm.triangles[i].iter().map(|&v| mm.vertices[v as usize].map(f64::to_bits)).collect();
+            let mut c: Vec<[u64; 3]> = mm.triangles[i]
+                .iter()
+                .map(|&v| mm.vertices[v as usize].map(f64::to_bits))
+                .collect();
             c.sort();
             (c, mm.triangle_tag[i])
         };
         let mut a: Vec<_> = (0..m.triangles.len()).map(|i| key(&m, i)).collect();
-        let mut b: Vec<_> = (0..reference.triangles.len()).map(|i| key(&reference, i)).collect();
+        let mut b: Vec<_> = (0..reference.triangles.len())
+            .map(|i| key(&reference, i))
+            .collect();
         a.sort();
         b.sort();
         assert!(a == b, "{p:?} differs from the ASCII 4.1 original");
-        assert_eq!(m.tag_names.get(&17).map(String::as_str), Some("F2_dangling"), "{p:?}");
+        assert_eq!(
+            m.tag_names.get(&17).map(String::as_str),
+            Some("F2_dangling"),
+            "{p:?}"
+        );
     }
 }
 
 #[test]
 fn truncated_copies_of_the_real_files_are_errors_never_panics() {
     let Some(dir) = peer_dir() else { return };
-    for name in ["region_L1_reservoir_W.off", "plc_L1.obj", "didactic_L1_surface.msh"] {
+    for name in [
+        "region_L1_reservoir_W.off",
+        "plc_L1.obj",
+        "didactic_L1_surface.msh",
+    ] {
         let bytes = std::fs::read(dir.join(name)).unwrap();
         let mut errors = 0;
         for k in 1..40 {
@@ -169,5 +240,11 @@ fn a_bad_index_in_the_real_off_names_its_line() {
     lines[target] = "3 0 1 999999".to_string();
     let e = read_off(lines.join("\n").as_bytes(), "res.off").unwrap_err();
     assert_eq!(e.line, target + 1, "{e}");
-    assert!(e.to_string().starts_with(&format!("res.off:{}: face 100 refers to vertex 999999", target + 1)), "{e}");
+    assert!(
+        e.to_string().starts_with(&format!(
+            "res.off:{}: face 100 refers to vertex 999999",
+            target + 1
+        )),
+        "{e}"
+    );
 }

@@ -25,7 +25,7 @@ pub fn box_bounds() -> [f64; 6] {
 /// two horizons (layer interfaces) and a dangling fault: the interior faces on the plane
 /// x = 2500 with y in [1500, 3500] and z in the middle layer and the one above it.
 pub fn layered_box(n: usize, nz: usize) -> VolumeMesh {
-    assert!(nz % 3 == 0 && n % 2 == 0 && n >= 4);
+    assert!(nz.is_multiple_of(3) && n.is_multiple_of(2) && n >= 4);
     let [x0, y0, z0, x1, y1, z1] = box_bounds();
     let id = |i: usize, j: usize, k: usize| (i + (n + 1) * (j + (n + 1) * k)) as u32;
     let mut mesh = VolumeMesh::default();
@@ -151,7 +151,7 @@ pub fn layered_box(n: usize, nz: usize) -> VolumeMesh {
         } else {
             let (ra, rb) = (mesh.tet_region[owners[0]], mesh.tet_region[owners[1]]);
             if ra != rb {
-                Some(6 + ra.min(rb) as u32 as usize)
+                Some(6 + ra.min(rb) as usize)
             } else if all(&|p| {
                 p.0 == n / 2
                     && p.1 >= n * 3 / 10

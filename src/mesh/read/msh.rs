@@ -130,9 +130,11 @@ fn parse(bytes: &[u8], label: &str) -> Result<Msh, ReadError> {
     let mut m = Msh::default();
     let mut version: Option<u32> = None; // 41 or 22
     loop {
-        let Ok((t, at)) = r.c.tok("a section") else {
+        r.c.skip_ws();
+        if r.c.at_end() {
             break;
-        };
+        }
+        let (t, at) = r.c.tok("a section")?;
         let Some(section) = t.strip_prefix('$') else {
             return Err(r.c.err_at(
                 at,
@@ -455,8 +457,8 @@ fn resolve(m: &Msh, c: &Cursor) -> Result<Vec<[u32; 4]>, ReadError> {
         .iter()
         .map(|e| {
             let mut out = [0u32; 4];
-            for k in 0..e.n {
-                out[k] = *index.get(&e.nodes[k]).ok_or_else(|| {
+            for (k, slot) in out.iter_mut().enumerate().take(e.n) {
+                *slot = *index.get(&e.nodes[k]).ok_or_else(|| {
                     c.err_at(
                         e.at,
                         format!(
