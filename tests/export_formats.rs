@@ -222,3 +222,106 @@ fn the_same_mesh_gives_the_same_bytes_every_time() {
     );
     assert!(text.contains("3 2 \"reservoir\"\n") && text.contains("2 9 \"F2_dangling\"\n"));
 }
+
+const MESHIO_INP: &str = r#"
+import sys, meshio
+m = meshio.read(sys.argv[1])
+tet = sum(len(b.data) for b in m.cells if b.type == "tetra")
+print("COUNTS", len(m.points), tet)
+print("SETS", ";".join(sorted(m.cell_sets.keys())))
+print("NSETS", ";".join(sorted(m.point_sets.keys())))
+"#;
+
+#[test]
+fn abaqus_inp_reads_in_meshio_with_region_sets_and_surface_node_sets() {
+    if !python_has("meshio") {
+        return;
+    }
+    let mesh = layered_box(6, 6);
+    let dir = tempfile::tempdir().unwrap();
+    let paths = write_all(dir.path(), &export(&mesh, "abq", Format::Inp).unwrap());
+    let out = python(MESHIO_INP, &[paths[0].to_str().unwrap()]);
+    let line = |key: &str| {
+        out.lines()
+            .find_map(|l| l.strip_prefix(key))
+            .unwrap_or("")
+            .to_string()
+    };
+    assert_eq!(
+        line("COUNTS "),
+        format!("{} {}", mesh.nodes.len(), mesh.tets.len()),
+        "{out}"
+    );
+    let sets = line("SETS ").to_ascii_lowercase();
+    for r in ["underburden", "reservoir", "overburden", "f2_dangling_s"] {
+        assert!(sets.contains(r), "no element set {r}: {out}");
+    }
+    assert!(
+        line("NSETS ").to_ascii_lowercase().contains("h1_top"),
+        "{out}"
+    );
+}
+
+#[test]
+fn abaqus_surfaces_name_the_tet_faces_that_are_our_triangles() {
+    let mesh = layered_box(4, 3);
+    let text = String::from_utf8(export(&mesh, "abq", Format::Inp).unwrap().remove(0).1).unwrap();
+    // Parse elements and the F2_dangling surface's element sets back.
+    let mut elems: std::collections::BTreeMap<usize, [u32; 4]> = Default::default();
+    let mut sets: std::collections::BTreeMap<String, Vec<usize>> = Default::default();
+    let mut mode = String::new();
+    for l in text.lines() {
+        if l.starts_with("**") {
+            continue;
+        }
+        if l.starts_with('*') {
+            mode = l.to_string();
+            continue;
+        }
+        let v: Vec<&str> = l
+            .split(',')
+            .map(str::trim)
+            .filter(|t| !t.is_empty())
+            .collect();
+        if mode.starts_with("*Element,") {
+            let n: Vec<u32> = v[1..]
+                .iter()
+                .map(|t| t.parse::<u32>().unwrap() - 1)
+                .collect();
+            elems.insert(v[0].parse().unwrap(), [n[0], n[1], n[2], n[3]]);
+        } else if let Some(name) = mode.strip_prefix("*Elset, elset=F2_dangling_") {
+            sets.entry(name.to_string())
+                .or_default()
+                .extend(v.iter().map(|t| t.parse::<usize>().unwrap()));
+        }
+    }
+    let local = |s: &str| match s {
+        "S1" => [0, 1, 2],
+        "S2" => [0, 3, 1],
+        "S3" => [1, 3, 2],
+        _ => [2, 3, 0],
+    };
+    let mut faces: Vec<[u32; 3]> = Vec::new();
+    for (side, es) in &sets {
+        for e in es {
+            let mut f = local(side).map(|k| elems[e][k]);
+            f.sort();
+            faces.push(f);
+        }
+    }
+    faces.sort();
+    let mut want: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .zip(&mesh.triangle_group)
+        .filter(|(_, g)| **g == 8)
+        .map(|(t, _)| {
+            let mut t = *t;
+            t.sort();
+            t
+        })
+        .collect();
+    want.sort();
+    assert!(!want.is_empty());
+    assert_eq!(faces, want);
+}

@@ -7,6 +7,7 @@
 //! Output bytes are a pure function of the mesh and the model name: no timestamps, no hash-order
 //! iteration, floats printed with Rust's shortest round-trip formatting.
 
+mod inp;
 mod medit;
 mod msh;
 mod tetgen;
@@ -28,6 +29,8 @@ pub enum Format {
     TetGen,
     /// MEDIT `.mesh` (INRIA), as read by mmg and meshio.
     Medit,
+    /// Abaqus `.inp` (C3D4 elements, region element sets, surface node sets and surfaces).
+    Inp,
 }
 
 impl Format {
@@ -50,6 +53,7 @@ impl Format {
             "vtu" | "vtk" => Some(Format::Vtu),
             "tetgen" | "node" | "ele" => Some(Format::TetGen),
             "medit" | "mesh" => Some(Format::Medit),
+            "inp" | "abaqus" | "calculix" => Some(Format::Inp),
             _ => None,
         }
     }
@@ -62,6 +66,7 @@ impl Format {
             Format::Vtu => "vtu",
             Format::TetGen => "tetgen",
             Format::Medit => "medit",
+            Format::Inp => "inp",
         }
     }
 }
@@ -76,7 +81,10 @@ pub fn export(
 ) -> Result<Vec<(String, Vec<u8>)>, String> {
     mesh.check_indices()
         .map_err(|e| format!("cannot export model '{model_name}': {e}"))?;
-    if model_name.is_empty() || model_name.contains(['/', '\\', '\0']) {
+    if model_name.is_empty()
+        || model_name.contains(['/', '\\'])
+        || model_name.chars().any(char::is_control)
+    {
         return Err(format!(
             "model name '{model_name}' cannot be used as a file name"
         ));
@@ -87,6 +95,7 @@ pub fn export(
         Format::Vtu => vec![(format!("{model_name}.vtu"), vtu::write(mesh))],
         Format::TetGen => tetgen::write(mesh, model_name),
         Format::Medit => vec![(format!("{model_name}.mesh"), medit::write(mesh))],
+        Format::Inp => vec![(format!("{model_name}.inp"), inp::write(mesh, model_name))],
     })
 }
 
