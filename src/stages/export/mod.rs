@@ -158,6 +158,19 @@ mod tests {
     }
 
     #[test]
+    fn an_empty_mesh_exports_in_every_format_without_panicking() {
+        for f in Format::ALL {
+            let files = export(&VolumeMesh::default(), "empty", f).unwrap();
+            assert!(
+                files.iter().all(|(name, _)| name.starts_with("empty.")),
+                "{f:?}"
+            );
+        }
+        assert!(export(&VolumeMesh::default(), "a/b", Format::Msh).is_err());
+        assert!(export(&VolumeMesh::default(), "a\nb", Format::Inp).is_err());
+    }
+
+    #[test]
     fn an_out_of_range_region_tag_is_refused_with_the_model_name() {
         let mesh = VolumeMesh {
             nodes: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
