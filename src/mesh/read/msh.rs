@@ -447,18 +447,40 @@ fn parse(bytes: &[u8], label: &str) -> Result<Msh, ReadError> {
 
 /// Maps node tags to indices and checks every element's nodes.
 fn resolve(m: &Msh, c: &Cursor) -> Result<Vec<[u32; 4]>, ReadError> {
-    let mut index: BTreeMap<u64, u32> = BTreeMap::new();
+    // Dense lookup when the tags are not too sparse (the usual 1..n), a map otherwise.
+    let max = m.node_tags.iter().copied().max().unwrap_or(0);
+    let dense = max <= 2 * m.node_tags.len() as u64 + 1024;
+    let mut table: Vec<u32> = Vec::new();
+    let mut map: BTreeMap<u64, u32> = BTreeMap::new();
+    if dense {
+        table = vec![u32::MAX; max as usize + 1];
+    }
     for (i, &t) in m.node_tags.iter().enumerate() {
-        if index.insert(t, i as u32).is_some() {
+        let old = if dense {
+            std::mem::replace(&mut table[t as usize], i as u32) != u32::MAX
+        } else {
+            map.insert(t, i as u32).is_some()
+        };
+        if old {
             return Err(c.err(format!("node tag {t} is defined twice")));
         }
     }
+    let lookup = |t: u64| -> Option<u32> {
+        if dense {
+            table
+                .get(usize::try_from(t).ok()?)
+                .copied()
+                .filter(|&i| i != u32::MAX)
+        } else {
+            map.get(&t).copied()
+        }
+    };
     m.elems
         .iter()
         .map(|e| {
             let mut out = [0u32; 4];
             for (k, slot) in out.iter_mut().enumerate().take(e.n) {
-                *slot = *index.get(&e.nodes[k]).ok_or_else(|| {
+                *slot = lookup(e.nodes[k]).ok_or_else(|| {
                     c.err_at(
                         e.at,
                         format!(
@@ -607,6 +629,22 @@ $Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n$EndNodes\n$Elements\n2\n1 2 
         let e = read_msh(bad.as_bytes(), "bad.msh").unwrap_err();
         assert_eq!(e.line, 17, "{e}");
         assert!(e.message.contains("node 99"), "{e}");
+    }
+
+    #[test]
+    fn very_sparse_node_tags_are_looked_up_through_a_map() {
+        let sparse = V22
+            .replace("\n10 0 0 0", "\n1000000000000 0 0 0")
+            .replace(" 10 20 30", " 1000000000000 20 30");
+        let m = read_msh(sparse.as_bytes(), "s.msh").unwrap();
+        assert_eq!(m.triangles, vec![[0, 1, 2]]);
+        let dup = V22.replace("\n20 1 0 0", "\n10 1 0 0");
+        assert!(
+            read_msh(dup.as_bytes(), "d.msh")
+                .unwrap_err()
+                .message
+                .contains("node tag 10 is defined twice")
+        );
     }
 
     #[test]

@@ -12,6 +12,7 @@
 
 use super::{bbox_of, property_names, split_by};
 use crate::mesh::VolumeMesh;
+use std::io::Write as _;
 
 /// One value of a record: printed space-separated in ASCII, packed little-endian in binary.
 enum F {
@@ -49,12 +50,12 @@ impl Out {
                     self.buf.push(b' ');
                 }
                 first = false;
-                let s = match f {
-                    F::S(v) => v.to_string(),
-                    F::I(v) => v.to_string(),
-                    F::D(v) => v.to_string(),
+                // Writing into a Vec<u8> cannot fail.
+                let _ = match f {
+                    F::S(v) => write!(self.buf, "{v}"),
+                    F::I(v) => write!(self.buf, "{v}"),
+                    F::D(v) => write!(self.buf, "{v}"),
                 };
-                self.buf.extend_from_slice(s.as_bytes());
             }
             self.buf.push(b'\n');
         }
