@@ -52,6 +52,7 @@ fn every_format_reads_back_in_meshio_with_its_counts_and_region_tags() {
         (Format::Msh, "layered.msh", "1,2,3", true),
         (Format::MshBinary, "layered.msh", "1,2,3", true),
         (Format::Vtu, "layered.vtu", "0,1,2", true),
+        (Format::VtuBinary, "layered.vtu", "0,1,2", true),
         (Format::Medit, "layered.mesh", "1,2,3", true),
         (Format::TetGen, "layered.1.node", "", false),
     ] {
@@ -69,7 +70,7 @@ fn every_format_reads_back_in_meshio_with_its_counts_and_region_tags() {
         let want_tris = if with_tris { nf } else { 0 };
         let want = format!("{nn} {nt} {want_tris} {region_tags}");
         assert_eq!(first.trim_end(), want.trim_end(), "{format:?}: {out}");
-        if format == Format::Vtu {
+        if format == Format::Vtu || format == Format::VtuBinary {
             let field = line("FIELD ");
             assert!(
                 field.contains("region:reservoir") && field.contains("surface:F2_dangling"),
@@ -174,7 +175,13 @@ fn check_mesh_passes_on_msh_binary_msh_vtu_and_medit_with_utm_offsets() {
     let Some(tool) = checker() else { return };
     let mesh = layered_box(6, 6);
     let dir = tempfile::tempdir().unwrap();
-    for format in [Format::Msh, Format::MshBinary, Format::Vtu, Format::Medit] {
+    for format in [
+        Format::Msh,
+        Format::MshBinary,
+        Format::Vtu,
+        Format::VtuBinary,
+        Format::Medit,
+    ] {
         let files = export(&mesh, "checked", format).unwrap();
         let paths = write_all(dir.path(), &files);
         let (ok, out) = run_checker(&tool, &paths[0], 3, None);

@@ -25,6 +25,8 @@ pub enum Format {
     MshBinary,
     /// VTK XML UnstructuredGrid (ASCII).
     Vtu,
+    /// VTK XML UnstructuredGrid with raw appended binary data (for large meshes).
+    VtuBinary,
     /// TetGen `.node` / `.ele` / `.face`.
     TetGen,
     /// MEDIT `.mesh` (INRIA), as read by mmg and meshio.
@@ -51,6 +53,7 @@ impl Format {
                 Some(Format::MshBinary)
             }
             "vtu" | "vtk" => Some(Format::Vtu),
+            "vtu-binary" | "vtu_binary" | "vtu-bin" => Some(Format::VtuBinary),
             "tetgen" | "node" | "ele" => Some(Format::TetGen),
             "medit" | "mesh" => Some(Format::Medit),
             "inp" | "abaqus" | "calculix" => Some(Format::Inp),
@@ -64,6 +67,7 @@ impl Format {
             Format::Msh => "msh",
             Format::MshBinary => "msh-binary",
             Format::Vtu => "vtu",
+            Format::VtuBinary => "vtu-binary",
             Format::TetGen => "tetgen",
             Format::Medit => "medit",
             Format::Inp => "inp",
@@ -92,7 +96,8 @@ pub fn export(
     Ok(match format {
         Format::Msh => vec![(format!("{model_name}.msh"), msh::write(mesh, false))],
         Format::MshBinary => vec![(format!("{model_name}.msh"), msh::write(mesh, true))],
-        Format::Vtu => vec![(format!("{model_name}.vtu"), vtu::write(mesh))],
+        Format::Vtu => vec![(format!("{model_name}.vtu"), vtu::write(mesh, false))],
+        Format::VtuBinary => vec![(format!("{model_name}.vtu"), vtu::write(mesh, true))],
         Format::TetGen => tetgen::write(mesh, model_name),
         Format::Medit => vec![(format!("{model_name}.mesh"), medit::write(mesh))],
         Format::Inp => vec![(format!("{model_name}.inp"), inp::write(mesh, model_name))],
