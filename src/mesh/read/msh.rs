@@ -1,6 +1,7 @@
 //! Gmsh msh reader: format 4.1 (ASCII and binary, little-endian, `size_t` = 8) and 2.2 (ASCII),
 //! per the Gmsh reference manual. Reads `$MeshFormat`, `$PhysicalNames`, `$Entities`, `$Nodes`,
-//! `$Elements` and scalar `$ElementData`; skips other sections. Node tags may be sparse.
+//! `$Elements` and scalar `$ElementData`; skips other sections. Node tags may be sparse; vertices
+//! are returned in node-tag order.
 //!
 //! [`read_msh`] returns the triangles (type 2) as a [`BoundaryMesh`] tagged by their elementary
 //! entity, each entity named after its first 2D physical group. [`read_volume_msh`] reads a whole
@@ -441,6 +442,13 @@ fn parse(bytes: &[u8], label: &str) -> Result<Msh, ReadError> {
     }
     if version.is_none() {
         return Err(r.c.err_at(0, "no $MeshFormat section: not a Gmsh msh file"));
+    }
+    // Vertices in node-tag order (files list nodes per entity block; the tags are the numbering).
+    if m.node_tags.windows(2).any(|w| w[0] > w[1]) {
+        let mut order: Vec<usize> = (0..m.node_tags.len()).collect();
+        order.sort_by_key(|&i| m.node_tags[i]);
+        m.node_tags = order.iter().map(|&i| m.node_tags[i]).collect();
+        m.nodes = order.iter().map(|&i| m.nodes[i]).collect();
     }
     Ok(m)
 }

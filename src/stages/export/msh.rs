@@ -4,8 +4,9 @@
 //! Layout decisions (chosen so that both Gmsh and meshio read the file and recover the groups):
 //! one discrete volume entity per region (entity tag = physical tag = region index + 1) and one
 //! discrete surface entity per surface group (tag = group index + 1), each with its bounding box
-//! and one physical tag; `$PhysicalNames` names them all. All nodes go in one block (tags = node
-//! index + 1, classified on the first volume entity); elements go in one block per entity
+//! and one physical tag; `$PhysicalNames` names them all. Nodes are classified on the entity of
+//! lowest dimension holding them, one block per entity (tags = node index + 1, so the numbering
+//! is the mesh's whatever the blocks); elements go in one block per entity
 //! (tets type 4 first, then triangles type 2), numbered consecutively from 1. The recipe's
 //! attributes follow as `$ElementData` views over every element: "material" (the material id,
 //! -1 where none, and -1 on triangles) and one per region property (NaN where undefined).
@@ -161,28 +162,63 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
     }
     o.end("Entities");
 
-    // Nodes: one block on the first volume entity (or the first surface entity without volumes).
-    let n = mesh.nodes.len() as u64;
-    o.text("$Nodes\n");
-    let home = if !mesh.regions.is_empty() {
-        Some(3)
+    // Nodes: each on the entity of lowest dimension that holds it (the first surface group
+    // among its triangles, else the region of its first tet; unused nodes on the first entity),
+    // one block per entity, surfaces then volumes. Tags stay node index + 1 (sparse per block).
+    let n = mesh.nodes.len();
+    let mut home: Vec<Option<(i32, usize)>> = vec![None; n];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let g = mesh.triangle_group[t] as usize;
+        for &v in tri {
+            let h = &mut home[v as usize];
+            if h.is_none_or(|(d, k)| d == 2 && g < k) {
+                *h = Some((2, g));
+            }
+        }
+    }
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        let r = mesh.tet_region[t] as usize;
+        for &v in tet {
+            let h = &mut home[v as usize];
+            if h.is_none() {
+                *h = Some((3, r));
+            }
+        }
+    }
+    let fallback = if !mesh.regions.is_empty() {
+        Some((3, 0))
     } else if !mesh.surface_groups.is_empty() {
-        Some(2)
+        Some((2, 0))
     } else {
         None
     };
-    match home {
-        Some(dim) if n > 0 => {
-            o.rec(&[F::S(1), F::S(n), F::S(1), F::S(n)]);
-            o.rec(&[F::I(dim), F::I(1), F::I(0), F::S(n)]);
-            for i in 0..n {
-                o.rec(&[F::S(i + 1)]);
-            }
-            for p in &mesh.nodes {
-                o.rec(&[F::D(p[0]), F::D(p[1]), F::D(p[2])]);
-            }
+    let mut blocks: std::collections::BTreeMap<(i32, usize), Vec<usize>> = Default::default();
+    for (v, h) in home.iter().enumerate() {
+        if let Some(key) = h.or(fallback) {
+            blocks.entry(key).or_default().push(v);
         }
-        _ => o.rec(&[F::S(0), F::S(0), F::S(0), F::S(0)]),
+    }
+    let written: usize = blocks.values().map(Vec::len).sum();
+    o.text("$Nodes\n");
+    let (lo, hi) = (
+        blocks.values().flatten().min(),
+        blocks.values().flatten().max(),
+    );
+    o.rec(&[
+        F::S(blocks.len() as u64),
+        F::S(written as u64),
+        F::S(lo.map_or(0, |&v| v as u64 + 1)),
+        F::S(hi.map_or(0, |&v| v as u64 + 1)),
+    ]);
+    for (&(dim, k), vs) in &blocks {
+        o.rec(&[F::I(dim), F::I(tag(k)), F::I(0), F::S(vs.len() as u64)]);
+        for &v in vs {
+            o.rec(&[F::S(v as u64 + 1)]);
+        }
+        for &v in vs {
+            let p = mesh.nodes[v];
+            o.rec(&[F::D(p[0]), F::D(p[1]), F::D(p[2])]);
+        }
     }
     o.end("Nodes");
 
