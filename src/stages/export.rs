@@ -1,1 +1,0 @@
-//! Stage `export`: not yet implemented (see the issue that introduces it).

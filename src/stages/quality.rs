@@ -1,1 +1,0 @@
-//! Stage `quality`: not yet implemented (see the issue that introduces it).
