@@ -26,6 +26,12 @@ const NEW_NODE_PREFERENCE: f64 = 0.75;
 const SEARCH_RADIUS: [f64; 2] = [1.6, 4.0];
 /// How many times the same face may trigger back-tracking before the region is declared stuck.
 const MAX_LEVEL: u32 = 8;
+/// Minimum mean ratio a tetrahedron must reach on the successive attempts at one face; between
+/// attempts the face is deferred (re-queued behind the others). The last entry accepts any valid
+/// tetrahedron; failing that, the mesher back-tracks.
+const MIN_QUALITY: [f64; 4] = [0.3, 0.15, 0.03, 0.0];
+/// New nodes closer than this fraction of the local size to a front face are not created.
+const FACE_CLEARANCE: f64 = 0.3;
 
 pub struct RawMesh {
     pub nodes: Vec<P>,
@@ -83,6 +89,7 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         st.add_face([t[0], t[2], t[1]]);
     }
     let mut levels: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut defers: HashMap<[u32; 3], u32> = HashMap::new();
     let mut backtracks = 0usize;
     let max_backtracks = 200 + input.boundary.len();
     let max_steps = 400 * (input.boundary.len() + input.embedded.len()) + 100_000;
@@ -100,13 +107,25 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
                 Some(st.nodes[f[0] as usize]),
             ));
         }
-        if let Some(c) = st.find_apex(fid) {
-            st.build(fid, c);
-            continue;
-        }
         let f = st.front.faces[fid as usize];
         let mut key = f;
         key.sort_unstable();
+        let deferred = defers.get(&key).copied().unwrap_or(0);
+        let q_min = MIN_QUALITY.get(deferred as usize).copied();
+        if let Some(c) = st.find_apex(fid, q_min.unwrap_or(0.0)) {
+            st.build(fid, c);
+            if DEBUG_FRONT {
+                st.debug_check(steps);
+            }
+            continue;
+        }
+        if q_min.is_some() && (deferred as usize) + 1 < MIN_QUALITY.len() {
+            // Defer: other faces advance meanwhile and often make a good apex available.
+            defers.insert(key, deferred + 1);
+            let k = mean_edge(&f, &st.nodes) * (1u64 << (2 * (deferred + 1))) as f64;
+            st.front.requeue(fid, k);
+            continue;
+        }
         let level = levels.entry(key).or_insert(0);
         *level += 1;
         backtracks += 1;
@@ -122,6 +141,9 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             ));
         }
         let lvl = *level;
+        if DEBUG_STUCK && backtracks < 3 {
+            st.debug_stuck(fid);
+        }
         st.backtrack(fid, lvl);
     }
     let mut nodes = st.nodes;
@@ -158,7 +180,59 @@ fn centroid(f: &[u32; 3], pts: &[P]) -> P {
     ]
 }
 
+const DEBUG_FRONT: bool = false;
+const DEBUG_STUCK: bool = false;
+
 impl State<'_> {
+    fn debug_stuck(&mut self, fid: u32) {
+        let f = self.front.faces[fid as usize];
+        eprintln!("STUCK face {f:?} alive faces {}", self.front.n_alive);
+        let ids: Vec<u32> = (0..self.front.faces.len() as u32).filter(|&i| self.front.alive[i as usize]).collect();
+        let mut nodes: Vec<u32> = ids.iter().flat_map(|&i| self.front.faces[i as usize]).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        for w in nodes {
+            if f.contains(&w) { continue; }
+            let [a, b, c] = f.map(|i| self.nodes[i as usize]);
+            let p = self.nodes[w as usize];
+            let o = orient3d(&a, &b, &c, &p);
+            if o != Orientation::Positive { continue; }
+            // why invalid?
+            let d = w;
+            let new_faces = [[f[0], f[1], d], [f[1], f[2], d], [f[2], f[0], d]];
+            let mut why = String::new();
+            for nf in &new_faces { if self.front.find(*nf).is_some() { why += &format!(" samefront{nf:?}"); } }
+            for &g in &ids {
+                if g == fid { continue; }
+                let gv = self.front.faces[g as usize];
+                for &x in &gv {
+                    if ![f[0], f[1], f[2], d].contains(&x) && point_in_closed_tet(&self.nodes[x as usize], &a, &b, &c, &p) { why += &format!(" node{x}in"); }
+                }
+                for nf in &new_faces {
+                    if same_set(nf, &gv) { continue; }
+                    if tri_tri_improper(*nf, gv, &self.nodes) { why += &format!(" {nf:?}x{gv:?}"); }
+                }
+            }
+            eprintln!("  cand {w} q={:.3}: {why}", mean_ratio(&a, &b, &c, &p));
+        }
+    }
+
+    fn debug_check(&self, step: usize) {
+        let ids: Vec<usize> = (0..self.front.faces.len()).filter(|&i| self.front.alive[i]).collect();
+        for (x, &i) in ids.iter().enumerate() {
+            for &j in &ids[x + 1..] {
+                let (f, g) = (self.front.faces[i], self.front.faces[j]);
+                if same_set(&f, &g) {
+                    continue;
+                }
+                if tri_tri_improper(f, g, &self.nodes) {
+                    let t = self.tets.last().unwrap();
+                    panic!("step {step}: front faces {f:?} and {g:?} intersect after tet {t:?} {:?}", t.map(|v| self.nodes[v as usize]));
+                }
+            }
+        }
+    }
+
     fn add_face(&mut self, f: [u32; 3]) {
         let key = mean_edge(&f, &self.nodes);
         self.front.add(f, key, &self.nodes);
@@ -179,7 +253,7 @@ impl State<'_> {
         )
     }
 
-    fn find_apex(&mut self, fid: u32) -> Option<Cand> {
+    fn find_apex(&mut self, fid: u32, q_min: f64) -> Option<Cand> {
         let f = self.front.faces[fid as usize];
         let [a, b, c] = f.map(|i| self.nodes[i as usize]);
         let m = centroid(&f, &self.nodes);
@@ -245,7 +319,7 @@ impl State<'_> {
                 cands.push((q, w, Cand::Node(w)));
             }
             if pass == 0 {
-                if nearest > NEW_NODE_CLEARANCE * h {
+                if nearest > NEW_NODE_CLEARANCE * h && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * h, &lo, &hi) {
                     let q = mean_ratio(&a, &b, &c, &ideal);
                     cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
                 }
@@ -262,12 +336,39 @@ impl State<'_> {
             }
             cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
             for &(_, _, cand) in &cands {
+                let q = match cand {
+                    Cand::Node(w) => mean_ratio(&a, &b, &c, &self.nodes[w as usize]),
+                    Cand::New(p) => mean_ratio(&a, &b, &c, &p),
+                };
+                if q < q_min {
+                    continue;
+                }
                 if self.valid(fid, f, cand) {
                     return Some(cand);
                 }
             }
         }
         None
+    }
+
+    /// Is `p` at least `clear` away from every front face near it other than `fid`? (A float
+    /// heuristic steering node placement, not a validity decision.)
+    fn clear_of_faces(&mut self, p: &P, fid: u32, clear: f64, lo: &P, hi: &P) -> bool {
+        let mut near = std::mem::take(&mut self.scratch2);
+        self.front.query(lo, hi, &mut near);
+        let mut ok = true;
+        for &g in &near {
+            if g == fid {
+                continue;
+            }
+            let [a, b, c] = self.front.faces[g as usize].map(|i| self.nodes[i as usize]);
+            if point_triangle_distance(p, &a, &b, &c) < clear {
+                ok = false;
+                break;
+            }
+        }
+        self.scratch2 = near;
+        ok
     }
 
     /// Exact validity of the tetrahedron `f + cand`.
@@ -301,7 +402,7 @@ impl State<'_> {
         if orient3d(pa, pb, pc, pd) != Orientation::Positive {
             return false;
         }
-        let new_faces = [[a, d, b], [b, d, c], [c, d, a]];
+        let new_faces = [[a, b, d], [b, c, d], [c, a, d]];
         for nf in &new_faces {
             if self.front.find(*nf).is_some() {
                 return false;
@@ -349,7 +450,7 @@ impl State<'_> {
         };
         let [a, b, c] = self.front.faces[fid as usize];
         self.front.remove(fid);
-        for nf in [[a, d, b], [b, d, c], [c, d, a]] {
+        for nf in [[a, b, d], [b, c, d], [c, a, d]] {
             match self.front.find([nf[0], nf[2], nf[1]]) {
                 Some(r) => self.front.remove(r),
                 None => self.add_face(nf),
@@ -414,4 +515,57 @@ impl State<'_> {
 #[inline]
 fn same_set(a: &[u32; 3], b: &[u32; 3]) -> bool {
     b.contains(&a[0]) && b.contains(&a[1]) && b.contains(&a[2])
+}
+
+/// Euclidean distance from `p` to the closed triangle `abc` (float).
+fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
+    let sub = |x: &P, y: &P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let dot = |x: &P, y: &P| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let ab = sub(b, a);
+    let ac = sub(c, a);
+    let ap = sub(p, a);
+    let d1 = dot(&ab, &ap);
+    let d2 = dot(&ac, &ap);
+    let at = |s: f64, t: f64| [a[0] + ab[0] * s + ac[0] * t, a[1] + ab[1] * s + ac[1] * t, a[2] + ab[2] * s + ac[2] * t];
+    let q = if d1 <= 0.0 && d2 <= 0.0 {
+        *a
+    } else {
+        let bp = sub(p, b);
+        let d3 = dot(&ab, &bp);
+        let d4 = dot(&ac, &bp);
+        if d3 >= 0.0 && d4 <= d3 {
+            *b
+        } else {
+            let vc = d1 * d4 - d3 * d2;
+            if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+                let v = d1 / (d1 - d3);
+                at(v, 0.0)
+            } else {
+                let cp = sub(p, c);
+                let d5 = dot(&ab, &cp);
+                let d6 = dot(&ac, &cp);
+                if d6 >= 0.0 && d5 <= d6 {
+                    *c
+                } else {
+                    let vb = d5 * d2 - d1 * d6;
+                    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+                        let w = d2 / (d2 - d6);
+                        at(0.0, w)
+                    } else {
+                        let va = d3 * d6 - d5 * d4;
+                        if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+                            let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+                            [b[0] + (c[0] - b[0]) * w, b[1] + (c[1] - b[1]) * w, b[2] + (c[2] - b[2]) * w]
+                        } else {
+                            let denom = 1.0 / (va + vb + vc);
+                            let v = vb * denom;
+                            let w = vc * denom;
+                            at(v, w)
+                        }
+                    }
+                }
+            }
+        }
+    };
+    dist(p, &q)
 }
