@@ -1,1 +1,0 @@
-//! Stage `tet_mesh`: not yet implemented (see the issue that introduces it).

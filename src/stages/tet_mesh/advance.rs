@@ -1,0 +1,571 @@
+//! The advancing-front loop: take the smallest front face, rank candidate apexes (existing front
+//! nodes near the ideal apex by the mean ratio of the tetrahedron they would make, and the ideal
+//! point itself), accept the first one that passes the exact validity test, update the front.
+//! When no candidate is valid the front is stuck there: delete the tetrahedra around the face
+//! (a wider ball at each retry), restore the front around the cavity and carry on — an explicit
+//! loop, never recursion. Gives up with an error naming the region and the stuck face.
+
+use std::collections::HashMap;
+
+use crate::geom::predicates::{Orientation, orient3d};
+
+use super::exact::{point_in_closed_tet, tri_tri_improper};
+use super::front::{Front, bbox_of};
+use super::quality::mean_ratio;
+use super::verify::outward_faces;
+use super::{RegionInput, SizeField, TetMeshError};
+
+type P = [f64; 3];
+
+/// Ideal apexes closer than this fraction of the local size to an existing front node are not
+/// created (the node is used instead): avoids near-duplicate nodes and the slivers they cause.
+const NEW_NODE_CLEARANCE: f64 = 0.55;
+/// Score factor of a new node against reusing an existing one of the same quality.
+const NEW_NODE_PREFERENCE: f64 = 0.75;
+/// Search radius for existing candidate nodes, in local sizes, on the first and second passes.
+const SEARCH_RADIUS: [f64; 2] = [1.6, 4.0];
+/// How many times the same face may trigger back-tracking before the region is declared stuck.
+const MAX_LEVEL: u32 = 8;
+/// Minimum mean ratio a tetrahedron must reach on the successive attempts at one face; between
+/// attempts the face is deferred (re-queued behind the others). The last entry accepts any valid
+/// tetrahedron; failing that, the mesher back-tracks.
+const MIN_QUALITY: [f64; 4] = [0.3, 0.15, 0.03, 0.0];
+/// New nodes closer than this fraction of the local size to a front face are not created.
+const FACE_CLEARANCE: f64 = 0.3;
+
+pub struct RawMesh {
+    pub nodes: Vec<P>,
+    pub tets: Vec<[u32; 4]>,
+    pub backtracks: usize,
+}
+
+struct State<'a> {
+    name: &'a str,
+    nodes: Vec<P>,
+    tets: Vec<[u32; 4]>,
+    tet_alive: Vec<bool>,
+    node_tets: Vec<Vec<u32>>,
+    front: Front,
+    size: &'a SizeField,
+    cap: f64,
+    scratch: Vec<u32>,
+    scratch2: Vec<u32>,
+}
+
+#[derive(Clone, Copy)]
+enum Cand {
+    Node(u32),
+    New(P),
+}
+
+pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, TetMeshError> {
+    let pts = &input.vertices;
+    let mut mean_edge_sum = 0.0;
+    let mut cap: f64 = 0.0;
+    for t in &input.boundary {
+        let le = mean_edge(t, pts);
+        mean_edge_sum += le;
+        cap = cap.max(le);
+    }
+    let avg = mean_edge_sum / input.boundary.len().max(1) as f64;
+    let (lo, _) = bbox_of(pts.iter());
+    let mut st = State {
+        name: &input.name,
+        nodes: pts.clone(),
+        tets: Vec::new(),
+        tet_alive: Vec::new(),
+        node_tets: vec![Vec::new(); pts.len()],
+        front: Front::new(lo, avg),
+        size,
+        cap,
+        scratch: Vec::new(),
+        scratch2: Vec::new(),
+    };
+    for t in &input.boundary {
+        st.add_face([t[0], t[2], t[1]]);
+    }
+    for t in &input.embedded {
+        st.add_face(*t);
+        st.add_face([t[0], t[2], t[1]]);
+    }
+    let mut levels: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut defers: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut backtracks = 0usize;
+    let max_backtracks = 200 + input.boundary.len();
+    let max_steps = 400 * (input.boundary.len() + input.embedded.len()) + 100_000;
+    let mut steps = 0usize;
+    while let Some(fid) = st.front.pop() {
+        steps += 1;
+        if steps > max_steps {
+            let f = st.front.faces[fid as usize];
+            return Err(TetMeshError::new(
+                st.name,
+                format!(
+                    "the front did not close after {max_steps} steps ({} faces left)",
+                    st.front.n_alive
+                ),
+                Some(st.nodes[f[0] as usize]),
+            ));
+        }
+        let f = st.front.faces[fid as usize];
+        let mut key = f;
+        key.sort_unstable();
+        let deferred = defers.get(&key).copied().unwrap_or(0);
+        let q_min = MIN_QUALITY.get(deferred as usize).copied();
+        if let Some(c) = st.find_apex(fid, q_min.unwrap_or(0.0)) {
+            st.build(fid, c);
+            if DEBUG_FRONT {
+                st.debug_check(steps);
+            }
+            continue;
+        }
+        if q_min.is_some() && (deferred as usize) + 1 < MIN_QUALITY.len() {
+            // Defer: other faces advance meanwhile and often make a good apex available.
+            defers.insert(key, deferred + 1);
+            let k = mean_edge(&f, &st.nodes) * (1u64 << (2 * (deferred + 1))) as f64;
+            st.front.requeue(fid, k);
+            continue;
+        }
+        let level = levels.entry(key).or_insert(0);
+        *level += 1;
+        backtracks += 1;
+        let at = centroid(&f, &st.nodes);
+        if *level > MAX_LEVEL || backtracks > max_backtracks {
+            return Err(TetMeshError::new(
+                st.name,
+                format!(
+                    "the front is stuck at face {f:?} ({:?}, {:?}, {:?}): no valid apex after {backtracks} back-tracks",
+                    st.nodes[f[0] as usize], st.nodes[f[1] as usize], st.nodes[f[2] as usize]
+                ),
+                Some(at),
+            ));
+        }
+        let lvl = *level;
+        if DEBUG_STUCK && backtracks < 3 {
+            st.debug_stuck(fid);
+        }
+        st.backtrack(fid, lvl);
+    }
+    let mut nodes = st.nodes;
+    let mut tets = Vec::with_capacity(st.tets.len());
+    for (t, alive) in st.tets.iter().zip(&st.tet_alive) {
+        if *alive {
+            tets.push(*t);
+        }
+    }
+    nodes.shrink_to_fit();
+    Ok(RawMesh {
+        nodes,
+        tets,
+        backtracks,
+    })
+}
+
+fn mean_edge(t: &[u32; 3], pts: &[P]) -> f64 {
+    let [a, b, c] = t.map(|i| pts[i as usize]);
+    (dist(&a, &b) + dist(&b, &c) + dist(&c, &a)) / 3.0
+}
+
+#[inline]
+fn dist(a: &P, b: &P) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn centroid(f: &[u32; 3], pts: &[P]) -> P {
+    let [a, b, c] = f.map(|i| pts[i as usize]);
+    [
+        (a[0] + b[0] + c[0]) / 3.0,
+        (a[1] + b[1] + c[1]) / 3.0,
+        (a[2] + b[2] + c[2]) / 3.0,
+    ]
+}
+
+const DEBUG_FRONT: bool = false;
+const DEBUG_STUCK: bool = false;
+
+impl State<'_> {
+    fn debug_stuck(&mut self, fid: u32) {
+        let f = self.front.faces[fid as usize];
+        eprintln!("STUCK face {f:?} alive faces {}", self.front.n_alive);
+        let ids: Vec<u32> = (0..self.front.faces.len() as u32).filter(|&i| self.front.alive[i as usize]).collect();
+        let mut nodes: Vec<u32> = ids.iter().flat_map(|&i| self.front.faces[i as usize]).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        for w in nodes {
+            if f.contains(&w) { continue; }
+            let [a, b, c] = f.map(|i| self.nodes[i as usize]);
+            let p = self.nodes[w as usize];
+            let o = orient3d(&a, &b, &c, &p);
+            if o != Orientation::Positive { continue; }
+            // why invalid?
+            let d = w;
+            let new_faces = [[f[0], f[1], d], [f[1], f[2], d], [f[2], f[0], d]];
+            let mut why = String::new();
+            for nf in &new_faces { if self.front.find(*nf).is_some() { why += &format!(" samefront{nf:?}"); } }
+            for &g in &ids {
+                if g == fid { continue; }
+                let gv = self.front.faces[g as usize];
+                for &x in &gv {
+                    if ![f[0], f[1], f[2], d].contains(&x) && point_in_closed_tet(&self.nodes[x as usize], &a, &b, &c, &p) { why += &format!(" node{x}in"); }
+                }
+                for nf in &new_faces {
+                    if same_set(nf, &gv) { continue; }
+                    if tri_tri_improper(*nf, gv, &self.nodes) { why += &format!(" {nf:?}x{gv:?}"); }
+                }
+            }
+            eprintln!("  cand {w} q={:.3}: {why}", mean_ratio(&a, &b, &c, &p));
+        }
+    }
+
+    fn debug_check(&self, step: usize) {
+        let ids: Vec<usize> = (0..self.front.faces.len()).filter(|&i| self.front.alive[i]).collect();
+        for (x, &i) in ids.iter().enumerate() {
+            for &j in &ids[x + 1..] {
+                let (f, g) = (self.front.faces[i], self.front.faces[j]);
+                if same_set(&f, &g) {
+                    continue;
+                }
+                if tri_tri_improper(f, g, &self.nodes) {
+                    let t = self.tets.last().unwrap();
+                    panic!("step {step}: front faces {f:?} and {g:?} intersect after tet {t:?} {:?}", t.map(|v| self.nodes[v as usize]));
+                }
+            }
+        }
+    }
+
+    fn add_face(&mut self, f: [u32; 3]) {
+        let key = mean_edge(&f, &self.nodes);
+        self.front.add(f, key, &self.nodes);
+    }
+
+    /// Local target size for a face of mean edge `le`: grow towards the interior target at the
+    /// size field's rate, never above the largest boundary face, clamped to the field's bounds.
+    fn target(&self, le: f64) -> f64 {
+        let g = self.size.growth.clamp(1.0, 2.0);
+        let mut h = le;
+        let goal = self.size.size.min(self.cap);
+        if le < goal {
+            h = (le * g).min(goal);
+        }
+        h.clamp(
+            self.size.min_size.max(0.0),
+            self.size.max_size.max(self.size.min_size),
+        )
+    }
+
+    fn find_apex(&mut self, fid: u32, q_min: f64) -> Option<Cand> {
+        let f = self.front.faces[fid as usize];
+        let [a, b, c] = f.map(|i| self.nodes[i as usize]);
+        let m = centroid(&f, &self.nodes);
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if nl <= 0.0 || !nl.is_finite() {
+            return None;
+        }
+        let nu = [n[0] / nl, n[1] / nl, n[2] / nl];
+        let le = mean_edge(&f, &self.nodes);
+        let h = self.target(le);
+        let r2 = (dist(&m, &a).powi(2) + dist(&m, &b).powi(2) + dist(&m, &c).powi(2)) / 3.0;
+        let height = (h * h - r2).max(0.09 * h * h).sqrt();
+        let ideal = [
+            m[0] + nu[0] * height,
+            m[1] + nu[1] * height,
+            m[2] + nu[2] * height,
+        ];
+
+        for (pass, &radius) in SEARCH_RADIUS.iter().enumerate() {
+            let rad = radius * h.max(le);
+            let lo = [
+                m[0].min(ideal[0]) - rad,
+                m[1].min(ideal[1]) - rad,
+                m[2].min(ideal[2]) - rad,
+            ];
+            let hi = [
+                m[0].max(ideal[0]) + rad,
+                m[1].max(ideal[1]) + rad,
+                m[2].max(ideal[2]) + rad,
+            ];
+            let mut near = std::mem::take(&mut self.scratch);
+            self.front.query(&lo, &hi, &mut near);
+            let mut cand_nodes: Vec<u32> = Vec::with_capacity(near.len() * 3);
+            for &g in &near {
+                cand_nodes.extend_from_slice(&self.front.faces[g as usize]);
+            }
+            self.scratch = near;
+            cand_nodes.sort_unstable();
+            cand_nodes.dedup();
+            let mut cands: Vec<(f64, u32, Cand)> = Vec::new();
+            let mut nearest = f64::INFINITY;
+            for &w in &cand_nodes {
+                if f.contains(&w) {
+                    continue;
+                }
+                let p = self.nodes[w as usize];
+                let dw = dist(&p, &ideal);
+                nearest = nearest.min(dw);
+                if dist(&p, &m) > rad + h {
+                    continue;
+                }
+                if orient3d(&a, &b, &c, &p) != Orientation::Positive {
+                    continue;
+                }
+                let q = mean_ratio(&a, &b, &c, &p);
+                cands.push((q, w, Cand::Node(w)));
+            }
+            if pass == 0 {
+                if nearest > NEW_NODE_CLEARANCE * h && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * h, &lo, &hi) {
+                    let q = mean_ratio(&a, &b, &c, &ideal);
+                    cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
+                }
+            } else {
+                for frac in [0.6, 0.35, 0.2] {
+                    let p = [
+                        m[0] + nu[0] * height * frac,
+                        m[1] + nu[1] * height * frac,
+                        m[2] + nu[2] * height * frac,
+                    ];
+                    let q = mean_ratio(&a, &b, &c, &p);
+                    cands.push((q * NEW_NODE_PREFERENCE * 0.5, u32::MAX, Cand::New(p)));
+                }
+            }
+            cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+            for &(_, _, cand) in &cands {
+                let q = match cand {
+                    Cand::Node(w) => mean_ratio(&a, &b, &c, &self.nodes[w as usize]),
+                    Cand::New(p) => mean_ratio(&a, &b, &c, &p),
+                };
+                if q < q_min {
+                    continue;
+                }
+                if self.valid(fid, f, cand) {
+                    return Some(cand);
+                }
+            }
+        }
+        None
+    }
+
+    /// Is `p` at least `clear` away from every front face near it other than `fid`? (A float
+    /// heuristic steering node placement, not a validity decision.)
+    fn clear_of_faces(&mut self, p: &P, fid: u32, clear: f64, lo: &P, hi: &P) -> bool {
+        let mut near = std::mem::take(&mut self.scratch2);
+        self.front.query(lo, hi, &mut near);
+        let mut ok = true;
+        for &g in &near {
+            if g == fid {
+                continue;
+            }
+            let [a, b, c] = self.front.faces[g as usize].map(|i| self.nodes[i as usize]);
+            if point_triangle_distance(p, &a, &b, &c) < clear {
+                ok = false;
+                break;
+            }
+        }
+        self.scratch2 = near;
+        ok
+    }
+
+    /// Exact validity of the tetrahedron `f + cand`.
+    fn valid(&mut self, fid: u32, f: [u32; 3], cand: Cand) -> bool {
+        let d = match cand {
+            Cand::Node(w) => w,
+            Cand::New(p) => {
+                if !p.iter().all(|x| x.is_finite()) {
+                    return false;
+                }
+                self.nodes.push(p);
+                (self.nodes.len() - 1) as u32
+            }
+        };
+        let ok = self.valid_with(fid, f, d);
+        if let Cand::New(_) = cand {
+            self.nodes.pop();
+        }
+        ok
+    }
+
+    fn valid_with(&mut self, fid: u32, f: [u32; 3], d: u32) -> bool {
+        let [a, b, c] = f;
+        let pts = &self.nodes;
+        let (pa, pb, pc, pd) = (
+            &pts[a as usize],
+            &pts[b as usize],
+            &pts[c as usize],
+            &pts[d as usize],
+        );
+        if orient3d(pa, pb, pc, pd) != Orientation::Positive {
+            return false;
+        }
+        let new_faces = [[a, b, d], [b, c, d], [c, a, d]];
+        for nf in &new_faces {
+            if self.front.find(*nf).is_some() {
+                return false;
+            }
+        }
+        let (lo, hi) = bbox_of([pa, pb, pc, pd].into_iter());
+        let mut near = std::mem::take(&mut self.scratch2);
+        self.front.query(&lo, &hi, &mut near);
+        let tet = [a, b, c, d];
+        let mut ok = true;
+        'outer: for &g in &near {
+            if g == fid {
+                continue;
+            }
+            let gv = self.front.faces[g as usize];
+            for &w in &gv {
+                if !tet.contains(&w) && point_in_closed_tet(&self.nodes[w as usize], pa, pb, pc, pd)
+                {
+                    ok = false;
+                    break 'outer;
+                }
+            }
+            for nf in &new_faces {
+                if same_set(nf, &gv) {
+                    continue;
+                }
+                if tri_tri_improper(*nf, gv, &self.nodes) {
+                    ok = false;
+                    break 'outer;
+                }
+            }
+        }
+        self.scratch2 = near;
+        ok
+    }
+
+    fn build(&mut self, fid: u32, cand: Cand) {
+        let d = match cand {
+            Cand::Node(w) => w,
+            Cand::New(p) => {
+                self.nodes.push(p);
+                self.node_tets.push(Vec::new());
+                (self.nodes.len() - 1) as u32
+            }
+        };
+        let [a, b, c] = self.front.faces[fid as usize];
+        self.front.remove(fid);
+        for nf in [[a, b, d], [b, c, d], [c, a, d]] {
+            match self.front.find([nf[0], nf[2], nf[1]]) {
+                Some(r) => self.front.remove(r),
+                None => self.add_face(nf),
+            }
+        }
+        let t = self.tets.len() as u32;
+        self.tets.push([a, b, c, d]);
+        self.tet_alive.push(true);
+        for v in [a, b, c, d] {
+            self.node_tets[v as usize].push(t);
+        }
+    }
+
+    /// Delete the tetrahedra around a stuck face — those touching its vertices, plus every tet
+    /// with a node within `level` local sizes of it — and restore the front around the cavity.
+    fn backtrack(&mut self, fid: u32, level: u32) {
+        let f = self.front.faces[fid as usize];
+        let m = centroid(&f, &self.nodes);
+        let h = self.target(mean_edge(&f, &self.nodes));
+        let rad = h * level as f64;
+        let mut del: Vec<u32> = Vec::new();
+        for &v in &f {
+            del.extend(
+                self.node_tets[v as usize]
+                    .iter()
+                    .copied()
+                    .filter(|&t| self.tet_alive[t as usize]),
+            );
+        }
+        if level > 1 {
+            for (ti, t) in self.tets.iter().enumerate() {
+                if self.tet_alive[ti] && t.iter().any(|&v| dist(&self.nodes[v as usize], &m) <= rad)
+                {
+                    del.push(ti as u32);
+                }
+            }
+        }
+        del.sort_unstable();
+        del.dedup();
+        for &t in &del {
+            self.delete_tet(t);
+        }
+        let key = mean_edge(&f, &self.nodes);
+        self.front.requeue(fid, key);
+    }
+
+    fn delete_tet(&mut self, t: u32) {
+        let tet = self.tets[t as usize];
+        self.tet_alive[t as usize] = false;
+        for fo in outward_faces(tet) {
+            match self.front.find(fo) {
+                Some(id) => self.front.remove(id),
+                None => self.add_face([fo[0], fo[2], fo[1]]),
+            }
+        }
+        for v in tet {
+            self.node_tets[v as usize].retain(|&x| x != t);
+        }
+    }
+}
+
+#[inline]
+fn same_set(a: &[u32; 3], b: &[u32; 3]) -> bool {
+    b.contains(&a[0]) && b.contains(&a[1]) && b.contains(&a[2])
+}
+
+/// Euclidean distance from `p` to the closed triangle `abc` (float).
+fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
+    let sub = |x: &P, y: &P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let dot = |x: &P, y: &P| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let ab = sub(b, a);
+    let ac = sub(c, a);
+    let ap = sub(p, a);
+    let d1 = dot(&ab, &ap);
+    let d2 = dot(&ac, &ap);
+    let at = |s: f64, t: f64| [a[0] + ab[0] * s + ac[0] * t, a[1] + ab[1] * s + ac[1] * t, a[2] + ab[2] * s + ac[2] * t];
+    let q = if d1 <= 0.0 && d2 <= 0.0 {
+        *a
+    } else {
+        let bp = sub(p, b);
+        let d3 = dot(&ab, &bp);
+        let d4 = dot(&ac, &bp);
+        if d3 >= 0.0 && d4 <= d3 {
+            *b
+        } else {
+            let vc = d1 * d4 - d3 * d2;
+            if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+                let v = d1 / (d1 - d3);
+                at(v, 0.0)
+            } else {
+                let cp = sub(p, c);
+                let d5 = dot(&ab, &cp);
+                let d6 = dot(&ac, &cp);
+                if d6 >= 0.0 && d5 <= d6 {
+                    *c
+                } else {
+                    let vb = d5 * d2 - d1 * d6;
+                    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+                        let w = d2 / (d2 - d6);
+                        at(0.0, w)
+                    } else {
+                        let va = d3 * d6 - d5 * d4;
+                        if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+                            let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+                            [b[0] + (c[0] - b[0]) * w, b[1] + (c[1] - b[1]) * w, b[2] + (c[2] - b[2]) * w]
+                        } else {
+                            let denom = 1.0 / (va + vb + vc);
+                            let v = vb * denom;
+                            let w = vc * denom;
+                            at(v, w)
+                        }
+                    }
+                }
+            }
+        }
+    };
+    dist(p, &q)
+}

@@ -1,0 +1,151 @@
+//! The advancing front: oriented triangles whose right-hand normal points into the part of the
+//! region not yet meshed, with a priority queue (smallest face first, ties by id so the order is
+//! deterministic) and a uniform grid over face bounding boxes for the locality queries of the
+//! exact validity tests. A face is found by its canonical rotation, so the two sides of an
+//! embedded triangle are two distinct front faces.
+
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
+
+use super::verify::canon;
+
+type P = [f64; 3];
+
+pub struct Front {
+    pub faces: Vec<[u32; 3]>,
+    pub alive: Vec<bool>,
+    map: HashMap<[u32; 3], u32>,
+    heap: BinaryHeap<Reverse<(u64, u32)>>,
+    cells: HashMap<[i32; 3], Vec<u32>>,
+    origin: P,
+    inv_cell: f64,
+    stamp: Vec<u32>,
+    generation: u32,
+    pub n_alive: usize,
+}
+
+impl Front {
+    pub fn new(origin: P, cell: f64) -> Self {
+        let cell = if cell.is_finite() && cell > 0.0 {
+            cell
+        } else {
+            1.0
+        };
+        Front {
+            faces: Vec::new(),
+            alive: Vec::new(),
+            map: HashMap::new(),
+            heap: BinaryHeap::new(),
+            cells: HashMap::new(),
+            origin,
+            inv_cell: 1.0 / cell,
+            stamp: Vec::new(),
+            generation: 0,
+            n_alive: 0,
+        }
+    }
+
+    #[inline]
+    fn cell_of(&self, p: &P) -> [i32; 3] {
+        let mut c = [0i32; 3];
+        for k in 0..3 {
+            let v = ((p[k] - self.origin[k]) * self.inv_cell).floor();
+            c[k] = v.clamp(-1.0e9, 1.0e9) as i32;
+        }
+        c
+    }
+
+    /// Id of the live face with exactly this orientation, if any.
+    #[inline]
+    pub fn find(&self, f: [u32; 3]) -> Option<u32> {
+        self.map.get(&canon(f)).copied()
+    }
+
+    /// Add an oriented face; `key` orders the queue (smaller first).
+    pub fn add(&mut self, f: [u32; 3], key: f64, pts: &[P]) -> u32 {
+        let id = self.faces.len() as u32;
+        self.faces.push(f);
+        self.alive.push(true);
+        self.stamp.push(0);
+        self.map.insert(canon(f), id);
+        self.heap.push(Reverse((key.max(0.0).to_bits(), id)));
+        self.n_alive += 1;
+        let (lo, hi) = bbox_of(f.iter().map(|&i| &pts[i as usize]));
+        let (cl, ch) = (self.cell_of(&lo), self.cell_of(&hi));
+        for x in cl[0]..=ch[0] {
+            for y in cl[1]..=ch[1] {
+                for z in cl[2]..=ch[2] {
+                    self.cells.entry([x, y, z]).or_default().push(id);
+                }
+            }
+        }
+        id
+    }
+
+    pub fn remove(&mut self, id: u32) {
+        let i = id as usize;
+        if self.alive[i] {
+            self.alive[i] = false;
+            self.map.remove(&canon(self.faces[i]));
+            self.n_alive -= 1;
+        }
+    }
+
+    /// Put a live face back in the queue (after it was popped and could not be meshed yet).
+    pub fn requeue(&mut self, id: u32, key: f64) {
+        if self.alive[id as usize] {
+            self.heap.push(Reverse((key.max(0.0).to_bits(), id)));
+        }
+    }
+
+    /// The live face with the smallest key.
+    pub fn pop(&mut self) -> Option<u32> {
+        while let Some(Reverse((_, id))) = self.heap.pop() {
+            if self.alive[id as usize] {
+                return Some(id);
+            }
+        }
+        None
+    }
+
+    /// Live faces whose bounding-box cells meet the box `lo..hi`, in increasing id order.
+    pub fn query(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
+        out.clear();
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.generation = 1;
+        }
+        let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
+        for x in cl[0]..=ch[0] {
+            for y in cl[1]..=ch[1] {
+                for z in cl[2]..=ch[2] {
+                    if let Some(v) = self.cells.get_mut(&[x, y, z]) {
+                        let alive = &self.alive;
+                        v.retain(|&id| alive[id as usize]);
+                        for &id in v.iter() {
+                            let s = &mut self.stamp[id as usize];
+                            if *s != self.generation {
+                                *s = self.generation;
+                                out.push(id);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out.sort_unstable();
+    }
+}
+
+pub fn bbox_of<'a>(it: impl Iterator<Item = &'a P>) -> (P, P) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in it {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}

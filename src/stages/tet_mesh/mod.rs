@@ -1,0 +1,223 @@
+//! Stage `tet_mesh`: fill one region with tetrahedra that conform exactly to its boundary
+//! triangles and to the dangling (embedded) fault triangles inside it.
+//!
+//! Method: advancing front (the seed paper's default). It was chosen over Delaunay + boundary
+//! recovery because conformity is by construction: the front starts as the boundary triangles
+//! (embedded ones twice, once per side), every tetrahedron is built on a front face, and no node
+//! is ever inserted on a boundary face — so neighbouring regions share faces node for node and
+//! thin layers (35 m reservoir with 100 m triangles) need no recovery step. Each candidate
+//! tetrahedron is accepted only after exact tests (`exact`): positive `orient3d`, none of its new
+//! faces improperly intersects a front face, and no front node lies in it. When a face has no
+//! valid apex the mesher back-tracks (deletes the tetrahedra around it, restores the front and
+//! re-meshes the cavity), iteratively, never recursively. Afterwards `optimize` smooths interior
+//! nodes, only accepting moves that keep every tetrahedron positive (exact). `verify` checks the
+//! result exactly before `mesh_region` returns it, so a partial or overlapping mesh is an error,
+//! never a result.
+//!
+//! Submodules: `exact` (intersection predicates), `quality` (measures), `check` (input
+//! validation), `front` (front faces and their spatial grid), `advance` (the front loop and
+//! back-tracking), `optimize` (smoothing), `verify` (exact output check).
+
+mod advance;
+mod check;
+pub mod exact;
+mod front;
+mod optimize;
+pub mod quality;
+mod verify;
+
+pub use check::check_input;
+pub use verify::verify;
+
+use std::fmt;
+
+/// One region to fill.
+#[derive(Clone, Debug, Default)]
+pub struct RegionInput {
+    pub name: String,
+    pub vertices: Vec<[f64; 3]>,
+    /// Closed boundary triangles (one or more closed shells: an outer shell and cavity shells),
+    /// oriented so their right-hand normal points OUT of the region (the caller orients them).
+    pub boundary: Vec<[u32; 3]>,
+    /// Embedded (dangling) triangles inside the region: must appear as faces, with tets on both sides.
+    pub embedded: Vec<[u32; 3]>,
+}
+
+/// Target element size inside the region. The front's own face sizes (from the boundary) drive
+/// the local size; `size` is the interior target the mesh may grow towards at rate `growth` per
+/// layer, always clamped to `[min_size, max_size]`.
+#[derive(Clone, Debug)]
+pub struct SizeField {
+    pub size: f64,
+    pub min_size: f64,
+    pub max_size: f64,
+    pub growth: f64,
+}
+
+impl Default for SizeField {
+    fn default() -> Self {
+        SizeField {
+            size: f64::INFINITY,
+            min_size: 0.0,
+            max_size: f64::INFINITY,
+            growth: 1.2,
+        }
+    }
+}
+
+/// Options of the mesher.
+#[derive(Clone, Debug)]
+pub struct TetMeshOptions {
+    /// Run the quality optimization (smoothing) after the front closes. Default true.
+    pub optimize: bool,
+    /// Seed for any randomness (the mesher currently uses none; kept for the cache key). Default 0.
+    pub seed: u64,
+}
+
+impl Default for TetMeshOptions {
+    fn default() -> Self {
+        TetMeshOptions {
+            optimize: true,
+            seed: 0,
+        }
+    }
+}
+
+/// Figures about one meshed region.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TetMeshStats {
+    pub tets: usize,
+    pub nodes: usize,
+    /// Interior nodes added by the mesher (`nodes - input vertices`).
+    pub new_nodes: usize,
+    /// How many times the front got stuck and tetrahedra were deleted and re-meshed.
+    pub backtracks: usize,
+    pub min_mean_ratio: f64,
+    pub avg_mean_ratio: f64,
+    pub min_dihedral_deg: f64,
+    pub avg_min_dihedral_deg: f64,
+}
+
+/// The tetrahedral mesh of one region.
+#[derive(Clone, Debug)]
+pub struct TetMeshOutput {
+    /// Input vertices first (same indices), then the new interior nodes.
+    pub nodes: Vec<[f64; 3]>,
+    /// Positively oriented: `det[b-a, c-a, d-a] > 0`.
+    pub tets: Vec<[u32; 4]>,
+    pub stats: TetMeshStats,
+}
+
+/// Why a region could not be meshed (or a mesh is not valid): names the region and the place.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TetMeshError {
+    pub region: String,
+    pub message: String,
+    pub at: Option<[f64; 3]>,
+}
+
+impl TetMeshError {
+    pub(crate) fn new(region: &str, message: impl Into<String>, at: Option<[f64; 3]>) -> Self {
+        TetMeshError {
+            region: region.to_string(),
+            message: message.into(),
+            at,
+        }
+    }
+}
+
+impl fmt::Display for TetMeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "region '{}': {}", self.region, self.message)?;
+        if let Some(p) = self.at {
+            write!(f, " at ({}, {}, {})", p[0], p[1], p[2])?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for TetMeshError {}
+
+/// Mesh one region: check the input, advance the front, optimize, compute statistics and verify
+/// exactly. Never returns a mesh that fails `verify`.
+pub fn mesh_region(
+    input: &RegionInput,
+    size: &SizeField,
+    opts: &TetMeshOptions,
+) -> Result<TetMeshOutput, TetMeshError> {
+    check_input(input)?;
+    let mut mesh = advance::advance_front(input, size)?;
+    if opts.optimize {
+        optimize::optimize(&mut mesh.nodes, &mut mesh.tets, input.vertices.len());
+    }
+    let (nodes, tets) = compact(mesh.nodes, mesh.tets, input.vertices.len());
+    let mut out = TetMeshOutput {
+        nodes,
+        tets,
+        stats: TetMeshStats::default(),
+    };
+    out.stats = stats_of(&out, input.vertices.len(), mesh.backtracks);
+    verify(input, &out)?;
+    Ok(out)
+}
+
+/// Drop interior nodes no tetrahedron uses (left behind by back-tracking), keeping input
+/// vertices at their indices and the others in creation order.
+fn compact(
+    nodes: Vec<[f64; 3]>,
+    mut tets: Vec<[u32; 4]>,
+    n_input: usize,
+) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
+    let mut used = vec![false; nodes.len()];
+    for t in &tets {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let mut map = vec![u32::MAX; nodes.len()];
+    let mut out = Vec::with_capacity(nodes.len());
+    for (i, p) in nodes.into_iter().enumerate() {
+        if i < n_input || used[i] {
+            map[i] = out.len() as u32;
+            out.push(p);
+        }
+    }
+    for t in &mut tets {
+        for v in t.iter_mut() {
+            *v = map[*v as usize];
+        }
+    }
+    (out, tets)
+}
+
+/// Quality statistics of a mesh.
+pub fn stats_of(out: &TetMeshOutput, n_input: usize, backtracks: usize) -> TetMeshStats {
+    let mut s = TetMeshStats {
+        tets: out.tets.len(),
+        nodes: out.nodes.len(),
+        new_nodes: out.nodes.len().saturating_sub(n_input),
+        backtracks,
+        min_mean_ratio: f64::INFINITY,
+        min_dihedral_deg: f64::INFINITY,
+        ..Default::default()
+    };
+    let mut sum_q = 0.0;
+    let mut sum_d = 0.0;
+    for t in &out.tets {
+        let [a, b, c, d] = t.map(|i| out.nodes[i as usize]);
+        let q = quality::mean_ratio(&a, &b, &c, &d);
+        let dh = quality::min_dihedral_deg(&a, &b, &c, &d);
+        s.min_mean_ratio = s.min_mean_ratio.min(q);
+        s.min_dihedral_deg = s.min_dihedral_deg.min(dh);
+        sum_q += q;
+        sum_d += dh;
+    }
+    if !out.tets.is_empty() {
+        s.avg_mean_ratio = sum_q / out.tets.len() as f64;
+        s.avg_min_dihedral_deg = sum_d / out.tets.len() as f64;
+    } else {
+        s.min_mean_ratio = 0.0;
+        s.min_dihedral_deg = 0.0;
+    }
+    s
+}
