@@ -6,16 +6,6 @@ use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::sync::Mutex;
 
-pub fn state_word(s: NodeState) -> &'static str {
-    match s {
-        NodeState::Ran => "ran",
-        NodeState::Cached => "cached",
-        NodeState::CutOff => "cut off",
-        NodeState::Failed => "failed",
-        NodeState::Skipped => "skipped",
-    }
-}
-
 /// Renders events on stderr. Only nodes that ran or failed get a line; cached ones are counted.
 pub struct Renderer {
     quiet: bool,

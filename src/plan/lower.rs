@@ -4,6 +4,7 @@ use super::ops::*;
 use crate::engine::{BuildGraph, GraphError, NodeId};
 use crate::recipe::{self, Recipe};
 use crate::stages::discretize::{Grading, Subdivision};
+use crate::stages::import;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -34,8 +35,11 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             file_label: spec.file.display().to_string(),
             object: spec.object.clone(),
             skip_other_types: spec.skip_other_types,
-            // Coordinates are kept in the files' units (the recipe's `units` names them).
-            units_scale: 1.0,
+            target_units: match recipe.model.units {
+                recipe::Units::Metre => import::Units::Metre,
+                recipe::Units::Kilometre => import::Units::Kilometre,
+                recipe::Units::Foot => import::Units::Foot,
+            },
             on_invalid: match spec.on_invalid {
                 recipe::OnInvalid::Stop => OnInvalid::Stop,
                 recipe::OnInvalid::Repair => OnInvalid::Repair,

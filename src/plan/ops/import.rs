@@ -22,8 +22,8 @@ pub struct ImportOp {
     pub file_label: String,
     pub object: Option<String>,
     pub skip_other_types: bool,
-    /// Multiplier from the file's units to the recipe's units (1.0 when they agree).
-    pub units_scale: f64,
+    /// The recipe's units: every file's coordinates are converted from its `AXIS_UNIT` into them.
+    pub target_units: import::Units,
     pub on_invalid: OnInvalid,
     pub tolerances: Tolerances,
 }
@@ -43,7 +43,7 @@ impl Operation for ImportOp {
         p.set(&key("object"), self.object.clone().unwrap_or_default()).expect("finite");
         p.set(&key("skip_other_types"), self.skip_other_types).expect("finite");
         p.set(&key("on_invalid"), if self.on_invalid == OnInvalid::Repair { "repair" } else { "stop" }).expect("finite");
-        p.set("model.units_scale", self.units_scale).expect("validated finite");
+        p.set("model.units", format!("{:?}", self.target_units)).expect("string");
         for (k, v) in self.tolerances.fields() {
             p.set(&format!("tolerances.{k}"), v).expect("validated finite");
         }
@@ -54,7 +54,7 @@ impl Operation for ImportOp {
         let opts = import::ImportOptions {
             object: self.object.clone(),
             skip_other_types: self.skip_other_types,
-            units_scale: self.units_scale,
+            target_units: Some(self.target_units),
         };
         let imported = import::import_surface(bytes, &self.file_label, &opts).map_err(|e| OpError::from(e.to_string()))?;
         let report = validate::validate(&imported, &self.tolerances);

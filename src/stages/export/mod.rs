@@ -7,6 +7,7 @@
 //! Output bytes are a pure function of the mesh and the model name: no timestamps, no hash-order
 //! iteration, floats printed with Rust's shortest round-trip formatting.
 
+pub mod curves;
 mod inp;
 mod medit;
 mod msh;
