@@ -257,3 +257,19 @@ fn nan_is_rejected_and_negative_zero_and_map_order_do_not_change_the_key() {
     assert_eq!(k1, k2);
     assert_ne!(k1, key_of(Params::new().with("z", 1e-300).unwrap()));
 }
+
+#[test]
+fn a_damaged_manifest_only_costs_explanations_never_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 2);
+    let runs = Runs::default();
+    run(chain(1, &runs), &o);
+    std::fs::write(o.cache_dir.join("manifest.bin"), b"not a manifest").unwrap();
+    runs.reset();
+    let r = run(chain(1, &runs), &o);
+    assert_eq!(runs.total(), 0);
+    assert!(r.nodes.iter().all(|n| n.state == NodeState::Cached));
+    // The manifest is rewritten, so explanations are back on the next change.
+    let r2 = run(chain(5, &runs), &o);
+    assert_eq!(r2.node("a").unwrap().reason.to_string(), "value: 1 → 5");
+}

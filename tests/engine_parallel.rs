@@ -76,6 +76,7 @@ fn both(rounds: &[&dyn Fn(&Runs) -> BuildGraph], ja: usize, jb: usize) {
 #[test]
 fn builds_with_one_and_four_jobs_give_identical_reports_outputs_and_lock_text() {
     both(&[&|r| wide(r, 0), &|r| wide(r, 1)], 1, 4);
+    both(&[&|r| wide(r, 2), &|r| wide(r, 0)], 1, 2);
     // And after a change that re-runs part of the graph.
     let (da, db) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
     let (oa, ob) = (opts(da.path(), 1), opts(db.path(), 4));

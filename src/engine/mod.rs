@@ -7,6 +7,22 @@
 //! re-runs only what changed, cuts off dependents when a re-run reproduces the same output,
 //! explains every re-run (`reason`, from the previous `manifest`), and reports every node
 //! (`report`); `lockfile` pins the outputs and `gc` trims the cache.
+//!
+//! Typical use by the planner and the CLI:
+//!
+//! ```ignore
+//! let mut g = BuildGraph::new();
+//! let top = g.add_file("file:top", "data/top.ts".into())?;
+//! let imp = g.add_op("import:top", Arc::new(ImportOp { .. }), &[top])?;
+//! let model = g.add_op("model", Arc::new(ModelOp { .. }), &[imp])?;
+//! g.set_expander(model, Arc::new(PerEntityExpander { .. })); // adds curve:/patch:/region: nodes
+//! let report = build(g, &BuildOptions::new(".recipe-cache", "out"), &|e| cli.render(e))?;
+//! let lock = LockFile::from_report(&report);            // write as recipe.lock, or diff for --locked
+//! let model: Model = report.artifact("model").unwrap().decode()?;
+//! ```
+//!
+//! Nodes with identical keys in one build are computed once and share their resolution, so
+//! states never depend on scheduling. Events arrive in timing order; the report does not.
 
 pub mod artifact;
 pub mod build;
