@@ -157,6 +157,13 @@ fn rendered_tables_are_aligned_and_mark_empty_groups() {
     assert!(widths.windows(2).all(|w| w[0] == w[1]), "{t1}");
     let t2 = render_table2(&table2(&mesh));
     assert!(t2.contains("overburden") && t2.contains("min dihedral") && t2.contains("x0.79"));
-    let json = serde_json::to_string(&table2(&mesh)).unwrap();
-    assert!(json.contains("\"pct_lt_0_3\""));
+    let json = serde_json::to_string(&georecipe::stages::quality::report(&mesh)).unwrap();
+    assert!(json.contains("\"pct_lt_0_3\"") && json.contains("\"table1\""));
+    // The empty group's statistics are NaN: JSON null, not a made-up number.
+    assert!(
+        json.contains("\"name\":\"unused\",\"nodes\":0,\"triangles\":0,\"avg\":null"),
+        "{json}"
+    );
+    let both = georecipe::stages::quality::report(&mesh).render();
+    assert!(both.starts_with("Table 1") && both.contains("\n\nTable 2"));
 }
