@@ -33,6 +33,8 @@ struct Msh {
     nodes: Vec<[f64; 3]>,
     elems: Vec<Elem>,
     data: BTreeMap<String, BTreeMap<u64, f64>>,
+    /// Surface kinds by 2D physical tag (our own `$GeorecipeSurfaceKinds` section).
+    kinds: BTreeMap<i32, SurfaceKind>,
 }
 
 /// Nodes per element type, for the types a file may hold.
@@ -205,6 +207,25 @@ fn parse(bytes: &[u8], label: &str) -> Result<Msh, ReadError> {
                     m.names.insert((dim, tag), name);
                 }
                 r.expect_end("PhysicalNames")?;
+            }
+            ("GeorecipeSurfaceKinds", _) => {
+                let n = r.c.u64("the number of surface kinds")?;
+                for _ in 0..n {
+                    let dim = r.c.i64("a dimension")?;
+                    let tag = r.c.i64("a physical tag")?;
+                    let (k, kat) = r.c.tok("a surface kind")?;
+                    let kind = match k {
+                        "horizon" => SurfaceKind::Horizon,
+                        "fault" => SurfaceKind::Fault,
+                        "box" => SurfaceKind::Box,
+                        "other" => SurfaceKind::Other,
+                        _ => return Err(r.c.err_at(kat, format!("unknown surface kind '{k}'"))),
+                    };
+                    if dim == 2 {
+                        m.kinds.insert(tag as i32, kind);
+                    }
+                }
+                r.expect_end("GeorecipeSurfaceKinds")?;
             }
             ("Entities", Some(41)) => {
                 if r.binary {
@@ -541,7 +562,7 @@ pub fn read_msh(bytes: &[u8], label: &str) -> Result<BoundaryMesh, ReadError> {
 
 /// Reads a tet mesh (tets type 4, triangles type 2) back into a [`VolumeMesh`]: regions are the 3D
 /// physical groups in tag order (an element without one goes to a group named after its entity),
-/// surface groups the 2D ones (kind `Other`: msh does not say). Region attributes come from
+/// surface groups the 2D ones (kinds from our `$GeorecipeSurfaceKinds` section, else `Other`). Region attributes come from
 /// scalar `$ElementData`: "material" (negative or NaN = none) and every other view as a property,
 /// taken from the region's first tet that has a finite value.
 pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadError> {
@@ -581,9 +602,13 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
     }
     for (i, (k, v)) in grp_keys.iter_mut().enumerate() {
         *v = i as u32;
+        let kind = k
+            .ok()
+            .and_then(|p| m.kinds.get(&p).copied())
+            .unwrap_or(SurfaceKind::Other);
         out.surface_groups.push(SurfaceGroup {
             name: name(2, k),
-            kind: SurfaceKind::Other,
+            kind,
         });
     }
     for (e, ix) in m.elems.iter().zip(&idx) {
@@ -645,7 +670,9 @@ $Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n$EndNodes\n$Elements\n2\n1 2 
             .replace("\n10 0 0 0", "\n1000000000000 0 0 0")
             .replace(" 10 20 30", " 1000000000000 20 30");
         let m = read_msh(sparse.as_bytes(), "s.msh").unwrap();
-        assert_eq!(m.triangles, vec![[0, 1, 2]]);
+        // Vertices come in tag order: the huge tag is last.
+        assert_eq!(m.triangles, vec![[3, 0, 1]]);
+        assert_eq!(m.vertices[3], [0.0; 3]);
         let dup = V22.replace("\n20 1 0 0", "\n10 1 0 0");
         assert!(
             read_msh(dup.as_bytes(), "d.msh")
