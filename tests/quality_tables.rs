@@ -157,6 +157,68 @@ fn rendered_tables_are_aligned_and_mark_empty_groups() {
     assert!(widths.windows(2).all(|w| w[0] == w[1]), "{t1}");
     let t2 = render_table2(&table2(&mesh));
     assert!(t2.contains("overburden") && t2.contains("min dihedral") && t2.contains("x0.79"));
-    let json = serde_json::to_string(&table2(&mesh)).unwrap();
-    assert!(json.contains("\"pct_lt_0_3\""));
+    let json = serde_json::to_string(&georecipe::stages::quality::report(&mesh)).unwrap();
+    assert!(json.contains("\"pct_lt_0_3\"") && json.contains("\"table1\""));
+    // The empty group's statistics are NaN: JSON null, not a made-up number.
+    assert!(
+        json.contains("\"name\":\"unused\",\"nodes\":0,\"triangles\":0,\"avg\":null"),
+        "{json}"
+    );
+    let both = georecipe::stages::quality::report(&mesh).render();
+    assert!(both.starts_with("Table 1") && both.contains("\n\nTable 2"));
+}
+
+#[test]
+fn table1_on_the_peer_didactic_surfaces_matches_check_mesh_tri_quality() {
+    if !python_has("meshio, numpy") {
+        return;
+    }
+    let Some(tool) = checker() else { return };
+    let path = std::path::Path::new(SHARED).join("data/peer-boundaries/didactic_L1_surface.msh");
+    let b = georecipe::mesh::read::read_msh(&std::fs::read(&path).unwrap(), "didactic").unwrap();
+    // One surface group per physical name (box, H1, H2, F1, F2), in name order.
+    let names: std::collections::BTreeSet<&String> = b.tag_names.values().collect();
+    let names: Vec<&String> = names.into_iter().collect();
+    let mut mesh = VolumeMesh {
+        nodes: b.vertices.clone(),
+        triangles: b.triangles.clone(),
+        ..Default::default()
+    };
+    for n in &names {
+        mesh.surface_groups.push(georecipe::mesh::SurfaceGroup {
+            name: (*n).clone(),
+            kind: georecipe::mesh::SurfaceKind::Other,
+        });
+    }
+    mesh.triangle_group = b
+        .triangle_tag
+        .iter()
+        .map(|t| names.iter().position(|n| **n == b.tag_names[t]).unwrap() as u32)
+        .collect();
+    let script = r#"
+import sys, json, importlib.util, numpy as np, meshio
+spec = importlib.util.spec_from_file_location("cm", sys.argv[1]); cm = importlib.util.module_from_spec(spec); spec.loader.exec_module(cm)
+m = meshio.read(sys.argv[2])
+F = np.vstack([b.data for b in m.cells if b.type == "triangle"])
+q, _ = cm.tri_quality(np.asarray(m.points, float), F)
+print("JSON", json.dumps(cm.stats(q, hi=[1.15, 1.5])))
+"#;
+    let out = python(script, &[tool.to_str().unwrap(), path.to_str().unwrap()]);
+    let json = out.lines().find_map(|l| l.strip_prefix("JSON ")).unwrap();
+    let rep: serde_json::Value = serde_json::from_str(json).unwrap();
+    let t1 = table1(&mesh);
+    assert_eq!(t1.len(), 6);
+    let all = &t1[5];
+    assert_eq!(all.triangles as u64, rep["n"].as_u64().unwrap());
+    close(all.avg, get(&rep, &["avg"]), "avg");
+    close(all.sd, get(&rep, &["sd"]), "sd");
+    close(all.max, get(&rep, &["max"]), "max");
+    close(all.pct_gt_1_15, get(&rep, &["pct_gt_1.15"]), "% > 1.15");
+    close(all.pct_gt_1_5, get(&rep, &["pct_gt_1.5"]), "% > 1.5");
+    // Gmsh's frontal-Delaunay surfaces are close to equilateral on average.
+    assert!(
+        t1.iter().all(|r| r.avg > 1.0 && r.avg < 1.3),
+        "{}",
+        render_table1(&t1)
+    );
 }

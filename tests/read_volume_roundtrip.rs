@@ -38,10 +38,20 @@ fn msh_ascii_and_binary_round_trip_nodes_elements_groups_and_attributes() {
             "{format:?}: names, material ids and properties"
         );
         assert_eq!(
-            without_kinds(back.clone()).surface_groups,
-            without_kinds(mesh.clone()).surface_groups
+            back.surface_groups, mesh.surface_groups,
+            "{format:?}: names and kinds"
         );
     }
+}
+
+#[test]
+fn a_foreign_msh_without_kinds_reads_its_surfaces_as_other() {
+    let mesh = layered_box(4, 3);
+    let text = String::from_utf8(export(&mesh, "f", Format::Msh).unwrap().remove(0).1).unwrap();
+    let (a, rest) = text.split_once("$GeorecipeSurfaceKinds").unwrap();
+    let (_, b) = rest.split_once("$EndGeorecipeSurfaceKinds\n").unwrap();
+    let back = read_volume_msh(format!("{a}{b}").as_bytes(), "f.msh").unwrap();
+    assert_eq!(back.surface_groups, without_kinds(mesh).surface_groups);
 }
 
 #[test]

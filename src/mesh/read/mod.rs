@@ -9,6 +9,7 @@
 
 mod cursor;
 mod msh;
+mod msh_sections;
 mod obj;
 mod off;
 

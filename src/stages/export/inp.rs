@@ -50,7 +50,8 @@ fn list(s: &mut String, items: impl Iterator<Item = String>) {
     }
 }
 
-pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<u8> {
+/// Fails when a surface triangle is not a face of any tet (Abaqus surfaces are element faces).
+pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     let mut s = String::new();
     let _ = writeln!(s, "*Heading\n georecipe model {model}");
     let mut taken = BTreeSet::new();
@@ -136,9 +137,17 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<u8> {
         for &t in sel {
             let mut key = mesh.triangles[t];
             key.sort_unstable();
-            if let Some(&(e, f)) = owner.get(&key) {
-                sides.entry(f).or_default().insert(e);
-            }
+            let Some(&(e, f)) = owner.get(&key) else {
+                let [a, b, c] = mesh.triangles[t];
+                return Err(format!(
+                    "surface '{}' triangle {t} ({:?}, {:?}, {:?}) is not a face of any tet: Abaqus cannot name it",
+                    mesh.surface_groups[g].name,
+                    mesh.nodes[a as usize],
+                    mesh.nodes[b as usize],
+                    mesh.nodes[c as usize]
+                ));
+            };
+            sides.entry(f).or_default().insert(e);
         }
         for (f, elems) in &sides {
             let _ = writeln!(s, "*Elset, elset={}_S{f}", group_labels[g]);
@@ -151,12 +160,43 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<u8> {
             }
         }
     }
-    s.into_bytes()
+    Ok(s.into_bytes())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_triangle_that_is_no_tet_face_is_refused_with_its_coordinates() {
+        let mesh = VolumeMesh {
+            nodes: vec![
+                [0.0; 3],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [5.0, 5.0, 5.0],
+            ],
+            tets: vec![[0, 1, 2, 3]],
+            tet_region: vec![0],
+            regions: vec![crate::mesh::RegionGroup {
+                name: "r".into(),
+                material: None,
+                properties: Default::default(),
+            }],
+            triangles: vec![[0, 1, 2], [0, 1, 4]],
+            triangle_group: vec![0, 0],
+            surface_groups: vec![crate::mesh::SurfaceGroup {
+                name: "fault".into(),
+                kind: crate::mesh::SurfaceKind::Fault,
+            }],
+        };
+        let e = write(&mesh, "m").unwrap_err();
+        assert!(
+            e.contains("'fault' triangle 1") && e.contains("[5.0, 5.0, 5.0]"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn labels_are_abaqus_safe_and_unique() {

@@ -101,7 +101,7 @@ pub fn export(
         Format::VtuBinary => vec![(format!("{model_name}.vtu"), vtu::write(mesh, true))],
         Format::TetGen => tetgen::write(mesh, model_name),
         Format::Medit => vec![(format!("{model_name}.mesh"), medit::write(mesh))],
-        Format::Inp => vec![(format!("{model_name}.inp"), inp::write(mesh, model_name))],
+        Format::Inp => vec![(format!("{model_name}.inp"), inp::write(mesh, model_name)?)],
     })
 }
 

@@ -8,11 +8,13 @@
 //! lowest dimension holding them, one block per entity (tags = node index + 1, so the numbering
 //! is the mesh's whatever the blocks); elements go in one block per entity
 //! (tets type 4 first, then triangles type 2), numbered consecutively from 1. The recipe's
+//! surface kinds (horizon, fault, box, other) go in a `$GeorecipeSurfaceKinds` section, which
+//! other readers skip as the format prescribes for unknown sections. The recipe's
 //! attributes follow as `$ElementData` views over every element: "material" (the material id,
 //! -1 where none, and -1 on triangles) and one per region property (NaN where undefined).
 
 use super::{bbox_of, property_names, split_by};
-use crate::mesh::VolumeMesh;
+use crate::mesh::{SurfaceKind, VolumeMesh};
 use std::io::Write as _;
 
 /// One value of a record: printed space-separated in ASCII, packed little-endian in binary.
@@ -87,6 +89,16 @@ fn quoted(name: &str) -> String {
     format!("\"{clean}\"")
 }
 
+/// The kind's name in `$GeorecipeSurfaceKinds` (as serde spells it).
+pub(crate) fn kind_name(k: SurfaceKind) -> &'static str {
+    match k {
+        SurfaceKind::Horizon => "horizon",
+        SurfaceKind::Fault => "fault",
+        SurfaceKind::Box => "box",
+        SurfaceKind::Other => "other",
+    }
+}
+
 fn tag(i: usize) -> i32 {
     i32::try_from(i + 1).unwrap_or(i32::MAX)
 }
@@ -119,6 +131,16 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         o.text(&format!("3 {} {}\n", tag(r), quoted(&rg.name)));
     }
     o.text("$EndPhysicalNames\n");
+    // What each 2D group is, geologically (a section Gmsh and meshio skip, as the format allows;
+    // our reader uses it to restore the surface kinds).
+    o.text(&format!(
+        "$GeorecipeSurfaceKinds\n{}\n",
+        mesh.surface_groups.len()
+    ));
+    for (g, sg) in mesh.surface_groups.iter().enumerate() {
+        o.text(&format!("2 {} {}\n", tag(g), kind_name(sg.kind)));
+    }
+    o.text("$EndGeorecipeSurfaceKinds\n");
 
     let tris_by_group = split_by(&mesh.triangle_group, mesh.surface_groups.len());
     let tets_by_region = split_by(&mesh.tet_region, mesh.regions.len());

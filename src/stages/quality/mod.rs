@@ -177,6 +177,32 @@ pub fn table2(mesh: &VolumeMesh) -> Vec<TetQuality> {
     rows
 }
 
+/// Both tables, as the build's JSON report and printed summary carry them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct QualityReport {
+    pub table1: Vec<TriQuality>,
+    pub table2: Vec<TetQuality>,
+}
+
+/// Computes both tables.
+pub fn report(mesh: &VolumeMesh) -> QualityReport {
+    QualityReport {
+        table1: table1(mesh),
+        table2: table2(mesh),
+    }
+}
+
+impl QualityReport {
+    /// Both tables as aligned text, Table 1 first, separated by a blank line.
+    pub fn render(&self) -> String {
+        format!(
+            "{}\n{}",
+            render_table1(&self.table1),
+            render_table2(&self.table2)
+        )
+    }
+}
+
 fn f(v: f64, digits: usize) -> String {
     if v.is_nan() {
         "-".to_string()
