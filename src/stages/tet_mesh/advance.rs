@@ -12,6 +12,7 @@ use crate::geom::predicates::{Orientation, orient3d};
 use super::exact::{point_in_closed_tet, tri_tri_improper};
 use super::front::{Front, bbox_of};
 use super::quality::mean_ratio;
+use super::sizing::Background;
 use super::verify::outward_faces;
 use super::{RegionInput, SizeField, TetMeshError};
 
@@ -32,6 +33,8 @@ const MAX_LEVEL: u32 = 8;
 const MIN_QUALITY: [f64; 4] = [0.3, 0.15, 0.03, 0.0];
 /// New nodes closer than this fraction of the local size to a front face are not created.
 const FACE_CLEARANCE: f64 = 0.3;
+/// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
+const NEAR_IDEAL: f64 = 1.0;
 
 pub struct RawMesh {
     pub nodes: Vec<P>,
@@ -46,8 +49,9 @@ struct State<'a> {
     tet_alive: Vec<bool>,
     node_tets: Vec<Vec<u32>>,
     front: Front,
-    size: &'a SizeField,
-    cap: f64,
+    bg: Background,
+    /// Embedded triangles (sorted vertex triples): constraints back-tracking must not dissolve.
+    constrained: std::collections::HashSet<[u32; 3]>,
     scratch: Vec<u32>,
     scratch2: Vec<u32>,
 }
@@ -76,10 +80,23 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         tet_alive: Vec::new(),
         node_tets: vec![Vec::new(); pts.len()],
         front: Front::new(lo, avg),
-        size,
-        cap,
+        bg: {
+            let mut all = input.boundary.clone();
+            all.extend_from_slice(&input.embedded);
+            let _ = cap;
+            Background::new(pts, &all, size)
+        },
         scratch: Vec::new(),
         scratch2: Vec::new(),
+        constrained: input
+            .embedded
+            .iter()
+            .map(|t| {
+                let mut k = *t;
+                k.sort_unstable();
+                k
+            })
+            .collect(),
     };
     for t in &input.boundary {
         st.add_face([t[0], t[2], t[1]]);
@@ -96,6 +113,18 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
     let mut steps = 0usize;
     while let Some(fid) = st.front.pop() {
         steps += 1;
+        if DEBUG_STUCK && steps % 2000 == 0 {
+            let (lo, hi) = bbox_of(st.nodes.iter());
+            let fl: f64 = (0..st.front.faces.len()).filter(|&i| st.front.alive[i]).map(|i| mean_edge(&st.front.faces[i], &st.nodes)).sum::<f64>() / st.front.n_alive as f64;
+            if steps % 10000 == 0 {
+                let mut v: Vec<(f64, [u32; 3])> = (0..st.front.faces.len()).filter(|&i| st.front.alive[i]).map(|i| (mean_edge(&st.front.faces[i], &st.nodes), st.front.faces[i])).collect();
+                v.sort_by(|a, b| a.0.total_cmp(&b.0));
+                for (le, f) in v.iter().take(5) { eprintln!("  small {le} {:?} {:?}", centroid(f, &st.nodes), f); }
+                let nb = st.tets.len();
+                for t in &st.tets[nb - 5..] { eprintln!("  last tet {:?} q {}", t, mean_ratio(&st.nodes[t[0] as usize], &st.nodes[t[1] as usize], &st.nodes[t[2] as usize], &st.nodes[t[3] as usize])); }
+            }
+            eprintln!("step {steps} tets {} front {} backtracks {backtracks} bbox {lo:?} {hi:?} mean front edge {fl}", st.tets.len(), st.front.n_alive);
+        }
         if steps > max_steps {
             let f = st.front.faces[fid as usize];
             return Err(TetMeshError::new(
@@ -238,19 +267,10 @@ impl State<'_> {
         self.front.add(f, key, &self.nodes);
     }
 
-    /// Local target size for a face of mean edge `le`: grow towards the interior target at the
-    /// size field's rate, never above the largest boundary face, clamped to the field's bounds.
-    fn target(&self, le: f64) -> f64 {
-        let g = self.size.growth.clamp(1.0, 2.0);
-        let mut h = le;
-        let goal = self.size.size.min(self.cap);
-        if le < goal {
-            h = (le * g).min(goal);
-        }
-        h.clamp(
-            self.size.min_size.max(0.0),
-            self.size.max_size.max(self.size.min_size),
-        )
+    /// Local target size for a face of mean edge `le` centred at `m`: the background size there,
+    /// kept within a factor of the face's own size so the tetrahedron stays well shaped.
+    fn target(&self, le: f64, m: &P) -> f64 {
+        self.bg.size_at(m).clamp(0.7 * le, 1.5 * le)
     }
 
     fn find_apex(&mut self, fid: u32, q_min: f64) -> Option<Cand> {
@@ -270,7 +290,7 @@ impl State<'_> {
         }
         let nu = [n[0] / nl, n[1] / nl, n[2] / nl];
         let le = mean_edge(&f, &self.nodes);
-        let h = self.target(le);
+        let h = self.target(le, &m);
         let r2 = (dist(&m, &a).powi(2) + dist(&m, &b).powi(2) + dist(&m, &c).powi(2)) / 3.0;
         let height = (h * h - r2).max(0.09 * h * h).sqrt();
         let ideal = [
@@ -309,7 +329,7 @@ impl State<'_> {
                 let p = self.nodes[w as usize];
                 let dw = dist(&p, &ideal);
                 nearest = nearest.min(dw);
-                if dist(&p, &m) > rad + h {
+                if dist(&p, &m) > rad + h || (pass == 0 && dw > NEAR_IDEAL * h) {
                     continue;
                 }
                 if orient3d(&a, &b, &c, &p) != Orientation::Positive {
@@ -319,7 +339,10 @@ impl State<'_> {
                 cands.push((q, w, Cand::Node(w)));
             }
             if pass == 0 {
-                if nearest > NEW_NODE_CLEARANCE * h && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * h, &lo, &hi) {
+                // Clearances use the background size so that small faces close on existing
+                // nodes instead of seeding ever smaller ones.
+                let hc = h.max(0.8 * self.bg.size_at(&m));
+                if nearest > NEW_NODE_CLEARANCE * hc && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc, &lo, &hi) {
                     let q = mean_ratio(&a, &b, &c, &ideal);
                     cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
                 }
@@ -330,6 +353,11 @@ impl State<'_> {
                         m[1] + nu[1] * height * frac,
                         m[2] + nu[2] * height * frac,
                     ];
+                    let hc = h.max(0.8 * self.bg.size_at(&m));
+                    let near_node = cand_nodes.iter().any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
+                    if near_node || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi) {
+                        continue;
+                    }
                     let q = mean_ratio(&a, &b, &c, &p);
                     cands.push((q * NEW_NODE_PREFERENCE * 0.5, u32::MAX, Cand::New(p)));
                 }
@@ -418,6 +446,10 @@ impl State<'_> {
                 continue;
             }
             let gv = self.front.faces[g as usize];
+            let (glo, ghi) = bbox_of(gv.iter().map(|&i| &self.nodes[i as usize]));
+            if (0..3).any(|k| glo[k] > hi[k] || ghi[k] < lo[k]) {
+                continue;
+            }
             for &w in &gv {
                 if !tet.contains(&w) && point_in_closed_tet(&self.nodes[w as usize], pa, pb, pc, pd)
                 {
@@ -469,7 +501,7 @@ impl State<'_> {
     fn backtrack(&mut self, fid: u32, level: u32) {
         let f = self.front.faces[fid as usize];
         let m = centroid(&f, &self.nodes);
-        let h = self.target(mean_edge(&f, &self.nodes));
+        let h = self.target(mean_edge(&f, &self.nodes), &m);
         let rad = h * level as f64;
         let mut del: Vec<u32> = Vec::new();
         for &v in &f {
@@ -501,6 +533,13 @@ impl State<'_> {
         let tet = self.tets[t as usize];
         self.tet_alive[t as usize] = false;
         for fo in outward_faces(tet) {
+            let mut k = fo;
+            k.sort_unstable();
+            if self.constrained.contains(&k) {
+                // An embedded face stays in the front on both sides.
+                self.add_face([fo[0], fo[2], fo[1]]);
+                continue;
+            }
             match self.front.find(fo) {
                 Some(id) => self.front.remove(id),
                 None => self.add_face([fo[0], fo[2], fo[1]]),

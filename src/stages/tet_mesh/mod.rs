@@ -24,6 +24,7 @@ pub mod exact;
 mod front;
 mod optimize;
 pub mod quality;
+mod sizing;
 mod verify;
 
 pub use check::check_input;
