@@ -28,6 +28,7 @@ pub mod contact;
 pub mod error;
 pub mod key;
 pub mod locate;
+pub mod split;
 
 pub use box_sides::box_sides;
 pub use error::{CoplanarContact, IntersectError};

@@ -1,0 +1,429 @@
+//! Splitting (first step): insert the curves of one intersection into one of its two surfaces so
+//! that the triangulation conforms to them: every curve point becomes a vertex (existing vertex,
+//! or a new vertex on an edge or inside a face) and every curve segment becomes an edge.
+//!
+//! Each original triangle is re-triangulated on its own: its boundary polygon (corners plus the
+//! curve points on its edges, shared with the neighbours, so the result stays conforming) is cut
+//! along the chords the curves draw across it, and each piece is ear-clipped. Orientation tests
+//! use `orient2d` in a projection chosen exactly for the original triangle, on the (float)
+//! coordinates of the points; new triangles keep the orientation of their parent.
+//!
+//! Supported: curves crossing triangles from border to border, through any number of points
+//! inside the face. Not yet supported, reported as [`SplitError::Unsupported`] with the triangle
+//! and a coordinate: a curve that ends or branches inside a face, or a closed loop inside a
+//! single face. Several intersections on one surface (curves crossing each other inside a face)
+//! need the arrangement of their segments, which is the next step.
+
+use super::Intersection;
+use super::key::{Location, PointKey};
+use super::locate::{project, projection_axis};
+use crate::geom::{Orientation, TriMesh, orient2d};
+use std::collections::BTreeMap;
+use thiserror::Error;
+
+/// Which surface of an [`Intersection`] to split.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Side {
+    A,
+    B,
+}
+
+/// A surface re-triangulated to conform to intersection curves.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SplitSurface {
+    /// Original vertices first (same indices), then one new vertex per new curve point, in key
+    /// order.
+    pub mesh: TriMesh,
+    /// For each triangle of `mesh`, the original triangle it lies in.
+    pub parent: Vec<u32>,
+    /// The vertex of `mesh` of each curve point.
+    pub vertex_of: BTreeMap<PointKey, u32>,
+    /// The curve segments as sorted vertex pairs of `mesh`, sorted.
+    pub curve_edges: Vec<[u32; 2]>,
+}
+
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum SplitError {
+    #[error("splitting `{surface}`: triangle {triangle} near ({}, {}, {}): {what}", at[0], at[1], at[2])]
+    Unsupported {
+        surface: String,
+        triangle: u32,
+        at: [f64; 3],
+        what: String,
+    },
+    #[error(
+        "splitting `{surface}`: the intersection refers to triangle or vertex {index}, which the surface does not have"
+    )]
+    BadIndex { surface: String, index: u32 },
+}
+
+fn loc_of(p: &super::CurvePoint, side: Side) -> Location {
+    if side == Side::A { p.on_a } else { p.on_b }
+}
+
+/// Split `mesh` (surface `a` or `b` of `x`, chosen by `side`) along the curves of `x`.
+pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurface, SplitError> {
+    let name = if side == Side::A { &x.a } else { &x.b };
+    let bad = |index: u32| SplitError::BadIndex {
+        surface: name.clone(),
+        index,
+    };
+    let nv = mesh.vertices.len() as u32;
+    let mut vertices = mesh.vertices.clone();
+    let mut vertex_of: BTreeMap<PointKey, u32> = BTreeMap::new();
+    let mut loc: BTreeMap<u32, Location> = BTreeMap::new();
+    let mut keys: Vec<&super::CurvePoint> = x.curves.iter().flat_map(|c| c.points.iter()).collect();
+    keys.sort_by(|p, q| p.key.cmp(&q.key));
+    keys.dedup_by(|p, q| p.key == q.key);
+    for p in keys {
+        let l = loc_of(p, side);
+        let v = match l {
+            Location::Vertex(v) if v < nv => v,
+            Location::Vertex(v) => return Err(bad(v)),
+            _ => {
+                vertices.push(p.xyz);
+                vertices.len() as u32 - 1
+            }
+        };
+        vertex_of.insert(p.key, v);
+        loc.insert(v, l);
+    }
+    // Points on each original edge, and inside each face.
+    let mut on_edge: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
+    let mut chords: BTreeMap<u32, Vec<[u32; 2]>> = BTreeMap::new();
+    for (&v, &l) in &loc {
+        if let Location::Edge(i, j) = l {
+            on_edge.entry((i, j)).or_default().push(v);
+        }
+    }
+    let mut curve_edges = Vec::new();
+    for c in &x.curves {
+        let n = c.points.len();
+        for (s, &(ta, tb)) in c.segments_faces.iter().enumerate() {
+            let (p, q) = (&c.points[s], &c.points[(s + 1) % n]);
+            let (Some(&vp), Some(&vq)) = (vertex_of.get(&p.key), vertex_of.get(&q.key)) else {
+                continue;
+            };
+            curve_edges.push([vp.min(vq), vp.max(vq)]);
+            let t = if side == Side::A { ta } else { tb };
+            chords.entry(t).or_default().push([vp, vq]);
+        }
+    }
+    curve_edges.sort_unstable();
+    curve_edges.dedup();
+
+    let mut triangles = Vec::with_capacity(mesh.triangles.len());
+    let mut parent = Vec::with_capacity(mesh.triangles.len());
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let t = t as u32;
+        if tri.iter().any(|&v| v >= nv) {
+            return Err(bad(t));
+        }
+        let edge_pts = |a: u32, b: u32| on_edge.get(&(a.min(b), a.max(b)));
+        let touched =
+            chords.contains_key(&t) || (0..3).any(|k| edge_pts(tri[k], tri[(k + 1) % 3]).is_some());
+        if !touched {
+            triangles.push(*tri);
+            parent.push(t);
+            continue;
+        }
+        let corners = [0, 1, 2].map(|k| vertices[tri[k] as usize]);
+        let Some((axis, sign)) = projection_axis(&corners) else {
+            triangles.push(*tri);
+            parent.push(t);
+            continue;
+        };
+        let pt = |v: u32| project(&vertices[v as usize], axis);
+        // Boundary cycle, in the triangle's own orientation.
+        let mut boundary = Vec::new();
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            boundary.push(a);
+            if let Some(list) = edge_pts(a, b) {
+                let (pa, pb) = (vertices[a as usize], vertices[b as usize]);
+                let d = [pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]];
+                let mut along: Vec<(f64, u32)> = list
+                    .iter()
+                    .map(|&v| {
+                        let p = vertices[v as usize];
+                        (
+                            (p[0] - pa[0]) * d[0] + (p[1] - pa[1]) * d[1] + (p[2] - pa[2]) * d[2],
+                            v,
+                        )
+                    })
+                    .collect();
+                along.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+                boundary.extend(along.into_iter().map(|(_, v)| v));
+            }
+        }
+        let err = |what: &str, v: u32| SplitError::Unsupported {
+            surface: name.clone(),
+            triangle: t,
+            at: vertices[v as usize],
+            what: what.to_string(),
+        };
+        let on_boundary = |v: u32| boundary.contains(&v);
+        // Chords that are not pieces of the boundary, walked into chains boundary → boundary.
+        let mut segs: Vec<[u32; 2]> = chords
+            .get(&t)
+            .map(|c| {
+                c.iter()
+                    .filter(|s| {
+                        let (i, j) = (
+                            boundary.iter().position(|&v| v == s[0]),
+                            boundary.iter().position(|&v| v == s[1]),
+                        );
+                        match (i, j) {
+                            (Some(i), Some(j)) => {
+                                let m = boundary.len();
+                                (i + 1) % m != j && (j + 1) % m != i
+                            }
+                            _ => true,
+                        }
+                    })
+                    .map(|s| [s[0].min(s[1]), s[0].max(s[1])])
+                    .collect()
+            })
+            .unwrap_or_default();
+        segs.sort_unstable();
+        segs.dedup();
+        let mut adj: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+        for s in &segs {
+            adj.entry(s[0]).or_default().push(s[1]);
+            adj.entry(s[1]).or_default().push(s[0]);
+        }
+        for (&v, n) in &adj {
+            if !on_boundary(v) && n.len() != 2 {
+                return Err(err("a curve ends or branches inside this face", v));
+            }
+        }
+        let mut used = vec![false; segs.len()];
+        let seg_id = |a: u32, b: u32| segs.binary_search(&[a.min(b), a.max(b)]).ok();
+        let mut chains: Vec<Vec<u32>> = Vec::new();
+        for (&start, nbrs) in &adj {
+            if !on_boundary(start) {
+                continue;
+            }
+            for &first in nbrs {
+                let Some(s0) = seg_id(start, first) else {
+                    continue;
+                };
+                if used[s0] {
+                    continue;
+                }
+                used[s0] = true;
+                let mut chain = vec![start, first];
+                let mut cur = first;
+                while !on_boundary(cur) {
+                    let prev = chain[chain.len() - 2];
+                    let next = adj
+                        .get(&cur)
+                        .and_then(|n| n.iter().copied().find(|&w| w != prev));
+                    let Some(next) = next else {
+                        return Err(err("a curve ends inside this face", cur));
+                    };
+                    if let Some(s) = seg_id(cur, next) {
+                        used[s] = true;
+                    }
+                    chain.push(next);
+                    cur = next;
+                }
+                chains.push(chain);
+            }
+        }
+        if let Some(i) = used.iter().position(|u| !u) {
+            return Err(err("a closed curve lies inside this face", segs[i][0]));
+        }
+        // Cut the polygon along each chain.
+        let mut polys: Vec<Vec<u32>> = vec![boundary.clone()];
+        for chain in &chains {
+            let (s, e) = (chain[0], chain[chain.len() - 1]);
+            let pi = polys.iter().position(|p| {
+                p.contains(&s) && p.contains(&e) && chain_inside(p, chain, &pt, sign)
+            });
+            let Some(pi) = pi else {
+                return Err(err("curves cross inside this face", s));
+            };
+            let p = polys.swap_remove(pi);
+            let (i, j) = (
+                p.iter().position(|&v| v == s).unwrap_or(0),
+                p.iter().position(|&v| v == e).unwrap_or(0),
+            );
+            let m = p.len();
+            // First piece: boundary from e to s, then the chain from s to e (without repeats).
+            let mut p1: Vec<u32> = (0..m)
+                .map(|k| p[(j + k) % m])
+                .take_while(|&v| v != s)
+                .collect();
+            p1.extend(chain[..chain.len() - 1].iter().copied());
+            let mut p2: Vec<u32> = (0..m)
+                .map(|k| p[(i + k) % m])
+                .take_while(|&v| v != e)
+                .collect();
+            p2.extend(
+                chain[1..]
+                    .iter()
+                    .rev()
+                    .copied()
+                    .collect::<Vec<_>>()
+                    .into_iter()
+                    .take(chain.len() - 1),
+            );
+            polys.push(p1);
+            polys.push(p2);
+        }
+        let mut local = Vec::new();
+        for p in &polys {
+            local.extend(
+                ear_clip(p, &pt, sign)
+                    .ok_or_else(|| err("a piece could not be triangulated", p[0]))?,
+            );
+        }
+        let locked: Vec<[u32; 2]> = chains
+            .iter()
+            .flat_map(|c| c.windows(2).map(|w| [w[0].min(w[1]), w[0].max(w[1])]))
+            .collect();
+        improve(&mut local, &locked, &pt, sign);
+        for tr in local {
+            triangles.push(tr);
+            parent.push(t);
+        }
+    }
+    Ok(SplitSurface {
+        mesh: TriMesh::new(vertices, triangles),
+        parent,
+        vertex_of,
+        curve_edges,
+    })
+}
+
+/// Whether the chain leaves its first vertex into the interior of polygon `p` (at that vertex,
+/// the chain's second point lies strictly inside the polygon's corner angle).
+fn chain_inside(p: &[u32], chain: &[u32], pt: &dyn Fn(u32) -> [f64; 2], sign: Orientation) -> bool {
+    let m = p.len();
+    let Some(i) = p.iter().position(|&v| v == chain[0]) else {
+        return false;
+    };
+    let (prev, cur, next) = (pt(p[(i + m - 1) % m]), pt(p[i]), pt(p[(i + 1) % m]));
+    let q = pt(chain[1]);
+    let left_of = |a: &[f64; 2], b: &[f64; 2]| orient2d(a, b, &q) == sign;
+    let convex = orient2d(&prev, &cur, &next) != sign.flip();
+    if convex {
+        left_of(&cur, &next) && left_of(&prev, &cur)
+    } else {
+        left_of(&cur, &next) || left_of(&prev, &cur)
+    }
+}
+
+/// Edge flips inside one parent triangle: an unlocked edge shared by two triangles is flipped
+/// when both new triangles are strictly positive (exact `orient2d`) and the worse of the two
+/// improves. This removes the slivers ear clipping leaves next to points that lie (up to
+/// rounding of constructed coordinates) on a line through others. Terminates: each flip raises
+/// the sorted vector of qualities; capped anyway.
+fn improve(
+    tris: &mut [[u32; 3]],
+    locked: &[[u32; 2]],
+    pt: &dyn Fn(u32) -> [f64; 2],
+    sign: Orientation,
+) {
+    let q = |t: &[u32; 3]| ear_quality(pt(t[0]), pt(t[1]), pt(t[2]));
+    let pos = |a: u32, b: u32, c: u32| orient2d(&pt(a), &pt(b), &pt(c)) == sign;
+    for _ in 0..(4 * tris.len() * tris.len() + 4) {
+        let mut flipped = false;
+        'search: for i in 0..tris.len() {
+            for k in 0..3 {
+                let (a, b, c) = (tris[i][k], tris[i][(k + 1) % 3], tris[i][(k + 2) % 3]);
+                if locked.contains(&[a.min(b), a.max(b)]) {
+                    continue;
+                }
+                for j in 0..tris.len() {
+                    let Some(m) = (0..3).find(|&m| tris[j][m] == b && tris[j][(m + 1) % 3] == a)
+                    else {
+                        continue;
+                    };
+                    let d = tris[j][(m + 2) % 3];
+                    let (n1, n2) = ([a, d, c], [d, b, c]);
+                    if pos(a, d, c)
+                        && pos(d, b, c)
+                        && q(&n1).min(q(&n2)) > q(&tris[i]).min(q(&tris[j]))
+                    {
+                        tris[i] = n1;
+                        tris[j] = n2;
+                        flipped = true;
+                        break 'search;
+                    }
+                }
+            }
+        }
+        if !flipped {
+            break;
+        }
+    }
+}
+
+/// Shape quality of a triangle in 2D: twice its area over the sum of its squared edge lengths
+/// (a measure for choosing among valid ears; no decision of validity rests on it).
+fn ear_quality(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    let (u, v, w) = (
+        [a[0] - b[0], a[1] - b[1]],
+        [c[0] - b[0], c[1] - b[1]],
+        [c[0] - a[0], c[1] - a[1]],
+    );
+    let area2 = (u[0] * v[1] - u[1] * v[0]).abs();
+    let sum = u[0] * u[0] + u[1] * u[1] + v[0] * v[0] + v[1] * v[1] + w[0] * w[0] + w[1] * w[1];
+    if sum > 0.0 { area2 / sum } else { 0.0 }
+}
+
+/// Ear clipping of a simple polygon given counter-clockwise (w.r.t. `sign`), allowing collinear
+/// runs: an ear is a strictly convex corner whose closed triangle holds no other polygon vertex.
+fn ear_clip(
+    poly: &[u32],
+    pt: &dyn Fn(u32) -> [f64; 2],
+    sign: Orientation,
+) -> Option<Vec<[u32; 3]>> {
+    let mut p = poly.to_vec();
+    let mut out = Vec::with_capacity(p.len().saturating_sub(2));
+    while p.len() > 3 {
+        let m = p.len();
+        let is_ear = |i: usize| {
+            let (a, b, c) = (p[(i + m - 1) % m], p[i], p[(i + 1) % m]);
+            let (pa, pb, pc) = (pt(a), pt(b), pt(c));
+            orient2d(&pa, &pb, &pc) == sign
+                && p.iter().all(|&v| {
+                    if v == a || v == b || v == c {
+                        return true;
+                    }
+                    let q = pt(v);
+                    let inside = [
+                        orient2d(&pa, &pb, &q),
+                        orient2d(&pb, &pc, &q),
+                        orient2d(&pc, &pa, &q),
+                    ]
+                    .iter()
+                    .all(|&o| o != sign.flip());
+                    !inside
+                })
+        };
+        // Of all ears, clip the best shaped one (no slivers where a better choice exists).
+        let ear = (0..m)
+            .filter(|&i| is_ear(i))
+            .map(|i| {
+                (
+                    ear_quality(pt(p[(i + m - 1) % m]), pt(p[i]), pt(p[(i + 1) % m])),
+                    i,
+                )
+            })
+            .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)))?
+            .1;
+        out.push([p[(ear + m - 1) % m], p[ear], p[(ear + 1) % m]]);
+        p.remove(ear);
+    }
+    if p.len() == 3 {
+        let (pa, pb, pc) = (pt(p[0]), pt(p[1]), pt(p[2]));
+        if orient2d(&pa, &pb, &pc) != sign {
+            return None;
+        }
+        out.push([p[0], p[1], p[2]]);
+    }
+    Some(out)
+}

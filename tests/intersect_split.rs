@@ -1,0 +1,79 @@
+//! The first splitting step: inserting one intersection's curves into each of its surfaces.
+
+mod intersect_support;
+
+use georecipe::geom::TriMesh;
+use georecipe::stages::intersect::split::{Side, SplitError, split};
+use intersect_support::{assert_sound, both, grid};
+
+#[test]
+fn a_horizon_is_split_along_a_fault_curve_that_crosses_it_from_border_to_border() {
+    let a = grid(10, 10, |i, j| {
+        [
+            500_000.0 + 2.0 * i as f64,
+            7_000_000.0 + 2.0 * j as f64,
+            0.1 * (i as f64).sin(),
+        ]
+    });
+    let b = grid(6, 4, |i, k| {
+        let y = 7_000_000.0 - 1.0 + 4.0 * i as f64;
+        [
+            500_007.3 + 0.2 * (y - 7_000_000.0) + 0.3 * k as f64,
+            y,
+            -3.0 + 1.5 * k as f64,
+        ]
+    });
+    let x = both("a", &a, "b", &b).expect("no coplanar contact");
+    assert_eq!(x.curves.len(), 1);
+    let sa = split(&a, &x, Side::A).expect("a splits");
+    assert_sound(&a, &sa);
+    let n = x.curves[0].points.len();
+    assert_eq!(sa.curve_edges.len(), n - 1);
+    // The fault reaches beyond the horizon, so on the fault the curve ends inside faces.
+    assert!(matches!(
+        split(&b, &x, Side::B),
+        Err(SplitError::Unsupported { .. })
+    ));
+    assert!(sa.mesh.triangles.len() > a.triangles.len());
+}
+
+#[test]
+fn a_bump_and_a_plane_are_split_along_their_closed_loop() {
+    let bump = grid(16, 16, |i, j| {
+        let (x, y) = (-3.0 + 0.375 * i as f64, -3.0 + 0.375 * j as f64);
+        [x, y, 2.0 * (-(x * x + y * y)).exp() - 1.0 + 0.013]
+    });
+    let plane = grid(5, 5, |i, j| {
+        [-5.0 + 2.0 * i as f64, -5.0 + 2.0 * j as f64, 0.0]
+    });
+    let x = both("bump", &bump, "plane", &plane).expect("no coplanar contact");
+    assert!(x.curves.len() == 1 && x.curves[0].closed);
+    let sa = split(&bump, &x, Side::A).expect("bump splits");
+    let sb = split(&plane, &x, Side::B).expect("plane splits");
+    assert_sound(&bump, &sa);
+    assert_sound(&plane, &sb);
+    assert_eq!(sb.curve_edges.len(), x.curves[0].points.len());
+}
+
+#[test]
+fn a_curve_ending_inside_a_face_is_reported_not_mangled() {
+    let a = grid(4, 4, |i, j| [i as f64 * 2.0, j as f64 * 2.0, 0.0]);
+    let b = TriMesh::new(
+        vec![
+            [2.5, 2.9, -1.0],
+            [5.5, 3.1, -1.0],
+            [5.5, 3.1, 1.0],
+            [2.5, 2.9, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    );
+    let x = both("a", &a, "b", &b).expect("no coplanar contact");
+    assert_eq!(x.curves.len(), 1);
+    let e = split(&a, &x, Side::A).expect_err("the curve ends inside faces of a");
+    assert!(matches!(e, SplitError::Unsupported { .. }), "{e}");
+    assert!(e.to_string().contains("`a`"), "{e}");
+    assert_sound(
+        &b,
+        &split(&b, &x, Side::B).expect("b conforms: the curve runs across it"),
+    );
+}
