@@ -73,7 +73,7 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
     let mut vertex_of: BTreeMap<PointKey, u32> = BTreeMap::new();
     let mut loc: BTreeMap<u32, Location> = BTreeMap::new();
     let mut keys: Vec<&super::CurvePoint> = x.curves.iter().flat_map(|c| c.points.iter()).collect();
-    keys.sort_by(|p, q| p.key.cmp(&q.key));
+    keys.sort_by_key(|p| p.key);
     keys.dedup_by(|p, q| p.key == q.key);
     for p in keys {
         let l = loc_of(p, side);
