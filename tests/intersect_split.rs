@@ -1,4 +1,5 @@
-//! The first splitting step: inserting one intersection's curves into each of its surfaces.
+//! The first splitting step: inserting one intersection's curves into each of its surfaces;
+//! every result is checked for conformity, topology, area, orientation and curve edges.
 
 mod intersect_support;
 
@@ -7,7 +8,7 @@ use georecipe::stages::intersect::split::{Side, SplitError, split};
 use intersect_support::{assert_sound, both, grid};
 
 #[test]
-fn a_horizon_is_split_along_a_fault_curve_that_crosses_it_from_border_to_border() {
+fn a_horizon_and_a_fault_reaching_beyond_it_are_both_split_along_their_curve() {
     let a = grid(10, 10, |i, j| {
         [
             500_000.0 + 2.0 * i as f64,
@@ -30,10 +31,9 @@ fn a_horizon_is_split_along_a_fault_curve_that_crosses_it_from_border_to_border(
     let n = x.curves[0].points.len();
     assert_eq!(sa.curve_edges.len(), n - 1);
     // The fault reaches beyond the horizon, so on the fault the curve ends inside faces.
-    assert!(matches!(
-        split(&b, &x, Side::B),
-        Err(SplitError::Unsupported { .. })
-    ));
+    let sb = split(&b, &x, Side::B).expect("dangling ends are joined");
+    assert_sound(&b, &sb);
+    assert_eq!(sb.curve_edges.len(), n - 1);
     assert!(sa.mesh.triangles.len() > a.triangles.len());
 }
 
@@ -56,7 +56,7 @@ fn a_bump_and_a_plane_are_split_along_their_closed_loop() {
 }
 
 #[test]
-fn a_curve_ending_inside_a_face_is_reported_not_mangled() {
+fn a_curve_ending_inside_faces_is_joined_to_a_corner_and_stays_a_chain_of_edges() {
     let a = grid(4, 4, |i, j| [i as f64 * 2.0, j as f64 * 2.0, 0.0]);
     let b = TriMesh::new(
         vec![
@@ -69,11 +69,33 @@ fn a_curve_ending_inside_a_face_is_reported_not_mangled() {
     );
     let x = both("a", &a, "b", &b).expect("no coplanar contact");
     assert_eq!(x.curves.len(), 1);
-    let e = split(&a, &x, Side::A).expect_err("the curve ends inside faces of a");
-    assert!(matches!(e, SplitError::Unsupported { .. }), "{e}");
-    assert!(e.to_string().contains("`a`"), "{e}");
+    let sa = split(&a, &x, Side::A).expect("a splits");
+    assert_sound(&a, &sa);
+    assert_eq!(sa.curve_edges.len(), x.curves[0].segments_faces.len());
     assert_sound(
         &b,
         &split(&b, &x, Side::B).expect("b conforms: the curve runs across it"),
+    );
+}
+
+#[test]
+fn a_curve_lying_inside_a_single_face_is_reported_not_mangled() {
+    let a = grid(2, 2, |i, j| [i as f64 * 10.0, j as f64 * 10.0, 0.0]);
+    let b = TriMesh::new(
+        vec![
+            [6.0, 2.0, -1.0],
+            [7.0, 2.5, -1.0],
+            [7.0, 2.5, 1.0],
+            [6.0, 2.0, 1.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    );
+    let x = both("a", &a, "b", &b).expect("no coplanar contact");
+    assert_eq!(x.curves.len(), 1);
+    let e = split(&a, &x, Side::A).expect_err("the curve lies inside one face of a");
+    assert!(matches!(e, SplitError::Unsupported { .. }), "{e}");
+    assert!(
+        e.to_string().contains("`a`") && e.to_string().contains("inside"),
+        "{e}"
     );
 }

@@ -9,9 +9,10 @@
 //! coordinates of the points; new triangles keep the orientation of their parent.
 //!
 //! Supported: curves crossing triangles from border to border, through any number of points
-//! inside the face. Not yet supported, reported as [`SplitError::Unsupported`] with the triangle
-//! and a coordinate: a curve that ends or branches inside a face, or a closed loop inside a
-//! single face. Several intersections on one surface (curves crossing each other inside a face)
+//! inside the face, and curves that end inside a face (a dangling fault edge): the dangling end
+//! is joined by an extra, non-curve edge to a polygon vertex it sees. Not yet supported, reported
+//! as [`SplitError::Unsupported`] with the triangle and a coordinate: curves branching inside a
+//! face, or a curve lying entirely inside a single face. Several intersections on one surface (curves crossing each other inside a face)
 //! need the arrangement of their segments, which is the next step.
 
 use super::Intersection;
@@ -193,8 +194,8 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
             adj.entry(s[1]).or_default().push(s[0]);
         }
         for (&v, n) in &adj {
-            if !on_boundary(v) && n.len() != 2 {
-                return Err(err("a curve ends or branches inside this face", v));
+            if !on_boundary(v) && n.len() > 2 {
+                return Err(err("curves branch inside this face", v));
             }
         }
         let mut used = vec![false; segs.len()];
@@ -220,7 +221,7 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
                         .get(&cur)
                         .and_then(|n| n.iter().copied().find(|&w| w != prev));
                     let Some(next) = next else {
-                        return Err(err("a curve ends inside this face", cur));
+                        break; // a dangling end, joined to the polygon below
                     };
                     if let Some(s) = seg_id(cur, next) {
                         used[s] = true;
@@ -232,18 +233,30 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
             }
         }
         if let Some(i) = used.iter().position(|u| !u) {
-            return Err(err("a closed curve lies inside this face", segs[i][0]));
+            return Err(err("a curve lies entirely inside this face", segs[i][0]));
         }
         // Cut the polygon along each chain.
         let mut polys: Vec<Vec<u32>> = vec![boundary.clone()];
         for chain in &chains {
-            let (s, e) = (chain[0], chain[chain.len() - 1]);
+            let mut chain = chain.clone();
+            let s = chain[0];
             let pi = polys.iter().position(|p| {
-                p.contains(&s) && p.contains(&e) && chain_inside(p, chain, &pt, sign)
+                p.contains(&s)
+                    && (!on_boundary(chain[chain.len() - 1]) || p.contains(&chain[chain.len() - 1]))
+                    && chain_inside(p, &chain, &pt, sign)
             });
             let Some(pi) = pi else {
                 return Err(err("curves cross inside this face", s));
             };
+            let last = chain[chain.len() - 1];
+            if !on_boundary(last) {
+                // A dangling end: join it to a polygon vertex it sees, so the chain cuts the piece.
+                let w = bridge(&polys[pi], &chain, &pt, sign).ok_or_else(|| {
+                    err("a curve ending inside this face could not be joined", last)
+                })?;
+                chain.push(w);
+            }
+            let e = chain[chain.len() - 1];
             let p = polys.swap_remove(pi);
             let (i, j) = (
                 p.iter().position(|&v| v == s).unwrap_or(0),
@@ -295,6 +308,57 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
         vertex_of,
         curve_edges,
     })
+}
+
+/// Closed segments `pq` and `rs` share a point (exact `orient2d` on the given coordinates).
+fn segments_meet(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
+    let (o1, o2) = (orient2d(&p, &q, &r), orient2d(&p, &q, &s));
+    let (o3, o4) = (orient2d(&r, &s, &p), orient2d(&r, &s, &q));
+    let within = |a: [f64; 2], b: [f64; 2], x: [f64; 2]| {
+        (0..2).all(|k| a[k].min(b[k]) <= x[k] && x[k] <= a[k].max(b[k]))
+    };
+    if o1 != Orientation::Zero && o1 == o2.flip() && o3 != Orientation::Zero && o3 == o4.flip() {
+        return true;
+    }
+    (o1 == Orientation::Zero && within(p, q, r))
+        || (o2 == Orientation::Zero && within(p, q, s))
+        || (o3 == Orientation::Zero && within(r, s, p))
+        || (o4 == Orientation::Zero && within(r, s, q))
+}
+
+/// A vertex `w` of polygon `p` (not on the chain) that the chain's dangling end sees: the
+/// segment from the end to `w` enters `p` at `w` and meets no polygon edge and no chain
+/// segment except at its own ends. The nearest such vertex (ties: smallest index).
+fn bridge(
+    p: &[u32],
+    chain: &[u32],
+    pt: &dyn Fn(u32) -> [f64; 2],
+    sign: Orientation,
+) -> Option<u32> {
+    let end = chain[chain.len() - 1];
+    let pe = pt(end);
+    let m = p.len();
+    let mut best: Option<(f64, u32)> = None;
+    for &w in p {
+        if chain.contains(&w) {
+            continue;
+        }
+        let pw = pt(w);
+        let clear_of_polygon = (0..m).all(|k| {
+            let (a, b) = (p[k], p[(k + 1) % m]);
+            a == w || b == w || !segments_meet(pe, pw, pt(a), pt(b))
+        });
+        let clear_of_chain = chain
+            .windows(2)
+            .all(|s| s[1] == end || !segments_meet(pe, pw, pt(s[0]), pt(s[1])));
+        if clear_of_polygon && clear_of_chain && chain_inside(p, &[w, end], pt, sign) {
+            let d = (pw[0] - pe[0]).powi(2) + (pw[1] - pe[1]).powi(2);
+            if best.is_none_or(|(bd, bw)| d < bd || (d == bd && w < bw)) {
+                best = Some((d, w));
+            }
+        }
+    }
+    best.map(|(_, w)| w)
 }
 
 /// Whether the chain leaves its first vertex into the interior of polygon `p` (at that vertex,
