@@ -99,3 +99,33 @@ fn a_curve_lying_inside_a_single_face_is_reported_not_mangled() {
         "{e}"
     );
 }
+
+/// A box side is two triangles; a horizon crossing it puts hundreds of curve points on them.
+#[test]
+fn a_box_side_crossed_by_a_long_horizon_curve_is_split_soundly() {
+    use georecipe::geom::BBox;
+    use georecipe::stages::intersect::box_sides;
+    let horizon = grid(300, 300, |i, j| {
+        let (x, y) = (499_990.0 + 1.25 * i as f64, 6_999_990.0 + 1.25 * j as f64);
+        [
+            x,
+            y,
+            4.0 * ((x - 500_000.0) / 13.0).sin() * ((y - 7_000_000.0) / 29.0).cos(),
+        ]
+    });
+    let b = BBox {
+        min: [500_000.0, 7_000_000.0, -50.0],
+        max: [500_300.0, 7_000_300.0, 50.0],
+    };
+    let (name, side) = box_sides(&b).swap_remove(2); // box.ymin
+    assert_eq!(name, "box.ymin");
+    let x = both("top", &horizon, &name, &side).expect("no coplanar contact");
+    assert_eq!(x.curves.len(), 1);
+    assert!(x.curves[0].points.len() > 200, "{}", x.curves[0].points.len());
+    let (s_box, s_top) = (
+        split(&side, &x, Side::A).expect("box side splits"),
+        split(&horizon, &x, Side::B).expect("top splits"),
+    );
+    assert_sound(&side, &s_box);
+    assert_sound(&horizon, &s_top);
+}

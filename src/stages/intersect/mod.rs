@@ -29,6 +29,7 @@ pub mod contact;
 pub mod error;
 pub mod key;
 pub mod locate;
+pub mod polygon;
 pub mod split;
 
 pub use box_sides::box_sides;

@@ -18,6 +18,7 @@
 use super::Intersection;
 use super::key::{Location, PointKey};
 use super::locate::{project, projection_axis};
+use super::polygon::{ear_clip, improve};
 use crate::geom::{Orientation, TriMesh, orient2d};
 use std::collections::BTreeMap;
 use thiserror::Error;
@@ -377,117 +378,4 @@ fn chain_inside(p: &[u32], chain: &[u32], pt: &dyn Fn(u32) -> [f64; 2], sign: Or
     } else {
         left_of(&cur, &next) || left_of(&prev, &cur)
     }
-}
-
-/// Edge flips inside one parent triangle: an unlocked edge shared by two triangles is flipped
-/// when both new triangles are strictly positive (exact `orient2d`) and the worse of the two
-/// improves. This removes the slivers ear clipping leaves next to points that lie (up to
-/// rounding of constructed coordinates) on a line through others. Terminates: each flip raises
-/// the sorted vector of qualities; capped anyway.
-fn improve(
-    tris: &mut [[u32; 3]],
-    locked: &[[u32; 2]],
-    pt: &dyn Fn(u32) -> [f64; 2],
-    sign: Orientation,
-) {
-    let q = |t: &[u32; 3]| ear_quality(pt(t[0]), pt(t[1]), pt(t[2]));
-    let pos = |a: u32, b: u32, c: u32| orient2d(&pt(a), &pt(b), &pt(c)) == sign;
-    for _ in 0..(4 * tris.len() * tris.len() + 4) {
-        let mut flipped = false;
-        'search: for i in 0..tris.len() {
-            for k in 0..3 {
-                let (a, b, c) = (tris[i][k], tris[i][(k + 1) % 3], tris[i][(k + 2) % 3]);
-                if locked.contains(&[a.min(b), a.max(b)]) {
-                    continue;
-                }
-                for j in 0..tris.len() {
-                    let Some(m) = (0..3).find(|&m| tris[j][m] == b && tris[j][(m + 1) % 3] == a)
-                    else {
-                        continue;
-                    };
-                    let d = tris[j][(m + 2) % 3];
-                    let (n1, n2) = ([a, d, c], [d, b, c]);
-                    if pos(a, d, c)
-                        && pos(d, b, c)
-                        && q(&n1).min(q(&n2)) > q(&tris[i]).min(q(&tris[j]))
-                    {
-                        tris[i] = n1;
-                        tris[j] = n2;
-                        flipped = true;
-                        break 'search;
-                    }
-                }
-            }
-        }
-        if !flipped {
-            break;
-        }
-    }
-}
-
-/// Shape quality of a triangle in 2D: twice its area over the sum of its squared edge lengths
-/// (a measure for choosing among valid ears; no decision of validity rests on it).
-fn ear_quality(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let (u, v, w) = (
-        [a[0] - b[0], a[1] - b[1]],
-        [c[0] - b[0], c[1] - b[1]],
-        [c[0] - a[0], c[1] - a[1]],
-    );
-    let area2 = (u[0] * v[1] - u[1] * v[0]).abs();
-    let sum = u[0] * u[0] + u[1] * u[1] + v[0] * v[0] + v[1] * v[1] + w[0] * w[0] + w[1] * w[1];
-    if sum > 0.0 { area2 / sum } else { 0.0 }
-}
-
-/// Ear clipping of a simple polygon given counter-clockwise (w.r.t. `sign`), allowing collinear
-/// runs: an ear is a strictly convex corner whose closed triangle holds no other polygon vertex.
-fn ear_clip(
-    poly: &[u32],
-    pt: &dyn Fn(u32) -> [f64; 2],
-    sign: Orientation,
-) -> Option<Vec<[u32; 3]>> {
-    let mut p = poly.to_vec();
-    let mut out = Vec::with_capacity(p.len().saturating_sub(2));
-    while p.len() > 3 {
-        let m = p.len();
-        let is_ear = |i: usize| {
-            let (a, b, c) = (p[(i + m - 1) % m], p[i], p[(i + 1) % m]);
-            let (pa, pb, pc) = (pt(a), pt(b), pt(c));
-            orient2d(&pa, &pb, &pc) == sign
-                && p.iter().all(|&v| {
-                    if v == a || v == b || v == c {
-                        return true;
-                    }
-                    let q = pt(v);
-                    let inside = [
-                        orient2d(&pa, &pb, &q),
-                        orient2d(&pb, &pc, &q),
-                        orient2d(&pc, &pa, &q),
-                    ]
-                    .iter()
-                    .all(|&o| o != sign.flip());
-                    !inside
-                })
-        };
-        // Of all ears, clip the best shaped one (no slivers where a better choice exists).
-        let ear = (0..m)
-            .filter(|&i| is_ear(i))
-            .map(|i| {
-                (
-                    ear_quality(pt(p[(i + m - 1) % m]), pt(p[i]), pt(p[(i + 1) % m])),
-                    i,
-                )
-            })
-            .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)))?
-            .1;
-        out.push([p[(ear + m - 1) % m], p[ear], p[(ear + 1) % m]]);
-        p.remove(ear);
-    }
-    if p.len() == 3 {
-        let (pa, pb, pc) = (pt(p[0]), pt(p[1]), pt(p[2]));
-        if orient2d(&pa, &pb, &pc) != sign {
-            return None;
-        }
-        out.push([p[0], p[1], p[2]]);
-    }
-    Some(out)
 }
