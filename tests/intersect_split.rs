@@ -121,7 +121,11 @@ fn a_box_side_crossed_by_a_long_horizon_curve_is_split_soundly() {
     assert_eq!(name, "box.ymin");
     let x = both("top", &horizon, &name, &side).expect("no coplanar contact");
     assert_eq!(x.curves.len(), 1);
-    assert!(x.curves[0].points.len() > 200, "{}", x.curves[0].points.len());
+    assert!(
+        x.curves[0].points.len() > 200,
+        "{}",
+        x.curves[0].points.len()
+    );
     let (s_box, s_top) = (
         split(&side, &x, Side::A).expect("box side splits"),
         split(&horizon, &x, Side::B).expect("top splits"),
