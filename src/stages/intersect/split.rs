@@ -12,7 +12,7 @@
 //! inside the face, and curves that end inside a face (a dangling fault edge): the dangling end
 //! is joined by an extra, non-curve edge to a polygon vertex it sees. Not yet supported, reported
 //! as [`SplitError::Unsupported`] with the triangle and a coordinate: curves branching inside a
-//! face, or a curve lying entirely inside a single face. Several intersections on one surface (curves crossing each other inside a face)
+//! face, a curve lying entirely inside a single face, or a curve touching a zero-area triangle. Several intersections on one surface (curves crossing each other inside a face)
 //! need the arrangement of their segments, which is the next step.
 
 use super::Intersection;
@@ -131,9 +131,12 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
         }
         let corners = [0, 1, 2].map(|k| vertices[tri[k] as usize]);
         let Some((axis, sign)) = projection_axis(&corners) else {
-            triangles.push(*tri);
-            parent.push(t);
-            continue;
+            return Err(SplitError::Unsupported {
+                surface: name.clone(),
+                triangle: t,
+                at: corners[0],
+                what: "a curve touches this zero-area triangle".to_string(),
+            });
         };
         let pt = |v: u32| project(&vertices[v as usize], axis);
         // Boundary cycle, in the triangle's own orientation.
