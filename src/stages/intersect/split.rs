@@ -12,8 +12,9 @@
 //! inside the face, and curves that end inside a face (a dangling fault edge): the dangling end
 //! is joined by an extra, non-curve edge to a polygon vertex it sees. Not yet supported, reported
 //! as [`SplitError::Unsupported`] with the triangle and a coordinate: curves branching inside a
-//! face, a curve lying entirely inside a single face, or a curve touching a zero-area triangle. Several intersections on one surface (curves crossing each other inside a face)
-//! need the arrangement of their segments, which is the next step.
+//! face, a curve lying entirely inside a single face, or a curve touching a zero-area triangle.
+//! Isolated touch points are not inserted. Several intersections on one surface (curves
+//! crossing each other inside a face) need the arrangement of their segments: the next step.
 
 use super::Intersection;
 use super::key::{Location, PointKey};
