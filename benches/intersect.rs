@@ -98,6 +98,15 @@ fn bench(c: &mut Criterion) {
             )
         })
     });
+    g.bench_function("split_1M_triangle_horizon_along_the_fault_curve", |b| {
+        b.iter(|| {
+            georecipe::stages::intersect::split::split(
+                black_box(&h),
+                &x,
+                georecipe::stages::intersect::split::Side::B,
+            )
+        })
+    });
     let (h1, h2) = crossing_horizons();
     let x = intersect(
         SurfaceRef {

@@ -181,3 +181,36 @@ fn every_pair_of_the_sample_faults_intersects_identically_in_both_orders() {
     }
     assert!(meeting >= 4, "several of these faults meet: {meeting}");
 }
+
+/// Real faults are split along their curves on both sides, including where a curve ends
+/// inside a face (the other fault's border), and the results are sound.
+#[test]
+fn crossing_cfm_faults_are_split_soundly_on_both_sides() {
+    let Some(dir) = cfm_dir() else { return };
+    use georecipe::stages::intersect::split::{Side, split};
+    for (s1, s2) in [
+        (
+            "GRFS-GRFZ-WEST-Garlock_fault-CFM5_1000m",
+            "GVFA-PLFZ-MULT-Pleito_fault-CFM2_1000m",
+        ),
+        (
+            "CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2_1000m",
+            "SAFS-SAFZ-CRRZ-San_Andreas_fault-CFM4_1000m",
+        ),
+        (
+            "CRFA-BPPM-PMTS-Pine_Mountain_fault-CFM2_1000m",
+            "CRFA-BPPM-WEST-Big_Pine_fault-CFM2_1000m",
+        ),
+    ] {
+        let (a, b) = (load(&dir, s1), load(&dir, s2));
+        let x = both(s1, &a, s2, &b).expect("no coplanar contact");
+        let (ma, mb) = if s1 < s2 { (&a, &b) } else { (&b, &a) };
+        let sa = split(ma, &x, Side::A).unwrap_or_else(|e| panic!("{e}"));
+        let sb = split(mb, &x, Side::B).unwrap_or_else(|e| panic!("{e}"));
+        intersect_support::assert_sound(ma, &sa);
+        intersect_support::assert_sound(mb, &sb);
+        let segs: usize = x.curves.iter().map(|c| c.segments_faces.len()).sum();
+        assert_eq!(sa.curve_edges.len(), segs, "{s1} × {s2}");
+        assert_eq!(sb.curve_edges.len(), segs, "{s1} × {s2}");
+    }
+}

@@ -7,8 +7,9 @@
 mod intersect_support;
 
 use georecipe::geom::TriMesh;
+use georecipe::stages::intersect::split::{Side, split};
 use georecipe::stages::intersect::{IntersectError, Intersection, Location, SurfaceRef, intersect};
-use intersect_support::{both, grid};
+use intersect_support::{assert_sound, both, grid};
 use proptest::prelude::*;
 use std::collections::BTreeSet;
 
@@ -69,6 +70,13 @@ proptest! {
             (Ok(r), Ok(s)) => {
                 prop_assert_eq!(contact_set(r, true), contact_set(s, false));
                 prop_assert_eq!(r.curves.len(), s.curves.len());
+                // Whenever splitting succeeds, the result is sound.
+                if let Ok(sa) = split(&m1, r, Side::A) {
+                    assert_sound(&m1, &sa);
+                }
+                if let Ok(sb) = split(&m2, r, Side::B) {
+                    assert_sound(&m2, &sb);
+                }
             }
             (Err(IntersectError::Coplanar { contacts: c1, .. }), Err(IntersectError::Coplanar { contacts: c2, .. })) => {
                 let p1: BTreeSet<(u32, u32)> = c1.iter().map(|c| (c.tri_a, c.tri_b)).collect();

@@ -4,9 +4,11 @@
 #![allow(dead_code)]
 
 use georecipe::geom::{Orientation, TriMesh, orient3d};
+use georecipe::stages::intersect::split::SplitSurface;
 use georecipe::stages::intersect::{
     CurvePoint, IntersectError, Intersection, Location, SurfaceRef, intersect,
 };
+use std::collections::BTreeMap;
 
 /// A structured grid surface: `(nu + 1) × (nv + 1)` vertices `f(i, j)`, each cell split along
 /// the diagonal from `(i, j)` to `(i + 1, j + 1)`.
@@ -134,5 +136,66 @@ pub fn check_points(x: &Intersection, a: &TriMesh, b: &TriMesh, tol: f64) {
                 check_on(p, vb, &corners(a, ta), tol, "on a");
             }
         }
+    }
+}
+
+fn normal(m: &TriMesh, t: usize) -> [f64; 3] {
+    let [a, b, c] = m.corners(t);
+    let (u, v) = (
+        [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+        [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+    );
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
+/// Conforming (each directed edge once, each edge in at most two triangles), same topology
+/// (Euler characteristic), same area, children oriented like their parents, and every curve
+/// segment an edge of the result.
+pub fn assert_sound(original: &TriMesh, s: &SplitSurface) {
+    let m = &s.mesh;
+    let mut directed = BTreeMap::new();
+    let mut undirected: BTreeMap<[u32; 2], usize> = BTreeMap::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            assert!(
+                directed.insert((a, b), ()).is_none(),
+                "directed edge {a}->{b} twice"
+            );
+            *undirected.entry([a.min(b), a.max(b)]).or_default() += 1;
+        }
+    }
+    assert!(undirected.values().all(|&n| n <= 2));
+    let used: std::collections::BTreeSet<u32> = m.triangles.iter().flatten().copied().collect();
+    let euler = |v: usize, e: usize, f: usize| v as i64 - e as i64 + f as i64;
+    let mut orig_edges = std::collections::BTreeSet::new();
+    for t in &original.triangles {
+        for k in 0..3 {
+            orig_edges.insert([t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]);
+        }
+    }
+    let orig_used: std::collections::BTreeSet<u32> =
+        original.triangles.iter().flatten().copied().collect();
+    assert_eq!(
+        euler(used.len(), undirected.len(), m.triangles.len()),
+        euler(orig_used.len(), orig_edges.len(), original.triangles.len())
+    );
+    assert!((m.area() - original.area()).abs() <= 1e-9 * original.area());
+    for (t, &p) in s.parent.iter().enumerate() {
+        let (n, np) = (normal(m, t), normal(original, p as usize));
+        assert!(
+            n[0] * np[0] + n[1] * np[1] + n[2] * np[2] > 0.0,
+            "triangle {t} flipped against parent {p}"
+        );
+    }
+    for e in &s.curve_edges {
+        assert!(
+            undirected.contains_key(e),
+            "curve segment {e:?} is not an edge"
+        );
     }
 }

@@ -8,7 +8,8 @@
 //! Pipeline: candidate pairs from R-trees of triangle boxes ([`candidates`]), exact contact of
 //! each pair ([`contact`], built on [`locate`]), merging of points by key ([`key`]), iterative
 //! polyline walk ([`assemble`]), coordinates from keys ([`construct`]). The box sides are
-//! ordinary surfaces ([`box_sides()`]).
+//! ordinary surfaces ([`box_sides()`]). [`split`] is the first splitting step: it re-triangulates
+//! one surface to conform to the curves of one intersection.
 //!
 //! Symmetry: the surface whose name sorts first is always `a`, so `intersect(s, t)` and
 //! `intersect(t, s)` give identical results (same curves, order and direction).
@@ -28,6 +29,8 @@ pub mod contact;
 pub mod error;
 pub mod key;
 pub mod locate;
+pub mod polygon;
+pub mod split;
 
 pub use box_sides::box_sides;
 pub use error::{CoplanarContact, IntersectError};
