@@ -23,6 +23,9 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report.to_json()).unwrap_or_default());
     }
+    if !args.quiet {
+        print_findings(&report);
+    }
     let count = |s: NodeState| report.nodes.iter().filter(|n| n.state == s).count();
     let summary = format!(
         "{} ran, {} cached, {} cut off, {} failed, {} skipped",
@@ -79,4 +82,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     tmp.write_all(bytes).map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
     tmp.persist(path).map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
     Ok(())
+}
+
+/// Prints the validation report of every imported surface that had findings (the full report
+/// is also written as `validation.json` beside the outputs).
+fn print_findings(report: &BuildReport) {
+    for n in report.nodes.iter().filter(|n| n.kind == "import" && n.counts.get("findings").is_some_and(|&f| f > 0)) {
+        let Some(data) = report.artifact(&n.name).and_then(|a| a.decode::<crate::plan::ops::SurfaceData>().ok()) else { continue };
+        if n.state == NodeState::Ran {
+            eprintln!("{:>12} surface `{}`: {} validation findings (repaired)", "Warning", data.name, data.findings);
+            for line in data.report_text.lines().take(20) {
+                eprintln!("             {line}");
+            }
+        }
+    }
 }
