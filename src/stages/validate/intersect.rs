@@ -79,8 +79,11 @@ fn coplanar_seg_tri(p: &P, q: &P, a: &P, b: &P, c: &P) -> bool {
 
 /// Closed segment `pq` (p ≠ q) against closed non-degenerate triangle `abc`.
 pub fn seg_tri(p: &P, q: &P, a: &P, b: &P, c: &P) -> bool {
-    let op = orient3d(a, b, c, p);
-    let oq = orient3d(a, b, c, q);
+    seg_tri_with(p, q, a, b, c, orient3d(a, b, c, p), orient3d(a, b, c, q))
+}
+
+/// `seg_tri` with the sides of `p` and `q` relative to plane `abc` already known.
+fn seg_tri_with(p: &P, q: &P, a: &P, b: &P, c: &P, op: Orientation, oq: Orientation) -> bool {
     if op == oq && op != Orientation::Zero {
         return false;
     }
@@ -105,8 +108,8 @@ pub fn disjoint_pair(t: [&P; 3], u: [&P; 3]) -> Contact {
         return Contact::None;
     }
     let coplanar = su.iter().all(|&o| o == Orientation::Zero);
-    let hit = (0..3).any(|k| seg_tri(t[k], t[(k + 1) % 3], u[0], u[1], u[2]))
-        || (0..3).any(|k| seg_tri(u[k], u[(k + 1) % 3], t[0], t[1], t[2]));
+    let hit = (0..3).any(|k| seg_tri_with(t[k], t[(k + 1) % 3], u[0], u[1], u[2], st[k], st[(k + 1) % 3]))
+        || (0..3).any(|k| seg_tri_with(u[k], u[(k + 1) % 3], t[0], t[1], t[2], su[k], su[(k + 1) % 3]));
     match (hit, coplanar) {
         (false, _) => Contact::None,
         (true, true) => Contact::CoplanarOverlap,
@@ -126,7 +129,7 @@ pub fn vertex_pair(v: &P, a: &P, b: &P, c: &P, d: &P) -> Contact {
     if oa == ob && oa != Orientation::Zero {
         return Contact::None;
     }
-    if !(seg_tri(a, b, v, c, d) || seg_tri(c, d, v, a, b)) {
+    if !(seg_tri_with(a, b, v, c, d, oa, ob) || seg_tri_with(c, d, v, a, b, oc, od)) {
         return Contact::None;
     }
     if oc == Orientation::Zero && od == Orientation::Zero { Contact::CoplanarOverlap } else { Contact::Crossing }
