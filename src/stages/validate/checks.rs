@@ -25,7 +25,10 @@ pub fn canonical_vertices(v: &[[f64; 3]], tol: &Tolerances) -> Vec<u32> {
     let key = |i: u32| v[i as usize];
     order.sort_unstable_by(|&a, &b| {
         let (p, q) = (key(a), key(b));
-        p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1])).then(p[2].total_cmp(&q[2])).then(a.cmp(&b))
+        p[0].total_cmp(&q[0])
+            .then(p[1].total_cmp(&q[1]))
+            .then(p[2].total_cmp(&q[2]))
+            .then(a.cmp(&b))
     });
     let mut parent: Vec<u32> = (0..n as u32).collect();
     fn find(parent: &mut [u32], mut x: u32) -> u32 {
@@ -125,7 +128,12 @@ pub fn edge_sides(tris: &[[u32; 3]], canon: &[u32], status: &[TriStatus]) -> Vec
             let a = canon[tri[k] as usize];
             let b = canon[tri[(k + 1) % 3] as usize];
             let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-            sides.push(Side { key: (u64::from(lo) << 32) | u64::from(hi), tri: t as u32, k: k as u8, forward: a < b });
+            sides.push(Side {
+                key: (u64::from(lo) << 32) | u64::from(hi),
+                tri: t as u32,
+                k: k as u8,
+                forward: a < b,
+            });
         }
     }
     sides.sort_unstable_by_key(|s| (s.key, s.tri, s.k));

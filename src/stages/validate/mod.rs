@@ -56,8 +56,12 @@ pub fn validate(s: &ImportedSurface, tol: &Tolerances) -> ValidationReport {
     let status = triangle_status(v, tris, &canon);
     for (t, st) in status.iter().enumerate() {
         match *st {
-            TriStatus::Degenerate => r.push_triangles(s, FindingKind::DegenerateTriangle, &[t as u32]),
-            TriStatus::DuplicateOf(first) => r.push_triangles(s, FindingKind::DuplicateTriangle, &[first, t as u32]),
+            TriStatus::Degenerate => {
+                r.push_triangles(s, FindingKind::DegenerateTriangle, &[t as u32])
+            }
+            TriStatus::DuplicateOf(first) => {
+                r.push_triangles(s, FindingKind::DuplicateTriangle, &[first, t as u32])
+            }
             TriStatus::Ok => {}
         }
     }
