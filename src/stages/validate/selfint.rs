@@ -116,15 +116,18 @@ fn grid_pairs(
         h = if span > 0.0 { span } else { 1.0 };
     }
     h = h.max(span / f64::from(1u32 << 20));
-    let cell = |x: f64, k: usize| -> u64 {
-        (((x - lo[k]) / h).floor().max(0.0) as u64).min((1 << 21) - 1)
-    };
+    // (x - lo) / h is never negative, so the saturating cast is the floor.
+    let cell = |x: f64, k: usize| -> u64 { (((x - lo[k]) / h) as u64).min((1 << 21) - 1) };
     let key = |c: [u64; 3]| (c[0] << 42) | (c[1] << 21) | c[2];
     let mut big: Vec<usize> = Vec::new();
     let mut entries: Vec<(u64, u32)> = Vec::new();
+    // Lower cell of every box: the cell of the lower corner of two boxes' intersection is the
+    // component-wise maximum of their lower cells (the cell map is monotone).
+    let mut low_cell: Vec<[u64; 3]> = Vec::with_capacity(boxes.len());
     for (i, b) in boxes.iter().enumerate() {
         let (l, u) = (b.lower(), b.upper());
         let c0 = [cell(l[0], 0), cell(l[1], 1), cell(l[2], 2)];
+        low_cell.push(c0);
         let c1 = [cell(u[0], 0), cell(u[1], 1), cell(u[2], 2)];
         let n = (c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1);
         if n > MAX_CELLS_PER_BOX {
@@ -168,12 +171,8 @@ fn grid_pairs(
                     if !ba.intersects(bb) {
                         continue;
                     }
-                    let (la, lb) = (ba.lower(), bb.lower());
-                    let corner = [
-                        cell(la[0].max(lb[0]), 0),
-                        cell(la[1].max(lb[1]), 1),
-                        cell(la[2].max(lb[2]), 2),
-                    ];
+                    let (ca, cb) = (low_cell[a as usize], low_cell[b as usize]);
+                    let corner = [ca[0].max(cb[0]), ca[1].max(cb[1]), ca[2].max(cb[2])];
                     if key(corner) != here {
                         continue;
                     }
