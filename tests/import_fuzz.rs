@@ -53,6 +53,8 @@ fn exercise(bytes: &[u8]) {
                     .flatten()
                     .all(|&i| (i as usize) < s.mesh.vertices.len())
             );
+            let raw = SurfaceTopology::build(&s.mesh, &s.bstones, &tol);
+            let _ = raw.boundary_loops().len();
             let r = validate(&s, &tol);
             let _ = r.render_text();
             let (fixed, _) = repair(&s, &r, &tol);

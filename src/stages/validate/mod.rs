@@ -23,7 +23,8 @@ use crate::geom::Tolerances;
 use crate::stages::import::ImportedSurface;
 use checks::{TriStatus, edge_sides, key_vertices, triangle_status};
 
-/// Runs every check of the black-list on one surface.
+/// Runs every check of the black-list on one surface. Requires what import guarantees: every
+/// triangle corner indexes an existing, finite vertex.
 pub fn validate(s: &ImportedSurface, tol: &Tolerances) -> ValidationReport {
     let v = &s.mesh.vertices;
     let tris = &s.mesh.triangles;
