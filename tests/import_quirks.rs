@@ -307,3 +307,41 @@ fn the_surface_round_trips_through_postcard_for_the_cache() {
     let back: georecipe::stages::import::ImportedSurface = postcard::from_bytes(&bytes).unwrap();
     assert_eq!(back, s);
 }
+
+#[test]
+fn model_a4_fault_parts_get_their_model3d_tface_ids_and_types() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data/modelA4.ml"
+    );
+    let Ok(bytes) = std::fs::read(path) else {
+        eprintln!("skipping: ../shared is absent");
+        return;
+    };
+    let s = import_surface(
+        &bytes,
+        "modelA4.ml",
+        &ImportOptions {
+            skip_other_types: true,
+            ..named("F1fault")
+        },
+    )
+    .unwrap();
+    assert_eq!(s.parts.len(), 8);
+    let mut ids: Vec<u64> = s
+        .parts
+        .iter()
+        .map(|p| p.model_tface.as_ref().unwrap().0)
+        .collect();
+    ids.sort();
+    assert_eq!(ids, (1..=8).collect::<Vec<u64>>());
+    assert!(
+        s.parts
+            .iter()
+            .all(|p| p.model_tface.as_ref().unwrap().1 == "normal_fault")
+    );
+    // ZPOSITIVE Depth: every z is the negated value of the text.
+    let raw = georecipe::stages::import::parse_gocad(&bytes, "modelA4.ml").unwrap();
+    let f1 = raw.objects.iter().find(|o| o.name == "F1fault").unwrap();
+    assert_eq!(s.mesh.vertices[0][2], -f1.vertices[0][2]);
+}

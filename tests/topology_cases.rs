@@ -215,3 +215,53 @@ fn the_split_cube_box_has_two_tface_patches_when_built_with_parts() {
         assert_eq!(parts.patch_loops(p).len(), 1);
     }
 }
+
+fn shared_surface(
+    path: &str,
+    object: Option<&str>,
+) -> Option<georecipe::stages::import::ImportedSurface> {
+    let root = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/gocad"));
+    let bytes = std::fs::read(root.join(path)).ok()?;
+    let opts = ImportOptions {
+        object: object.map(str::to_string),
+        skip_other_types: true,
+        ..Default::default()
+    };
+    Some(import_surface(&bytes, path, &opts).expect("imports"))
+}
+
+#[test]
+fn a_closed_kimberlite_body_is_one_patch_without_boundary() {
+    let Some(s) = shared_surface(
+        "simpeg-research__Astic-2020-JointInversion/Geology_Surfaces/PK2.ts",
+        None,
+    ) else {
+        eprintln!("skipping: ../shared is absent");
+        return;
+    };
+    let topo = SurfaceTopology::build(&s.mesh, &s.bstones, &tol());
+    assert_eq!(topo.patch_count(), 1);
+    assert!(topo.boundary_loops().is_empty());
+    assert!(topo.curves().is_empty());
+    // Euler characteristic of a sphere: V - E + F = 2.
+    assert_eq!(
+        s.mesh.vertices.len() as i64 - topo.edge_count() as i64 + topo.triangle_count() as i64,
+        2
+    );
+}
+
+#[test]
+fn a_real_fault_has_one_outer_loop_split_at_its_bstones() {
+    let path =
+        "SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/GVFA-WWFZ-EAST-Scodie_Lineament-CFM1.ts";
+    let Some(s) = shared_surface(path, None) else {
+        eprintln!("skipping: ../shared is absent");
+        return;
+    };
+    let topo = SurfaceTopology::build(&s.mesh, &s.bstones, &tol());
+    assert_eq!(topo.patch_count(), 1);
+    assert_eq!(topo.boundary_loops().len(), 1);
+    assert!(topo.boundary_loops()[0].outer && topo.boundary_loops()[0].closed);
+    assert!(s.bstones.iter().all(|b| topo.corners().contains(b)));
+    assert!(topo.curves().len() >= s.bstones.len());
+}
