@@ -18,7 +18,7 @@ pub fn collinear(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> bool {
 
 /// For every vertex, the smallest index of the vertices coincident with it. With
 /// `merge_distance == 0` coincident means equal coordinates (exact); otherwise within that
-/// Euclidean distance (transitively, by union-find over a sweep along x).
+/// Euclidean distance (transitively, by union-find over a grid of cells of that size).
 pub fn canonical_vertices(v: &[[f64; 3]], tol: &Tolerances) -> Vec<u32> {
     let n = v.len();
     let mut order: Vec<u32> = (0..n as u32).collect();
@@ -48,16 +48,39 @@ pub fn canonical_vertices(v: &[[f64; 3]], tol: &Tolerances) -> Vec<u32> {
     }
     let d = tol.merge_distance;
     if d > 0.0 {
-        for i in 0..order.len() {
-            let p = key(order[i]);
-            for &j in &order[i + 1..] {
-                let q = key(j);
-                if q[0] - p[0] > d {
-                    break;
-                }
-                let dd = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2);
-                if dd <= d * d {
-                    union(&mut parent, order[i], j);
+        // Cells a hair larger than d (so rounding of c / side cannot split a pair at distance d
+        // by two cells): vertices within d of each other are in the same or adjacent cells.
+        let side = d * (1.0 + 1e-9);
+        let cell = |p: [f64; 3]| p.map(|c| (c / side).floor() as i64);
+        let mut cells: Vec<([i64; 3], u32)> = (0..n as u32).map(|i| (cell(key(i)), i)).collect();
+        cells.sort_unstable();
+        for &(c, i) in &cells {
+            let p = key(i);
+            for dx in -1..=1i64 {
+                for dy in -1..=1i64 {
+                    for dz in -1..=1i64 {
+                        let nc = [
+                            c[0].saturating_add(dx),
+                            c[1].saturating_add(dy),
+                            c[2].saturating_add(dz),
+                        ];
+                        let start = cells.partition_point(|e| e.0 < nc);
+                        for &(ec, j) in &cells[start..] {
+                            if ec != nc {
+                                break;
+                            }
+                            if j <= i {
+                                continue;
+                            }
+                            let q = key(j);
+                            let dd = (q[0] - p[0]).powi(2)
+                                + (q[1] - p[1]).powi(2)
+                                + (q[2] - p[2]).powi(2);
+                            if dd <= d * d {
+                                union(&mut parent, i, j);
+                            }
+                        }
+                    }
                 }
             }
         }
