@@ -142,24 +142,57 @@ pub struct Side {
 
 /// The sides of all `Ok` triangles, grouped by edge (sorted by key, then triangle).
 pub fn edge_sides(tris: &[[u32; 3]], canon: &[u32], status: &[TriStatus]) -> Vec<Side> {
-    let mut sides = Vec::with_capacity(tris.len() * 3);
-    for (t, tri) in tris.iter().enumerate() {
-        if status[t] != TriStatus::Ok {
-            continue;
+    // Counting sort by the lower endpoint, then a small sort inside each bucket: the same order
+    // as sorting by (key, tri, k), in linear time for meshes of bounded degree.
+    let nv = canon.len();
+    let side = |t: usize, k: usize| {
+        let tri = &tris[t];
+        let a = canon[tri[k] as usize];
+        let b = canon[tri[(k + 1) % 3] as usize];
+        let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+        Side {
+            key: (u64::from(lo) << 32) | u64::from(hi),
+            tri: t as u32,
+            k: k as u8,
+            forward: a < b,
         }
+    };
+    let mut start = vec![0usize; nv + 1];
+    for (t, _) in tris
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| status[*t] == TriStatus::Ok)
+    {
         for k in 0..3 {
-            let a = canon[tri[k] as usize];
-            let b = canon[tri[(k + 1) % 3] as usize];
-            let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-            sides.push(Side {
-                key: (u64::from(lo) << 32) | u64::from(hi),
-                tri: t as u32,
-                k: k as u8,
-                forward: a < b,
-            });
+            start[(side(t, k).key >> 32) as usize + 1] += 1;
         }
     }
-    sides.sort_unstable_by_key(|s| (s.key, s.tri, s.k));
+    for i in 0..nv {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let empty = Side {
+        key: 0,
+        tri: 0,
+        k: 0,
+        forward: false,
+    };
+    let mut sides = vec![empty; start[nv]];
+    for (t, _) in tris
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| status[*t] == TriStatus::Ok)
+    {
+        for k in 0..3 {
+            let sd = side(t, k);
+            let lo = (sd.key >> 32) as usize;
+            sides[fill[lo]] = sd;
+            fill[lo] += 1;
+        }
+    }
+    for v in 0..nv {
+        sides[start[v]..start[v + 1]].sort_unstable_by_key(|s| (s.key, s.tri, s.k));
+    }
     sides
 }
 
