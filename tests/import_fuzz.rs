@@ -24,7 +24,10 @@ const FALLBACK: &str = "GOCAD TSurf 1\nHEADER {\nname: t\n}\nGOCAD_ORIGINAL_COOR
 
 fn seeds() -> Vec<Vec<u8>> {
     let root = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/gocad"));
-    let mut v: Vec<Vec<u8>> = SEEDS.iter().filter_map(|p| std::fs::read(root.join(p)).ok()).collect();
+    let mut v: Vec<Vec<u8>> = SEEDS
+        .iter()
+        .filter_map(|p| std::fs::read(root.join(p)).ok())
+        .collect();
     if v.is_empty() {
         eprintln!("note: ../shared is absent; fuzzing the built-in sample only");
     }
@@ -35,16 +38,32 @@ fn seeds() -> Vec<Vec<u8>> {
 /// Runs the whole chain; panics are the only failure.
 fn exercise(bytes: &[u8]) {
     let _ = parse_gocad(bytes, "fuzz.ts");
-    let opts = ImportOptions { skip_other_types: true, ..Default::default() };
+    let opts = ImportOptions {
+        skip_other_types: true,
+        ..Default::default()
+    };
     if let Ok(surfaces) = import_surfaces(bytes, "fuzz.ts", &opts) {
         let tol = Tolerances::default();
         for s in surfaces {
             assert_eq!(s.triangle_part.len(), s.mesh.triangles.len());
-            assert!(s.mesh.triangles.iter().flatten().all(|&i| (i as usize) < s.mesh.vertices.len()));
+            assert!(
+                s.mesh
+                    .triangles
+                    .iter()
+                    .flatten()
+                    .all(|&i| (i as usize) < s.mesh.vertices.len())
+            );
+            let raw = SurfaceTopology::build(&s.mesh, &s.bstones, &tol);
+            let _ = raw.boundary_loops().len();
             let r = validate(&s, &tol);
             let _ = r.render_text();
             let (fixed, _) = repair(&s, &r, &tol);
-            let topo = SurfaceTopology::build_with_parts(&fixed.mesh, &fixed.triangle_part, &fixed.bstones, &tol);
+            let topo = SurfaceTopology::build_with_parts(
+                &fixed.mesh,
+                &fixed.triangle_part,
+                &fixed.bstones,
+                &tol,
+            );
             let _ = topo.curves().len();
         }
     }
@@ -63,7 +82,11 @@ enum Mutation {
 fn mutation() -> impl Strategy<Value = Mutation> {
     prop_oneof![
         (any::<usize>(), any::<u8>()).prop_map(|(p, b)| Mutation::Flip(p, b)),
-        (any::<usize>(), prop::sample::select(b" \t\r\n-.e0123456789#\"{}:".to_vec())).prop_map(|(p, b)| Mutation::Insert(p, b)),
+        (
+            any::<usize>(),
+            prop::sample::select(b" \t\r\n-.e0123456789#\"{}:".to_vec())
+        )
+            .prop_map(|(p, b)| Mutation::Insert(p, b)),
         any::<usize>().prop_map(Mutation::Truncate),
         (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Mutation::SwapLines(a, b)),
         any::<usize>().prop_map(Mutation::DuplicateLine),
@@ -112,7 +135,12 @@ fn edit_lines(bytes: &[u8], f: impl FnOnce(&mut Vec<Vec<u8>>)) -> Vec<u8> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 192, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        // FUZZ_CASES=20000 for a longer hunt.
+        cases: std::env::var("FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(192),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
     #[test]
     fn mutated_real_files_never_panic(seed in any::<prop::sample::Index>(), muts in prop::collection::vec(mutation(), 1..6)) {
         let all = seeds();
@@ -123,10 +151,18 @@ proptest! {
 
 #[test]
 fn every_kept_fuzz_case_fails_or_imports_without_panicking() {
-    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/gocad/fuzz"));
-    let mut files: Vec<_> = std::fs::read_dir(&dir).map(|d| d.flatten().map(|e| e.path()).collect()).unwrap_or_default();
+    let dir = PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/gocad/fuzz"
+    ));
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .map(|d| d.flatten().map(|e| e.path()).collect())
+        .unwrap_or_default();
     files.sort();
-    assert!(!files.is_empty(), "tests/data/gocad/fuzz holds the kept cases");
+    assert!(
+        !files.is_empty(),
+        "tests/data/gocad/fuzz holds the kept cases"
+    );
     for f in files {
         exercise(&std::fs::read(&f).unwrap());
     }

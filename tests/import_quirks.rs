@@ -1,13 +1,18 @@
 //! One test per reader quirk of the issue, on small hand-written texts.
 
-use georecipe::stages::import::{ImportOptions, Units, import_surface, import_surfaces, parse_gocad};
+use georecipe::stages::import::{
+    ImportOptions, Units, import_surface, import_surfaces, parse_gocad,
+};
 
 fn opts() -> ImportOptions {
     ImportOptions::default()
 }
 
 fn named(name: &str) -> ImportOptions {
-    ImportOptions { object: Some(name.to_string()), ..ImportOptions::default() }
+    ImportOptions {
+        object: Some(name.to_string()),
+        ..ImportOptions::default()
+    }
 }
 
 const TRI: &str = "GOCAD TSurf 1\nHEADER {\nname: t\n}\nTFACE\nVRTX 1 0 0 0\nVRTX 2 1 0 0\nVRTX 3 0 1 0\nTRGL 1 2 3\nEND\n";
@@ -16,7 +21,10 @@ const TRI: &str = "GOCAD TSurf 1\nHEADER {\nname: t\n}\nTFACE\nVRTX 1 0 0 0\nVRT
 fn a_minimal_surface_imports_with_its_name_vertices_and_triangle() {
     let s = import_surface(TRI.as_bytes(), "t.ts", &opts()).unwrap();
     assert_eq!(s.name, "t");
-    assert_eq!(s.mesh.vertices, vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    assert_eq!(
+        s.mesh.vertices,
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+    );
     assert_eq!(s.mesh.triangles, vec![[0, 1, 2]]);
     assert_eq!(s.parts.len(), 1);
     assert_eq!(s.source.triangle_lines, vec![9]);
@@ -35,11 +43,20 @@ fn crlf_tabs_trailing_tokens_comments_and_blank_lines_read_the_same() {
 #[test]
 fn header_with_colon_and_name_with_equals_are_both_names() {
     let a = TRI.replace("HEADER {", "HEADER: {");
-    assert_eq!(import_surface(a.as_bytes(), "a.ts", &opts()).unwrap().name, "t");
+    assert_eq!(
+        import_surface(a.as_bytes(), "a.ts", &opts()).unwrap().name,
+        "t"
+    );
     let b = TRI.replace("name: t", "name= t 1");
-    assert_eq!(import_surface(b.as_bytes(), "b.ts", &opts()).unwrap().name, "t 1");
+    assert_eq!(
+        import_surface(b.as_bytes(), "b.ts", &opts()).unwrap().name,
+        "t 1"
+    );
     let c = TRI.replace("name: t", "name: \"Blah 1 2\"");
-    assert_eq!(import_surface(c.as_bytes(), "c.ts", &opts()).unwrap().name, "Blah 1 2");
+    assert_eq!(
+        import_surface(c.as_bytes(), "c.ts", &opts()).unwrap().name,
+        "Blah 1 2"
+    );
 }
 
 #[test]
@@ -61,15 +78,34 @@ fn kilometre_axes_are_scaled_to_metres_and_kept_when_no_target_units() {
     .replace("VRTX 2 1 0 0", "VRTX 2 1.5 0 7");
     let s = import_surface(t.as_bytes(), "k.ts", &opts()).unwrap();
     assert_eq!(s.mesh.vertices[1], [1500.0, 0.0, 7.0]);
-    let raw = import_surface(t.as_bytes(), "k.ts", &ImportOptions { target_units: None, ..opts() }).unwrap();
+    let raw = import_surface(
+        t.as_bytes(),
+        "k.ts",
+        &ImportOptions {
+            target_units: None,
+            ..opts()
+        },
+    )
+    .unwrap();
     assert_eq!(raw.mesh.vertices[1], [1.5, 0.0, 7.0]);
-    let km = import_surface(t.as_bytes(), "k.ts", &ImportOptions { target_units: Some(Units::Kilometre), ..opts() }).unwrap();
+    let km = import_surface(
+        t.as_bytes(),
+        "k.ts",
+        &ImportOptions {
+            target_units: Some(Units::Kilometre),
+            ..opts()
+        },
+    )
+    .unwrap();
     assert_eq!(km.mesh.vertices[1], [1.5, 0.0, 0.007]);
 }
 
 #[test]
 fn an_unknown_zpositive_names_its_line() {
-    let t = TRI.replace("TFACE", "GOCAD_ORIGINAL_COORDINATE_SYSTEM\nZPOSITIVE Up\nEND_ORIGINAL_COORDINATE_SYSTEM\nTFACE");
+    let t = TRI.replace(
+        "TFACE",
+        "GOCAD_ORIGINAL_COORDINATE_SYSTEM\nZPOSITIVE Up\nEND_ORIGINAL_COORDINATE_SYSTEM\nTFACE",
+    );
     let e = import_surface(t.as_bytes(), "z.ts", &opts()).unwrap_err();
     assert_eq!((e.line, e.file.as_str()), (6, "z.ts"));
     assert!(e.message.contains("ZPOSITIVE"), "{e}");
@@ -114,16 +150,25 @@ fn gaps_in_ids_and_zero_based_ids_are_resolved_by_id() {
 fn a_triangle_pointing_at_a_missing_vertex_names_the_line() {
     let t = "GOCAD TSurf 1\nVRTX 1 0 0 0\nVRTX 2 1 0 0\nVRTX 3 0 1 0\nTRGL 1 2 3\nTRGL 1 2 9\n";
     let e = import_surface(t.as_bytes(), "m.ts", &opts()).unwrap_err();
-    assert_eq!(e.to_string(), "m.ts:6: TRGL points at vertex 9, which is not defined");
+    assert_eq!(
+        e.to_string(),
+        "m.ts:6: TRGL points at vertex 9, which is not defined"
+    );
 }
 
 #[test]
 fn a_non_numeric_or_infinite_coordinate_names_the_line_and_axis() {
     let e = parse_gocad(b"GOCAD TSurf 1\nVRTX 1 0 blah 0\n", "n.ts").unwrap_err();
     assert_eq!(e.line, 2);
-    assert!(e.message.contains("y coordinate 'blah' is not a number"), "{e}");
+    assert!(
+        e.message.contains("y coordinate 'blah' is not a number"),
+        "{e}"
+    );
     let e = parse_gocad(b"GOCAD TSurf 1\nVRTX 1 0 0 nan\n", "n.ts").unwrap_err();
-    assert!(e.message.contains("z coordinate 'nan' is infinite or NaN"), "{e}");
+    assert!(
+        e.message.contains("z coordinate 'nan' is infinite or NaN"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -143,7 +188,15 @@ fn another_object_type_is_named_unless_skipped() {
     let e = import_surface(t.as_bytes(), "s.ts", &opts()).unwrap_err();
     assert_eq!(e.line, 1);
     assert!(e.message.contains("GOCAD SGrid"), "{e}");
-    let s = import_surface(t.as_bytes(), "s.ts", &ImportOptions { skip_other_types: true, ..opts() }).unwrap();
+    let s = import_surface(
+        t.as_bytes(),
+        "s.ts",
+        &ImportOptions {
+            skip_other_types: true,
+            ..opts()
+        },
+    )
+    .unwrap();
     assert_eq!(s.name, "t");
     let e = import_surface(t.as_bytes(), "s.ts", &named("box")).unwrap_err();
     assert!(e.message.contains("SGrid"), "{e}");
@@ -151,22 +204,50 @@ fn another_object_type_is_named_unless_skipped() {
 
 #[test]
 fn several_surfaces_need_a_name_and_a_missing_end_closes_at_the_next_object() {
-    let t = format!("{}{}", TRI.replace("END\n", ""), TRI.replace("name: t", "name: u"));
+    let t = format!(
+        "{}{}",
+        TRI.replace("END\n", ""),
+        TRI.replace("name: t", "name: u")
+    );
     let f = parse_gocad(t.as_bytes(), "m.ts").unwrap();
     assert_eq!(f.objects.len(), 2);
     assert_eq!(f.objects[0].end_line, None);
-    assert!(import_surface(t.as_bytes(), "m.ts", &opts()).unwrap_err().message.contains("2 TSurf objects"));
-    assert_eq!(import_surface(t.as_bytes(), "m.ts", &named("u")).unwrap().name, "u");
-    assert_eq!(import_surfaces(t.as_bytes(), "m.ts", &opts()).unwrap().len(), 2);
+    assert!(
+        import_surface(t.as_bytes(), "m.ts", &opts())
+            .unwrap_err()
+            .message
+            .contains("2 TSurf objects")
+    );
+    assert_eq!(
+        import_surface(t.as_bytes(), "m.ts", &named("u"))
+            .unwrap()
+            .name,
+        "u"
+    );
+    assert_eq!(
+        import_surfaces(t.as_bytes(), "m.ts", &opts())
+            .unwrap()
+            .len(),
+        2
+    );
 }
 
 #[test]
 fn a_group_flattens_its_member_surfaces_and_names_the_group() {
-    let t = format!("GOCAD HomogeneousGroup 1\nHEADER {{\nname:g\n}}\nTYPE TSurf\nBEGIN_MEMBERS\n{TRI}END_MEMBERS\n");
+    let t = format!(
+        "GOCAD HomogeneousGroup 1\nHEADER {{\nname:g\n}}\nTYPE TSurf\nBEGIN_MEMBERS\n{TRI}END_MEMBERS\n"
+    );
     let f = parse_gocad(t.as_bytes(), "g.gp").unwrap();
     assert_eq!(f.objects.len(), 1);
     assert_eq!(f.objects[0].group.as_deref(), Some("g"));
-    assert_eq!(import_surface(t.as_bytes(), "g.gp", &opts()).unwrap().mesh.triangles.len(), 1);
+    assert_eq!(
+        import_surface(t.as_bytes(), "g.gp", &opts())
+            .unwrap()
+            .mesh
+            .triangles
+            .len(),
+        1
+    );
 }
 
 #[test]
@@ -186,18 +267,36 @@ fn a_model3d_keeps_regions_and_matches_tfaces_by_key_point() {
     assert_eq!(m.tfaces[0].key_points.len(), 3);
     assert_eq!(m.regions[0].sides, vec![7, -7]);
     assert_eq!(m.layers[0].ids, vec![8]);
-    let s = import_surface(t.as_bytes(), "m.ml", &ImportOptions { skip_other_types: true, ..opts() }).unwrap();
+    let s = import_surface(
+        t.as_bytes(),
+        "m.ml",
+        &ImportOptions {
+            skip_other_types: true,
+            ..opts()
+        },
+    )
+    .unwrap();
     assert_eq!(s.parts[0].model_tface, Some((7, "boundary".to_string())));
     assert_eq!(s.parts[0].name, "TFACE 7");
 }
 
 #[test]
 fn a_file_without_objects_and_random_bytes_fail_cleanly() {
-    assert!(import_surface(b"", "e.ts", &opts()).unwrap_err().message.contains("no GOCAD object"));
+    assert!(
+        import_surface(b"", "e.ts", &opts())
+            .unwrap_err()
+            .message
+            .contains("no GOCAD object")
+    );
     let header_only = "GOCAD TSurf 1\nHEADER {\nname:Testing12/3\n}\n";
     let e = import_surface(header_only.as_bytes(), "h.ts", &opts()).unwrap_err();
-    assert_eq!(e.to_string(), "h.ts:1: TSurf object 'Testing12/3' has no triangles");
-    let junk: Vec<u8> = (0..2000u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8).collect();
+    assert_eq!(
+        e.to_string(),
+        "h.ts:1: TSurf object 'Testing12/3' has no triangles"
+    );
+    let junk: Vec<u8> = (0..2000u32)
+        .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
+        .collect();
     assert!(import_surface(&junk, "j.ts", &opts()).is_err());
 }
 
@@ -207,4 +306,42 @@ fn the_surface_round_trips_through_postcard_for_the_cache() {
     let bytes = postcard::to_stdvec(&s).unwrap();
     let back: georecipe::stages::import::ImportedSurface = postcard::from_bytes(&bytes).unwrap();
     assert_eq!(back, s);
+}
+
+#[test]
+fn model_a4_fault_parts_get_their_model3d_tface_ids_and_types() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data/modelA4.ml"
+    );
+    let Ok(bytes) = std::fs::read(path) else {
+        eprintln!("skipping: ../shared is absent");
+        return;
+    };
+    let s = import_surface(
+        &bytes,
+        "modelA4.ml",
+        &ImportOptions {
+            skip_other_types: true,
+            ..named("F1fault")
+        },
+    )
+    .unwrap();
+    assert_eq!(s.parts.len(), 8);
+    let mut ids: Vec<u64> = s
+        .parts
+        .iter()
+        .map(|p| p.model_tface.as_ref().unwrap().0)
+        .collect();
+    ids.sort();
+    assert_eq!(ids, (1..=8).collect::<Vec<u64>>());
+    assert!(
+        s.parts
+            .iter()
+            .all(|p| p.model_tface.as_ref().unwrap().1 == "normal_fault")
+    );
+    // ZPOSITIVE Depth: every z is the negated value of the text.
+    let raw = georecipe::stages::import::parse_gocad(&bytes, "modelA4.ml").unwrap();
+    let f1 = raw.objects.iter().find(|o| o.name == "F1fault").unwrap();
+    assert_eq!(s.mesh.vertices[0][2], -f1.vertices[0][2]);
 }

@@ -60,7 +60,8 @@ fn two_disconnected_pieces_are_two_patches_with_one_loop_each() {
     for p in m.vertices.clone() {
         m.vertices.push([p[0] + 5.0, p[1], p[2]]);
     }
-    m.triangles.extend([[off, off + 1, off + 3], [off, off + 3, off + 2]]);
+    m.triangles
+        .extend([[off, off + 1, off + 3], [off, off + 3, off + 2]]);
     let topo = SurfaceTopology::build(&m, &[], &tol());
     assert_eq!(topo.patch_count(), 2);
     assert_eq!(topo.patch_triangles(0), &[0, 1]);
@@ -71,18 +72,35 @@ fn two_disconnected_pieces_are_two_patches_with_one_loop_each() {
 
 #[test]
 fn a_fin_of_three_triangles_on_one_edge_is_non_manifold_and_bounds_three_patches() {
-    let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 1.0, 0.0], [0.5, -1.0, 0.0], [0.5, 0.0, 1.0]];
+    let v = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.5, 1.0, 0.0],
+        [0.5, -1.0, 0.0],
+        [0.5, 0.0, 1.0],
+    ];
     let m = TriMesh::new(v, vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
     let topo = SurfaceTopology::build(&m, &[], &tol());
     let e = topo.edge_between(0, 1).unwrap();
     assert!(topo.is_non_manifold_edge(e));
-    assert_eq!(topo.triangles_around_edge(e).collect::<Vec<_>>(), vec![0, 1, 2]);
+    assert_eq!(
+        topo.triangles_around_edge(e).collect::<Vec<_>>(),
+        vec![0, 1, 2]
+    );
     assert_eq!(topo.patch_count(), 3);
     // The fin edge is one curve shared by the three loops; its ends are corners.
     assert!(topo.corners().contains(&0) && topo.corners().contains(&1));
-    let fin_curve = topo.curves().iter().position(|c| c.vertices == vec![0, 1]).expect("fin curve");
+    let fin_curve = topo
+        .curves()
+        .iter()
+        .position(|c| c.vertices == vec![0, 1])
+        .expect("fin curve");
     let uses = (0..topo.boundary_loops().len() as u32)
-        .filter(|&l| topo.loop_curves(l).iter().any(|&(c, _)| c as usize == fin_curve))
+        .filter(|&l| {
+            topo.loop_curves(l)
+                .iter()
+                .any(|&(c, _)| c as usize == fin_curve)
+        })
         .count();
     assert_eq!(uses, 3);
 }
@@ -93,9 +111,16 @@ fn kink_corners_split_a_square_loop_into_four_curves() {
     let topo = SurfaceTopology::build(&m, &[], &tol());
     assert_eq!(topo.corners(), &[0, 2, 6, 8]);
     assert_eq!(topo.curves().len(), 4);
-    assert!(topo.curves().iter().all(|c| !c.closed && c.vertices.len() == 3));
+    assert!(
+        topo.curves()
+            .iter()
+            .all(|c| !c.closed && c.vertices.len() == 3)
+    );
     // A kink threshold above 90 degrees leaves one closed curve.
-    let blunt = Tolerances { kink_angle_deg: 95.0, ..tol() };
+    let blunt = Tolerances {
+        kink_angle_deg: 95.0,
+        ..tol()
+    };
     let topo = SurfaceTopology::build(&m, &[], &blunt);
     assert!(topo.corners().is_empty());
     assert_eq!(topo.curves().len(), 1);
@@ -106,7 +131,10 @@ fn kink_corners_split_a_square_loop_into_four_curves() {
 #[test]
 fn bstone_vertices_are_corners_even_on_a_straight_boundary() {
     let m = grid(2, &[]);
-    let blunt = Tolerances { kink_angle_deg: 95.0, ..tol() };
+    let blunt = Tolerances {
+        kink_angle_deg: 95.0,
+        ..tol()
+    };
     let topo = SurfaceTopology::build(&m, &[1, 7], &blunt);
     assert_eq!(topo.corners(), &[1, 7]);
     assert_eq!(topo.curves().len(), 2);
@@ -125,10 +153,16 @@ fn walkers_agree_on_triangles_half_edges_and_vertices() {
             assert_eq!(topo.edge_of(h), e);
             assert_eq!(topo.origin(h), tri[k]);
             assert_eq!(topo.target(h), tri[(k + 1) % 3]);
-            assert_eq!(SurfaceTopology::next_half_edge(SurfaceTopology::prev_half_edge(h)), h);
+            assert_eq!(
+                SurfaceTopology::next_half_edge(SurfaceTopology::prev_half_edge(h)),
+                h
+            );
             assert!(topo.triangles_around_edge(e).any(|x| x == t));
             let [a, b] = topo.edge_vertices(e);
-            assert!(topo.edges_around_vertex(a).contains(&e) && topo.edges_around_vertex(b).contains(&e));
+            assert!(
+                topo.edges_around_vertex(a).contains(&e)
+                    && topo.edges_around_vertex(b).contains(&e)
+            );
         }
     }
     // The centre vertex of the 2x2 grid has 6 edges (the grid diagonals run one way).
@@ -138,22 +172,39 @@ fn walkers_agree_on_triangles_half_edges_and_vertices() {
 #[test]
 fn a_bowtie_vertex_where_two_loops_touch_is_a_corner_and_both_loops_close() {
     // Two triangles sharing only vertex 0.
-    let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [-1.0, -1.0, 0.0]];
+    let v = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [-1.0, -1.0, 0.0],
+    ];
     let m = TriMesh::new(v, vec![[0, 1, 2], [0, 3, 4]]);
     let topo = SurfaceTopology::build(&m, &[], &tol());
     assert_eq!(topo.patch_count(), 2);
-    assert!(topo.boundary_loops().iter().all(|l| l.closed && l.vertices.len() == 3));
+    assert!(
+        topo.boundary_loops()
+            .iter()
+            .all(|l| l.closed && l.vertices.len() == 3)
+    );
     assert!(topo.corners().contains(&0));
 }
 
 #[test]
 fn the_split_cube_box_has_two_tface_patches_when_built_with_parts() {
-    let path = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/gocad/ringmesh__RINGMesh/tests/data/split_cube.ml"));
+    let path = PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data/split_cube.ml"
+    ));
     let Ok(bytes) = std::fs::read(&path) else {
         eprintln!("skipping: ../shared is absent");
         return;
     };
-    let opts = ImportOptions { object: Some("box".into()), skip_other_types: true, ..Default::default() };
+    let opts = ImportOptions {
+        object: Some("box".into()),
+        skip_other_types: true,
+        ..Default::default()
+    };
     let s = import_surface(&bytes, "split_cube.ml", &opts).unwrap();
     let whole = SurfaceTopology::build(&s.mesh, &s.bstones, &tol());
     assert_eq!(whole.patch_count(), 1);
@@ -163,4 +214,54 @@ fn the_split_cube_box_has_two_tface_patches_when_built_with_parts() {
     for p in 0..2 {
         assert_eq!(parts.patch_loops(p).len(), 1);
     }
+}
+
+fn shared_surface(
+    path: &str,
+    object: Option<&str>,
+) -> Option<georecipe::stages::import::ImportedSurface> {
+    let root = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/gocad"));
+    let bytes = std::fs::read(root.join(path)).ok()?;
+    let opts = ImportOptions {
+        object: object.map(str::to_string),
+        skip_other_types: true,
+        ..Default::default()
+    };
+    Some(import_surface(&bytes, path, &opts).expect("imports"))
+}
+
+#[test]
+fn a_closed_kimberlite_body_is_one_patch_without_boundary() {
+    let Some(s) = shared_surface(
+        "simpeg-research__Astic-2020-JointInversion/Geology_Surfaces/PK2.ts",
+        None,
+    ) else {
+        eprintln!("skipping: ../shared is absent");
+        return;
+    };
+    let topo = SurfaceTopology::build(&s.mesh, &s.bstones, &tol());
+    assert_eq!(topo.patch_count(), 1);
+    assert!(topo.boundary_loops().is_empty());
+    assert!(topo.curves().is_empty());
+    // Euler characteristic of a sphere: V - E + F = 2.
+    assert_eq!(
+        s.mesh.vertices.len() as i64 - topo.edge_count() as i64 + topo.triangle_count() as i64,
+        2
+    );
+}
+
+#[test]
+fn a_real_fault_has_one_outer_loop_split_at_its_bstones() {
+    let path =
+        "SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/GVFA-WWFZ-EAST-Scodie_Lineament-CFM1.ts";
+    let Some(s) = shared_surface(path, None) else {
+        eprintln!("skipping: ../shared is absent");
+        return;
+    };
+    let topo = SurfaceTopology::build(&s.mesh, &s.bstones, &tol());
+    assert_eq!(topo.patch_count(), 1);
+    assert_eq!(topo.boundary_loops().len(), 1);
+    assert!(topo.boundary_loops()[0].outer && topo.boundary_loops()[0].closed);
+    assert!(s.bstones.iter().all(|b| topo.corners().contains(b)));
+    assert!(topo.curves().len() >= s.bstones.len());
 }

@@ -2,7 +2,9 @@
 //! the real quirky CFM files.
 
 use georecipe::geom::{Tolerances, TriMesh};
-use georecipe::stages::import::{ImportOptions, ImportedSurface, PartInfo, SourceMap, import_surface};
+use georecipe::stages::import::{
+    ImportOptions, ImportedSurface, PartInfo, SourceMap, import_surface,
+};
 use georecipe::stages::validate::{FindingKind, repair, validate};
 use std::path::PathBuf;
 
@@ -13,7 +15,13 @@ fn surface(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> ImportedSurface
         name: "s".into(),
         mesh: TriMesh::new(vertices, triangles),
         triangle_part: vec![0; nt],
-        parts: vec![PartInfo { name: "TFACE 1".into(), line: 1, object: "s".into(), model_tface: None, triangle_count: nt }],
+        parts: vec![PartInfo {
+            name: "TFACE 1".into(),
+            line: 1,
+            object: "s".into(),
+            model_tface: None,
+            triangle_count: nt,
+        }],
         bstones: vec![],
         borders: vec![],
         property_names: vec![],
@@ -77,7 +85,14 @@ fn an_unreferenced_vertex_is_reported_with_its_id_line_and_coordinates_and_remov
     let r = validate(&s, &Tolerances::default());
     let f: Vec<_> = r.of_kind(FindingKind::UnreferencedVertex).collect();
     assert_eq!(f.len(), 1);
-    assert_eq!((f[0].vertices.clone(), f[0].vertex_ids.clone(), f[0].lines.clone()), (vec![9], vec![10], vec![19]));
+    assert_eq!(
+        (
+            f[0].vertices.clone(),
+            f[0].vertex_ids.clone(),
+            f[0].lines.clone()
+        ),
+        (vec![9], vec![10], vec![19])
+    );
     assert_eq!(f[0].points, vec![p(99.0, 99.0, 0.0)]);
     let (fixed, log) = repair(&s, &r, &Tolerances::default());
     assert_eq!(fixed.mesh.vertices.len(), 9);
@@ -111,8 +126,16 @@ fn a_merge_distance_makes_near_vertices_duplicates() {
     v.push(q);
     let s = surface(v, t);
     assert_eq!(count(&s, FindingKind::DuplicateVertex), 0);
-    let tol = Tolerances { merge_distance: 0.01, ..Tolerances::default() };
-    assert_eq!(validate(&s, &tol).of_kind(FindingKind::DuplicateVertex).count(), 1);
+    let tol = Tolerances {
+        merge_distance: 0.01,
+        ..Tolerances::default()
+    };
+    assert_eq!(
+        validate(&s, &tol)
+            .of_kind(FindingKind::DuplicateVertex)
+            .count(),
+        1
+    );
 }
 
 #[test]
@@ -121,16 +144,28 @@ fn exactly_collinear_corners_at_utm_magnitudes_are_degenerate_and_dropped() {
     // The midpoint of two UTM-sized points is exact in binary64, so the corners are collinear.
     let (a, b) = (p(31.0, 3.0, 2.0), p(41.0, 13.0, 9.0));
     v.push(a);
-    v.push([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0]);
+    v.push([
+        (a[0] + b[0]) / 2.0,
+        (a[1] + b[1]) / 2.0,
+        (a[2] + b[2]) / 2.0,
+    ]);
     v.push(b);
     t.push([9, 10, 11]);
     let s = surface(v, t);
     let r = validate(&s, &Tolerances::default());
-    let deg: Vec<_> = r.of_kind(FindingKind::DegenerateTriangle).map(|f| f.triangles.clone()).collect();
+    let deg: Vec<_> = r
+        .of_kind(FindingKind::DegenerateTriangle)
+        .map(|f| f.triangles.clone())
+        .collect();
     assert_eq!(deg, vec![vec![8]], "{}", r.render_text());
     let (fixed, log) = repair(&s, &r, &Tolerances::default());
     assert_eq!(log.dropped_degenerate, vec![8]);
-    assert!(validate(&fixed, &Tolerances::default()).of_kind(FindingKind::DegenerateTriangle).next().is_none());
+    assert!(
+        validate(&fixed, &Tolerances::default())
+            .of_kind(FindingKind::DegenerateTriangle)
+            .next()
+            .is_none()
+    );
 }
 
 #[test]
@@ -172,7 +207,13 @@ fn a_flipped_neighbour_is_inconsistent_and_repair_flips_it_back() {
 
 #[test]
 fn three_triangles_on_one_edge_make_a_non_manifold_edge_that_repair_leaves() {
-    let v = vec![p(0.0, 0.0, 0.0), p(10.0, 0.0, 0.0), p(5.0, 8.0, 0.0), p(5.0, -8.0, 0.0), p(5.0, 0.0, 8.0)];
+    let v = vec![
+        p(0.0, 0.0, 0.0),
+        p(10.0, 0.0, 0.0),
+        p(5.0, 8.0, 0.0),
+        p(5.0, -8.0, 0.0),
+        p(5.0, 0.0, 8.0),
+    ];
     let s = surface(v, vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
     let r = validate(&s, &Tolerances::default());
     let f: Vec<_> = r.of_kind(FindingKind::NonManifoldEdge).collect();
@@ -195,13 +236,23 @@ fn overlapping_coplanar_triangles_are_found_exactly() {
     ];
     let s = surface(v, vec![[0, 1, 2], [3, 4, 5]]);
     let r = validate(&s, &Tolerances::default());
-    assert_eq!(r.of_kind(FindingKind::CoplanarOverlap).count(), 1, "{}", r.render_text());
+    assert_eq!(
+        r.of_kind(FindingKind::CoplanarOverlap).count(),
+        1,
+        "{}",
+        r.render_text()
+    );
     assert_eq!(r.of_kind(FindingKind::SelfIntersection).count(), 0);
 }
 
 #[test]
 fn a_fold_over_a_shared_edge_is_a_coplanar_overlap() {
-    let v = vec![p(0.0, 0.0, 0.0), p(10.0, 0.0, 0.0), p(0.0, 10.0, 0.0), p(5.0, 10.0, 0.0)];
+    let v = vec![
+        p(0.0, 0.0, 0.0),
+        p(10.0, 0.0, 0.0),
+        p(0.0, 10.0, 0.0),
+        p(5.0, 10.0, 0.0),
+    ];
     let s = surface(v, vec![[0, 1, 2], [1, 0, 3]]);
     assert_eq!(count(&s, FindingKind::CoplanarOverlap), 1);
 }
@@ -263,7 +314,9 @@ macro_rules! real_or_skip {
 
 #[test]
 fn big_bear_has_two_zero_area_triangles_and_coincident_vertices() {
-    let s = real_or_skip!("SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/ETRA-BBFS-1992-Big_Bear_rupture_fault-nw.ts");
+    let s = real_or_skip!(
+        "SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/ETRA-BBFS-1992-Big_Bear_rupture_fault-nw.ts"
+    );
     let r = validate(&s, &Tolerances::default());
     let c = r.counts();
     assert_eq!(c["degenerate_triangle"], 2, "{}", r.render_text());
@@ -277,19 +330,29 @@ fn big_bear_has_two_zero_area_triangles_and_coincident_vertices() {
 
 #[test]
 fn potatochip_has_eleven_unused_vertices() {
-    let s = real_or_skip!("SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/SAFS-SGPR-MTSJ-Potatochip1_blind_fault-CRNA-CFM5.ts");
+    let s = real_or_skip!(
+        "SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/SAFS-SGPR-MTSJ-Potatochip1_blind_fault-CRNA-CFM5.ts"
+    );
     let r = validate(&s, &Tolerances::default());
     assert_eq!(r.counts()["unreferenced_vertex"], 11, "{}", r.render_text());
     let (fixed, _) = repair(&s, &r, &Tolerances::default());
-    assert_eq!(validate(&fixed, &Tolerances::default()).counts()["unreferenced_vertex"], 0);
+    assert_eq!(
+        validate(&fixed, &Tolerances::default()).counts()["unreferenced_vertex"],
+        0
+    );
     assert_eq!(fixed.properties[0].len(), fixed.mesh.vertices.len());
 }
 
 #[test]
 fn white_wolf_1000m_has_coincident_duplicate_vertices_that_repair_merges() {
-    let s = real_or_skip!("SCECcode__CFM/CFM5.3_4/ts/1000m/GVFA-WWFZ-MULT-White_Wolf_fault-CFM5_1000m.ts");
+    let s = real_or_skip!(
+        "SCECcode__CFM/CFM5.3_4/ts/1000m/GVFA-WWFZ-MULT-White_Wolf_fault-CFM5_1000m.ts"
+    );
     let r = validate(&s, &Tolerances::default());
-    let dups: usize = r.of_kind(FindingKind::DuplicateVertex).map(|f| f.vertices.len() - 1).sum();
+    let dups: usize = r
+        .of_kind(FindingKind::DuplicateVertex)
+        .map(|f| f.vertices.len() - 1)
+        .sum();
     assert_eq!(dups, 43, "{}", r.render_text());
     let (fixed, log) = repair(&s, &r, &Tolerances::default());
     assert_eq!(log.merged_vertices, 43);

@@ -22,7 +22,11 @@ pub struct Lines<'a> {
 
 impl<'a> Lines<'a> {
     pub fn new(bytes: &'a [u8]) -> Self {
-        Lines { bytes, pos: 0, number: 0 }
+        Lines {
+            bytes,
+            pos: 0,
+            number: 0,
+        }
     }
 }
 
@@ -35,7 +39,10 @@ impl<'a> Iterator for Lines<'a> {
             return None;
         }
         self.number += 1;
-        let end = rest.iter().position(|&b| b == b'\n' || b == b'\r').unwrap_or(rest.len());
+        let end = rest
+            .iter()
+            .position(|&b| b == b'\n' || b == b'\r')
+            .unwrap_or(rest.len());
         let text = &rest[..end];
         let mut skip = end;
         if let Some(&b) = rest.get(end) {
@@ -45,7 +52,10 @@ impl<'a> Iterator for Lines<'a> {
             }
         }
         self.pos += skip;
-        Some(Line { number: self.number, text })
+        Some(Line {
+            number: self.number,
+            text,
+        })
     }
 }
 
@@ -157,8 +167,8 @@ pub enum NumberError {
 
 /// Exact powers of ten representable in binary64.
 const POW10: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19,
-    1e20, 1e21, 1e22,
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
 /// Clinger's fast path for plain decimals (`-123.4500`): when the digits form an integer
@@ -211,7 +221,11 @@ pub fn parse_f64(tok: &[u8]) -> Result<f64, NumberError> {
         Ok(_) => Err(NumberError::NotFinite),
         Err(_) => {
             let up = s.to_ascii_uppercase();
-            if up.contains("#INF") || up.contains("#IND") || up.contains("#QNAN") || up.contains("#SNAN") {
+            if up.contains("#INF")
+                || up.contains("#IND")
+                || up.contains("#QNAN")
+                || up.contains("#SNAN")
+            {
                 Err(NumberError::NotFinite)
             } else {
                 Err(NumberError::NotNumeric)
@@ -260,10 +274,17 @@ mod tests {
 
     #[test]
     fn crlf_lone_cr_and_a_missing_final_newline_all_end_lines() {
-        let v: Vec<_> = Lines::new(b"a\r\nb\rc\nd").map(|l| (l.number, l.text.to_vec())).collect();
+        let v: Vec<_> = Lines::new(b"a\r\nb\rc\nd")
+            .map(|l| (l.number, l.text.to_vec()))
+            .collect();
         assert_eq!(
             v,
-            vec![(1, b"a".to_vec()), (2, b"b".to_vec()), (3, b"c".to_vec()), (4, b"d".to_vec())]
+            vec![
+                (1, b"a".to_vec()),
+                (2, b"b".to_vec()),
+                (3, b"c".to_vec()),
+                (4, b"d".to_vec())
+            ]
         );
     }
 
@@ -275,11 +296,10 @@ mod tests {
 
     #[test]
     fn a_quoted_name_with_spaces_is_one_token() {
-        assert_eq!(quoted_tokens(br#"PROPERTIES " default property"  def-prop"#), vec![
-            "PROPERTIES",
-            " default property",
-            "def-prop"
-        ]);
+        assert_eq!(
+            quoted_tokens(br#"PROPERTIES " default property"  def-prop"#),
+            vec!["PROPERTIES", " default property", "def-prop"]
+        );
     }
 
     #[test]
@@ -295,8 +315,21 @@ mod tests {
     #[test]
     fn the_fast_decimal_path_agrees_with_the_standard_parser_bit_for_bit() {
         let samples = [
-            "0", "-0", "1.", "868.21875", "-354.825653076171", "512345.125000", "7012345.5", "0.1", "0.3",
-            "9007199254740993", "123456789012.345678", "0.0000000000000000000001", "-1234.25", "+5.5", "99999999.99999999",
+            "0",
+            "-0",
+            "1.",
+            "868.21875",
+            "-354.825653076171",
+            "512345.125000",
+            "7012345.5",
+            "0.1",
+            "0.3",
+            "9007199254740993",
+            "123456789012.345678",
+            "0.0000000000000000000001",
+            "-1234.25",
+            "+5.5",
+            "99999999.99999999",
         ];
         for s in samples {
             let want: f64 = s.parse().unwrap();
@@ -313,7 +346,11 @@ mod tests {
             let frac = (x >> 24) % 1_000_000;
             let s = format!("{}{int}.{frac:06}", if x & 1 == 1 { "-" } else { "" });
             let want: f64 = s.parse().unwrap();
-            assert_eq!(parse_f64(s.as_bytes()).unwrap().to_bits(), want.to_bits(), "{s}");
+            assert_eq!(
+                parse_f64(s.as_bytes()).unwrap().to_bits(),
+                want.to_bits(),
+                "{s}"
+            );
         }
     }
 

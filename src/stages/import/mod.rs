@@ -45,7 +45,9 @@ impl Units {
     pub fn parse(s: &str) -> Option<Units> {
         match s.trim().to_ascii_lowercase().as_str() {
             "m" | "meter" | "meters" | "metre" | "metres" => Some(Units::Metre),
-            "km" | "kilometer" | "kilometers" | "kilometre" | "kilometres" => Some(Units::Kilometre),
+            "km" | "kilometer" | "kilometers" | "kilometre" | "kilometres" => {
+                Some(Units::Kilometre)
+            }
             "ft" | "feet" | "foot" => Some(Units::Foot),
             _ => None,
         }
@@ -67,7 +69,11 @@ pub struct ImportOptions {
 
 impl Default for ImportOptions {
     fn default() -> Self {
-        ImportOptions { object: None, skip_other_types: false, target_units: Some(Units::Metre) }
+        ImportOptions {
+            object: None,
+            skip_other_types: false,
+            target_units: Some(Units::Metre),
+        }
     }
 }
 
@@ -89,7 +95,11 @@ impl std::error::Error for ImportError {}
 
 impl ImportError {
     pub fn new(file: &str, line: usize, message: impl Into<String>) -> Self {
-        ImportError { file: file.to_string(), line, message: message.into() }
+        ImportError {
+            file: file.to_string(),
+            line,
+            message: message.into(),
+        }
     }
 }
 
@@ -124,7 +134,9 @@ impl SourceMap {
         self.vertex_lines.get(v as usize).map_or(0, |&l| l as usize)
     }
     pub fn triangle_line(&self, t: u32) -> usize {
-        self.triangle_lines.get(t as usize).map_or(0, |&l| l as usize)
+        self.triangle_lines
+            .get(t as usize)
+            .map_or(0, |&l| l as usize)
     }
     pub fn vertex_id(&self, v: u32) -> Option<u64> {
         self.vertex_ids.get(v as usize).copied()
@@ -161,7 +173,11 @@ impl ImportedSurface {
             + self.triangle_part.capacity() * 4
             + self.bstones.capacity() * 4
             + self.borders.capacity() * 8
-            + self.properties.iter().map(|c| c.capacity() * 8).sum::<usize>()
+            + self
+                .properties
+                .iter()
+                .map(|c| c.capacity() * 8)
+                .sum::<usize>()
             + self.source.vertex_ids.capacity() * 8
             + self.source.vertex_lines.capacity() * 4
             + self.source.triangle_lines.capacity() * 4

@@ -66,7 +66,13 @@ pub(super) struct Model3dBuilder {
 
 impl Model3dBuilder {
     /// Reads one line of a Model3d object; returns whether it was a Model3d record.
-    pub(super) fn record(&mut self, kw: &[u8], line: &[u8], n: usize, file: &str) -> Result<bool, ImportError> {
+    pub(super) fn record(
+        &mut self,
+        kw: &[u8],
+        line: &[u8],
+        n: usize,
+        file: &str,
+    ) -> Result<bool, ImportError> {
         let mut toks = Tokens::new(line);
         toks.next();
         let starts_numeric = matches!(kw.first(), Some(b'0'..=b'9' | b'-' | b'+' | b'.'));
@@ -78,18 +84,44 @@ impl Model3dBuilder {
             self.info.tsurfs.push(text(toks.rest()));
             self.open = Open::None;
         } else if eq_ci(kw, "TFACE") {
-            let id = toks.next().and_then(parse_id).ok_or_else(|| ImportError::new(file, n, "Model3d TFACE without an id"))?;
+            let id = toks
+                .next()
+                .and_then(parse_id)
+                .ok_or_else(|| ImportError::new(file, n, "Model3d TFACE without an id"))?;
             let kind = word(toks.next());
             let surface = text(toks.rest());
-            self.info.tfaces.push(Model3dFace { id, kind, surface, key_points: Vec::new(), line: n });
+            self.info.tfaces.push(Model3dFace {
+                id,
+                kind,
+                surface,
+                key_points: Vec::new(),
+                line: n,
+            });
             self.open = Open::Face;
         } else if eq_ci(kw, "REGION") {
-            let id = toks.next().and_then(parse_id).ok_or_else(|| ImportError::new(file, n, "REGION without an id"))?;
+            let id = toks
+                .next()
+                .and_then(parse_id)
+                .ok_or_else(|| ImportError::new(file, n, "REGION without an id"))?;
             let name = text(toks.rest());
-            self.info.regions.push(Model3dRegion { id, name, sides: Vec::new(), line: n });
+            self.info.regions.push(Model3dRegion {
+                id,
+                name,
+                sides: Vec::new(),
+                line: n,
+            });
             self.open = Open::Region;
-        } else if eq_ci(kw, "LAYER") || eq_ci(kw, "SURFACE") || eq_ci(kw, "FAULT_BLOCK") || eq_ci(kw, "MODEL_REGION") {
-            let rec = Model3dRecord { keyword: text(kw), name: text(toks.rest()), ids: Vec::new(), line: n };
+        } else if eq_ci(kw, "LAYER")
+            || eq_ci(kw, "SURFACE")
+            || eq_ci(kw, "FAULT_BLOCK")
+            || eq_ci(kw, "MODEL_REGION")
+        {
+            let rec = Model3dRecord {
+                keyword: text(kw),
+                name: text(toks.rest()),
+                ids: Vec::new(),
+                line: n,
+            };
             if eq_ci(kw, "LAYER") {
                 self.info.layers.push(rec);
                 self.open = Open::Layer;
@@ -104,14 +136,24 @@ impl Model3dBuilder {
     }
 
     fn continuation(&mut self, line: &[u8], n: usize, file: &str) -> Result<(), ImportError> {
-        let bad = |t: &[u8]| ImportError::new(file, n, format!("'{}' is not a number in a Model3d record", text(t)));
+        let bad = |t: &[u8]| {
+            ImportError::new(
+                file,
+                n,
+                format!("'{}' is not a number in a Model3d record", text(t)),
+            )
+        };
         match self.open {
             Open::Face => {
-                let Some(face) = self.info.tfaces.last_mut() else { return Ok(()) };
+                let Some(face) = self.info.tfaces.last_mut() else {
+                    return Ok(());
+                };
                 let mut p = [0.0; 3];
                 let mut toks = Tokens::new(line);
                 for c in &mut p {
-                    let t = toks.next().ok_or_else(|| ImportError::new(file, n, "a TFACE key point needs 3 coordinates"))?;
+                    let t = toks.next().ok_or_else(|| {
+                        ImportError::new(file, n, "a TFACE key point needs 3 coordinates")
+                    })?;
                     *c = parse_f64(t).map_err(|_| bad(t))?;
                 }
                 face.key_points.push(p);

@@ -9,7 +9,9 @@
 //! parsed. Line numbers are 1-based and stored as u32 (files beyond 4 G lines saturate).
 
 use super::ImportError;
-use super::lexer::{Lines, NumberError, Tokens, eq_ci, parse_f64, parse_id, quoted_tokens, text, trim};
+use super::lexer::{
+    Lines, NumberError, Tokens, eq_ci, parse_f64, parse_id, quoted_tokens, text, trim,
+};
 use super::model3d::{Model3dBuilder, Model3dInfo};
 use serde::{Deserialize, Serialize};
 
@@ -103,11 +105,24 @@ struct Builder {
 
 impl Builder {
     fn new(kind: &[u8], line: usize, group: Option<String>) -> Self {
-        let kind = if eq_ci(kind, "TSurf") { "TSurf".to_string() } else { text(kind) };
+        let kind = if eq_ci(kind, "TSurf") {
+            "TSurf".to_string()
+        } else {
+            text(kind)
+        };
         let is_group = kind.ends_with("Group");
-        let model = if kind.eq_ignore_ascii_case("Model3d") { Some(Model3dBuilder::default()) } else { None };
+        let model = if kind.eq_ignore_ascii_case("Model3d") {
+            Some(Model3dBuilder::default())
+        } else {
+            None
+        };
         Builder {
-            obj: GocadObject { kind, line, group, ..Default::default() },
+            obj: GocadObject {
+                kind,
+                line,
+                group,
+                ..Default::default()
+            },
             raw_atoms: Vec::new(),
             raw_triangles: Vec::new(),
             raw_bstones: Vec::new(),
@@ -133,7 +148,11 @@ enum IdMap {
 impl IdMap {
     fn get(&self, id: u64) -> Option<u32> {
         match self {
-            IdMap::Dense(t) => usize::try_from(id).ok().and_then(|i| t.get(i)).copied().filter(|&v| v != ID_NONE),
+            IdMap::Dense(t) => usize::try_from(id)
+                .ok()
+                .and_then(|i| t.get(i))
+                .copied()
+                .filter(|&v| v != ID_NONE),
             IdMap::Sorted(s) => s.binary_search_by_key(&id, |e| e.0).ok().map(|k| s[k].1),
         }
     }
@@ -241,7 +260,8 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
                 let after_open = t.iter().position(|&c| c == b'{').map(|p| &t[p + 1..]);
                 match after_open {
                     Some(rest) if rest.contains(&b'}') => {
-                        let inner = &rest[..rest.iter().position(|&c| c == b'}').unwrap_or(rest.len())];
+                        let inner =
+                            &rest[..rest.iter().position(|&c| c == b'}').unwrap_or(rest.len())];
                         for entry in inner.split(|&c| c == b';') {
                             header_entry(trim(entry), &mut b.obj);
                         }
@@ -251,12 +271,14 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
                 }
             }
             _ if eq_ci(kw, "GOCAD_ORIGINAL_COORDINATE_SYSTEM") => mode = Mode::Crs,
-            _ if eq_ci(kw, "BEGIN_MEMBERS") => {
-                if b.is_group {
-                    let name = if b.obj.name.is_empty() { b.obj.kind.clone() } else { b.obj.name.clone() };
-                    groups.push(name);
-                    cur = None;
-                }
+            _ if eq_ci(kw, "BEGIN_MEMBERS") && b.is_group => {
+                let name = if b.obj.name.is_empty() {
+                    b.obj.kind.clone()
+                } else {
+                    b.obj.name.clone()
+                };
+                groups.push(name);
+                cur = None;
             }
             _ if eq_ci(kw, "PROPERTIES") => {
                 b.obj.property_names = quoted_tokens(toks.rest());
@@ -269,16 +291,26 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
                 for tok in toks.by_ref() {
                     match parse_id(tok) {
                         Some(s) if s <= 1 << 16 => sizes.push(s as usize),
-                        _ => return Err(err(n, format!("ESIZES entry '{}' is not a size", text(tok)))),
+                        _ => {
+                            return Err(err(
+                                n,
+                                format!("ESIZES entry '{}' is not a size", text(tok)),
+                            ));
+                        }
                     }
                 }
                 if sizes.iter().sum::<usize>() > MAX_STRIDE {
-                    return Err(err(n, format!("ESIZES declare more than {MAX_STRIDE} values per vertex")));
+                    return Err(err(
+                        n,
+                        format!("ESIZES declare more than {MAX_STRIDE} values per vertex"),
+                    ));
                 }
                 b.obj.property_sizes = sizes;
             }
             _ if eq_ci(kw, "GEOLOGICAL_TYPE") => b.obj.geological_type = Some(text(toks.rest())),
-            _ if eq_ci(kw, "GEOLOGICAL_FEATURE") => b.obj.geological_feature = Some(text(toks.rest())),
+            _ if eq_ci(kw, "GEOLOGICAL_FEATURE") => {
+                b.obj.geological_feature = Some(text(toks.rest()))
+            }
             _ if t.ends_with(b"{") => mode = Mode::Skip,
             _ if is_geometry_keyword(kw) => b.obj.record_count += 1,
             _ => {}
@@ -291,12 +323,17 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
 }
 
 fn is_geometry_keyword(kw: &[u8]) -> bool {
-    matches!(kw, b"VRTX" | b"PVRTX" | b"ATOM" | b"PATOM" | b"SEG" | b"TRGL" | b"TETRA" | b"ILINE")
+    matches!(
+        kw,
+        b"VRTX" | b"PVRTX" | b"ATOM" | b"PATOM" | b"SEG" | b"TRGL" | b"TETRA" | b"ILINE"
+    )
 }
 
 /// One `key: value` (or `key=value`) line of a HEADER block.
 fn header_entry(t: &[u8], obj: &mut GocadObject) {
-    let Some(p) = t.iter().position(|&c| c == b':' || c == b'=') else { return };
+    let Some(p) = t.iter().position(|&c| c == b':' || c == b'=') else {
+        return;
+    };
     let key = trim(&t[..p]);
     if !eq_ci(key, "name") {
         return;
@@ -324,7 +361,14 @@ fn parse_surface_record(
     let id = |tok: Option<&[u8]>, what: &str| -> Result<u64, ImportError> {
         match tok {
             Some(t) => parse_id(t).ok_or_else(|| {
-                ImportError::new(file, n, format!("{what} '{}' is not a vertex id (a non-negative integer)", text(t)))
+                ImportError::new(
+                    file,
+                    n,
+                    format!(
+                        "{what} '{}' is not a vertex id (a non-negative integer)",
+                        text(t)
+                    ),
+                )
             }),
             None => Err(ImportError::new(file, n, format!("{what} is missing"))),
         }
@@ -332,18 +376,25 @@ fn parse_surface_record(
     match kw {
         b"VRTX" | b"PVRTX" => {
             let kwname = if kw == b"VRTX" { "VRTX" } else { "PVRTX" };
-            let vid = id(toks.next(), if kw == b"VRTX" { "VRTX id" } else { "PVRTX id" })?;
+            let vid = id(
+                toks.next(),
+                if kw == b"VRTX" { "VRTX id" } else { "PVRTX id" },
+            )?;
             let mut xyz = [0.0; 3];
             for (k, c) in xyz.iter_mut().enumerate() {
                 let axis = ["x", "y", "z"][k];
-                let tok = toks.next().ok_or_else(|| err(format!("{kwname} {vid} has no {axis} coordinate")))?;
+                let tok = toks
+                    .next()
+                    .ok_or_else(|| err(format!("{kwname} {vid} has no {axis} coordinate")))?;
                 *c = parse_f64(tok).map_err(|e| match e {
-                    NumberError::NotFinite => {
-                        err(format!("{kwname} {vid}: {axis} coordinate '{}' is infinite or NaN", text(tok)))
-                    }
-                    NumberError::NotNumeric => {
-                        err(format!("{kwname} {vid}: {axis} coordinate '{}' is not a number", text(tok)))
-                    }
+                    NumberError::NotFinite => err(format!(
+                        "{kwname} {vid}: {axis} coordinate '{}' is infinite or NaN",
+                        text(tok)
+                    )),
+                    NumberError::NotNumeric => err(format!(
+                        "{kwname} {vid}: {axis} coordinate '{}' is not a number",
+                        text(tok)
+                    )),
                 })?;
             }
             let o = &mut b.obj;
@@ -356,8 +407,12 @@ fn parse_surface_record(
                     let tok = toks.next().ok_or_else(|| {
                         err(format!("PVRTX {vid} has {k} property values; PROPERTIES/ESIZES declare {stride}"))
                     })?;
-                    let v = parse_f64(tok)
-                        .map_err(|_| err(format!("PVRTX {vid}: property value '{}' is not a finite number", text(tok))))?;
+                    let v = parse_f64(tok).map_err(|_| {
+                        err(format!(
+                            "PVRTX {vid}: property value '{}' is not a finite number",
+                            text(tok)
+                        ))
+                    })?;
                     o.properties.push(v);
                 }
             } else {
@@ -402,11 +457,20 @@ fn parse_surface_record(
 
 /// Number of property values a PVRTX carries: the ESIZES sum, else one per name.
 fn declared_stride(o: &GocadObject) -> usize {
-    if o.property_sizes.is_empty() { o.property_names.len() } else { o.property_sizes.iter().sum() }
+    if o.property_sizes.is_empty() {
+        o.property_names.len()
+    } else {
+        o.property_sizes.iter().sum()
+    }
 }
 
 /// Closes an object: resolves ids, checks references, appends it to the file.
-fn finish(mut b: Builder, end: Option<usize>, file: &mut GocadFile, label: &str) -> Result<(), ImportError> {
+fn finish(
+    mut b: Builder,
+    end: Option<usize>,
+    file: &mut GocadFile,
+    label: &str,
+) -> Result<(), ImportError> {
     b.obj.end_line = end;
     if let Some(m) = b.model.take() {
         file.model3d = Some(m.finish(&b.obj));
@@ -428,13 +492,27 @@ fn resolve(b: &mut Builder, label: &str) -> Result<(), ImportError> {
     let o = &mut b.obj;
     let nv = o.vertices.len();
     if nv >= ID_NONE as usize {
-        return Err(ImportError::new(label, o.line, "more than 4 294 967 294 vertices in one object"));
+        return Err(ImportError::new(
+            label,
+            o.line,
+            "more than 4 294 967 294 vertices in one object",
+        ));
     }
     let count = nv + b.raw_atoms.len();
-    let max_id = o.vertex_ids.iter().chain(b.raw_atoms.iter().map(|a| &a.0)).copied().max().unwrap_or(0);
+    let max_id = o
+        .vertex_ids
+        .iter()
+        .chain(b.raw_atoms.iter().map(|a| &a.0))
+        .copied()
+        .max()
+        .unwrap_or(0);
     let dense = max_id <= (2 * count as u64).saturating_add(1024);
     let name = |id: u64, line: u32, what: &str| {
-        ImportError::new(label, line as usize, format!("duplicate vertex id {id}: {what} repeats an id already defined"))
+        ImportError::new(
+            label,
+            line as usize,
+            format!("duplicate vertex id {id}: {what} repeats an id already defined"),
+        )
     };
     let mut map = if dense {
         let mut t = vec![ID_NONE; max_id as usize + 1];
@@ -447,7 +525,12 @@ fn resolve(b: &mut Builder, label: &str) -> Result<(), ImportError> {
         }
         IdMap::Dense(t)
     } else {
-        let mut s: Vec<(u64, u32)> = o.vertex_ids.iter().enumerate().map(|(i, &id)| (id, i as u32)).collect();
+        let mut s: Vec<(u64, u32)> = o
+            .vertex_ids
+            .iter()
+            .enumerate()
+            .map(|(i, &id)| (id, i as u32))
+            .collect();
         s.sort_unstable();
         if let Some(w) = s.windows(2).find(|w| w[0].0 == w[1].0) {
             let later = w[0].1.max(w[1].1);
@@ -477,18 +560,25 @@ fn resolve(b: &mut Builder, label: &str) -> Result<(), ImportError> {
         o.atoms.push((aid, idx, line));
     }
     let missing = |what: &str, id: u64, line: u32| {
-        ImportError::new(label, line as usize, format!("{what} points at vertex {id}, which is not defined"))
+        ImportError::new(
+            label,
+            line as usize,
+            format!("{what} points at vertex {id}, which is not defined"),
+        )
     };
     o.triangles.reserve_exact(b.raw_triangles.len());
     for (tri, &line) in b.raw_triangles.iter().zip(&o.triangle_lines) {
         let mut out = [0u32; 3];
         for k in 0..3 {
-            out[k] = map.get(tri[k]).ok_or_else(|| missing("TRGL", tri[k], line))?;
+            out[k] = map
+                .get(tri[k])
+                .ok_or_else(|| missing("TRGL", tri[k], line))?;
         }
         o.triangles.push(out);
     }
     for &(v, line) in &b.raw_bstones {
-        o.bstones.push(map.get(v).ok_or_else(|| missing("BSTONE", v, line))?);
+        o.bstones
+            .push(map.get(v).ok_or_else(|| missing("BSTONE", v, line))?);
     }
     for &(v0, v1, line) in &b.raw_borders {
         let a = map.get(v0).ok_or_else(|| missing("BORDER", v0, line))?;

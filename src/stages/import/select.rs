@@ -7,7 +7,11 @@ use super::{ImportError, ImportOptions, ImportedSurface, PartInfo, SourceMap, Un
 use crate::geom::TriMesh;
 
 /// Imports the one surface of a file the options name.
-pub fn import_surface(bytes: &[u8], file_label: &str, opts: &ImportOptions) -> Result<ImportedSurface, ImportError> {
+pub fn import_surface(
+    bytes: &[u8],
+    file_label: &str,
+    opts: &ImportOptions,
+) -> Result<ImportedSurface, ImportError> {
     let mut file = parse_gocad(bytes, file_label)?;
     let idx = select(&file, file_label, opts)?;
     let model = file.model3d.take();
@@ -45,13 +49,20 @@ fn no_surface(file: &GocadFile, label: &str) -> ImportError {
         Some(o) => ImportError::new(
             label,
             o.line,
-            format!("the file holds no GOCAD TSurf object (its first object is a GOCAD {})", o.kind),
+            format!(
+                "the file holds no GOCAD TSurf object (its first object is a GOCAD {})",
+                o.kind
+            ),
         ),
     }
 }
 
 fn other_type(o: &GocadObject, label: &str) -> ImportError {
-    let name = if o.name.is_empty() { String::new() } else { format!(" '{}'", o.name) };
+    let name = if o.name.is_empty() {
+        String::new()
+    } else {
+        format!(" '{}'", o.name)
+    };
     ImportError::new(
         label,
         o.line,
@@ -64,20 +75,38 @@ fn other_type(o: &GocadObject, label: &str) -> ImportError {
 
 /// Index of the object the options select.
 fn select(file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<usize, ImportError> {
-    let index_of = |o: &GocadObject| file.objects.iter().position(|x| std::ptr::eq(x, o)).unwrap_or(0);
+    let index_of = |o: &GocadObject| {
+        file.objects
+            .iter()
+            .position(|x| std::ptr::eq(x, o))
+            .unwrap_or(0)
+    };
     if let Some(want) = &opts.object {
         let named: Vec<&GocadObject> = file.objects.iter().filter(|o| &o.name == want).collect();
         return match named.as_slice() {
             [one] if one.is_surface() => Ok(index_of(one)),
             [one] => Err(other_type(one, label)),
             [] => {
-                let names: Vec<&str> = file.objects.iter().filter(|o| o.is_surface()).map(|o| o.name.as_str()).collect();
-                Err(ImportError::new(label, 0, format!("no object named '{want}'; surfaces here: {names:?}")))
+                let names: Vec<&str> = file
+                    .objects
+                    .iter()
+                    .filter(|o| o.is_surface())
+                    .map(|o| o.name.as_str())
+                    .collect();
+                Err(ImportError::new(
+                    label,
+                    0,
+                    format!("no object named '{want}'; surfaces here: {names:?}"),
+                ))
             }
             [first, ..] => Err(ImportError::new(
                 label,
                 first.line,
-                format!("{} objects are named '{want}' (lines {:?})", named.len(), named.iter().map(|o| o.line).collect::<Vec<_>>()),
+                format!(
+                    "{} objects are named '{want}' (lines {:?})",
+                    named.len(),
+                    named.iter().map(|o| o.line).collect::<Vec<_>>()
+                ),
             )),
         };
     }
@@ -96,23 +125,37 @@ fn select(file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<usize, 
             format!(
                 "the file holds {} TSurf objects ({}); name one with `object`",
                 many.len(),
-                many.iter().map(|o| format!("'{}' line {}", o.name, o.line)).collect::<Vec<_>>().join(", ")
+                many.iter()
+                    .map(|o| format!("'{}' line {}", o.name, o.line))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ),
         )),
     }
 }
 
 /// Per-axis scale from the object's AXIS_UNIT into the target units.
-fn axis_scale(o: &GocadObject, label: &str, target: Option<Units>) -> Result<[f64; 3], ImportError> {
-    let Some(target) = target else { return Ok([1.0; 3]) };
-    let Some((units, line)) = &o.crs.axis_units else { return Ok([Units::Metre.metres() / target.metres(); 3]) };
+fn axis_scale(
+    o: &GocadObject,
+    label: &str,
+    target: Option<Units>,
+) -> Result<[f64; 3], ImportError> {
+    let Some(target) = target else {
+        return Ok([1.0; 3]);
+    };
+    let Some((units, line)) = &o.crs.axis_units else {
+        return Ok([Units::Metre.metres() / target.metres(); 3]);
+    };
     let mut s = [1.0; 3];
     for k in 0..3 {
         let u = Units::parse(&units[k]).ok_or_else(|| {
             ImportError::new(
                 label,
                 *line,
-                format!("AXIS_UNIT '{}' is not a length unit this importer knows (m, km, ft)", units[k]),
+                format!(
+                    "AXIS_UNIT '{}' is not a length unit this importer knows (m, km, ft)",
+                    units[k]
+                ),
             )
         })?;
         s[k] = u.metres() / target.metres();
@@ -126,7 +169,11 @@ fn z_is_depth(o: &GocadObject, label: &str) -> Result<bool, ImportError> {
         Some((v, line)) => match v.to_ascii_lowercase().as_str() {
             "depth" => Ok(true),
             "elevation" => Ok(false),
-            _ => Err(ImportError::new(label, *line, format!("ZPOSITIVE must be Elevation or Depth, found '{v}'"))),
+            _ => Err(ImportError::new(
+                label,
+                *line,
+                format!("ZPOSITIVE must be Elevation or Depth, found '{v}'"),
+            )),
         },
     }
 }
@@ -138,8 +185,16 @@ fn convert(
     opts: &ImportOptions,
 ) -> Result<ImportedSurface, ImportError> {
     if o.triangles.is_empty() {
-        let name = if o.name.is_empty() { String::new() } else { format!(" '{}'", o.name) };
-        return Err(ImportError::new(label, o.line, format!("TSurf object{name} has no triangles")));
+        let name = if o.name.is_empty() {
+            String::new()
+        } else {
+            format!(" '{}'", o.name)
+        };
+        return Err(ImportError::new(
+            label,
+            o.line,
+            format!("TSurf object{name} has no triangles"),
+        ));
     }
     let mut parts: Vec<PartInfo> = o
         .parts
@@ -168,7 +223,11 @@ fn convert(
         let q = [p[0] * scale[0], p[1] * scale[1], zsign * p[2] * scale[2]];
         if q.iter().any(|c| !c.is_finite()) {
             let line = o.vertex_lines.get(i).copied().unwrap_or(0) as usize;
-            return Err(ImportError::new(label, line, "coordinate overflows after unit scaling"));
+            return Err(ImportError::new(
+                label,
+                line,
+                "coordinate overflows after unit scaling",
+            ));
         }
         *p = q;
     }
@@ -206,7 +265,18 @@ fn property_columns(o: &GocadObject, n: usize) -> (Vec<String>, Vec<Vec<f64>>) {
         names.push(format!("property{}", names.len()));
     }
     names.truncate(stride);
-    let cols = (0..stride).map(|k| (0..n).map(|v| o.properties.get(v * stride + k).copied().unwrap_or(f64::NAN)).collect()).collect();
+    let cols = (0..stride)
+        .map(|k| {
+            (0..n)
+                .map(|v| {
+                    o.properties
+                        .get(v * stride + k)
+                        .copied()
+                        .unwrap_or(f64::NAN)
+                })
+                .collect()
+        })
+        .collect();
     (names, cols)
 }
 
@@ -214,7 +284,11 @@ fn property_columns(o: &GocadObject, n: usize) -> (Vec<String>, Vec<Vec<f64>>) {
 /// one of the part's vertices (exact equality on the coordinates as written, before any
 /// transform); records that match no part are assigned in order to the parts left.
 fn match_model_faces(o: &GocadObject, model: &super::Model3dInfo, parts: &mut [PartInfo]) {
-    let faces: Vec<&super::Model3dFace> = model.tfaces.iter().filter(|f| f.surface == o.name).collect();
+    let faces: Vec<&super::Model3dFace> = model
+        .tfaces
+        .iter()
+        .filter(|f| f.surface == o.name)
+        .collect();
     if faces.is_empty() {
         return;
     }
@@ -229,7 +303,10 @@ fn match_model_faces(o: &GocadObject, model: &super::Model3dInfo, parts: &mut [P
     for f in &faces {
         let hit = f.key_points.first().and_then(|kp| {
             (0..parts.len()).find(|&p| {
-                !taken[p] && part_vertices[p].iter().any(|&v| o.vertices.get(v as usize) == Some(kp))
+                !taken[p]
+                    && part_vertices[p]
+                        .iter()
+                        .any(|&v| o.vertices.get(v as usize) == Some(kp))
             })
         });
         match hit {

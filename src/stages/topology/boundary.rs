@@ -66,7 +66,9 @@ impl SurfaceTopology {
                     let mut cur = start;
                     let mut b = self.target(start);
                     let closed = loop {
-                        let Some(g) = self.next_boundary(cur, b) else { break false };
+                        let Some(g) = self.next_boundary(cur, b) else {
+                            break false;
+                        };
                         if g == start {
                             break true;
                         }
@@ -76,17 +78,32 @@ impl SurfaceTopology {
                         visited[g as usize] = true;
                         hes.push(g);
                         verts.push(b);
-                        b = if self.origin(g) == b { self.target(g) } else { self.origin(g) };
+                        b = if self.origin(g) == b {
+                            self.target(g)
+                        } else {
+                            self.origin(g)
+                        };
                         cur = g;
                     };
                     patch_loops[p as usize].push(loops.len() as u32);
-                    loops.push(BoundaryLoop { patch: p, half_edges: hes, vertices: verts, closed, outer: false });
+                    loops.push(BoundaryLoop {
+                        patch: p,
+                        half_edges: hes,
+                        vertices: verts,
+                        closed,
+                        outer: false,
+                    });
                 }
             }
         }
         for ls in &mut patch_loops {
             let diag = |l: u32| {
-                let b = BBox::from_points(loops[l as usize].vertices.iter().filter_map(|&v| mesh.vertices.get(v as usize)));
+                let b = BBox::from_points(
+                    loops[l as usize]
+                        .vertices
+                        .iter()
+                        .filter_map(|&v| mesh.vertices.get(v as usize)),
+                );
                 let e = b.extent();
                 e[0] * e[0] + e[1] * e[1] + e[2] * e[2]
             };

@@ -36,10 +36,16 @@ fn turn_deg(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> Option<f64> {
 fn canonical(vs: &[u32], closed: bool) -> (Vec<u32>, bool) {
     if !closed {
         let rev: Vec<u32> = vs.iter().rev().copied().collect();
-        return if rev.as_slice() < vs { (rev, true) } else { (vs.to_vec(), false) };
+        return if rev.as_slice() < vs {
+            (rev, true)
+        } else {
+            (vs.to_vec(), false)
+        };
     }
     let n = vs.len();
-    let Some(m) = (0..n).min_by_key(|&i| (vs[i], i)) else { return (Vec::new(), false) };
+    let Some(m) = (0..n).min_by_key(|&i| (vs[i], i)) else {
+        return (Vec::new(), false);
+    };
     let fwd: Vec<u32> = (0..n).map(|i| vs[(m + i) % n]).collect();
     let bwd: Vec<u32> = (0..n).map(|i| vs[(m + n - i) % n]).collect();
     if bwd < fwd { (bwd, true) } else { (fwd, false) }
@@ -52,7 +58,12 @@ impl SurfaceTopology {
         (hs.len(), seam)
     }
 
-    pub(super) fn build_corners_and_curves(&mut self, mesh: &TriMesh, bstones: &[u32], tol: &Tolerances) {
+    pub(super) fn build_corners_and_curves(
+        &mut self,
+        mesh: &TriMesh,
+        bstones: &[u32],
+        tol: &Tolerances,
+    ) {
         let nv = self.vertex_count;
         let mut corner = vec![false; nv];
         for &b in bstones {
@@ -62,7 +73,11 @@ impl SurfaceTopology {
         }
         let mut degree = vec![0u32; nv];
         for e in 0..self.edges.len() as u32 {
-            if self.edge_half_edges(e).iter().any(|&h| self.across(h).is_none()) {
+            if self
+                .edge_half_edges(e)
+                .iter()
+                .any(|&h| self.across(h).is_none())
+            {
                 for v in self.edges[e as usize] {
                     degree[v as usize] += 1;
                 }
@@ -83,7 +98,11 @@ impl SurfaceTopology {
                 continue;
             }
             for i in 0..n {
-                let (prev, v, next) = (l.vertices[(i + n - 1) % n], l.vertices[i], l.vertices[(i + 1) % n]);
+                let (prev, v, next) = (
+                    l.vertices[(i + n - 1) % n],
+                    l.vertices[i],
+                    l.vertices[(i + 1) % n],
+                );
                 let ein = self.edge_of(l.half_edges[(i + n - 1) % n]);
                 let eout = self.edge_of(l.half_edges[i]);
                 if self.edge_kind(ein) != self.edge_kind(eout) {
@@ -109,7 +128,11 @@ impl SurfaceTopology {
                     let mut vs = l.vertices.clone();
                     if let Some(&h) = l.half_edges.last() {
                         let last = *vs.last().unwrap_or(&0);
-                        let end = if self.origin(h) == last { self.target(h) } else { self.origin(h) };
+                        let end = if self.origin(h) == last {
+                            self.target(h)
+                        } else {
+                            self.origin(h)
+                        };
                         vs.push(end);
                     }
                     pieces.push((vs, false));
@@ -130,7 +153,10 @@ impl SurfaceTopology {
             for (vs, closed) in pieces {
                 let (key, reversed) = canonical(&vs, closed);
                 let id = *index.entry((key.clone(), closed)).or_insert_with(|| {
-                    curves.push(Curve { vertices: key, closed });
+                    curves.push(Curve {
+                        vertices: key,
+                        closed,
+                    });
                     (curves.len() - 1) as u32
                 });
                 refs.push((id, reversed));

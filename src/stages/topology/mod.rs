@@ -56,7 +56,12 @@ impl SurfaceTopology {
 
     /// Like `build`, but edges between triangles of different parts (TFACEs) bound patches too.
     /// `triangle_part` may be empty (one part).
-    pub fn build_with_parts(mesh: &TriMesh, triangle_part: &[u32], bstones: &[u32], tol: &Tolerances) -> SurfaceTopology {
+    pub fn build_with_parts(
+        mesh: &TriMesh,
+        triangle_part: &[u32],
+        bstones: &[u32],
+        tol: &Tolerances,
+    ) -> SurfaceTopology {
         let nv = mesh.vertices.len();
         // Triangles pointing outside the vertex list are kept out (they cannot be walked).
         let triangles: Vec<[u32; 3]> = mesh.triangles.clone();
@@ -92,7 +97,8 @@ impl SurfaceTopology {
             t[k].max(t[(k + 1) % 3])
         };
         for v in 0..nv {
-            edge_hes[count[v] as usize..count[v + 1] as usize].sort_unstable_by_key(|&h| (hi_of(h), h));
+            edge_hes[count[v] as usize..count[v + 1] as usize]
+                .sort_unstable_by_key(|&h| (hi_of(h), h));
         }
         let mut he_edge = vec![NONE; nh];
         let mut edges: Vec<[u32; 2]> = Vec::new();
@@ -240,7 +246,10 @@ impl SurfaceTopology {
     }
     /// Half-edges on edge `e`, in triangle order.
     pub fn edge_half_edges(&self, e: u32) -> &[u32] {
-        let (a, b) = (self.edge_start[e as usize] as usize, self.edge_start[e as usize + 1] as usize);
+        let (a, b) = (
+            self.edge_start[e as usize] as usize,
+            self.edge_start[e as usize + 1] as usize,
+        );
         &self.edge_hes[a..b]
     }
     /// Triangles around edge `e` (one for a border, two inside, three or more on a non-manifold edge).
@@ -278,20 +287,29 @@ impl SurfaceTopology {
     }
     /// Edges incident to vertex `v`, in edge order.
     pub fn edges_around_vertex(&self, v: u32) -> &[u32] {
-        let (a, b) = (self.vert_start[v as usize] as usize, self.vert_start[v as usize + 1] as usize);
+        let (a, b) = (
+            self.vert_start[v as usize] as usize,
+            self.vert_start[v as usize + 1] as usize,
+        );
         &self.vert_edges[a..b]
     }
     /// The edge joining `a` and `b`, if any.
     pub fn edge_between(&self, a: u32, b: u32) -> Option<u32> {
         let (lo, hi) = (a.min(b), a.max(b));
-        self.edges_around_vertex(lo).iter().copied().find(|&e| self.edges[e as usize] == [lo, hi])
+        self.edges_around_vertex(lo)
+            .iter()
+            .copied()
+            .find(|&e| self.edges[e as usize] == [lo, hi])
     }
     pub fn patch_count(&self) -> usize {
         self.patch_start.len().saturating_sub(1)
     }
     /// Triangles of patch `p`, sorted.
     pub fn patch_triangles(&self, p: u32) -> &[u32] {
-        let (a, b) = (self.patch_start[p as usize] as usize, self.patch_start[p as usize + 1] as usize);
+        let (a, b) = (
+            self.patch_start[p as usize] as usize,
+            self.patch_start[p as usize + 1] as usize,
+        );
         &self.patch_tris[a..b]
     }
     pub fn patch_of_triangle(&self, t: u32) -> u32 {
@@ -331,7 +349,15 @@ impl SurfaceTopology {
             + self.corners.capacity())
             + 12 * self.triangles.capacity()
             + 8 * self.edges.capacity()
-            + self.loops.iter().map(|l| 8 * l.vertices.capacity() + 64).sum::<usize>()
-            + self.curves.iter().map(|c| 4 * c.vertices.capacity() + 32).sum::<usize>()
+            + self
+                .loops
+                .iter()
+                .map(|l| 8 * l.vertices.capacity() + 64)
+                .sum::<usize>()
+            + self
+                .curves
+                .iter()
+                .map(|c| 4 * c.vertices.capacity() + 32)
+                .sum::<usize>()
     }
 }

@@ -18,14 +18,17 @@ pub fn collinear(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> bool {
 
 /// For every vertex, the smallest index of the vertices coincident with it. With
 /// `merge_distance == 0` coincident means equal coordinates (exact); otherwise within that
-/// Euclidean distance (transitively, by union-find over a sweep along x).
+/// Euclidean distance (transitively, by union-find over a grid of cells of that size).
 pub fn canonical_vertices(v: &[[f64; 3]], tol: &Tolerances) -> Vec<u32> {
     let n = v.len();
     let mut order: Vec<u32> = (0..n as u32).collect();
     let key = |i: u32| v[i as usize];
     order.sort_unstable_by(|&a, &b| {
         let (p, q) = (key(a), key(b));
-        p[0].total_cmp(&q[0]).then(p[1].total_cmp(&q[1])).then(p[2].total_cmp(&q[2])).then(a.cmp(&b))
+        p[0].total_cmp(&q[0])
+            .then(p[1].total_cmp(&q[1]))
+            .then(p[2].total_cmp(&q[2]))
+            .then(a.cmp(&b))
     });
     let mut parent: Vec<u32> = (0..n as u32).collect();
     fn find(parent: &mut [u32], mut x: u32) -> u32 {
@@ -45,16 +48,39 @@ pub fn canonical_vertices(v: &[[f64; 3]], tol: &Tolerances) -> Vec<u32> {
     }
     let d = tol.merge_distance;
     if d > 0.0 {
-        for i in 0..order.len() {
-            let p = key(order[i]);
-            for &j in &order[i + 1..] {
-                let q = key(j);
-                if q[0] - p[0] > d {
-                    break;
-                }
-                let dd = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2);
-                if dd <= d * d {
-                    union(&mut parent, order[i], j);
+        // Cells a hair larger than d (so rounding of c / side cannot split a pair at distance d
+        // by two cells): vertices within d of each other are in the same or adjacent cells.
+        let side = d * (1.0 + 1e-9);
+        let cell = |p: [f64; 3]| p.map(|c| (c / side).floor() as i64);
+        let mut cells: Vec<([i64; 3], u32)> = (0..n as u32).map(|i| (cell(key(i)), i)).collect();
+        cells.sort_unstable();
+        for &(c, i) in &cells {
+            let p = key(i);
+            for dx in -1..=1i64 {
+                for dy in -1..=1i64 {
+                    for dz in -1..=1i64 {
+                        let nc = [
+                            c[0].saturating_add(dx),
+                            c[1].saturating_add(dy),
+                            c[2].saturating_add(dz),
+                        ];
+                        let start = cells.partition_point(|e| e.0 < nc);
+                        for &(ec, j) in &cells[start..] {
+                            if ec != nc {
+                                break;
+                            }
+                            if j <= i {
+                                continue;
+                            }
+                            let q = key(j);
+                            let dd = (q[0] - p[0]).powi(2)
+                                + (q[1] - p[1]).powi(2)
+                                + (q[2] - p[2]).powi(2);
+                            if dd <= d * d {
+                                union(&mut parent, i, j);
+                            }
+                        }
+                    }
                 }
             }
         }
@@ -116,19 +142,57 @@ pub struct Side {
 
 /// The sides of all `Ok` triangles, grouped by edge (sorted by key, then triangle).
 pub fn edge_sides(tris: &[[u32; 3]], canon: &[u32], status: &[TriStatus]) -> Vec<Side> {
-    let mut sides = Vec::with_capacity(tris.len() * 3);
-    for (t, tri) in tris.iter().enumerate() {
-        if status[t] != TriStatus::Ok {
-            continue;
+    // Counting sort by the lower endpoint, then a small sort inside each bucket: the same order
+    // as sorting by (key, tri, k), in linear time for meshes of bounded degree.
+    let nv = canon.len();
+    let side = |t: usize, k: usize| {
+        let tri = &tris[t];
+        let a = canon[tri[k] as usize];
+        let b = canon[tri[(k + 1) % 3] as usize];
+        let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+        Side {
+            key: (u64::from(lo) << 32) | u64::from(hi),
+            tri: t as u32,
+            k: k as u8,
+            forward: a < b,
         }
+    };
+    let mut start = vec![0usize; nv + 1];
+    for (t, _) in tris
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| status[*t] == TriStatus::Ok)
+    {
         for k in 0..3 {
-            let a = canon[tri[k] as usize];
-            let b = canon[tri[(k + 1) % 3] as usize];
-            let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-            sides.push(Side { key: (u64::from(lo) << 32) | u64::from(hi), tri: t as u32, k: k as u8, forward: a < b });
+            start[(side(t, k).key >> 32) as usize + 1] += 1;
         }
     }
-    sides.sort_unstable_by_key(|s| (s.key, s.tri, s.k));
+    for i in 0..nv {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let empty = Side {
+        key: 0,
+        tri: 0,
+        k: 0,
+        forward: false,
+    };
+    let mut sides = vec![empty; start[nv]];
+    for (t, _) in tris
+        .iter()
+        .enumerate()
+        .filter(|(t, _)| status[*t] == TriStatus::Ok)
+    {
+        for k in 0..3 {
+            let sd = side(t, k);
+            let lo = (sd.key >> 32) as usize;
+            sides[fill[lo]] = sd;
+            fill[lo] += 1;
+        }
+    }
+    for v in 0..nv {
+        sides[start[v]..start[v + 1]].sort_unstable_by_key(|s| (s.key, s.tri, s.k));
+    }
     sides
 }
 

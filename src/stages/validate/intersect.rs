@@ -43,7 +43,10 @@ fn proj(p: &P, k: usize) -> [f64; 2] {
 
 fn on_segment_2d(p: &[f64; 2], q: &[f64; 2], r: &[f64; 2]) -> bool {
     // r is collinear with pq: inside the closed segment iff inside its box.
-    r[0] >= p[0].min(q[0]) && r[0] <= p[0].max(q[0]) && r[1] >= p[1].min(q[1]) && r[1] <= p[1].max(q[1])
+    r[0] >= p[0].min(q[0])
+        && r[0] <= p[0].max(q[0])
+        && r[1] >= p[1].min(q[1])
+        && r[1] <= p[1].max(q[1])
 }
 
 /// Closed segment–segment intersection in the plane.
@@ -78,16 +81,24 @@ fn coplanar_seg_tri(p: &P, q: &P, a: &P, b: &P, c: &P) -> bool {
 }
 
 /// Closed segment `pq` (p ≠ q) against closed non-degenerate triangle `abc`.
+#[cfg(test)]
 pub fn seg_tri(p: &P, q: &P, a: &P, b: &P, c: &P) -> bool {
-    let op = orient3d(a, b, c, p);
-    let oq = orient3d(a, b, c, q);
+    seg_tri_with(p, q, a, b, c, orient3d(a, b, c, p), orient3d(a, b, c, q))
+}
+
+/// `seg_tri` with the sides of `p` and `q` relative to plane `abc` already known.
+fn seg_tri_with(p: &P, q: &P, a: &P, b: &P, c: &P, op: Orientation, oq: Orientation) -> bool {
     if op == oq && op != Orientation::Zero {
         return false;
     }
     if op == Orientation::Zero && oq == Orientation::Zero {
         return coplanar_seg_tri(p, q, a, b, c);
     }
-    !mixed([orient3d(p, q, a, b), orient3d(p, q, b, c), orient3d(p, q, c, a)])
+    !mixed([
+        orient3d(p, q, a, b),
+        orient3d(p, q, b, c),
+        orient3d(p, q, c, a),
+    ])
 }
 
 fn all_strict_same(s: [Orientation; 3]) -> bool {
@@ -96,17 +107,44 @@ fn all_strict_same(s: [Orientation; 3]) -> bool {
 
 /// Two triangles without a common vertex.
 pub fn disjoint_pair(t: [&P; 3], u: [&P; 3]) -> Contact {
-    let su = [orient3d(t[0], t[1], t[2], u[0]), orient3d(t[0], t[1], t[2], u[1]), orient3d(t[0], t[1], t[2], u[2])];
+    let su = [
+        orient3d(t[0], t[1], t[2], u[0]),
+        orient3d(t[0], t[1], t[2], u[1]),
+        orient3d(t[0], t[1], t[2], u[2]),
+    ];
     if all_strict_same(su) {
         return Contact::None;
     }
-    let st = [orient3d(u[0], u[1], u[2], t[0]), orient3d(u[0], u[1], u[2], t[1]), orient3d(u[0], u[1], u[2], t[2])];
+    let st = [
+        orient3d(u[0], u[1], u[2], t[0]),
+        orient3d(u[0], u[1], u[2], t[1]),
+        orient3d(u[0], u[1], u[2], t[2]),
+    ];
     if all_strict_same(st) {
         return Contact::None;
     }
     let coplanar = su.iter().all(|&o| o == Orientation::Zero);
-    let hit = (0..3).any(|k| seg_tri(t[k], t[(k + 1) % 3], u[0], u[1], u[2]))
-        || (0..3).any(|k| seg_tri(u[k], u[(k + 1) % 3], t[0], t[1], t[2]));
+    let hit = (0..3).any(|k| {
+        seg_tri_with(
+            t[k],
+            t[(k + 1) % 3],
+            u[0],
+            u[1],
+            u[2],
+            st[k],
+            st[(k + 1) % 3],
+        )
+    }) || (0..3).any(|k| {
+        seg_tri_with(
+            u[k],
+            u[(k + 1) % 3],
+            t[0],
+            t[1],
+            t[2],
+            su[k],
+            su[(k + 1) % 3],
+        )
+    });
     match (hit, coplanar) {
         (false, _) => Contact::None,
         (true, true) => Contact::CoplanarOverlap,
@@ -126,10 +164,14 @@ pub fn vertex_pair(v: &P, a: &P, b: &P, c: &P, d: &P) -> Contact {
     if oa == ob && oa != Orientation::Zero {
         return Contact::None;
     }
-    if !(seg_tri(a, b, v, c, d) || seg_tri(c, d, v, a, b)) {
+    if !(seg_tri_with(a, b, v, c, d, oa, ob) || seg_tri_with(c, d, v, a, b, oc, od)) {
         return Contact::None;
     }
-    if oc == Orientation::Zero && od == Orientation::Zero { Contact::CoplanarOverlap } else { Contact::Crossing }
+    if oc == Orientation::Zero && od == Orientation::Zero {
+        Contact::CoplanarOverlap
+    } else {
+        Contact::Crossing
+    }
 }
 
 /// Triangles `(u, v, a)` and `(u, v, b)` sharing the edge `uv`: they overlap only when coplanar
@@ -142,7 +184,11 @@ pub fn edge_pair(u: &P, v: &P, a: &P, b: &P) -> Contact {
     let (pu, pv) = (proj(u, k), proj(v, k));
     let sa = orient2d(&pu, &pv, &proj(a, k));
     let sb = orient2d(&pu, &pv, &proj(b, k));
-    if sa == sb && sa != Orientation::Zero { Contact::CoplanarOverlap } else { Contact::None }
+    if sa == sb && sa != Orientation::Zero {
+        Contact::CoplanarOverlap
+    } else {
+        Contact::None
+    }
 }
 
 #[cfg(test)]
@@ -166,31 +212,55 @@ mod tests {
         let p = |x: f64, y: f64, z: f64| [o[0] + x, o[1] + y, o[2] + z];
         let t = [p(0.0, 0.0, 0.0), p(10.0, 0.0, 0.0), p(0.0, 10.0, 0.0)];
         let u = [p(1.0, 1.0, -1.0), p(1.0, 1.0, 1.0), p(5.0, -3.0, 0.5)];
-        assert_eq!(disjoint_pair([&t[0], &t[1], &t[2]], [&u[0], &u[1], &u[2]]), Contact::Crossing);
+        assert_eq!(
+            disjoint_pair([&t[0], &t[1], &t[2]], [&u[0], &u[1], &u[2]]),
+            Contact::Crossing
+        );
         let far = [p(1.0, 1.0, 0.001), p(1.0, 1.0, 1.0), p(5.0, -3.0, 0.5)];
-        assert_eq!(disjoint_pair([&t[0], &t[1], &t[2]], [&far[0], &far[1], &far[2]]), Contact::None);
+        assert_eq!(
+            disjoint_pair([&t[0], &t[1], &t[2]], [&far[0], &far[1], &far[2]]),
+            Contact::None
+        );
     }
 
     #[test]
     fn coplanar_overlapping_triangles_are_an_overlap_not_a_crossing() {
         let t = [O, [4.0, 0.0, 0.0], [0.0, 4.0, 0.0]];
         let u = [[1.0, 1.0, 0.0], [5.0, 1.0, 0.0], [1.0, 5.0, 0.0]];
-        assert_eq!(disjoint_pair([&t[0], &t[1], &t[2]], [&u[0], &u[1], &u[2]]), Contact::CoplanarOverlap);
+        assert_eq!(
+            disjoint_pair([&t[0], &t[1], &t[2]], [&u[0], &u[1], &u[2]]),
+            Contact::CoplanarOverlap
+        );
     }
 
     #[test]
     fn a_fan_around_a_shared_vertex_does_not_intersect_but_a_fold_does() {
         let (a, b) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
-        assert_eq!(vertex_pair(&O, &a, &b, &[-1.0, 0.0, 0.0], &[0.0, -1.0, 0.2]), Contact::None);
+        assert_eq!(
+            vertex_pair(&O, &a, &b, &[-1.0, 0.0, 0.0], &[0.0, -1.0, 0.2]),
+            Contact::None
+        );
         // The second triangle passes through the first one's interior.
-        assert_eq!(vertex_pair(&O, &a, &b, &[1.0, 1.0, -1.0], &[1.0, 1.0, 1.0]), Contact::Crossing);
+        assert_eq!(
+            vertex_pair(&O, &a, &b, &[1.0, 1.0, -1.0], &[1.0, 1.0, 1.0]),
+            Contact::Crossing
+        );
     }
 
     #[test]
     fn a_shared_edge_overlaps_only_when_folded_flat() {
         let (u, v) = (O, [1.0, 0.0, 0.0]);
-        assert_eq!(edge_pair(&u, &v, &[0.0, 1.0, 0.0], &[0.0, -1.0, 0.0]), Contact::None);
-        assert_eq!(edge_pair(&u, &v, &[0.0, 1.0, 0.0], &[0.0, 1.0, 1.0]), Contact::None);
-        assert_eq!(edge_pair(&u, &v, &[0.0, 1.0, 0.0], &[0.5, 2.0, 0.0]), Contact::CoplanarOverlap);
+        assert_eq!(
+            edge_pair(&u, &v, &[0.0, 1.0, 0.0], &[0.0, -1.0, 0.0]),
+            Contact::None
+        );
+        assert_eq!(
+            edge_pair(&u, &v, &[0.0, 1.0, 0.0], &[0.0, 1.0, 1.0]),
+            Contact::None
+        );
+        assert_eq!(
+            edge_pair(&u, &v, &[0.0, 1.0, 0.0], &[0.5, 2.0, 0.0]),
+            Contact::CoplanarOverlap
+        );
     }
 }

@@ -23,7 +23,8 @@ use crate::geom::Tolerances;
 use crate::stages::import::ImportedSurface;
 use checks::{TriStatus, edge_sides, key_vertices, triangle_status};
 
-/// Runs every check of the black-list on one surface.
+/// Runs every check of the black-list on one surface. Requires what import guarantees: every
+/// triangle corner indexes an existing, finite vertex.
 pub fn validate(s: &ImportedSurface, tol: &Tolerances) -> ValidationReport {
     let v = &s.mesh.vertices;
     let tris = &s.mesh.triangles;
@@ -56,8 +57,12 @@ pub fn validate(s: &ImportedSurface, tol: &Tolerances) -> ValidationReport {
     let status = triangle_status(v, tris, &canon);
     for (t, st) in status.iter().enumerate() {
         match *st {
-            TriStatus::Degenerate => r.push_triangles(s, FindingKind::DegenerateTriangle, &[t as u32]),
-            TriStatus::DuplicateOf(first) => r.push_triangles(s, FindingKind::DuplicateTriangle, &[first, t as u32]),
+            TriStatus::Degenerate => {
+                r.push_triangles(s, FindingKind::DegenerateTriangle, &[t as u32])
+            }
+            TriStatus::DuplicateOf(first) => {
+                r.push_triangles(s, FindingKind::DuplicateTriangle, &[first, t as u32])
+            }
             TriStatus::Ok => {}
         }
     }

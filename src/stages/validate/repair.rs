@@ -31,18 +31,30 @@ pub struct RepairLog {
 const NONE: u32 = u32::MAX;
 
 /// Repairs what is safe; returns the repaired surface and what was done.
-pub fn repair(s: &ImportedSurface, report: &ValidationReport, tol: &Tolerances) -> (ImportedSurface, RepairLog) {
+pub fn repair(
+    s: &ImportedSurface,
+    report: &ValidationReport,
+    tol: &Tolerances,
+) -> (ImportedSurface, RepairLog) {
     let v = &s.mesh.vertices;
     let tris = &s.mesh.triangles;
     let mut log = RepairLog::default();
-    for kind in [FindingKind::NonManifoldEdge, FindingKind::CoplanarOverlap, FindingKind::SelfIntersection] {
+    for kind in [
+        FindingKind::NonManifoldEdge,
+        FindingKind::CoplanarOverlap,
+        FindingKind::SelfIntersection,
+    ] {
         let n = report.of_kind(kind).count() as u64;
         if n > 0 {
             log.not_repaired.insert(kind.name().to_string(), n);
         }
     }
     let canon = canonical_vertices(v, tol);
-    log.merged_vertices = canon.iter().enumerate().filter(|(i, c)| **c as usize != *i).count();
+    log.merged_vertices = canon
+        .iter()
+        .enumerate()
+        .filter(|(i, c)| **c as usize != *i)
+        .count();
     let status = triangle_status(v, tris, &canon);
 
     // Orientation: flip parity per kept triangle, breadth-first over 2-triangle edges.
@@ -124,12 +136,26 @@ pub fn repair(s: &ImportedSurface, report: &ValidationReport, tol: &Tolerances) 
         *tri = tri.map(|i| new_index[i as usize]);
     }
     log.removed_vertices = (v.len() - log.merged_vertices).saturating_sub(kept_vertices.len());
-    let map = |i: u32| canon.get(i as usize).and_then(|&c| new_index.get(c as usize)).copied().filter(|&n| n != NONE);
+    let map = |i: u32| {
+        canon
+            .get(i as usize)
+            .and_then(|&c| new_index.get(c as usize))
+            .copied()
+            .filter(|&n| n != NONE)
+    };
     let mut bstones: Vec<u32> = s.bstones.iter().filter_map(|&b| map(b)).collect();
     bstones.sort_unstable();
     bstones.dedup();
-    let borders = s.borders.iter().filter_map(|&[a, b]| Some([map(a)?, map(b)?])).collect();
-    let pick = |old: &[u32], k: &Vec<u32>| k.iter().map(|&i| old.get(i as usize).copied().unwrap_or(0)).collect::<Vec<u32>>();
+    let borders = s
+        .borders
+        .iter()
+        .filter_map(|&[a, b]| Some([map(a)?, map(b)?]))
+        .collect();
+    let pick = |old: &[u32], k: &Vec<u32>| {
+        k.iter()
+            .map(|&i| old.get(i as usize).copied().unwrap_or(0))
+            .collect::<Vec<u32>>()
+    };
     let mut parts = s.parts.clone();
     for p in &mut parts {
         p.triangle_count = 0;
@@ -141,7 +167,10 @@ pub fn repair(s: &ImportedSurface, report: &ValidationReport, tol: &Tolerances) 
     }
     let out = ImportedSurface {
         name: s.name.clone(),
-        mesh: TriMesh::new(kept_vertices.iter().map(|&i| v[i as usize]).collect(), triangles),
+        mesh: TriMesh::new(
+            kept_vertices.iter().map(|&i| v[i as usize]).collect(),
+            triangles,
+        ),
         triangle_part,
         parts,
         bstones,
@@ -150,11 +179,19 @@ pub fn repair(s: &ImportedSurface, report: &ValidationReport, tol: &Tolerances) 
         properties: s
             .properties
             .iter()
-            .map(|col| kept_vertices.iter().map(|&i| col.get(i as usize).copied().unwrap_or(f64::NAN)).collect())
+            .map(|col| {
+                kept_vertices
+                    .iter()
+                    .map(|&i| col.get(i as usize).copied().unwrap_or(f64::NAN))
+                    .collect()
+            })
             .collect(),
         source: SourceMap {
             file: s.source.file.clone(),
-            vertex_ids: kept_vertices.iter().map(|&i| s.source.vertex_ids.get(i as usize).copied().unwrap_or(0)).collect(),
+            vertex_ids: kept_vertices
+                .iter()
+                .map(|&i| s.source.vertex_ids.get(i as usize).copied().unwrap_or(0))
+                .collect(),
             vertex_lines: pick(&s.source.vertex_lines, &kept_vertices),
             triangle_lines,
         },

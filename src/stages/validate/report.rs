@@ -95,7 +95,10 @@ impl ValidationReport {
     }
 
     fn part_of_vertex(&self, v: u32) -> Option<u32> {
-        self.vertex_part.get(v as usize).copied().filter(|&p| p != NO_PART)
+        self.vertex_part
+            .get(v as usize)
+            .copied()
+            .filter(|&p| p != NO_PART)
     }
 
     pub(super) fn push_vertices(&mut self, s: &ImportedSurface, kind: FindingKind, vs: &[u32]) {
@@ -112,22 +115,41 @@ impl ValidationReport {
     }
 
     pub(super) fn push_triangles(&mut self, s: &ImportedSurface, kind: FindingKind, ts: &[u32]) {
-        let vertices: Vec<u32> = ts.iter().flat_map(|&t| s.mesh.triangles[t as usize]).collect();
+        let vertices: Vec<u32> = ts
+            .iter()
+            .flat_map(|&t| s.mesh.triangles[t as usize])
+            .collect();
         self.findings.push(Finding {
             kind,
-            part: ts.first().and_then(|&t| s.triangle_part.get(t as usize).copied()),
-            vertex_ids: vertices.iter().filter_map(|&v| s.source.vertex_id(v)).collect(),
-            points: vertices.iter().map(|&v| s.mesh.vertices[v as usize]).collect(),
+            part: ts
+                .first()
+                .and_then(|&t| s.triangle_part.get(t as usize).copied()),
+            vertex_ids: vertices
+                .iter()
+                .filter_map(|&v| s.source.vertex_id(v))
+                .collect(),
+            points: vertices
+                .iter()
+                .map(|&v| s.mesh.vertices[v as usize])
+                .collect(),
             vertices,
             triangles: ts.to_vec(),
             lines: ts.iter().map(|&t| s.source.triangle_line(t)).collect(),
         });
     }
 
-    pub(super) fn push_edge(&mut self, s: &ImportedSurface, kind: FindingKind, ends: [u32; 2], ts: &[u32]) {
+    pub(super) fn push_edge(
+        &mut self,
+        s: &ImportedSurface,
+        kind: FindingKind,
+        ends: [u32; 2],
+        ts: &[u32],
+    ) {
         self.findings.push(Finding {
             kind,
-            part: ts.first().and_then(|&t| s.triangle_part.get(t as usize).copied()),
+            part: ts
+                .first()
+                .and_then(|&t| s.triangle_part.get(t as usize).copied()),
             vertices: ends.to_vec(),
             vertex_ids: ends.iter().filter_map(|&v| s.source.vertex_id(v)).collect(),
             triangles: ts.to_vec(),
@@ -137,7 +159,9 @@ impl ValidationReport {
     }
 
     pub(super) fn sort(&mut self) {
-        self.findings.sort_by(|a, b| (a.kind, &a.triangles, &a.vertices).cmp(&(b.kind, &b.triangles, &b.vertices)));
+        self.findings.sort_by(|a, b| {
+            (a.kind, &a.triangles, &a.vertices).cmp(&(b.kind, &b.triangles, &b.vertices))
+        });
     }
 
     pub fn is_clean(&self) -> bool {
@@ -146,7 +170,10 @@ impl ValidationReport {
 
     /// Number of findings of each kind (every kind present, zeros included).
     pub fn counts(&self) -> BTreeMap<String, u64> {
-        let mut m: BTreeMap<String, u64> = FindingKind::ALL.iter().map(|k| (k.name().to_string(), 0)).collect();
+        let mut m: BTreeMap<String, u64> = FindingKind::ALL
+            .iter()
+            .map(|k| (k.name().to_string(), 0))
+            .collect();
         for f in &self.findings {
             *m.entry(f.kind.name().to_string()).or_insert(0) += 1;
         }
@@ -164,7 +191,13 @@ impl ValidationReport {
             let _ = writeln!(out, "surface '{}' ({}): clean", self.surface, self.file);
             return out;
         }
-        let _ = writeln!(out, "surface '{}' ({}): {} findings", self.surface, self.file, self.findings.len());
+        let _ = writeln!(
+            out,
+            "surface '{}' ({}): {} findings",
+            self.surface,
+            self.file,
+            self.findings.len()
+        );
         for kind in FindingKind::ALL {
             let all: Vec<&Finding> = self.of_kind(kind).collect();
             if all.is_empty() {
@@ -172,20 +205,35 @@ impl ValidationReport {
             }
             let _ = writeln!(out, "  {} x{}", kind.name().replace('_', " "), all.len());
             for f in all.iter().take(10) {
-                let part = f.part.and_then(|p| self.part_names.get(p as usize)).map_or("-", |s| s.as_str());
+                let part = f
+                    .part
+                    .and_then(|p| self.part_names.get(p as usize))
+                    .map_or("-", |s| s.as_str());
                 let mut what = String::new();
                 if !f.triangles.is_empty() {
                     let _ = write!(what, "triangles {:?} (lines {:?})", f.triangles, f.lines);
                 } else {
-                    let _ = write!(what, "vertices {:?} (ids {:?}, lines {:?})", f.vertices, f.vertex_ids, f.lines);
+                    let _ = write!(
+                        what,
+                        "vertices {:?} (ids {:?}, lines {:?})",
+                        f.vertices, f.vertex_ids, f.lines
+                    );
                 }
-                let pts: Vec<String> =
-                    f.points.iter().take(3).map(|p| format!("({:.3}, {:.3}, {:.3})", p[0], p[1], p[2])).collect();
+                let pts: Vec<String> = f
+                    .points
+                    .iter()
+                    .take(3)
+                    .map(|p| format!("({:.3}, {:.3}, {:.3})", p[0], p[1], p[2]))
+                    .collect();
                 let more = if f.points.len() > 3 { " ..." } else { "" };
                 let _ = writeln!(out, "    [{part}] {what} at {}{more}", pts.join(" "));
             }
             if all.len() > 10 {
-                let _ = writeln!(out, "    ... and {} more (see the JSON report)", all.len() - 10);
+                let _ = writeln!(
+                    out,
+                    "    ... and {} more (see the JSON report)",
+                    all.len() - 10
+                );
             }
         }
         out
@@ -194,7 +242,10 @@ impl ValidationReport {
     pub fn to_json(&self) -> serde_json::Value {
         let mut v = serde_json::to_value(self).unwrap_or(serde_json::Value::Null);
         if let Some(o) = v.as_object_mut() {
-            o.insert("counts".into(), serde_json::to_value(self.counts()).unwrap_or_default());
+            o.insert(
+                "counts".into(),
+                serde_json::to_value(self.counts()).unwrap_or_default(),
+            );
             o.insert("clean".into(), serde_json::Value::Bool(self.is_clean()));
         }
         v

@@ -10,13 +10,20 @@ use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, Envelope, RTree};
 
-
 type Entry = GeomWithData<Rectangle<[f64; 3]>, u32>;
 
 fn tri_box(v: &[[f64; 3]], tri: &[u32; 3]) -> AABB<[f64; 3]> {
     let [a, b, c] = tri.map(|i| v[i as usize]);
-    let lo = [a[0].min(b[0]).min(c[0]), a[1].min(b[1]).min(c[1]), a[2].min(b[2]).min(c[2])];
-    let hi = [a[0].max(b[0]).max(c[0]), a[1].max(b[1]).max(c[1]), a[2].max(b[2]).max(c[2])];
+    let lo = [
+        a[0].min(b[0]).min(c[0]),
+        a[1].min(b[1]).min(c[1]),
+        a[2].min(b[2]).min(c[2]),
+    ];
+    let hi = [
+        a[0].max(b[0]).max(c[0]),
+        a[1].max(b[1]).max(c[1]),
+        a[2].max(b[2]).max(c[2]),
+    ];
     AABB::from_corners(lo, hi)
 }
 
@@ -27,9 +34,9 @@ pub fn judge(v: &[[f64; 3]], canon: &[u32], t: &[u32; 3], u: &[u32; 3]) -> Conta
     let p = |i: u32| &v[i as usize];
     let mut buf = [(0usize, 0usize); 3];
     let mut n = 0;
-    for i in 0..3 {
-        for j in 0..3 {
-            if ct[i] == cu[j] && n < 3 {
+    for (i, a) in ct.iter().enumerate() {
+        for (j, b) in cu.iter().enumerate() {
+            if a == b && n < 3 {
                 buf[n] = (i, j);
                 n += 1;
             }
@@ -44,7 +51,9 @@ pub fn judge(v: &[[f64; 3]], canon: &[u32], t: &[u32; 3], u: &[u32; 3]) -> Conta
         }
         [(i0, j0), (i1, _)] => {
             let a = t[3 - i0 - i1];
-            let j2 = (0..3).find(|&j| cu[j] != ct[*i0] && cu[j] != ct[*i1]).unwrap_or(*j0);
+            let j2 = (0..3)
+                .find(|&j| cu[j] != ct[*i0] && cu[j] != ct[*i1])
+                .unwrap_or(*j0);
             edge_pair(p(t[*i0]), p(t[*i1]), p(a), p(u[j2]))
         }
         _ => Contact::None,
@@ -52,8 +61,15 @@ pub fn judge(v: &[[f64; 3]], canon: &[u32], t: &[u32; 3], u: &[u32; 3]) -> Conta
 }
 
 /// All intersecting pairs `(t, u, contact)` with `t < u`, sorted.
-pub fn find(v: &[[f64; 3]], tris: &[[u32; 3]], canon: &[u32], status: &[TriStatus]) -> Vec<(u32, u32, Contact)> {
-    let ok: Vec<u32> = (0..tris.len() as u32).filter(|&t| status[t as usize] == TriStatus::Ok).collect();
+pub fn find(
+    v: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    canon: &[u32],
+    status: &[TriStatus],
+) -> Vec<(u32, u32, Contact)> {
+    let ok: Vec<u32> = (0..tris.len() as u32)
+        .filter(|&t| status[t as usize] == TriStatus::Ok)
+        .collect();
     let boxes: Vec<AABB<[f64; 3]>> = ok.iter().map(|&t| tri_box(v, &tris[t as usize])).collect();
     let mut hits = match grid_pairs(v, tris, canon, &ok, &boxes) {
         Some(h) => h,
@@ -100,13 +116,18 @@ fn grid_pairs(
         h = if span > 0.0 { span } else { 1.0 };
     }
     h = h.max(span / f64::from(1u32 << 20));
-    let cell = |x: f64, k: usize| -> u64 { (((x - lo[k]) / h).floor().max(0.0) as u64).min((1 << 21) - 1) };
+    // (x - lo) / h is never negative, so the saturating cast is the floor.
+    let cell = |x: f64, k: usize| -> u64 { (((x - lo[k]) / h) as u64).min((1 << 21) - 1) };
     let key = |c: [u64; 3]| (c[0] << 42) | (c[1] << 21) | c[2];
     let mut big: Vec<usize> = Vec::new();
     let mut entries: Vec<(u64, u32)> = Vec::new();
+    // Lower cell of every box: the cell of the lower corner of two boxes' intersection is the
+    // component-wise maximum of their lower cells (the cell map is monotone).
+    let mut low_cell: Vec<[u64; 3]> = Vec::with_capacity(boxes.len());
     for (i, b) in boxes.iter().enumerate() {
         let (l, u) = (b.lower(), b.upper());
         let c0 = [cell(l[0], 0), cell(l[1], 1), cell(l[2], 2)];
+        low_cell.push(c0);
         let c1 = [cell(u[0], 0), cell(u[1], 1), cell(u[2], 2)];
         let n = (c1[0] - c0[0] + 1) * (c1[1] - c0[1] + 1) * (c1[2] - c0[2] + 1);
         if n > MAX_CELLS_PER_BOX {
@@ -150,8 +171,8 @@ fn grid_pairs(
                     if !ba.intersects(bb) {
                         continue;
                     }
-                    let (la, lb) = (ba.lower(), bb.lower());
-                    let corner = [cell(la[0].max(lb[0]), 0), cell(la[1].max(lb[1]), 1), cell(la[2].max(lb[2]), 2)];
+                    let (ca, cb) = (low_cell[a as usize], low_cell[b as usize]);
+                    let corner = [ca[0].max(cb[0]), ca[1].max(cb[1]), ca[2].max(cb[2])];
                     if key(corner) != here {
                         continue;
                     }
@@ -183,8 +204,11 @@ fn rtree_pairs(
     ok: &[u32],
     boxes: &[AABB<[f64; 3]>],
 ) -> Vec<(u32, u32, Contact)> {
-    let entries: Vec<Entry> =
-        ok.iter().zip(boxes).map(|(&t, b)| GeomWithData::new(Rectangle::from_aabb(*b), t)).collect();
+    let entries: Vec<Entry> = ok
+        .iter()
+        .zip(boxes)
+        .map(|(&t, b)| GeomWithData::new(Rectangle::from_aabb(*b), t))
+        .collect();
     let tree = RTree::bulk_load(entries);
     const BATCH: usize = 1 << 18;
     let mut batch: Vec<(u32, u32)> = Vec::with_capacity(BATCH);
@@ -235,18 +259,30 @@ mod tests {
             let o = [rnd(), rnd(), rnd() / 10.0];
             let b = v.len() as u32;
             v.push(o);
-            v.push([o[0] + s * rnd() / 1000.0, o[1] + s * rnd() / 1000.0, o[2] + s * rnd() / 1000.0]);
-            v.push([o[0] - s * rnd() / 1000.0, o[1] + s * rnd() / 1000.0, o[2] - s * rnd() / 1000.0]);
+            v.push([
+                o[0] + s * rnd() / 1000.0,
+                o[1] + s * rnd() / 1000.0,
+                o[2] + s * rnd() / 1000.0,
+            ]);
+            v.push([
+                o[0] - s * rnd() / 1000.0,
+                o[1] + s * rnd() / 1000.0,
+                o[2] - s * rnd() / 1000.0,
+            ]);
             t.push([b, b + 1, b + 2]);
         }
         (v, t)
     }
 
-    fn both(n: usize, big: usize) -> (Option<Vec<(u32, u32, Contact)>>, Vec<(u32, u32, Contact)>) {
+    type Hits = Vec<(u32, u32, Contact)>;
+
+    fn both(n: usize, big: usize) -> (Option<Hits>, Hits) {
         let (v, t) = soup(n, big);
         let canon = canonical_vertices(&v, &Tolerances::default());
         let status = triangle_status(&v, &t, &canon);
-        let ok: Vec<u32> = (0..t.len() as u32).filter(|&i| status[i as usize] == TriStatus::Ok).collect();
+        let ok: Vec<u32> = (0..t.len() as u32)
+            .filter(|&i| status[i as usize] == TriStatus::Ok)
+            .collect();
         let boxes: Vec<_> = ok.iter().map(|&i| tri_box(&v, &t[i as usize])).collect();
         let mut g = grid_pairs(&v, &t, &canon, &ok, &boxes);
         if let Some(g) = g.as_mut() {
