@@ -87,9 +87,13 @@ fn graded_boundary_nodes_give_a_graded_valid_mesh() {
         for k in 0..10 {
             l.push(g.at(1000.0 - 100.0 * k as f64, 1000.0));
         }
-        for k in 0..10 {
-            l.push(g.at(0.0, 1000.0 - 100.0 * k as f64));
+        // Left side graded the same way towards the fine corner at the origin.
+        for &y in bottom.iter().rev() {
+            if y < 1000.0 && y > 0.0 {
+                l.push(g.at(0.0, y));
+            }
         }
+        l.insert(l.len() - (bottom.len() - 1), g.at(0.0, 1000.0));
         let input = PatchInput { name: "graded boundary".into(), support: g.support(), loops: vec![l], constraints: vec![] };
         let size = SurfaceSize { size: 100.0, min_size: 5.0, max_size: 200.0, growth: 1.25 };
         let (out, _) = mesh_and_check(&input, &size, 1.12, 2.2);

@@ -137,6 +137,20 @@ pub fn mesh_and_check(
         input.name, q.triangles, q.mean, q.sd, q.max, q.pct_above_1_15, q.pct_above_1_5, secs
     );
     assert!(q.mean <= max_mean, "{}: mean c/c* {} > {}", input.name, q.mean, max_mean);
-    assert!(q.max <= max_worst, "{}: worst c/c* {} > {}", input.name, q.max, max_worst);
+    assert!(q.max <= max_worst, "{}: worst c/c* {} > {}: {:?}", input.name, q.max, max_worst, worst(&out));
     (out, q)
+}
+
+/// The worst triangle's corners (debugging aid in failure messages).
+pub fn worst(out: &SurfaceMeshOutput) -> ([f64; 3], [f64; 3], [f64; 3], f64) {
+    use georecipe::stages::surface_mesh::quality::c_ratio;
+    let mut best = ([0.0; 3], [0.0; 3], [0.0; 3], 0.0);
+    for t in &out.triangles {
+        let p = t.map(|v| out.nodes[v as usize]);
+        let q = c_ratio(&p[0], &p[1], &p[2]);
+        if q > best.3 {
+            best = (p[0], p[1], p[2], q);
+        }
+    }
+    best
 }

@@ -174,33 +174,52 @@ impl<'a> Refiner<'a> {
         }
     }
 
-    /// Rebay's point for front edge `i` of `t`.
+    /// Rebay's point for front edge `i` of `t`, placed in the local metric of the flattening
+    /// (so the new triangle is near-equilateral in 3D, not in the plane).
     fn place(&self, t: u32, i: usize, l3: f64) -> Option<[f64; 2]> {
         let v = self.cdt.tri[t as usize];
-        let a = self.cdt.pts[v[next(i)] as usize];
-        let b = self.cdt.pts[v[prev(i)] as usize];
-        let c = self.cdt.pts[v[i] as usize];
+        let a2 = self.cdt.pts[v[next(i)] as usize];
+        let b2 = self.cdt.pts[v[prev(i)] as usize];
+        let c2 = self.cdt.pts[v[i] as usize];
+        let m2 = [(a2[0] + b2[0]) * 0.5, (a2[1] + b2[1]) * 0.5];
+        let l = match self.support.metric_at(&m2) {
+            Some(l) => l,
+            None => {
+                let p = dist2(&a2, &b2);
+                if !(p > 0.0) || !(l3 > 0.0) {
+                    return None;
+                }
+                let s = l3 / p;
+                [[s, 0.0], [0.0, s]]
+            }
+        };
+        let fwd = |x: &[f64; 2]| [l[0][0] * x[0] + l[0][1] * x[1], l[1][1] * x[1]];
+        let a = fwd(&a2);
+        let b = fwd(&b2);
+        let c = fwd(&c2);
         let p = dist2(&a, &b);
-        if !(p > 0.0) || !(l3 > 0.0) {
+        if !(p > 0.0) {
             return None;
         }
-        let s = p / l3; // 2D units per 3D unit
         let a3 = &self.p3[v[next(i)] as usize];
         let b3 = &self.p3[v[prev(i)] as usize];
         let m3 = [(a3[0] + b3[0]) * 0.5, (a3[1] + b3[1]) * 0.5, (a3[2] + b3[2]) * 0.5];
-        let h2 = self.size.at(&m3) * s;
+        let h = self.size.at(&m3);
         let m = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
         // Unit normal of ab pointing into t (towards c; a, b, c are counter-clockwise).
         let dir = [-(b[1] - a[1]) / p, (b[0] - a[0]) / p];
-        // Signed distance from m to the circumcentre along dir.
         let cc = circumcentre(&a, &b, &c)?;
         let q = (cc[0] - m[0]) * dir[0] + (cc[1] - m[1]) * dir[1];
-        let mut rho_m = (h2 / 3f64.sqrt()).max(p * 0.5);
+        let mut rho_m = (h / 3f64.sqrt()).max(p * 0.5);
         if q > 0.0 {
             rho_m = rho_m.min((p * p * 0.25 + q * q) / (2.0 * q));
         }
         let d = rho_m + (rho_m * rho_m - p * p * 0.25).max(0.0).sqrt();
-        Some([m[0] + d * dir[0], m[1] + d * dir[1]])
+        let y = [m[0] + d * dir[0], m[1] + d * dir[1]];
+        // Back to the plane: x = L⁻¹ y (L upper triangular).
+        let x1 = y[1] / l[1][1];
+        let x0 = (y[0] - l[0][1] * x1) / l[0][0];
+        Some([x0, x1])
     }
 
     fn try_insert(&mut self, t: u32, x2: [f64; 2], fan: &mut Vec<u32>) -> Option<u32> {

@@ -176,6 +176,42 @@ impl Support {
         Some((id, self.combine3(t, [1.0 - w1 - w2, w1, w2])))
     }
 
+    /// The local metric of the flattening at `uv`: the upper-triangular factor L of the first
+    /// fundamental form M = JᵀJ = LᵀL of the support triangle containing `uv`, so that
+    /// |L·d| is the 3D length of a small parameter step d. None outside the support.
+    pub fn metric_at(&self, uv: &[f64; 2]) -> Option<[[f64; 2]; 2]> {
+        let (id, _) = self.to_3d(uv)?;
+        let t = self.mesh.triangles[id as usize];
+        let a = self.param.uv[t[0] as usize];
+        let b = self.param.uv[t[1] as usize];
+        let c = self.param.uv[t[2] as usize];
+        let e = [[b[0] - a[0], c[0] - a[0]], [b[1] - a[1], c[1] - a[1]]];
+        let det = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+        if !(det.abs() > 0.0) {
+            return None;
+        }
+        let inv = [[e[1][1] / det, -e[0][1] / det], [-e[1][0] / det, e[0][0] / det]];
+        let pa = &self.mesh.vertices[t[0] as usize];
+        let f1 = sub(&self.mesh.vertices[t[1] as usize], pa);
+        let f2 = sub(&self.mesh.vertices[t[2] as usize], pa);
+        // J = F · E⁻¹ (3 × 2), columns j1, j2.
+        let j1 = [0, 1, 2].map(|k| f1[k] * inv[0][0] + f2[k] * inv[1][0]);
+        let j2 = [0, 1, 2].map(|k| f1[k] * inv[0][1] + f2[k] * inv[1][1]);
+        let m11 = dot(&j1, &j1);
+        let m12 = dot(&j1, &j2);
+        let m22 = dot(&j2, &j2);
+        let l11 = m11.sqrt();
+        if !(l11 > 0.0) {
+            return None;
+        }
+        let l12 = m12 / l11;
+        let l22 = (m22 - l12 * l12).max(0.0).sqrt();
+        if !(l22 > 0.0) {
+            return None;
+        }
+        Some([[l11, l12], [0.0, l22]])
+    }
+
     /// The origin used for relative coordinates (bounding-box centre).
     pub fn origin_of(mesh: &TriMesh) -> [f64; 3] {
         super::param::centre(mesh)
