@@ -96,7 +96,7 @@ impl std::fmt::Display for SurfaceMeshError {
 impl std::error::Error for SurfaceMeshError {}
 
 /// Smoothing/flip rounds after refinement.
-const SMOOTH_ROUNDS: usize = 8;
+const SMOOTH_ROUNDS: usize = 4;
 
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     let d = sub(a, b);
@@ -237,7 +237,7 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
     }
     {
         let first_free = (3 + ng) as u32;
-        let mut s = smooth::Smoother { cdt: &mut cdt, p3: &mut p3, support: &support, first_free };
+        let mut s = smooth::Smoother { cdt: &mut cdt, p3: &mut p3, support: &support, first_free, stri: Vec::new() };
         s.run(SMOOTH_ROUNDS);
     }
 

@@ -21,6 +21,8 @@ pub struct Smoother<'a> {
     pub support: &'a Support,
     /// Vertices below this index never move (super vertices and given nodes).
     pub first_free: u32,
+    /// The support triangle under each vertex (hint for local projections).
+    pub stri: Vec<u32>,
 }
 
 impl Smoother<'_> {
@@ -86,7 +88,8 @@ impl Smoother<'_> {
             }
             let m = fan.len() as f64;
             let target = [sum[0] / m, sum[1] / m, sum[2] / m];
-            let Some(on) = self.support.project(&target) else {
+            let hint = self.stri.get(v as usize).copied().unwrap_or(u32::MAX);
+            let Some(on) = self.support.project_from(hint, &target) else {
                 continue;
             };
             let ok = fan.iter().all(|&t| {
@@ -114,6 +117,7 @@ impl Smoother<'_> {
             if new_worst >= worst.min(0.9) * 0.999 {
                 self.cdt.pts[v as usize] = on.uv;
                 self.p3[v as usize] = on.xyz;
+                self.stri[v as usize] = on.tri;
                 moved += 1;
             }
         }
@@ -123,10 +127,12 @@ impl Smoother<'_> {
     /// Re-derives every generated node's parameter from its 3D position by projection, so the
     /// mesher and `verify` see the same parameters.
     pub fn resync(&mut self) {
+        self.stri.resize(self.cdt.pts.len(), u32::MAX);
         for v in self.first_free..self.cdt.pts.len() as u32 {
             if let Some(on) = self.support.project(&self.p3[v as usize]) {
                 self.cdt.pts[v as usize] = on.uv;
                 self.p3[v as usize] = on.xyz;
+                self.stri[v as usize] = on.tri;
             }
         }
     }

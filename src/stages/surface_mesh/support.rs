@@ -47,6 +47,8 @@ pub struct Support {
     tree2: RTree<GeomWithData<Rectangle<[f64; 2]>, u32>>,
     /// Unit normal of each support triangle (for fold checks).
     pub normals: Vec<[f64; 3]>,
+    /// Edge neighbours of each support triangle (`u32::MAX` on the border): for local walks.
+    adj: Vec<[u32; 3]>,
 }
 
 /// Where a point lands on the support.
@@ -97,7 +99,25 @@ impl Support {
                 if l > 0.0 { [n[0] / l, n[1] / l, n[2] / l] } else { [0.0; 3] }
             })
             .collect();
+        let mut edges: std::collections::BTreeMap<(u32, u32), u32> = std::collections::BTreeMap::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                edges.insert((tri[i], tri[(i + 1) % 3]), t as u32);
+            }
+        }
+        // adj[t][i]: across the edge opposite corner i, i.e. (tri[i+1], tri[i+2]).
+        let adj = mesh
+            .triangles
+            .iter()
+            .map(|tri| {
+                [0, 1, 2].map(|i| {
+                    let (a, b) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                    edges.get(&(b, a)).copied().unwrap_or(u32::MAX)
+                })
+            })
+            .collect();
         Ok(Support {
+            adj,
             mesh: mesh.clone(),
             param,
             origin,
@@ -122,6 +142,54 @@ impl Support {
             uv,
             dist: dot(&d, &d).sqrt(),
         })
+    }
+
+    /// A closest point found by walking from support triangle `hint` across edges while the
+    /// distance decreases: a local closest point, cheap for small moves (smoothing). Falls back
+    /// to the global `project` if the walk runs long.
+    pub fn project_from(&self, hint: u32, x: &[f64; 3]) -> Option<OnSupport> {
+        if hint as usize >= self.mesh.triangles.len() {
+            return self.project(x);
+        }
+        let xr = sub(x, &self.origin);
+        let rel = |v: u32| sub(&self.mesh.vertices[v as usize], &self.origin);
+        let eval = |t: u32| {
+            let tri = self.mesh.triangles[t as usize];
+            let (q, w) = closest_on_triangle(&xr, &rel(tri[0]), &rel(tri[1]), &rel(tri[2]));
+            let d = sub(&q, &xr);
+            (dot(&d, &d), w)
+        };
+        let mut t = hint;
+        let (mut d2, mut w) = eval(t);
+        for _ in 0..64 {
+            let mut best: Option<(u32, f64, [f64; 3])> = None;
+            for i in 0..3 {
+                if w[i] > 0.0 {
+                    continue;
+                }
+                let n = self.adj[t as usize][i];
+                if n == u32::MAX {
+                    continue;
+                }
+                let (dn, wn) = eval(n);
+                if dn < d2 && best.is_none_or(|b| dn < b.1) {
+                    best = Some((n, dn, wn));
+                }
+            }
+            let Some((n, dn, wn)) = best else {
+                let tri = self.mesh.triangles[t as usize];
+                return Some(OnSupport {
+                    tri: t,
+                    xyz: self.combine3(tri, w),
+                    uv: self.combine2(tri, w),
+                    dist: d2.sqrt(),
+                });
+            };
+            t = n;
+            d2 = dn;
+            w = wn;
+        }
+        self.project(x)
     }
 
     fn combine2(&self, t: [u32; 3], w: [f64; 3]) -> [f64; 2] {

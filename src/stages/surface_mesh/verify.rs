@@ -163,6 +163,7 @@ pub fn verify_with(
         lcnt[b as usize] += 1;
     }
     let mut uv = Vec::with_capacity(nn);
+    let mut ntri = Vec::with_capacity(nn);
     for (i, p) in out.nodes.iter().enumerate() {
         let Some(on) = support.project(p) else {
             return Err(fail(input, "the support is empty".into(), Some(*p)));
@@ -176,6 +177,7 @@ pub fn verify_with(
             ));
         }
         uv.push(on.uv);
+        ntri.push(on.tri);
     }
     let segs: Vec<([f64; 2], [f64; 2])> = given
         .loop_segments()
@@ -197,7 +199,7 @@ pub fn verify_with(
             ));
         }
         let n = cross(&sub(&out.nodes[b], &out.nodes[a]), &sub(&out.nodes[c], &out.nodes[a]));
-        let Some(on) = support.project(&g) else { continue };
+        let Some(on) = support.project_from(ntri[a], &g) else { continue };
         if !(dot(&n, &support.normals[on.tri as usize]) > 0.0) {
             return Err(fail(
                 input,
