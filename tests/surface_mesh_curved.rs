@@ -54,16 +54,25 @@ fn a_fault_dipping_85_degrees_meshes_like_a_flat_patch() {
     }
 }
 
-/// An S in the xz-plane (two half circles of radius 300), as a function of arc parameter s in
-/// [0, 2π]: overturned twice, so no direction sees it as a height field.
-fn s_curve(s: f64) -> [f64; 2] {
-    let r = 300.0;
-    if s <= PI {
-        let a = -PI / 2.0 + s;
-        [r * a.cos(), r + r * a.sin()]
-    } else {
-        let a = -PI / 2.0 + (s - PI);
-        [-r * a.cos(), 3.0 * r + r * a.sin()]
+/// A recumbent fold in the xz-plane: three horizontal limbs 600 m long stacked 300 m apart,
+/// joined by two hinges of radius 150 m (a Z with round hinges), as a function of u in [0, 5]
+/// (one unit per limb or hinge). The limbs overlap in every direction: no height field anywhere.
+fn z_curve(u: f64) -> [f64; 2] {
+    let (l, r) = (600.0, 150.0);
+    let k = (u.floor() as i64).clamp(0, 4);
+    let t = u - k as f64;
+    match k {
+        0 => [-l + l * t, 0.0],
+        1 => {
+            let a = -PI / 2.0 + PI * t;
+            [r * a.cos(), r + r * a.sin()]
+        }
+        2 => [-l * t, 2.0 * r],
+        3 => {
+            let a = -PI / 2.0 + PI * t;
+            [-l - r * a.cos(), 3.0 * r + r * a.sin()]
+        }
+        _ => [-l + l * t, 4.0 * r],
     }
 }
 
@@ -71,29 +80,32 @@ fn s_curve(s: f64) -> [f64; 2] {
 fn a_recumbent_fold_that_is_no_height_field_meshes_without_folds() {
     for off in [[0.0; 3], UTM] {
         let g = Grid {
-            nx: 120,
+            nx: 100,
             ny: 8,
-            u: (0.0, 2.0 * PI),
+            u: (0.0, 5.0),
             v: (0.0, 1200.0),
-            f: |s, y| {
-                let c = s_curve(s);
+            f: |u, y| {
+                let c = z_curve(u);
                 [c[0], y, c[1] - 2000.0]
             },
             offset: off,
         };
-        // Arc length ~ 2π·300 ≈ 1885 m: 38 segments of ~50 m; 24 across.
         let input = PatchInput {
             name: "recumbent fold".into(),
             support: g.support(),
-            loops: vec![g.border_loop(38, 24)],
+            loops: vec![g.border_loop(60, 24)],
             constraints: vec![],
         };
         let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.04, 1.6);
-        assert!(q.triangles > 1000);
-        // Both overturned limbs are meshed: nodes on both sides of x = 0 at the same height.
+        assert!(q.triangles > 1500);
+        // All three stacked limbs are meshed: nodes above one another at x = -300.
         let z = |p: &[f64; 3]| p[2] - off[2] + 2000.0;
-        assert!(out.nodes.iter().any(|p| p[0] - off[0] > 250.0 && (z(p) - 300.0).abs() < 60.0));
-        assert!(out.nodes.iter().any(|p| p[0] - off[0] < -250.0 && (z(p) - 900.0).abs() < 60.0));
+        for level in [0.0, 300.0, 600.0] {
+            assert!(
+                out.nodes.iter().any(|p| (p[0] - off[0] + 300.0).abs() < 60.0 && (z(p) - level).abs() < 1.0),
+                "no node on the limb at z = {level}"
+            );
+        }
     }
 }
 
@@ -175,4 +187,23 @@ fn a_coarse_support_of_long_thin_triangles_is_meshed_finely_on_it() {
         };
         mesh_and_check(&input, &uniform(75.0), 1.04, 1.6);
     }
+}
+
+#[test]
+fn the_recumbent_fold_support_needs_and_gets_a_fold_free_tutte_flattening() {
+    use georecipe::stages::surface_mesh::flattening_method;
+    let fold = Grid {
+        nx: 50,
+        ny: 4,
+        u: (0.0, 5.0),
+        v: (0.0, 1200.0),
+        f: |s, y| {
+            let c = z_curve(s);
+            [c[0], y, c[1]]
+        },
+        offset: UTM,
+    };
+    assert_eq!(flattening_method(&fold.support()).unwrap(), "tutte");
+    let horizon = Grid { nx: 10, ny: 10, u: (0.0, 4000.0), v: (0.0, 4000.0), f: wavy, offset: UTM };
+    assert_eq!(flattening_method(&horizon.support()).unwrap(), "plane");
 }

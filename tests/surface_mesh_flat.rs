@@ -133,3 +133,59 @@ fn a_loop_node_off_the_support_is_an_error_with_its_place() {
     assert_eq!(e.at, Some(l[3]), "{e}");
     assert!(e.to_string().contains("off the support"));
 }
+
+#[test]
+fn meshing_twice_gives_the_same_mesh_bit_for_bit() {
+    let g = flat(UTM);
+    let trace: Vec<[f64; 3]> = (0..=4).map(|k| g.at(300.0 + 50.0 * k as f64, 480.0)).collect();
+    let input = PatchInput {
+        name: "twice".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(17, 23), g.hole(700.0, 300.0, 100.0, 13)],
+        constraints: vec![trace],
+    };
+    let a = mesh_patch(&input, &uniform(45.0)).unwrap();
+    let b = mesh_patch(&input, &uniform(45.0)).unwrap();
+    assert_eq!(a, b);
+}
+
+#[test]
+fn a_constraint_that_leaves_the_patch_is_an_error_with_a_place() {
+    let g = flat([0.0; 3]);
+    let input = PatchInput {
+        name: "escaping trace".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(10, 10)],
+        // From inside the square through its top side towards a point outside (still on the
+        // support, which extends nowhere beyond: the end is off the support).
+        constraints: vec![vec![g.at(500.0, 900.0), [550.0, 1100.0, -500.0]]],
+    };
+    let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
+    assert!(e.at.is_some() && e.to_string().contains("escaping trace"), "{e}");
+}
+
+#[test]
+fn a_constraint_crossing_the_boundary_on_the_support_is_an_intersection_error() {
+    let g = Grid { nx: 4, ny: 4, u: (-500.0, 1500.0), v: (-500.0, 1500.0), f: |x, y| [x, y, -500.0], offset: [0.0; 3] };
+    let square: Vec<[f64; 3]> = flat([0.0; 3]).border_loop(10, 10);
+    let input = PatchInput {
+        name: "crossing trace".into(),
+        support: g.support(),
+        loops: vec![square],
+        constraints: vec![vec![g.at(500.0, 850.0), g.at(530.0, 1150.0)]],
+    };
+    let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
+    let at = e.at.expect("a place");
+    assert!((at[1] - 1000.0).abs() < 1e-6 && (at[0] - 515.0).abs() < 1e-6, "{e}");
+    assert!(e.to_string().contains("crossing trace") && e.to_string().contains("intersect"), "{e}");
+}
+
+#[test]
+fn invalid_sizes_are_refused_with_the_values() {
+    let g = flat([0.0; 3]);
+    let input = PatchInput { name: "sizes".into(), support: g.support(), loops: vec![g.border_loop(4, 4)], constraints: vec![] };
+    let e = mesh_patch(&input, &SurfaceSize { size: -1.0, min_size: 0.0, max_size: 10.0, growth: 1.2 }).unwrap_err();
+    assert!(e.to_string().contains("size -1"), "{e}");
+    let e = mesh_patch(&input, &SurfaceSize { size: 10.0, min_size: 0.0, max_size: 10.0, growth: 0.5 }).unwrap_err();
+    assert!(e.to_string().contains("growth 0.5"), "{e}");
+}

@@ -231,23 +231,27 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
         .sum();
     let hfloor = min_size.max(hloc.iter().copied().fold(f64::INFINITY, f64::min)).min(target).max(f64::MIN_POSITIVE);
     let max_points = (8.0 * area / (hfloor * hfloor)).min(5.0e7) as usize + 10_000;
-    {
+    let stri = {
         let mut r = refine::Refiner::new(&mut cdt, &mut p3, &support, &field);
         r.run(max_points).map_err(|m| fail(m, given.nodes.first().copied()))?;
-    }
+        std::mem::take(&mut r.stri)
+    };
     {
         let first_free = (3 + ng) as u32;
-        let mut s = smooth::Smoother { cdt: &mut cdt, p3: &mut p3, support: &support, first_free, stri: Vec::new() };
+        let mut s = smooth::Smoother { cdt: &mut cdt, p3: &mut p3, support: &support, first_free, stri };
         s.run(SMOOTH_ROUNDS);
     }
 
     // Output: the CDT's vertices minus the super triangle, inside triangles in slot order.
     let nodes: Vec<[f64; 3]> = p3[3..].to_vec();
-    let triangles: Vec<[u32; 3]> = cdt
-        .live_triangles()
-        .filter(|&t| cdt.inside[t as usize])
-        .map(|t| cdt.tri[t as usize].map(|v| v - 3))
-        .collect();
+    let mut triangles: Vec<[u32; 3]> = Vec::new();
+    for t in cdt.live_triangles().filter(|&t| cdt.inside[t as usize]) {
+        let v = cdt.tri[t as usize];
+        if v.iter().any(|&x| x < 3) {
+            return Err(fail("the loops are not closed around the patch".into(), given.nodes.first().copied()));
+        }
+        triangles.push(v.map(|x| x - 3));
+    }
     let out = compact(SurfaceMeshOutput { nodes, triangles }, ng);
     verify::verify_with(input, &out, tol, &support)?;
     Ok(out)
@@ -287,6 +291,16 @@ fn crossing_point(s: &([f64; 2], [f64; 2]), t: &([f64; 2], [f64; 2])) -> Option<
     let w = [t.0[0] - s.0[0], t.0[1] - s.0[1]];
     let u = (w[0] * q[1] - w[1] * q[0]) / den;
     Some([s.0[0] + u * r[0], s.0[1] + u * r[1]])
+}
+
+/// How the support is flattened for meshing: `"plane"` (projection onto its mean plane, exactly
+/// fold-free) or `"tutte"` (Tutte embedding, for supports that fold over every plane).
+pub fn flattening_method(support: &TriMesh) -> Result<&'static str, SurfaceMeshError> {
+    param::flatten(support).map(|p| p.method).map_err(|e| SurfaceMeshError {
+        patch: "support".into(),
+        message: e.message,
+        at: e.at,
+    })
 }
 
 /// Checks a patch mesh (see `verify.rs`): exact topology, orientation, no fold or overlap, and

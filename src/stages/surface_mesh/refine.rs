@@ -31,6 +31,8 @@ pub struct Refiner<'a> {
     pub support: &'a Support,
     pub size: &'a SizeField,
     rho: Vec<f64>,
+    /// The support triangle under each vertex inserted here (`u32::MAX` for the others).
+    pub stri: Vec<u32>,
 }
 
 fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -53,6 +55,7 @@ impl<'a> Refiner<'a> {
             support,
             size,
             rho: Vec::new(),
+            stri: Vec::new(),
         }
     }
 
@@ -227,7 +230,7 @@ impl<'a> Refiner<'a> {
         if !self.cdt.inside[t0 as usize] {
             return None;
         }
-        let (_, x3) = self.support.to_3d(&x2)?;
+        let (sid, x3) = self.support.to_3d(&x2)?;
         let h = self.size.at(&x3);
         let p3 = &*self.p3;
         let mut accept = |_: &Cdt, verts: &[u32]| {
@@ -238,6 +241,10 @@ impl<'a> Refiner<'a> {
             self.p3.resize(v as usize + 1, [0.0; 3]);
         }
         self.p3[v as usize] = x3;
+        if self.stri.len() <= v as usize {
+            self.stri.resize(v as usize + 1, u32::MAX);
+        }
+        self.stri[v as usize] = sid;
         self.cdt.fan(v, fan);
         Some(v)
     }
