@@ -11,9 +11,21 @@ use georecipe::stages::surface_mesh::{PatchInput, mesh_patch};
 use surface_mesh_common::{Grid, UTM, uniform, wavy};
 
 fn input(size: f64) -> PatchInput {
-    let g = Grid { nx: 60, ny: 60, u: (0.0, 3700.0), v: (0.0, 3700.0), f: wavy, offset: UTM };
+    let g = Grid {
+        nx: 60,
+        ny: 60,
+        u: (0.0, 3700.0),
+        v: (0.0, 3700.0),
+        f: wavy,
+        offset: UTM,
+    };
     let n = (3700.0 / size).round() as usize;
-    PatchInput { name: format!("wavy {size} m"), support: g.support(), loops: vec![g.border_loop(n, n)], constraints: vec![] }
+    PatchInput {
+        name: format!("wavy {size} m"),
+        support: g.support(),
+        loops: vec![g.border_loop(n, n)],
+        constraints: vec![],
+    }
 }
 
 fn bench(c: &mut Criterion) {
@@ -29,11 +41,16 @@ fn bench(c: &mut Criterion) {
         );
     }
     let inp = input(25.0);
-    let tris = mesh_patch(&inp, &uniform(25.0)).expect("meshes").triangles.len();
+    let tris = mesh_patch(&inp, &uniform(25.0))
+        .expect("meshes")
+        .triangles
+        .len();
     let mut g = c.benchmark_group("surface_mesh");
     g.sample_size(10);
     g.throughput(Throughput::Elements(tris as u64));
-    g.bench_function("wavy_horizon_25m_triangles", |b| b.iter(|| mesh_patch(&inp, &uniform(25.0)).expect("meshes")));
+    g.bench_function("wavy_horizon_25m_triangles", |b| {
+        b.iter(|| mesh_patch(&inp, &uniform(25.0)).expect("meshes"))
+    });
     g.finish();
 }
 

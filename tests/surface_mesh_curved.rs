@@ -16,7 +16,14 @@ fn shift(p: [f64; 3], off: [f64; 3]) -> [f64; 3] {
 #[test]
 fn the_wavy_didactic_horizon_meshes_on_its_support() {
     for off in [[0.0; 3], UTM] {
-        let g = Grid { nx: 50, ny: 50, u: (0.0, 4000.0), v: (0.0, 4000.0), f: wavy, offset: off };
+        let g = Grid {
+            nx: 50,
+            ny: 50,
+            u: (0.0, 4000.0),
+            v: (0.0, 4000.0),
+            f: wavy,
+            offset: off,
+        };
         let input = PatchInput {
             name: "wavy horizon".into(),
             support: g.support(),
@@ -26,7 +33,11 @@ fn the_wavy_didactic_horizon_meshes_on_its_support() {
         let (out, q) = mesh_and_check(&input, &uniform(100.0), 1.03, 1.6);
         assert!(q.triangles > 3000);
         // Nodes follow the wave: the support is within 80 m of -1200.
-        assert!(out.nodes.iter().all(|p| (p[2] + 1200.0).abs() <= 80.0 + 1e-6));
+        assert!(
+            out.nodes
+                .iter()
+                .all(|p| (p[2] + 1200.0).abs() <= 80.0 + 1e-6)
+        );
     }
 }
 
@@ -102,7 +113,9 @@ fn a_recumbent_fold_that_is_no_height_field_meshes_without_folds() {
         let z = |p: &[f64; 3]| p[2] - off[2] + 2000.0;
         for level in [0.0, 300.0, 600.0] {
             assert!(
-                out.nodes.iter().any(|p| (p[0] - off[0] + 300.0).abs() < 60.0 && (z(p) - level).abs() < 1.0),
+                out.nodes
+                    .iter()
+                    .any(|p| (p[0] - off[0] + 300.0).abs() < 60.0 && (z(p) - level).abs() < 1.0),
                 "no node on the limb at z = {level}"
             );
         }
@@ -118,7 +131,14 @@ fn cap(rings: usize, radius: f64, max_polar: f64, off: [f64; 3]) -> TriMesh {
         let a = max_polar * k as f64 / rings as f64;
         for j in 0..6 * k {
             let phi = 2.0 * PI * j as f64 / (6 * k) as f64;
-            vs.push(shift([radius * a.sin() * phi.cos(), radius * a.sin() * phi.sin(), radius * a.cos()], off));
+            vs.push(shift(
+                [
+                    radius * a.sin() * phi.cos(),
+                    radius * a.sin() * phi.sin(),
+                    radius * a.cos(),
+                ],
+                off,
+            ));
         }
     }
     let mut ts = Vec::new();
@@ -162,13 +182,22 @@ fn a_hemisphere_cap_meshes_with_nodes_on_the_sphere_facets() {
         // The rim: the outer ring's vertices (on the support's border), every second one.
         let n = 6 * rings;
         let first = support.vertices.len() - n;
-        let rim: Vec<[f64; 3]> = (0..n).step_by(1).map(|j| support.vertices[first + j]).collect();
-        let input = PatchInput { name: "hemisphere cap".into(), support, loops: vec![rim], constraints: vec![] };
+        let rim: Vec<[f64; 3]> = (0..n)
+            .step_by(1)
+            .map(|j| support.vertices[first + j])
+            .collect();
+        let input = PatchInput {
+            name: "hemisphere cap".into(),
+            support,
+            loops: vec![rim],
+            constraints: vec![],
+        };
         let (out, q) = mesh_and_check(&input, &uniform(90.0), 1.06, 1.8);
         assert!(q.triangles > 300);
         // All nodes close to the sphere (the support is a faceted sphere).
         for p in &out.nodes {
-            let r = ((p[0] - off[0]).powi(2) + (p[1] - off[1]).powi(2) + (p[2] - off[2]).powi(2)).sqrt();
+            let r = ((p[0] - off[0]).powi(2) + (p[1] - off[1]).powi(2) + (p[2] - off[2]).powi(2))
+                .sqrt();
             assert!(r > 960.0 && r < 1000.0 + 1e-6, "r = {r}");
         }
     }
@@ -178,7 +207,14 @@ fn a_hemisphere_cap_meshes_with_nodes_on_the_sphere_facets() {
 fn a_coarse_support_of_long_thin_triangles_is_meshed_finely_on_it() {
     for off in [[0.0; 3], UTM] {
         // 2 × 30 cells over 3000 × 3000 m: triangles 1500 m by 100 m.
-        let g = Grid { nx: 2, ny: 30, u: (0.0, 3000.0), v: (0.0, 3000.0), f: wavy, offset: off };
+        let g = Grid {
+            nx: 2,
+            ny: 30,
+            u: (0.0, 3000.0),
+            v: (0.0, 3000.0),
+            f: wavy,
+            offset: off,
+        };
         let input = PatchInput {
             name: "gOcad-like coarse support".into(),
             support: g.support(),
@@ -204,6 +240,13 @@ fn the_recumbent_fold_support_needs_and_gets_a_fold_free_tutte_flattening() {
         offset: UTM,
     };
     assert_eq!(flattening_method(&fold.support()).unwrap(), "tutte");
-    let horizon = Grid { nx: 10, ny: 10, u: (0.0, 4000.0), v: (0.0, 4000.0), f: wavy, offset: UTM };
+    let horizon = Grid {
+        nx: 10,
+        ny: 10,
+        u: (0.0, 4000.0),
+        v: (0.0, 4000.0),
+        f: wavy,
+        offset: UTM,
+    };
     assert_eq!(flattening_method(&horizon.support()).unwrap(), "plane");
 }

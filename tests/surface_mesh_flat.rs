@@ -7,7 +7,14 @@ use surface_mesh_common::*;
 use georecipe::stages::surface_mesh::{PatchInput, SurfaceSize, mesh_patch};
 
 fn flat(offset: [f64; 3]) -> Grid<impl Fn(f64, f64) -> [f64; 3]> {
-    Grid { nx: 3, ny: 2, u: (0.0, 1000.0), v: (0.0, 1000.0), f: |x, y| [x, y, -500.0], offset }
+    Grid {
+        nx: 3,
+        ny: 2,
+        u: (0.0, 1000.0),
+        v: (0.0, 1000.0),
+        f: |x, y| [x, y, -500.0],
+        offset,
+    }
 }
 
 #[test]
@@ -21,7 +28,11 @@ fn a_flat_square_with_four_discretized_sides_meshes_into_near_equilateral_triang
             constraints: vec![],
         };
         let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.06, 1.6);
-        assert!(q.triangles > 600 && q.triangles < 1100, "{} triangles", q.triangles);
+        assert!(
+            q.triangles > 600 && q.triangles < 1100,
+            "{} triangles",
+            q.triangles
+        );
         // Every node on the plane z = -500 exactly (the support is flat).
         assert!(out.nodes.iter().all(|p| (p[2] + 500.0).abs() < 1e-9));
     }
@@ -41,7 +52,12 @@ fn a_square_with_a_hole_leaves_the_hole_empty() {
         // No triangle centroid inside the hole.
         for t in &out.triangles {
             let c: Vec<f64> = (0..2)
-                .map(|k| t.iter().map(|&v| out.nodes[v as usize][k] - off[k]).sum::<f64>() / 3.0)
+                .map(|k| {
+                    t.iter()
+                        .map(|&v| out.nodes[v as usize][k] - off[k])
+                        .sum::<f64>()
+                        / 3.0
+                })
                 .collect();
             let r = ((c[0] - 500.0).powi(2) + (c[1] - 500.0).powi(2)).sqrt();
             assert!(r > 190.0, "a triangle sits in the hole at r = {r}");
@@ -53,8 +69,11 @@ fn a_square_with_a_hole_leaves_the_hole_empty() {
 fn a_dangling_constraint_polyline_becomes_interior_edges() {
     for off in [[0.0; 3], UTM] {
         let g = flat(off);
-        let trace: Vec<[f64; 3]> = (0..=8).map(|k| g.at(300.0 + 50.0 * k as f64, 480.0 + 5.0 * k as f64)).collect();
-        let from_border: Vec<[f64; 3]> = vec![g.at(0.0, 250.0), g.at(60.0, 260.0), g.at(120.0, 280.0)];
+        let trace: Vec<[f64; 3]> = (0..=8)
+            .map(|k| g.at(300.0 + 50.0 * k as f64, 480.0 + 5.0 * k as f64))
+            .collect();
+        let from_border: Vec<[f64; 3]> =
+            vec![g.at(0.0, 250.0), g.at(60.0, 260.0), g.at(120.0, 280.0)];
         let input = PatchInput {
             name: "dangling fault trace".into(),
             support: g.support(),
@@ -64,7 +83,10 @@ fn a_dangling_constraint_polyline_becomes_interior_edges() {
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.08, 1.8);
         // The border-touching constraint starts on loop node 75 (left side, 250 m up): shared.
         let loop_nodes = 80;
-        assert_eq!(out.nodes[loop_nodes].map(f64::to_bits), trace[0].map(f64::to_bits));
+        assert_eq!(
+            out.nodes[loop_nodes].map(f64::to_bits),
+            trace[0].map(f64::to_bits)
+        );
     }
 }
 
@@ -94,8 +116,18 @@ fn graded_boundary_nodes_give_a_graded_valid_mesh() {
             }
         }
         l.insert(l.len() - (bottom.len() - 1), g.at(0.0, 1000.0));
-        let input = PatchInput { name: "graded boundary".into(), support: g.support(), loops: vec![l], constraints: vec![] };
-        let size = SurfaceSize { size: 100.0, min_size: 5.0, max_size: 200.0, growth: 1.25 };
+        let input = PatchInput {
+            name: "graded boundary".into(),
+            support: g.support(),
+            loops: vec![l],
+            constraints: vec![],
+        };
+        let size = SurfaceSize {
+            size: 100.0,
+            min_size: 5.0,
+            max_size: 200.0,
+            growth: 1.25,
+        };
         let (out, _) = mesh_and_check(&input, &size, 1.12, 2.2);
         // Small triangles near the fine corner, large ones far from it.
         let edge = |t: &[u32; 3]| {
@@ -103,8 +135,21 @@ fn graded_boundary_nodes_give_a_graded_valid_mesh() {
             let b = out.nodes[t[1] as usize];
             ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
         };
-        let near = out.triangles.iter().filter(|t| out.nodes[t[0] as usize][0] - off[0] < 30.0 && out.nodes[t[0] as usize][1] - off[1] < 30.0).map(edge).fold(0.0, f64::max);
-        let far = out.triangles.iter().filter(|t| out.nodes[t[0] as usize][1] - off[1] > 800.0).map(edge).fold(0.0, f64::max);
+        let near = out
+            .triangles
+            .iter()
+            .filter(|t| {
+                out.nodes[t[0] as usize][0] - off[0] < 30.0
+                    && out.nodes[t[0] as usize][1] - off[1] < 30.0
+            })
+            .map(edge)
+            .fold(0.0, f64::max);
+        let far = out
+            .triangles
+            .iter()
+            .filter(|t| out.nodes[t[0] as usize][1] - off[1] > 800.0)
+            .map(edge)
+            .fold(0.0, f64::max);
         assert!(near < 40.0 && far > 70.0, "near {near} far {far}");
     }
 }
@@ -113,13 +158,29 @@ fn graded_boundary_nodes_give_a_graded_valid_mesh() {
 fn a_self_intersecting_loop_is_an_error_naming_the_patch_and_the_place() {
     for off in [[0.0; 3], UTM] {
         let g = flat(off);
-        let bow = vec![g.at(100.0, 100.0), g.at(900.0, 900.0), g.at(900.0, 100.0), g.at(100.0, 900.0)];
-        let input = PatchInput { name: "bow tie".into(), support: g.support(), loops: vec![bow], constraints: vec![] };
+        let bow = vec![
+            g.at(100.0, 100.0),
+            g.at(900.0, 900.0),
+            g.at(900.0, 100.0),
+            g.at(100.0, 900.0),
+        ];
+        let input = PatchInput {
+            name: "bow tie".into(),
+            support: g.support(),
+            loops: vec![bow],
+            constraints: vec![],
+        };
         let e = mesh_patch(&input, &uniform(50.0)).unwrap_err();
         let at = e.at.expect("a place");
-        assert!((at[0] - off[0] - 500.0).abs() < 1e-6 && (at[1] - off[1] - 500.0).abs() < 1e-6, "{e}");
+        assert!(
+            (at[0] - off[0] - 500.0).abs() < 1e-6 && (at[1] - off[1] - 500.0).abs() < 1e-6,
+            "{e}"
+        );
         let msg = e.to_string();
-        assert!(msg.contains("bow tie") && msg.contains("intersect"), "{msg}");
+        assert!(
+            msg.contains("bow tie") && msg.contains("intersect"),
+            "{msg}"
+        );
     }
 }
 
@@ -128,7 +189,12 @@ fn a_loop_node_off_the_support_is_an_error_with_its_place() {
     let g = flat([0.0; 3]);
     let mut l = g.border_loop(10, 10);
     l[3][2] += 1.0;
-    let input = PatchInput { name: "lifted node".into(), support: g.support(), loops: vec![l.clone()], constraints: vec![] };
+    let input = PatchInput {
+        name: "lifted node".into(),
+        support: g.support(),
+        loops: vec![l.clone()],
+        constraints: vec![],
+    };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert_eq!(e.at, Some(l[3]), "{e}");
     assert!(e.to_string().contains("off the support"));
@@ -137,7 +203,9 @@ fn a_loop_node_off_the_support_is_an_error_with_its_place() {
 #[test]
 fn meshing_twice_gives_the_same_mesh_bit_for_bit() {
     let g = flat(UTM);
-    let trace: Vec<[f64; 3]> = (0..=4).map(|k| g.at(300.0 + 50.0 * k as f64, 480.0)).collect();
+    let trace: Vec<[f64; 3]> = (0..=4)
+        .map(|k| g.at(300.0 + 50.0 * k as f64, 480.0))
+        .collect();
     let input = PatchInput {
         name: "twice".into(),
         support: g.support(),
@@ -161,12 +229,22 @@ fn a_constraint_that_leaves_the_patch_is_an_error_with_a_place() {
         constraints: vec![vec![g.at(500.0, 900.0), [550.0, 1100.0, -500.0]]],
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
-    assert!(e.at.is_some() && e.to_string().contains("escaping trace"), "{e}");
+    assert!(
+        e.at.is_some() && e.to_string().contains("escaping trace"),
+        "{e}"
+    );
 }
 
 #[test]
 fn a_constraint_crossing_the_boundary_on_the_support_is_an_intersection_error() {
-    let g = Grid { nx: 4, ny: 4, u: (-500.0, 1500.0), v: (-500.0, 1500.0), f: |x, y| [x, y, -500.0], offset: [0.0; 3] };
+    let g = Grid {
+        nx: 4,
+        ny: 4,
+        u: (-500.0, 1500.0),
+        v: (-500.0, 1500.0),
+        f: |x, y| [x, y, -500.0],
+        offset: [0.0; 3],
+    };
     let square: Vec<[f64; 3]> = flat([0.0; 3]).border_loop(10, 10);
     let input = PatchInput {
         name: "crossing trace".into(),
@@ -176,16 +254,45 @@ fn a_constraint_crossing_the_boundary_on_the_support_is_an_intersection_error() 
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     let at = e.at.expect("a place");
-    assert!((at[1] - 1000.0).abs() < 1e-6 && (at[0] - 515.0).abs() < 1e-6, "{e}");
-    assert!(e.to_string().contains("crossing trace") && e.to_string().contains("intersect"), "{e}");
+    assert!(
+        (at[1] - 1000.0).abs() < 1e-6 && (at[0] - 515.0).abs() < 1e-6,
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("crossing trace") && e.to_string().contains("intersect"),
+        "{e}"
+    );
 }
 
 #[test]
 fn invalid_sizes_are_refused_with_the_values() {
     let g = flat([0.0; 3]);
-    let input = PatchInput { name: "sizes".into(), support: g.support(), loops: vec![g.border_loop(4, 4)], constraints: vec![] };
-    let e = mesh_patch(&input, &SurfaceSize { size: -1.0, min_size: 0.0, max_size: 10.0, growth: 1.2 }).unwrap_err();
+    let input = PatchInput {
+        name: "sizes".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(4, 4)],
+        constraints: vec![],
+    };
+    let e = mesh_patch(
+        &input,
+        &SurfaceSize {
+            size: -1.0,
+            min_size: 0.0,
+            max_size: 10.0,
+            growth: 1.2,
+        },
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("size -1"), "{e}");
-    let e = mesh_patch(&input, &SurfaceSize { size: 10.0, min_size: 0.0, max_size: 10.0, growth: 0.5 }).unwrap_err();
+    let e = mesh_patch(
+        &input,
+        &SurfaceSize {
+            size: 10.0,
+            min_size: 0.0,
+            max_size: 10.0,
+            growth: 0.5,
+        },
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("growth 0.5"), "{e}");
 }

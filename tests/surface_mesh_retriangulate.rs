@@ -20,7 +20,11 @@ fn read_tsurf(text: &str) -> TriMesh {
         match f.first() {
             Some(&"VRTX") | Some(&"PVRTX") => {
                 let id: u64 = f[1].parse().unwrap();
-                let p: [f64; 3] = [f[2].parse().unwrap(), f[3].parse().unwrap(), f[4].parse().unwrap()];
+                let p: [f64; 3] = [
+                    f[2].parse().unwrap(),
+                    f[3].parse().unwrap(),
+                    f[4].parse().unwrap(),
+                ];
                 let k = *at.entry(p.map(f64::to_bits)).or_insert_with(|| {
                     vs.push(p);
                     (vs.len() - 1) as u32
@@ -58,30 +62,52 @@ fn dist_to_segment(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
     let ab: Vec<f64> = (0..3).map(|k| b[k] - a[k]).collect();
     let ap: Vec<f64> = (0..3).map(|k| p[k] - a[k]).collect();
     let l2: f64 = ab.iter().map(|x| x * x).sum();
-    let t = if l2 > 0.0 { (ap.iter().zip(&ab).map(|(x, y)| x * y).sum::<f64>() / l2).clamp(0.0, 1.0) } else { 0.0 };
-    (0..3).map(|k| (a[k] + t * ab[k] - p[k]).powi(2)).sum::<f64>().sqrt()
+    let t = if l2 > 0.0 {
+        (ap.iter().zip(&ab).map(|(x, y)| x * y).sum::<f64>() / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (0..3)
+        .map(|k| (a[k] + t * ab[k] - p[k]).powi(2))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// The new border runs along the old one, the area is kept, the shapes are good.
 fn check(old: &TriMesh, new: &TriMesh, size: f64, max_mean: f64) {
     let old_border = border_edges(old);
     for (a, _) in border_edges(new) {
-        let d = old_border.iter().map(|(p, q)| dist_to_segment(&a, p, q)).fold(f64::INFINITY, f64::min);
-        assert!(d < 1e-6 * size, "new border node {a:?} is {d} off the old border");
+        let d = old_border
+            .iter()
+            .map(|(p, q)| dist_to_segment(&a, p, q))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            d < 1e-6 * size,
+            "new border node {a:?} is {d} off the old border"
+        );
     }
     let (ao, an) = (old.area(), new.area());
     assert!((an - ao).abs() < 0.01 * ao, "area {ao} became {an}");
     let q = stats(&new.vertices, &new.triangles);
     eprintln!(
         "RETRI tris {} -> {} mean {:.4} sd {:.4} max {:.3} >1.15 {:.2}% >1.5 {:.2}%",
-        old.triangles.len(), q.triangles, q.mean, q.sd, q.max, q.pct_above_1_15, q.pct_above_1_5
+        old.triangles.len(),
+        q.triangles,
+        q.mean,
+        q.sd,
+        q.max,
+        q.pct_above_1_15,
+        q.pct_above_1_5
     );
     assert!(q.mean <= max_mean, "mean c/c* {}", q.mean);
 }
 
 #[test]
 fn the_shipped_didactic_horizon_is_retriangulated_at_100_m_keeping_its_border_and_area() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/recipes/data/didactic/H1_top_reservoir.ts");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/recipes/data/didactic/H1_top_reservoir.ts"
+    );
     let Ok(text) = std::fs::read_to_string(path) else {
         eprintln!("skipping: {path} is absent");
         return;
@@ -93,7 +119,11 @@ fn the_shipped_didactic_horizon_is_retriangulated_at_100_m_keeping_its_border_an
     let xs: Vec<f64> = old.vertices.iter().map(|p| p[0]).collect();
     let xmin = xs.iter().copied().fold(f64::INFINITY, f64::min);
     let corner = old.vertices.iter().find(|p| p[0] == xmin).copied().unwrap();
-    assert!(new.vertices.iter().any(|p| p.map(f64::to_bits) == corner.map(f64::to_bits)));
+    assert!(
+        new.vertices
+            .iter()
+            .any(|p| p.map(f64::to_bits) == corner.map(f64::to_bits))
+    );
 }
 
 fn cfm(name: &str) -> Option<TriMesh> {
@@ -112,7 +142,9 @@ fn cfm(name: &str) -> Option<TriMesh> {
 
 #[test]
 fn the_real_garlock_fault_is_retriangulated_on_its_support() {
-    let Some(old) = cfm("GRFS-GRFZ-WEST-Garlock_fault-CFM5_1000m.ts") else { return };
+    let Some(old) = cfm("GRFS-GRFZ-WEST-Garlock_fault-CFM5_1000m.ts") else {
+        return;
+    };
     let new = retriangulate(&old, 1500.0).unwrap_or_else(|e| panic!("{e}"));
     check(&old, &new, 1500.0, 1.10);
 }
@@ -121,9 +153,11 @@ fn the_real_garlock_fault_is_retriangulated_on_its_support() {
 fn the_merged_san_andreas_1857_fault_with_opposite_patches_is_refused_with_the_place() {
     // Its merged pieces are oriented oppositely: once the seams are welded, an edge is used twice
     // in the same direction. The mesher must say so, with the edge and the place, not guess.
-    let Some(old) = cfm("SAFS-SAFZ-1857-San_Andreas_fault_rupture-CFM5_1000m.ts") else { return };
+    let Some(old) = cfm("SAFS-SAFZ-1857-San_Andreas_fault_rupture-CFM5_1000m.ts") else {
+        return;
+    };
     let e = retriangulate(&old, 2000.0).unwrap_err();
     let at = e.at.expect("a place");
-    assert!(old.vertices.iter().any(|p| *p == at), "{e}");
+    assert!(old.vertices.contains(&at), "{e}");
     assert!(e.to_string().contains("same direction"), "{e}");
 }

@@ -5,7 +5,9 @@
 
 use georecipe::geom::TriMesh;
 use georecipe::stages::surface_mesh::quality::{QualityStats, stats};
-use georecipe::stages::surface_mesh::{PatchInput, SurfaceMeshOutput, SurfaceSize, mesh_patch, verify};
+use georecipe::stages::surface_mesh::{
+    PatchInput, SurfaceMeshOutput, SurfaceSize, mesh_patch, verify,
+};
 
 pub const UTM: [f64; 3] = [5.0e5, 7.0e6, 0.0];
 
@@ -25,7 +27,11 @@ impl<F: Fn(f64, f64) -> [f64; 3]> Grid<F> {
         let u = self.u.0 + (self.u.1 - self.u.0) * i as f64 / self.nx as f64;
         let v = self.v.0 + (self.v.1 - self.v.0) * j as f64 / self.ny as f64;
         let p = (self.f)(u, v);
-        [p[0] + self.offset[0], p[1] + self.offset[1], p[2] + self.offset[2]]
+        [
+            p[0] + self.offset[0],
+            p[1] + self.offset[1],
+            p[2] + self.offset[2],
+        ]
     }
 
     pub fn support(&self) -> TriMesh {
@@ -102,11 +108,20 @@ impl<F: Fn(f64, f64) -> [f64; 3]> Grid<F> {
 }
 
 pub fn wavy(x: f64, y: f64) -> [f64; 3] {
-    [x, y, -1200.0 + 80.0 * (x / 900.0).sin() * (y / 1100.0).cos()]
+    [
+        x,
+        y,
+        -1200.0 + 80.0 * (x / 900.0).sin() * (y / 1100.0).cos(),
+    ]
 }
 
 pub fn uniform(size: f64) -> SurfaceSize {
-    SurfaceSize { size, min_size: size * 0.1, max_size: size, growth: 1.2 }
+    SurfaceSize {
+        size,
+        min_size: size * 0.1,
+        max_size: size,
+        growth: 1.2,
+    }
 }
 
 /// Meshes and makes the assertions every case makes; returns the mesh and its quality.
@@ -136,8 +151,21 @@ pub fn mesh_and_check(
         "CASE {:<40} tris {:>7} mean {:.4} sd {:.4} max {:.3} >1.15 {:>5.2}% >1.5 {:>5.2}% time {:.3}s",
         input.name, q.triangles, q.mean, q.sd, q.max, q.pct_above_1_15, q.pct_above_1_5, secs
     );
-    assert!(q.mean <= max_mean, "{}: mean c/c* {} > {}", input.name, q.mean, max_mean);
-    assert!(q.max <= max_worst, "{}: worst c/c* {} > {}: {:?}", input.name, q.max, max_worst, worst(&out));
+    assert!(
+        q.mean <= max_mean,
+        "{}: mean c/c* {} > {}",
+        input.name,
+        q.mean,
+        max_mean
+    );
+    assert!(
+        q.max <= max_worst,
+        "{}: worst c/c* {} > {}: {:?}",
+        input.name,
+        q.max,
+        max_worst,
+        worst(&out)
+    );
     (out, q)
 }
 

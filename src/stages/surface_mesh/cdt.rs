@@ -129,16 +129,17 @@ impl Cdt {
     /// The live triangle containing `p` (closed), by a remembering stochastic walk (seeded, so
     /// deterministic) with a linear scan as the fallback.
     pub fn locate(&mut self, p: &[f64; 2], start: u32) -> Option<u32> {
-        let mut t = if start != NONE && (start as usize) < self.alive.len() && self.alive[start as usize] {
-            start
-        } else if self.alive.get(self.last as usize).copied().unwrap_or(false) {
-            self.last
-        } else {
-            match self.alive.iter().position(|&a| a) {
-                Some(k) => k as u32,
-                None => return None,
-            }
-        };
+        let mut t =
+            if start != NONE && (start as usize) < self.alive.len() && self.alive[start as usize] {
+                start
+            } else if self.alive.get(self.last as usize).copied().unwrap_or(false) {
+                self.last
+            } else {
+                match self.alive.iter().position(|&a| a) {
+                    Some(k) => k as u32,
+                    None => return None,
+                }
+            };
         let mut prev_t = NONE;
         let limit = 4 * self.tri.len() + 100;
         'walk: for _ in 0..limit {
@@ -177,11 +178,8 @@ impl Cdt {
     pub fn contains(&self, t: u32, p: &[f64; 2]) -> bool {
         let v = self.tri[t as usize];
         (0..3).all(|i| {
-            orient2d(
-                &self.pts[v[i] as usize],
-                &self.pts[v[next(i)] as usize],
-                p,
-            ) != Orientation::Negative
+            orient2d(&self.pts[v[i] as usize], &self.pts[v[next(i)] as usize], p)
+                != Orientation::Negative
         })
     }
 
@@ -321,15 +319,15 @@ impl Cdt {
         self.nbr[n as usize] = [t_p2p0.0, t, n_qp2.0];
         self.fix[n as usize] = [t_p2p0.1, FREE, n_qp2.1];
         self.inside[n as usize] = inside;
-        if n_p1q.0 != NONE {
-            if let Some(k) = self.slot_of(n_p1q.0, n) {
-                self.nbr[n_p1q.0 as usize][k] = t;
-            }
+        if n_p1q.0 != NONE
+            && let Some(k) = self.slot_of(n_p1q.0, n)
+        {
+            self.nbr[n_p1q.0 as usize][k] = t;
         }
-        if t_p2p0.0 != NONE {
-            if let Some(k) = self.slot_of(t_p2p0.0, t) {
-                self.nbr[t_p2p0.0 as usize][k] = n;
-            }
+        if t_p2p0.0 != NONE
+            && let Some(k) = self.slot_of(t_p2p0.0, t)
+        {
+            self.nbr[t_p2p0.0 as usize][k] = n;
         }
         self.vtri[p0 as usize] = t;
         self.vtri[p1 as usize] = t;
@@ -392,10 +390,10 @@ impl Cdt {
     fn set_fix(&mut self, t: u32, i: usize, kind: u8) {
         self.fix[t as usize][i] = kind;
         let n = self.nbr[t as usize][i];
-        if n != NONE {
-            if let Some(k) = self.slot_of(n, t) {
-                self.fix[n as usize][k] = kind;
-            }
+        if n != NONE
+            && let Some(k) = self.slot_of(n, t)
+        {
+            self.fix[n as usize][k] = kind;
         }
     }
 
@@ -531,7 +529,11 @@ impl Cdt {
         }
         let v = self.tri[t as usize];
         let w = self.tri[n as usize];
-        let Some(q) = w.iter().copied().find(|&x| x != v[next(i)] && x != v[prev(i)]) else {
+        let Some(q) = w
+            .iter()
+            .copied()
+            .find(|&x| x != v[next(i)] && x != v[prev(i)])
+        else {
             return false;
         };
         incircle(
@@ -641,8 +643,8 @@ mod tests {
             [5.0, 3.0],
             [3.0, 1.0],
             [7.0, -1.0],
-            [5.0, 5.0],
-            [5.0, -5.0],
+            [5.2, 5.0],
+            [4.8, -5.0],
         ];
         let (mut c, id) = build(&pts);
         c.insert_segment(id[0], id[1], LOOP).unwrap();
@@ -651,6 +653,15 @@ mod tests {
         check_delaunay_and_links(&c);
         let err = c.insert_segment(id[6], id[7], LOOP).unwrap_err();
         assert!(matches!(err, CdtError::Crossing { .. }), "{err:?}");
+        // A segment through a vertex names that vertex.
+        let err = c.insert_segment(id[2], id[3], LOOP).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                CdtError::VertexOnSegment { .. } | CdtError::Crossing { .. }
+            ),
+            "{err:?}"
+        );
     }
 
     #[test]

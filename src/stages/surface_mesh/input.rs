@@ -46,7 +46,10 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
     let mut loops = Vec::new();
     for (li, l) in input.loops.iter().enumerate() {
         if l.len() < 3 {
-            return Err(fail(format!("loop {li} has {} nodes; a loop needs at least 3", l.len()), l.first().copied()));
+            return Err(fail(
+                format!("loop {li} has {} nodes; a loop needs at least 3", l.len()),
+                l.first().copied(),
+            ));
         }
         let mut ids = Vec::with_capacity(l.len());
         for (k, p) in l.iter().enumerate() {
@@ -55,7 +58,9 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
             }
             if index.contains_key(&key(p)) {
                 return Err(fail(
-                    format!("loop {li} node {k} repeats an earlier loop node (loops touch or the closing node is repeated)"),
+                    format!(
+                        "loop {li} node {k} repeats an earlier loop node (loops touch or the closing node is repeated)"
+                    ),
                     Some(*p),
                 ));
             }
@@ -69,12 +74,18 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
     let mut constraints = Vec::new();
     for (ci, c) in input.constraints.iter().enumerate() {
         if c.len() < 2 {
-            return Err(fail(format!("constraint {ci} has {} nodes; it needs at least 2", c.len()), c.first().copied()));
+            return Err(fail(
+                format!("constraint {ci} has {} nodes; it needs at least 2", c.len()),
+                c.first().copied(),
+            ));
         }
         let mut ids: Vec<u32> = Vec::with_capacity(c.len());
         for (k, p) in c.iter().enumerate() {
             if p.iter().any(|x| !x.is_finite()) {
-                return Err(fail(format!("constraint {ci} node {k} is not finite"), None));
+                return Err(fail(
+                    format!("constraint {ci} node {k} is not finite"),
+                    None,
+                ));
             }
             let id = match index.get(&key(p)) {
                 Some(&id) => id,
@@ -86,11 +97,18 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
                 }
             };
             if ids.last() == Some(&id) {
-                return Err(fail(format!("constraint {ci} has a zero-length segment at node {k}"), Some(*p)));
+                return Err(fail(
+                    format!("constraint {ci} has a zero-length segment at node {k}"),
+                    Some(*p),
+                ));
             }
             ids.push(id);
         }
         constraints.push(ids);
     }
-    Ok(GivenNodes { nodes, loops, constraints })
+    Ok(GivenNodes {
+        nodes,
+        loops,
+        constraints,
+    })
 }

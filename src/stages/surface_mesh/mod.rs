@@ -23,6 +23,8 @@
 //! triangle's corners, so it lies on the support up to rounding; `mesh_patch` checks it against
 //! `Tolerances::default().support_distance_rel` (1e-6) × the node's mean edge length.
 
+#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
+
 mod cdt;
 mod input;
 mod param;
@@ -85,7 +87,11 @@ pub struct SurfaceMeshError {
 
 impl std::fmt::Display for SurfaceMeshError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "surface mesh of patch '{}': {}", self.patch, self.message)?;
+        write!(
+            f,
+            "surface mesh of patch '{}': {}",
+            self.patch, self.message
+        )?;
         if let Some(p) = self.at {
             write!(f, " at ({}, {}, {})", p[0], p[1], p[2])?;
         }
@@ -104,25 +110,39 @@ fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 }
 
 /// Meshes one patch (see the module doc). The result has passed `verify`.
-pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
+pub fn mesh_patch(
+    input: &PatchInput,
+    size: &SurfaceSize,
+) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
     let fail = |message: String, at: Option<[f64; 3]>| SurfaceMeshError {
         patch: input.name.clone(),
         message,
         at,
     };
-    let SurfaceSize { size: target, min_size, max_size, growth } = *size;
-    if !(target > 0.0 && target.is_finite())
-        || !(min_size >= 0.0)
-        || !(max_size >= min_size && max_size > 0.0)
-        || !(growth >= 1.0 && growth.is_finite())
-    {
+    let SurfaceSize {
+        size: target,
+        min_size,
+        max_size,
+        growth,
+    } = *size;
+    let sizes_ok = target > 0.0
+        && target.is_finite()
+        && min_size >= 0.0
+        && max_size >= min_size
+        && max_size > 0.0
+        && growth >= 1.0
+        && growth.is_finite();
+    if !sizes_ok {
         return Err(fail(
-            format!("invalid sizes: size {target}, min {min_size}, max {max_size}, growth {growth} (need size > 0, 0 <= min <= max, growth >= 1)"),
+            format!(
+                "invalid sizes: size {target}, min {min_size}, max {max_size}, growth {growth} (need size > 0, 0 <= min <= max, growth >= 1)"
+            ),
             None,
         ));
     }
     let given = given_nodes(input)?;
-    let support = Support::new(&input.support).map_err(|e| fail(format!("support: {}", e.message), e.at))?;
+    let support =
+        Support::new(&input.support).map_err(|e| fail(format!("support: {}", e.message), e.at))?;
     let tol = Tolerances::default().support_distance_rel;
 
     // Local sizes of the given nodes (mean adjacent given segment length).
@@ -132,7 +152,10 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
     for (a, b) in given.loop_segments().chain(given.constraint_segments()) {
         let l = dist(&given.nodes[a as usize], &given.nodes[b as usize]);
         if !(l > 0.0) {
-            return Err(fail("zero-length segment".into(), Some(given.nodes[a as usize])));
+            return Err(fail(
+                "zero-length segment".into(),
+                Some(given.nodes[a as usize]),
+            ));
         }
         for v in [a, b] {
             hsum[v as usize] += l;
@@ -144,17 +167,29 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
     // Map the given nodes into the plane.
     let mut uv = Vec::with_capacity(ng);
     for (i, p) in given.nodes.iter().enumerate() {
-        let on = support.project(p).ok_or_else(|| fail("empty support".into(), Some(*p)))?;
+        let on = support
+            .project(p)
+            .ok_or_else(|| fail("empty support".into(), Some(*p)))?;
         if on.dist > tol * hloc[i] {
             return Err(fail(
-                format!("a given node is {:.3e} off the support (allowed {:.3e})", on.dist, tol * hloc[i]),
+                format!(
+                    "a given node is {:.3e} off the support (allowed {:.3e})",
+                    on.dist,
+                    tol * hloc[i]
+                ),
                 Some(*p),
             ));
         }
         uv.push(on.uv);
     }
-    let segs: Vec<(u32, u32)> = given.loop_segments().chain(given.constraint_segments()).collect();
-    let segs2: Vec<([f64; 2], [f64; 2])> = segs.iter().map(|&(a, b)| (uv[a as usize], uv[b as usize])).collect();
+    let segs: Vec<(u32, u32)> = given
+        .loop_segments()
+        .chain(given.constraint_segments())
+        .collect();
+    let segs2: Vec<([f64; 2], [f64; 2])> = segs
+        .iter()
+        .map(|&(a, b)| (uv[a as usize], uv[b as usize]))
+        .collect();
     if let Some((i, j)) = segments::first_crossing(&segs2) {
         let at = crossing_point(&segs2[i], &segs2[j])
             .and_then(|x| support.to_3d(&x).map(|r| r.1))
@@ -183,9 +218,17 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
                 p3.push(given.nodes[i]);
             }
             Err(CdtError::Duplicate(_)) => {
-                return Err(fail("two given nodes land on the same point of the support".into(), Some(given.nodes[i])));
+                return Err(fail(
+                    "two given nodes land on the same point of the support".into(),
+                    Some(given.nodes[i]),
+                ));
             }
-            Err(_) => return Err(fail("a given node could not be placed".into(), Some(given.nodes[i]))),
+            Err(_) => {
+                return Err(fail(
+                    "a given node could not be placed".into(),
+                    Some(given.nodes[i]),
+                ));
+            }
         }
     }
     let nloop = given.loop_segments().count();
@@ -209,16 +252,27 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
         for i in 0..3 {
             if cdt.fix[t as usize][i] == CONSTRAINT && !cdt.inside[t as usize] {
                 let v = cdt.tri[t as usize][cdt::next(i)];
-                return Err(fail("a constraint runs outside the patch".into(), p3.get(v as usize).copied()));
+                return Err(fail(
+                    "a constraint runs outside the patch".into(),
+                    p3.get(v as usize).copied(),
+                ));
             }
         }
     }
     if !cdt.live_triangles().any(|t| cdt.inside[t as usize]) {
-        return Err(fail("the loops enclose no area".into(), given.nodes.first().copied()));
+        return Err(fail(
+            "the loops enclose no area".into(),
+            given.nodes.first().copied(),
+        ));
     }
 
     // Sizes and refinement.
-    let snodes: Vec<([f64; 3], f64)> = given.nodes.iter().copied().zip(hloc.iter().copied()).collect();
+    let snodes: Vec<([f64; 3], f64)> = given
+        .nodes
+        .iter()
+        .copied()
+        .zip(hloc.iter().copied())
+        .collect();
     let origin = support::Support::origin_of(&input.support);
     let field = SizeField::new(&snodes, origin, target, min_size, max_size, growth);
     let area: f64 = cdt
@@ -226,19 +280,33 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
         .filter(|&t| cdt.inside[t as usize])
         .map(|t| {
             let v = cdt.tri[t as usize];
-            crate::geom::trimesh::triangle_area([&p3[v[0] as usize], &p3[v[1] as usize], &p3[v[2] as usize]])
+            crate::geom::trimesh::triangle_area([
+                &p3[v[0] as usize],
+                &p3[v[1] as usize],
+                &p3[v[2] as usize],
+            ])
         })
         .sum();
-    let hfloor = min_size.max(hloc.iter().copied().fold(f64::INFINITY, f64::min)).min(target).max(f64::MIN_POSITIVE);
+    let hfloor = min_size
+        .max(hloc.iter().copied().fold(f64::INFINITY, f64::min))
+        .min(target)
+        .max(f64::MIN_POSITIVE);
     let max_points = (8.0 * area / (hfloor * hfloor)).min(5.0e7) as usize + 10_000;
     let stri = {
         let mut r = refine::Refiner::new(&mut cdt, &mut p3, &support, &field);
-        r.run(max_points).map_err(|m| fail(m, given.nodes.first().copied()))?;
+        r.run(max_points)
+            .map_err(|m| fail(m, given.nodes.first().copied()))?;
         std::mem::take(&mut r.stri)
     };
     {
         let first_free = (3 + ng) as u32;
-        let mut s = smooth::Smoother { cdt: &mut cdt, p3: &mut p3, support: &support, first_free, stri };
+        let mut s = smooth::Smoother {
+            cdt: &mut cdt,
+            p3: &mut p3,
+            support: &support,
+            first_free,
+            stri,
+        };
         s.run(SMOOTH_ROUNDS);
     }
 
@@ -248,7 +316,10 @@ pub fn mesh_patch(input: &PatchInput, size: &SurfaceSize) -> Result<SurfaceMeshO
     for t in cdt.live_triangles().filter(|&t| cdt.inside[t as usize]) {
         let v = cdt.tri[t as usize];
         if v.iter().any(|&x| x < 3) {
-            return Err(fail("the loops are not closed around the patch".into(), given.nodes.first().copied()));
+            return Err(fail(
+                "the loops are not closed around the patch".into(),
+                given.nodes.first().copied(),
+            ));
         }
         triangles.push(v.map(|x| x - 3));
     }
@@ -296,16 +367,22 @@ fn crossing_point(s: &([f64; 2], [f64; 2]), t: &([f64; 2], [f64; 2])) -> Option<
 /// How the support is flattened for meshing: `"plane"` (projection onto its mean plane, exactly
 /// fold-free) or `"tutte"` (Tutte embedding, for supports that fold over every plane).
 pub fn flattening_method(support: &TriMesh) -> Result<&'static str, SurfaceMeshError> {
-    param::flatten(support).map(|p| p.method).map_err(|e| SurfaceMeshError {
-        patch: "support".into(),
-        message: e.message,
-        at: e.at,
-    })
+    param::flatten(support)
+        .map(|p| p.method)
+        .map_err(|e| SurfaceMeshError {
+            patch: "support".into(),
+            message: e.message,
+            at: e.at,
+        })
 }
 
 /// Checks a patch mesh (see `verify.rs`): exact topology, orientation, no fold or overlap, and
 /// every node within `tol_rel` × its mean edge length of the support.
-pub fn verify(input: &PatchInput, out: &SurfaceMeshOutput, tol_rel: f64) -> Result<(), SurfaceMeshError> {
+pub fn verify(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    tol_rel: f64,
+) -> Result<(), SurfaceMeshError> {
     let support = Support::new(&input.support).map_err(|e| SurfaceMeshError {
         patch: input.name.clone(),
         message: format!("support: {}", e.message),
@@ -320,7 +397,11 @@ pub fn verify(input: &PatchInput, out: &SurfaceMeshOutput, tol_rel: f64) -> Resu
 /// edges), and the inside is meshed by `mesh_patch` on the old support.
 pub fn retriangulate(support: &TriMesh, size: f64) -> Result<TriMesh, SurfaceMeshError> {
     let name = "support retriangulation".to_string();
-    let fail = |message: String, at: Option<[f64; 3]>| SurfaceMeshError { patch: name.clone(), message, at };
+    let fail = |message: String, at: Option<[f64; 3]>| SurfaceMeshError {
+        patch: name.clone(),
+        message,
+        at,
+    };
     if !(size > 0.0 && size.is_finite()) {
         return Err(fail(format!("invalid size {size}"), None));
     }
@@ -331,8 +412,21 @@ pub fn retriangulate(support: &TriMesh, size: f64) -> Result<TriMesh, SurfaceMes
         let pts: Vec<[f64; 3]> = l.iter().map(|&v| support.vertices[v as usize]).collect();
         out_loops.push(resample_loop(&pts, size, kink));
     }
-    let input = PatchInput { name: name.clone(), support: support.clone(), loops: out_loops, constraints: vec![] };
-    let out = mesh_patch(&input, &SurfaceSize { size, min_size: 0.0, max_size: size, growth: 1.3 })?;
+    let input = PatchInput {
+        name: name.clone(),
+        support: support.clone(),
+        loops: out_loops,
+        constraints: vec![],
+    };
+    let out = mesh_patch(
+        &input,
+        &SurfaceSize {
+            size,
+            min_size: 0.0,
+            max_size: size,
+            growth: 1.3,
+        },
+    )?;
     Ok(TriMesh::new(out.nodes, out.triangles))
 }
 
@@ -381,9 +475,17 @@ fn resample_loop(pts: &[[f64; 3]], size: f64, kink_cos: f64) -> Vec<[f64; 3]> {
                 j += 1;
             }
             let span = cum[j + 1] - cum[j];
-            let u = if span > 0.0 { ((target - cum[j]) / span).clamp(0.0, 1.0) } else { 0.0 };
+            let u = if span > 0.0 {
+                ((target - cum[j]) / span).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             let (a, b) = (piece[j], piece[j + 1]);
-            out.push([a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1]), a[2] + u * (b[2] - a[2])]);
+            out.push([
+                a[0] + u * (b[0] - a[0]),
+                a[1] + u * (b[1] - a[1]),
+                a[2] + u * (b[2] - a[2]),
+            ]);
         }
     }
     out

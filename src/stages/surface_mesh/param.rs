@@ -91,7 +91,10 @@ pub fn border_loops(s: &TriMesh) -> Result<Vec<Vec<u32>>, ParamError> {
         let mut v = start;
         loop {
             let Some(&w) = nextv.get(&v) else {
-                return Err(err("open support border".into(), Some(s.vertices[v as usize])));
+                return Err(err(
+                    "open support border".into(),
+                    Some(s.vertices[v as usize]),
+                ));
             };
             if w == start {
                 break;
@@ -129,10 +132,16 @@ pub fn flatten(s: &TriMesh) -> Result<Param, ParamError> {
     }
     check_connected(s)?;
     if let Some(uv) = plane_projection(s, &loops) {
-        return Ok(Param { uv, method: "plane" });
+        return Ok(Param {
+            uv,
+            method: "plane",
+        });
     }
     let uv = tutte(s, &loops)?;
-    Ok(Param { uv, method: "tutte" })
+    Ok(Param {
+        uv,
+        method: "tutte",
+    })
 }
 
 fn check_connected(s: &TriMesh) -> Result<(), ParamError> {
@@ -171,7 +180,11 @@ fn check_connected(s: &TriMesh) -> Result<(), ParamError> {
 pub fn plane_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     let l = dot(&n, &n).sqrt();
     let n = [n[0] / l, n[1] / l, n[2] / l];
-    let a = if n[0].abs() < 0.6 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let a = if n[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
     let e1 = cross(&a, &n);
     let l1 = dot(&e1, &e1).sqrt();
     let e1 = [e1[0] / l1, e1[1] / l1, e1[2] / l1];
@@ -244,7 +257,16 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
     // Outer loop: the longest one.
     let lens: Vec<f64> = loops
         .iter()
-        .map(|l| (0..l.len()).map(|i| dist(&s.vertices[l[i] as usize], &s.vertices[l[(i + 1) % l.len()] as usize])).sum())
+        .map(|l| {
+            (0..l.len())
+                .map(|i| {
+                    dist(
+                        &s.vertices[l[i] as usize],
+                        &s.vertices[l[(i + 1) % l.len()] as usize],
+                    )
+                })
+                .sum()
+        })
         .collect();
     let mut outer = 0;
     for (i, &l) in lens.iter().enumerate() {
@@ -269,7 +291,10 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
             let ang = 2.0 * std::f64::consts::PI * acc / total;
             uv[l[i] as usize] = [radius * ang.cos(), radius * ang.sin()];
             pinned[l[i] as usize] = true;
-            acc += dist(&s.vertices[l[i] as usize], &s.vertices[l[(i + 1) % l.len()] as usize]);
+            acc += dist(
+                &s.vertices[l[i] as usize],
+                &s.vertices[l[(i + 1) % l.len()] as usize],
+            );
         }
     }
     // Symmetric weights, accumulated per undirected edge (deterministic order).
@@ -321,7 +346,9 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
         val[fill[b as usize]] = w;
         fill[b as usize] += 1;
     }
-    let diag: Vec<f64> = (0..n).map(|i| val[deg[i]..deg[i + 1]].iter().sum()).collect();
+    let diag: Vec<f64> = (0..n)
+        .map(|i| val[deg[i]..deg[i + 1]].iter().sum())
+        .collect();
     for k in 0..2 {
         // A x = b on free vertices: A = D - W restricted, b = W * pinned values.
         let mut b = vec![0.0; n];
@@ -354,10 +381,16 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
         };
         let mut x = vec![0.0; n];
         let mut r = b.clone();
-        let mut z: Vec<f64> = (0..n).map(|i| if pinned[i] { 0.0 } else { r[i] / diag[i] }).collect();
+        let mut z: Vec<f64> = (0..n)
+            .map(|i| if pinned[i] { 0.0 } else { r[i] / diag[i] })
+            .collect();
         let mut p = z.clone();
         let mut rz: f64 = (0..n).map(|i| r[i] * z[i]).sum();
-        let bnorm = (0..n).map(|i| b[i] * b[i]).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+        let bnorm = (0..n)
+            .map(|i| b[i] * b[i])
+            .sum::<f64>()
+            .sqrt()
+            .max(f64::MIN_POSITIVE);
         let mut ap = vec![0.0; n];
         for _ in 0..(20 * n + 100) {
             let rn = (0..n).map(|i| r[i] * r[i]).sum::<f64>().sqrt();

@@ -18,7 +18,11 @@ pub fn shape(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> f64 {
     let n = cross(&ab, &ac);
     let area = 0.5 * dot(&n, &n).sqrt();
     let s = dot(&ab, &ab) + dot(&ac, &ac) + dot(&bc, &bc);
-    if s > 0.0 { 4.0 * 3f64.sqrt() * area / s } else { 0.0 }
+    if s > 0.0 {
+        4.0 * 3f64.sqrt() * area / s
+    } else {
+        0.0
+    }
 }
 
 /// Circumradius of triangle `abc` in 3D (infinity when degenerate).

@@ -90,19 +90,31 @@ impl<'a> Refiner<'a> {
         let mut heap: BinaryHeap<(u64, Reverse<u32>, [u32; 3])> = BinaryHeap::new();
         let live: Vec<u32> = self.cdt.live_triangles().collect();
         for &t in &live {
-            let r = if self.cdt.inside[t as usize] { self.ratio(t) } else { 0.0 };
+            let r = if self.cdt.inside[t as usize] {
+                self.ratio(t)
+            } else {
+                0.0
+            };
             self.set_rho(t, r);
         }
         for &t in &live {
             if self.cdt.inside[t as usize] && !self.accepted(t) {
-                heap.push((self.rho[t as usize].to_bits(), Reverse(t), self.cdt.tri[t as usize]));
+                heap.push((
+                    self.rho[t as usize].to_bits(),
+                    Reverse(t),
+                    self.cdt.tri[t as usize],
+                ));
             }
         }
         let mut added = 0usize;
         let mut fan = Vec::new();
         while let Some((_, Reverse(t), verts)) = heap.pop() {
             let tu = t as usize;
-            if !self.cdt.alive[tu] || self.cdt.tri[tu] != verts || !self.cdt.inside[tu] || self.accepted(t) {
+            if !self.cdt.alive[tu]
+                || self.cdt.tri[tu] != verts
+                || !self.cdt.inside[tu]
+                || self.accepted(t)
+            {
                 continue;
             }
             // Front edges.
@@ -144,7 +156,11 @@ impl<'a> Refiner<'a> {
                     }
                     for &nt in &new_tris {
                         if !self.accepted(nt) {
-                            heap.push((self.rho[nt as usize].to_bits(), Reverse(nt), self.cdt.tri[nt as usize]));
+                            heap.push((
+                                self.rho[nt as usize].to_bits(),
+                                Reverse(nt),
+                                self.cdt.tri[nt as usize],
+                            ));
                         } else {
                             self.push_neighbours(nt, &mut heap);
                         }
@@ -206,7 +222,11 @@ impl<'a> Refiner<'a> {
         }
         let a3 = &self.p3[v[next(i)] as usize];
         let b3 = &self.p3[v[prev(i)] as usize];
-        let m3 = [(a3[0] + b3[0]) * 0.5, (a3[1] + b3[1]) * 0.5, (a3[2] + b3[2]) * 0.5];
+        let m3 = [
+            (a3[0] + b3[0]) * 0.5,
+            (a3[1] + b3[1]) * 0.5,
+            (a3[2] + b3[2]) * 0.5,
+        ];
         let h = self.size.at(&m3);
         let m = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
         // Unit normal of ab pointing into t (towards c; a, b, c are counter-clockwise).
@@ -234,7 +254,9 @@ impl<'a> Refiner<'a> {
         let h = self.size.at(&x3);
         let p3 = &*self.p3;
         let mut accept = |_: &Cdt, verts: &[u32]| {
-            verts.iter().all(|&w| dist3(&p3[w as usize], &x3) >= TOO_CLOSE * h)
+            verts
+                .iter()
+                .all(|&w| dist3(&p3[w as usize], &x3) >= TOO_CLOSE * h)
         };
         let v = self.cdt.insert(x2, t0, &mut accept).ok()?;
         if self.p3.len() <= v as usize {
@@ -262,5 +284,8 @@ pub fn circumcentre(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Option<[f64; 2]
     }
     let b2 = bx * bx + by * by;
     let c2 = cx * cx + cy * cy;
-    Some([a[0] + (cy * b2 - by * c2) / d, a[1] + (bx * c2 - cx * b2) / d])
+    Some([
+        a[0] + (cy * b2 - by * c2) / d,
+        a[1] + (bx * c2 - cx * b2) / d,
+    ])
 }

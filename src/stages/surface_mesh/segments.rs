@@ -11,7 +11,10 @@ type Seg = ([f64; 2], [f64; 2]);
 
 /// Whether `c` (collinear with `a b`) lies on the closed segment `a b`.
 fn on_segment(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> bool {
-    a[0].min(b[0]) <= c[0] && c[0] <= a[0].max(b[0]) && a[1].min(b[1]) <= c[1] && c[1] <= a[1].max(b[1])
+    a[0].min(b[0]) <= c[0]
+        && c[0] <= a[0].max(b[0])
+        && a[1].min(b[1]) <= c[1]
+        && c[1] <= a[1].max(b[1])
 }
 
 /// Whether two closed segments share any point (exact).

@@ -51,7 +51,11 @@ impl SizeField {
 
     /// The target edge length at `x`.
     pub fn at(&self, x: &[f64; 3]) -> f64 {
-        let q = [x[0] - self.origin[0], x[1] - self.origin[1], x[2] - self.origin[2]];
+        let q = [
+            x[0] - self.origin[0],
+            x[1] - self.origin[1],
+            x[2] - self.origin[2],
+        ];
         let mut h = self.size;
         if self.slope <= 1e-12 {
             h = h.min(self.hmin_nodes);

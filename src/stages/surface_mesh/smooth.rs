@@ -5,9 +5,11 @@
 //!   the quadrilateral is strictly convex in the parameter plane (exact `orient2d`), so the
 //!   triangulation of the plane stays valid.
 //! - A generated node moves to the mean of its neighbours in 3D, then is projected back onto the
-//!   support (closest point, R-tree); its parameter comes from that projection. The move is kept
+//!   support (closest point: a walk over the support from the triangle the node sits on, the
+//!   global R-tree search as the fallback); its parameter comes from that projection. The move is kept
 //!   only if every incident triangle stays strictly counter-clockwise in the plane (exact) and the
 //!   worst incident 3D shape does not degrade. Given loop and constraint nodes never move.
+//!
 //! Sweeps go in index order (Gauss–Seidel), so the result does not depend on anything but input.
 
 use super::cdt::{Cdt, FREE, NONE, next, prev};
@@ -28,7 +30,11 @@ pub struct Smoother<'a> {
 impl Smoother<'_> {
     fn tri_shape(&self, t: u32) -> f64 {
         let v = self.cdt.tri[t as usize];
-        shape(&self.p3[v[0] as usize], &self.p3[v[1] as usize], &self.p3[v[2] as usize])
+        shape(
+            &self.p3[v[0] as usize],
+            &self.p3[v[1] as usize],
+            &self.p3[v[2] as usize],
+        )
     }
 
     /// One sweep of quality flips; returns how many edges flipped.
@@ -41,7 +47,10 @@ impl Smoother<'_> {
             }
             for i in 0..3 {
                 let nb = self.cdt.nbr[t as usize][i];
-                if nb == NONE || self.cdt.fix[t as usize][i] != FREE || !self.cdt.inside[nb as usize] {
+                if nb == NONE
+                    || self.cdt.fix[t as usize][i] != FREE
+                    || !self.cdt.inside[nb as usize]
+                {
                     continue;
                 }
                 if !self.cdt.flippable(t, i) {

@@ -96,10 +96,15 @@ impl Support {
                 let [a, b, c] = mesh.corners(t);
                 let n = cross(&sub(b, a), &sub(c, a));
                 let l = dot(&n, &n).sqrt();
-                if l > 0.0 { [n[0] / l, n[1] / l, n[2] / l] } else { [0.0; 3] }
+                if l > 0.0 {
+                    [n[0] / l, n[1] / l, n[2] / l]
+                } else {
+                    [0.0; 3]
+                }
             })
             .collect();
-        let mut edges: std::collections::BTreeMap<(u32, u32), u32> = std::collections::BTreeMap::new();
+        let mut edges: std::collections::BTreeMap<(u32, u32), u32> =
+            std::collections::BTreeMap::new();
         for (t, tri) in mesh.triangles.iter().enumerate() {
             for i in 0..3 {
                 edges.insert((tri[i], tri[(i + 1) % 3]), t as u32);
@@ -258,7 +263,10 @@ impl Support {
         if !(det.abs() > 0.0) {
             return None;
         }
-        let inv = [[e[1][1] / det, -e[0][1] / det], [-e[1][0] / det, e[0][0] / det]];
+        let inv = [
+            [e[1][1] / det, -e[0][1] / det],
+            [-e[1][0] / det, e[0][0] / det],
+        ];
         let pa = &self.mesh.vertices[t[0] as usize];
         let f1 = sub(&self.mesh.vertices[t[1] as usize], pa);
         let f2 = sub(&self.mesh.vertices[t[2] as usize], pa);

@@ -47,12 +47,23 @@ pub fn verify_with(
     let given: GivenNodes = given_nodes(input)?;
     let nn = out.nodes.len();
     if nn < given.nodes.len() {
-        return Err(fail(input, format!("the mesh has {nn} nodes, fewer than the {} given", given.nodes.len()), None));
+        return Err(fail(
+            input,
+            format!(
+                "the mesh has {nn} nodes, fewer than the {} given",
+                given.nodes.len()
+            ),
+            None,
+        ));
     }
     for (i, p) in given.nodes.iter().enumerate() {
         let q = &out.nodes[i];
         if p.map(f64::to_bits) != q.map(f64::to_bits) {
-            return Err(fail(input, format!("output node {i} is not the given node bit for bit"), Some(*p)));
+            return Err(fail(
+                input,
+                format!("output node {i} is not the given node bit for bit"),
+                Some(*p),
+            ));
         }
     }
     for (i, p) in out.nodes.iter().enumerate() {
@@ -61,17 +72,29 @@ pub fn verify_with(
         }
     }
     if out.triangles.is_empty() {
-        return Err(fail(input, "the mesh has no triangles".into(), given.nodes.first().copied()));
+        return Err(fail(
+            input,
+            "the mesh has no triangles".into(),
+            given.nodes.first().copied(),
+        ));
     }
     // Edges.
     let mut directed: BTreeMap<(u32, u32), u32> = BTreeMap::new();
     let mut used = vec![false; nn];
     for (t, tri) in out.triangles.iter().enumerate() {
         if tri.iter().any(|&v| v as usize >= nn) {
-            return Err(fail(input, format!("triangle {t} refers to a missing node"), None));
+            return Err(fail(
+                input,
+                format!("triangle {t} refers to a missing node"),
+                None,
+            ));
         }
         if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
-            return Err(fail(input, format!("triangle {t} repeats a node"), Some(out.nodes[tri[0] as usize])));
+            return Err(fail(
+                input,
+                format!("triangle {t} repeats a node"),
+                Some(out.nodes[tri[0] as usize]),
+            ));
         }
         for i in 0..3 {
             used[tri[i] as usize] = true;
@@ -79,14 +102,21 @@ pub fn verify_with(
             if directed.insert(e, t as u32).is_some() {
                 return Err(fail(
                     input,
-                    format!("edge {}-{} is used twice in the same direction (non-manifold or inconsistent orientation)", e.0, e.1),
+                    format!(
+                        "edge {}-{} is used twice in the same direction (non-manifold or inconsistent orientation)",
+                        e.0, e.1
+                    ),
                     Some(out.nodes[e.0 as usize]),
                 ));
             }
         }
     }
     if let Some(i) = used.iter().position(|u| !u) {
-        return Err(fail(input, format!("node {i} is not used by any triangle"), Some(out.nodes[i])));
+        return Err(fail(
+            input,
+            format!("node {i} is not used by any triangle"),
+            Some(out.nodes[i]),
+        ));
     }
     let loop_edges: BTreeSet<(u32, u32)> = given
         .loop_segments()
@@ -96,7 +126,9 @@ pub fn verify_with(
         if !directed.contains_key(&(b, a)) && !loop_edges.contains(&(a.min(b), a.max(b))) {
             return Err(fail(
                 input,
-                format!("border edge {a}-{b} is not a given loop edge (a hole or a gap in the mesh)"),
+                format!(
+                    "border edge {a}-{b} is not a given loop edge (a hole or a gap in the mesh)"
+                ),
                 Some(out.nodes[a as usize]),
             ));
         }
@@ -113,7 +145,11 @@ pub fn verify_with(
     }
     for (a, b) in given.constraint_segments() {
         if !(directed.contains_key(&(a, b)) && directed.contains_key(&(b, a))) {
-            return Err(fail(input, format!("constraint edge {a}-{b} is not an interior mesh edge"), Some(out.nodes[a as usize])));
+            return Err(fail(
+                input,
+                format!("constraint edge {a}-{b} is not an interior mesh edge"),
+                Some(out.nodes[a as usize]),
+            ));
         }
     }
     // Vertex fans: the link of each vertex is one path or one cycle.
@@ -133,9 +169,17 @@ pub fn verify_with(
         }
         let next: BTreeMap<u32, u32> = link[k..e].iter().map(|x| (x.1, x.2)).collect();
         let targets: BTreeSet<u32> = link[k..e].iter().map(|x| x.2).collect();
-        let starts: Vec<u32> = next.keys().copied().filter(|s| !targets.contains(s)).collect();
+        let starts: Vec<u32> = next
+            .keys()
+            .copied()
+            .filter(|s| !targets.contains(s))
+            .collect();
         if starts.len() > 1 || next.len() != e - k {
-            return Err(fail(input, format!("node {v} is not manifold (its triangles form several fans)"), Some(out.nodes[v as usize])));
+            return Err(fail(
+                input,
+                format!("node {v} is not manifold (its triangles form several fans)"),
+                Some(out.nodes[v as usize]),
+            ));
         }
         let mut cur = starts.first().copied().unwrap_or(link[k].1);
         let mut count = 0;
@@ -147,7 +191,11 @@ pub fn verify_with(
             }
         }
         if count != e - k {
-            return Err(fail(input, format!("node {v} is not manifold (its triangles form several fans)"), Some(out.nodes[v as usize])));
+            return Err(fail(
+                input,
+                format!("node {v} is not manifold (its triangles form several fans)"),
+                Some(out.nodes[v as usize]),
+            ));
         }
         k = e;
     }
@@ -172,7 +220,10 @@ pub fn verify_with(
         if on.dist > tol_rel * local {
             return Err(fail(
                 input,
-                format!("node {i} is {:.3e} from the support, more than {tol_rel:e} × its edge length {local:.3e}", on.dist),
+                format!(
+                    "node {i} is {:.3e} from the support, more than {tol_rel:e} × its edge length {local:.3e}",
+                    on.dist
+                ),
                 Some(*p),
             ));
         }
@@ -185,8 +236,16 @@ pub fn verify_with(
         .map(|(a, b)| (uv[a as usize], uv[b as usize]))
         .collect();
     if let Some((i, _)) = first_crossing(&segs) {
-        let (a, _) = given.loop_segments().chain(given.constraint_segments()).nth(i).unwrap_or((0, 0));
-        return Err(fail(input, "the loops or constraints cross each other".into(), Some(out.nodes[a as usize])));
+        let (a, _) = given
+            .loop_segments()
+            .chain(given.constraint_segments())
+            .nth(i)
+            .unwrap_or((0, 0));
+        return Err(fail(
+            input,
+            "the loops or constraints cross each other".into(),
+            Some(out.nodes[a as usize]),
+        ));
     }
     for (t, tri) in out.triangles.iter().enumerate() {
         let [a, b, c] = tri.map(|v| v as usize);
@@ -198,8 +257,13 @@ pub fn verify_with(
                 Some(g),
             ));
         }
-        let n = cross(&sub(&out.nodes[b], &out.nodes[a]), &sub(&out.nodes[c], &out.nodes[a]));
-        let Some(on) = support.project_from(ntri[a], &g) else { continue };
+        let n = cross(
+            &sub(&out.nodes[b], &out.nodes[a]),
+            &sub(&out.nodes[c], &out.nodes[a]),
+        );
+        let Some(on) = support.project_from(ntri[a], &g) else {
+            continue;
+        };
         if !(dot(&n, &support.normals[on.tri as usize]) > 0.0) {
             return Err(fail(
                 input,
