@@ -184,12 +184,13 @@ impl Cdt {
     }
 
     /// Inserts `p` (Bowyer–Watson, constrained). Returns the new vertex, or why not. Nothing is
-    /// modified when it fails. `accept` may veto the insertion after seeing the cavity vertices.
+    /// modified when it fails. `accept` may veto the insertion after seeing the cavity's boundary
+    /// edges and their kinds (each new triangle is such an edge plus the new point).
     pub fn insert(
         &mut self,
         p: [f64; 2],
         start: u32,
-        accept: &mut dyn FnMut(&Cdt, &[u32]) -> bool,
+        accept: &mut dyn FnMut(&Cdt, &[(u32, u32, u8)]) -> bool,
     ) -> Result<u32, CdtError> {
         let t0 = self.locate(&p, start).ok_or(CdtError::Rejected(p))?;
         for &v in &self.tri[t0 as usize] {
@@ -249,7 +250,7 @@ impl Cdt {
         let ok = boundary.iter().all(|&(a, b, _, _)| {
             orient2d(&self.pts[a as usize], &self.pts[b as usize], &p) == Orientation::Positive
         });
-        let mut verts: Vec<u32> = boundary.iter().map(|e| e.0).collect();
+        let mut verts: Vec<(u32, u32, u8)> = boundary.iter().map(|e| (e.0, e.1, e.3)).collect();
         if swallowed || !ok || !accept(self, &verts) {
             self.cavity = cavity;
             return Err(CdtError::Rejected(p));
@@ -591,7 +592,10 @@ mod tests {
         let mut c = Cdt::new([0.0, 0.0], [10.0, 10.0]);
         let ids = points
             .iter()
-            .map(|p| c.insert(*p, NONE, &mut |_, _| true).unwrap())
+            .map(|p| {
+                c.insert(*p, NONE, &mut |_: &Cdt, _: &[(u32, u32, u8)]| true)
+                    .unwrap()
+            })
             .collect();
         (c, ids)
     }
@@ -667,7 +671,9 @@ mod tests {
     #[test]
     fn a_duplicate_point_is_reported_with_the_existing_vertex() {
         let (mut c, id) = build(&[[1.0, 1.0], [2.0, 1.0], [1.0, 2.0]]);
-        let e = c.insert([2.0, 1.0], NONE, &mut |_, _| true).unwrap_err();
+        let e = c
+            .insert([2.0, 1.0], NONE, &mut |_: &Cdt, _: &[(u32, u32, u8)]| true)
+            .unwrap_err();
         assert_eq!(e, CdtError::Duplicate(id[1]));
     }
 }

@@ -212,7 +212,7 @@ pub fn mesh_patch(
     let mut cdt = Cdt::new(lo, hi);
     let mut p3: Vec<[f64; 3]> = vec![[0.0; 3]; 3];
     for (i, q) in uv.iter().enumerate() {
-        match cdt.insert(*q, NONE, &mut |_, _| true) {
+        match cdt.insert(*q, NONE, &mut |_: &Cdt, _: &[(u32, u32, u8)]| true) {
             Ok(v) => {
                 debug_assert_eq!(v as usize, i + 3);
                 p3.push(given.nodes[i]);

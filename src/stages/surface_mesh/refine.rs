@@ -14,7 +14,7 @@
 //! isotropic distortion is undone; the remaining anisotropy is left to the smoothing pass.
 
 use super::cdt::{Cdt, FREE, NONE, next, prev};
-use super::quality::circumradius;
+use super::quality::{circumradius, shape};
 use super::size::SizeField;
 use super::support::Support;
 use std::cmp::Reverse;
@@ -24,6 +24,8 @@ use std::collections::BinaryHeap;
 pub const ACCEPT: f64 = 1.2;
 /// A new point closer than this fraction of h to a cavity vertex is refused.
 const TOO_CLOSE: f64 = 0.55;
+/// A new point whose new triangles include one with shape below this (c/c* above 2.5) is refused.
+const MIN_NEW_SHAPE: f64 = 0.4;
 
 pub struct Refiner<'a> {
     pub cdt: &'a mut Cdt,
@@ -253,10 +255,13 @@ impl<'a> Refiner<'a> {
         let (sid, x3) = self.support.to_3d(&x2)?;
         let h = self.size.at(&x3);
         let p3 = &*self.p3;
-        let mut accept = |_: &Cdt, verts: &[u32]| {
-            verts
-                .iter()
-                .all(|&w| dist3(&p3[w as usize], &x3) >= TOO_CLOSE * h)
+        // Refuse a point too close to a vertex, or one that would make a sliver with a fixed
+        // edge (a point dropped next to a long boundary segment): that sliver could never go.
+        let mut accept = |_: &Cdt, edges: &[(u32, u32, u8)]| {
+            edges.iter().all(|&(a, b, f)| {
+                let (pa, pb) = (&p3[a as usize], &p3[b as usize]);
+                dist3(pa, &x3) >= TOO_CLOSE * h && (f == FREE || !encroaches(pa, pb, &x3))
+            })
         };
         let v = self.cdt.insert(x2, t0, &mut accept).ok()?;
         if self.p3.len() <= v as usize {
@@ -270,6 +275,20 @@ impl<'a> Refiner<'a> {
         self.cdt.fan(v, fan);
         Some(v)
     }
+}
+
+/// Whether `x` sits so close to the fixed edge `ab` (within half its length, over it) that the
+/// triangle it would make with the edge is a sliver that no later point could remove.
+fn encroaches(a: &[f64; 3], b: &[f64; 3], x: &[f64; 3]) -> bool {
+    let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let ax = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+    let l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    if !(l2 > 0.0) {
+        return false;
+    }
+    let t = (ax[0] * ab[0] + ax[1] * ab[1] + ax[2] * ab[2]) / l2;
+    let foot = [a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]];
+    (0.0..=1.0).contains(&t) && dist3(&foot, x) < 0.5 * l2.sqrt() && shape(a, b, x) < MIN_NEW_SHAPE
 }
 
 /// Circumcentre of a 2D triangle (floating point; a construction, not a decision).

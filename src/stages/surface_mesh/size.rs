@@ -1,10 +1,13 @@
 //! The element size field: how long an edge should be at a point of the patch.
 //!
-//! h(x) = clamp(min(size, min_i(h_i + (growth - 1)·|x - x_i|)), min_size, max_size), where the
-//! x_i are the given loop and constraint nodes and h_i their local segment length (mean of the
-//! adjacent given segments). So sizes start from the boundary discretization, grow away from it by
-//! at most `growth` per unit of length (a Lipschitz bound, which gives the 2:1-like balance of
-//! the seed's octree without a tree to balance), and never exceed the patch's target `size`.
+//! With g = growth - 1, the x_i the given loop and constraint nodes and h_i their local segment
+//! length (mean of the adjacent given segments):
+//!   up(x) = min_i(h_i + g·|x - x_i|), down(x) = max_i(h_i - g·|x - x_i|),
+//!   h(x) = clamp(max(min(size, up(x)), down(x)), min_size, max_size).
+//! So sizes start from the boundary discretization and change away from it by at most g per unit
+//! of length in either direction (a Lipschitz bound, which gives the 2:1-like balance of the
+//! seed's octree without a tree to balance): a fine boundary grows towards `size`, and a boundary
+//! coarser than `size` shrinks towards it instead of meeting tiny triangles.
 //! The minimum over boundary nodes is found with an R-tree: the nearest node bounds the answer,
 //! so only nodes within that bound's reach are visited.
 
@@ -15,6 +18,7 @@ pub struct SizeField {
     origin: [f64; 3],
     tree: RTree<GeomWithData<[f64; 3], f64>>,
     hmin_nodes: f64,
+    hmax_nodes: f64,
     slope: f64,
     size: f64,
     min_size: f64,
@@ -38,10 +42,12 @@ impl SizeField {
             })
             .collect();
         let hmin_nodes = nodes.iter().map(|n| n.1).fold(f64::INFINITY, f64::min);
+        let hmax_nodes = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
         SizeField {
             origin,
             tree: RTree::bulk_load(items),
             hmin_nodes,
+            hmax_nodes,
             slope: (growth - 1.0).max(0.0),
             size,
             min_size,
@@ -70,6 +76,17 @@ impl SizeField {
                 }
             }
             h = h.min(best);
+            if self.hmax_nodes > h {
+                // down(x): only nodes that could still exceed h matter.
+                let mut low = n.data - self.slope * d;
+                let reach = (self.hmax_nodes - low.max(h)) / self.slope;
+                if reach > 0.0 {
+                    for m in self.tree.locate_within_distance(q, reach * reach) {
+                        low = low.max(m.data - self.slope * dist(m.geom(), &q));
+                    }
+                }
+                h = h.max(low);
+            }
         }
         h.clamp(self.min_size, self.max_size)
     }
