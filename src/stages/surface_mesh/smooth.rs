@@ -139,14 +139,7 @@ impl Smoother<'_> {
         self.stri.resize(self.cdt.pts.len(), u32::MAX);
         for v in self.first_free..self.cdt.pts.len() as u32 {
             let hint = self.stri[v as usize];
-            // A walk from the triangle the node was built in; the global search if it strays.
-            let local = self.support.project_from(hint, &self.p3[v as usize]);
-            let x = self.p3[v as usize];
-            let eps = 1e-12 * (1.0 + x[0].abs().max(x[1].abs()).max(x[2].abs()));
-            let on = match local {
-                Some(on) if on.dist <= eps => Some(on),
-                _ => self.support.project(&self.p3[v as usize]),
-            };
+            let on = self.support.project_hinted(hint, &self.p3[v as usize]);
             if let Some(on) = on {
                 self.cdt.pts[v as usize] = on.uv;
                 self.p3[v as usize] = on.xyz;

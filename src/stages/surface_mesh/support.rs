@@ -197,6 +197,17 @@ impl Support {
         self.project(x)
     }
 
+    /// The closest support point, trying a walk from `hint` first and keeping it when it lands
+    /// on the support to rounding (then it is the closest point, distance ~0); otherwise the
+    /// global R-tree search.
+    pub fn project_hinted(&self, hint: u32, x: &[f64; 3]) -> Option<OnSupport> {
+        let eps = 1e-12 * (1.0 + x[0].abs().max(x[1].abs()).max(x[2].abs()));
+        match self.project_from(hint, x) {
+            Some(on) if on.dist <= eps => Some(on),
+            _ => self.project(x),
+        }
+    }
+
     fn combine2(&self, t: [u32; 3], w: [f64; 3]) -> [f64; 2] {
         let a = self.param.uv[t[0] as usize];
         let b = self.param.uv[t[1] as usize];

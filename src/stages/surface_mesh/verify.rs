@@ -212,8 +212,9 @@ pub fn verify_with(
     }
     let mut uv = Vec::with_capacity(nn);
     let mut ntri = Vec::with_capacity(nn);
+    let mut hint = u32::MAX;
     for (i, p) in out.nodes.iter().enumerate() {
-        let Some(on) = support.project(p) else {
+        let Some(on) = support.project_hinted(hint, p) else {
             return Err(fail(input, "the support is empty".into(), Some(*p)));
         };
         let local = lsum[i] / lcnt[i].max(1) as f64;
@@ -229,6 +230,7 @@ pub fn verify_with(
         }
         uv.push(on.uv);
         ntri.push(on.tri);
+        hint = on.tri;
     }
     let segs: Vec<([f64; 2], [f64; 2])> = given
         .loop_segments()
