@@ -64,8 +64,12 @@ impl SizeField {
         ];
         let mut h = self.size;
         if self.slope <= 1e-12 {
-            h = h.min(self.hmin_nodes);
-        } else if let Some(n) = self.tree.nearest_neighbor(q) {
+            return h.min(self.hmin_nodes).clamp(self.min_size, self.max_size);
+        }
+        // up(x) can only lower h below `size` if some node is finer than `size`.
+        if self.hmin_nodes < h
+            && let Some(n) = self.tree.nearest_neighbor(q)
+        {
             let d = dist(n.geom(), &q);
             let mut best = n.data + self.slope * d;
             let bound = best.min(h);
@@ -76,17 +80,15 @@ impl SizeField {
                 }
             }
             h = h.min(best);
-            if self.hmax_nodes > h {
-                // down(x): only nodes that could still exceed h matter.
-                let mut low = n.data - self.slope * d;
-                let reach = (self.hmax_nodes - low.max(h)) / self.slope;
-                if reach > 0.0 {
-                    for m in self.tree.locate_within_distance(q, reach * reach) {
-                        low = low.max(m.data - self.slope * dist(m.geom(), &q));
-                    }
-                }
-                h = h.max(low);
+        }
+        // down(x) can only raise h if some node is coarser than h, and only from within reach.
+        if self.hmax_nodes > h {
+            let reach = (self.hmax_nodes - h) / self.slope;
+            let mut low = h;
+            for m in self.tree.locate_within_distance(q, reach * reach) {
+                low = low.max(m.data - self.slope * dist(m.geom(), &q));
             }
+            h = low;
         }
         h.clamp(self.min_size, self.max_size)
     }
