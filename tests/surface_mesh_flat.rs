@@ -296,3 +296,46 @@ fn invalid_sizes_are_refused_with_the_values() {
     .unwrap_err();
     assert!(e.to_string().contains("growth 0.5"), "{e}");
 }
+
+#[test]
+fn a_clockwise_outer_loop_still_gives_triangles_oriented_like_the_support() {
+    let g = flat(UTM);
+    let mut l = g.border_loop(12, 12);
+    l.reverse();
+    let input = PatchInput {
+        name: "clockwise".into(),
+        support: g.support(),
+        loops: vec![l],
+        constraints: vec![],
+    };
+    let (out, _) = mesh_and_check(&input, &uniform(80.0), 1.06, 1.6);
+    // The support faces +z: every triangle's normal must too.
+    for t in &out.triangles {
+        let [a, b, c] = t.map(|v| out.nodes[v as usize]);
+        let nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        assert!(nz > 0.0);
+    }
+}
+
+#[test]
+fn a_closed_support_is_refused_because_it_must_come_split_into_patches() {
+    use georecipe::geom::TriMesh;
+    let v = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let tet = TriMesh::new(v.clone(), vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]);
+    let input = PatchInput {
+        name: "lens".into(),
+        support: tet,
+        loops: vec![vec![v[0], v[1], v[2]]],
+        constraints: vec![],
+    };
+    let e = mesh_patch(&input, &uniform(0.1)).unwrap_err();
+    assert!(
+        e.to_string().contains("lens") && e.to_string().contains("closed"),
+        "{e}"
+    );
+}
