@@ -31,6 +31,11 @@ pub enum CdtError {
     Rejected([f64; 2]),
 }
 
+/// A cavity boundary edge `(a, b, kind)`: the new triangle is `a b p`.
+pub type CavityEdge = (u32, u32, u8);
+/// A veto on an insertion, shown the cavity's boundary edges.
+pub type Veto<'a> = dyn FnMut(&Cdt, &[CavityEdge]) -> bool + 'a;
+
 pub struct Cdt {
     pub pts: Vec<[f64; 2]>,
     pub tri: Vec<[u32; 3]>,
@@ -186,12 +191,7 @@ impl Cdt {
     /// Inserts `p` (Bowyer–Watson, constrained). Returns the new vertex, or why not. Nothing is
     /// modified when it fails. `accept` may veto the insertion after seeing the cavity's boundary
     /// edges and their kinds (each new triangle is such an edge plus the new point).
-    pub fn insert(
-        &mut self,
-        p: [f64; 2],
-        start: u32,
-        accept: &mut dyn FnMut(&Cdt, &[(u32, u32, u8)]) -> bool,
-    ) -> Result<u32, CdtError> {
+    pub fn insert(&mut self, p: [f64; 2], start: u32, accept: &mut Veto) -> Result<u32, CdtError> {
         let t0 = self.locate(&p, start).ok_or(CdtError::Rejected(p))?;
         for &v in &self.tri[t0 as usize] {
             if self.pts[v as usize] == p {
