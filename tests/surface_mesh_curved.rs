@@ -250,3 +250,51 @@ fn the_recumbent_fold_support_needs_and_gets_a_fold_free_tutte_flattening() {
     };
     assert_eq!(flattening_method(&horizon.support()).unwrap(), "plane");
 }
+
+#[test]
+fn a_tight_fold_hinge_gets_smaller_triangles_than_the_flat_limbs() {
+    let g = Grid {
+        nx: 100,
+        ny: 8,
+        u: (0.0, 5.0),
+        v: (0.0, 1200.0),
+        f: |u, y| {
+            let c = z_curve(u);
+            [c[0], y, c[1]]
+        },
+        offset: UTM,
+    };
+    // Boundary at ~100 m; target 150 m: the hinges (radius 150 m) ask for ~52 m.
+    let input = PatchInput {
+        name: "fold hinges".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(30, 12)],
+        constraints: vec![],
+    };
+    let size = georecipe::stages::surface_mesh::SurfaceSize {
+        size: 150.0,
+        min_size: 10.0,
+        max_size: 300.0,
+        growth: 1.2,
+    };
+    let (out, _) = mesh_and_check(&input, &size, 1.08, 2.0);
+    let mean_edge = |pick: &dyn Fn(&[f64; 3]) -> bool| {
+        let (mut s, mut n) = (0.0, 0);
+        for t in &out.triangles {
+            let [a, b, c] = t.map(|v| out.nodes[v as usize]);
+            let g = [
+                (a[0] + b[0] + c[0]) / 3.0 - UTM[0],
+                0.0,
+                (a[2] + b[2] + c[2]) / 3.0,
+            ];
+            if pick(&g) {
+                s += ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+                n += 1;
+            }
+        }
+        s / n.max(1) as f64
+    };
+    let hinge = mean_edge(&|g| g[0] > 100.0); // right hinge, x in (100, 150]
+    let limb = mean_edge(&|g| g[0] < -200.0 && g[0] > -450.0 && (g[2] - 300.0).abs() < 10.0); // middle limb
+    assert!(hinge < 0.75 * limb, "hinge {hinge} limb {limb}");
+}

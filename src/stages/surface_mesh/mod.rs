@@ -12,8 +12,9 @@
 //! 3. `cdt`: constrained Delaunay triangulation of those nodes and segments; inside = odd number of
 //!    loop crossings from outside (so loops may come in either orientation and any order; the
 //!    output is oriented like the support regardless).
-//! 4. `refine` (geometric pass): frontal Delaunay point insertion, sizes from `size` measured in
-//!    3D; new points are mapped onto the support through the flattening.
+//! 4. `refine` (geometric pass): frontal Delaunay point insertion with sizes from `size` (graded
+//!    from the boundary discretization, bounded by the support's curvature) measured in 3D, placed
+//!    in the flattening's local metric; new points are mapped onto the support through it.
 //! 5. `smooth` (topological pass + smoothing): 3D quality flips and Laplacian smoothing with
 //!    pull-back onto the support, guarded by exact orientation tests in the plane.
 //! 6. `verify`: exact topological and geometric validity; `mesh_patch` never returns a mesh that
@@ -274,7 +275,10 @@ pub fn mesh_patch(
         .zip(hloc.iter().copied())
         .collect();
     let origin = support::Support::origin_of(&input.support);
-    let field = SizeField::new(&snodes, origin, target, min_size, max_size, growth);
+    let curvature = size::curvature_nodes(&input.support, &support.normals, target);
+    let field = SizeField::new(
+        &snodes, &curvature, origin, target, min_size, max_size, growth,
+    );
     let area: f64 = cdt
         .live_triangles()
         .filter(|&t| cdt.inside[t as usize])
