@@ -339,3 +339,53 @@ fn a_closed_support_is_refused_because_it_must_come_split_into_patches() {
         "{e}"
     );
 }
+
+#[test]
+fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_flattening() {
+    use georecipe::stages::surface_mesh::flattening_method;
+    // A 2 × 2 grid over [0, 1000]², with a T-junction at the middle of the interior edge
+    // (500, 0)-(500, 500) closed by a needle triangle of zero area, as repairs of gOcad exports do.
+    for off in [[0.0; 3], UTM] {
+        let p = |x: f64, y: f64| [x + off[0], y + off[1], -500.0];
+        let mut vs = Vec::new();
+        for j in 0..3 {
+            for i in 0..3 {
+                vs.push(p(500.0 * i as f64, 500.0 * j as f64));
+            }
+        }
+        vs.push(p(500.0, 250.0)); // m = 9, on the edge 1-4
+        let mut ts = vec![];
+        for j in 0..2u32 {
+            for i in 0..2u32 {
+                let (a, b, c, d) = (j * 3 + i, j * 3 + i + 1, j * 3 + i + 4, j * 3 + i + 3);
+                ts.push([a, b, c]);
+                ts.push([a, c, d]);
+            }
+        }
+        // Triangle [0, 1, 4] is split at m into [0, 1, 9] and [0, 9, 4]; its neighbour across
+        // 1-4 stays whole, so the T-junction is closed by the needle [1, 4, 9].
+        ts[0] = [0, 1, 9];
+        ts.push([0, 9, 4]);
+        ts.push([1, 4, 9]);
+        let support = georecipe::geom::TriMesh::new(vs, ts);
+        assert_eq!(flattening_method(&support).unwrap(), "tutte");
+        let border: Vec<[f64; 3]> = (0..40)
+            .map(|k| {
+                let s = 1000.0 * (k % 10) as f64 / 10.0;
+                match k / 10 {
+                    0 => p(s, 0.0),
+                    1 => p(1000.0, s),
+                    2 => p(1000.0 - s, 1000.0),
+                    _ => p(0.0, 1000.0 - s),
+                }
+            })
+            .collect();
+        let input = PatchInput {
+            name: "needle support".into(),
+            support,
+            loops: vec![border],
+            constraints: vec![],
+        };
+        mesh_and_check(&input, &uniform(100.0), 1.06, 1.6);
+    }
+}
