@@ -110,10 +110,21 @@ fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     dot(&d, &d).sqrt()
 }
 
-/// Meshes one patch (see the module doc). The result has passed `verify`.
+/// Meshes one patch (see the module doc) with the default `Tolerances`. The result has passed
+/// `verify`.
 pub fn mesh_patch(
     input: &PatchInput,
     size: &SurfaceSize,
+) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
+    mesh_patch_with(input, size, &Tolerances::default())
+}
+
+/// `mesh_patch` with the recipe's tolerances: `support_distance_rel` bounds how far a given node
+/// may lie from the support and is the bound `verify` applies to every node.
+pub fn mesh_patch_with(
+    input: &PatchInput,
+    size: &SurfaceSize,
+    tolerances: &Tolerances,
 ) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
     let fail = |message: String, at: Option<[f64; 3]>| SurfaceMeshError {
         patch: input.name.clone(),
@@ -144,7 +155,13 @@ pub fn mesh_patch(
     let given = given_nodes(input)?;
     let support =
         Support::new(&input.support).map_err(|e| fail(format!("support: {}", e.message), e.at))?;
-    let tol = Tolerances::default().support_distance_rel;
+    let tol = tolerances.support_distance_rel;
+    if !(tol > 0.0 && tol.is_finite()) {
+        return Err(fail(
+            format!("invalid tolerance support_distance_rel = {tol} (need a positive number)"),
+            None,
+        ));
+    }
 
     // Local sizes of the given nodes (mean adjacent given segment length).
     let ng = given.nodes.len();
