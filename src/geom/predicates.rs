@@ -74,6 +74,18 @@ pub fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Orientation {
     ))
 }
 
+/// Exact in-circle test: `Positive` when `d` is strictly inside the circumcircle of the
+/// counter-clockwise (see `orient2d`) triangle `abc`, `Negative` outside, `Zero` on it.
+#[inline]
+pub fn incircle(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Orientation {
+    Orientation::from_f64(robust::incircle(
+        robust::Coord { x: a[0], y: a[1] },
+        robust::Coord { x: b[0], y: b[1] },
+        robust::Coord { x: c[0], y: c[1] },
+        robust::Coord { x: d[0], y: d[1] },
+    ))
+}
+
 /// Exact in-sphere test: `Positive` when `e` is strictly inside the circumsphere of the
 /// positively oriented (see `orient3d`) tetrahedron `abcd`.
 #[inline]

@@ -1,1 +1,0 @@
-//! Stage `surface_mesh`: not yet implemented (see the issue that introduces it).
