@@ -4,6 +4,7 @@
 pub mod import;
 pub mod validate;
 pub mod topology;
+pub mod regions;
 pub mod intersect;
 pub mod discretize;
 pub mod surface_mesh;
