@@ -5,14 +5,23 @@
 
 use georecipe::geom::TriMesh;
 use georecipe::stages::regions::{
-    Dangling, FaceUse, PatchIn, RegionModel, RegionOptions, Side, find_regions, find_regions_with, locate,
+    Dangling, FaceUse, PatchIn, RegionModel, RegionOptions, Side, find_regions, find_regions_with,
+    locate,
 };
 
 const STEP: f64 = 0.25;
 
 /// An axis-aligned rectangle at `axis = c`, spanning `u` on axis+1 and `v` on axis+2 (cyclic),
 /// gridded with STEP; its right-hand normal points to +axis, or -axis when `flip`.
-fn rect(name: &str, surface: &str, axis: usize, c: f64, u: (f64, f64), v: (f64, f64), flip: bool) -> PatchIn {
+fn rect(
+    name: &str,
+    surface: &str,
+    axis: usize,
+    c: f64,
+    u: (f64, f64),
+    v: (f64, f64),
+    flip: bool,
+) -> PatchIn {
     let nu = ((u.1 - u.0) / STEP).round() as usize;
     let nv = ((v.1 - v.0) / STEP).round() as usize;
     let mut vertices = Vec::new();
@@ -39,7 +48,11 @@ fn rect(name: &str, surface: &str, axis: usize, c: f64, u: (f64, f64), v: (f64, 
             }
         }
     }
-    PatchIn { name: name.to_string(), surface: surface.to_string(), mesh: TriMesh::new(vertices, triangles) }
+    PatchIn {
+        name: name.to_string(),
+        surface: surface.to_string(),
+        mesh: TriMesh::new(vertices, triangles),
+    }
 }
 
 /// The unit cube's six faces with outward normals, each side face split at the given heights.
@@ -54,10 +67,42 @@ fn cube(cuts: &[f64]) -> Vec<PatchIn> {
     for k in 0..zs.len() - 1 {
         let z = (zs[k], zs[k + 1]);
         // axis 0: u = y, v = z; axis 1: u = z, v = x.
-        out.push(rect(&format!("west{k}"), "box", 0, 0.0, (0.0, 1.0), z, true));
-        out.push(rect(&format!("east{k}"), "box", 0, 1.0, (0.0, 1.0), z, false));
-        out.push(rect(&format!("south{k}"), "box", 1, 0.0, z, (0.0, 1.0), true));
-        out.push(rect(&format!("north{k}"), "box", 1, 1.0, z, (0.0, 1.0), false));
+        out.push(rect(
+            &format!("west{k}"),
+            "box",
+            0,
+            0.0,
+            (0.0, 1.0),
+            z,
+            true,
+        ));
+        out.push(rect(
+            &format!("east{k}"),
+            "box",
+            0,
+            1.0,
+            (0.0, 1.0),
+            z,
+            false,
+        ));
+        out.push(rect(
+            &format!("south{k}"),
+            "box",
+            1,
+            0.0,
+            z,
+            (0.0, 1.0),
+            true,
+        ));
+        out.push(rect(
+            &format!("north{k}"),
+            "box",
+            1,
+            1.0,
+            z,
+            (0.0, 1.0),
+            false,
+        ));
     }
     out
 }
@@ -72,8 +117,21 @@ fn octahedron(name: &str, c: [f64; 3], r: f64) -> PatchIn {
         [c[0], c[1], c[2] - r],
     ];
     // Outward normals.
-    let t = vec![[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
-    PatchIn { name: name.to_string(), surface: name.to_string(), mesh: TriMesh::new(v, t) }
+    let t = vec![
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    PatchIn {
+        name: name.to_string(),
+        surface: name.to_string(),
+        mesh: TriMesh::new(v, t),
+    }
 }
 
 fn shifted(mut patches: Vec<PatchIn>, d: [f64; 3]) -> Vec<PatchIn> {
@@ -99,8 +157,11 @@ fn idx(patches: &[PatchIn], name: &str) -> u32 {
 
 /// The sides of a region as (patch name, side), sorted.
 fn named_sides(m: &RegionModel, r: usize, patches: &[PatchIn]) -> Vec<(String, Side)> {
-    let mut v: Vec<(String, Side)> =
-        m.regions[r].sides.iter().map(|f| (patches[f.patch as usize].name.clone(), f.side)).collect();
+    let mut v: Vec<(String, Side)> = m.regions[r]
+        .sides
+        .iter()
+        .map(|f| (patches[f.patch as usize].name.clone(), f.side))
+        .collect();
     v.sort();
     v
 }
@@ -115,15 +176,31 @@ fn a_unit_cube_of_six_patches_is_one_region_bounded_by_the_inner_sides() {
         assert!(m.dangling.is_empty());
         let r = &m.regions[0];
         assert_eq!(r.sides.len(), 6);
-        assert!(r.sides.iter().all(|f| f.side == Side::Back), "outward normals: the region is behind every face");
-        assert!((r.outer.signed_volume - 1.0).abs() < 1e-6, "volume {}", r.outer.signed_volume);
+        assert!(
+            r.sides.iter().all(|f| f.side == Side::Back),
+            "outward normals: the region is behind every face"
+        );
+        assert!(
+            (r.outer.signed_volume - 1.0).abs() < 1e-6,
+            "volume {}",
+            r.outer.signed_volume
+        );
         assert!((m.exterior[0].signed_volume + 1.0).abs() < 1e-6);
-        assert!(m.exterior[0].face_uses.iter().all(|f| f.side == Side::Front));
+        assert!(
+            m.exterior[0]
+                .face_uses
+                .iter()
+                .all(|f| f.side == Side::Front)
+        );
         assert_eq!(r.name, "box");
         assert_eq!(locate(&m, &patches, r.interior_point), Some(0));
         assert_eq!(locate(&m, &patches, add([0.5, 0.5, 0.5], d)), Some(0));
         assert_eq!(locate(&m, &patches, add([1.5, 0.5, 0.5], d)), None);
-        assert_eq!(locate(&m, &patches, add([0.0, 0.5, 0.5], d)), None, "a point on the box is in no region");
+        assert_eq!(
+            locate(&m, &patches, add([0.0, 0.5, 0.5], d)),
+            None,
+            "a point on the box is in no region"
+        );
     }
 }
 
@@ -155,14 +232,21 @@ fn a_cube_split_by_a_horizontal_square_has_two_regions_on_either_side_of_it() {
         }
         assert_eq!(locate(&m, &patches, add([0.3, 0.3, 0.2], d)), Some(0));
         assert_eq!(locate(&m, &patches, add([0.3, 0.3, 0.8], d)), Some(1));
-        assert_eq!(locate(&m, &patches, add([0.3, 0.3, 0.5], d)), None, "on the horizon");
+        assert_eq!(
+            locate(&m, &patches, add([0.3, 0.3, 0.5], d)),
+            None,
+            "on the horizon"
+        );
     }
 }
 
 #[test]
 fn recipe_names_by_point_name_the_regions_that_hold_the_points() {
     let patches = split_cube();
-    let names = vec![("upper".to_string(), [0.5, 0.5, 0.75]), ("lower".to_string(), [0.25, 0.75, 0.25])];
+    let names = vec![
+        ("upper".to_string(), [0.5, 0.5, 0.75]),
+        ("lower".to_string(), [0.25, 0.75, 0.25]),
+    ];
     let m = find_regions(&patches, &names).expect("regions");
     assert_eq!(m.regions[0].name, "lower");
     assert_eq!(m.regions[1].name, "upper");
@@ -170,29 +254,55 @@ fn recipe_names_by_point_name_the_regions_that_hold_the_points() {
     let e = find_regions(&patches, &outside).expect_err("a point outside the model");
     assert!(e.message.contains("`air`"), "{}", e.message);
     assert_eq!(e.at, Some([0.5, 0.5, 1.5]));
-    let twice = vec![("a".to_string(), [0.5, 0.5, 0.75]), ("b".to_string(), [0.25, 0.25, 0.875])];
+    let twice = vec![
+        ("a".to_string(), [0.5, 0.5, 0.75]),
+        ("b".to_string(), [0.25, 0.25, 0.875]),
+    ];
     let e = find_regions(&patches, &twice).expect_err("two names in one region");
-    assert!(e.message.contains("`a`") && e.message.contains("`b`"), "{}", e.message);
+    assert!(
+        e.message.contains("`a`") && e.message.contains("`b`"),
+        "{}",
+        e.message
+    );
 }
 
 #[test]
 fn a_free_floating_fault_inside_the_cube_bounds_the_region_with_both_sides() {
     for d in OFFSETS {
         let mut patches = cube(&[]);
-        patches.push(rect("f1#1", "f1", 0, 0.5, (0.25, 0.75), (0.25, 0.75), false));
+        patches.push(rect(
+            "f1#1",
+            "f1",
+            0,
+            0.5,
+            (0.25, 0.75),
+            (0.25, 0.75),
+            false,
+        ));
         let patches = shifted(patches, d);
         let e = find_regions(&patches, &[]).expect_err("a fault may not dangle by default");
         assert_eq!(e.surface.as_deref(), Some("f1"));
-        let m = find_regions_with(&patches, &[], &RegionOptions::with_faults(["f1"])).expect("regions");
+        let m =
+            find_regions_with(&patches, &[], &RegionOptions::with_faults(["f1"])).expect("regions");
         assert_eq!(m.regions.len(), 1);
         let f = idx(&patches, "f1#1");
         assert_eq!(m.dangling, vec![f]);
         let sides = &m.regions[0].sides;
-        assert!(sides.contains(&FaceUse { patch: f, side: Side::Front }));
-        assert!(sides.contains(&FaceUse { patch: f, side: Side::Back }));
+        assert!(sides.contains(&FaceUse {
+            patch: f,
+            side: Side::Front
+        }));
+        assert!(sides.contains(&FaceUse {
+            patch: f,
+            side: Side::Back
+        }));
         assert_eq!(sides.len(), 8);
         assert!(m.regions[0].cavities.is_empty());
-        assert_eq!(locate(&m, &patches, add([0.5, 0.5, 0.5], d)), None, "on the fault");
+        assert_eq!(
+            locate(&m, &patches, add([0.5, 0.5, 0.5], d)),
+            None,
+            "on the fault"
+        );
         assert_eq!(locate(&m, &patches, add([0.375, 0.5, 0.5], d)), Some(0));
     }
 }
@@ -203,12 +313,19 @@ fn a_fault_hanging_from_the_top_joins_the_cube_region_with_both_sides() {
         let mut patches = cube(&[]);
         patches.push(rect("f2#1", "f2", 0, 0.5, (0.25, 0.75), (0.5, 1.0), true));
         let patches = shifted(patches, d);
-        let m = find_regions_with(&patches, &[], &RegionOptions::with_faults(["f2"])).expect("regions");
+        let m =
+            find_regions_with(&patches, &[], &RegionOptions::with_faults(["f2"])).expect("regions");
         assert_eq!(m.regions.len(), 1);
         let f = idx(&patches, "f2#1");
         assert_eq!(m.dangling, vec![f]);
-        assert!(m.regions[0].outer.face_uses.contains(&FaceUse { patch: f, side: Side::Front }));
-        assert!(m.regions[0].outer.face_uses.contains(&FaceUse { patch: f, side: Side::Back }));
+        assert!(m.regions[0].outer.face_uses.contains(&FaceUse {
+            patch: f,
+            side: Side::Front
+        }));
+        assert!(m.regions[0].outer.face_uses.contains(&FaceUse {
+            patch: f,
+            side: Side::Back
+        }));
         assert!((m.regions[0].outer.signed_volume - 1.0).abs() < 1e-6);
     }
 }
@@ -223,17 +340,42 @@ fn a_lens_inside_the_cube_is_a_region_and_a_cavity_of_the_cube_region() {
         assert_eq!(m.regions.len(), 2);
         assert_eq!(m.exterior.len(), 1, "the lens is not outside the model");
         let lens = idx(&patches, "lens");
-        let host = m.regions.iter().position(|r| r.cavities.len() == 1).expect("a host");
+        let host = m
+            .regions
+            .iter()
+            .position(|r| r.cavities.len() == 1)
+            .expect("a host");
         let inner = 1 - host;
-        assert_eq!(m.regions[host].cavities[0].face_uses, vec![FaceUse { patch: lens, side: Side::Front }]);
-        assert!(m.regions[host].sides.contains(&FaceUse { patch: lens, side: Side::Front }));
-        assert_eq!(m.regions[inner].sides, vec![FaceUse { patch: lens, side: Side::Back }]);
+        assert_eq!(
+            m.regions[host].cavities[0].face_uses,
+            vec![FaceUse {
+                patch: lens,
+                side: Side::Front
+            }]
+        );
+        assert!(m.regions[host].sides.contains(&FaceUse {
+            patch: lens,
+            side: Side::Front
+        }));
+        assert_eq!(
+            m.regions[inner].sides,
+            vec![FaceUse {
+                patch: lens,
+                side: Side::Back
+            }]
+        );
         assert_eq!(m.regions[inner].name, "lens");
         assert_eq!(m.regions[host].name, "box");
         assert_eq!(locate(&m, &patches, add([0.5, 0.5, 0.5], d)), Some(inner));
         assert_eq!(locate(&m, &patches, add([0.1, 0.1, 0.1], d)), Some(host));
-        assert_eq!(locate(&m, &patches, m.regions[host].interior_point), Some(host));
-        assert_eq!(locate(&m, &patches, m.regions[inner].interior_point), Some(inner));
+        assert_eq!(
+            locate(&m, &patches, m.regions[host].interior_point),
+            Some(host)
+        );
+        assert_eq!(
+            locate(&m, &patches, m.regions[inner].interior_point),
+            Some(inner)
+        );
     }
 }
 
@@ -249,11 +391,24 @@ fn a_horizon_that_stops_short_is_reported_by_name_with_the_ends_of_the_gap() {
         assert_eq!(e.surface.as_deref(), Some("h2"));
         let a = add([0.5, 0.0, 0.5], d);
         let b = add([0.5, 1.0, 0.5], d);
-        assert!(e.message.contains("surface `h2` stops short"), "{}", e.message);
-        assert!(e.message.contains(&format!("from ({}, {}, {}) to ({}, {}, {})", a[0], a[1], a[2], b[0], b[1], b[2])), "{}", e.message);
+        assert!(
+            e.message.contains("surface `h2` stops short"),
+            "{}",
+            e.message
+        );
+        assert!(
+            e.message.contains(&format!(
+                "from ({}, {}, {}) to ({}, {}, {})",
+                a[0], a[1], a[2], b[0], b[1], b[2]
+            )),
+            "{}",
+            e.message
+        );
         assert_eq!(e.at, Some(a));
         // Allowed to dangle, it is one region holding both sides of the horizon.
-        let opts = RegionOptions { dangling: Dangling::Allowed };
+        let opts = RegionOptions {
+            dangling: Dangling::Allowed,
+        };
         let m = find_regions_with(&patches, &[], &opts).expect("regions");
         assert_eq!(m.regions.len(), 1);
         assert_eq!(m.dangling, vec![idx(&patches, "h2#1")]);
@@ -286,7 +441,11 @@ fn a_side_face_crossed_by_the_horizon_without_a_curve_is_reported() {
     patches.push(rect("h1#1", "h1", 2, 0.5, (0.0, 1.0), (0.0, 1.0), false));
     let e = find_regions(&patches, &[]).expect_err("side faces are not split at the horizon");
     assert_eq!(e.surface.as_deref(), Some("box"));
-    assert!(e.message.contains("crossed by another surface"), "{}", e.message);
+    assert!(
+        e.message.contains("crossed by another surface"),
+        "{}",
+        e.message
+    );
 }
 
 #[test]
@@ -294,30 +453,64 @@ fn bad_patches_are_errors_naming_the_patch() {
     let mut patches = cube(&[]);
     patches[0].mesh.triangles[0][1] = 999;
     let e = find_regions(&patches, &[]).expect_err("index out of range");
-    assert!(e.message.contains("`bottom`") && e.message.contains("999"), "{}", e.message);
+    assert!(
+        e.message.contains("`bottom`") && e.message.contains("999"),
+        "{}",
+        e.message
+    );
     let mut patches = cube(&[]);
     patches[2].mesh.vertices[0][0] = f64::NAN;
-    assert!(find_regions(&patches, &[]).expect_err("nan").message.contains("non-finite"));
+    assert!(
+        find_regions(&patches, &[])
+            .expect_err("nan")
+            .message
+            .contains("non-finite")
+    );
     let mut patches = cube(&[]);
     patches[3].mesh.triangles[0] = [0, 1, 2]; // three points on one grid line
-    assert!(find_regions(&patches, &[]).expect_err("zero area").message.contains("zero area"));
+    assert!(
+        find_regions(&patches, &[])
+            .expect_err("zero area")
+            .message
+            .contains("zero area")
+    );
     let mut patches = cube(&[]);
     patches[3].name = "bottom".into();
-    assert!(find_regions(&patches, &[]).expect_err("dup").message.contains("both named"));
+    assert!(
+        find_regions(&patches, &[])
+            .expect_err("dup")
+            .message
+            .contains("both named")
+    );
 }
 
 /// (name, sorted (patch name, side) sides, interior point) of every region, and exterior shells.
-type Summary = (Vec<(String, Vec<(String, Side)>, [f64; 3])>, Vec<Vec<(String, Side)>>, Vec<String>);
+type Summary = (
+    Vec<(String, Vec<(String, Side)>, [f64; 3])>,
+    Vec<Vec<(String, Side)>>,
+    Vec<String>,
+);
 
 fn summary(m: &RegionModel, patches: &[PatchIn]) -> Summary {
     let conv = |fus: &[FaceUse]| {
-        let mut v: Vec<(String, Side)> = fus.iter().map(|f| (patches[f.patch as usize].name.clone(), f.side)).collect();
+        let mut v: Vec<(String, Side)> = fus
+            .iter()
+            .map(|f| (patches[f.patch as usize].name.clone(), f.side))
+            .collect();
         v.sort();
         v
     };
-    let regions = m.regions.iter().map(|r| (r.name.clone(), conv(&r.sides), r.interior_point)).collect();
+    let regions = m
+        .regions
+        .iter()
+        .map(|r| (r.name.clone(), conv(&r.sides), r.interior_point))
+        .collect();
     let ext = m.exterior.iter().map(|s| conv(&s.face_uses)).collect();
-    let mut dangling: Vec<String> = m.dangling.iter().map(|&p| patches[p as usize].name.clone()).collect();
+    let mut dangling: Vec<String> = m
+        .dangling
+        .iter()
+        .map(|&p| patches[p as usize].name.clone())
+        .collect();
     dangling.sort();
     (regions, ext, dangling)
 }

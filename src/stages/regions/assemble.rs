@@ -18,7 +18,9 @@ use crate::geom::predicates::signed_volume;
 use crate::geom::trimesh::triangle_area;
 
 fn lex(a: &P3, b: &P3) -> std::cmp::Ordering {
-    a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])).then(a[2].total_cmp(&b[2]))
+    a[0].total_cmp(&b[0])
+        .then(a[1].total_cmp(&b[1]))
+        .then(a[2].total_cmp(&b[2]))
 }
 
 pub(super) struct Assembled {
@@ -51,23 +53,47 @@ fn shell_value(soup: &Soup, shells: &Shells, s: usize) -> Shell {
             v += sign * signed_volume(&origin, &a, &b, &c);
         }
     }
-    Shell { face_uses: shells.shells[s].clone(), signed_volume: v }
+    Shell {
+        face_uses: shells.shells[s].clone(),
+        signed_volume: v,
+    }
 }
 
 fn surfaces_of(patches: &[PatchIn], fus: &[FaceUse]) -> String {
-    let mut s: Vec<&str> = fus.iter().map(|f| patches[f.patch as usize].surface.as_str()).collect();
+    let mut s: Vec<&str> = fus
+        .iter()
+        .map(|f| patches[f.patch as usize].surface.as_str())
+        .collect();
     s.sort_unstable();
     s.dedup();
-    s.iter().map(|x| format!("`{x}`")).collect::<Vec<_>>().join(", ")
+    s.iter()
+        .map(|x| format!("`{x}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Classifies shell `s`: a verified point in the cell it faces and whether that cell is enclosed.
-fn classify(soup: &Soup, patches: &[PatchIn], all: &[Tri], shells: &Shells, s: usize, bbox: &BBox) -> Result<Info, RegionError> {
+fn classify(
+    soup: &Soup,
+    patches: &[PatchIn],
+    all: &[Tri],
+    shells: &Shells,
+    s: usize,
+    bbox: &BBox,
+) -> Result<Info, RegionError> {
     let fus = &shells.shells[s];
     let sigma_ids = one_sided(fus);
-    let side_of = |p: u32| fus.iter().find(|f| f.patch == p).map_or(Side::Front, |f| f.side);
+    let side_of = |p: u32| {
+        fus.iter()
+            .find(|f| f.patch == p)
+            .map_or(Side::Front, |f| f.side)
+    };
     let mut cands: Vec<(f64, usize, bool)> = Vec::new();
-    let ids: Vec<u32> = if sigma_ids.is_empty() { fus.iter().map(|f| f.patch).collect() } else { sigma_ids.clone() };
+    let ids: Vec<u32> = if sigma_ids.is_empty() {
+        fus.iter().map(|f| f.patch).collect()
+    } else {
+        sigma_ids.clone()
+    };
     for &p in &ids {
         let front = sigma_ids.is_empty() || side_of(p) == Side::Front;
         for t in soup.patch_tris(p as usize) {
@@ -85,18 +111,43 @@ fn classify(soup: &Soup, patches: &[PatchIn], all: &[Tri], shells: &Shells, s: u
     cands.sort_by(|a, b| {
         b.0.total_cmp(&a.0).then_with(|| {
             let (ka, kb) = (corner_key(a.1), corner_key(b.1));
-            (0..3).map(|i| lex(&ka[i], &kb[i])).find(|o| o.is_ne()).unwrap_or(std::cmp::Ordering::Equal)
+            (0..3)
+                .map(|i| lex(&ka[i], &kb[i]))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
         })
     });
-    let sigma: Vec<Tri> = sigma_ids.iter().flat_map(|&p| soup.patch_tris(p as usize)).map(|t| soup.corners(t)).collect();
+    let sigma: Vec<Tri> = sigma_ids
+        .iter()
+        .flat_map(|&p| soup.patch_tris(p as usize))
+        .map(|t| soup.corners(t))
+        .collect();
     for &(_, t, front) in cands.iter().take(24) {
-        let Some(q) = near_point(all, t, front) else { continue };
+        let Some(q) = near_point(all, t, front) else {
+            continue;
+        };
         if sigma_ids.is_empty() {
-            return Ok(Info { kind: Kind::Dangling, point: q, sigma });
+            return Ok(Info {
+                kind: Kind::Dangling,
+                point: q,
+                sigma,
+            });
         }
         match parity(&q, &sigma, bbox) {
-            Some(Loc::Inside) => return Ok(Info { kind: Kind::Bounded, point: q, sigma }),
-            Some(Loc::Outside) => return Ok(Info { kind: Kind::Outside, point: q, sigma }),
+            Some(Loc::Inside) => {
+                return Ok(Info {
+                    kind: Kind::Bounded,
+                    point: q,
+                    sigma,
+                });
+            }
+            Some(Loc::Outside) => {
+                return Ok(Info {
+                    kind: Kind::Outside,
+                    point: q,
+                    sigma,
+                });
+            }
             _ => continue,
         }
     }
@@ -105,14 +156,20 @@ fn classify(soup: &Soup, patches: &[PatchIn], all: &[Tri], shells: &Shells, s: u
         format!(
             "could not decide which side of the shell bounded by {} is enclosed{}",
             surfaces_of(patches, fus),
-            at.map(|p| format!(" (near {})", fmt_point(&p))).unwrap_or_default()
+            at.map(|p| format!(" (near {})", fmt_point(&p)))
+                .unwrap_or_default()
         ),
-        fus.first().map(|f| patches[f.patch as usize].surface.as_str()),
+        fus.first()
+            .map(|f| patches[f.patch as usize].surface.as_str()),
         at,
     ))
 }
 
-pub(super) fn assemble(soup: &Soup, patches: &[PatchIn], shells: &Shells) -> Result<Assembled, RegionError> {
+pub(super) fn assemble(
+    soup: &Soup,
+    patches: &[PatchIn],
+    shells: &Shells,
+) -> Result<Assembled, RegionError> {
     let n = shells.shells.len();
     let all: Vec<Tri> = (0..soup.tris.len()).map(|t| soup.corners(t)).collect();
     let bbox = BBox::from_points(soup.points.iter());
@@ -120,19 +177,29 @@ pub(super) fn assemble(soup: &Soup, patches: &[PatchIn], shells: &Shells) -> Res
     for pair in &shells.shell_of {
         comp.union(pair[0] as usize, pair[1] as usize);
     }
-    let infos: Vec<Info> = (0..n).map(|s| classify(soup, patches, &all, shells, s, &bbox)).collect::<Result<_, _>>()?;
+    let infos: Vec<Info> = (0..n)
+        .map(|s| classify(soup, patches, &all, shells, s, &bbox))
+        .collect::<Result<_, _>>()?;
 
     // Each body: its shells; exactly one faces the outside unless it is a dangling sheet.
-    let mut bodies: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    let mut bodies: std::collections::BTreeMap<usize, Vec<usize>> =
+        std::collections::BTreeMap::new();
     for s in 0..n {
         bodies.entry(comp.find(s)).or_default().push(s);
     }
     // (sample point just outside the body, the body's outside or dangling shell, root)
     let mut samples: Vec<(P3, usize, usize)> = Vec::new();
     for (&root, members) in &bodies {
-        let outs: Vec<usize> = members.iter().copied().filter(|&s| infos[s].kind != Kind::Bounded).collect();
+        let outs: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|&s| infos[s].kind != Kind::Bounded)
+            .collect();
         if outs.len() != 1 {
-            let fus: Vec<FaceUse> = members.iter().flat_map(|&s| shells.shells[s].iter().copied()).collect();
+            let fus: Vec<FaceUse> = members
+                .iter()
+                .flat_map(|&s| shells.shells[s].iter().copied())
+                .collect();
             let at = infos[members[0]].point;
             return Err(RegionError::new(
                 format!(
@@ -142,7 +209,8 @@ pub(super) fn assemble(soup: &Soup, patches: &[PatchIn], shells: &Shells) -> Res
                     outs.len(),
                     fmt_point(&at)
                 ),
-                fus.first().map(|f| patches[f.patch as usize].surface.as_str()),
+                fus.first()
+                    .map(|f| patches[f.patch as usize].surface.as_str()),
                 Some(at),
             ));
         }
@@ -155,7 +223,11 @@ pub(super) fn assemble(soup: &Soup, patches: &[PatchIn], shells: &Shells) -> Res
             Some(Loc::Inside) => Ok(true),
             Some(Loc::Outside) => Ok(false),
             _ => Err(RegionError::new(
-                format!("could not locate the point {} against the shell bounded by {}", fmt_point(p), surfaces_of(patches, &shells.shells[b])),
+                format!(
+                    "could not locate the point {} against the shell bounded by {}",
+                    fmt_point(p),
+                    surfaces_of(patches, &shells.shells[b])
+                ),
                 None,
                 Some(*p),
             )),
@@ -191,7 +263,11 @@ pub(super) fn assemble(soup: &Soup, patches: &[PatchIn], shells: &Shells) -> Res
                 let p = shells.shells[shell][0].patch as usize;
                 let surface = &patches[p].surface;
                 return Err(RegionError::new(
-                    format!("surface `{surface}` (patch `{}`) lies outside every region near {}", patches[p].name, fmt_point(&q)),
+                    format!(
+                        "surface `{surface}` (patch `{}`) lies outside every region near {}",
+                        patches[p].name,
+                        fmt_point(&q)
+                    ),
                     Some(surface),
                     Some(q),
                 ));
@@ -214,8 +290,21 @@ pub(super) fn assemble(soup: &Soup, patches: &[PatchIn], shells: &Shells) -> Res
         }
         sides.sort_unstable();
         sides.dedup();
-        regions.push(Region { name: String::new(), outer, cavities, sides, interior_point: infos[b].point });
+        regions.push(Region {
+            name: String::new(),
+            outer,
+            cavities,
+            sides,
+            interior_point: infos[b].point,
+        });
     }
-    let dangling = (0..patches.len()).filter(|&p| shells.is_dangling(p)).map(|p| p as u32).collect();
-    Ok(Assembled { regions, exterior, dangling })
+    let dangling = (0..patches.len())
+        .filter(|&p| shells.is_dangling(p))
+        .map(|p| p as u32)
+        .collect();
+    Ok(Assembled {
+        regions,
+        exterior,
+        dangling,
+    })
 }

@@ -32,20 +32,34 @@ enum Cross {
 /// projection where the triangle does not degenerate).
 fn in_coplanar_triangle(q: &P3, [a, b, c]: &Tri) -> bool {
     for k in 0..3 {
-        let (pa, pb, pc, pq) = (drop_axis(a, k), drop_axis(b, k), drop_axis(c, k), drop_axis(q, k));
+        let (pa, pb, pc, pq) = (
+            drop_axis(a, k),
+            drop_axis(b, k),
+            drop_axis(c, k),
+            drop_axis(q, k),
+        );
         let s = orient2d(&pa, &pb, &pc);
         if s == Orientation::Zero {
             continue;
         }
         let bad = s.flip();
-        return orient2d(&pa, &pb, &pq) != bad && orient2d(&pb, &pc, &pq) != bad && orient2d(&pc, &pa, &pq) != bad;
+        return orient2d(&pa, &pb, &pq) != bad
+            && orient2d(&pb, &pc, &pq) != bad
+            && orient2d(&pc, &pa, &pq) != bad;
     }
     false
 }
 
 fn signs3(q: &P3, f: &P3, [a, b, c]: &Tri) -> (bool, bool) {
-    let s = [orient3d(q, f, a, b), orient3d(q, f, b, c), orient3d(q, f, c, a)];
-    (s.contains(&Orientation::Positive), s.contains(&Orientation::Negative))
+    let s = [
+        orient3d(q, f, a, b),
+        orient3d(q, f, b, c),
+        orient3d(q, f, c, a),
+    ];
+    (
+        s.contains(&Orientation::Positive),
+        s.contains(&Orientation::Negative),
+    )
 }
 
 fn crossing(q: &P3, f: &P3, t: &Tri) -> Cross {
@@ -56,12 +70,20 @@ fn crossing(q: &P3, f: &P3, t: &Tri) -> Cross {
         if in_coplanar_triangle(q, t) {
             return Cross::OnTriangle;
         }
-        return if sf == Orientation::Zero { Cross::Degenerate } else { Cross::No };
+        return if sf == Orientation::Zero {
+            Cross::Degenerate
+        } else {
+            Cross::No
+        };
     }
     if sf == Orientation::Zero || sq == sf {
         return Cross::No;
     }
-    let s = [orient3d(q, f, a, b), orient3d(q, f, b, c), orient3d(q, f, c, a)];
+    let s = [
+        orient3d(q, f, a, b),
+        orient3d(q, f, b, c),
+        orient3d(q, f, c, a),
+    ];
     let pos = s.contains(&Orientation::Positive);
     let neg = s.contains(&Orientation::Negative);
     if pos && neg {
@@ -81,12 +103,16 @@ fn frac(x: f64) -> f64 {
 fn far_point(q: &P3, bbox: &BBox, k: usize) -> P3 {
     let e = bbox.extent();
     let mut l = e[0].max(e[1]).max(e[2]).max(1.0);
-    for i in 0..3 {
-        l = l.max((q[i] - bbox.min[i]).abs()).max((q[i] - bbox.max[i]).abs());
+    for ((qi, lo), hi) in q.iter().zip(&bbox.min).zip(&bbox.max) {
+        l = l.max((qi - lo).abs()).max((qi - hi).abs());
     }
     let a = frac(0.5 + k as f64 * 0.618_033_988_749_894_9) - 0.5;
     let b = frac(0.5 + k as f64 * 0.754_877_666_246_692_7) - 0.5;
-    [bbox.max[0].max(q[0]) + 2.0 * l, q[1] + (a + 0.0137) * l, q[2] + (b + 0.0071) * l]
+    [
+        bbox.max[0].max(q[0]) + 2.0 * l,
+        q[1] + (a + 0.0137) * l,
+        q[2] + (b + 0.0071) * l,
+    ]
 }
 
 /// Parity of `q` against the closed surface made of `tris` (exact); `None` when every tried ray
@@ -105,7 +131,11 @@ pub(super) fn parity(q: &P3, tris: &[Tri], bbox: &BBox) -> Option<Loc> {
             }
         }
         if !degenerate {
-            return Some(if count % 2 == 1 { Loc::Inside } else { Loc::Outside });
+            return Some(if count % 2 == 1 {
+                Loc::Inside
+            } else {
+                Loc::Outside
+            });
         }
     }
     None
@@ -141,8 +171,16 @@ pub(super) fn near_point(all: &[Tri], t: usize, front: bool) -> Option<P3> {
     }
     let sign = if front { 1.0 } else { -1.0 };
     let dir = [sign * n[0] / len, sign * n[1] / len, sign * n[2] / len];
-    let g = [a[0] + (ab[0] + ac[0]) / 3.0, a[1] + (ab[1] + ac[1]) / 3.0, a[2] + (ab[2] + ac[2]) / 3.0];
-    let want = if front { Orientation::Positive } else { Orientation::Negative };
+    let g = [
+        a[0] + (ab[0] + ac[0]) / 3.0,
+        a[1] + (ab[1] + ac[1]) / 3.0,
+        a[2] + (ab[2] + ac[2]) / 3.0,
+    ];
+    let want = if front {
+        Orientation::Positive
+    } else {
+        Orientation::Negative
+    };
     let mut h = 0.1 * (0.5 * len).sqrt();
     for _ in 0..24 {
         let q = [g[0] + dir[0] * h, g[1] + dir[1] * h, g[2] + dir[2] * h];
@@ -152,7 +190,11 @@ pub(super) fn near_point(all: &[Tri], t: usize, front: bool) -> Option<P3> {
             continue;
         }
         let (pos, neg) = signs3(&q, &r, tri);
-        let through = [orient3d(&q, &r, a, b), orient3d(&q, &r, b, c), orient3d(&q, &r, c, a)];
+        let through = [
+            orient3d(&q, &r, a, b),
+            orient3d(&q, &r, b, c),
+            orient3d(&q, &r, c, a),
+        ];
         if (pos && neg) || through.contains(&Orientation::Zero) {
             continue;
         }
@@ -188,12 +230,16 @@ pub(super) fn one_sided(face_uses: &[super::FaceUse]) -> Vec<u32> {
 pub(super) fn patch_tris(patches: &[PatchIn], ids: impl IntoIterator<Item = u32>) -> Vec<Tri> {
     let mut out = Vec::new();
     for p in ids {
-        let Some(patch) = patches.get(p as usize) else { continue };
+        let Some(patch) = patches.get(p as usize) else {
+            continue;
+        };
         let m = &patch.mesh;
         for t in &m.triangles {
-            if let (Some(a), Some(b), Some(c)) =
-                (m.vertices.get(t[0] as usize), m.vertices.get(t[1] as usize), m.vertices.get(t[2] as usize))
-            {
+            if let (Some(a), Some(b), Some(c)) = (
+                m.vertices.get(t[0] as usize),
+                m.vertices.get(t[1] as usize),
+                m.vertices.get(t[2] as usize),
+            ) {
                 out.push([*a, *b, *c]);
             }
         }
@@ -202,7 +248,9 @@ pub(super) fn patch_tris(patches: &[PatchIn], ids: impl IntoIterator<Item = u32>
 }
 
 pub(super) fn patches_bbox(patches: &[PatchIn]) -> BBox {
-    patches.iter().fold(BBox::empty(), |b, p| b.union(&p.mesh.bbox()))
+    patches
+        .iter()
+        .fold(BBox::empty(), |b, p| b.union(&p.mesh.bbox()))
 }
 
 fn shell_loc(shell: &Shell, patches: &[PatchIn], bbox: &BBox, p: &P3) -> Option<Loc> {
@@ -211,11 +259,18 @@ fn shell_loc(shell: &Shell, patches: &[PatchIn], bbox: &BBox, p: &P3) -> Option<
 
 /// Whether `p` is strictly inside `region`: inside its outer shell, outside its cavities, on no
 /// patch of it. `None` when no non-degenerate ray was found.
-pub(super) fn region_contains(region: &Region, patches: &[PatchIn], bbox: &BBox, p: &P3) -> Option<bool> {
+pub(super) fn region_contains(
+    region: &Region,
+    patches: &[PatchIn],
+    bbox: &BBox,
+    p: &P3,
+) -> Option<bool> {
     let mut ids: Vec<u32> = region.sides.iter().map(|f| f.patch).collect();
     ids.dedup();
     let all = patch_tris(patches, ids);
-    if all.iter().any(|t| orient3d(&t[0], &t[1], &t[2], p) == Orientation::Zero && in_coplanar_triangle(p, t)) {
+    if all.iter().any(|t| {
+        orient3d(&t[0], &t[1], &t[2], p) == Orientation::Zero && in_coplanar_triangle(p, t)
+    }) {
         return Some(false);
     }
     if shell_loc(&region.outer, patches, bbox, p)? != Loc::Inside {

@@ -104,8 +104,16 @@ pub struct RegionError {
 }
 
 impl RegionError {
-    pub(crate) fn new(message: impl Into<String>, surface: Option<&str>, at: Option<[f64; 3]>) -> Self {
-        RegionError { message: message.into(), surface: surface.map(str::to_string), at }
+    pub(crate) fn new(
+        message: impl Into<String>,
+        surface: Option<&str>,
+        at: Option<[f64; 3]>,
+    ) -> Self {
+        RegionError {
+            message: message.into(),
+            surface: surface.map(str::to_string),
+            at,
+        }
     }
 }
 
@@ -138,7 +146,9 @@ pub struct RegionOptions {
 impl RegionOptions {
     /// Options letting the named surfaces (the faults) dangle.
     pub fn with_faults<I: IntoIterator<Item = S>, S: Into<String>>(faults: I) -> Self {
-        RegionOptions { dangling: Dangling::Surfaces(faults.into_iter().map(Into::into).collect()) }
+        RegionOptions {
+            dangling: Dangling::Surfaces(faults.into_iter().map(Into::into).collect()),
+        }
     }
     pub(crate) fn may_dangle(&self, surface: &str) -> bool {
         match &self.dangling {
@@ -151,7 +161,10 @@ impl RegionOptions {
 
 /// Finds the regions with the default options: no surface may stop short (every free border is
 /// an error). Use [`find_regions_with`] to let faults dangle.
-pub fn find_regions(patches: &[PatchIn], names: &[(String, [f64; 3])]) -> Result<RegionModel, RegionError> {
+pub fn find_regions(
+    patches: &[PatchIn],
+    names: &[(String, [f64; 3])],
+) -> Result<RegionModel, RegionError> {
     find_regions_with(patches, names, &RegionOptions::default())
 }
 
@@ -173,5 +186,8 @@ pub fn find_regions_with(
 /// patch bounding or dangling in the region.
 pub fn locate(model: &RegionModel, patches: &[PatchIn], p: [f64; 3]) -> Option<usize> {
     let bbox = exact::patches_bbox(patches);
-    model.regions.iter().position(|r| exact::region_contains(r, patches, &bbox, &p) == Some(true))
+    model
+        .regions
+        .iter()
+        .position(|r| exact::region_contains(r, patches, &bbox, &p) == Some(true))
 }

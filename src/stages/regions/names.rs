@@ -24,14 +24,19 @@ fn shell_key(shell: &Shell, patches: &[PatchIn]) -> Key {
             }
         }
     }
-    let mut names: Vec<(String, Side)> =
-        shell.face_uses.iter().map(|f| (patches[f.patch as usize].name.clone(), f.side)).collect();
+    let mut names: Vec<(String, Side)> = shell
+        .face_uses
+        .iter()
+        .map(|f| (patches[f.patch as usize].name.clone(), f.side))
+        .collect();
     names.sort();
     (min, names)
 }
 
 fn lex(a: &[f64; 3], b: &[f64; 3]) -> Ordering {
-    a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])).then(a[2].total_cmp(&b[2]))
+    a[0].total_cmp(&b[0])
+        .then(a[1].total_cmp(&b[1]))
+        .then(a[2].total_cmp(&b[2]))
 }
 
 fn key_cmp(a: &Key, b: &Key) -> Ordering {
@@ -43,11 +48,21 @@ pub(super) fn name_regions(
     patches: &[PatchIn],
     names: &[(String, [f64; 3])],
 ) -> Result<RegionModel, RegionError> {
-    let Assembled { regions, exterior, dangling } = built;
-    let mut keyed: Vec<(Key, super::Region)> = regions.into_iter().map(|r| (shell_key(&r.outer, patches), r)).collect();
+    let Assembled {
+        regions,
+        exterior,
+        dangling,
+    } = built;
+    let mut keyed: Vec<(Key, super::Region)> = regions
+        .into_iter()
+        .map(|r| (shell_key(&r.outer, patches), r))
+        .collect();
     keyed.sort_by(|a, b| key_cmp(&a.0, &b.0));
     let mut regions: Vec<super::Region> = keyed.into_iter().map(|k| k.1).collect();
-    let mut ext: Vec<(Key, Shell)> = exterior.into_iter().map(|s| (shell_key(&s, patches), s)).collect();
+    let mut ext: Vec<(Key, Shell)> = exterior
+        .into_iter()
+        .map(|s| (shell_key(&s, patches), s))
+        .collect();
     ext.sort_by(|a, b| key_cmp(&a.0, &b.0));
     let exterior: Vec<Shell> = ext.into_iter().map(|k| k.1).collect();
 
@@ -56,20 +71,31 @@ pub(super) fn name_regions(
     let mut seen: BTreeMap<&str, usize> = BTreeMap::new();
     for (name, p) in names {
         if seen.insert(name.as_str(), 0).is_some() {
-            return Err(RegionError::new(format!("the region name `{name}` is given twice"), None, Some(*p)));
+            return Err(RegionError::new(
+                format!("the region name `{name}` is given twice"),
+                None,
+                Some(*p),
+            ));
         }
-        let hits: Vec<usize> =
-            (0..regions.len()).filter(|&i| region_contains(&regions[i], patches, &bbox, p) == Some(true)).collect();
+        let hits: Vec<usize> = (0..regions.len())
+            .filter(|&i| region_contains(&regions[i], patches, &bbox, p) == Some(true))
+            .collect();
         let Some(&i) = hits.first() else {
             return Err(RegionError::new(
-                format!("region name `{name}`: the point {} is strictly inside no region (outside the model or on a surface)", fmt_point(p)),
+                format!(
+                    "region name `{name}`: the point {} is strictly inside no region (outside the model or on a surface)",
+                    fmt_point(p)
+                ),
                 None,
                 Some(*p),
             ));
         };
         if let Some(other) = given.insert(i, name) {
             return Err(RegionError::new(
-                format!("region names `{other}` and `{name}` both point into the same region (at {})", fmt_point(p)),
+                format!(
+                    "region names `{other}` and `{name}` both point into the same region (at {})",
+                    fmt_point(p)
+                ),
                 None,
                 Some(*p),
             ));
@@ -78,7 +104,12 @@ pub(super) fn name_regions(
     let base: Vec<String> = regions
         .iter()
         .map(|r| {
-            let mut s: Vec<&str> = r.outer.face_uses.iter().map(|f| patches[f.patch as usize].surface.as_str()).collect();
+            let mut s: Vec<&str> = r
+                .outer
+                .face_uses
+                .iter()
+                .map(|f| patches[f.patch as usize].surface.as_str())
+                .collect();
             s.sort_unstable();
             s.dedup();
             s.join("+")
@@ -109,5 +140,9 @@ pub(super) fn name_regions(
     for (r, n) in regions.iter_mut().zip(out_names) {
         r.name = n;
     }
-    Ok(RegionModel { regions, exterior, dangling })
+    Ok(RegionModel {
+        regions,
+        exterior,
+        dangling,
+    })
 }

@@ -26,7 +26,9 @@ pub(super) struct UnionFind {
 
 impl UnionFind {
     pub fn new(n: usize) -> Self {
-        UnionFind { parent: (0..n as u32).collect() }
+        UnionFind {
+            parent: (0..n as u32).collect(),
+        }
     }
     pub fn find(&mut self, mut x: usize) -> usize {
         while self.parent[x] as usize != x {
@@ -92,7 +94,11 @@ pub(super) fn link(soup: &Soup, patches: &[PatchIn]) -> Result<Links, RegionErro
     for (t, tri) in soup.tris.iter().enumerate() {
         for k in 0..3 {
             let (a, b, w) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-            let inc = Inc { tri: t as u32, forward: a < b, w };
+            let inc = Inc {
+                tri: t as u32,
+                forward: a < b,
+                w,
+            };
             edges.push((a.min(b), a.max(b), inc));
         }
     }
@@ -118,18 +124,29 @@ pub(super) fn link(soup: &Soup, patches: &[PatchIn]) -> Result<Links, RegionErro
         for j in 0..k {
             let (a, b) = (group[j], group[(j + 1) % k]);
             // a's counter-clockwise side faces the wedge, and so does b's clockwise side.
-            uf.union(fu(a.tri as usize, a.forward), fu(b.tri as usize, !b.forward));
+            uf.union(
+                fu(a.tri as usize, a.forward),
+                fu(b.tri as usize, !b.forward),
+            );
         }
     }
     Ok(Links { uf, free_edges })
 }
 
-fn sort_around(soup: &Soup, patches: &[PatchIn], u: u32, v: u32, group: &mut [Inc]) -> Result<(), RegionError> {
+fn sort_around(
+    soup: &Soup,
+    patches: &[PatchIn],
+    u: u32,
+    v: u32,
+    group: &mut [Inc],
+) -> Result<(), RegionError> {
     let pu = soup.points[u as usize];
     let pv = soup.points[v as usize];
     let w0 = soup.points[group[0].w as usize];
-    let mut keyed: Vec<(u8, Inc)> =
-        group.iter().map(|g| (class(&pu, &pv, &w0, &soup.points[g.w as usize]), *g)).collect();
+    let mut keyed: Vec<(u8, Inc)> = group
+        .iter()
+        .map(|g| (class(&pu, &pv, &w0, &soup.points[g.w as usize]), *g))
+        .collect();
     let cmp = |a: &(u8, Inc), b: &(u8, Inc)| -> Ordering {
         a.0.cmp(&b.0).then_with(|| {
             if a.0 == 1 || a.0 == 3 {

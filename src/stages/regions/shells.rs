@@ -20,7 +20,11 @@ pub(super) struct Shells {
 }
 
 impl Shells {
-    pub fn build(soup: &Soup, patches: &[PatchIn], mut links: Links) -> Result<Shells, RegionError> {
+    pub fn build(
+        soup: &Soup,
+        patches: &[PatchIn],
+        mut links: Links,
+    ) -> Result<Shells, RegionError> {
         let mut root_shell: BTreeMap<usize, u32> = BTreeMap::new();
         let mut shell_of = Vec::with_capacity(patches.len());
         let mut shells: Vec<Vec<FaceUse>> = Vec::new();
@@ -51,12 +55,19 @@ impl Shells {
                     shells.push(Vec::new());
                     next
                 });
-                shells[s as usize].push(FaceUse { patch: p as u32, side });
+                shells[s as usize].push(FaceUse {
+                    patch: p as u32,
+                    side,
+                });
                 pair[si] = s;
             }
             shell_of.push(pair);
         }
-        Ok(Shells { shell_of, shells, free_edges: std::mem::take(&mut links.free_edges) })
+        Ok(Shells {
+            shell_of,
+            shells,
+            free_edges: std::mem::take(&mut links.free_edges),
+        })
     }
 
     /// Whether both sides of patch `p` lie in one shell.
@@ -74,16 +85,27 @@ pub(super) fn check_free_borders(
 ) -> Result<(), RegionError> {
     let mut by_surface: BTreeMap<&str, Vec<(u32, u32)>> = BTreeMap::new();
     for &(u, v, t) in &shells.free_edges {
-        let surface = patches[soup.tri_patch[t as usize] as usize].surface.as_str();
+        let surface = patches[soup.tri_patch[t as usize] as usize]
+            .surface
+            .as_str();
         if !opts.may_dangle(surface) {
             by_surface.entry(surface).or_default().push((u, v));
         }
     }
-    let Some((surface, edges)) = by_surface.into_iter().next() else { return Ok(()) };
+    let Some((surface, edges)) = by_surface.into_iter().next() else {
+        return Ok(());
+    };
     let chains = chain(soup, &edges);
     let first = &chains[0];
-    let (a, b) = (soup.points[first[0] as usize], soup.points[first[first.len() - 1] as usize]);
-    let more = if chains.len() > 1 { format!(" ({} more free border pieces)", chains.len() - 1) } else { String::new() };
+    let (a, b) = (
+        soup.points[first[0] as usize],
+        soup.points[first[first.len() - 1] as usize],
+    );
+    let more = if chains.len() > 1 {
+        format!(" ({} more free border pieces)", chains.len() - 1)
+    } else {
+        String::new()
+    };
     let what = if first.len() > 2 && first[0] == first[first.len() - 1] {
         format!("a free border loop through {}", fmt_point(&a))
     } else {
@@ -97,7 +119,9 @@ pub(super) fn check_free_borders(
 }
 
 fn lex(a: &P3, b: &P3) -> std::cmp::Ordering {
-    a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])).then(a[2].total_cmp(&b[2]))
+    a[0].total_cmp(&b[0])
+        .then(a[1].total_cmp(&b[1]))
+        .then(a[2].total_cmp(&b[2]))
 }
 
 /// Chains edges into polylines (vertex lists), each started at its lexicographically smallest
@@ -113,7 +137,10 @@ fn chain(soup: &Soup, edges: &[(u32, u32)]) -> Vec<Vec<u32>> {
     let pt = |v: u32| soup.points[v as usize];
     // Ends (odd degree) first, then the rest, each group by coordinates.
     starts.sort_by(|&a, &b| {
-        let (da, db) = (adj[&a].len() % 2 == 0, adj[&b].len() % 2 == 0);
+        let (da, db) = (
+            adj[&a].len().is_multiple_of(2),
+            adj[&b].len().is_multiple_of(2),
+        );
         da.cmp(&db).then_with(|| lex(&pt(a), &pt(b)))
     });
     let mut chains = Vec::new();

@@ -19,12 +19,18 @@ pub(super) struct Soup {
 
 fn key(p: &P3) -> [u64; 3] {
     // Adding 0.0 turns -0.0 into 0.0 so that both weld to one vertex.
-    [(p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits(), (p[2] + 0.0).to_bits()]
+    [
+        (p[0] + 0.0).to_bits(),
+        (p[1] + 0.0).to_bits(),
+        (p[2] + 0.0).to_bits(),
+    ]
 }
 
 /// Whether three points are collinear (exact): every coordinate projection is degenerate.
 pub(super) fn collinear(a: &P3, b: &P3, c: &P3) -> bool {
-    (0..3).all(|k| orient2d(&drop_axis(a, k), &drop_axis(b, k), &drop_axis(c, k)) == Orientation::Zero)
+    (0..3).all(|k| {
+        orient2d(&drop_axis(a, k), &drop_axis(b, k), &drop_axis(c, k)) == Orientation::Zero
+    })
 }
 
 /// The point projected along axis `k` onto the other two coordinates.
@@ -44,22 +50,37 @@ impl Soup {
     pub fn build(patches: &[PatchIn]) -> Result<Soup, RegionError> {
         let mut seen_names: BTreeMap<&str, usize> = BTreeMap::new();
         let mut ids: BTreeMap<[u64; 3], u32> = BTreeMap::new();
-        let mut soup = Soup { points: Vec::new(), tris: Vec::new(), tri_patch: Vec::new(), patch_start: vec![0] };
+        let mut soup = Soup {
+            points: Vec::new(),
+            tris: Vec::new(),
+            tri_patch: Vec::new(),
+            patch_start: vec![0],
+        };
         if u32::try_from(patches.len()).is_err() {
-            return Err(RegionError::new("too many patches (more than 2^32)", None, None));
+            return Err(RegionError::new(
+                "too many patches (more than 2^32)",
+                None,
+                None,
+            ));
         }
         for (pi, patch) in patches.iter().enumerate() {
             let sname = Some(patch.surface.as_str());
             if let Some(prev) = seen_names.insert(&patch.name, pi) {
                 return Err(RegionError::new(
-                    format!("patches {prev} and {pi} are both named `{}`; patch names must be unique", patch.name),
+                    format!(
+                        "patches {prev} and {pi} are both named `{}`; patch names must be unique",
+                        patch.name
+                    ),
                     sname,
                     None,
                 ));
             }
             if patch.mesh.triangles.is_empty() {
                 return Err(RegionError::new(
-                    format!("patch `{}` of surface `{}` has no triangles", patch.name, patch.surface),
+                    format!(
+                        "patch `{}` of surface `{}` has no triangles",
+                        patch.name, patch.surface
+                    ),
                     sname,
                     None,
                 ));
@@ -68,7 +89,12 @@ impl Soup {
             for p in &patch.mesh.vertices {
                 if p.iter().any(|c| !c.is_finite()) {
                     return Err(RegionError::new(
-                        format!("patch `{}` of surface `{}` has a non-finite vertex {}", patch.name, patch.surface, fmt_point(p)),
+                        format!(
+                            "patch `{}` of surface `{}` has a non-finite vertex {}",
+                            patch.name,
+                            patch.surface,
+                            fmt_point(p)
+                        ),
                         sname,
                         None,
                     ));
@@ -118,7 +144,11 @@ impl Soup {
             soup.patch_start.push(soup.tris.len());
         }
         if u32::try_from(soup.tris.len() * 2).is_err() {
-            return Err(RegionError::new("too many triangles (more than 2^31)", None, None));
+            return Err(RegionError::new(
+                "too many triangles (more than 2^31)",
+                None,
+                None,
+            ));
         }
         Ok(soup)
     }
