@@ -543,3 +543,19 @@ fn shuffling_the_patch_order_gives_the_same_regions_names_and_order() {
     let m = find_regions_with(&reversed, &[], &opts).expect("regions");
     assert_eq!(summary(&m, &reversed), want);
 }
+
+#[test]
+fn a_fault_sticking_out_of_the_box_is_reported_even_when_faults_may_dangle() {
+    let mut patches = cube(&[]);
+    // Crosses the top face along x = 0.5 without being cut there: it is only welded to the top
+    // face's grid edge and continues above it.
+    patches.push(rect("f3#1", "f3", 0, 0.5, (0.25, 0.75), (1.0, 1.5), false));
+    let e = find_regions_with(&patches, &[], &RegionOptions::with_faults(["f3"]))
+        .expect_err("sticks out");
+    assert_eq!(e.surface.as_deref(), Some("f3"));
+    assert!(
+        e.message.contains("sticks out of the model"),
+        "{}",
+        e.message
+    );
+}

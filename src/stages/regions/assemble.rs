@@ -272,7 +272,25 @@ pub(super) fn assemble(
                     Some(q),
                 ));
             }
-            None => exterior.push(shell_value(soup, shells, shell)),
+            None => {
+                let sh = shell_value(soup, shells, shell);
+                let fus = &sh.face_uses;
+                if let Some(w) = fus.windows(2).find(|w| w[0].patch == w[1].patch) {
+                    let p = w[0].patch as usize;
+                    let at = soup.corners(soup.patch_tris(p).start)[0];
+                    let surface = &patches[p].surface;
+                    return Err(RegionError::new(
+                        format!(
+                            "surface `{surface}` (patch `{}`) sticks out of the model: it dangles outside every region near {}",
+                            patches[p].name,
+                            fmt_point(&at)
+                        ),
+                        Some(surface),
+                        Some(at),
+                    ));
+                }
+                exterior.push(sh);
+            }
         }
     }
 

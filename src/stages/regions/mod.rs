@@ -176,8 +176,8 @@ pub fn find_regions_with(
 ) -> Result<RegionModel, RegionError> {
     let soup = weld::Soup::build(patches)?;
     let links = radial::link(&soup, patches)?;
+    shells::check_free_borders(&soup, patches, &links.free_edges, opts)?;
     let shells = shells::Shells::build(&soup, patches, links)?;
-    shells::check_free_borders(&soup, patches, &shells, opts)?;
     let built = assemble::assemble(&soup, patches, &shells)?;
     names::name_regions(built, patches, names)
 }

@@ -15,8 +15,6 @@ pub(super) struct Shells {
     pub shell_of: Vec<[u32; 2]>,
     /// Face-uses of each shell, sorted.
     pub shells: Vec<Vec<FaceUse>>,
-    /// Free border edges: (welded u, welded v, triangle).
-    pub free_edges: Vec<(u32, u32, u32)>,
 }
 
 impl Shells {
@@ -63,11 +61,7 @@ impl Shells {
             }
             shell_of.push(pair);
         }
-        Ok(Shells {
-            shell_of,
-            shells,
-            free_edges: std::mem::take(&mut links.free_edges),
-        })
+        Ok(Shells { shell_of, shells })
     }
 
     /// Whether both sides of patch `p` lie in one shell.
@@ -80,11 +74,11 @@ impl Shells {
 pub(super) fn check_free_borders(
     soup: &Soup,
     patches: &[PatchIn],
-    shells: &Shells,
+    free_edges: &[(u32, u32, u32)],
     opts: &RegionOptions,
 ) -> Result<(), RegionError> {
     let mut by_surface: BTreeMap<&str, Vec<(u32, u32)>> = BTreeMap::new();
-    for &(u, v, t) in &shells.free_edges {
+    for &(u, v, t) in free_edges {
         let surface = patches[soup.tri_patch[t as usize] as usize]
             .surface
             .as_str();
