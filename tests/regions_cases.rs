@@ -559,3 +559,141 @@ fn a_fault_sticking_out_of_the_box_is_reported_even_when_faults_may_dangle() {
         e.message
     );
 }
+
+/// Ranges between consecutive cuts of [0, 1].
+fn spans(cuts: &[f64]) -> Vec<(f64, f64)> {
+    let mut v = vec![0.0];
+    v.extend_from_slice(cuts);
+    v.push(1.0);
+    v.windows(2).map(|w| (w[0], w[1])).collect()
+}
+
+/// The unit cube's faces with outward normals, split along z = zcuts and x = xcuts.
+fn cube_xz(zcuts: &[f64], xcuts: &[f64]) -> Vec<PatchIn> {
+    let mut out = Vec::new();
+    for (i, x) in spans(xcuts).into_iter().enumerate() {
+        out.push(rect(
+            &format!("bottom{i}"),
+            "box",
+            2,
+            0.0,
+            x,
+            (0.0, 1.0),
+            true,
+        ));
+        out.push(rect(
+            &format!("top{i}"),
+            "box",
+            2,
+            1.0,
+            x,
+            (0.0, 1.0),
+            false,
+        ));
+        for (k, z) in spans(zcuts).into_iter().enumerate() {
+            out.push(rect(&format!("south{k}.{i}"), "box", 1, 0.0, z, x, true));
+            out.push(rect(&format!("north{k}.{i}"), "box", 1, 1.0, z, x, false));
+        }
+    }
+    for (k, z) in spans(zcuts).into_iter().enumerate() {
+        out.push(rect(
+            &format!("west{k}"),
+            "box",
+            0,
+            0.0,
+            (0.0, 1.0),
+            z,
+            true,
+        ));
+        out.push(rect(
+            &format!("east{k}"),
+            "box",
+            0,
+            1.0,
+            (0.0, 1.0),
+            z,
+            false,
+        ));
+    }
+    out
+}
+
+#[test]
+fn a_horizon_crossed_by_a_through_going_fault_makes_four_regions_around_their_shared_curve() {
+    for d in OFFSETS {
+        let mut patches = cube_xz(&[0.5], &[0.5]);
+        patches.push(rect("h#1", "h", 2, 0.5, (0.0, 0.5), (0.0, 1.0), false));
+        patches.push(rect("h#2", "h", 2, 0.5, (0.5, 1.0), (0.0, 1.0), true));
+        patches.push(rect("f#1", "f", 0, 0.5, (0.0, 1.0), (0.0, 0.5), false));
+        patches.push(rect("f#2", "f", 0, 0.5, (0.0, 1.0), (0.5, 1.0), true));
+        let patches = shifted(patches, d);
+        let m = find_regions(&patches, &[]).expect("regions");
+        assert_eq!(m.regions.len(), 4);
+        for (p, want) in [
+            ([0.25, 0.5, 0.25], "f#1"),
+            ([0.75, 0.5, 0.25], "f#1"),
+            ([0.25, 0.5, 0.75], "f#2"),
+        ] {
+            let r = locate(&m, &patches, add(p, d)).expect("inside");
+            let sides = named_sides(&m, r, &patches);
+            assert_eq!(
+                sides.iter().filter(|s| s.0.starts_with("h#")).count(),
+                1,
+                "{sides:?}"
+            );
+            assert_eq!(sides.iter().filter(|s| s.0 == want).count(), 1, "{sides:?}");
+            assert!((m.regions[r].outer.signed_volume - 0.25).abs() < 1e-9);
+        }
+        // The lower-west quarter is behind h#1's front (h#1 normal +z points up, away from it)
+        // and on f#1's back (normal +x).
+        let r = locate(&m, &patches, add([0.25, 0.5, 0.25], d)).expect("inside");
+        let sides = named_sides(&m, r, &patches);
+        assert!(
+            sides.contains(&("h#1".to_string(), Side::Back)),
+            "{sides:?}"
+        );
+        assert!(
+            sides.contains(&("f#1".to_string(), Side::Back)),
+            "{sides:?}"
+        );
+        let distinct: std::collections::BTreeSet<String> =
+            m.regions.iter().map(|r| r.name.clone()).collect();
+        assert_eq!(distinct.len(), 4, "generated names are unique");
+    }
+}
+
+#[test]
+fn a_fault_ending_on_a_horizon_makes_three_regions_around_a_t_junction() {
+    for d in OFFSETS {
+        let mut patches = cube_xz(&[0.5], &[0.5]);
+        // The lower south/north/bottom faces are not split by the fault: merge them back.
+        patches.retain(|p| {
+            !matches!(
+                p.name.as_str(),
+                "bottom0" | "bottom1" | "south0.0" | "south0.1" | "north0.0" | "north0.1"
+            )
+        });
+        patches.push(rect("bottom", "box", 2, 0.0, (0.0, 1.0), (0.0, 1.0), true));
+        patches.push(rect("south0", "box", 1, 0.0, (0.0, 0.5), (0.0, 1.0), true));
+        patches.push(rect("north0", "box", 1, 1.0, (0.0, 0.5), (0.0, 1.0), false));
+        patches.push(rect("h#1", "h", 2, 0.5, (0.0, 0.5), (0.0, 1.0), false));
+        patches.push(rect("h#2", "h", 2, 0.5, (0.5, 1.0), (0.0, 1.0), false));
+        patches.push(rect("f#1", "f", 0, 0.5, (0.0, 1.0), (0.5, 1.0), false));
+        let patches = shifted(patches, d);
+        let m = find_regions(&patches, &[]).expect("regions");
+        assert_eq!(m.regions.len(), 3);
+        let lower = locate(&m, &patches, add([0.5, 0.5, 0.25], d)).expect("lower");
+        assert!((m.regions[lower].outer.signed_volume - 0.5).abs() < 1e-9);
+        let sides = named_sides(&m, lower, &patches);
+        assert!(
+            sides.contains(&("h#1".to_string(), Side::Back))
+                && sides.contains(&("h#2".to_string(), Side::Back))
+        );
+        assert!(!sides.iter().any(|s| s.0 == "f#1"));
+        let west = locate(&m, &patches, add([0.25, 0.5, 0.75], d)).expect("upper west");
+        let east = locate(&m, &patches, add([0.75, 0.5, 0.75], d)).expect("upper east");
+        assert_ne!(west, east);
+        assert!(named_sides(&m, west, &patches).contains(&("f#1".to_string(), Side::Back)));
+        assert!(named_sides(&m, east, &patches).contains(&("f#1".to_string(), Side::Front)));
+    }
+}
