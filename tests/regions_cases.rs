@@ -697,3 +697,90 @@ fn a_fault_ending_on_a_horizon_makes_three_regions_around_a_t_junction() {
         assert!(named_sides(&m, east, &patches).contains(&("f#1".to_string(), Side::Front)));
     }
 }
+
+/// The triangles of `p` whose centroid satisfies `keep`, as a new patch named `name`.
+fn filtered(p: &PatchIn, name: &str, keep: impl Fn([f64; 3]) -> bool) -> PatchIn {
+    let m = &p.mesh;
+    let triangles = m
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| {
+            let c = t.map(|v| m.vertices[v as usize]);
+            keep([0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0))
+        })
+        .collect();
+    PatchIn {
+        name: name.to_string(),
+        surface: p.surface.clone(),
+        mesh: TriMesh::new(m.vertices.clone(), triangles),
+    }
+}
+
+#[test]
+fn two_faults_in_one_half_turn_around_a_curve_are_ordered_exactly() {
+    // Around the curve x = z = 0.5: horizon east (0°), slanted fault z = x (45°), vertical fault
+    // (90°), horizon west (180°). Two half-planes always share a half turn, whatever the first.
+    for d in OFFSETS {
+        let mut patches = cube_xz(&[0.5], &[0.5]);
+        let lower = [
+            "bottom0", "bottom1", "south0.0", "south0.1", "north0.0", "north0.1",
+        ];
+        patches.retain(|p| {
+            !lower.contains(&p.name.as_str()) && p.name != "south1.1" && p.name != "north1.1"
+        });
+        patches.push(rect("bottom", "box", 2, 0.0, (0.0, 1.0), (0.0, 1.0), true));
+        patches.push(rect("south0", "box", 1, 0.0, (0.0, 0.5), (0.0, 1.0), true));
+        patches.push(rect("north0", "box", 1, 1.0, (0.0, 0.5), (0.0, 1.0), false));
+        let s = rect("s", "box", 1, 0.0, (0.5, 1.0), (0.5, 1.0), true);
+        let n = rect("n", "box", 1, 1.0, (0.5, 1.0), (0.5, 1.0), false);
+        patches.push(filtered(&s, "south1.1.up", |c| c[2] > c[0]));
+        patches.push(filtered(&s, "south1.1.down", |c| c[2] < c[0]));
+        patches.push(filtered(&n, "north1.1.up", |c| c[2] > c[0]));
+        patches.push(filtered(&n, "north1.1.down", |c| c[2] < c[0]));
+        patches.push(rect("h#1", "h", 2, 0.5, (0.0, 0.5), (0.0, 1.0), false));
+        patches.push(rect("h#2", "h", 2, 0.5, (0.5, 1.0), (0.0, 1.0), false));
+        patches.push(rect("f#1", "f", 0, 0.5, (0.0, 1.0), (0.5, 1.0), false));
+        // The slanted fault: (0.5 + s, y, 0.5 + s), s in [0, 0.5], y in [0, 1].
+        let mut g = rect("g#1", "g", 2, 0.0, (0.0, 0.5), (0.0, 1.0), false);
+        for v in &mut g.mesh.vertices {
+            *v = [0.5 + v[0], v[1], 0.5 + v[0]];
+        }
+        patches.push(g);
+        let patches = shifted(patches, d);
+        for first in [0usize, 1, 2, 3] {
+            // Rotate which triangle comes first at the curve by rotating the patch order.
+            let mut order = patches.clone();
+            order.rotate_left(first * 3);
+            let m = find_regions(&order, &[]).expect("regions");
+            assert_eq!(m.regions.len(), 4);
+            let wedge =
+                locate(&m, &order, add([0.875, 0.5, 0.625], d)).expect("below the slanted fault");
+            let between =
+                locate(&m, &order, add([0.625, 0.5, 0.875], d)).expect("between the faults");
+            let west = locate(&m, &order, add([0.25, 0.5, 0.75], d)).expect("west of both");
+            let sides = |r: usize| named_sides(&m, r, &order);
+            assert!(
+                sides(wedge).contains(&("h#2".to_string(), Side::Front)),
+                "{:?}",
+                sides(wedge)
+            );
+            assert!(
+                sides(wedge).iter().any(|s| s.0 == "g#1")
+                    && !sides(wedge).iter().any(|s| s.0 == "f#1")
+            );
+            assert!(
+                sides(between).iter().any(|s| s.0 == "g#1")
+                    && sides(between).iter().any(|s| s.0 == "f#1")
+            );
+            assert!(
+                !sides(between).iter().any(|s| s.0.starts_with("h#")),
+                "{:?}",
+                sides(between)
+            );
+            assert!(sides(west).contains(&("f#1".to_string(), Side::Back)));
+            assert!((m.regions[wedge].outer.signed_volume - 0.125).abs() < 1e-9);
+            assert!((m.regions[between].outer.signed_volume - 0.125).abs() < 1e-9);
+        }
+    }
+}
