@@ -7,8 +7,8 @@
 //! triangle's plane is degenerate: another far point (a fixed, deterministic sequence) is tried,
 //! so every counted crossing is a proper one and the parity is exact.
 
+use super::PatchIn;
 use super::weld::{P3, drop_axis};
-use super::{PatchIn, Region, Shell};
 use crate::geom::predicates::{cross, sub};
 use crate::geom::{BBox, Orientation, orient2d, orient3d};
 
@@ -30,7 +30,7 @@ enum Cross {
 
 /// Whether `q`, coplanar with `abc`, lies in the closed triangle (exact, in a coordinate
 /// projection where the triangle does not degenerate).
-fn in_coplanar_triangle(q: &P3, [a, b, c]: &Tri) -> bool {
+pub(super) fn in_coplanar_triangle(q: &P3, [a, b, c]: &Tri) -> bool {
     for k in 0..3 {
         let (pa, pb, pc, pq) = (
             drop_axis(a, k),
@@ -251,35 +251,4 @@ pub(super) fn patches_bbox(patches: &[PatchIn]) -> BBox {
     patches
         .iter()
         .fold(BBox::empty(), |b, p| b.union(&p.mesh.bbox()))
-}
-
-fn shell_loc(shell: &Shell, patches: &[PatchIn], bbox: &BBox, p: &P3) -> Option<Loc> {
-    parity(p, &patch_tris(patches, one_sided(&shell.face_uses)), bbox)
-}
-
-/// Whether `p` is strictly inside `region`: inside its outer shell, outside its cavities, on no
-/// patch of it. `None` when no non-degenerate ray was found.
-pub(super) fn region_contains(
-    region: &Region,
-    patches: &[PatchIn],
-    bbox: &BBox,
-    p: &P3,
-) -> Option<bool> {
-    let mut ids: Vec<u32> = region.sides.iter().map(|f| f.patch).collect();
-    ids.dedup();
-    let all = patch_tris(patches, ids);
-    if all.iter().any(|t| {
-        orient3d(&t[0], &t[1], &t[2], p) == Orientation::Zero && in_coplanar_triangle(p, t)
-    }) {
-        return Some(false);
-    }
-    if shell_loc(&region.outer, patches, bbox, p)? != Loc::Inside {
-        return Some(false);
-    }
-    for c in &region.cavities {
-        if shell_loc(c, patches, bbox, p)? != Loc::Outside {
-            return Some(false);
-        }
-    }
-    Some(true)
 }

@@ -18,11 +18,13 @@
 
 mod assemble;
 mod exact;
+mod locate;
 mod names;
 mod radial;
 mod shells;
 mod weld;
 
+pub use locate::Locator;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 use std::fmt;
@@ -185,9 +187,5 @@ pub fn find_regions_with(
 /// The index of the region strictly containing `p` (exact), `None` outside every region or on a
 /// patch bounding or dangling in the region.
 pub fn locate(model: &RegionModel, patches: &[PatchIn], p: [f64; 3]) -> Option<usize> {
-    let bbox = exact::patches_bbox(patches);
-    model
-        .regions
-        .iter()
-        .position(|r| exact::region_contains(r, patches, &bbox, &p) == Some(true))
+    Locator::new(model, patches).locate(p)
 }

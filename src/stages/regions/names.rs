@@ -7,7 +7,7 @@
 //! order) only when several regions would share that name.
 
 use super::assemble::Assembled;
-use super::exact::{patches_bbox, region_contains};
+use super::locate::Locator;
 use super::weld::fmt_point;
 use super::{PatchIn, RegionError, RegionModel, Shell, Side};
 use std::cmp::Ordering;
@@ -66,7 +66,7 @@ pub(super) fn name_regions(
     ext.sort_by(|a, b| key_cmp(&a.0, &b.0));
     let exterior: Vec<Shell> = ext.into_iter().map(|k| k.1).collect();
 
-    let bbox = patches_bbox(patches);
+    let locator = Locator::from_regions(&regions, patches);
     let mut given: BTreeMap<usize, &str> = BTreeMap::new();
     let mut seen: BTreeMap<&str, usize> = BTreeMap::new();
     for (name, p) in names {
@@ -78,7 +78,7 @@ pub(super) fn name_regions(
             ));
         }
         let hits: Vec<usize> = (0..regions.len())
-            .filter(|&i| region_contains(&regions[i], patches, &bbox, p) == Some(true))
+            .filter(|&i| locator.contains(i, *p) == Some(true))
             .collect();
         let Some(&i) = hits.first() else {
             return Err(RegionError::new(
