@@ -88,7 +88,9 @@ fn classify(
             .find(|f| f.patch == p)
             .map_or(Side::Front, |f| f.side)
     };
-    let mut cands: Vec<(f64, usize, bool)> = Vec::new();
+    // (area, sorted corners, triangle, front): largest triangles first (a heuristic for the
+    // construction only), ties by their corners, so the choice is independent of patch order.
+    let mut cands: Vec<(f64, [P3; 3], usize, bool)> = Vec::new();
     let ids: Vec<u32> = if sigma_ids.is_empty() {
         fus.iter().map(|f| f.patch).collect()
     } else {
@@ -98,31 +100,31 @@ fn classify(
         let front = sigma_ids.is_empty() || side_of(p) == Side::Front;
         for t in soup.patch_tris(p as usize) {
             let c = soup.corners(t);
-            cands.push((triangle_area([&c[0], &c[1], &c[2]]), t, front));
+            let mut key = c;
+            key.sort_by(lex);
+            cands.push((triangle_area([&c[0], &c[1], &c[2]]), key, t, front));
         }
     }
-    // Largest triangles first (a heuristic for the construction only), ties by their corners, so
-    // that the choice does not depend on the order of the patches.
-    let corner_key = |t: usize| {
-        let mut c = soup.corners(t);
-        c.sort_by(lex);
-        c
-    };
-    cands.sort_by(|a, b| {
+    let order = |a: &(f64, [P3; 3], usize, bool), b: &(f64, [P3; 3], usize, bool)| {
         b.0.total_cmp(&a.0).then_with(|| {
-            let (ka, kb) = (corner_key(a.1), corner_key(b.1));
             (0..3)
-                .map(|i| lex(&ka[i], &kb[i]))
+                .map(|i| lex(&a.1[i], &b.1[i]))
                 .find(|o| o.is_ne())
                 .unwrap_or(std::cmp::Ordering::Equal)
         })
-    });
+    };
+    const TRIES: usize = 24;
+    if cands.len() > TRIES {
+        cands.select_nth_unstable_by(TRIES, order);
+        cands.truncate(TRIES);
+    }
+    cands.sort_by(order);
     let sigma: Vec<Tri> = sigma_ids
         .iter()
         .flat_map(|&p| soup.patch_tris(p as usize))
         .map(|t| soup.corners(t))
         .collect();
-    for &(_, t, front) in cands.iter().take(24) {
+    for &(_, _, t, front) in &cands {
         let Some(q) = near_point(all, t, front) else {
             continue;
         };
@@ -151,7 +153,7 @@ fn classify(
             _ => continue,
         }
     }
-    let at = cands.first().map(|c| soup.corners(c.1)[0]);
+    let at = cands.first().map(|c| c.1[0]);
     Err(RegionError::new(
         format!(
             "could not decide which side of the shell bounded by {} is enclosed{}",
