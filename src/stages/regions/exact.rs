@@ -252,3 +252,60 @@ pub(super) fn patches_bbox(patches: &[PatchIn]) -> BBox {
         .iter()
         .fold(BBox::empty(), |b, p| b.union(&p.mesh.bbox()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tetra(v: [P3; 4]) -> Vec<Tri> {
+        vec![
+            [v[0], v[1], v[2]],
+            [v[0], v[3], v[1]],
+            [v[1], v[3], v[2]],
+            [v[0], v[2], v[3]],
+        ]
+    }
+
+    #[test]
+    fn a_ray_through_a_vertex_is_retried_and_the_parity_stays_exact() {
+        let q = [0.0, 0.0, 0.0];
+        let bbox = BBox {
+            min: [-1.0; 3],
+            max: [1.0; 3],
+        };
+        let f0 = far_point(&q, &bbox, 0);
+        // A vertex exactly on the first ray (halving is exact), the others behind the origin.
+        let m = [f0[0] / 2.0, f0[1] / 2.0, f0[2] / 2.0];
+        assert_eq!(orient3d(&q, &f0, &m, &[0.0, 0.0, 1.0]), Orientation::Zero);
+        let t = tetra([m, [-1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, 0.0, 1.0]]);
+        assert!(matches!(crossing(&q, &f0, &t[0]), Cross::Degenerate));
+        assert_eq!(parity(&q, &t, &bbox), Some(Loc::Inside));
+        assert_eq!(parity(&[-2.0, 0.0, 0.0], &t, &bbox), Some(Loc::Outside));
+        assert_eq!(parity(&m, &t, &bbox), Some(Loc::OnBoundary));
+    }
+
+    #[test]
+    fn a_point_built_off_a_face_is_on_the_requested_side_and_clear_of_neighbours() {
+        let t = tetra([
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ]);
+        for (i, tri) in t.iter().enumerate() {
+            for front in [true, false] {
+                let q = near_point(&t, i, front).expect("a point");
+                let want = if front {
+                    Orientation::Positive
+                } else {
+                    Orientation::Negative
+                };
+                assert_eq!(orient3d(&tri[0], &tri[1], &tri[2], &q), want);
+            }
+        }
+        // A triangle lying on top of another one leaves no room on that side.
+        let mut twice = t.clone();
+        twice.push(t[0]);
+        assert_eq!(near_point(&twice, 0, true), None);
+    }
+}
