@@ -442,7 +442,7 @@ fn a_side_face_crossed_by_the_horizon_without_a_curve_is_reported() {
     let e = find_regions(&patches, &[]).expect_err("side faces are not split at the horizon");
     assert_eq!(e.surface.as_deref(), Some("box"));
     assert!(
-        e.message.contains("crossed by another surface"),
+        e.message.contains("crosses it without a shared curve"),
         "{}",
         e.message
     );
@@ -783,4 +783,19 @@ fn two_faults_in_one_half_turn_around_a_curve_are_ordered_exactly() {
             assert!((m.regions[between].outer.signed_volume - 0.125).abs() < 1e-9);
         }
     }
+}
+
+#[test]
+fn a_patch_with_one_flipped_triangle_is_reported_as_not_consistently_oriented() {
+    let mut patches = cube(&[]);
+    patches[0].mesh.triangles[5].swap(1, 2);
+    let e = find_regions(&patches, &[]).expect_err("flipped triangle");
+    assert_eq!(e.surface.as_deref(), Some("box"));
+    assert!(
+        e.message.contains("`bottom`") && e.message.contains("not consistently oriented"),
+        "{}",
+        e.message
+    );
+    let at = e.at.expect("a location");
+    assert_eq!(at[2], 0.0, "on the bottom face");
 }

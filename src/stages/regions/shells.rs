@@ -34,18 +34,7 @@ impl Shells {
                 let root = links.uf.find(fu(range.start, front));
                 for t in range.clone() {
                     if links.uf.find(fu(t, front)) != root {
-                        let at = soup.corners(t)[0];
-                        return Err(RegionError::new(
-                            format!(
-                                "patch `{}` of surface `{}` does not bound one volume per side near {}: it is not \
-                                 consistently oriented, not connected, or crossed by another surface without a shared curve",
-                                patch.name,
-                                patch.surface,
-                                fmt_point(&at)
-                            ),
-                            Some(&patch.surface),
-                            Some(at),
-                        ));
+                        return Err(split_patch(soup, patch, range.clone(), t));
                     }
                 }
                 let next = shells.len() as u32;
@@ -68,6 +57,54 @@ impl Shells {
     pub fn is_dangling(&self, p: usize) -> bool {
         self.shell_of[p][0] == self.shell_of[p][1]
     }
+}
+
+/// Why a patch's triangles do not put one side in one shell: a pair of triangles traversing an
+/// edge the same way (inconsistent orientation), or else a crossing or a disconnection.
+fn split_patch(
+    soup: &Soup,
+    patch: &PatchIn,
+    range: std::ops::Range<usize>,
+    t: usize,
+) -> RegionError {
+    let mut directed: Vec<(u32, u32, usize)> = Vec::new();
+    for u in range {
+        let tri = soup.tris[u];
+        for k in 0..3 {
+            directed.push((tri[k], tri[(k + 1) % 3], u));
+        }
+    }
+    directed.sort_unstable();
+    if let Some(w) = directed
+        .windows(2)
+        .find(|w| w[0].0 == w[1].0 && w[0].1 == w[1].1)
+    {
+        let (a, b) = (soup.points[w[0].0 as usize], soup.points[w[0].1 as usize]);
+        return RegionError::new(
+            format!(
+                "patch `{}` of surface `{}` is not consistently oriented: two of its triangles run along the edge \
+                 from {} to {} in the same direction",
+                patch.name,
+                patch.surface,
+                fmt_point(&a),
+                fmt_point(&b)
+            ),
+            Some(&patch.surface),
+            Some(a),
+        );
+    }
+    let at = soup.corners(t)[0];
+    RegionError::new(
+        format!(
+            "patch `{}` of surface `{}` does not bound one volume per side near {}: it is not connected, or \
+             another surface crosses it without a shared curve",
+            patch.name,
+            patch.surface,
+            fmt_point(&at)
+        ),
+        Some(&patch.surface),
+        Some(at),
+    )
 }
 
 /// Reports the free borders of surfaces that may not dangle (sorted by surface name).
