@@ -799,3 +799,38 @@ fn a_patch_with_one_flipped_triangle_is_reported_as_not_consistently_oriented() 
     let at = e.at.expect("a location");
     assert_eq!(at[2], 0.0, "on the bottom face");
 }
+
+#[test]
+fn a_lens_inside_a_lens_is_attached_to_the_innermost_region_that_holds_it() {
+    for d in OFFSETS {
+        let mut patches = cube(&[]);
+        patches.push(octahedron("big", [0.5, 0.5, 0.5], 0.375));
+        patches.push(octahedron("small", [0.5, 0.5, 0.5], 0.125));
+        let patches = shifted(patches, d);
+        let m = find_regions(&patches, &[]).expect("regions");
+        assert_eq!(m.regions.len(), 3);
+        let by_name = |n: &str| m.regions.iter().position(|r| r.name == n).expect(n);
+        let (outer, big, small) = (by_name("box"), by_name("big"), by_name("small"));
+        let (ib, is) = (idx(&patches, "big"), idx(&patches, "small"));
+        assert_eq!(m.regions[outer].cavities.len(), 1);
+        assert_eq!(
+            m.regions[outer].cavities[0].face_uses,
+            vec![FaceUse {
+                patch: ib,
+                side: Side::Front
+            }]
+        );
+        assert_eq!(m.regions[big].cavities.len(), 1);
+        assert_eq!(
+            m.regions[big].cavities[0].face_uses,
+            vec![FaceUse {
+                patch: is,
+                side: Side::Front
+            }]
+        );
+        assert!(m.regions[small].cavities.is_empty());
+        assert_eq!(locate(&m, &patches, add([0.5, 0.5, 0.5], d)), Some(small));
+        assert_eq!(locate(&m, &patches, add([0.5, 0.5, 0.75], d)), Some(big));
+        assert_eq!(locate(&m, &patches, add([0.5, 0.5, 0.95], d)), Some(outer));
+    }
+}
