@@ -10,7 +10,12 @@ use std::path::Path;
 fn build_once(recipe_path: &Path, text: &str, cache: &Path, out: &Path) -> engine::BuildReport {
     let r = recipe::parse(recipe_path, text).expect("the shipped recipe parses");
     let g = plan::lower(&r).expect("lowers");
-    let opts = BuildOptions { cache_dir: cache.to_path_buf(), output_dir: out.to_path_buf(), jobs: 1, keep_going: true };
+    let opts = BuildOptions {
+        cache_dir: cache.to_path_buf(),
+        output_dir: out.to_path_buf(),
+        jobs: 1,
+        keep_going: true,
+    };
     let report = engine::build(g, &opts, &|_| {}).expect("builds");
     assert!(report.ok);
     report
@@ -23,20 +28,42 @@ fn builds(c: &mut Criterion) {
     g.sample_size(10);
     g.bench_function("full build, empty cache, -j 1", |b| {
         b.iter_with_setup(tempfile::tempdir, |dir| {
-            build_once(&path, &text, &dir.path().join("cache"), &dir.path().join("out"));
+            build_once(
+                &path,
+                &text,
+                &dir.path().join("cache"),
+                &dir.path().join("out"),
+            );
         })
     });
     let dir = tempfile::tempdir().unwrap();
-    build_once(&path, &text, &dir.path().join("cache"), &dir.path().join("out"));
+    build_once(
+        &path,
+        &text,
+        &dir.path().join("cache"),
+        &dir.path().join("out"),
+    );
     g.bench_function("second build, nothing changed", |b| {
-        b.iter(|| build_once(&path, &text, &dir.path().join("cache"), &dir.path().join("out")))
+        b.iter(|| {
+            build_once(
+                &path,
+                &text,
+                &dir.path().join("cache"),
+                &dir.path().join("out"),
+            )
+        })
     });
     let edited = text.replace("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 60.0 }");
     let mut flip = false;
     g.bench_function("rebuild after one curve rule changed", |b| {
         b.iter(|| {
             flip = !flip;
-            build_once(&path, if flip { &edited } else { &text }, &dir.path().join("cache"), &dir.path().join("out"))
+            build_once(
+                &path,
+                if flip { &edited } else { &text },
+                &dir.path().join("cache"),
+                &dir.path().join("out"),
+            )
         })
     });
     g.finish();

@@ -26,7 +26,10 @@ fn one_and_two_jobs_give_byte_identical_outputs_and_lock_files() {
     assert!(a.build(&["-j", "1"]).0);
     assert!(b.build(&["-j", "2"]).0);
     assert_eq!(read_tree(&a.path("out")), read_tree(&b.path("out")));
-    assert_eq!(std::fs::read(a.path("didactic.toml.lock")).unwrap(), std::fs::read(b.path("didactic.toml.lock")).unwrap());
+    assert_eq!(
+        std::fs::read(a.path("didactic.toml.lock")).unwrap(),
+        std::fs::read(b.path("didactic.toml.lock")).unwrap()
+    );
 }
 
 #[test]
@@ -39,10 +42,17 @@ fn editing_one_curve_rule_reruns_only_those_curves_and_the_export() {
     let ran = nodes_in_state(&r, "ran");
     assert!(!ran.is_empty());
     for n in &ran {
-        assert!(n == "export" || n.starts_with("discretize:F2"), "`{n}` re-ran but does not depend on the F2 curve rule");
+        assert!(
+            n == "export" || n.starts_with("discretize:F2"),
+            "`{n}` re-ran but does not depend on the F2 curve rule"
+        );
     }
     for n in all_nodes(&r) {
-        if n.starts_with("import:") || n.starts_with("intersect:") || n == "curves" || n.starts_with("discretize:H") {
+        if n.starts_with("import:")
+            || n.starts_with("intersect:")
+            || n == "curves"
+            || n.starts_with("discretize:H")
+        {
             assert!(!ran.contains(&n), "`{n}` re-ran");
         }
     }
@@ -75,14 +85,20 @@ fn touching_an_imported_file_reruns_nothing_but_changing_it_reruns_its_import() 
     let ran = nodes_in_state(&r, "ran");
     assert!(ran.contains(&"import:F2".to_string()), "{ran:?}");
     // The surface is the same, so nothing downstream of the import re-runs (early cutoff).
-    assert!(ran.iter().all(|n| n == "import:F2" || n == "file:F2"), "{ran:?}");
+    assert!(
+        ran.iter().all(|n| n == "import:F2" || n == "file:F2"),
+        "{ran:?}"
+    );
 }
 
 #[test]
 fn a_locked_build_fails_with_a_readable_diff_when_a_size_changes() {
     let s = Scratch::didactic();
     assert!(s.build(&[]).0);
-    assert!(s.build(&["--locked"]).0, "an unchanged recipe passes --locked");
+    assert!(
+        s.build(&["--locked"]).0,
+        "an unchanged recipe passes --locked"
+    );
     s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 75.0 }");
     let (ok, _, err) = s.build(&["--locked"]);
     assert!(!ok);

@@ -5,7 +5,11 @@ use common_cli::*;
 
 fn stdout_of(s: &Scratch, args: &[&str]) -> String {
     let out = s.recipe_cmd(args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
@@ -16,8 +20,14 @@ fn explain_names_the_recipe_value_that_changed_with_old_and_new_values() {
     s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 40.0 }");
     assert!(s.build(&[]).0);
     let text = stdout_of(&s, &["explain", "didactic.toml"]);
-    let line = text.lines().find(|l| l.starts_with("discretize:F2#1")).expect("the F2 curve is listed");
-    assert!(line.contains("mesh.curves.\"F2\".size") && line.contains("100") && line.contains("40"), "{line}");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("discretize:F2#1"))
+        .expect("the F2 curve is listed");
+    assert!(
+        line.contains("mesh.curves.\"F2\".size") && line.contains("100") && line.contains("40"),
+        "{line}"
+    );
     let import = text.lines().find(|l| l.starts_with("import:H1")).unwrap();
     assert!(import.contains("cached"), "{import}");
 }
@@ -27,11 +37,16 @@ fn explain_says_an_input_file_changed() {
     let s = Scratch::didactic();
     assert!(s.build(&[]).0);
     let f = s.path("data/didactic/F2_dangling.ts");
-    let text = std::fs::read_to_string(&f).unwrap().replace("END\n", "END\n# edited\n");
+    let text = std::fs::read_to_string(&f)
+        .unwrap()
+        .replace("END\n", "END\n# edited\n");
     std::fs::write(&f, text).unwrap();
     assert!(s.build(&[]).0);
     let text = stdout_of(&s, &["explain", "didactic.toml"]);
-    let line = text.lines().find(|l| l.starts_with("file:F2")).expect("file node listed");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("file:F2"))
+        .expect("file node listed");
     assert!(line.contains("F2_dangling.ts"), "{line}");
 }
 
@@ -41,7 +56,13 @@ fn graph_prints_the_expanded_dag_with_node_states() {
     assert!(s.build(&[]).0);
     let dot = stdout_of(&s, &["graph", "didactic.toml"]);
     assert!(dot.starts_with("digraph"));
-    for n in ["import:H1", "intersect:F1/H1", "curves", "discretize:F1/H1", "export"] {
+    for n in [
+        "import:H1",
+        "intersect:F1/H1",
+        "curves",
+        "discretize:F1/H1",
+        "export",
+    ] {
         assert!(dot.contains(n), "`{n}` missing from the graph");
     }
 }
@@ -67,7 +88,11 @@ fn gc_removes_entries_of_an_old_recipe_value_and_keeps_the_current_build_cached(
     assert!(after < before, "gc removed nothing ({before} → {after})");
     let (ok, r, _) = s.build(&[]);
     assert!(ok);
-    assert_eq!(nodes_in_state(&r, "ran"), Vec::<String>::new(), "what the current build needs survived gc");
+    assert_eq!(
+        nodes_in_state(&r, "ran"),
+        Vec::<String>::new(),
+        "what the current build needs survived gc"
+    );
 }
 
 #[test]
@@ -86,7 +111,12 @@ fn the_json_report_carries_every_node_with_key_output_and_counts() {
     let s = Scratch::didactic();
     let (ok, r, _) = s.build(&[]);
     assert!(ok);
-    let import = r["nodes"].as_array().unwrap().iter().find(|n| n["name"] == "import:H1").unwrap();
+    let import = r["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["name"] == "import:H1")
+        .unwrap();
     for k in ["kind", "state", "reason", "duration_ms", "key", "output"] {
         assert!(!import[k].is_null(), "`{k}` missing");
     }

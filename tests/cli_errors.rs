@@ -17,7 +17,11 @@ fn fails_with(s: &Scratch, args: &[&str], needles: &[&str]) {
 fn a_misspelt_key_names_the_line_and_suggests_the_key() {
     let s = Scratch::didactic();
     s.edit("size = 200.0", "szie = 200.0");
-    fails_with(&s, &["build", "didactic.toml"], &["didactic.toml:", "szie", "size"]);
+    fails_with(
+        &s,
+        &["build", "didactic.toml"],
+        &["didactic.toml:", "szie", "size"],
+    );
     fails_with(&s, &["check", "didactic.toml"], &["didactic.toml:", "szie"]);
 }
 
@@ -25,13 +29,20 @@ fn a_misspelt_key_names_the_line_and_suggests_the_key() {
 fn a_missing_imported_file_is_named_with_the_recipe_line() {
     let s = Scratch::didactic();
     std::fs::remove_file(s.path("data/didactic/F2_dangling.ts")).unwrap();
-    fails_with(&s, &["build", "didactic.toml"], &["didactic.toml:", "F2_dangling.ts"]);
+    fails_with(
+        &s,
+        &["build", "didactic.toml"],
+        &["didactic.toml:", "F2_dangling.ts"],
+    );
 }
 
 #[test]
 fn a_curve_rule_that_matches_no_curve_of_the_model_fails_the_build_with_its_selector() {
     let s = Scratch::didactic();
-    s.edit("\"H1/F1\" = { size = 100.0 }", "\"H1/H2\" = { size = 100.0 }");
+    s.edit(
+        "\"H1/F1\" = { size = 100.0 }",
+        "\"H1/H2\" = { size = 100.0 }",
+    );
     fails_with(&s, &["build", "didactic.toml"], &["H1/H2"]);
 }
 
@@ -39,20 +50,29 @@ fn a_curve_rule_that_matches_no_curve_of_the_model_fails_the_build_with_its_sele
 fn a_corrupt_surface_file_fails_its_import_with_file_and_line_and_other_nodes_still_run() {
     let s = Scratch::didactic();
     let f = s.path("data/didactic/F2_dangling.ts");
-    let text = std::fs::read_to_string(&f).unwrap().replacen("TRGL 1 ", "TRGL 99999 ", 1);
+    let text = std::fs::read_to_string(&f)
+        .unwrap()
+        .replacen("TRGL 1 ", "TRGL 99999 ", 1);
     std::fs::write(&f, text).unwrap();
     let (ok, r, err) = s.build(&[]);
     assert!(!ok);
     assert!(err.contains("F2_dangling.ts:"), "{err}");
     assert!(nodes_in_state(&r, "failed").contains(&"import:F2".to_string()));
-    assert!(nodes_in_state(&r, "ran").contains(&"import:H1".to_string()), "independent nodes keep going");
+    assert!(
+        nodes_in_state(&r, "ran").contains(&"import:H1".to_string()),
+        "independent nodes keep going"
+    );
 }
 
 #[test]
 fn check_accepts_the_shipped_recipe() {
     let s = Scratch::didactic();
     let out = s.recipe_cmd(&["check", "didactic.toml"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]

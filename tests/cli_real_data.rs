@@ -43,12 +43,36 @@ dir = "out/bigbend"
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
     let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let node = |name: &str| r["nodes"].as_array().unwrap().iter().find(|n| n["name"] == name).cloned().unwrap_or_else(|| panic!("no node {name}"));
+    let node = |name: &str| {
+        r["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|n| n["name"] == name)
+            .cloned()
+            .unwrap_or_else(|| panic!("no node {name}"))
+    };
     assert_eq!(node("import:garlock")["counts"]["triangles"], 3262);
-    assert!(node("import:bigbear")["counts"]["findings"].as_u64().unwrap() > 0, "Big Bear's zero-area triangles are found");
-    assert!(err.contains("bigbear"), "the repaired findings are printed: {err}");
-    assert!(node("intersect:garlock/pleito")["counts"]["curves"].as_u64().unwrap() >= 1);
+    assert!(
+        node("import:bigbear")["counts"]["findings"]
+            .as_u64()
+            .unwrap()
+            > 0,
+        "Big Bear's zero-area triangles are found"
+    );
+    assert!(
+        err.contains("bigbear"),
+        "the repaired findings are printed: {err}"
+    );
+    assert!(
+        node("intersect:garlock/pleito")["counts"]["curves"]
+            .as_u64()
+            .unwrap()
+            >= 1
+    );
     assert!(all_nodes(&r).contains(&"discretize:garlock/pleito".to_string()));
-    let validation: serde_json::Value = serde_json::from_slice(&std::fs::read(s.path("out/bigbend/validation.json")).unwrap()).unwrap();
+    let validation: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(s.path("out/bigbend/validation.json")).unwrap())
+            .unwrap();
     assert!(validation.get("bigbear").is_some());
 }

@@ -15,7 +15,11 @@ fn shared() -> Option<PathBuf> {
 }
 
 fn has_checker() -> bool {
-    let ok = Command::new("python3").args(["-c", "import numpy, meshio"]).status().map(|s| s.success()).unwrap_or(false);
+    let ok = Command::new("python3")
+        .args(["-c", "import numpy, meshio"])
+        .status()
+        .map(|s| s.success())
+        .unwrap_or(false);
     if !ok {
         eprintln!("skipping the independent check: python3 with numpy and meshio is absent");
     }
@@ -27,17 +31,43 @@ fn mesh_region(region: &str, embed_entity: Option<&str>) {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join(format!("{region}.msh"));
     let pb = shared.join("data/peer-boundaries");
-    let mut args: Vec<String> = vec!["tetmesh".into(), pb.join(format!("region_L1_{region}.off")).display().to_string(), "-o".into(), out.display().to_string()];
+    let mut args: Vec<String> = vec![
+        "tetmesh".into(),
+        pb.join(format!("region_L1_{region}.off"))
+            .display()
+            .to_string(),
+        "-o".into(),
+        out.display().to_string(),
+    ];
     if let Some(e) = embed_entity {
-        args.extend(["--embed".into(), pb.join("didactic_L1_surface.msh").display().to_string(), "--embed-tags".into(), e.into(), "--weld".into(), "1e-5".into()]);
+        args.extend([
+            "--embed".into(),
+            pb.join("didactic_L1_surface.msh").display().to_string(),
+            "--embed-tags".into(),
+            e.into(),
+            "--weld".into(),
+            "1e-5".into(),
+        ]);
     }
-    let run = Command::new(env!("CARGO_BIN_EXE_recipe")).args(&args).output().unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .args(&args)
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{err}");
     assert!(out.is_file());
     if has_checker() {
-        let check = Command::new("python3").arg(shared.join("tools/check_mesh.py")).arg(&out).args(["--regions", "1"]).output().unwrap();
-        assert!(check.status.success(), "check_mesh.py failed:\n{}", String::from_utf8_lossy(&check.stdout));
+        let check = Command::new("python3")
+            .arg(shared.join("tools/check_mesh.py"))
+            .arg(&out)
+            .args(["--regions", "1"])
+            .output()
+            .unwrap();
+        assert!(
+            check.status.success(),
+            "check_mesh.py failed:\n{}",
+            String::from_utf8_lossy(&check.stdout)
+        );
     }
 }
 

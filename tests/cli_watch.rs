@@ -44,9 +44,14 @@ fn watch_mode_rebuilds_on_saves_survives_an_invalid_recipe_and_sees_rename_over_
     // An invalid edit: the watcher prints the error and keeps waiting.
     s.edit("size = 200.0", "size = \"big\"");
     let lines = wait_for("Watching");
-    assert!(lines.iter().any(|l| l.contains("didactic.toml:")), "{lines:?}");
+    assert!(
+        lines.iter().any(|l| l.contains("didactic.toml:")),
+        "{lines:?}"
+    );
     // A valid save by writing a temporary file and renaming it over the recipe.
-    let fixed = std::fs::read_to_string(s.recipe()).unwrap().replace("size = \"big\"", "size = 150.0");
+    let fixed = std::fs::read_to_string(s.recipe())
+        .unwrap()
+        .replace("size = \"big\"", "size = 150.0");
     let tmp = s.path("didactic.toml.tmp~");
     std::fs::write(&tmp, fixed).unwrap();
     std::fs::rename(&tmp, s.recipe()).unwrap();

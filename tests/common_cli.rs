@@ -13,8 +13,12 @@ impl Scratch {
     pub fn didactic() -> Scratch {
         let dir = tempfile::tempdir().expect("temp dir");
         let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("recipes");
-        copy_dir(&src.join("data/didactic"), &dir.path().join("data/didactic"));
-        std::fs::copy(src.join("didactic.toml"), dir.path().join("didactic.toml")).expect("copy recipe");
+        copy_dir(
+            &src.join("data/didactic"),
+            &dir.path().join("data/didactic"),
+        );
+        std::fs::copy(src.join("didactic.toml"), dir.path().join("didactic.toml"))
+            .expect("copy recipe");
         Scratch { dir }
     }
     pub fn recipe(&self) -> PathBuf {
@@ -30,7 +34,12 @@ impl Scratch {
         std::fs::write(&p, s.replacen(from, to, 1)).unwrap();
     }
     pub fn recipe_cmd(&self, args: &[&str]) -> Output {
-        Command::new(env!("CARGO_BIN_EXE_recipe")).args(args).current_dir(self.dir.path()).env_remove("RECIPE_CACHE_DIR").output().expect("run recipe")
+        Command::new(env!("CARGO_BIN_EXE_recipe"))
+            .args(args)
+            .current_dir(self.dir.path())
+            .env_remove("RECIPE_CACHE_DIR")
+            .output()
+            .expect("run recipe")
     }
     /// `recipe build --json ARGS didactic.toml`; returns (success, report JSON, stderr).
     pub fn build(&self, extra: &[&str]) -> (bool, serde_json::Value, String) {
@@ -60,14 +69,26 @@ pub fn copy_dir(from: &Path, to: &Path) {
 pub fn nodes_in_state(report: &serde_json::Value, state: &str) -> Vec<String> {
     let mut v: Vec<String> = report["nodes"]
         .as_array()
-        .map(|a| a.iter().filter(|n| n["state"] == state).filter_map(|n| n["name"].as_str().map(String::from)).collect())
+        .map(|a| {
+            a.iter()
+                .filter(|n| n["state"] == state)
+                .filter_map(|n| n["name"].as_str().map(String::from))
+                .collect()
+        })
         .unwrap_or_default();
     v.sort();
     v
 }
 
 pub fn all_nodes(report: &serde_json::Value) -> Vec<String> {
-    let mut v: Vec<String> = report["nodes"].as_array().map(|a| a.iter().filter_map(|n| n["name"].as_str().map(String::from)).collect()).unwrap_or_default();
+    let mut v: Vec<String> = report["nodes"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|n| n["name"].as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default();
     v.sort();
     v
 }
@@ -82,7 +103,10 @@ pub fn read_tree(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
             if p.is_dir() {
                 stack.push(p);
             } else {
-                m.insert(p.strip_prefix(dir).unwrap().display().to_string(), std::fs::read(&p).unwrap());
+                m.insert(
+                    p.strip_prefix(dir).unwrap().display().to_string(),
+                    std::fs::read(&p).unwrap(),
+                );
             }
         }
     }

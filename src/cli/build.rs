@@ -13,15 +13,33 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let graph = plan::lower(&recipe).map_err(|e| Failure(format!("error: {e}")))?;
     let cache = cache_dir(&args.recipe, &args.cache);
     let output_dir = recipe_dir(&args.recipe).join(&recipe.output.dir);
-    let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)).max(1);
-    let opts = BuildOptions { cache_dir: cache.clone(), output_dir: output_dir.clone(), jobs, keep_going: true };
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| {
+            std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1)
+        })
+        .max(1);
+    let opts = BuildOptions {
+        cache_dir: cache.clone(),
+        output_dir: output_dir.clone(),
+        jobs,
+        keep_going: true,
+    };
     let renderer = Renderer::new(args.quiet, args.explain);
     let report = engine::build(graph, &opts, &|e| renderer.event(e))?;
 
-    write_atomic(&last_report_path(&cache), report.to_json().to_string().as_bytes())?;
+    write_atomic(
+        &last_report_path(&cache),
+        report.to_json().to_string().as_bytes(),
+    )?;
     write_atomic(&last_graph_path(&cache), report.to_dot().as_bytes())?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report.to_json()).unwrap_or_default());
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report.to_json()).unwrap_or_default()
+        );
     }
     if !args.quiet {
         print_findings(&report);
@@ -36,7 +54,10 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         count(NodeState::Skipped)
     );
     if !report.ok {
-        return Err(Failure(format!("error: build of {} failed: {summary}", args.recipe.display())));
+        return Err(Failure(format!(
+            "error: build of {} failed: {summary}",
+            args.recipe.display()
+        )));
     }
 
     let lock_file = lock_path(&args.recipe);
@@ -45,10 +66,14 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         let text = std::fs::read_to_string(&lock_file).map_err(|_| {
             Failure(format!("error: --locked, but there is no lock file {}: build once without --locked and commit it", lock_file.display()))
         })?;
-        let old = LockFile::parse(&text).map_err(|e| Failure(format!("error: {}: {e}", lock_file.display())))?;
+        let old = LockFile::parse(&text)
+            .map_err(|e| Failure(format!("error: {}: {e}", lock_file.display())))?;
         let diff = old.diff(&new_lock);
         if !diff.is_empty() {
-            let mut msg = format!("error: the build differs from {} (--locked):", lock_file.display());
+            let mut msg = format!(
+                "error: the build differs from {} (--locked):",
+                lock_file.display()
+            );
             for d in &diff {
                 msg.push_str("\n  ");
                 msg.push_str(d);
@@ -76,21 +101,40 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
 /// Writes a file atomically: a temporary file in the same directory, then a rename.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     use std::io::Write;
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| Failure(format!("error: cannot create {}: {e}", dir.display())))?;
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| Failure(format!("error: cannot write in {}: {e}", dir.display())))?;
-    tmp.write_all(bytes).map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
-    tmp.persist(path).map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Failure(format!("error: cannot create {}: {e}", dir.display())))?;
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .map_err(|e| Failure(format!("error: cannot write in {}: {e}", dir.display())))?;
+    tmp.write_all(bytes)
+        .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
+    tmp.persist(path)
+        .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
     Ok(())
 }
 
 /// Prints the validation report of every imported surface that had findings (the full report
 /// is also written as `validation.json` beside the outputs).
 fn print_findings(report: &BuildReport) {
-    for n in report.nodes.iter().filter(|n| n.kind == "import" && n.counts.get("findings").is_some_and(|&f| f > 0)) {
-        let Some(data) = report.artifact(&n.name).and_then(|a| a.decode::<crate::plan::ops::SurfaceData>().ok()) else { continue };
+    for n in report
+        .nodes
+        .iter()
+        .filter(|n| n.kind == "import" && n.counts.get("findings").is_some_and(|&f| f > 0))
+    {
+        let Some(data) = report
+            .artifact(&n.name)
+            .and_then(|a| a.decode::<crate::plan::ops::SurfaceData>().ok())
+        else {
+            continue;
+        };
         if n.state == NodeState::Ran {
-            eprintln!("{:>12} surface `{}`: {} validation findings (repaired)", "Warning", data.name, data.findings);
+            eprintln!(
+                "{:>12} surface `{}`: {} validation findings (repaired)",
+                "Warning", data.name, data.findings
+            );
             for line in data.report_text.lines().take(20) {
                 eprintln!("             {line}");
             }

@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 
 /// `--cache-dir`, else `RECIPE_CACHE_DIR` (clap reads it), else `.recipe/` beside the recipe.
 pub fn cache_dir(recipe: &Path, args: &CacheArgs) -> PathBuf {
-    args.cache_dir.clone().unwrap_or_else(|| recipe_dir(recipe).join(".recipe"))
+    args.cache_dir
+        .clone()
+        .unwrap_or_else(|| recipe_dir(recipe).join(".recipe"))
 }
 
 pub fn recipe_dir(recipe: &Path) -> PathBuf {
@@ -19,7 +21,10 @@ pub fn recipe_dir(recipe: &Path) -> PathBuf {
 
 /// The lock file beside the recipe: `didactic.toml` → `didactic.toml.lock`.
 pub fn lock_path(recipe: &Path) -> PathBuf {
-    let mut name = recipe.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    let mut name = recipe
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
     name.push(".lock");
     recipe_dir(recipe).join(name)
 }
@@ -34,19 +39,39 @@ pub fn last_graph_path(cache: &Path) -> PathBuf {
     cache.join("last-graph.dot")
 }
 
-fn read_last(recipe: &Path, args: &CacheArgs, path: fn(&Path) -> PathBuf) -> Result<String, Failure> {
+fn read_last(
+    recipe: &Path,
+    args: &CacheArgs,
+    path: fn(&Path) -> PathBuf,
+) -> Result<String, Failure> {
     let p = path(&cache_dir(recipe, args));
-    std::fs::read_to_string(&p).map_err(|_| Failure(format!("error: no build recorded in {} yet: run `recipe build {}` first", p.display(), recipe.display())))
+    std::fs::read_to_string(&p).map_err(|_| {
+        Failure(format!(
+            "error: no build recorded in {} yet: run `recipe build {}` first",
+            p.display(),
+            recipe.display()
+        ))
+    })
 }
 
 /// `recipe explain`: why each node of the last build ran (or did not).
 pub fn explain(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let text = read_last(recipe, args, last_report_path)?;
-    let r: serde_json::Value = serde_json::from_str(&text).map_err(|e| Failure(format!("error: the last build's report is unreadable: {e}")))?;
+    let r: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| Failure(format!("error: the last build's report is unreadable: {e}")))?;
     let nodes = r["nodes"].as_array().cloned().unwrap_or_default();
-    let width = nodes.iter().filter_map(|n| n["name"].as_str()).map(str::len).max().unwrap_or(0);
+    let width = nodes
+        .iter()
+        .filter_map(|n| n["name"].as_str())
+        .map(str::len)
+        .max()
+        .unwrap_or(0);
     for n in &nodes {
-        let (name, state, reason) = (n["name"].as_str().unwrap_or(""), n["state"].as_str().unwrap_or(""), n["reason"].as_str().unwrap_or(""));
+        let (name, state, reason) = (
+            n["name"].as_str().unwrap_or(""),
+            n["state"].as_str().unwrap_or(""),
+            n["reason"].as_str().unwrap_or(""),
+        );
         println!("{name:<width$}  {state:<8} {reason}");
     }
     Ok(())
@@ -69,13 +94,17 @@ pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let dir = cache_dir(recipe, args);
     let mut keep = LockFile::default();
     if let Ok(text) = std::fs::read_to_string(lock_path(recipe)) {
-        keep = LockFile::parse(&text).map_err(|e| Failure(format!("error: {}: {e}", lock_path(recipe).display())))?;
+        keep = LockFile::parse(&text)
+            .map_err(|e| Failure(format!("error: {}: {e}", lock_path(recipe).display())))?;
     }
     if let Some(last) = engine::gc::last_build(&dir) {
         keep.nodes.extend(last.nodes);
         keep.outputs.extend(last.outputs);
     }
     let stats = engine::gc(&dir, &keep)?;
-    println!("kept {} cache entries, removed {} ({} bytes freed)", stats.kept, stats.removed, stats.bytes_freed);
+    println!(
+        "kept {} cache entries, removed {} ({} bytes freed)",
+        stats.kept, stats.removed, stats.bytes_freed
+    );
     Ok(())
 }

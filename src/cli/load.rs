@@ -6,11 +6,16 @@ use std::path::Path;
 
 /// Reads, parses and validates the recipe, including that every imported file exists.
 pub fn load(path: &Path) -> Result<Recipe, Failure> {
-    let text = std::fs::read_to_string(path).map_err(|e| Failure(format!("error: cannot read recipe {}: {e}", path.display())))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Failure(format!("error: cannot read recipe {}: {e}", path.display())))?;
     let r = recipe::parse(path, &text).map_err(|d| render(&d))?;
     let list_dir = |d: &Path| -> Vec<String> {
         let mut v: Vec<String> = std::fs::read_dir(d)
-            .map(|it| it.filter_map(|e| e.ok()).map(|e| e.file_name().to_string_lossy().into_owned()).collect())
+            .map(|it| {
+                it.filter_map(|e| e.ok())
+                    .map(|e| e.file_name().to_string_lossy().into_owned())
+                    .collect()
+            })
             .unwrap_or_default();
         v.sort();
         v

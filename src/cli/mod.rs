@@ -15,7 +15,11 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
-#[command(name = "recipe", version, about = "Compile a geological model recipe into finite-element meshes")]
+#[command(
+    name = "recipe",
+    version,
+    about = "Compile a geological model recipe into finite-element meshes"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -62,9 +66,7 @@ pub enum Command {
     /// Build the recipe's outputs (cached, incremental)
     Build(BuildArgs),
     /// Validate a recipe without building
-    Check {
-        recipe: PathBuf,
-    },
+    Check { recipe: PathBuf },
     /// Say why each node of the last build re-ran
     Explain {
         recipe: PathBuf,

@@ -48,8 +48,10 @@ pub struct TetmeshArgs {
 }
 
 fn read(path: &PathBuf) -> Result<BoundaryMesh, Failure> {
-    let bytes = std::fs::read(path).map_err(|e| Failure(format!("error: cannot read {}: {e}", path.display())))?;
-    read_by_extension(&path.display().to_string(), &bytes).map_err(|e| Failure(format!("error: {e}")))
+    let bytes = std::fs::read(path)
+        .map_err(|e| Failure(format!("error: cannot read {}: {e}", path.display())))?;
+    read_by_extension(&path.display().to_string(), &bytes)
+        .map_err(|e| Failure(format!("error: {e}")))
 }
 
 /// Merges vertices by exact coordinates (bit patterns), so faces from several files share nodes;
@@ -58,7 +60,10 @@ fn read(path: &PathBuf) -> Result<BoundaryMesh, Failure> {
 struct VertexPool {
     index: BTreeMap<[u64; 3], u32>,
     vertices: Vec<[f64; 3]>,
-    weld: Option<(f64, rstar::RTree<rstar::primitives::GeomWithData<[f64; 3], u32>>)>,
+    weld: Option<(
+        f64,
+        rstar::RTree<rstar::primitives::GeomWithData<[f64; 3], u32>>,
+    )>,
 }
 
 impl VertexPool {
@@ -83,7 +88,12 @@ impl VertexPool {
     }
     /// From now on, vertices within `tol` of one already in the pool are welded to it.
     fn weld_to_existing(&mut self, tol: f64) {
-        let pts = self.vertices.iter().enumerate().map(|(i, &p)| rstar::primitives::GeomWithData::new(p, i as u32)).collect();
+        let pts = self
+            .vertices
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| rstar::primitives::GeomWithData::new(p, i as u32))
+            .collect();
         self.weld = Some((tol, rstar::RTree::bulk_load(pts)));
     }
     fn triangles(&mut self, m: &BoundaryMesh, keep: impl Fn(i32) -> bool) -> Vec<[u32; 3]> {
@@ -111,28 +121,61 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         };
         let weld = a.weld.unwrap_or(1e-9 * diag);
         pool.weld_to_existing(weld);
-        embedded.extend(pool.triangles(&read(e)?, |t| a.embed_tags.is_empty() || a.embed_tags.contains(&t)));
+        embedded.extend(pool.triangles(&read(e)?, |t| {
+            a.embed_tags.is_empty() || a.embed_tags.contains(&t)
+        }));
     }
     if boundary.is_empty() {
-        return Err(Failure(format!("error: {}: no boundary triangles", a.boundary.display())));
+        return Err(Failure(format!(
+            "error: {}: no boundary triangles",
+            a.boundary.display()
+        )));
     }
     // Orientation: the caller's triangles may point inwards; the enclosed volume's sign says.
     let o = pool.vertices[boundary[0][0] as usize];
-    let vol: f64 = boundary.iter().map(|t| signed_volume(&o, &pool.vertices[t[0] as usize], &pool.vertices[t[1] as usize], &pool.vertices[t[2] as usize])).sum();
+    let vol: f64 = boundary
+        .iter()
+        .map(|t| {
+            signed_volume(
+                &o,
+                &pool.vertices[t[0] as usize],
+                &pool.vertices[t[1] as usize],
+                &pool.vertices[t[2] as usize],
+            )
+        })
+        .sum();
     if vol < 0.0 {
         for t in &mut boundary {
             t.swap(1, 2);
         }
     }
-    let name = a.name.clone().unwrap_or_else(|| a.boundary.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "region".into()));
+    let name = a.name.clone().unwrap_or_else(|| {
+        a.boundary
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "region".into())
+    });
     let size = match a.size {
         Some(s) if s > 0.0 && s.is_finite() => s,
         Some(s) => return Err(Failure(format!("error: --size must be positive, got {s}"))),
         None => mean_edge(&pool.vertices, &boundary),
     };
-    let input = RegionInput { name: name.clone(), vertices: pool.vertices, boundary, embedded };
-    let field = SizeField { size, min_size: size / 20.0, max_size: size * 20.0, growth: a.growth };
-    let opts = TetMeshOptions { optimize: !a.no_optimize, ..TetMeshOptions::default() };
+    let input = RegionInput {
+        name: name.clone(),
+        vertices: pool.vertices,
+        boundary,
+        embedded,
+    };
+    let field = SizeField {
+        size,
+        min_size: size / 20.0,
+        max_size: size * 20.0,
+        growth: a.growth,
+    };
+    let opts = TetMeshOptions {
+        optimize: !a.no_optimize,
+        ..TetMeshOptions::default()
+    };
     let t0 = std::time::Instant::now();
     let out = mesh_region(&input, &field, &opts).map_err(|e| Failure(format!("error: {e}")))?;
     let secs = t0.elapsed().as_secs_f64();
@@ -141,22 +184,43 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     triangles.extend(&input.embedded);
     let mut triangle_group = vec![0u32; input.boundary.len()];
     triangle_group.extend(std::iter::repeat_n(1u32, input.embedded.len()));
-    let mut surface_groups = vec![SurfaceGroup { name: "boundary".into(), kind: SurfaceKind::Other }];
+    let mut surface_groups = vec![SurfaceGroup {
+        name: "boundary".into(),
+        kind: SurfaceKind::Other,
+    }];
     if !input.embedded.is_empty() {
-        surface_groups.push(SurfaceGroup { name: "embedded".into(), kind: SurfaceKind::Fault });
+        surface_groups.push(SurfaceGroup {
+            name: "embedded".into(),
+            kind: SurfaceKind::Fault,
+        });
     }
     let mesh = VolumeMesh {
         nodes: out.nodes,
         tet_region: vec![0; out.tets.len()],
         tets: out.tets,
-        regions: vec![RegionGroup { name: name.clone(), material: None, properties: BTreeMap::new() }],
+        regions: vec![RegionGroup {
+            name: name.clone(),
+            material: None,
+            properties: BTreeMap::new(),
+        }],
         triangles,
         triangle_group,
         surface_groups,
     };
-    let stem = a.output.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| name.clone());
-    let dir = a.output.parent().filter(|p| !p.as_os_str().is_empty()).map(PathBuf::from).unwrap_or_else(|| PathBuf::from("."));
-    for (file, bytes) in export(&mesh, &stem, format).map_err(|e| Failure(format!("error: export: {e}")))? {
+    let stem = a
+        .output
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| name.clone());
+    let dir = a
+        .output
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("."));
+    for (file, bytes) in
+        export(&mesh, &stem, format).map_err(|e| Failure(format!("error: export: {e}")))?
+    {
         write_atomic(&dir.join(&file), &bytes)?;
         eprintln!("       Wrote {}", dir.join(&file).display());
     }
@@ -179,7 +243,10 @@ fn output_format(p: &std::path::Path) -> Result<Format, Failure> {
         "vtu" => Ok(Format::Vtu),
         "mesh" => Ok(Format::Medit),
         "node" | "ele" => Ok(Format::TetGen),
-        _ => Err(Failure(format!("error: {}: unknown output format `.{ext}` (use .msh, .vtu, .mesh or .node)", p.display()))),
+        _ => Err(Failure(format!(
+            "error: {}: unknown output format `.{ext}` (use .msh, .vtu, .mesh or .node)",
+            p.display()
+        ))),
     }
 }
 

@@ -19,7 +19,10 @@ const QUIET_PERIOD: Duration = Duration::from_millis(150);
 
 pub fn run(args: &BuildArgs) -> Result<(), Failure> {
     let recipe = std::path::absolute(&args.recipe)?;
-    let args = BuildArgs { recipe: recipe.clone(), ..args.clone() };
+    let args = BuildArgs {
+        recipe: recipe.clone(),
+        ..args.clone()
+    };
     let (tx, rx) = mpsc::channel::<notify::Result<notify::Event>>();
     let mut watcher = notify::recommended_watcher(move |res| {
         let _ = tx.send(res);
@@ -28,7 +31,10 @@ pub fn run(args: &BuildArgs) -> Result<(), Failure> {
     let mut builds = 0usize;
     loop {
         let files = watch_set(&recipe);
-        let dirs: BTreeSet<PathBuf> = files.iter().filter_map(|f| f.parent().map(Path::to_path_buf)).collect();
+        let dirs: BTreeSet<PathBuf> = files
+            .iter()
+            .filter_map(|f| f.parent().map(Path::to_path_buf))
+            .collect();
         for d in dirs.difference(&watched_dirs) {
             if let Err(e) = watcher.watch(d, RecursiveMode::NonRecursive) {
                 eprintln!("     Warning cannot watch {}: {e}", d.display());
@@ -46,7 +52,10 @@ pub fn run(args: &BuildArgs) -> Result<(), Failure> {
         if args.max_builds.is_some_and(|m| builds >= m) {
             return Ok(());
         }
-        eprintln!("    Watching {} files for changes (Ctrl-C to stop)", files.len());
+        eprintln!(
+            "    Watching {} files for changes (Ctrl-C to stop)",
+            files.len()
+        );
         wait_for_change(&rx, &files)?;
     }
 }
@@ -65,13 +74,18 @@ fn watch_set(recipe: &Path) -> BTreeSet<PathBuf> {
 }
 
 /// Blocks until an event names one of `files`, then until the burst is over.
-fn wait_for_change(rx: &mpsc::Receiver<notify::Result<notify::Event>>, files: &BTreeSet<PathBuf>) -> Result<(), Failure> {
+fn wait_for_change(
+    rx: &mpsc::Receiver<notify::Result<notify::Event>>,
+    files: &BTreeSet<PathBuf>,
+) -> Result<(), Failure> {
     let relevant = |ev: &notify::Result<notify::Event>| match ev {
         Ok(e) => e.paths.iter().any(|p| files.contains(p)),
         Err(_) => false,
     };
     loop {
-        let ev = rx.recv().map_err(|_| Failure("error: the file watcher stopped".into()))?;
+        let ev = rx
+            .recv()
+            .map_err(|_| Failure("error: the file watcher stopped".into()))?;
         if relevant(&ev) {
             break;
         }

@@ -49,23 +49,49 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
         let id = g.add_op(&format!("import:{name}"), Arc::new(op), &[file])?;
         surface_nodes.insert(name.clone(), id);
     }
-    let import_names: Vec<String> = recipe.surfaces.keys().map(|n| format!("import:{n}")).collect();
+    let import_names: Vec<String> = recipe
+        .surfaces
+        .keys()
+        .map(|n| format!("import:{n}"))
+        .collect();
     let import_ids: Vec<NodeId> = surface_nodes.values().copied().collect();
 
     if let Some(b) = &recipe.bbox {
         let (params, inputs) = match &b.extent {
-            recipe::BoxExtent::Explicit { min, max } => (BoxSpecParams::Explicit { min: *min, max: *max }, vec![]),
+            recipe::BoxExtent::Explicit { min, max } => (
+                BoxSpecParams::Explicit {
+                    min: *min,
+                    max: *max,
+                },
+                vec![],
+            ),
             recipe::BoxExtent::Around { surfaces, margin } => {
                 let ids = surfaces
                     .iter()
-                    .map(|n| surface_nodes.get(n).copied().ok_or_else(|| PlanError(format!("box.around names unknown surface `{n}`"))))
+                    .map(|n| {
+                        surface_nodes.get(n).copied().ok_or_else(|| {
+                            PlanError(format!("box.around names unknown surface `{n}`"))
+                        })
+                    })
                     .collect::<Result<Vec<_>, _>>()?;
-                (BoxSpecParams::Around { surfaces: surfaces.clone(), margin: *margin }, ids)
+                (
+                    BoxSpecParams::Around {
+                        surfaces: surfaces.clone(),
+                        margin: *margin,
+                    },
+                    ids,
+                )
             }
         };
         let bx = g.add_op("box", Arc::new(BoxOp(params)), &inputs)?;
         for side in recipe::BOX_SIDES {
-            let id = g.add_op(&format!("surface:{side}"), Arc::new(BoxSideOp { side: side.to_string() }), &[bx])?;
+            let id = g.add_op(
+                &format!("surface:{side}"),
+                Arc::new(BoxSideOp {
+                    side: side.to_string(),
+                }),
+                &[bx],
+            )?;
             surface_nodes.insert(side.to_string(), id);
         }
     }
@@ -73,9 +99,20 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     let mut intersections = Vec::new();
     for (a, b) in &recipe.intersect {
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        let ia = *surface_nodes.get(a).ok_or_else(|| PlanError(format!("intersect names unknown surface `{a}`")))?;
-        let ib = *surface_nodes.get(b).ok_or_else(|| PlanError(format!("intersect names unknown surface `{b}`")))?;
-        let id = g.add_op(&format!("intersect:{a}/{b}"), Arc::new(IntersectOp { a: a.clone(), b: b.clone() }), &[ia, ib])?;
+        let ia = *surface_nodes
+            .get(a)
+            .ok_or_else(|| PlanError(format!("intersect names unknown surface `{a}`")))?;
+        let ib = *surface_nodes
+            .get(b)
+            .ok_or_else(|| PlanError(format!("intersect names unknown surface `{b}`")))?;
+        let id = g.add_op(
+            &format!("intersect:{a}/{b}"),
+            Arc::new(IntersectOp {
+                a: a.clone(),
+                b: b.clone(),
+            }),
+            &[ia, ib],
+        )?;
         intersections.push(id);
     }
 
@@ -83,10 +120,16 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     curve_inputs.extend(intersections);
     let curves = g.add_op(
         "curves",
-        Arc::new(CurvesOp { n_surfaces: import_ids.len(), tolerances: recipe.tolerances.clone() }),
+        Arc::new(CurvesOp {
+            n_surfaces: import_ids.len(),
+            tolerances: recipe.tolerances.clone(),
+        }),
         &curve_inputs,
     )?;
-    let expander = DiscretizeExpander { recipe: Arc::new(recipe.clone()), import_nodes: import_names };
+    let expander = DiscretizeExpander {
+        recipe: Arc::new(recipe.clone()),
+        import_nodes: import_names,
+    };
     g.set_expander(curves, Arc::new(expander));
     Ok(g)
 }
@@ -98,7 +141,11 @@ pub fn curve_subdivision(recipe: &Recipe, name: &str) -> (String, Subdivision) {
         Some(r) => {
             let sub = match &r.subdivision {
                 recipe::Subdivision::Count(n) => Subdivision::Count(*n),
-                recipe::Subdivision::Size { size, ratio, grading } => Subdivision::Size {
+                recipe::Subdivision::Size {
+                    size,
+                    ratio,
+                    grading,
+                } => Subdivision::Size {
                     size: *size,
                     ratio: *ratio,
                     grading: match grading {
@@ -109,6 +156,13 @@ pub fn curve_subdivision(recipe: &Recipe, name: &str) -> (String, Subdivision) {
             };
             (format!("mesh.curves.\"{}\"", r.selector.text), sub)
         }
-        None => ("mesh.size".to_string(), Subdivision::Size { size: recipe.mesh.size, ratio: 1.0, grading: Grading::Geometric }),
+        None => (
+            "mesh.size".to_string(),
+            Subdivision::Size {
+                size: recipe.mesh.size,
+                ratio: 1.0,
+                grading: Grading::Geometric,
+            },
+        ),
     }
 }

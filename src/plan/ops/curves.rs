@@ -7,10 +7,12 @@
 //! of the recipe's pairs and the free borders of every imported surface, before trimming.
 
 use super::{ExportOp, SurfaceData};
+use crate::engine::{
+    Artifact, Expander, Expansion, OpError, Operation, Output, Params, RunContext,
+};
+use crate::geom::Tolerances;
 use crate::plan::lower::curve_subdivision;
 use crate::recipe::{self, Recipe};
-use crate::engine::{Artifact, Expander, Expansion, OpError, Operation, Output, Params, RunContext};
-use crate::geom::Tolerances;
 use crate::stages::discretize::{Grading, Subdivision, discretize};
 use crate::stages::{intersect, topology};
 use serde::{Deserialize, Serialize};
@@ -49,7 +51,8 @@ impl Operation for CurvesOp {
     fn params(&self) -> Params {
         let mut p = Params::new();
         for (k, v) in self.tolerances.fields() {
-            p.set(&format!("tolerances.{k}"), v).expect("validated finite");
+            p.set(&format!("tolerances.{k}"), v)
+                .expect("validated finite");
         }
         p
     }
@@ -65,13 +68,22 @@ impl Operation for CurvesOp {
                 .curves()
                 .into_iter()
                 .map(|c| {
-                    let pts: Vec<[f64; 3]> = c.vertices.iter().map(|&v| s.mesh.vertices[v as usize]).collect();
+                    let pts: Vec<[f64; 3]> = c
+                        .vertices
+                        .iter()
+                        .map(|&v| s.mesh.vertices[v as usize])
+                        .collect();
                     (canonical_direction(pts, c.closed), c.closed)
                 })
                 .collect();
             borders.sort_by(|x, y| geometric_key(&x.0).cmp(&geometric_key(&y.0)));
             for (k, (polyline, closed)) in borders.into_iter().enumerate() {
-                curves.push(ModelCurve { name: format!("{}#{}", s.name, k + 1), surfaces: vec![s.name.clone()], polyline, closed });
+                curves.push(ModelCurve {
+                    name: format!("{}#{}", s.name, k + 1),
+                    surfaces: vec![s.name.clone()],
+                    polyline,
+                    closed,
+                });
             }
         }
         for a in &inputs[self.n_surfaces..] {
@@ -84,7 +96,11 @@ impl Operation for CurvesOp {
                     polyline.push(polyline[0]);
                 }
                 curves.push(ModelCurve {
-                    name: if many { format!("{base}#{}", k + 1) } else { base },
+                    name: if many {
+                        format!("{base}#{}", k + 1)
+                    } else {
+                        base
+                    },
                     surfaces: vec![x.a.clone(), x.b.clone()],
                     polyline,
                     closed: c.closed,
@@ -131,10 +147,15 @@ impl Operation for CurveExtractOp {
         1
     }
     fn params(&self) -> Params {
-        Params::new().with("curve", self.name.as_str()).expect("string")
+        Params::new()
+            .with("curve", self.name.as_str())
+            .expect("string")
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let set: CurveSet = inputs.first().ok_or("curve needs the curve set")?.decode()?;
+        let set: CurveSet = inputs
+            .first()
+            .ok_or("curve needs the curve set")?
+            .decode()?;
         let c = set
             .curves
             .into_iter()
@@ -171,22 +192,42 @@ impl Operation for DiscretizeOp {
         let mut p = Params::new();
         match &self.rule {
             Subdivision::Count(n) => {
-                p.set(&format!("{}.count", self.rule_path), *n).expect("int");
+                p.set(&format!("{}.count", self.rule_path), *n)
+                    .expect("int");
             }
-            Subdivision::Size { size, ratio, grading } => {
-                p.set(&format!("{}.size", self.rule_path), *size).expect("validated finite");
-                p.set(&format!("{}.ratio", self.rule_path), *ratio).expect("validated finite");
-                let g = if *grading == Grading::Bump { "bump" } else { "geometric" };
-                p.set(&format!("{}.grading", self.rule_path), g).expect("string");
+            Subdivision::Size {
+                size,
+                ratio,
+                grading,
+            } => {
+                p.set(&format!("{}.size", self.rule_path), *size)
+                    .expect("validated finite");
+                p.set(&format!("{}.ratio", self.rule_path), *ratio)
+                    .expect("validated finite");
+                let g = if *grading == Grading::Bump {
+                    "bump"
+                } else {
+                    "geometric"
+                };
+                p.set(&format!("{}.grading", self.rule_path), g)
+                    .expect("string");
             }
         }
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let c: ModelCurve = inputs.first().ok_or("discretize needs its curve")?.decode()?;
-        let nodes = discretize(&c.polyline, &self.rule).map_err(|e| OpError::from(format!("curve `{}`: {e}", self.name)))?;
+        let c: ModelCurve = inputs
+            .first()
+            .ok_or("discretize needs its curve")?
+            .decode()?;
+        let nodes = discretize(&c.polyline, &self.rule)
+            .map_err(|e| OpError::from(format!("curve `{}`: {e}", self.name)))?;
         let n = nodes.len() as u64;
-        Ok(Output::new(Artifact::encode(&CurveNodes { name: self.name.clone(), nodes })?).count("nodes", n))
+        Ok(Output::new(Artifact::encode(&CurveNodes {
+            name: self.name.clone(),
+            nodes,
+        })?)
+        .count("nodes", n))
     }
 }
 
@@ -208,20 +249,48 @@ impl Expander for DiscretizeExpander {
         let curves_node = x.node("curves").ok_or("no `curves` node")?;
         let mut export_inputs = Vec::new();
         for name in &self.import_nodes {
-            export_inputs.push(x.node(name).ok_or_else(|| OpError::from(format!("no node `{name}`")))?);
+            export_inputs.push(
+                x.node(name)
+                    .ok_or_else(|| OpError::from(format!("no node `{name}`")))?,
+            );
         }
         for c in &set.curves {
-            let extract = x.add_op(&format!("curve:{}", c.name), Arc::new(CurveExtractOp { name: c.name.clone() }), &[curves_node]).map_err(graph_error)?;
+            let extract = x
+                .add_op(
+                    &format!("curve:{}", c.name),
+                    Arc::new(CurveExtractOp {
+                        name: c.name.clone(),
+                    }),
+                    &[curves_node],
+                )
+                .map_err(graph_error)?;
             let (rule_path, rule) = curve_subdivision(&self.recipe, &c.name);
-            let d = x.add_op(&format!("discretize:{}", c.name), Arc::new(DiscretizeOp { name: c.name.clone(), rule_path, rule }), &[extract]).map_err(graph_error)?;
+            let d = x
+                .add_op(
+                    &format!("discretize:{}", c.name),
+                    Arc::new(DiscretizeOp {
+                        name: c.name.clone(),
+                        rule_path,
+                        rule,
+                    }),
+                    &[extract],
+                )
+                .map_err(graph_error)?;
             export_inputs.push(d);
         }
         let export = ExportOp {
             model: self.recipe.model.name.clone(),
-            formats: self.recipe.output.formats.iter().map(|f| f.as_str().to_string()).collect(),
+            formats: self
+                .recipe
+                .output
+                .formats
+                .iter()
+                .map(|f| f.as_str().to_string())
+                .collect(),
             n_imports: self.import_nodes.len(),
         };
-        x.add_op("export", Arc::new(export), &export_inputs).map_err(graph_error)?;
+        x.add_op("export", Arc::new(export), &export_inputs)
+            .map_err(graph_error)?;
         Ok(())
     }
 }

@@ -23,7 +23,8 @@ impl Operation for ExportOp {
     fn params(&self) -> Params {
         let mut p = Params::new();
         p.set("model.name", self.model.as_str()).expect("string");
-        p.set("output.formats", self.formats.clone()).expect("strings");
+        p.set("output.formats", self.formats.clone())
+            .expect("strings");
         p
     }
     fn emits_files(&self) -> bool {
@@ -36,7 +37,8 @@ impl Operation for ExportOp {
         let mut reports = serde_json::Map::new();
         for a in &inputs[..self.n_imports] {
             let s: SurfaceData = a.decode()?;
-            let v: serde_json::Value = serde_json::from_str(&s.report_json).unwrap_or(serde_json::Value::Null);
+            let v: serde_json::Value =
+                serde_json::from_str(&s.report_json).unwrap_or(serde_json::Value::Null);
             reports.insert(s.name, v);
         }
         let mut curves = Vec::new();
@@ -45,11 +47,17 @@ impl Operation for ExportOp {
             curves.push((c.name, c.nodes));
         }
         let mut files = BTreeMap::new();
-        let validation = serde_json::to_string_pretty(&serde_json::Value::Object(reports)).map_err(|e| OpError::from(e.to_string()))?;
+        let validation = serde_json::to_string_pretty(&serde_json::Value::Object(reports))
+            .map_err(|e| OpError::from(e.to_string()))?;
         files.insert("validation.json".to_string(), validation.into_bytes());
-        files.insert(format!("{}.curves.vtu", self.model), write_curves_vtu(&curves));
+        files.insert(
+            format!("{}.curves.vtu", self.model),
+            write_curves_vtu(&curves),
+        );
         let n = files.len() as u64;
         let nodes: usize = curves.iter().map(|(_, n)| n.len()).sum();
-        Ok(Output::new(Artifact::encode(&FileSet { files })?).count("files", n).count("curve_nodes", nodes as u64))
+        Ok(Output::new(Artifact::encode(&FileSet { files })?)
+            .count("files", n)
+            .count("curve_nodes", nodes as u64))
     }
 }

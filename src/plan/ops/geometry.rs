@@ -10,9 +10,15 @@ use crate::stages::intersect;
 /// How the box is given: explicitly, or as the extent of some surfaces plus a margin.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BoxSpecParams {
-    Explicit { min: [f64; 3], max: [f64; 3] },
+    Explicit {
+        min: [f64; 3],
+        max: [f64; 3],
+    },
     /// The inputs of the node are the named surfaces' import nodes, in this order.
-    Around { surfaces: Vec<String>, margin: [f64; 3] },
+    Around {
+        surfaces: Vec<String>,
+        margin: [f64; 3],
+    },
 }
 
 /// `box`: the model's bounding box. Output: `BBox`.
@@ -41,7 +47,10 @@ impl Operation for BoxOp {
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let bbox = match &self.0 {
-            BoxSpecParams::Explicit { min, max } => BBox { min: *min, max: *max },
+            BoxSpecParams::Explicit { min, max } => BBox {
+                min: *min,
+                max: *max,
+            },
             BoxSpecParams::Around { margin, .. } => {
                 let mut b = BBox::empty();
                 for a in inputs {
@@ -52,13 +61,25 @@ impl Operation for BoxOp {
                     return Err("the box's surfaces have no vertices".into());
                 }
                 BBox {
-                    min: [b.min[0] - margin[0], b.min[1] - margin[1], b.min[2] - margin[2]],
-                    max: [b.max[0] + margin[0], b.max[1] + margin[1], b.max[2] + margin[2]],
+                    min: [
+                        b.min[0] - margin[0],
+                        b.min[1] - margin[1],
+                        b.min[2] - margin[2],
+                    ],
+                    max: [
+                        b.max[0] + margin[0],
+                        b.max[1] + margin[1],
+                        b.max[2] + margin[2],
+                    ],
                 }
             }
         };
         if (0..3).any(|k| !(bbox.min[k] < bbox.max[k])) {
-            return Err(format!("the box is empty or flat: min {:?}, max {:?}", bbox.min, bbox.max).into());
+            return Err(format!(
+                "the box is empty or flat: min {:?}, max {:?}",
+                bbox.min, bbox.max
+            )
+            .into());
         }
         Ok(Output::new(Artifact::encode(&bbox)?).count("volume_m3", bbox.volume().round() as u64))
     }
@@ -77,7 +98,9 @@ impl Operation for BoxSideOp {
         1
     }
     fn params(&self) -> Params {
-        Params::new().with("side", self.side.as_str()).expect("string")
+        Params::new()
+            .with("side", self.side.as_str())
+            .expect("string")
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let bbox: BBox = inputs.first().ok_or("box side needs the box")?.decode()?;
@@ -95,7 +118,8 @@ impl Operation for BoxSideOp {
             report_text: String::new(),
             findings: 0,
         };
-        Ok(Output::new(Artifact::encode(&data)?).count("triangles", data.mesh.triangles.len() as u64))
+        Ok(Output::new(Artifact::encode(&data)?)
+            .count("triangles", data.mesh.triangles.len() as u64))
     }
 }
 
@@ -114,7 +138,9 @@ impl Operation for IntersectOp {
         1
     }
     fn params(&self) -> Params {
-        Params::new().with("intersect.pair", vec![self.a.clone(), self.b.clone()]).expect("strings")
+        Params::new()
+            .with("intersect.pair", vec![self.a.clone(), self.b.clone()])
+            .expect("strings")
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let [sa, sb] = inputs else {
@@ -123,11 +149,19 @@ impl Operation for IntersectOp {
         let sa: SurfaceData = sa.decode()?;
         let sb: SurfaceData = sb.decode()?;
         let x = intersect::intersect(
-            intersect::SurfaceRef { name: &sa.name, mesh: &sa.mesh },
-            intersect::SurfaceRef { name: &sb.name, mesh: &sb.mesh },
+            intersect::SurfaceRef {
+                name: &sa.name,
+                mesh: &sa.mesh,
+            },
+            intersect::SurfaceRef {
+                name: &sb.name,
+                mesh: &sb.mesh,
+            },
         )
         .map_err(|e| OpError::from(e.to_string()))?;
         let points: usize = x.curves.iter().map(|c| c.points.len()).sum();
-        Ok(Output::new(Artifact::encode(&x)?).count("curves", x.curves.len() as u64).count("points", points as u64))
+        Ok(Output::new(Artifact::encode(&x)?)
+            .count("curves", x.curves.len() as u64)
+            .count("points", points as u64))
     }
 }

@@ -38,14 +38,28 @@ impl Operation for ImportOp {
     fn params(&self) -> Params {
         let mut p = Params::new();
         let key = |k: &str| format!("surfaces.{}.{k}", self.surface);
-        p.set(&key("kind"), format!("{:?}", self.kind).to_lowercase()).expect("finite");
-        p.set(&key("file"), self.file_label.as_str()).expect("finite");
-        p.set(&key("object"), self.object.clone().unwrap_or_default()).expect("finite");
-        p.set(&key("skip_other_types"), self.skip_other_types).expect("finite");
-        p.set(&key("on_invalid"), if self.on_invalid == OnInvalid::Repair { "repair" } else { "stop" }).expect("finite");
-        p.set("model.units", format!("{:?}", self.target_units)).expect("string");
+        p.set(&key("kind"), format!("{:?}", self.kind).to_lowercase())
+            .expect("finite");
+        p.set(&key("file"), self.file_label.as_str())
+            .expect("finite");
+        p.set(&key("object"), self.object.clone().unwrap_or_default())
+            .expect("finite");
+        p.set(&key("skip_other_types"), self.skip_other_types)
+            .expect("finite");
+        p.set(
+            &key("on_invalid"),
+            if self.on_invalid == OnInvalid::Repair {
+                "repair"
+            } else {
+                "stop"
+            },
+        )
+        .expect("finite");
+        p.set("model.units", format!("{:?}", self.target_units))
+            .expect("string");
         for (k, v) in self.tolerances.fields() {
-            p.set(&format!("tolerances.{k}"), v).expect("validated finite");
+            p.set(&format!("tolerances.{k}"), v)
+                .expect("validated finite");
         }
         p
     }
@@ -56,7 +70,8 @@ impl Operation for ImportOp {
             skip_other_types: self.skip_other_types,
             target_units: Some(self.target_units),
         };
-        let imported = import::import_surface(bytes, &self.file_label, &opts).map_err(|e| OpError::from(e.to_string()))?;
+        let imported = import::import_surface(bytes, &self.file_label, &opts)
+            .map_err(|e| OpError::from(e.to_string()))?;
         let report = validate::validate(&imported, &self.tolerances);
         let findings = report.findings.len() as u64;
         let (surface, repaired) = if report.is_clean() {
@@ -79,7 +94,11 @@ impl Operation for ImportOp {
             triangle_part: surface.triangle_part,
             bstones: surface.bstones,
             report_json: report.to_json().to_string(),
-            report_text: if report.is_clean() { String::new() } else { report.render_text() },
+            report_text: if report.is_clean() {
+                String::new()
+            } else {
+                report.render_text()
+            },
             findings,
         };
         let mut out = Output::new(Artifact::encode(&data)?)
@@ -88,7 +107,9 @@ impl Operation for ImportOp {
             .count("parts", surface.parts.len() as u64)
             .count("findings", findings);
         if repaired {
-            out.notes.push(format!("{findings} validation findings repaired (see validation.json)"));
+            out.notes.push(format!(
+                "{findings} validation findings repaired (see validation.json)"
+            ));
         }
         Ok(out)
     }

@@ -7,9 +7,11 @@ mod export;
 mod geometry;
 mod import;
 
-pub use curves::{CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve};
+pub use curves::{
+    CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,
+};
 pub use export::ExportOp;
-pub use geometry::{BoxOp, BoxSideOp, IntersectOp, BoxSpecParams};
+pub use geometry::{BoxOp, BoxSideOp, BoxSpecParams, IntersectOp};
 pub use import::{ImportOp, OnInvalid};
 
 use crate::geom::TriMesh;

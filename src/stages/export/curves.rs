@@ -11,11 +11,21 @@ pub fn write_curves_vtu(curves: &[(String, Vec<[f64; 3]>)]) -> Vec<u8> {
     s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
     s.push_str("<FieldData>\n");
     for (i, (name, _)) in curves.iter().enumerate() {
-        let _ = writeln!(s, "<Array type=\"UInt8\" Name=\"curve {i}: {}\" NumberOfTuples=\"1\" format=\"ascii\">0</Array>", xml_escape(name));
+        let _ = writeln!(
+            s,
+            "<Array type=\"UInt8\" Name=\"curve {i}: {}\" NumberOfTuples=\"1\" format=\"ascii\">0</Array>",
+            xml_escape(name)
+        );
     }
     s.push_str("</FieldData>\n");
-    let _ = writeln!(s, "<Piece NumberOfPoints=\"{npts}\" NumberOfCells=\"{}\">", curves.len());
-    s.push_str("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    let _ = writeln!(
+        s,
+        "<Piece NumberOfPoints=\"{npts}\" NumberOfCells=\"{}\">",
+        curves.len()
+    );
+    s.push_str(
+        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+    );
     for (_, nodes) in curves {
         for p in nodes {
             let _ = writeln!(s, "{} {} {}", p[0], p[1], p[2]);
@@ -38,13 +48,21 @@ pub fn write_curves_vtu(curves: &[(String, Vec<[f64; 3]>)]) -> Vec<u8> {
     s.push_str("\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
     s.push_str(&vec!["4"; curves.len()].join(" "));
     s.push_str("\n</DataArray>\n</Cells>\n<CellData Scalars=\"curve\">\n<DataArray type=\"Int32\" Name=\"curve\" format=\"ascii\">\n");
-    s.push_str(&(0..curves.len()).map(|i| i.to_string()).collect::<Vec<_>>().join(" "));
+    s.push_str(
+        &(0..curves.len())
+            .map(|i| i.to_string())
+            .collect::<Vec<_>>()
+            .join(" "),
+    );
     s.push_str("\n</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     s.into_bytes()
 }
 
 fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 #[cfg(test)]
@@ -53,7 +71,13 @@ mod tests {
 
     #[test]
     fn every_curve_becomes_one_poly_line_cell_with_its_points() {
-        let v = write_curves_vtu(&[("a/b".into(), vec![[0.0; 3], [1.0, 0.0, 0.0]]), ("c#1".into(), vec![[0.0; 3], [0.0, 1.0, 0.0], [0.0, 1.0, 1.0]])]);
+        let v = write_curves_vtu(&[
+            ("a/b".into(), vec![[0.0; 3], [1.0, 0.0, 0.0]]),
+            (
+                "c#1".into(),
+                vec![[0.0; 3], [0.0, 1.0, 0.0], [0.0, 1.0, 1.0]],
+            ),
+        ]);
         let s = String::from_utf8(v).unwrap();
         assert!(s.contains("NumberOfPoints=\"5\" NumberOfCells=\"2\""));
         assert!(s.contains("2 5 "));
