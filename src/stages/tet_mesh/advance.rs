@@ -108,23 +108,11 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
     let mut levels: HashMap<[u32; 3], u32> = HashMap::new();
     let mut defers: HashMap<[u32; 3], u32> = HashMap::new();
     let mut backtracks = 0usize;
-    let max_backtracks = 200 + input.boundary.len();
+    let max_backtracks = 100 + input.boundary.len() / 8;
     let max_steps = 400 * (input.boundary.len() + input.embedded.len()) + 100_000;
     let mut steps = 0usize;
     while let Some(fid) = st.front.pop() {
         steps += 1;
-        if DEBUG_STUCK && steps % 2000 == 0 {
-            let (lo, hi) = bbox_of(st.nodes.iter());
-            let fl: f64 = (0..st.front.faces.len()).filter(|&i| st.front.alive[i]).map(|i| mean_edge(&st.front.faces[i], &st.nodes)).sum::<f64>() / st.front.n_alive as f64;
-            if steps % 10000 == 0 {
-                let mut v: Vec<(f64, [u32; 3])> = (0..st.front.faces.len()).filter(|&i| st.front.alive[i]).map(|i| (mean_edge(&st.front.faces[i], &st.nodes), st.front.faces[i])).collect();
-                v.sort_by(|a, b| a.0.total_cmp(&b.0));
-                for (le, f) in v.iter().take(5) { eprintln!("  small {le} {:?} {:?}", centroid(f, &st.nodes), f); }
-                let nb = st.tets.len();
-                for t in &st.tets[nb - 5..] { eprintln!("  last tet {:?} q {}", t, mean_ratio(&st.nodes[t[0] as usize], &st.nodes[t[1] as usize], &st.nodes[t[2] as usize], &st.nodes[t[3] as usize])); }
-            }
-            eprintln!("step {steps} tets {} front {} backtracks {backtracks} bbox {lo:?} {hi:?} mean front edge {fl}", st.tets.len(), st.front.n_alive);
-        }
         if steps > max_steps {
             let f = st.front.faces[fid as usize];
             return Err(TetMeshError::new(
@@ -143,9 +131,6 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         let q_min = MIN_QUALITY.get(deferred as usize).copied();
         if let Some(c) = st.find_apex(fid, q_min.unwrap_or(0.0)) {
             st.build(fid, c);
-            if DEBUG_FRONT {
-                st.debug_check(steps);
-            }
             continue;
         }
         if q_min.is_some() && (deferred as usize) + 1 < MIN_QUALITY.len() {
@@ -170,9 +155,6 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             ));
         }
         let lvl = *level;
-        if DEBUG_STUCK && backtracks < 3 {
-            st.debug_stuck(fid);
-        }
         st.backtrack(fid, lvl);
     }
     let mut nodes = st.nodes;
@@ -209,59 +191,7 @@ fn centroid(f: &[u32; 3], pts: &[P]) -> P {
     ]
 }
 
-const DEBUG_FRONT: bool = false;
-const DEBUG_STUCK: bool = false;
-
 impl State<'_> {
-    fn debug_stuck(&mut self, fid: u32) {
-        let f = self.front.faces[fid as usize];
-        eprintln!("STUCK face {f:?} alive faces {}", self.front.n_alive);
-        let ids: Vec<u32> = (0..self.front.faces.len() as u32).filter(|&i| self.front.alive[i as usize]).collect();
-        let mut nodes: Vec<u32> = ids.iter().flat_map(|&i| self.front.faces[i as usize]).collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        for w in nodes {
-            if f.contains(&w) { continue; }
-            let [a, b, c] = f.map(|i| self.nodes[i as usize]);
-            let p = self.nodes[w as usize];
-            let o = orient3d(&a, &b, &c, &p);
-            if o != Orientation::Positive { continue; }
-            // why invalid?
-            let d = w;
-            let new_faces = [[f[0], f[1], d], [f[1], f[2], d], [f[2], f[0], d]];
-            let mut why = String::new();
-            for nf in &new_faces { if self.front.find(*nf).is_some() { why += &format!(" samefront{nf:?}"); } }
-            for &g in &ids {
-                if g == fid { continue; }
-                let gv = self.front.faces[g as usize];
-                for &x in &gv {
-                    if ![f[0], f[1], f[2], d].contains(&x) && point_in_closed_tet(&self.nodes[x as usize], &a, &b, &c, &p) { why += &format!(" node{x}in"); }
-                }
-                for nf in &new_faces {
-                    if same_set(nf, &gv) { continue; }
-                    if tri_tri_improper(*nf, gv, &self.nodes) { why += &format!(" {nf:?}x{gv:?}"); }
-                }
-            }
-            eprintln!("  cand {w} q={:.3}: {why}", mean_ratio(&a, &b, &c, &p));
-        }
-    }
-
-    fn debug_check(&self, step: usize) {
-        let ids: Vec<usize> = (0..self.front.faces.len()).filter(|&i| self.front.alive[i]).collect();
-        for (x, &i) in ids.iter().enumerate() {
-            for &j in &ids[x + 1..] {
-                let (f, g) = (self.front.faces[i], self.front.faces[j]);
-                if same_set(&f, &g) {
-                    continue;
-                }
-                if tri_tri_improper(f, g, &self.nodes) {
-                    let t = self.tets.last().unwrap();
-                    panic!("step {step}: front faces {f:?} and {g:?} intersect after tet {t:?} {:?}", t.map(|v| self.nodes[v as usize]));
-                }
-            }
-        }
-    }
-
     fn add_face(&mut self, f: [u32; 3]) {
         let key = mean_edge(&f, &self.nodes);
         self.front.add(f, key, &self.nodes);
@@ -342,20 +272,28 @@ impl State<'_> {
                 // Clearances use the background size so that small faces close on existing
                 // nodes instead of seeding ever smaller ones.
                 let hc = h.max(0.8 * self.bg.size_at(&m));
-                if nearest > NEW_NODE_CLEARANCE * hc && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc, &lo, &hi) {
+                if nearest > NEW_NODE_CLEARANCE * hc
+                    && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc, &lo, &hi)
+                {
                     let q = mean_ratio(&a, &b, &c, &ideal);
                     cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
                 }
             } else {
-                for frac in [0.6, 0.35, 0.2] {
+                for frac in [0.6, 0.35, 0.2, 0.1] {
                     let p = [
                         m[0] + nu[0] * height * frac,
                         m[1] + nu[1] * height * frac,
                         m[2] + nu[2] * height * frac,
                     ];
                     let hc = h.max(0.8 * self.bg.size_at(&m));
-                    let near_node = cand_nodes.iter().any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
-                    if near_node || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi) {
+                    let near_node = cand_nodes
+                        .iter()
+                        .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
+                    // On the last attempt before back-tracking, any valid point will do.
+                    if q_min > 0.0
+                        && (near_node
+                            || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi))
+                    {
                         continue;
                     }
                     let q = mean_ratio(&a, &b, &c, &p);
@@ -565,7 +503,13 @@ fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
     let ap = sub(p, a);
     let d1 = dot(&ab, &ap);
     let d2 = dot(&ac, &ap);
-    let at = |s: f64, t: f64| [a[0] + ab[0] * s + ac[0] * t, a[1] + ab[1] * s + ac[1] * t, a[2] + ab[2] * s + ac[2] * t];
+    let at = |s: f64, t: f64| {
+        [
+            a[0] + ab[0] * s + ac[0] * t,
+            a[1] + ab[1] * s + ac[1] * t,
+            a[2] + ab[2] * s + ac[2] * t,
+        ]
+    };
     let q = if d1 <= 0.0 && d2 <= 0.0 {
         *a
     } else {
@@ -594,7 +538,11 @@ fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
                         let va = d3 * d6 - d5 * d4;
                         if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
                             let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-                            [b[0] + (c[0] - b[0]) * w, b[1] + (c[1] - b[1]) * w, b[2] + (c[2] - b[2]) * w]
+                            [
+                                b[0] + (c[0] - b[0]) * w,
+                                b[1] + (c[1] - b[1]) * w,
+                                b[2] + (c[2] - b[2]) * w,
+                            ]
                         } else {
                             let denom = 1.0 / (va + vb + vc);
                             let v = vb * denom;

@@ -42,18 +42,40 @@ impl Background {
             sum += le;
             cap = cap.max(le);
         }
-        let avg = if les.is_empty() { 1.0 } else { sum / les.len() as f64 };
-        let mut cell = if avg.is_finite() && avg > 0.0 { avg } else { 1.0 };
-        let ext = [(hi[0] - lo[0]).max(0.0), (hi[1] - lo[1]).max(0.0), (hi[2] - lo[2]).max(0.0)];
-        let dims_for = |c: f64| ext.map(|e| ((e / c).floor() as usize).saturating_add(1).min(1 << 20));
+        let avg = if les.is_empty() {
+            1.0
+        } else {
+            sum / les.len() as f64
+        };
+        let mut cell = if avg.is_finite() && avg > 0.0 {
+            avg
+        } else {
+            1.0
+        };
+        let ext = [
+            (hi[0] - lo[0]).max(0.0),
+            (hi[1] - lo[1]).max(0.0),
+            (hi[2] - lo[2]).max(0.0),
+        ];
+        let dims_for =
+            |c: f64| ext.map(|e| ((e / c).floor() as usize).saturating_add(1).min(1 << 20));
         let mut dims = dims_for(cell);
         while dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]) > MAX_CELLS {
             cell *= 1.5;
             dims = dims_for(cell);
         }
-        let goal = field.size.min(cap).min(field.max_size).max(field.min_size.max(0.0));
+        let goal = field
+            .size
+            .min(cap)
+            .min(field.max_size)
+            .max(field.min_size.max(0.0));
         let n = dims[0] * dims[1] * dims[2];
-        let mut bg = Background { origin: lo, cell, dims, h: vec![f64::INFINITY; n] };
+        let mut bg = Background {
+            origin: lo,
+            cell,
+            dims,
+            h: vec![f64::INFINITY; n],
+        };
         for (t, &le) in tris.iter().zip(&les) {
             let (a, b) = bbox(t, pts);
             let (ca, cb) = (bg.cell_of(&a), bg.cell_of(&b));
@@ -61,7 +83,9 @@ impl Background {
                 for y in ca[1]..=cb[1] {
                     for z in ca[2]..=cb[2] {
                         let i = bg.index([x, y, z]);
-                        bg.h[i] = bg.h[i].min(le.clamp(field.min_size.max(0.0), field.max_size.max(field.min_size)));
+                        bg.h[i] = bg.h[i].min(
+                            le.clamp(field.min_size.max(0.0), field.max_size.max(field.min_size)),
+                        );
                     }
                 }
             }
@@ -92,7 +116,13 @@ impl Background {
                             continue;
                         }
                         let (xx, yy, zz) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
-                        if xx < 0 || yy < 0 || zz < 0 || xx >= nx as i64 || yy >= ny as i64 || zz >= nz as i64 {
+                        if xx < 0
+                            || yy < 0
+                            || zz < 0
+                            || xx >= nx as i64
+                            || yy >= ny as i64
+                            || zz >= nz as i64
+                        {
                             continue;
                         }
                         let j = xx as usize + nx * (yy as usize + ny * zz as usize);
@@ -113,7 +143,11 @@ impl Background {
         let mut c = [0usize; 3];
         for k in 0..3 {
             let v = ((p[k] - self.origin[k]) / self.cell).floor();
-            c[k] = if v.is_nan() || v < 0.0 { 0 } else { (v as usize).min(self.dims[k] - 1) };
+            c[k] = if v.is_nan() || v < 0.0 {
+                0
+            } else {
+                (v as usize).min(self.dims[k] - 1)
+            };
         }
         c
     }
@@ -131,7 +165,9 @@ impl Background {
 
 fn mean_edge(t: &[u32; 3], pts: &[P]) -> f64 {
     let [a, b, c] = t.map(|i| pts[i as usize]);
-    let d = |x: &P, y: &P| ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt();
+    let d = |x: &P, y: &P| {
+        ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
+    };
     (d(&a, &b) + d(&b, &c) + d(&c, &a)) / 3.0
 }
 
@@ -154,13 +190,28 @@ mod tests {
 
     #[test]
     fn sizes_grow_away_from_small_boundary_triangles_up_to_the_cap() {
-        let pts = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [10.0, 10.0, 10.0], [14.0, 10.0, 10.0], [10.0, 14.0, 10.0]];
+        let pts = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [10.0, 10.0, 10.0],
+            [14.0, 10.0, 10.0],
+            [10.0, 14.0, 10.0],
+        ];
         let tris = vec![[0, 1, 2], [3, 4, 5]];
-        let f = SizeField { size: f64::INFINITY, min_size: 0.0, max_size: f64::INFINITY, growth: 1.2 };
+        let f = SizeField {
+            size: f64::INFINITY,
+            min_size: 0.0,
+            max_size: f64::INFINITY,
+            growth: 1.2,
+        };
         let bg = Background::new(&pts, &tris, &f);
         let near = bg.size_at(&[0.2, 0.2, 0.0]);
         let mid = bg.size_at(&[5.0, 5.0, 5.0]);
         assert!(near < 1.2, "{near}");
-        assert!(mid > near && mid <= 4.0 * (1.0 + 2.0 / 3.0) / 3.0 * 3.0, "{mid}");
+        assert!(
+            mid > near && mid <= 4.0 * (1.0 + 2.0 / 3.0) / 3.0 * 3.0,
+            "{mid}"
+        );
     }
 }
