@@ -30,7 +30,7 @@ const MAX_LEVEL: u32 = 8;
 /// Minimum mean ratio a tetrahedron must reach on the successive attempts at one face; between
 /// attempts the face is deferred (re-queued behind the others). The last entry accepts any valid
 /// tetrahedron; failing that, the mesher back-tracks.
-const MIN_QUALITY: [f64; 4] = [0.3, 0.15, 0.03, 0.0];
+const MIN_QUALITY: [f64; 6] = [0.3, 0.15, 0.05, 0.02, 0.005, 0.0];
 /// New nodes closer than this fraction of the local size to a front face are not created.
 const FACE_CLEARANCE: f64 = 0.3;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
