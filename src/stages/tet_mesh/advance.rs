@@ -105,7 +105,9 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         st.add_face(*t);
         st.add_face([t[0], t[2], t[1]]);
     }
-    let mut levels: HashMap<[u32; 3], u32> = HashMap::new();
+    // Keyed by the stuck face's centroid bits, not its node ids: re-meshing a cavity re-creates
+    // nodes at the same places under new ids, and the retry level must still grow.
+    let mut levels: HashMap<[u64; 3], u32> = HashMap::new();
     let mut defers: HashMap<[u32; 3], u32> = HashMap::new();
     let mut backtracks = 0usize;
     let max_backtracks = 100 + input.boundary.len() / 8;
@@ -140,7 +142,9 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             st.front.requeue(fid, k);
             continue;
         }
-        let level = levels.entry(key).or_insert(0);
+        let level = levels
+            .entry(centroid(&f, &st.nodes).map(f64::to_bits))
+            .or_insert(0);
         *level += 1;
         backtracks += 1;
         let at = centroid(&f, &st.nodes);
