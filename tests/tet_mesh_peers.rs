@@ -227,7 +227,6 @@ fn peer_region_overburden_w_meshes_and_verifies() {
     run("overburden_W");
 }
 #[test]
-#[ignore = "known failure: the front gets stuck (see the tet_mesh report)"]
 fn peer_region_underburden_e_with_its_dangling_fault_meshes_and_verifies() {
     run("underburden_E");
 }
@@ -236,7 +235,6 @@ fn peer_region_reservoir_e_with_its_dangling_fault_meshes_and_verifies() {
     run("reservoir_E");
 }
 #[test]
-#[ignore = "known failure: the front gets stuck (see the tet_mesh report)"]
 fn peer_region_overburden_e_with_its_dangling_fault_meshes_and_verifies() {
     run("overburden_E");
 }

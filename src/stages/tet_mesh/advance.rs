@@ -374,7 +374,9 @@ impl State<'_> {
         }
         let new_faces = [[a, b, d], [b, c, d], [c, a, d]];
         for nf in &new_faces {
-            if self.front.find(*nf).is_some() {
+            // The same orientation already on the front means overlap — unless the reverse is
+            // there too: both sides of an open embedded face, and the tet closes the near one.
+            if self.front.find(*nf).is_some() && self.front.find([nf[0], nf[2], nf[1]]).is_none() {
                 return false;
             }
         }
