@@ -72,14 +72,14 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         cap = cap.max(le);
     }
     let avg = mean_edge_sum / input.boundary.len().max(1) as f64;
-    let (lo, _) = bbox_of(pts.iter());
+    let (lo, hi) = bbox_of(pts.iter());
     let mut st = State {
         name: &input.name,
         nodes: pts.clone(),
         tets: Vec::new(),
         tet_alive: Vec::new(),
         node_tets: vec![Vec::new(); pts.len()],
-        front: Front::new(lo, avg),
+        front: Front::new(lo, hi, avg),
         bg: {
             let mut all = input.boundary.clone();
             all.extend_from_slice(&input.embedded);
