@@ -5,7 +5,9 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use georecipe::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
 
-fn read_off(path: &str) -> Option<(Vec<[f64; 3]>, Vec<[u32; 3]>)> {
+type Off = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+
+fn read_off(path: &str) -> Option<Off> {
     let text = std::fs::read_to_string(path).ok()?;
     let mut it = text
         .lines()

@@ -31,9 +31,20 @@ impl Front {
     /// A front over the box `lo..hi` with grid cells of about `cell` (enlarged to keep the grid
     /// under a million cells).
     pub fn new(lo: P, hi: P, cell: f64) -> Self {
-        let mut cell = if cell.is_finite() && cell > 0.0 { cell } else { 1.0 };
-        let ext = [0, 1, 2].map(|k| if (hi[k] - lo[k]).is_finite() { (hi[k] - lo[k]).max(0.0) } else { 0.0 });
-        let dims_for = |c: f64| ext.map(|e| ((e / c).floor() as usize).saturating_add(1).min(1 << 20));
+        let mut cell = if cell.is_finite() && cell > 0.0 {
+            cell
+        } else {
+            1.0
+        };
+        let ext = [0, 1, 2].map(|k| {
+            if (hi[k] - lo[k]).is_finite() {
+                (hi[k] - lo[k]).max(0.0)
+            } else {
+                0.0
+            }
+        });
+        let dims_for =
+            |c: f64| ext.map(|e| ((e / c).floor() as usize).saturating_add(1).min(1 << 20));
         let mut dims = dims_for(cell);
         while dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]) > 1_000_000 {
             cell *= 1.5;
@@ -59,7 +70,11 @@ impl Front {
         let mut c = [0usize; 3];
         for k in 0..3 {
             let v = ((p[k] - self.origin[k]) * self.inv_cell).floor();
-            c[k] = if v.is_nan() || v < 0.0 { 0 } else { (v as usize).min(self.dims[k] - 1) };
+            c[k] = if v.is_nan() || v < 0.0 {
+                0
+            } else {
+                (v as usize).min(self.dims[k] - 1)
+            };
         }
         c
     }
