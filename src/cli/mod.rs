@@ -1,5 +1,2 @@
 //! `cli`: not yet implemented.
-pub fn main() -> i32 {
-    eprintln!("recipe: not yet implemented");
-    2
-}
+pub fn main() -> i32 { eprintln!("recipe: not yet implemented"); 2 }

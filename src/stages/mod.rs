@@ -1,12 +1,12 @@
 //! The pipeline stages, one module per stage in pipeline order. Each is a pure function of typed
 //! inputs: no filesystem, no clock, no global RNG, no output that depends on the thread count.
 
-pub mod discretize;
-pub mod export;
 pub mod import;
+pub mod validate;
+pub mod topology;
 pub mod intersect;
-pub mod quality;
+pub mod discretize;
 pub mod surface_mesh;
 pub mod tet_mesh;
-pub mod topology;
-pub mod validate;
+pub mod quality;
+pub mod export;
