@@ -30,7 +30,7 @@ const MAX_LEVEL: u32 = 8;
 /// Minimum mean ratio a tetrahedron must reach on the successive attempts at one face; between
 /// attempts the face is deferred (re-queued behind the others). The last entry accepts any valid
 /// tetrahedron; failing that, the mesher back-tracks.
-const MIN_QUALITY: [f64; 4] = [0.3, 0.15, 0.03, 0.0];
+const MIN_QUALITY: [f64; 6] = [0.3, 0.15, 0.05, 0.02, 0.005, 0.0];
 /// New nodes closer than this fraction of the local size to a front face are not created.
 const FACE_CLEARANCE: f64 = 0.3;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
@@ -72,14 +72,14 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         cap = cap.max(le);
     }
     let avg = mean_edge_sum / input.boundary.len().max(1) as f64;
-    let (lo, _) = bbox_of(pts.iter());
+    let (lo, hi) = bbox_of(pts.iter());
     let mut st = State {
         name: &input.name,
         nodes: pts.clone(),
         tets: Vec::new(),
         tet_alive: Vec::new(),
         node_tets: vec![Vec::new(); pts.len()],
-        front: Front::new(lo, avg),
+        front: Front::new(lo, hi, avg),
         bg: {
             let mut all = input.boundary.clone();
             all.extend_from_slice(&input.embedded);
@@ -105,14 +105,17 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         st.add_face(*t);
         st.add_face([t[0], t[2], t[1]]);
     }
-    let mut levels: HashMap<[u32; 3], u32> = HashMap::new();
+    // Keyed by the stuck face's centroid bits, not its node ids: re-meshing a cavity re-creates
+    // nodes at the same places under new ids, and the retry level must still grow.
+    let mut levels: HashMap<[u64; 3], u32> = HashMap::new();
     let mut defers: HashMap<[u32; 3], u32> = HashMap::new();
     let mut backtracks = 0usize;
-    let max_backtracks = 200 + input.boundary.len();
+    let max_backtracks = 100 + input.boundary.len() / 8;
     let max_steps = 400 * (input.boundary.len() + input.embedded.len()) + 100_000;
     let mut steps = 0usize;
     while let Some(fid) = st.front.pop() {
         steps += 1;
+<<<<<<< HEAD
         if DEBUG_STUCK && steps % 2000 == 0 {
             let (lo, hi) = bbox_of(st.nodes.iter());
             let fl: f64 = (0..st.front.faces.len())
@@ -149,6 +152,8 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
                 st.front.n_alive
             );
         }
+=======
+>>>>>>> wip/tetmesh
         if steps > max_steps {
             let f = st.front.faces[fid as usize];
             return Err(TetMeshError::new(
@@ -167,9 +172,6 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         let q_min = MIN_QUALITY.get(deferred as usize).copied();
         if let Some(c) = st.find_apex(fid, q_min.unwrap_or(0.0)) {
             st.build(fid, c);
-            if DEBUG_FRONT {
-                st.debug_check(steps);
-            }
             continue;
         }
         if q_min.is_some() && (deferred as usize) + 1 < MIN_QUALITY.len() {
@@ -179,7 +181,9 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             st.front.requeue(fid, k);
             continue;
         }
-        let level = levels.entry(key).or_insert(0);
+        let level = levels
+            .entry(centroid(&f, &st.nodes).map(f64::to_bits))
+            .or_insert(0);
         *level += 1;
         backtracks += 1;
         let at = centroid(&f, &st.nodes);
@@ -194,9 +198,6 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             ));
         }
         let lvl = *level;
-        if DEBUG_STUCK && backtracks < 3 {
-            st.debug_stuck(fid);
-        }
         st.backtrack(fid, lvl);
     }
     let mut nodes = st.nodes;
@@ -233,10 +234,8 @@ fn centroid(f: &[u32; 3], pts: &[P]) -> P {
     ]
 }
 
-const DEBUG_FRONT: bool = false;
-const DEBUG_STUCK: bool = false;
-
 impl State<'_> {
+<<<<<<< HEAD
     fn debug_stuck(&mut self, fid: u32) {
         let f = self.front.faces[fid as usize];
         eprintln!("STUCK face {f:?} alive faces {}", self.front.n_alive);
@@ -314,6 +313,8 @@ impl State<'_> {
         }
     }
 
+=======
+>>>>>>> wip/tetmesh
     fn add_face(&mut self, f: [u32; 3]) {
         let key = mean_edge(&f, &self.nodes);
         self.front.add(f, key, &self.nodes);
@@ -401,7 +402,7 @@ impl State<'_> {
                     cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
                 }
             } else {
-                for frac in [0.6, 0.35, 0.2] {
+                for frac in [0.6, 0.35, 0.2, 0.1] {
                     let p = [
                         m[0] + nu[0] * height * frac,
                         m[1] + nu[1] * height * frac,
@@ -411,8 +412,15 @@ impl State<'_> {
                     let near_node = cand_nodes
                         .iter()
                         .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
+<<<<<<< HEAD
                     if near_node
                         || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi)
+=======
+                    // On the last attempt before back-tracking, any valid point will do.
+                    if q_min > 0.0
+                        && (near_node
+                            || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi))
+>>>>>>> wip/tetmesh
                     {
                         continue;
                     }
@@ -490,7 +498,9 @@ impl State<'_> {
         }
         let new_faces = [[a, b, d], [b, c, d], [c, a, d]];
         for nf in &new_faces {
-            if self.front.find(*nf).is_some() {
+            // The same orientation already on the front means overlap — unless the reverse is
+            // there too: both sides of an open embedded face, and the tet closes the near one.
+            if self.front.find(*nf).is_some() && self.front.find([nf[0], nf[2], nf[1]]).is_none() {
                 return false;
             }
         }

@@ -16,7 +16,10 @@ pub struct Front {
     pub alive: Vec<bool>,
     map: HashMap<[u32; 3], u32>,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
-    cells: HashMap<[i32; 3], Vec<u32>>,
+    /// Dense grid over the region's bounding box; points outside clamp to the border cells
+    /// (monotone, so box overlaps are preserved).
+    cells: Vec<Vec<u32>>,
+    dims: [usize; 3],
     origin: P,
     inv_cell: f64,
     stamp: Vec<u32>,
@@ -25,19 +28,36 @@ pub struct Front {
 }
 
 impl Front {
-    pub fn new(origin: P, cell: f64) -> Self {
-        let cell = if cell.is_finite() && cell > 0.0 {
+    /// A front over the box `lo..hi` with grid cells of about `cell` (enlarged to keep the grid
+    /// under a million cells).
+    pub fn new(lo: P, hi: P, cell: f64) -> Self {
+        let mut cell = if cell.is_finite() && cell > 0.0 {
             cell
         } else {
             1.0
         };
+        let ext = [0, 1, 2].map(|k| {
+            if (hi[k] - lo[k]).is_finite() {
+                (hi[k] - lo[k]).max(0.0)
+            } else {
+                0.0
+            }
+        });
+        let dims_for =
+            |c: f64| ext.map(|e| ((e / c).floor() as usize).saturating_add(1).min(1 << 20));
+        let mut dims = dims_for(cell);
+        while dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]) > 1_000_000 {
+            cell *= 1.5;
+            dims = dims_for(cell);
+        }
         Front {
             faces: Vec::new(),
             alive: Vec::new(),
             map: HashMap::new(),
             heap: BinaryHeap::new(),
-            cells: HashMap::new(),
-            origin,
+            cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
+            dims,
+            origin: lo,
             inv_cell: 1.0 / cell,
             stamp: Vec::new(),
             generation: 0,
@@ -46,13 +66,22 @@ impl Front {
     }
 
     #[inline]
-    fn cell_of(&self, p: &P) -> [i32; 3] {
-        let mut c = [0i32; 3];
+    fn cell_of(&self, p: &P) -> [usize; 3] {
+        let mut c = [0usize; 3];
         for k in 0..3 {
             let v = ((p[k] - self.origin[k]) * self.inv_cell).floor();
-            c[k] = v.clamp(-1.0e9, 1.0e9) as i32;
+            c[k] = if v.is_nan() || v < 0.0 {
+                0
+            } else {
+                (v as usize).min(self.dims[k] - 1)
+            };
         }
         c
+    }
+
+    #[inline]
+    fn index(&self, x: usize, y: usize, z: usize) -> usize {
+        x + self.dims[0] * (y + self.dims[1] * z)
     }
 
     /// Id of the live face with exactly this orientation, if any.
@@ -75,7 +104,8 @@ impl Front {
         for x in cl[0]..=ch[0] {
             for y in cl[1]..=ch[1] {
                 for z in cl[2]..=ch[2] {
-                    self.cells.entry([x, y, z]).or_default().push(id);
+                    let i = self.index(x, y, z);
+                    self.cells[i].push(id);
                 }
             }
         }
@@ -120,15 +150,20 @@ impl Front {
         for x in cl[0]..=ch[0] {
             for y in cl[1]..=ch[1] {
                 for z in cl[2]..=ch[2] {
-                    if let Some(v) = self.cells.get_mut(&[x, y, z]) {
+                    let i = self.index(x, y, z);
+                    let v = &mut self.cells[i];
+                    if v.len() > 8 {
                         let alive = &self.alive;
                         v.retain(|&id| alive[id as usize]);
-                        for &id in v.iter() {
-                            let s = &mut self.stamp[id as usize];
-                            if *s != self.generation {
-                                *s = self.generation;
-                                out.push(id);
-                            }
+                    }
+                    for &id in v.iter() {
+                        if !self.alive[id as usize] {
+                            continue;
+                        }
+                        let s = &mut self.stamp[id as usize];
+                        if *s != self.generation {
+                            *s = self.generation;
+                            out.push(id);
                         }
                     }
                 }

@@ -19,8 +19,7 @@ pub fn optimize(nodes: &mut [P], tets: &mut [[u32; 4]], n_input: usize) {
         }
     }
     for _ in 0..PASSES {
-        for v in n_input..nodes.len() {
-            let b = &ball[v];
+        for (v, b) in ball.iter().enumerate().skip(n_input) {
             if b.is_empty() {
                 continue;
             }

@@ -145,7 +145,9 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
         let [a, b, c, d] = [a, b, c, d].map(|p| [p[0] - o[0], p[1] - o[1], p[2] - o[2]]);
         total += signed_volume(&a, &b, &c, &d);
     }
-    if !((total - expect).abs() <= 1e-9 * expect.abs()) {
+    // Written so that a NaN volume fails too.
+    let balanced = (total - expect).abs() <= 1e-9 * expect.abs();
+    if !balanced {
         return Err(TetMeshError::new(
             name,
             format!(
