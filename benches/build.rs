@@ -27,14 +27,17 @@ fn builds(c: &mut Criterion) {
     let mut g = c.benchmark_group("didactic");
     g.sample_size(10);
     g.bench_function("full build, empty cache, -j 1", |b| {
-        b.iter_with_setup(tempfile::tempdir, |dir| {
-            build_once(
-                &path,
-                &text,
-                &dir.path().join("cache"),
-                &dir.path().join("out"),
-            );
-        })
+        b.iter_with_setup(
+            || tempfile::tempdir().expect("temp dir"),
+            |dir| {
+                build_once(
+                    &path,
+                    &text,
+                    &dir.path().join("cache"),
+                    &dir.path().join("out"),
+                );
+            },
+        )
     });
     let dir = tempfile::tempdir().unwrap();
     build_once(

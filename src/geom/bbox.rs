@@ -12,7 +12,10 @@ pub struct BBox {
 impl BBox {
     /// The empty box (min = +inf, max = -inf): the identity of `union`.
     pub fn empty() -> Self {
-        BBox { min: [f64::INFINITY; 3], max: [f64::NEG_INFINITY; 3] }
+        BBox {
+            min: [f64::INFINITY; 3],
+            max: [f64::NEG_INFINITY; 3],
+        }
     }
     pub fn is_empty(&self) -> bool {
         (0..3).any(|k| self.min[k] > self.max[k])
@@ -47,12 +50,24 @@ impl BBox {
     }
     pub fn inflate(&self, margin: f64) -> BBox {
         BBox {
-            min: [self.min[0] - margin, self.min[1] - margin, self.min[2] - margin],
-            max: [self.max[0] + margin, self.max[1] + margin, self.max[2] + margin],
+            min: [
+                self.min[0] - margin,
+                self.min[1] - margin,
+                self.min[2] - margin,
+            ],
+            max: [
+                self.max[0] + margin,
+                self.max[1] + margin,
+                self.max[2] + margin,
+            ],
         }
     }
     pub fn extent(&self) -> [f64; 3] {
-        [self.max[0] - self.min[0], self.max[1] - self.min[1], self.max[2] - self.min[2]]
+        [
+            self.max[0] - self.min[0],
+            self.max[1] - self.min[1],
+            self.max[2] - self.min[2],
+        ]
     }
     pub fn volume(&self) -> f64 {
         let e = self.extent();

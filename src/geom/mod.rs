@@ -8,7 +8,7 @@ pub mod tolerances;
 pub mod trimesh;
 
 pub use bbox::BBox;
-pub use predicates::{Orientation, orient2d, orient3d, insphere};
+pub use predicates::{Orientation, insphere, orient2d, orient3d};
 pub use tolerances::Tolerances;
 pub use trimesh::TriMesh;
 

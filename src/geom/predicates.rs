@@ -51,7 +51,11 @@ impl Orientation {
 
 #[inline]
 fn c3(p: &[f64; 3]) -> Coord3D<f64> {
-    Coord3D { x: p[0], y: p[1], z: p[2] }
+    Coord3D {
+        x: p[0],
+        y: p[1],
+        z: p[2],
+    }
 }
 
 /// Exact side of `d` relative to the oriented plane `abc` (see the module doc for the sign).
@@ -85,7 +89,13 @@ pub fn incircle(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Orien
 /// Exact in-sphere test: `Positive` when `e` is strictly inside the circumsphere of the
 /// positively oriented (see `orient3d`) tetrahedron `abcd`.
 #[inline]
-pub fn insphere(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3], e: &[f64; 3]) -> Orientation {
+pub fn insphere(
+    a: &[f64; 3],
+    b: &[f64; 3],
+    c: &[f64; 3],
+    d: &[f64; 3],
+    e: &[f64; 3],
+) -> Orientation {
     // robust::insphere is positive when e is inside for abcd with robust::orient3d > 0, i.e.
     // negatively oriented in our convention; swapping a and b flips the orientation.
     Orientation::from_f64(robust::insphere(c3(b), c3(a), c3(c), c3(d), c3(e)))
@@ -110,7 +120,11 @@ pub fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 }
 #[inline]
 pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 #[cfg(test)]
@@ -123,8 +137,14 @@ mod tests {
 
     #[test]
     fn a_point_above_a_counter_clockwise_triangle_is_positive() {
-        assert_eq!(orient3d(&A, &B, &C, &[0.0, 0.0, 1.0]), Orientation::Positive);
-        assert_eq!(orient3d(&A, &B, &C, &[0.0, 0.0, -1.0]), Orientation::Negative);
+        assert_eq!(
+            orient3d(&A, &B, &C, &[0.0, 0.0, 1.0]),
+            Orientation::Positive
+        );
+        assert_eq!(
+            orient3d(&A, &B, &C, &[0.0, 0.0, -1.0]),
+            Orientation::Negative
+        );
         assert!(signed_volume(&A, &B, &C, &[0.0, 0.0, 1.0]) > 0.0);
     }
 
@@ -132,24 +152,45 @@ mod tests {
     fn a_coplanar_point_at_utm_magnitudes_is_exactly_zero() {
         let o = [512_345.125, 7_012_345.5, -1234.25];
         let p = |dx: f64, dy: f64| [o[0] + dx, o[1] + dy, o[2]];
-        assert_eq!(orient3d(&p(0.0, 0.0), &p(3.0, 0.0), &p(0.0, 3.0), &p(1.5, 1.5)), Orientation::Zero);
+        assert_eq!(
+            orient3d(&p(0.0, 0.0), &p(3.0, 0.0), &p(0.0, 3.0), &p(1.5, 1.5)),
+            Orientation::Zero
+        );
         let mut above = p(1.0, 1.0);
         above[2] += 1e-9;
-        assert_eq!(orient3d(&p(0.0, 0.0), &p(3.0, 0.0), &p(0.0, 3.0), &above), Orientation::Positive);
+        assert_eq!(
+            orient3d(&p(0.0, 0.0), &p(3.0, 0.0), &p(0.0, 3.0), &above),
+            Orientation::Positive
+        );
     }
 
     #[test]
     fn insphere_is_positive_inside_a_positive_tetrahedron() {
         let d = [0.0, 0.0, 1.0];
         assert_eq!(orient3d(&A, &B, &C, &d), Orientation::Positive);
-        assert_eq!(insphere(&A, &B, &C, &d, &[0.2, 0.2, 0.2]), Orientation::Positive);
-        assert_eq!(insphere(&A, &B, &C, &d, &[5.0, 5.0, 5.0]), Orientation::Negative);
-        assert_eq!(insphere(&A, &B, &C, &d, &[1.0, 1.0, 1.0]), Orientation::Zero);
+        assert_eq!(
+            insphere(&A, &B, &C, &d, &[0.2, 0.2, 0.2]),
+            Orientation::Positive
+        );
+        assert_eq!(
+            insphere(&A, &B, &C, &d, &[5.0, 5.0, 5.0]),
+            Orientation::Negative
+        );
+        assert_eq!(
+            insphere(&A, &B, &C, &d, &[1.0, 1.0, 1.0]),
+            Orientation::Zero
+        );
     }
 
     #[test]
     fn orient2d_counter_clockwise_is_positive() {
-        assert_eq!(orient2d(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0]), Orientation::Positive);
-        assert_eq!(orient2d(&[0.0, 0.0], &[0.0, 1.0], &[1.0, 0.0]), Orientation::Negative);
+        assert_eq!(
+            orient2d(&[0.0, 0.0], &[1.0, 0.0], &[0.0, 1.0]),
+            Orientation::Positive
+        );
+        assert_eq!(
+            orient2d(&[0.0, 0.0], &[0.0, 1.0], &[1.0, 0.0]),
+            Orientation::Negative
+        );
     }
 }

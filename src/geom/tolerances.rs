@@ -24,7 +24,11 @@ pub struct Tolerances {
 
 impl Default for Tolerances {
     fn default() -> Self {
-        Tolerances { kink_angle_deg: 30.0, merge_distance: 0.0, support_distance_rel: 1e-6 }
+        Tolerances {
+            kink_angle_deg: 30.0,
+            merge_distance: 0.0,
+            support_distance_rel: 1e-6,
+        }
     }
 }
 

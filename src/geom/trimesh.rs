@@ -12,21 +12,30 @@ pub struct TriMesh {
 
 impl TriMesh {
     pub fn new(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Self {
-        TriMesh { vertices, triangles }
+        TriMesh {
+            vertices,
+            triangles,
+        }
     }
     pub fn bbox(&self) -> BBox {
         BBox::from_points(self.vertices.iter())
     }
     pub fn corners(&self, t: usize) -> [&[f64; 3]; 3] {
         let [a, b, c] = self.triangles[t];
-        [&self.vertices[a as usize], &self.vertices[b as usize], &self.vertices[c as usize]]
+        [
+            &self.vertices[a as usize],
+            &self.vertices[b as usize],
+            &self.vertices[c as usize],
+        ]
     }
     pub fn triangle_bbox(&self, t: usize) -> BBox {
         BBox::from_points(self.corners(t))
     }
     /// Sum of triangle areas (floating point, for measures).
     pub fn area(&self) -> f64 {
-        (0..self.triangles.len()).map(|t| triangle_area(self.corners(t))).sum()
+        (0..self.triangles.len())
+            .map(|t| triangle_area(self.corners(t)))
+            .sum()
     }
 }
 

@@ -58,15 +58,33 @@ impl VolumeMesh {
     pub fn check_indices(&self) -> Result<(), String> {
         let n = self.nodes.len() as u32;
         if self.tet_region.len() != self.tets.len() {
-            return Err(format!("{} tets but {} region tags", self.tets.len(), self.tet_region.len()));
+            return Err(format!(
+                "{} tets but {} region tags",
+                self.tets.len(),
+                self.tet_region.len()
+            ));
         }
         if self.triangle_group.len() != self.triangles.len() {
-            return Err(format!("{} triangles but {} group tags", self.triangles.len(), self.triangle_group.len()));
+            return Err(format!(
+                "{} triangles but {} group tags",
+                self.triangles.len(),
+                self.triangle_group.len()
+            ));
         }
-        if let Some((i, t)) = self.tets.iter().enumerate().find(|(_, t)| t.iter().any(|&v| v >= n)) {
+        if let Some((i, t)) = self
+            .tets
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&v| v >= n))
+        {
             return Err(format!("tet {i} {t:?} references a node beyond {n}"));
         }
-        if let Some((i, t)) = self.triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&v| v >= n)) {
+        if let Some((i, t)) = self
+            .triangles
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&v| v >= n))
+        {
             return Err(format!("triangle {i} {t:?} references a node beyond {n}"));
         }
         let nr = self.regions.len() as u32;
@@ -75,7 +93,10 @@ impl VolumeMesh {
         }
         let ng = self.surface_groups.len() as u32;
         if let Some(i) = self.triangle_group.iter().position(|&g| g >= ng) {
-            return Err(format!("triangle {i} has group {} of {ng}", self.triangle_group[i]));
+            return Err(format!(
+                "triangle {i} has group {} of {ng}",
+                self.triangle_group[i]
+            ));
         }
         Ok(())
     }

@@ -115,45 +115,6 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
     let mut steps = 0usize;
     while let Some(fid) = st.front.pop() {
         steps += 1;
-<<<<<<< HEAD
-        if DEBUG_STUCK && steps % 2000 == 0 {
-            let (lo, hi) = bbox_of(st.nodes.iter());
-            let fl: f64 = (0..st.front.faces.len())
-                .filter(|&i| st.front.alive[i])
-                .map(|i| mean_edge(&st.front.faces[i], &st.nodes))
-                .sum::<f64>()
-                / st.front.n_alive as f64;
-            if steps % 10000 == 0 {
-                let mut v: Vec<(f64, [u32; 3])> = (0..st.front.faces.len())
-                    .filter(|&i| st.front.alive[i])
-                    .map(|i| (mean_edge(&st.front.faces[i], &st.nodes), st.front.faces[i]))
-                    .collect();
-                v.sort_by(|a, b| a.0.total_cmp(&b.0));
-                for (le, f) in v.iter().take(5) {
-                    eprintln!("  small {le} {:?} {:?}", centroid(f, &st.nodes), f);
-                }
-                let nb = st.tets.len();
-                for t in &st.tets[nb - 5..] {
-                    eprintln!(
-                        "  last tet {:?} q {}",
-                        t,
-                        mean_ratio(
-                            &st.nodes[t[0] as usize],
-                            &st.nodes[t[1] as usize],
-                            &st.nodes[t[2] as usize],
-                            &st.nodes[t[3] as usize]
-                        )
-                    );
-                }
-            }
-            eprintln!(
-                "step {steps} tets {} front {} backtracks {backtracks} bbox {lo:?} {hi:?} mean front edge {fl}",
-                st.tets.len(),
-                st.front.n_alive
-            );
-        }
-=======
->>>>>>> wip/tetmesh
         if steps > max_steps {
             let f = st.front.faces[fid as usize];
             return Err(TetMeshError::new(
@@ -235,86 +196,6 @@ fn centroid(f: &[u32; 3], pts: &[P]) -> P {
 }
 
 impl State<'_> {
-<<<<<<< HEAD
-    fn debug_stuck(&mut self, fid: u32) {
-        let f = self.front.faces[fid as usize];
-        eprintln!("STUCK face {f:?} alive faces {}", self.front.n_alive);
-        let ids: Vec<u32> = (0..self.front.faces.len() as u32)
-            .filter(|&i| self.front.alive[i as usize])
-            .collect();
-        let mut nodes: Vec<u32> = ids
-            .iter()
-            .flat_map(|&i| self.front.faces[i as usize])
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        for w in nodes {
-            if f.contains(&w) {
-                continue;
-            }
-            let [a, b, c] = f.map(|i| self.nodes[i as usize]);
-            let p = self.nodes[w as usize];
-            let o = orient3d(&a, &b, &c, &p);
-            if o != Orientation::Positive {
-                continue;
-            }
-            // why invalid?
-            let d = w;
-            let new_faces = [[f[0], f[1], d], [f[1], f[2], d], [f[2], f[0], d]];
-            let mut why = String::new();
-            for nf in &new_faces {
-                if self.front.find(*nf).is_some() {
-                    why += &format!(" samefront{nf:?}");
-                }
-            }
-            for &g in &ids {
-                if g == fid {
-                    continue;
-                }
-                let gv = self.front.faces[g as usize];
-                for &x in &gv {
-                    if ![f[0], f[1], f[2], d].contains(&x)
-                        && point_in_closed_tet(&self.nodes[x as usize], &a, &b, &c, &p)
-                    {
-                        why += &format!(" node{x}in");
-                    }
-                }
-                for nf in &new_faces {
-                    if same_set(nf, &gv) {
-                        continue;
-                    }
-                    if tri_tri_improper(*nf, gv, &self.nodes) {
-                        why += &format!(" {nf:?}x{gv:?}");
-                    }
-                }
-            }
-            eprintln!("  cand {w} q={:.3}: {why}", mean_ratio(&a, &b, &c, &p));
-        }
-    }
-
-    fn debug_check(&self, step: usize) {
-        let ids: Vec<usize> = (0..self.front.faces.len())
-            .filter(|&i| self.front.alive[i])
-            .collect();
-        for (x, &i) in ids.iter().enumerate() {
-            for &j in &ids[x + 1..] {
-                let (f, g) = (self.front.faces[i], self.front.faces[j]);
-                if same_set(&f, &g) {
-                    continue;
-                }
-                if tri_tri_improper(f, g, &self.nodes) {
-                    let t = self.tets.last().unwrap();
-                    panic!(
-                        "step {step}: front faces {f:?} and {g:?} intersect after tet {t:?} {:?}",
-                        t.map(|v| self.nodes[v as usize])
-                    );
-                }
-            }
-        }
-    }
-
-=======
->>>>>>> wip/tetmesh
     fn add_face(&mut self, f: [u32; 3]) {
         let key = mean_edge(&f, &self.nodes);
         self.front.add(f, key, &self.nodes);
@@ -412,15 +293,10 @@ impl State<'_> {
                     let near_node = cand_nodes
                         .iter()
                         .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
-<<<<<<< HEAD
-                    if near_node
-                        || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi)
-=======
                     // On the last attempt before back-tracking, any valid point will do.
                     if q_min > 0.0
                         && (near_node
                             || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi))
->>>>>>> wip/tetmesh
                     {
                         continue;
                     }
