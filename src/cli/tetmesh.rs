@@ -33,11 +33,11 @@ pub struct TetmeshArgs {
     /// with fewer digits need it [default: 1e-9 × the boundary's bounding-box diagonal]
     #[arg(long)]
     pub weld: Option<f64>,
-    /// Target element size [default: the mean boundary edge length]
+    /// Interior target element size [default: sizes grow from the boundary's, at --growth]
     #[arg(long)]
     pub size: Option<f64>,
     /// Size growth away from the boundary
-    #[arg(long, default_value_t = 1.3)]
+    #[arg(long, default_value_t = 1.2)]
     pub growth: f64,
     /// Skip quality optimization
     #[arg(long)]
@@ -155,23 +155,19 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "region".into())
     });
-    let size = match a.size {
-        Some(s) if s > 0.0 && s.is_finite() => s,
-        Some(s) => return Err(Failure(format!("error: --size must be positive, got {s}"))),
-        None => mean_edge(&pool.vertices, &boundary),
-    };
+    if let Some(sz) = a.size.filter(|s| !(*s > 0.0 && s.is_finite())) {
+        return Err(Failure(format!("error: --size must be positive, got {sz}")));
+    }
+    if !(a.growth > 1.0 && a.growth.is_finite()) {
+        return Err(Failure(format!("error: --growth must be greater than 1, got {}", a.growth)));
+    }
     let input = RegionInput {
         name: name.clone(),
         vertices: pool.vertices,
         boundary,
         embedded,
     };
-    let field = SizeField {
-        size,
-        min_size: size / 20.0,
-        max_size: size * 20.0,
-        growth: a.growth,
-    };
+    let field = SizeField { size: a.size.unwrap_or(f64::INFINITY), growth: a.growth, ..SizeField::default() };
     let opts = TetMeshOptions {
         optimize: !a.no_optimize,
         ..TetMeshOptions::default()
@@ -248,15 +244,4 @@ fn output_format(p: &std::path::Path) -> Result<Format, Failure> {
             p.display()
         ))),
     }
-}
-
-fn mean_edge(v: &[[f64; 3]], tris: &[[u32; 3]]) -> f64 {
-    let mut sum = 0.0;
-    for t in tris {
-        for k in 0..3 {
-            let (a, b) = (v[t[k] as usize], v[t[(k + 1) % 3] as usize]);
-            sum += ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-        }
-    }
-    sum / (3 * tris.len()).max(1) as f64
 }
