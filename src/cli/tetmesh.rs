@@ -159,7 +159,10 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         return Err(Failure(format!("error: --size must be positive, got {sz}")));
     }
     if !(a.growth > 1.0 && a.growth.is_finite()) {
-        return Err(Failure(format!("error: --growth must be greater than 1, got {}", a.growth)));
+        return Err(Failure(format!(
+            "error: --growth must be greater than 1, got {}",
+            a.growth
+        )));
     }
     let input = RegionInput {
         name: name.clone(),
@@ -167,7 +170,11 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         boundary,
         embedded,
     };
-    let field = SizeField { size: a.size.unwrap_or(f64::INFINITY), growth: a.growth, ..SizeField::default() };
+    let field = SizeField {
+        size: a.size.unwrap_or(f64::INFINITY),
+        growth: a.growth,
+        ..SizeField::default()
+    };
     let opts = TetMeshOptions {
         optimize: !a.no_optimize,
         ..TetMeshOptions::default()

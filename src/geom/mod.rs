@@ -6,11 +6,13 @@ pub mod bbox;
 pub mod predicates;
 pub mod tolerances;
 pub mod trimesh;
+pub mod units;
 
 pub use bbox::BBox;
 pub use predicates::{Orientation, insphere, orient2d, orient3d};
 pub use tolerances::Tolerances;
 pub use trimesh::TriMesh;
+pub use units::Units;
 
 /// A point in model coordinates (metres, or the recipe's units), as read from the input.
 pub type Point3 = [f64; 3];

@@ -4,7 +4,6 @@ use super::ops::*;
 use crate::engine::{BuildGraph, GraphError, NodeId};
 use crate::recipe::{self, Recipe};
 use crate::stages::discretize::{Grading, Subdivision};
-use crate::stages::import;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -35,11 +34,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             file_label: spec.file.display().to_string(),
             object: spec.object.clone(),
             skip_other_types: spec.skip_other_types,
-            target_units: match recipe.model.units {
-                recipe::Units::Metre => import::Units::Metre,
-                recipe::Units::Kilometre => import::Units::Kilometre,
-                recipe::Units::Foot => import::Units::Foot,
-            },
+            target_units: recipe.model.units,
             on_invalid: match spec.on_invalid {
                 recipe::OnInvalid::Stop => OnInvalid::Stop,
                 recipe::OnInvalid::Repair => OnInvalid::Repair,
@@ -139,21 +134,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
 pub fn curve_subdivision(recipe: &Recipe, name: &str) -> (String, Subdivision) {
     match recipe.mesh.curve_rule(name) {
         Some(r) => {
-            let sub = match &r.subdivision {
-                recipe::Subdivision::Count(n) => Subdivision::Count(*n),
-                recipe::Subdivision::Size {
-                    size,
-                    ratio,
-                    grading,
-                } => Subdivision::Size {
-                    size: *size,
-                    ratio: *ratio,
-                    grading: match grading {
-                        recipe::Grading::Geometric => Grading::Geometric,
-                        recipe::Grading::Bump => Grading::Bump,
-                    },
-                },
-            };
+            let sub = r.subdivision.clone();
             (format!("mesh.curves.\"{}\"", r.selector.text), sub)
         }
         None => (

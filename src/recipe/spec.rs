@@ -22,33 +22,7 @@ pub const BOX_SIDES: [&str; 6] = [
     "box.xmin", "box.xmax", "box.ymin", "box.ymax", "box.zmin", "box.zmax",
 ];
 
-/// Length unit of model coordinates (as read from the files; never rescaled).
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
-pub enum Units {
-    Metre,
-    Kilometre,
-    Foot,
-}
-
-impl Units {
-    /// Metres per model unit (for reports).
-    pub fn metres(self) -> f64 {
-        match self {
-            Units::Metre => 1.0,
-            Units::Kilometre => 1000.0,
-            Units::Foot => 0.3048,
-        }
-    }
-
-    /// The recipe spelling: `m`, `km`, `ft`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Units::Metre => "m",
-            Units::Kilometre => "km",
-            Units::Foot => "ft",
-        }
-    }
-}
+pub use crate::geom::Units;
 
 /// `[model]`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -161,27 +135,7 @@ pub struct TrimSpec {
     pub span: Span,
 }
 
-/// Grading of a sized curve subdivision.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
-pub enum Grading {
-    /// Segment lengths grow by `ratio` from the curve's start.
-    Geometric,
-    /// Segments grow by `ratio` from both ends towards the middle (symmetric).
-    Bump,
-}
-
-/// How a curve is subdivided.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub enum Subdivision {
-    /// Exactly this many segments (>= 1).
-    Count(u32),
-    /// Segments of about `size` (> 0), graded by `ratio` (> 0; 1 = uniform).
-    Size {
-        size: f64,
-        ratio: f64,
-        grading: Grading,
-    },
-}
+pub use crate::stages::discretize::{Grading, Subdivision};
 
 /// One `[mesh.curves]` entry.
 #[derive(Clone, Debug, PartialEq, Serialize)]

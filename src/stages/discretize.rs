@@ -26,7 +26,7 @@ pub enum Subdivision {
     },
 }
 
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 pub enum Grading {
     /// Sizes grow from the curve's start to its end.
     Geometric,

@@ -24,35 +24,7 @@ pub use select::{import_surface, import_surfaces};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
-/// Length units an import can convert between.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Units {
-    Metre,
-    Kilometre,
-    Foot,
-}
-
-impl Units {
-    /// Size of one unit in metres.
-    pub fn metres(self) -> f64 {
-        match self {
-            Units::Metre => 1.0,
-            Units::Kilometre => 1000.0,
-            Units::Foot => 0.3048,
-        }
-    }
-    /// Recognises the `AXIS_UNIT` spellings seen in gOcad files (case-insensitive).
-    pub fn parse(s: &str) -> Option<Units> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "m" | "meter" | "meters" | "metre" | "metres" => Some(Units::Metre),
-            "km" | "kilometer" | "kilometers" | "kilometre" | "kilometres" => {
-                Some(Units::Kilometre)
-            }
-            "ft" | "feet" | "foot" => Some(Units::Foot),
-            _ => None,
-        }
-    }
-}
+pub use crate::geom::Units;
 
 /// What the recipe says about one imported surface.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
