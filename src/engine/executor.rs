@@ -6,6 +6,8 @@
 //! Everything that reaches the report is decided here from node names, keys and hashes alone,
 //! so the outcome does not depend on how many workers there are or in which order they finish.
 
+const QUEUE_DEPTH: usize = 4;
+
 use crate::engine::artifact::{Artifact, Hash};
 use crate::engine::build::Event;
 use crate::engine::graph::{BuildGraph, Expansion, NodeData, NodeId, Work};
@@ -151,7 +153,10 @@ impl<'a> Coordinator<'a> {
     ) {
         let mut in_flight = 0usize;
         loop {
-            while in_flight < jobs && !self.stopped {
+            // Keep a few jobs queued per worker so a worker never waits for the coordinator to
+            // wake up between two nodes (each node is pure: the order of completion never
+            // changes a result).
+            while in_flight < jobs * QUEUE_DEPTH && !self.stopped {
                 let Some((_, id)) = self.ready.pop_first() else {
                     break;
                 };
