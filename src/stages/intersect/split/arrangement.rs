@@ -58,6 +58,10 @@ pub fn three_planes(t: [[[f64; 3]; 3]; 3]) -> Option<[f64; 3]> {
     }
     let x: [f64; 3] =
         [0, 1, 2].map(|k| o[k] + (d[0] * c12[k] + d[1] * c20[k] + d[2] * c01[k]) / det);
+    let mut x = x;
+    for tri in &t {
+        snap(&mut x, tri);
+    }
     x.iter().all(|c| c.is_finite()).then_some(x)
 }
 
@@ -79,7 +83,21 @@ pub fn edge_plane(p: [f64; 3], q: [f64; 3], t: [[f64; 3]; 3]) -> Option<[f64; 3]
         return None;
     }
     let s = s.clamp(0.0, 1.0);
-    Some([0, 1, 2].map(|k| p[k] + s * (q[k] - p[k])))
+    let mut x = [0, 1, 2].map(|k| p[k] + s * (q[k] - p[k]));
+    snap(&mut x, &t);
+    Some(x)
+}
+
+/// A point known to lie in the plane of `t`: when that plane is `x_k = c` exactly (all three
+/// corners share coordinate `k`), coordinate `k` of the point is exactly `c`, so it is set so
+/// (the float construction may be off by an ulp, which would put a point on a box side just
+/// outside the box).
+fn snap(x: &mut [f64; 3], t: &[[f64; 3]; 3]) {
+    for k in 0..3 {
+        if t[0][k] == t[1][k] && t[0][k] == t[2][k] {
+            x[k] = t[0][k];
+        }
+    }
 }
 
 /// The faces of the planar graph made of the polygon `boundary` (counter-clockwise in `pt`) and
