@@ -3,6 +3,9 @@
 //! inside the box are kept, and the regions they bound are found: 3 layers on each side of the
 //! through-going fault F1, with the dangling fault F2 inside three of them.
 
+#[path = "intersect_support/mod.rs"]
+mod intersect_support;
+
 use georecipe::geom::{BBox, TriMesh};
 use georecipe::stages::import::{ImportOptions, import_surface};
 use georecipe::stages::intersect::split::{Side, SplitSurface, split_all_with};
@@ -98,9 +101,39 @@ fn the_didactic_model_splits_into_patches_bounding_six_regions() {
         .expect("F1 x F2");
     assert!(f1f2.curves.is_empty(), "F1 and F2 do not meet");
     let split = split_every_surface(&surfaces, &xs);
-    // Where H1 x F1 meets a box side inside faces, the crossing is shared by three surfaces.
-    let h1 = &split.iter().find(|s| s.0 == "H1").expect("H1").1;
-    assert!(!h1.crossings.is_empty(), "H1 x F1 crosses H1 x box.ymin");
+    for ((name, s), (_, original)) in split.iter().zip(&surfaces) {
+        eprintln!("{name}: {} crossings", s.crossings.len());
+        intersect_support::assert_sound(original, s);
+    }
+    // Where F1 meets a horizon and box.ymin or box.ymax, the three surfaces share one vertex.
+    let crossing_bits = |n: &str| {
+        let s = &split.iter().find(|s| s.0 == n).expect("surface").1;
+        let mut v: Vec<[u64; 3]> = s
+            .crossings
+            .iter()
+            .map(|&v| s.mesh.vertices[v as usize].map(f64::to_bits))
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    let (h1, h2, f1) = (
+        crossing_bits("H1"),
+        crossing_bits("H2"),
+        crossing_bits("F1"),
+    );
+    let (ymin, ymax) = (crossing_bits("box.ymin"), crossing_bits("box.ymax"));
+    assert_eq!(
+        h1.len(),
+        2,
+        "H1 x F1 crosses H1 x box.ymin and H1 x box.ymax"
+    );
+    assert_eq!(h2.len(), 2);
+    let mut h = [h1, h2].concat();
+    h.sort_unstable();
+    assert_eq!(f1, h, "F1 has the same four crossings, bit for bit");
+    let mut y = [ymin, ymax].concat();
+    y.sort_unstable();
+    assert_eq!(y, h, "and so have the box sides");
     let b = bbox();
     let mut kept: Vec<PatchIn> = Vec::new();
     for (name, s) in &split {
