@@ -96,7 +96,7 @@ fn two_walls_crossing_on_a_horizon_meet_at_one_vertex_shared_by_all_three_surfac
 #[test]
 fn patch_order_does_not_depend_on_the_order_of_the_intersections() {
     let (h, wx, wy) = three();
-    let xs = vec![
+    let xs = [
         both("h", &h, "wx", &wx).expect("meets"),
         both("h", &h, "wy", &wy).expect("meets"),
     ];

@@ -8,6 +8,9 @@ use super::SplitError;
 use crate::geom::{Orientation, orient2d};
 use std::collections::BTreeMap;
 
+/// Polygons (vertex cycles) and locked edges (sorted vertex pairs).
+type Pieces = (Vec<Vec<u32>>, Vec<[u32; 2]>);
+
 /// The pieces of polygon `boundary` (oriented as `sign` in `pt`) cut along the chords `segs`
 /// (sorted, deduplicated, none a piece of the boundary), and the chains' edges (to lock).
 pub(super) fn cut(
@@ -16,7 +19,7 @@ pub(super) fn cut(
     pt: &dyn Fn(u32) -> [f64; 2],
     sign: Orientation,
     err: &dyn Fn(&str, u32) -> SplitError,
-) -> Result<(Vec<Vec<u32>>, Vec<[u32; 2]>), SplitError> {
+) -> Result<Pieces, SplitError> {
     let on_boundary = |v: u32| boundary.contains(&v);
     let mut adj: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
     for s in segs {
