@@ -111,6 +111,9 @@ pub fn faces(
     pt: &dyn Fn(u32) -> [f64; 2],
 ) -> Option<Vec<Vec<u32>>> {
     let m = boundary.len();
+    if m < 3 {
+        return None;
+    }
     let mut adj: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
     let add = |a: u32, b: u32, adj: &mut BTreeMap<u32, Vec<u32>>| {
         if a != b {
