@@ -8,7 +8,7 @@ mod intersect_support;
 
 use georecipe::geom::{BBox, TriMesh};
 use georecipe::stages::import::{ImportOptions, import_surface};
-use georecipe::stages::intersect::split::{Side, SplitSurface, split_all_with};
+use georecipe::stages::intersect::split::{SplitSurface, split_model};
 use georecipe::stages::intersect::{Intersection, SurfaceRef, box_sides, intersect};
 use georecipe::stages::patches::{Patch, inside_box, patches};
 use georecipe::stages::regions::{PatchIn, RegionOptions, find_regions_with};
@@ -69,27 +69,9 @@ fn split_every_surface(
     surfaces: &[(String, TriMesh)],
     xs: &[Intersection],
 ) -> Vec<(String, SplitSurface)> {
-    let others: Vec<(&str, &TriMesh)> = surfaces.iter().map(|(n, m)| (n.as_str(), m)).collect();
-    surfaces
-        .iter()
-        .map(|(name, mesh)| {
-            let mine: Vec<(&Intersection, Side)> = xs
-                .iter()
-                .filter_map(|x| {
-                    if &x.a == name {
-                        Some((x, Side::A))
-                    } else if &x.b == name {
-                        Some((x, Side::B))
-                    } else {
-                        None
-                    }
-                })
-                .collect();
-            let s = split_all_with(name, mesh, &mine, &others)
-                .unwrap_or_else(|e| panic!("{name} splits: {e}"));
-            (name.clone(), s)
-        })
-        .collect()
+    let refs: Vec<(&str, &TriMesh)> = surfaces.iter().map(|(n, m)| (n.as_str(), m)).collect();
+    let split = split_model(&refs, xs).unwrap_or_else(|e| panic!("splits: {e}"));
+    surfaces.iter().map(|s| s.0.clone()).zip(split).collect()
 }
 
 #[test]

@@ -102,6 +102,33 @@ pub fn split_all(
     split_all_with(surface_name, mesh, intersections, &[])
 }
 
+/// Split every surface of a model along all the intersections that involve it (picking each
+/// intersection's side by name), with the other surfaces' meshes for canonical shared points.
+/// The result is in the order of `surfaces`.
+pub fn split_model(
+    surfaces: &[(&str, &TriMesh)],
+    intersections: &[Intersection],
+) -> Result<Vec<SplitSurface>, SplitError> {
+    surfaces
+        .iter()
+        .map(|&(name, mesh)| {
+            let mine: Vec<(&Intersection, Side)> = intersections
+                .iter()
+                .filter_map(|x| {
+                    if x.a == name {
+                        Some((x, Side::A))
+                    } else if x.b == name {
+                        Some((x, Side::B))
+                    } else {
+                        None
+                    }
+                })
+                .collect();
+            split_all_with(name, mesh, &mine, surfaces)
+        })
+        .collect()
+}
+
 /// One curve point as seen on the surface being split.
 struct Pt {
     ix: usize,
