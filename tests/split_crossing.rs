@@ -130,3 +130,42 @@ fn a_curve_pointing_at_a_missing_triangle_is_an_error_not_a_panic() {
     let e = split_all("h", &h, &[(&x, Side::A)]).expect_err("bad triangle");
     assert!(matches!(e, SplitError::BadIndex { index: 9999, .. }), "{e}");
 }
+
+#[test]
+fn a_fault_ending_inside_a_face_after_crossing_another_curve_there_is_joined() {
+    // One coarse horizon cell (two triangles of 100 m); a through-going wall near x = 40 and a
+    // wall near y = 30 that stops at x = 70, inside the lower triangle, after crossing it.
+    let h = grid(1, 1, |i, j| {
+        [
+            500_000.0 + 100.0 * i as f64,
+            7_000_000.0 + 100.0 * j as f64,
+            -50.0 + 3.0 * i as f64 + 2.0 * j as f64,
+        ]
+    });
+    let wx = grid(1, 1, |i, k| {
+        let y = 6_999_990.0 + 120.0 * i as f64;
+        [
+            500_040.3 + 0.01 * (y - 7_000_000.0),
+            y,
+            -90.0 + 80.0 * k as f64,
+        ]
+    });
+    let wy = grid(1, 1, |i, k| {
+        let x = 499_990.0 + 80.3 * i as f64;
+        [
+            x,
+            7_000_030.7 + 0.02 * (x - 500_000.0),
+            -90.0 + 80.0 * k as f64,
+        ]
+    });
+    let xs = [
+        both("h", &h, "wx", &wx).expect("meets"),
+        both("h", &h, "wy", &wy).expect("meets"),
+    ];
+    let s = split_all("h", &h, &[(&xs[0], Side::A), (&xs[1], Side::A)]).expect("joined");
+    assert_sound(&h, &s);
+    assert_eq!(s.crossings.len(), 1);
+    // West of the through wall, the other wall runs border to crossing and cuts that side in
+    // two; east of it, the wall dangles and cuts nothing: three patches.
+    assert_eq!(patches("h", &s).len(), 3);
+}

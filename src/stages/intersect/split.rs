@@ -479,22 +479,7 @@ pub fn split_all_with(
         segs.sort_unstable();
         segs.dedup();
         let (polys, locked) = if has_crossing.contains(&t) {
-            // Faces traced counter-clockwise in a projection mirrored when needed.
-            let ptm = |v: u32| {
-                let p = pt(v);
-                if sign == Orientation::Negative {
-                    [-p[0], p[1]]
-                } else {
-                    p
-                }
-            };
-            let f = arrangement::faces(&boundary, &segs, &ptm).ok_or_else(|| {
-                err(
-                    "curves cross here and one ends inside the face or is detached",
-                    boundary[0],
-                )
-            })?;
-            (f, segs.clone())
+            arranged(&boundary, &segs, &pt, sign, &err)?
         } else {
             cut::cut(&boundary, &segs, &pt, sign, &err)?
         };
@@ -520,6 +505,124 @@ pub fn split_all_with(
         crossings,
         curve_edges,
     })
+}
+
+/// The pieces of a triangle where curves cross: dangling chains (ending inside the face) are set
+/// aside, the faces of the remaining arrangement are traced, and each face holding dangling
+/// chains is then cut along them like a triangle without crossings. Returns the polygons and
+/// the curve edges to lock.
+fn arranged(
+    boundary: &[u32],
+    segs: &[[u32; 2]],
+    pt: &dyn Fn(u32) -> [f64; 2],
+    sign: Orientation,
+    err: &dyn Fn(&str, u32) -> SplitError,
+) -> Result<(Vec<Vec<u32>>, Vec<[u32; 2]>), SplitError> {
+    let on_b = |v: u32| boundary.contains(&v);
+    let mut inc: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
+    for (i, s) in segs.iter().enumerate() {
+        inc.entry(s[0]).or_default().push(i);
+        inc.entry(s[1]).or_default().push(i);
+    }
+    let mut deg: BTreeMap<u32, usize> = inc.iter().map(|(&v, l)| (v, l.len())).collect();
+    let mut kept = vec![true; segs.len()];
+    let mut stack: Vec<u32> = deg
+        .iter()
+        .filter(|&(&v, &d)| d == 1 && !on_b(v))
+        .map(|(&v, _)| v)
+        .collect();
+    while let Some(v) = stack.pop() {
+        let Some(&i) = inc.get(&v).and_then(|l| l.iter().find(|&&i| kept[i])) else {
+            continue;
+        };
+        kept[i] = false;
+        for w in segs[i] {
+            if let Some(d) = deg.get_mut(&w) {
+                *d = d.saturating_sub(1);
+                if *d == 1 && !on_b(w) {
+                    stack.push(w);
+                }
+            }
+        }
+    }
+    let main: Vec<[u32; 2]> = (0..segs.len())
+        .filter(|&i| kept[i])
+        .map(|i| segs[i])
+        .collect();
+    // Faces traced counter-clockwise in a projection mirrored when needed.
+    let ptm = |v: u32| {
+        let p = pt(v);
+        if sign == Orientation::Negative {
+            [-p[0], p[1]]
+        } else {
+            p
+        }
+    };
+    let faces = arrangement::faces(boundary, &main, &ptm).ok_or_else(|| {
+        err(
+            "curves cross here and a piece of curve is detached",
+            boundary[0],
+        )
+    })?;
+    let mut locked = main.clone();
+    let stripped: Vec<usize> = (0..segs.len()).filter(|&i| !kept[i]).collect();
+    if stripped.is_empty() {
+        return Ok((faces, locked));
+    }
+    let mut taken = vec![false; segs.len()];
+    let mut polys = Vec::new();
+    for f in faces {
+        // Dangling chains leaving a vertex of `f` into its interior, with everything beyond.
+        let mut mine: Vec<[u32; 2]> = Vec::new();
+        for &a in &f {
+            for &i in inc.get(&a).map(Vec::as_slice).unwrap_or(&[]) {
+                if kept[i] || taken[i] {
+                    continue;
+                }
+                let w = if segs[i][0] == a {
+                    segs[i][1]
+                } else {
+                    segs[i][0]
+                };
+                if !cut::chain_inside(&f, &[a, w], pt, sign) {
+                    continue;
+                }
+                taken[i] = true;
+                mine.push(segs[i]);
+                let mut todo = vec![w];
+                while let Some(u) = todo.pop() {
+                    for &j in inc.get(&u).map(Vec::as_slice).unwrap_or(&[]) {
+                        if kept[j] || taken[j] {
+                            continue;
+                        }
+                        taken[j] = true;
+                        mine.push(segs[j]);
+                        let x = if segs[j][0] == u {
+                            segs[j][1]
+                        } else {
+                            segs[j][0]
+                        };
+                        if x != a {
+                            todo.push(x);
+                        }
+                    }
+                }
+            }
+        }
+        if mine.is_empty() {
+            polys.push(f);
+            continue;
+        }
+        mine.sort_unstable();
+        mine.dedup();
+        let (p, l) = cut::cut(&f, &mine, pt, sign, err)?;
+        polys.extend(p);
+        locked.extend(l);
+    }
+    if let Some(&i) = stripped.iter().find(|&&i| !taken[i]) {
+        return Err(err("a curve lies entirely inside this face", segs[i][0]));
+    }
+    Ok((polys, locked))
 }
 
 /// The mesh of surface `n` among `others`.

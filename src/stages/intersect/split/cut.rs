@@ -177,7 +177,12 @@ fn bridge(
 
 /// Whether the chain leaves its first vertex into the interior of polygon `p` (at that vertex,
 /// the chain's second point lies strictly inside the polygon's corner angle).
-fn chain_inside(p: &[u32], chain: &[u32], pt: &dyn Fn(u32) -> [f64; 2], sign: Orientation) -> bool {
+pub(super) fn chain_inside(
+    p: &[u32],
+    chain: &[u32],
+    pt: &dyn Fn(u32) -> [f64; 2],
+    sign: Orientation,
+) -> bool {
     let m = p.len();
     let Some(i) = p.iter().position(|&v| v == chain[0]) else {
         return false;
