@@ -517,7 +517,7 @@ fn arranged(
     pt: &dyn Fn(u32) -> [f64; 2],
     sign: Orientation,
     err: &dyn Fn(&str, u32) -> SplitError,
-) -> Result<(Vec<Vec<u32>>, Vec<[u32; 2]>), SplitError> {
+) -> Result<cut::Pieces, SplitError> {
     let on_b = |v: u32| boundary.contains(&v);
     let mut inc: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
     for (i, s) in segs.iter().enumerate() {

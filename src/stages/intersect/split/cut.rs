@@ -9,7 +9,7 @@ use crate::geom::{Orientation, orient2d};
 use std::collections::BTreeMap;
 
 /// Polygons (vertex cycles) and locked edges (sorted vertex pairs).
-type Pieces = (Vec<Vec<u32>>, Vec<[u32; 2]>);
+pub(super) type Pieces = (Vec<Vec<u32>>, Vec<[u32; 2]>);
 
 /// The pieces of polygon `boundary` (oriented as `sign` in `pt`) cut along the chords `segs`
 /// (sorted, deduplicated, none a piece of the boundary), and the chains' edges (to lock).
