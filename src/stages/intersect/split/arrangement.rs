@@ -243,4 +243,19 @@ mod tests {
         assert_eq!(three_planes([x, y, z]), Some([3.0, 5.0, -2.0]));
         assert_eq!(three_planes([x, x, z]), None);
     }
+
+    #[test]
+    fn an_edge_crossing_a_box_side_lands_exactly_on_it_whichever_way_it_is_given() {
+        let side = [
+            [500_000.1, 7_000_000.0, -10.0],
+            [500_000.1, 7_000_010.0, -10.0],
+            [500_000.1, 7_000_000.0, 10.0],
+        ];
+        let p = [499_993.7, 7_000_003.3, -1.234_567];
+        let q = [500_007.9, 7_000_004.1, 2.345_678];
+        let a = edge_plane(p, q, side).expect("crosses");
+        let b = edge_plane(q, p, side).expect("crosses");
+        assert_eq!(a[0], 500_000.1, "snapped onto the plane x = 500000.1");
+        assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits));
+    }
 }
