@@ -5,6 +5,7 @@ pub mod discretize;
 pub mod export;
 pub mod import;
 pub mod intersect;
+pub mod patches;
 pub mod quality;
 pub mod regions;
 pub mod surface_mesh;

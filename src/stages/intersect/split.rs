@@ -1,26 +1,38 @@
-//! Splitting (first step): insert the curves of one intersection into one of its two surfaces so
-//! that the triangulation conforms to them: every curve point becomes a vertex (existing vertex,
-//! or a new vertex on an edge or inside a face) and every curve segment becomes an edge.
+//! Splitting: insert the curves of every intersection of one surface into its triangulation so
+//! that it conforms to all of them: every curve point becomes a vertex (existing vertex, or a
+//! new vertex on an edge or inside a face), every curve segment becomes one or more edges, and
+//! where curves of two intersections cross inside a face the crossing becomes a vertex of both.
+//!
+//! Points merge when they are the same place on the surface: the same vertex, or the same edge
+//! or face with bit-identical coordinates. To make points shared by three surfaces identical on
+//! all of them, [`split_all_with`] takes the other surfaces' meshes and constructs coordinates
+//! from inputs in a canonical order: an edge crossing a face from its endpoints in lexicographic
+//! order (a box edge seen from two box sides), a crossing of two curves inside a face as the
+//! common point of the three triangles' planes taken in surface-name order.
 //!
 //! Each original triangle is re-triangulated on its own: its boundary polygon (corners plus the
 //! curve points on its edges, shared with the neighbours, so the result stays conforming) is cut
-//! along the chords the curves draw across it, and each piece is ear-clipped. Orientation tests
-//! use `orient2d` in a projection chosen exactly for the original triangle, on the (float)
-//! coordinates of the points; new triangles keep the orientation of their parent.
+//! along the chords the curves draw across it, and each piece is ear-clipped. When no curves
+//! cross inside the triangle, chains are cut one by one ([`cut`]; dangling ends allowed); when
+//! some do, the faces of the chords' arrangement are traced ([`arrangement`]). Every decision
+//! (do two chords cross, which side, which face) is an exact `orient2d` in a projection chosen
+//! exactly for the original triangle, on the (float) coordinates of the points; new triangles
+//! keep the orientation of their parent.
 //!
-//! Supported: curves crossing triangles from border to border, through any number of points
-//! inside the face, and curves that end inside a face (a dangling fault edge): the dangling end
-//! is joined by an extra, non-curve edge to a polygon vertex it sees. Not yet supported, reported
-//! as [`SplitError::Unsupported`] with the triangle and a coordinate: curves branching inside a
-//! face, a curve lying entirely inside a single face, or a curve touching a zero-area triangle.
-//! Isolated touch points are not inserted. Several intersections on one surface (curves
-//! crossing each other inside a face) need the arrangement of their segments: the next step.
+//! Not supported, reported as [`SplitError::Unsupported`] with the triangle and a coordinate:
+//! curves branching inside a face (other than crossing), a curve lying entirely inside a single
+//! face, a curve point lying exactly on another curve's segment inside a face, a dangling curve
+//! end in a face where curves cross, a curve touching a zero-area triangle. Isolated touch
+//! points are not inserted.
+
+pub mod arrangement;
+mod cut;
 
 use super::Intersection;
 use super::key::{Location, PointKey};
 use super::locate::{project, projection_axis};
 use super::polygon::{ear_clip, improve};
-use crate::geom::{Orientation, TriMesh, orient2d};
+use crate::geom::{Orientation, TriMesh};
 use std::collections::BTreeMap;
 use thiserror::Error;
 
@@ -34,14 +46,19 @@ pub enum Side {
 /// A surface re-triangulated to conform to intersection curves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SplitSurface {
-    /// Original vertices first (same indices), then one new vertex per new curve point, in key
-    /// order.
+    /// Original vertices first (same indices), then one new vertex per new curve point (sorted
+    /// by location on the surface, then coordinates), then one per crossing of two curves.
     pub mesh: TriMesh,
     /// For each triangle of `mesh`, the original triangle it lies in.
     pub parent: Vec<u32>,
-    /// The vertex of `mesh` of each curve point.
+    /// The vertex of `mesh` of each curve point of the first intersection (the only one for
+    /// [`split`]); see `vertex_of_each` for all of them.
     pub vertex_of: BTreeMap<PointKey, u32>,
-    /// The curve segments as sorted vertex pairs of `mesh`, sorted.
+    /// For each intersection given to [`split_all`], in order, the vertex of each curve point.
+    pub vertex_of_each: Vec<BTreeMap<PointKey, u32>>,
+    /// Vertices created where curves of two intersections cross inside a face, sorted.
+    pub crossings: Vec<u32>,
+    /// The curve segments (pieces between crossings) as sorted vertex pairs of `mesh`, sorted.
     pub curve_edges: Vec<[u32; 2]>,
 }
 
@@ -58,73 +75,352 @@ pub enum SplitError {
         "splitting `{surface}`: the intersection refers to triangle or vertex {index}, which the surface does not have"
     )]
     BadIndex { surface: String, index: u32 },
-}
-
-fn loc_of(p: &super::CurvePoint, side: Side) -> Location {
-    if side == Side::A { p.on_a } else { p.on_b }
+    #[error(
+        "splitting `{surface}`: intersection `{a}` x `{b}` does not involve this surface on the side given"
+    )]
+    WrongSurface {
+        surface: String,
+        a: String,
+        b: String,
+    },
 }
 
 /// Split `mesh` (surface `a` or `b` of `x`, chosen by `side`) along the curves of `x`.
 pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurface, SplitError> {
     let name = if side == Side::A { &x.a } else { &x.b };
+    split_all(name, mesh, &[(x, side)])
+}
+
+/// Split surface `surface_name` along the curves of all `intersections` (each with the side
+/// this surface is on). Coordinates of curve points are used as given; see [`split_all_with`]
+/// to make points shared by three surfaces bit-identical everywhere.
+pub fn split_all(
+    surface_name: &str,
+    mesh: &TriMesh,
+    intersections: &[(&Intersection, Side)],
+) -> Result<SplitSurface, SplitError> {
+    split_all_with(surface_name, mesh, intersections, &[])
+}
+
+/// Split every surface of a model along all the intersections that involve it (picking each
+/// intersection's side by name), with the other surfaces' meshes for canonical shared points.
+/// The result is in the order of `surfaces`.
+pub fn split_model(
+    surfaces: &[(&str, &TriMesh)],
+    intersections: &[Intersection],
+) -> Result<Vec<SplitSurface>, SplitError> {
+    surfaces
+        .iter()
+        .map(|&(name, mesh)| {
+            let mine: Vec<(&Intersection, Side)> = intersections
+                .iter()
+                .filter_map(|x| {
+                    if x.a == name {
+                        Some((x, Side::A))
+                    } else if x.b == name {
+                        Some((x, Side::B))
+                    } else {
+                        None
+                    }
+                })
+                .collect();
+            split_all_with(name, mesh, &mine, surfaces)
+        })
+        .collect()
+}
+
+/// One curve point as seen on the surface being split.
+struct Pt {
+    ix: usize,
+    key: PointKey,
+    loc: Location,
+    xyz: [f64; 3],
+}
+
+/// One chord: a curve segment inside triangle `t` of the surface, with the other surface's
+/// name and the triangle of it containing the segment.
+#[derive(Clone)]
+struct Chord {
+    t: u32,
+    v: [u32; 2],
+    other: usize,
+    other_face: u32,
+}
+
+/// As [`split_all`], with the meshes of the other surfaces (by name) used to construct shared
+/// points canonically (see the module doc). Missing meshes fall back to the given coordinates.
+pub fn split_all_with(
+    surface_name: &str,
+    mesh: &TriMesh,
+    intersections: &[(&Intersection, Side)],
+    others: &[(&str, &TriMesh)],
+) -> Result<SplitSurface, SplitError> {
+    let name = surface_name.to_string();
     let bad = |index: u32| SplitError::BadIndex {
         surface: name.clone(),
         index,
     };
     let nv = mesh.vertices.len() as u32;
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v >= nv) {
+            return Err(bad(t as u32));
+        }
+    }
+    let other_mesh = |n: &str| find_mesh(others, n);
+    let tri_of = |m: &TriMesh, t: u32| -> Option<[[f64; 3]; 3]> {
+        let tri = m.triangles.get(t as usize)?;
+        let mut c = [[0.0; 3]; 3];
+        for k in 0..3 {
+            c[k] = *m.vertices.get(tri[k] as usize)?;
+        }
+        Some(c)
+    };
+    let vert = |m: &TriMesh, v: u32| m.vertices.get(v as usize).copied();
+
+    // Curve points, with canonical coordinates where possible.
+    let mut pts: Vec<Pt> = Vec::new();
+    let mut partner: Vec<&str> = Vec::new();
+    for (ix, &(x, side)) in intersections.iter().enumerate() {
+        let (me, them) = if side == Side::A {
+            (&x.a, &x.b)
+        } else {
+            (&x.b, &x.a)
+        };
+        if me != surface_name {
+            return Err(SplitError::WrongSurface {
+                surface: name.clone(),
+                a: x.a.clone(),
+                b: x.b.clone(),
+            });
+        }
+        partner.push(them);
+        let om = other_mesh(them);
+        for p in x.curves.iter().flat_map(|c| c.points.iter()) {
+            let (la, lb) = (p.on_a, p.on_b);
+            let (loc, oloc) = if side == Side::A { (la, lb) } else { (lb, la) };
+            let xyz = match (loc, oloc, om) {
+                (Location::Vertex(v), _, _) => vert(mesh, v).ok_or_else(|| bad(v))?,
+                (Location::Edge(i, j), Location::Face(f), Some(om)) => {
+                    match (vert(mesh, i), vert(mesh, j), tri_of(om, f)) {
+                        (Some(pi), Some(pj), Some(tf)) => {
+                            arrangement::edge_plane(pi, pj, tf).unwrap_or(p.xyz)
+                        }
+                        _ => p.xyz,
+                    }
+                }
+                (Location::Face(t), Location::Edge(i, j), Some(om)) => {
+                    match (vert(om, i), vert(om, j), tri_of(mesh, t)) {
+                        (Some(pi), Some(pj), Some(tf)) => {
+                            arrangement::edge_plane(pi, pj, tf).unwrap_or(p.xyz)
+                        }
+                        _ => p.xyz,
+                    }
+                }
+                _ => p.xyz,
+            };
+            pts.push(Pt {
+                ix,
+                key: p.key,
+                loc,
+                xyz,
+            });
+        }
+    }
+    // Merge: same vertex, or same edge/face with bit-identical coordinates.
+    let place = |p: &Pt| -> (Location, [u64; 3]) {
+        match p.loc {
+            Location::Vertex(_) => (p.loc, [0; 3]),
+            _ => (p.loc, p.xyz.map(f64::to_bits)),
+        }
+    };
     let mut vertices = mesh.vertices.clone();
-    let mut vertex_of: BTreeMap<PointKey, u32> = BTreeMap::new();
-    let mut loc: BTreeMap<u32, Location> = BTreeMap::new();
-    let mut keys: Vec<&super::CurvePoint> = x.curves.iter().flat_map(|c| c.points.iter()).collect();
-    keys.sort_by_key(|p| p.key);
-    keys.dedup_by(|p, q| p.key == q.key);
-    for p in keys {
-        let l = loc_of(p, side);
-        let v = match l {
+    let mut at_place: BTreeMap<(Location, [u64; 3]), u32> = BTreeMap::new();
+    let mut order: Vec<&Pt> = pts.iter().collect();
+    order.sort_by_key(|p| place(p));
+    for p in order {
+        let k = place(p);
+        if at_place.contains_key(&k) {
+            continue;
+        }
+        let v = match p.loc {
             Location::Vertex(v) if v < nv => v,
             Location::Vertex(v) => return Err(bad(v)),
+            Location::Edge(i, j) if i >= nv || j >= nv => return Err(bad(i.max(j))),
+            Location::Face(t) if t as usize >= mesh.triangles.len() => return Err(bad(t)),
             _ => {
                 vertices.push(p.xyz);
                 vertices.len() as u32 - 1
             }
         };
-        vertex_of.insert(p.key, v);
-        loc.insert(v, l);
+        at_place.insert(k, v);
     }
-    // Points on each original edge, and inside each face.
+    let mut vertex_of_each: Vec<BTreeMap<PointKey, u32>> =
+        vec![BTreeMap::new(); intersections.len()];
+    let mut loc: BTreeMap<u32, Location> = BTreeMap::new();
+    for p in &pts {
+        if let Some(&v) = at_place.get(&place(p)) {
+            vertex_of_each[p.ix].insert(p.key, v);
+            loc.insert(v, p.loc);
+        }
+    }
+
+    // Chords per triangle.
+    let mut chords: Vec<Chord> = Vec::new();
+    for (ix, &(x, side)) in intersections.iter().enumerate() {
+        for c in &x.curves {
+            let n = c.points.len();
+            for (s, &(ta, tb)) in c.segments_faces.iter().enumerate() {
+                let (Some(p), Some(q)) = (c.points.get(s), c.points.get((s + 1) % n.max(1))) else {
+                    continue;
+                };
+                let map = &vertex_of_each[ix];
+                let (Some(&vp), Some(&vq)) = (map.get(&p.key), map.get(&q.key)) else {
+                    continue;
+                };
+                if vp == vq {
+                    continue;
+                }
+                let (t, of) = if side == Side::A { (ta, tb) } else { (tb, ta) };
+                if t as usize >= mesh.triangles.len() {
+                    return Err(bad(t));
+                }
+                chords.push(Chord {
+                    t,
+                    v: [vp, vq],
+                    other: ix,
+                    other_face: of,
+                });
+            }
+        }
+    }
+    chords.sort_by_key(|c| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1]), c.other));
+    chords.dedup_by_key(|c| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1])));
+
+    // Crossings of chords of different intersections inside a triangle.
+    let unsupported = |t: u32, at: [f64; 3], what: &str| SplitError::Unsupported {
+        surface: name.clone(),
+        triangle: t,
+        at,
+        what: what.to_string(),
+    };
+    // Crossing points on each chord (index into `chords`).
+    let mut on_chord: Vec<Vec<u32>> = vec![Vec::new(); chords.len()];
+    let mut crossing_at: BTreeMap<Vec<(String, u32)>, u32> = BTreeMap::new();
+    let mut crossings = Vec::new();
+    let mut start = 0;
+    while start < chords.len() {
+        let t = chords[start].t;
+        let end = start + chords[start..].iter().take_while(|c| c.t == t).count();
+        let corners = tri_of(mesh, t).ok_or_else(|| bad(t))?;
+        let multi = chords[start..end]
+            .iter()
+            .any(|c| c.other != chords[start].other);
+        if multi {
+            let Some((axis, _)) = projection_axis(&corners) else {
+                return Err(unsupported(
+                    t,
+                    corners[0],
+                    "a curve touches this zero-area triangle",
+                ));
+            };
+            for i in start..end {
+                for j in i + 1..end {
+                    let (ci, cj) = (&chords[i], &chords[j]);
+                    if ci.other == cj.other || ci.v.iter().any(|v| cj.v.contains(v)) {
+                        continue;
+                    }
+                    let p = |v: u32| project(&vertices[v as usize], axis);
+                    match arrangement::crossing(p(ci.v[0]), p(ci.v[1]), p(cj.v[0]), p(cj.v[1])) {
+                        None => {}
+                        Some(false) => {
+                            return Err(unsupported(
+                                t,
+                                vertices[ci.v[0] as usize],
+                                "a curve point lies on another curve inside this face",
+                            ));
+                        }
+                        Some(true) => {
+                            let mut key = vec![
+                                (name.clone(), t),
+                                (partner[ci.other].to_string(), ci.other_face),
+                                (partner[cj.other].to_string(), cj.other_face),
+                            ];
+                            key.sort();
+                            let v = match crossing_at.get(&key) {
+                                Some(&v) => v,
+                                None => {
+                                    let xyz = crossing_xyz(
+                                        &key,
+                                        surface_name,
+                                        mesh,
+                                        others,
+                                        [ci.v, cj.v].map(|s| s.map(|v| vertices[v as usize])),
+                                        axis,
+                                    );
+                                    vertices.push(xyz);
+                                    let v = vertices.len() as u32 - 1;
+                                    crossing_at.insert(key, v);
+                                    crossings.push(v);
+                                    loc.insert(v, Location::Face(t));
+                                    v
+                                }
+                            };
+                            on_chord[i].push(v);
+                            on_chord[j].push(v);
+                        }
+                    }
+                }
+            }
+        }
+        start = end;
+    }
+    // Chord pieces between crossings.
+    let mut pieces: BTreeMap<u32, Vec<[u32; 2]>> = BTreeMap::new();
+    let mut curve_edges = Vec::new();
+    for (c, xs) in chords.iter().zip(&mut on_chord) {
+        let (p, q) = (vertices[c.v[0] as usize], vertices[c.v[1] as usize]);
+        let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+        let along = |v: u32| {
+            let x = vertices[v as usize];
+            (x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1] + (x[2] - p[2]) * d[2]
+        };
+        xs.sort_by(|a, b| along(*a).total_cmp(&along(*b)).then(a.cmp(b)));
+        xs.dedup();
+        let chain: Vec<u32> = std::iter::once(c.v[0])
+            .chain(xs.iter().copied())
+            .chain(std::iter::once(c.v[1]))
+            .collect();
+        for w in chain.windows(2) {
+            let e = [w[0].min(w[1]), w[0].max(w[1])];
+            curve_edges.push(e);
+            pieces.entry(c.t).or_default().push(e);
+        }
+    }
+    curve_edges.sort_unstable();
+    curve_edges.dedup();
+    let has_crossing: std::collections::BTreeSet<u32> = crossings
+        .iter()
+        .filter_map(|v| match loc.get(v) {
+            Some(Location::Face(t)) => Some(*t),
+            _ => None,
+        })
+        .collect();
+
+    // Points on each original edge.
     let mut on_edge: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
-    let mut chords: BTreeMap<u32, Vec<[u32; 2]>> = BTreeMap::new();
     for (&v, &l) in &loc {
         if let Location::Edge(i, j) = l {
             on_edge.entry((i, j)).or_default().push(v);
         }
     }
-    let mut curve_edges = Vec::new();
-    for c in &x.curves {
-        let n = c.points.len();
-        for (s, &(ta, tb)) in c.segments_faces.iter().enumerate() {
-            let (p, q) = (&c.points[s], &c.points[(s + 1) % n]);
-            let (Some(&vp), Some(&vq)) = (vertex_of.get(&p.key), vertex_of.get(&q.key)) else {
-                continue;
-            };
-            curve_edges.push([vp.min(vq), vp.max(vq)]);
-            let t = if side == Side::A { ta } else { tb };
-            chords.entry(t).or_default().push([vp, vq]);
-        }
-    }
-    curve_edges.sort_unstable();
-    curve_edges.dedup();
 
     let mut triangles = Vec::with_capacity(mesh.triangles.len());
     let mut parent = Vec::with_capacity(mesh.triangles.len());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let t = t as u32;
-        if tri.iter().any(|&v| v >= nv) {
-            return Err(bad(t));
-        }
         let edge_pts = |a: u32, b: u32| on_edge.get(&(a.min(b), a.max(b)));
         let touched =
-            chords.contains_key(&t) || (0..3).any(|k| edge_pts(tri[k], tri[(k + 1) % 3]).is_some());
+            pieces.contains_key(&t) || (0..3).any(|k| edge_pts(tri[k], tri[(k + 1) % 3]).is_some());
         if !touched {
             triangles.push(*tri);
             parent.push(t);
@@ -132,12 +428,11 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
         }
         let corners = [0, 1, 2].map(|k| vertices[tri[k] as usize]);
         let Some((axis, sign)) = projection_axis(&corners) else {
-            return Err(SplitError::Unsupported {
-                surface: name.clone(),
-                triangle: t,
-                at: corners[0],
-                what: "a curve touches this zero-area triangle".to_string(),
-            });
+            return Err(unsupported(
+                t,
+                corners[0],
+                "a curve touches this zero-area triangle",
+            ));
         };
         let pt = |v: u32| project(&vertices[v as usize], axis);
         // Boundary cycle, in the triangle's own orientation.
@@ -162,134 +457,32 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
                 boundary.extend(along.into_iter().map(|(_, v)| v));
             }
         }
-        let err = |what: &str, v: u32| SplitError::Unsupported {
-            surface: name.clone(),
-            triangle: t,
-            at: vertices[v as usize],
-            what: what.to_string(),
-        };
-        let on_boundary = |v: u32| boundary.contains(&v);
-        // Chords that are not pieces of the boundary, walked into chains boundary → boundary.
-        let mut segs: Vec<[u32; 2]> = chords
+        let err = |what: &str, v: u32| unsupported(t, vertices[v as usize], what);
+        // Chord pieces that are not pieces of the boundary.
+        let m = boundary.len();
+        let mut segs: Vec<[u32; 2]> = pieces
             .get(&t)
             .map(|c| {
                 c.iter()
+                    .copied()
                     .filter(|s| {
-                        let (i, j) = (
-                            boundary.iter().position(|&v| v == s[0]),
-                            boundary.iter().position(|&v| v == s[1]),
-                        );
+                        let i = boundary.iter().position(|&v| v == s[0]);
+                        let j = boundary.iter().position(|&v| v == s[1]);
                         match (i, j) {
-                            (Some(i), Some(j)) => {
-                                let m = boundary.len();
-                                (i + 1) % m != j && (j + 1) % m != i
-                            }
+                            (Some(i), Some(j)) => (i + 1) % m != j && (j + 1) % m != i,
                             _ => true,
                         }
                     })
-                    .map(|s| [s[0].min(s[1]), s[0].max(s[1])])
                     .collect()
             })
             .unwrap_or_default();
         segs.sort_unstable();
         segs.dedup();
-        let mut adj: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
-        for s in &segs {
-            adj.entry(s[0]).or_default().push(s[1]);
-            adj.entry(s[1]).or_default().push(s[0]);
-        }
-        for (&v, n) in &adj {
-            if !on_boundary(v) && n.len() > 2 {
-                return Err(err("curves branch inside this face", v));
-            }
-        }
-        let mut used = vec![false; segs.len()];
-        let seg_id = |a: u32, b: u32| segs.binary_search(&[a.min(b), a.max(b)]).ok();
-        let mut chains: Vec<Vec<u32>> = Vec::new();
-        for (&start, nbrs) in &adj {
-            if !on_boundary(start) {
-                continue;
-            }
-            for &first in nbrs {
-                let Some(s0) = seg_id(start, first) else {
-                    continue;
-                };
-                if used[s0] {
-                    continue;
-                }
-                used[s0] = true;
-                let mut chain = vec![start, first];
-                let mut cur = first;
-                while !on_boundary(cur) {
-                    let prev = chain[chain.len() - 2];
-                    let next = adj
-                        .get(&cur)
-                        .and_then(|n| n.iter().copied().find(|&w| w != prev));
-                    let Some(next) = next else {
-                        break; // a dangling end, joined to the polygon below
-                    };
-                    if let Some(s) = seg_id(cur, next) {
-                        used[s] = true;
-                    }
-                    chain.push(next);
-                    cur = next;
-                }
-                chains.push(chain);
-            }
-        }
-        if let Some(i) = used.iter().position(|u| !u) {
-            return Err(err("a curve lies entirely inside this face", segs[i][0]));
-        }
-        // Cut the polygon along each chain.
-        let mut polys: Vec<Vec<u32>> = vec![boundary.clone()];
-        for chain in &chains {
-            let mut chain = chain.clone();
-            let s = chain[0];
-            let pi = polys.iter().position(|p| {
-                p.contains(&s)
-                    && (!on_boundary(chain[chain.len() - 1]) || p.contains(&chain[chain.len() - 1]))
-                    && chain_inside(p, &chain, &pt, sign)
-            });
-            let Some(pi) = pi else {
-                return Err(err("curves cross inside this face", s));
-            };
-            let last = chain[chain.len() - 1];
-            if !on_boundary(last) {
-                // A dangling end: join it to a polygon vertex it sees, so the chain cuts the piece.
-                let w = bridge(&polys[pi], &chain, &pt, sign).ok_or_else(|| {
-                    err("a curve ending inside this face could not be joined", last)
-                })?;
-                chain.push(w);
-            }
-            let e = chain[chain.len() - 1];
-            let p = polys.swap_remove(pi);
-            let (i, j) = (
-                p.iter().position(|&v| v == s).unwrap_or(0),
-                p.iter().position(|&v| v == e).unwrap_or(0),
-            );
-            let m = p.len();
-            // First piece: boundary from e to s, then the chain from s to e (without repeats).
-            let mut p1: Vec<u32> = (0..m)
-                .map(|k| p[(j + k) % m])
-                .take_while(|&v| v != s)
-                .collect();
-            p1.extend(chain[..chain.len() - 1].iter().copied());
-            let mut p2: Vec<u32> = (0..m)
-                .map(|k| p[(i + k) % m])
-                .take_while(|&v| v != e)
-                .collect();
-            p2.extend(
-                chain[1..]
-                    .iter()
-                    .rev()
-                    .copied()
-                    .collect::<Vec<_>>()
-                    .into_iter()
-                    .take(chain.len() - 1),
-            );
-            polys.push(p1);
-            polys.push(p2);
-        }
+        let (polys, locked) = if has_crossing.contains(&t) {
+            arranged(&boundary, &segs, &pt, sign, &err)?
+        } else {
+            cut::cut(&boundary, &segs, &pt, sign, &err)?
+        };
         let mut local = Vec::new();
         for p in &polys {
             local.extend(
@@ -297,89 +490,191 @@ pub fn split(mesh: &TriMesh, x: &Intersection, side: Side) -> Result<SplitSurfac
                     .ok_or_else(|| err("a piece could not be triangulated", p[0]))?,
             );
         }
-        let locked: Vec<[u32; 2]> = chains
-            .iter()
-            .flat_map(|c| c.windows(2).map(|w| [w[0].min(w[1]), w[0].max(w[1])]))
-            .collect();
         improve(&mut local, &locked, &pt, sign);
         for tr in local {
             triangles.push(tr);
             parent.push(t);
         }
     }
+    crossings.sort_unstable();
     Ok(SplitSurface {
         mesh: TriMesh::new(vertices, triangles),
         parent,
-        vertex_of,
+        vertex_of: vertex_of_each.first().cloned().unwrap_or_default(),
+        vertex_of_each,
+        crossings,
         curve_edges,
     })
 }
 
-/// Closed segments `pq` and `rs` share a point (exact `orient2d` on the given coordinates).
-fn segments_meet(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
-    let (o1, o2) = (orient2d(&p, &q, &r), orient2d(&p, &q, &s));
-    let (o3, o4) = (orient2d(&r, &s, &p), orient2d(&r, &s, &q));
-    let within = |a: [f64; 2], b: [f64; 2], x: [f64; 2]| {
-        (0..2).all(|k| a[k].min(b[k]) <= x[k] && x[k] <= a[k].max(b[k]))
-    };
-    if o1 != Orientation::Zero && o1 == o2.flip() && o3 != Orientation::Zero && o3 == o4.flip() {
-        return true;
-    }
-    (o1 == Orientation::Zero && within(p, q, r))
-        || (o2 == Orientation::Zero && within(p, q, s))
-        || (o3 == Orientation::Zero && within(r, s, p))
-        || (o4 == Orientation::Zero && within(r, s, q))
-}
-
-/// A vertex `w` of polygon `p` (not on the chain) that the chain's dangling end sees: the
-/// segment from the end to `w` enters `p` at `w` and meets no polygon edge and no chain
-/// segment except at its own ends. The nearest such vertex (ties: smallest index).
-fn bridge(
-    p: &[u32],
-    chain: &[u32],
+/// The pieces of a triangle where curves cross: dangling chains (ending inside the face) are set
+/// aside, the faces of the remaining arrangement are traced, and each face holding dangling
+/// chains is then cut along them like a triangle without crossings. Returns the polygons and
+/// the curve edges to lock.
+fn arranged(
+    boundary: &[u32],
+    segs: &[[u32; 2]],
     pt: &dyn Fn(u32) -> [f64; 2],
     sign: Orientation,
-) -> Option<u32> {
-    let end = chain[chain.len() - 1];
-    let pe = pt(end);
-    let m = p.len();
-    let mut best: Option<(f64, u32)> = None;
-    for &w in p {
-        if chain.contains(&w) {
+    err: &dyn Fn(&str, u32) -> SplitError,
+) -> Result<cut::Pieces, SplitError> {
+    let on_b = |v: u32| boundary.contains(&v);
+    let mut inc: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
+    for (i, s) in segs.iter().enumerate() {
+        inc.entry(s[0]).or_default().push(i);
+        inc.entry(s[1]).or_default().push(i);
+    }
+    let mut deg: BTreeMap<u32, usize> = inc.iter().map(|(&v, l)| (v, l.len())).collect();
+    let mut kept = vec![true; segs.len()];
+    let mut stack: Vec<u32> = deg
+        .iter()
+        .filter(|&(&v, &d)| d == 1 && !on_b(v))
+        .map(|(&v, _)| v)
+        .collect();
+    while let Some(v) = stack.pop() {
+        let Some(&i) = inc.get(&v).and_then(|l| l.iter().find(|&&i| kept[i])) else {
             continue;
-        }
-        let pw = pt(w);
-        let clear_of_polygon = (0..m).all(|k| {
-            let (a, b) = (p[k], p[(k + 1) % m]);
-            a == w || b == w || !segments_meet(pe, pw, pt(a), pt(b))
-        });
-        let clear_of_chain = chain
-            .windows(2)
-            .all(|s| s[1] == end || !segments_meet(pe, pw, pt(s[0]), pt(s[1])));
-        if clear_of_polygon && clear_of_chain && chain_inside(p, &[w, end], pt, sign) {
-            let d = (pw[0] - pe[0]).powi(2) + (pw[1] - pe[1]).powi(2);
-            if best.is_none_or(|(bd, bw)| d < bd || (d == bd && w < bw)) {
-                best = Some((d, w));
+        };
+        kept[i] = false;
+        for w in segs[i] {
+            if let Some(d) = deg.get_mut(&w) {
+                *d = d.saturating_sub(1);
+                if *d == 1 && !on_b(w) {
+                    stack.push(w);
+                }
             }
         }
     }
-    best.map(|(_, w)| w)
+    let main: Vec<[u32; 2]> = (0..segs.len())
+        .filter(|&i| kept[i])
+        .map(|i| segs[i])
+        .collect();
+    // Faces traced counter-clockwise in a projection mirrored when needed.
+    let ptm = |v: u32| {
+        let p = pt(v);
+        if sign == Orientation::Negative {
+            [-p[0], p[1]]
+        } else {
+            p
+        }
+    };
+    let faces = arrangement::faces(boundary, &main, &ptm).ok_or_else(|| {
+        err(
+            "curves cross here and a piece of curve is detached",
+            boundary[0],
+        )
+    })?;
+    let mut locked = main.clone();
+    let stripped: Vec<usize> = (0..segs.len()).filter(|&i| !kept[i]).collect();
+    if stripped.is_empty() {
+        return Ok((faces, locked));
+    }
+    let mut taken = vec![false; segs.len()];
+    let mut polys = Vec::new();
+    for f in faces {
+        // Dangling chains leaving a vertex of `f` into its interior, with everything beyond.
+        let mut mine: Vec<[u32; 2]> = Vec::new();
+        for &a in &f {
+            for &i in inc.get(&a).map(Vec::as_slice).unwrap_or(&[]) {
+                if kept[i] || taken[i] {
+                    continue;
+                }
+                let w = if segs[i][0] == a {
+                    segs[i][1]
+                } else {
+                    segs[i][0]
+                };
+                if !cut::chain_inside(&f, &[a, w], pt, sign) {
+                    continue;
+                }
+                taken[i] = true;
+                mine.push(segs[i]);
+                let mut todo = vec![w];
+                while let Some(u) = todo.pop() {
+                    for &j in inc.get(&u).map(Vec::as_slice).unwrap_or(&[]) {
+                        if kept[j] || taken[j] {
+                            continue;
+                        }
+                        taken[j] = true;
+                        mine.push(segs[j]);
+                        let x = if segs[j][0] == u {
+                            segs[j][1]
+                        } else {
+                            segs[j][0]
+                        };
+                        if x != a {
+                            todo.push(x);
+                        }
+                    }
+                }
+            }
+        }
+        if mine.is_empty() {
+            polys.push(f);
+            continue;
+        }
+        mine.sort_unstable();
+        mine.dedup();
+        let (p, l) = cut::cut(&f, &mine, pt, sign, err)?;
+        polys.extend(p);
+        locked.extend(l);
+    }
+    if let Some(&i) = stripped.iter().find(|&&i| !taken[i]) {
+        return Err(err("a curve lies entirely inside this face", segs[i][0]));
+    }
+    Ok((polys, locked))
 }
 
-/// Whether the chain leaves its first vertex into the interior of polygon `p` (at that vertex,
-/// the chain's second point lies strictly inside the polygon's corner angle).
-fn chain_inside(p: &[u32], chain: &[u32], pt: &dyn Fn(u32) -> [f64; 2], sign: Orientation) -> bool {
-    let m = p.len();
-    let Some(i) = p.iter().position(|&v| v == chain[0]) else {
-        return false;
+/// The mesh of surface `n` among `others`.
+fn find_mesh<'a>(others: &[(&str, &'a TriMesh)], n: &str) -> Option<&'a TriMesh> {
+    others.iter().find(|o| o.0 == n).map(|o| o.1)
+}
+
+/// Coordinates of the crossing named by `key` (three (surface, triangle) pairs sorted by name):
+/// the common point of the three planes when all meshes are known, else the crossing of the two
+/// chords (`segs`, 3D endpoints) computed in the projection `axis` and lifted along the first.
+fn crossing_xyz(
+    key: &[(String, u32)],
+    me: &str,
+    mesh: &TriMesh,
+    others: &[(&str, &TriMesh)],
+    segs: [[[f64; 3]; 2]; 2],
+    axis: usize,
+) -> [f64; 3] {
+    let tri = |(s, t): &(String, u32)| -> Option<[[f64; 3]; 3]> {
+        let m = if s == me { mesh } else { find_mesh(others, s)? };
+        let tri = m.triangles.get(*t as usize)?;
+        let mut c = [[0.0; 3]; 3];
+        for k in 0..3 {
+            c[k] = *m.vertices.get(tri[k] as usize)?;
+        }
+        Some(c)
     };
-    let (prev, cur, next) = (pt(p[(i + m - 1) % m]), pt(p[i]), pt(p[(i + 1) % m]));
-    let q = pt(chain[1]);
-    let left_of = |a: &[f64; 2], b: &[f64; 2]| orient2d(a, b, &q) == sign;
-    let convex = orient2d(&prev, &cur, &next) != sign.flip();
-    if convex {
-        left_of(&cur, &next) && left_of(&prev, &cur)
-    } else {
-        left_of(&cur, &next) || left_of(&prev, &cur)
+    if let (Some(a), Some(b), Some(c)) = (
+        key.first().and_then(tri),
+        key.get(1).and_then(tri),
+        key.get(2).and_then(tri),
+    ) && let Some(x) = arrangement::three_planes([a, b, c])
+    {
+        return x;
     }
+    let [[p, q], [r, s]] = segs;
+    let (p2, q2, r2, s2) = (
+        project(&p, axis),
+        project(&q, axis),
+        project(&r, axis),
+        project(&s, axis),
+    );
+    let cr = |u: [f64; 2], v: [f64; 2]| u[0] * v[1] - u[1] * v[0];
+    let d1 = [q2[0] - p2[0], q2[1] - p2[1]];
+    let d2 = [s2[0] - r2[0], s2[1] - r2[1]];
+    let w = [r2[0] - p2[0], r2[1] - p2[1]];
+    let den = cr(d1, d2);
+    let u = if den != 0.0 { cr(w, d2) / den } else { 0.5 };
+    let u = if u.is_finite() {
+        u.clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
+    [0, 1, 2].map(|k| p[k] + u * (q[k] - p[k]))
 }

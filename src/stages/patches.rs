@@ -1,0 +1,186 @@
+//! Patches: the pieces of a split surface between its intersection curves.
+//!
+//! It decides which triangles of a [`SplitSurface`] form one patch (connected across edges that
+//! are not curve edges), the canonical order of the patches (so names `S#1`, `S#2`... do not
+//! depend on input order or thread count), and whether a patch lies inside the model's box.
+//! Each patch carries its own compact mesh whose coordinates are copied bit for bit, so patches
+//! of different surfaces meeting along a curve share identical vertices there.
+
+use crate::geom::{BBox, TriMesh};
+use crate::stages::intersect::split::SplitSurface;
+use std::cmp::Ordering;
+use std::collections::BTreeMap;
+
+/// One patch of a surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    /// Stable name `surface#k` (1-based, in canonical order).
+    pub name: String,
+    /// The triangles of the split surface's mesh in this patch, ascending.
+    pub triangles: Vec<u32>,
+    /// The patch alone: its vertices (in order of first use by `triangles`), coordinates
+    /// bit-identical to the split surface's, and its triangles in the same orientation.
+    pub mesh: TriMesh,
+}
+
+fn lex(a: &[f64; 3], b: &[f64; 3]) -> Ordering {
+    (0..3)
+        .map(|k| a[k].total_cmp(&b[k]))
+        .find(|o| o.is_ne())
+        .unwrap_or(Ordering::Equal)
+}
+
+/// The patches of `split` (surface `surface`): connected components of its triangles, where two
+/// triangles connect through a shared edge that is not a curve edge. Ordered by their smallest
+/// vertex (lexicographic, total f64 order), ties broken by the sorted list of their vertices.
+pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
+    let m = &split.mesh;
+    let n = m.triangles.len();
+    let nv = m.vertices.len() as u32;
+    // Union-find over triangles, with path halving (iterative).
+    let mut up: Vec<usize> = (0..n).collect();
+    fn root(up: &mut [usize], mut i: usize) -> usize {
+        while up[i] != i {
+            up[i] = up[up[i]];
+            i = up[i];
+        }
+        i
+    }
+    let mut by_edge: BTreeMap<[u32; 2], Vec<usize>> = BTreeMap::new();
+    for (t, tri) in m.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v >= nv) {
+            continue;
+        }
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if a != b {
+                by_edge.entry([a.min(b), a.max(b)]).or_default().push(t);
+            }
+        }
+    }
+    for (e, ts) in &by_edge {
+        if split.curve_edges.binary_search(e).is_ok() {
+            continue;
+        }
+        for w in ts.windows(2) {
+            let (ra, rb) = (root(&mut up, w[0]), root(&mut up, w[1]));
+            if ra != rb {
+                up[ra.max(rb)] = ra.min(rb);
+            }
+        }
+    }
+    let mut comps: BTreeMap<usize, Vec<u32>> = BTreeMap::new();
+    for t in 0..n {
+        if m.triangles[t].iter().any(|&v| v >= nv) {
+            continue;
+        }
+        let r = root(&mut up, t);
+        comps.entry(r).or_default().push(t as u32);
+    }
+    let mut out: Vec<(Vec<[f64; 3]>, Patch)> = comps
+        .into_values()
+        .map(|triangles| {
+            let mut local: BTreeMap<u32, u32> = BTreeMap::new();
+            let mut vertices = Vec::new();
+            let mut tris = Vec::with_capacity(triangles.len());
+            for &t in &triangles {
+                let tri = m.triangles[t as usize];
+                tris.push(tri.map(|v| {
+                    *local.entry(v).or_insert_with(|| {
+                        vertices.push(m.vertices[v as usize]);
+                        vertices.len() as u32 - 1
+                    })
+                }));
+            }
+            let mut key = vertices.clone();
+            key.sort_by(lex);
+            let patch = Patch {
+                name: String::new(),
+                triangles,
+                mesh: TriMesh::new(vertices, tris),
+            };
+            (key, patch)
+        })
+        .collect();
+    out.sort_by(|a, b| {
+        a.0.iter()
+            .zip(&b.0)
+            .map(|(x, y)| lex(x, y))
+            .find(|o| o.is_ne())
+            .unwrap_or_else(|| a.0.len().cmp(&b.0.len()))
+            .then_with(|| a.1.triangles.cmp(&b.1.triangles))
+    });
+    out.into_iter()
+        .enumerate()
+        .map(|(k, (_, mut p))| {
+            p.name = format!("{surface}#{}", k + 1);
+            p
+        })
+        .collect()
+}
+
+/// Whether every vertex of `patch` lies within the closed box (exact coordinate comparisons).
+/// A patch outside the box has a vertex strictly outside it; NaN coordinates are outside.
+pub fn inside_box(patch: &Patch, bbox: &BBox) -> bool {
+    patch
+        .mesh
+        .vertices
+        .iter()
+        .all(|p| (0..3).all(|k| bbox.min[k] <= p[k] && p[k] <= bbox.max[k]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeMap;
+
+    fn square_split(curve: bool) -> SplitSurface {
+        // Two triangles sharing edge 0-2; with `curve`, that edge is a curve edge.
+        let mesh = TriMesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        SplitSurface {
+            mesh,
+            parent: vec![0, 1],
+            vertex_of: BTreeMap::new(),
+            vertex_of_each: Vec::new(),
+            crossings: Vec::new(),
+            curve_edges: if curve { vec![[0, 2]] } else { Vec::new() },
+        }
+    }
+
+    #[test]
+    fn a_curve_edge_separates_two_patches_and_a_plain_edge_does_not() {
+        let two = patches("s", &square_split(true));
+        assert_eq!(two.len(), 2);
+        assert_eq!(two[0].name, "s#1");
+        // Both contain vertex 0 (smallest); tie broken by the next vertex: (0,1,0) < (1,0,0).
+        assert_eq!(two[0].triangles, vec![1]);
+        assert_eq!(two[1].triangles, vec![0]);
+        assert_eq!(two[0].mesh.vertices.len(), 3);
+        let one = patches("s", &square_split(false));
+        assert_eq!(one.len(), 1);
+        assert_eq!(one[0].mesh.triangles.len(), 2);
+    }
+
+    #[test]
+    fn a_patch_with_one_vertex_beyond_the_box_is_outside() {
+        let p = &patches("s", &square_split(false))[0];
+        let inside = BBox {
+            min: [0.0, 0.0, 0.0],
+            max: [1.0, 1.0, 0.0],
+        };
+        assert!(inside_box(p, &inside));
+        let smaller = BBox {
+            min: [0.0, 0.0, 0.0],
+            max: [1.0, 0.999_999_999_999, 0.0],
+        };
+        assert!(!inside_box(p, &smaller));
+    }
+}
