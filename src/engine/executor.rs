@@ -155,8 +155,10 @@ impl<'a> Coordinator<'a> {
         loop {
             // Keep a few jobs queued per worker so a worker never waits for the coordinator to
             // wake up between two nodes (each node is pure: the order of completion never
-            // changes a result).
-            while in_flight < jobs * QUEUE_DEPTH && !self.stopped {
+            // changes a result). Without keep-going, dispatch one at a time so that a failure
+            // stops everything not yet started.
+            let depth = if self.keep_going { QUEUE_DEPTH } else { 1 };
+            while in_flight < jobs * depth && !self.stopped {
                 let Some((_, id)) = self.ready.pop_first() else {
                     break;
                 };

@@ -1,5 +1,6 @@
-//! The pipeline stages, one module per stage in pipeline order. Each is a pure function of typed
-//! inputs: no filesystem, no clock, no global RNG, no output that depends on the thread count.
+//! The pipeline stages, one module per stage (ARCHITECTURE.md gives their order). Each is a pure
+//! function of typed inputs: no filesystem, no clock, no global RNG, no output that depends on the
+//! thread count.
 
 pub mod discretize;
 pub mod export;
