@@ -135,3 +135,33 @@ fn corrupt_or_truncated_cache_entries_are_detected_and_repaired() {
     assert_eq!(nodes_in_state(&third, "ran"), Vec::<String>::new());
     assert_eq!(all_nodes(&first), all_nodes(&third));
 }
+
+#[test]
+fn the_model_of_the_shipped_example_has_six_regions_named_by_the_recipe_with_the_dangling_fault_inside()
+ {
+    let s = Scratch::didactic();
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let model = r["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["name"] == "model")
+        .expect("a model node");
+    assert_eq!(model["counts"]["regions"], 6);
+    assert_eq!(
+        model["counts"]["dangling_patches"], 3,
+        "F2 is cut by H1 and H2 into three dangling patches"
+    );
+    let note = model["notes"][0].as_str().unwrap();
+    for n in [
+        "overburden_W",
+        "overburden_E",
+        "reservoir_W",
+        "reservoir_E",
+        "underburden_W",
+        "underburden_E",
+    ] {
+        assert!(note.contains(n), "region `{n}` not named: {note}");
+    }
+}

@@ -51,6 +51,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
         .collect();
     let import_ids: Vec<NodeId> = surface_nodes.values().copied().collect();
 
+    let mut box_node = None;
     if let Some(b) = &recipe.bbox {
         let (params, inputs) = match &b.extent {
             recipe::BoxExtent::Explicit { min, max } => (
@@ -79,6 +80,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             }
         };
         let bx = g.add_op("box", Arc::new(BoxOp(params)), &inputs)?;
+        box_node = Some(bx);
         for side in recipe::BOX_SIDES {
             let id = g.add_op(
                 &format!("surface:{side}"),
@@ -109,6 +111,28 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             &[ia, ib],
         )?;
         intersections.push(id);
+    }
+
+    // The topological model needs the box: it is what closes the regions.
+    if let Some(bx) = box_node {
+        let mut inputs = vec![bx];
+        inputs.extend(surface_nodes.values().copied());
+        inputs.extend(intersections.iter().copied());
+        let op = ModelOp {
+            n_surfaces: surface_nodes.len(),
+            faults: recipe
+                .surfaces
+                .values()
+                .filter(|s| s.kind == recipe::SurfaceKind::Fault)
+                .map(|s| s.name.clone())
+                .collect(),
+            names: recipe
+                .regions
+                .iter()
+                .map(|(n, r)| (n.clone(), r.point))
+                .collect(),
+        };
+        g.add_op("model", Arc::new(op), &inputs)?;
     }
 
     let mut curve_inputs = import_ids.clone();

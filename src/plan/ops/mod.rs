@@ -6,6 +6,7 @@ mod curves;
 mod export;
 mod geometry;
 mod import;
+mod model;
 
 pub use curves::{
     CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,
@@ -13,6 +14,7 @@ pub use curves::{
 pub use export::ExportOp;
 pub use geometry::{BoxOp, BoxSideOp, BoxSpecParams, IntersectOp};
 pub use import::{ImportOp, OnInvalid};
+pub use model::{ModelData, ModelOp, ModelPatch};
 
 use crate::geom::TriMesh;
 use crate::mesh::SurfaceKind;
