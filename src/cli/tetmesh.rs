@@ -54,16 +54,16 @@ fn read(path: &PathBuf) -> Result<BoundaryMesh, Failure> {
         .map_err(|e| Failure(format!("error: {e}")))
 }
 
+/// Earlier vertices by position, with their index.
+type PointTree = rstar::RTree<rstar::primitives::GeomWithData<[f64; 3], u32>>;
+
 /// Merges vertices by exact coordinates (bit patterns), so faces from several files share nodes;
 /// after `weld_to_existing`, a new vertex within the weld distance of an earlier one reuses it.
 #[derive(Default)]
 struct VertexPool {
     index: BTreeMap<[u64; 3], u32>,
     vertices: Vec<[f64; 3]>,
-    weld: Option<(
-        f64,
-        rstar::RTree<rstar::primitives::GeomWithData<[f64; 3], u32>>,
-    )>,
+    weld: Option<(f64, PointTree)>,
 }
 
 impl VertexPool {
@@ -72,13 +72,13 @@ impl VertexPool {
         if let Some(&i) = self.index.get(&key) {
             return i;
         }
-        if let Some((tol, tree)) = &self.weld {
-            if let Some(n) = tree.nearest_neighbor(p) {
-                let q = n.geom();
-                let d2 = (0..3).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>();
-                if d2 <= tol * tol {
-                    return n.data;
-                }
+        if let Some((tol, tree)) = &self.weld
+            && let Some(n) = tree.nearest_neighbor(p)
+        {
+            let q = n.geom();
+            let d2 = (0..3).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>();
+            if d2 <= tol * tol {
+                return n.data;
             }
         }
         self.vertices.push(p);

@@ -64,7 +64,7 @@ pub fn discretize(
         cum.push(cum[cum.len() - 1] + d);
     }
     let length = cum[cum.len() - 1];
-    if !(length > 0.0) || !length.is_finite() {
+    if length.is_nan() || length <= 0.0 || length.is_infinite() {
         return Err(DiscretizeError(format!(
             "the curve has zero or non-finite length ({length})"
         )));

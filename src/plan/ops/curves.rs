@@ -66,7 +66,7 @@ impl Operation for CurvesOp {
             let topo = topology::SurfaceTopology::build(&s.mesh, &s.bstones, &self.tolerances);
             let mut borders: Vec<(Vec<[f64; 3]>, bool)> = topo
                 .curves()
-                .into_iter()
+                .iter()
                 .map(|c| {
                     let pts: Vec<[f64; 3]> = c
                         .vertices
@@ -76,7 +76,7 @@ impl Operation for CurvesOp {
                     (canonical_direction(pts, c.closed), c.closed)
                 })
                 .collect();
-            borders.sort_by(|x, y| geometric_key(&x.0).cmp(&geometric_key(&y.0)));
+            borders.sort_by_key(|x| geometric_key(&x.0));
             for (k, (polyline, closed)) in borders.into_iter().enumerate() {
                 curves.push(ModelCurve {
                     name: format!("{}#{}", s.name, k + 1),

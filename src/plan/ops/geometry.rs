@@ -74,7 +74,9 @@ impl Operation for BoxOp {
                 }
             }
         };
-        if (0..3).any(|k| !(bbox.min[k] < bbox.max[k])) {
+        if (0..3)
+            .any(|k| bbox.min[k].is_nan() || bbox.max[k].is_nan() || bbox.min[k] >= bbox.max[k])
+        {
             return Err(format!(
                 "the box is empty or flat: min {:?}, max {:?}",
                 bbox.min, bbox.max
