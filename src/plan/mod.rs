@@ -2,8 +2,9 @@
 //! the pipeline stages for the engine.
 //!
 //! The static part comes from the recipe: one file node and one `import` node per surface, the
-//! `box` node and one `surface` node per box side, one `intersect` node per pair, then `curves`
-//! (the model's curves). The dynamic part is expanded after `curves` has run: one `curve:<name>`
+//! `box` node and one `surface` node per box side, one `intersect` node per pair, then `model`
+//! (split, patches, trim to the box, regions; only with a box) and `curves` (the curves that
+//! drive the expansion). The dynamic part is expanded after `curves` has run: one `curve:<name>`
 //! node per curve (extracting that curve, so an unchanged curve cuts off early), one
 //! `discretize:<name>` node per curve, and the `export` node that needs them all.
 //!
