@@ -6,6 +6,7 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
+use georecipe::mesh::read::{BoundaryMesh, read_by_extension};
 use georecipe::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region, verify};
 
 fn shared() -> Option<String> {
@@ -21,127 +22,27 @@ fn shared() -> Option<String> {
     }
 }
 
-/// Minimal OFF reader (test-only): vertices and triangles.
-fn read_off(path: &str) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut it = text
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with('#'));
-    assert_eq!(it.next(), Some("OFF"));
-    let counts: Vec<usize> = it
-        .next()
-        .unwrap()
-        .split_whitespace()
-        .map(|x| x.parse().unwrap())
-        .collect();
-    let mut v = Vec::new();
-    for _ in 0..counts[0] {
-        let c: Vec<f64> = it
-            .next()
-            .unwrap()
-            .split_whitespace()
-            .map(|x| x.parse().unwrap())
-            .collect();
-        v.push([c[0], c[1], c[2]]);
-    }
-    let mut f = Vec::new();
-    for _ in 0..counts[1] {
-        let c: Vec<u32> = it
-            .next()
-            .unwrap()
-            .split_whitespace()
-            .map(|x| x.parse().unwrap())
-            .collect();
-        assert_eq!(c[0], 3);
-        f.push([c[1], c[2], c[3]]);
-    }
-    (v, f)
-}
-
-/// Minimal msh 4.1 ASCII reader (test-only): node coordinates by tag and the triangles of each
-/// surface entity.
-type Nodes = BTreeMap<u64, [f64; 3]>;
-type Tris = BTreeMap<i64, Vec<[u64; 3]>>;
-
-fn read_msh(path: &str) -> (Nodes, Tris) {
-    let text = std::fs::read_to_string(path).unwrap();
-    let lines: Vec<&str> = text.lines().collect();
-    let mut nodes = BTreeMap::new();
-    let mut tris: BTreeMap<i64, Vec<[u64; 3]>> = BTreeMap::new();
-    let mut i = 0;
-    while i < lines.len() {
-        match lines[i].trim() {
-            "$Nodes" => {
-                let h: Vec<u64> = lines[i + 1]
-                    .split_whitespace()
-                    .map(|x| x.parse().unwrap())
-                    .collect();
-                i += 2;
-                for _ in 0..h[0] {
-                    let b: Vec<u64> = lines[i]
-                        .split_whitespace()
-                        .map(|x| x.parse().unwrap())
-                        .collect();
-                    let n = b[3] as usize;
-                    let tags: Vec<u64> = (0..n)
-                        .map(|k| lines[i + 1 + k].trim().parse().unwrap())
-                        .collect();
-                    for (k, t) in tags.iter().enumerate() {
-                        let c: Vec<f64> = lines[i + 1 + n + k]
-                            .split_whitespace()
-                            .map(|x| x.parse().unwrap())
-                            .collect();
-                        nodes.insert(*t, [c[0], c[1], c[2]]);
-                    }
-                    i += 1 + 2 * n;
-                }
-            }
-            "$Elements" => {
-                let h: Vec<u64> = lines[i + 1]
-                    .split_whitespace()
-                    .map(|x| x.parse().unwrap())
-                    .collect();
-                i += 2;
-                for _ in 0..h[0] {
-                    let b: Vec<i64> = lines[i]
-                        .split_whitespace()
-                        .map(|x| x.parse().unwrap())
-                        .collect();
-                    let (dim, tag, ty, n) = (b[0], b[1], b[2], b[3] as usize);
-                    for k in 0..n {
-                        let e: Vec<u64> = lines[i + 1 + k]
-                            .split_whitespace()
-                            .map(|x| x.parse().unwrap())
-                            .collect();
-                        if dim == 2 && ty == 2 {
-                            tris.entry(tag).or_default().push([e[1], e[2], e[3]]);
-                        }
-                    }
-                    i += 1 + n;
-                }
-            }
-            _ => i += 1,
-        }
-    }
-    (nodes, tris)
+fn read(path: &str) -> BoundaryMesh {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    read_by_extension(path, &bytes).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn region(dir: &str, name: &str) -> RegionInput {
-    let (mut vertices, boundary) = read_off(&format!("{dir}/region_L1_{name}.off"));
+    let off = read(&format!("{dir}/region_L1_{name}.off"));
+    let (mut vertices, boundary) = (off.vertices, off.triangles);
     let meta: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(format!("{dir}/didactic_L1_meta.json")).unwrap(),
     )
     .unwrap();
-    let ents: Vec<i64> = meta["embedded"][name]
+    let ents: Vec<i32> = meta["embedded"][name]
         .as_array()
         .unwrap()
         .iter()
-        .map(|v| v.as_i64().unwrap())
+        .map(|v| v.as_i64().unwrap() as i32)
         .collect();
     let mut embedded = Vec::new();
     if !ents.is_empty() {
-        let (nodes, tris) = read_msh(&format!("{dir}/didactic_L1_surface.msh"));
+        let msh = read(&format!("{dir}/didactic_L1_surface.msh"));
         // The OFF files print coordinates with 6 decimals: match msh nodes to OFF vertices on
         // coordinates rounded to 1e-6 and use the OFF coordinates; add the others as they are.
         let key = |p: [f64; 3]| p.map(|c| (c * 1e6).round() as i64);
@@ -149,17 +50,18 @@ fn region(dir: &str, name: &str) -> RegionInput {
         for (i, p) in vertices.iter().enumerate() {
             index.insert(key(*p), i as u32);
         }
-        for e in ents {
-            for t in &tris[&e] {
-                let tri = t.map(|tag| {
-                    let p = nodes[&tag];
-                    *index.entry(key(p)).or_insert_with(|| {
-                        vertices.push(p);
-                        (vertices.len() - 1) as u32
-                    })
-                });
-                embedded.push(tri);
+        for (t, tag) in msh.triangles.iter().zip(&msh.triangle_tag) {
+            if !ents.contains(tag) {
+                continue;
             }
+            let tri = t.map(|v| {
+                let p = msh.vertices[v as usize];
+                *index.entry(key(p)).or_insert_with(|| {
+                    vertices.push(p);
+                    (vertices.len() - 1) as u32
+                })
+            });
+            embedded.push(tri);
         }
     }
     RegionInput {

@@ -3,11 +3,11 @@
 
 use super::Failure;
 use super::build::write_atomic;
-use crate::geom::predicates::signed_volume;
 use crate::mesh::read::{BoundaryMesh, read_by_extension};
 use crate::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use crate::stages::export::{Format, export};
 use crate::stages::quality;
+use crate::stages::regions;
 use crate::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -131,20 +131,24 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
             a.boundary.display()
         )));
     }
-    // Orientation: the caller's triangles may point inwards; the enclosed volume's sign says.
-    let o = pool.vertices[boundary[0][0] as usize];
-    let vol: f64 = boundary
-        .iter()
-        .map(|t| {
-            signed_volume(
-                &o,
-                &pool.vertices[t[0] as usize],
-                &pool.vertices[t[1] as usize],
-                &pool.vertices[t[2] as usize],
-            )
-        })
-        .sum();
-    if vol < 0.0 {
+    // Orientation: the caller's triangles may point inwards. Region finding decides exactly
+    // which side of the shell is enclosed; the triangles must face away from it.
+    let shell = regions::PatchIn {
+        name: "boundary".into(),
+        surface: "boundary".into(),
+        mesh: crate::geom::TriMesh::new(pool.vertices.clone(), boundary.clone()),
+    };
+    let model = regions::find_regions(&[shell], &[]).map_err(|e| {
+        Failure(format!(
+            "error: {}: the boundary does not enclose a region: {e}",
+            a.boundary.display()
+        ))
+    })?;
+    let inward = model
+        .regions
+        .first()
+        .is_some_and(|r| r.sides.iter().any(|f| f.side == regions::Side::Front));
+    if inward {
         for t in &mut boundary {
             t.swap(1, 2);
         }

@@ -76,7 +76,7 @@ impl Operation for CurvesOp {
                     (canonical_direction(pts, c.closed), c.closed)
                 })
                 .collect();
-            borders.sort_by_key(|x| geometric_key(&x.0));
+            borders.sort_by(|x, y| cmp_points(&smallest_point(&x.0), &smallest_point(&y.0)));
             for (k, (polyline, closed)) in borders.into_iter().enumerate() {
                 curves.push(ModelCurve {
                     name: format!("{}#{}", s.name, k + 1),
@@ -116,22 +116,23 @@ impl Operation for CurvesOp {
 /// Open curves start at their lexicographically smaller end, so the direction (and "from the
 /// start" gradings) does not depend on how the curve was found.
 fn canonical_direction(mut pts: Vec<[f64; 3]>, closed: bool) -> Vec<[f64; 3]> {
-    if !closed && pts.len() > 1 && point_key(&pts[pts.len() - 1]) < point_key(&pts[0]) {
+    if !closed && pts.len() > 1 && cmp_points(&pts[pts.len() - 1], &pts[0]).is_lt() {
         pts.reverse();
     }
     pts
 }
 
-/// A total order on points that every machine agrees on.
-fn point_key(p: &[f64; 3]) -> [i64; 3] {
-    p.map(|c| {
-        let b = c.to_bits() as i64;
-        if b < 0 { i64::MIN - b } else { b } // monotonic map of f64 order onto i64
-    })
+/// A total order on points that every machine agrees on (lexicographic, `f64::total_cmp`).
+fn cmp_points(a: &[f64; 3], b: &[f64; 3]) -> std::cmp::Ordering {
+    (0..3)
+        .map(|k| a[k].total_cmp(&b[k]))
+        .find(|o| o.is_ne())
+        .unwrap_or(std::cmp::Ordering::Equal)
 }
 
-fn geometric_key(pts: &[[f64; 3]]) -> [i64; 3] {
-    pts.iter().map(point_key).min().unwrap_or([0; 3])
+/// The curve's smallest point in that order: its canonical geometric key.
+fn smallest_point(pts: &[[f64; 3]]) -> [f64; 3] {
+    pts.iter().copied().min_by(cmp_points).unwrap_or([0.0; 3])
 }
 
 /// `curve:<name>`: extracts one curve from the curve set.
