@@ -15,9 +15,8 @@ fn stdout_of(s: &Scratch, args: &[&str]) -> String {
 
 #[test]
 fn explain_names_the_recipe_value_that_changed_with_old_and_new_values() {
-    let s = Scratch::didactic();
-    assert!(s.build(&[]).0);
-    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 40.0 }");
+    let s = Scratch::didactic_built();
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 50.0 }");
     assert!(s.build(&[]).0);
     let text = stdout_of(&s, &["explain", "didactic.toml"]);
     let line = text
@@ -25,7 +24,7 @@ fn explain_names_the_recipe_value_that_changed_with_old_and_new_values() {
         .find(|l| l.starts_with("discretize:F2#1"))
         .expect("the F2 curve is listed");
     assert!(
-        line.contains("mesh.curves.\"F2\".size") && line.contains("100") && line.contains("40"),
+        line.contains("mesh.curves.\"F2\".size") && line.contains("100") && line.contains("50"),
         "{line}"
     );
     let import = text.lines().find(|l| l.starts_with("import:H1")).unwrap();
@@ -34,8 +33,7 @@ fn explain_names_the_recipe_value_that_changed_with_old_and_new_values() {
 
 #[test]
 fn explain_says_an_input_file_changed() {
-    let s = Scratch::didactic();
-    assert!(s.build(&[]).0);
+    let s = Scratch::didactic_built();
     let f = s.path("data/didactic/F2_dangling.ts");
     let text = std::fs::read_to_string(&f)
         .unwrap()
@@ -52,15 +50,17 @@ fn explain_says_an_input_file_changed() {
 
 #[test]
 fn graph_prints_the_expanded_dag_with_node_states() {
-    let s = Scratch::didactic();
-    assert!(s.build(&[]).0);
+    let s = Scratch::didactic_built();
     let dot = stdout_of(&s, &["graph", "didactic.toml"]);
     assert!(dot.starts_with("digraph"));
     for n in [
         "import:H1",
         "intersect:F1/H1",
-        "curves",
+        "model",
         "discretize:F1/H1",
+        "surface_mesh:F2#2",
+        "tet_mesh:reservoir_E",
+        "mesh",
         "export",
     ] {
         assert!(dot.contains(n), "`{n}` missing from the graph");
@@ -77,9 +77,8 @@ fn explain_before_any_build_says_to_build_first() {
 
 #[test]
 fn gc_removes_entries_of_an_old_recipe_value_and_keeps_the_current_build_cached() {
-    let s = Scratch::didactic();
-    assert!(s.build(&[]).0);
-    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 40.0 }");
+    let s = Scratch::didactic_built();
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 50.0 }");
     assert!(s.build(&[]).0);
     let before = read_tree(&s.path(".recipe")).len();
     let out = stdout_of(&s, &["gc", "didactic.toml"]);
@@ -97,8 +96,7 @@ fn gc_removes_entries_of_an_old_recipe_value_and_keeps_the_current_build_cached(
 
 #[test]
 fn clean_removes_the_cache_and_the_next_build_runs_everything() {
-    let s = Scratch::didactic();
-    assert!(s.build(&[]).0);
+    let s = Scratch::didactic_built();
     stdout_of(&s, &["clean", "didactic.toml"]);
     assert!(!s.path(".recipe").exists());
     let (ok, r, _) = s.build(&[]);
@@ -108,7 +106,7 @@ fn clean_removes_the_cache_and_the_next_build_runs_everything() {
 
 #[test]
 fn the_json_report_carries_every_node_with_key_output_and_counts() {
-    let s = Scratch::didactic();
+    let s = Scratch::didactic_built();
     let (ok, r, _) = s.build(&[]);
     assert!(ok);
     let import = r["nodes"]

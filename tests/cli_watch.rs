@@ -10,7 +10,7 @@ use std::time::Duration;
 
 #[test]
 fn watch_mode_rebuilds_on_saves_survives_an_invalid_recipe_and_sees_rename_over_saves() {
-    let s = Scratch::didactic();
+    let s = Scratch::didactic_built();
     let mut child = Command::new(env!("CARGO_BIN_EXE_recipe"))
         .args(["build", "--watch", "--max-builds", "3", "didactic.toml"])
         .current_dir(s.dir.path())
@@ -51,7 +51,7 @@ fn watch_mode_rebuilds_on_saves_survives_an_invalid_recipe_and_sees_rename_over_
     // A valid save by writing a temporary file and renaming it over the recipe.
     let fixed = std::fs::read_to_string(s.recipe())
         .unwrap()
-        .replace("size = \"big\"", "size = 150.0");
+        .replace("size = \"big\"", "size = 200.0");
     let tmp = s.path("didactic.toml.tmp~");
     std::fs::write(&tmp, fixed).unwrap();
     std::fs::rename(&tmp, s.recipe()).unwrap();

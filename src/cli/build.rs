@@ -36,9 +36,17 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     )?;
     write_atomic(&last_graph_path(&cache), report.to_dot().as_bytes())?;
     if args.json {
+        let mut json = report.to_json();
+        if let Some(model) = report
+            .artifact("model")
+            .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
+            && let Some(obj) = json.as_object_mut()
+        {
+            obj.insert("model".to_string(), model.summary());
+        }
         println!(
             "{}",
-            serde_json::to_string_pretty(&report.to_json()).unwrap_or_default()
+            serde_json::to_string_pretty(&json).unwrap_or_default()
         );
     }
     if !args.quiet {
@@ -85,6 +93,12 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         if std::fs::read_to_string(&lock_file).ok().as_deref() != Some(text.as_str()) {
             write_atomic(&lock_file, text.as_bytes())?;
         }
+    }
+    let tables = output_dir.join(format!("{}.quality.txt", recipe.model.name));
+    if !args.quiet
+        && let Ok(text) = std::fs::read_to_string(&tables)
+    {
+        eprintln!("\n{text}");
     }
     if !args.quiet || !args.watch {
         eprintln!(

@@ -131,10 +131,21 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .iter()
                 .map(|(n, r)| (n.clone(), r.point))
                 .collect(),
+            tolerances: recipe.tolerances.clone(),
         };
-        g.add_op("model", Arc::new(op), &inputs)?;
+        let model = g.add_op("model", Arc::new(op), &inputs)?;
+        g.set_expander(
+            model,
+            Arc::new(ModelExpander {
+                recipe: Arc::new(recipe.clone()),
+                import_nodes: import_names,
+            }),
+        );
+        return Ok(g);
     }
 
+    // Without a box there is no closed model: the curves of the imports and intersections are
+    // discretized and exported, nothing is meshed.
     let mut curve_inputs = import_ids.clone();
     curve_inputs.extend(intersections);
     let curves = g.add_op(

@@ -6,6 +6,7 @@ pub mod discretize;
 pub mod export;
 pub mod import;
 pub mod intersect;
+pub mod model;
 pub mod patches;
 pub mod quality;
 pub mod regions;

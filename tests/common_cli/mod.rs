@@ -21,6 +21,21 @@ impl Scratch {
             .expect("copy recipe");
         Scratch { dir }
     }
+    /// A scratch copy whose cache, lock file and outputs already hold a full build of the shipped
+    /// recipe: the build runs once per test binary and is copied, so each test pays only for what
+    /// its edit re-runs.
+    pub fn didactic_built() -> Scratch {
+        static BASE: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+        let base = BASE.get_or_init(|| {
+            let s = Scratch::didactic();
+            let (ok, _, err) = s.build(&[]);
+            assert!(ok, "the shipped recipe builds: {err}");
+            s.dir.keep()
+        });
+        let dir = tempfile::tempdir().expect("temp dir");
+        copy_dir(base, dir.path());
+        Scratch { dir }
+    }
     pub fn recipe(&self) -> PathBuf {
         self.dir.path().join("didactic.toml")
     }

@@ -135,9 +135,11 @@ fn smallest_point(pts: &[[f64; 3]]) -> [f64; 3] {
     pts.iter().copied().min_by(cmp_points).unwrap_or([0.0; 3])
 }
 
-/// `curve:<name>`: extracts one curve from the curve set.
+/// `curve:<name>`: extracts one curve from the curve set, or from the model when there is one.
 pub struct CurveExtractOp {
     pub name: String,
+    /// The input is `model` (a `ModelData`), not `curves`.
+    pub from_model: bool,
 }
 
 impl Operation for CurveExtractOp {
@@ -153,10 +155,25 @@ impl Operation for CurveExtractOp {
             .expect("string")
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let set: CurveSet = inputs
-            .first()
-            .ok_or("curve needs the curve set")?
-            .decode()?;
+        let input = inputs.first().ok_or("curve needs the curve set")?;
+        let set: CurveSet = if self.from_model {
+            let model: super::ModelData = input.decode()?;
+            CurveSet {
+                curves: model
+                    .topology
+                    .curves
+                    .into_iter()
+                    .map(|c| ModelCurve {
+                        name: c.name,
+                        surfaces: c.surfaces,
+                        polyline: c.points,
+                        closed: c.closed,
+                    })
+                    .collect(),
+            }
+        } else {
+            input.decode()?
+        };
         let c = set
             .curves
             .into_iter()
@@ -261,6 +278,7 @@ impl Expander for DiscretizeExpander {
                     &format!("curve:{}", c.name),
                     Arc::new(CurveExtractOp {
                         name: c.name.clone(),
+                        from_model: false,
                     }),
                     &[curves_node],
                 )
@@ -289,6 +307,8 @@ impl Expander for DiscretizeExpander {
                 .map(|f| f.as_str().to_string())
                 .collect(),
             n_imports: self.import_nodes.len(),
+            n_curves: set.curves.len(),
+            with_mesh: false,
         };
         x.add_op("export", Arc::new(export), &export_inputs)
             .map_err(graph_error)?;

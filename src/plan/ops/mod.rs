@@ -3,18 +3,24 @@
 //! the parameters it reads; its `version` is bumped whenever its output for the same inputs changes.
 
 mod curves;
+mod expand;
 mod export;
 mod geometry;
 mod import;
 mod model;
+mod patch;
+mod region;
 
 pub use curves::{
     CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,
 };
+pub use expand::ModelExpander;
 pub use export::ExportOp;
 pub use geometry::{BoxOp, BoxSideOp, BoxSpecParams, IntersectOp};
 pub use import::{ImportOp, OnInvalid};
 pub use model::{ModelData, ModelOp, ModelPatch};
+pub use patch::{PatchExtractOp, PatchMesh, PatchPiece, SurfaceMeshOp};
+pub use region::{AssembleOp, RegionMesh, TetMeshOp};
 
 use crate::geom::TriMesh;
 use crate::mesh::SurfaceKind;

@@ -1,12 +1,16 @@
 //! `model`: the topological model. Every surface (imports and box sides) is split along all its
 //! intersection curves, cut into patches, the patches outside the box are trimmed away, and the
-//! regions are found by face-uses, faults being the surfaces allowed to dangle. Inputs: the box,
-//! then the surfaces (`n_surfaces`, in name order), then the intersections.
+//! regions are found by face-uses, faults being the surfaces allowed to dangle; then the model's
+//! vertices, named curves and patch boundaries are derived (`stages::model`). Inputs: the box,
+//! then the surfaces (`n_surfaces`, in name order), then the intersections. The expander attached
+//! to this node (`plan::ops::expand`) adds the per-curve, per-patch and per-region nodes.
 
 use super::SurfaceData;
 use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use crate::geom::{BBox, TriMesh};
+use crate::geom::{BBox, Tolerances, TriMesh};
+use crate::mesh::SurfaceKind;
 use crate::stages::intersect::{Intersection, split};
+use crate::stages::model::{ModelTopology, build_topology};
 use crate::stages::{patches, regions};
 use serde::{Deserialize, Serialize};
 
@@ -16,6 +20,7 @@ pub struct ModelPatch {
     /// Stable name `surface#k`.
     pub name: String,
     pub surface: String,
+    pub kind: SurfaceKind,
     pub mesh: TriMesh,
 }
 
@@ -24,6 +29,8 @@ pub struct ModelPatch {
 pub struct ModelData {
     pub patches: Vec<ModelPatch>,
     pub regions: regions::RegionModel,
+    /// Vertices, curves and patch boundaries (patch indices as in `patches`).
+    pub topology: ModelTopology,
 }
 
 pub struct ModelOp {
@@ -32,6 +39,7 @@ pub struct ModelOp {
     pub faults: Vec<String>,
     /// Region names by point, from the recipe's `[regions]`.
     pub names: Vec<(String, [f64; 3])>,
+    pub tolerances: Tolerances,
 }
 
 impl Operation for ModelOp {
@@ -39,10 +47,14 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        1
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
+        for (k, v) in self.tolerances.fields() {
+            p.set(&format!("tolerances.{k}"), v)
+                .expect("validated finite");
+        }
         p.set("surfaces.faults", self.faults.clone())
             .expect("strings");
         for (name, at) in &self.names {
@@ -79,6 +91,7 @@ impl Operation for ModelOp {
                     kept.push(ModelPatch {
                         name: p.name,
                         surface: s.name.clone(),
+                        kind: s.kind,
                         mesh: p.mesh,
                     });
                 } else {
@@ -97,15 +110,82 @@ impl Operation for ModelOp {
         let opts = regions::RegionOptions::with_faults(self.faults.iter().cloned());
         let model = regions::find_regions_with(&input, &self.names, &opts)
             .map_err(|e| OpError::from(e.to_string()))?;
+        let topology =
+            build_topology(&input, &self.tolerances).map_err(|e| OpError::from(e.to_string()))?;
+        let n_curves = topology.curves.len() as u64;
+        let n_vertices = topology.vertices.len() as u64;
         let out = Output::new(Artifact::encode(&ModelData {
             patches: kept,
             regions: model.clone(),
+            topology,
         })?)
+        .count("vertices", n_vertices)
+        .count("curves", n_curves)
         .count("patches", input.len() as u64)
         .count("trimmed_patches", trimmed)
         .count("regions", model.regions.len() as u64)
         .count("dangling_patches", model.dangling.len() as u64);
         let names: Vec<&str> = model.regions.iter().map(|r| r.name.as_str()).collect();
         Ok(out.note(format!("regions: {}", names.join(", "))))
+    }
+}
+
+impl ModelData {
+    /// The model as users see it, for `--json` and the report: every curve (its surfaces and
+    /// patches), every patch (its surface and curves) and every region (its patches with sides;
+    /// a dangling patch is listed with both), all by name.
+    pub fn summary(&self) -> serde_json::Value {
+        use serde_json::json;
+        let topo = &self.topology;
+        let patch_name = |p: u32| self.patches[p as usize].name.clone();
+        let curves: Vec<_> = topo
+            .curves
+            .iter()
+            .map(|c| {
+                json!({
+                    "name": c.name,
+                    "surfaces": c.surfaces,
+                    "patches": c.patches.iter().map(|&p| patch_name(p)).collect::<Vec<_>>(),
+                    "closed": c.closed,
+                    "points": c.points.len(),
+                })
+            })
+            .collect();
+        let patches: Vec<_> = self
+            .patches
+            .iter()
+            .zip(&topo.patches)
+            .enumerate()
+            .map(|(i, (p, b))| {
+                let curve_name = |c: u32| topo.curves[c as usize].name.clone();
+                json!({
+                    "name": p.name,
+                    "surface": p.surface,
+                    "support_triangles": p.mesh.triangles.len(),
+                    "dangling": self.regions.dangling.contains(&(i as u32)),
+                    "loops": b.loops.iter().map(|l| l.iter().map(|u| curve_name(u.curve)).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                    "constraints": b.constraints.iter().map(|&c| curve_name(c)).collect::<Vec<_>>(),
+                })
+            })
+            .collect();
+        let regions: Vec<_> = self
+            .regions
+            .regions
+            .iter()
+            .map(|r| {
+                json!({
+                    "name": r.name,
+                    "sides": r.sides.iter().map(|f| format!("{}:{}", patch_name(f.patch), if f.side == regions::Side::Front { "front" } else { "back" })).collect::<Vec<_>>(),
+                    "cavities": r.cavities.len(),
+                    "interior_point": r.interior_point,
+                })
+            })
+            .collect();
+        json!({
+            "vertices": topo.vertices.len(),
+            "curves": curves,
+            "patches": patches,
+            "regions": regions,
+        })
     }
 }

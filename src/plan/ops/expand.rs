@@ -1,0 +1,223 @@
+//! The expander attached to `model`: once the model is known it adds, for every curve,
+//! `curve:<c>` → `discretize:<c>`; for every patch, `patch:<p>` → `surface_mesh:<p>` (inputs: the
+//! discretizations of its curves); for every region, `tet_mesh:<r>` (inputs: the surface meshes
+//! of its patches); then `mesh` (all regions and patches) and `export`. Editing one curve's
+//! subdivision therefore re-runs that curve, the patches it bounds, the regions those bound,
+//! `mesh` and `export`, and nothing else.
+
+use super::patch::patch_curves;
+use super::{
+    AssembleOp, CurveExtractOp, DiscretizeOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp,
+    TetMeshOp,
+};
+use crate::engine::{Artifact, Expander, Expansion, NodeId, OpError};
+use crate::mesh::RegionGroup;
+use crate::plan::lower::curve_subdivision;
+use crate::recipe::{self, Recipe};
+use crate::stages::regions::FaceUse;
+use crate::stages::surface_mesh::SurfaceSize;
+use crate::stages::tet_mesh::SizeField;
+use std::sync::Arc;
+
+pub struct ModelExpander {
+    pub recipe: Arc<Recipe>,
+    /// Names of the import nodes whose validation reports the export writes.
+    pub import_nodes: Vec<String>,
+}
+
+fn graph_error(e: crate::engine::GraphError) -> OpError {
+    OpError::from(e.to_string())
+}
+
+impl ModelExpander {
+    fn surface_size(&self, surface: &str) -> (String, SurfaceSize) {
+        let m = &self.recipe.mesh;
+        let ruled = m.surfaces.iter().any(|r| r.selector.matches(surface));
+        let path = if ruled {
+            format!("mesh.surfaces.\"{surface}\".size")
+        } else {
+            "mesh.size".to_string()
+        };
+        (
+            path,
+            SurfaceSize {
+                size: m.surface_size(surface),
+                min_size: m.min_size,
+                max_size: m.max_size,
+                growth: m.growth,
+            },
+        )
+    }
+
+    fn region_size(&self, region: &str) -> (String, SizeField) {
+        let m = &self.recipe.mesh;
+        match m.regions.get(region) {
+            Some(r) => (
+                format!("mesh.regions.{region}"),
+                SizeField {
+                    size: r.size,
+                    min_size: r.min_size,
+                    max_size: r.max_size,
+                    growth: r.growth,
+                },
+            ),
+            None => (
+                "mesh".to_string(),
+                SizeField {
+                    size: m.size,
+                    min_size: m.min_size,
+                    max_size: m.max_size,
+                    growth: m.growth,
+                },
+            ),
+        }
+    }
+}
+
+impl Expander for ModelExpander {
+    fn expand(&self, output: &Artifact, x: &mut Expansion) -> Result<(), OpError> {
+        let model: ModelData = output.decode()?;
+        let topo = &model.topology;
+        let names: Vec<String> = topo.curves.iter().map(|c| c.name.clone()).collect();
+        let unmatched = self.recipe.check_curve_rules(&names);
+        if !unmatched.is_empty() {
+            return Err(recipe::render(&unmatched).into());
+        }
+        let model_node = x.node("model").ok_or("no `model` node")?;
+        let mut export_inputs: Vec<NodeId> = Vec::new();
+        for name in &self.import_nodes {
+            export_inputs.push(
+                x.node(name)
+                    .ok_or_else(|| OpError::from(format!("no node `{name}`")))?,
+            );
+        }
+        let mut discretized = Vec::with_capacity(topo.curves.len());
+        for c in &topo.curves {
+            let extract = x
+                .add_op(
+                    &format!("curve:{}", c.name),
+                    Arc::new(CurveExtractOp {
+                        name: c.name.clone(),
+                        from_model: true,
+                    }),
+                    &[model_node],
+                )
+                .map_err(graph_error)?;
+            let (rule_path, rule) = curve_subdivision(&self.recipe, &c.name);
+            let d = x
+                .add_op(
+                    &format!("discretize:{}", c.name),
+                    Arc::new(DiscretizeOp {
+                        name: c.name.clone(),
+                        rule_path,
+                        rule,
+                    }),
+                    &[extract],
+                )
+                .map_err(graph_error)?;
+            discretized.push(d);
+        }
+        let n_curves = discretized.len();
+        export_inputs.extend(discretized.iter().copied());
+
+        let mut meshed = Vec::with_capacity(model.patches.len());
+        for (p, boundary) in model.patches.iter().zip(&topo.patches) {
+            let piece = x
+                .add_op(
+                    &format!("patch:{}", p.name),
+                    Arc::new(PatchExtractOp {
+                        name: p.name.clone(),
+                    }),
+                    &[model_node],
+                )
+                .map_err(graph_error)?;
+            let mut inputs = vec![piece];
+            inputs.extend(
+                patch_curves(boundary)
+                    .iter()
+                    .map(|&c| discretized[c as usize]),
+            );
+            let (size_path, size) = self.surface_size(&p.surface);
+            let m = x
+                .add_op(
+                    &format!("surface_mesh:{}", p.name),
+                    Arc::new(SurfaceMeshOp {
+                        name: p.name.clone(),
+                        size_path,
+                        size,
+                        tolerances: self.recipe.tolerances.clone(),
+                    }),
+                    &inputs,
+                )
+                .map_err(graph_error)?;
+            meshed.push(m);
+        }
+
+        let mut region_nodes = Vec::new();
+        let mut groups = Vec::new();
+        for r in &model.regions.regions {
+            let mut patches: Vec<u32> = r.sides.iter().map(|f| f.patch).collect();
+            patches.dedup();
+            let sides: Vec<FaceUse> = r
+                .sides
+                .iter()
+                .map(|f| FaceUse {
+                    patch: patches.binary_search(&f.patch).unwrap_or(0) as u32,
+                    side: f.side,
+                })
+                .collect();
+            let inputs: Vec<NodeId> = patches.iter().map(|&p| meshed[p as usize]).collect();
+            let (size_path, size) = self.region_size(&r.name);
+            let id = x
+                .add_op(
+                    &format!("tet_mesh:{}", r.name),
+                    Arc::new(TetMeshOp {
+                        name: r.name.clone(),
+                        patches: patches
+                            .iter()
+                            .map(|&p| model.patches[p as usize].name.clone())
+                            .collect(),
+                        sides,
+                        size_path,
+                        size,
+                    }),
+                    &inputs,
+                )
+                .map_err(graph_error)?;
+            region_nodes.push(id);
+            let spec = self.recipe.regions.get(&r.name);
+            groups.push(RegionGroup {
+                name: r.name.clone(),
+                material: spec.and_then(|s| s.material),
+                properties: spec.map(|s| s.properties.clone()).unwrap_or_default(),
+            });
+        }
+        let mut mesh_inputs = region_nodes;
+        mesh_inputs.extend(meshed.iter().copied());
+        let mesh = x
+            .add_op(
+                "mesh",
+                Arc::new(AssembleOp { regions: groups }),
+                &mesh_inputs,
+            )
+            .map_err(graph_error)?;
+        export_inputs.push(mesh);
+
+        let export = ExportOp {
+            model: self.recipe.model.name.clone(),
+            formats: self
+                .recipe
+                .output
+                .formats
+                .iter()
+                .map(|f| f.as_str().to_string())
+                .collect(),
+            n_imports: self.import_nodes.len(),
+            n_curves,
+            with_mesh: true,
+        };
+        x.add_op("export", Arc::new(export), &export_inputs)
+            .map_err(graph_error)?;
+        Ok(())
+    }
+}

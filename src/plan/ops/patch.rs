@@ -1,0 +1,164 @@
+//! `patch:<p>` and `surface_mesh:<p>`: one patch of the model extracted with its boundary (so a
+//! patch whose support and boundary did not change cuts its dependents off early), and its FE
+//! surface mesh from the discretizations of its curves.
+
+use super::{CurveNodes, ModelData};
+use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use crate::geom::{Tolerances, TriMesh};
+use crate::mesh::SurfaceKind;
+use crate::stages::model::{PatchBoundary, patch_input};
+use crate::stages::surface_mesh::{SurfaceSize, mesh_patch_with};
+use serde::{Deserialize, Serialize};
+
+/// The output of `patch:<p>`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PatchPiece {
+    pub name: String,
+    pub surface: String,
+    pub kind: SurfaceKind,
+    pub support: TriMesh,
+    /// Curve indices refer to `curves`.
+    pub boundary: PatchBoundary,
+    /// Names of the curves bounding or constraining the patch, in model order.
+    pub curves: Vec<String>,
+}
+
+/// The model-order indices of the curves a patch uses (loops and constraints), ascending.
+pub fn patch_curves(b: &PatchBoundary) -> Vec<u32> {
+    let mut v: Vec<u32> = b
+        .loops
+        .iter()
+        .flatten()
+        .map(|u| u.curve)
+        .chain(b.constraints.iter().copied())
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// `patch:<p>`: extracts patch `p` (index `index` in the model) from the model.
+pub struct PatchExtractOp {
+    pub name: String,
+}
+
+impl Operation for PatchExtractOp {
+    fn kind(&self) -> &'static str {
+        "patch"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        Params::new()
+            .with("patch", self.name.as_str())
+            .expect("string")
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let model: ModelData = inputs.first().ok_or("patch needs the model")?.decode()?;
+        let i = model
+            .patches
+            .iter()
+            .position(|p| p.name == self.name)
+            .ok_or_else(|| OpError::from(format!("the model has no patch `{}`", self.name)))?;
+        let mut boundary = model.topology.patches[i].clone();
+        let used = patch_curves(&boundary);
+        let local = |c: u32| used.binary_search(&c).map_or(u32::MAX, |k| k as u32);
+        for u in boundary.loops.iter_mut().flatten() {
+            u.curve = local(u.curve);
+        }
+        for c in &mut boundary.constraints {
+            *c = local(*c);
+        }
+        let p = &model.patches[i];
+        let piece = PatchPiece {
+            name: p.name.clone(),
+            surface: p.surface.clone(),
+            kind: p.kind,
+            support: p.mesh.clone(),
+            boundary,
+            curves: used
+                .iter()
+                .map(|&c| model.topology.curves[c as usize].name.clone())
+                .collect(),
+        };
+        let n = piece.support.triangles.len() as u64;
+        Ok(Output::new(Artifact::encode(&piece)?).count("support_triangles", n))
+    }
+}
+
+/// The output of `surface_mesh:<p>`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PatchMesh {
+    pub name: String,
+    pub surface: String,
+    pub kind: SurfaceKind,
+    /// The FE triangles, oriented like the support.
+    pub mesh: TriMesh,
+}
+
+/// `surface_mesh:<p>`: inputs are `patch:<p>` then `discretize:<c>` for each of its curves, in
+/// the order of `PatchPiece::curves`.
+pub struct SurfaceMeshOp {
+    pub name: String,
+    /// Recipe path of the size rule (`mesh.surfaces."H1"` or `mesh.size`).
+    pub size_path: String,
+    pub size: SurfaceSize,
+    pub tolerances: Tolerances,
+}
+
+impl Operation for SurfaceMeshOp {
+    fn kind(&self) -> &'static str {
+        "surface_mesh"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        p.set("patch", self.name.as_str()).expect("string");
+        p.set(&self.size_path, self.size.size)
+            .expect("validated finite");
+        p.set("mesh.min_size", self.size.min_size)
+            .expect("validated finite");
+        p.set("mesh.max_size", self.size.max_size)
+            .expect("validated finite");
+        p.set("mesh.growth", self.size.growth)
+            .expect("validated finite");
+        p.set(
+            "tolerances.support_distance_rel",
+            self.tolerances.support_distance_rel,
+        )
+        .expect("validated finite");
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let (piece, rest) = inputs.split_first().ok_or("surface_mesh needs its patch")?;
+        let piece: PatchPiece = piece.decode()?;
+        let curves: Vec<CurveNodes> = rest.iter().map(|a| a.decode()).collect::<Result<_, _>>()?;
+        if curves.len() != piece.curves.len()
+            || curves.iter().zip(&piece.curves).any(|(c, n)| &c.name != n)
+        {
+            return Err(format!(
+                "surface_mesh:{}: its curves do not match the patch",
+                self.name
+            )
+            .into());
+        }
+        let nodes = |c: u32| curves.get(c as usize).map(|c| c.nodes.as_slice());
+        let input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
+            .map_err(|e| OpError::from(e.to_string()))?;
+        let out = mesh_patch_with(&input, &self.size, &self.tolerances)
+            .map_err(|e| OpError::from(e.to_string()))?;
+        let mesh = TriMesh::new(out.nodes, out.triangles);
+        let (nn, nt) = (mesh.vertices.len() as u64, mesh.triangles.len() as u64);
+        Ok(Output::new(Artifact::encode(&PatchMesh {
+            name: piece.name,
+            surface: piece.surface,
+            kind: piece.kind,
+            mesh,
+        })?)
+        .count("nodes", nn)
+        .count("triangles", nt))
+    }
+}

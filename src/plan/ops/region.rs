@@ -1,0 +1,159 @@
+//! `tet_mesh:<r>` and `mesh`: one region filled with tetrahedra from the FE meshes of the patches
+//! that bound it (sides known from the model, carried as parameters), and the final volume mesh
+//! welded from all regions with every patch's triangles in its surface's group.
+
+use super::PatchMesh;
+use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use crate::mesh::{RegionGroup, VolumeMesh};
+use crate::stages::model::{VolumeAssembly, assemble_volume, region_input};
+use crate::stages::regions::{FaceUse, Side};
+use crate::stages::tet_mesh::{SizeField, TetMeshOptions, mesh_region};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// The output of `tet_mesh:<r>`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RegionMesh {
+    pub name: String,
+    /// The boundary nodes first (as welded from the patch meshes), then the interior nodes.
+    pub nodes: Vec<[f64; 3]>,
+    /// Positive tets.
+    pub tets: Vec<[u32; 4]>,
+}
+
+/// `tet_mesh:<r>`: inputs are `surface_mesh:<p>` for every patch in `patches`.
+pub struct TetMeshOp {
+    pub name: String,
+    /// The distinct patches bounding the region, in model order.
+    pub patches: Vec<String>,
+    /// Face-uses, `patch` indexing `patches`; a dangling patch appears with both sides.
+    pub sides: Vec<FaceUse>,
+    /// Recipe path of the size rule (`mesh.regions.<r>` or `mesh`).
+    pub size_path: String,
+    pub size: SizeField,
+}
+
+impl Operation for TetMeshOp {
+    fn kind(&self) -> &'static str {
+        "tet_mesh"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        p.set("region", self.name.as_str()).expect("string");
+        let sides: Vec<String> = self
+            .sides
+            .iter()
+            .map(|f| {
+                let side = if f.side == Side::Front {
+                    "front"
+                } else {
+                    "back"
+                };
+                format!("{}:{side}", self.patches[f.patch as usize])
+            })
+            .collect();
+        p.set("sides", sides).expect("strings");
+        let path = &self.size_path;
+        p.set(&format!("{path}.size"), self.size.size)
+            .expect("validated finite");
+        p.set(&format!("{path}.min_size"), self.size.min_size)
+            .expect("validated finite");
+        p.set(&format!("{path}.max_size"), self.size.max_size)
+            .expect("validated finite");
+        p.set(&format!("{path}.growth"), self.size.growth)
+            .expect("validated finite");
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let meshes: Vec<PatchMesh> = inputs
+            .iter()
+            .map(|a| a.decode())
+            .collect::<Result<_, _>>()?;
+        if meshes.len() != self.patches.len() {
+            return Err(format!("tet_mesh:{} needs the meshes of its patches", self.name).into());
+        }
+        let get = |p: u32| meshes.get(p as usize).map(|m| &m.mesh);
+        let input = region_input(&self.name, &self.sides, &get)
+            .map_err(|e| OpError::from(e.to_string()))?;
+        let out = mesh_region(&input, &self.size, &TetMeshOptions::default())
+            .map_err(|e| OpError::from(e.to_string()))?;
+        let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
+        Ok(Output::new(Artifact::encode(&RegionMesh {
+            name: self.name.clone(),
+            nodes: out.nodes,
+            tets: out.tets,
+        })?)
+        .count("nodes", nn)
+        .count("tets", nt))
+    }
+}
+
+/// `mesh`: inputs are every `tet_mesh:<r>` (in model order, matching `regions`), then every
+/// `surface_mesh:<p>` (in model order).
+pub struct AssembleOp {
+    /// Each region's group: name and the recipe's attributes.
+    pub regions: Vec<RegionGroup>,
+}
+
+impl Operation for AssembleOp {
+    fn kind(&self) -> &'static str {
+        "mesh"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        for r in &self.regions {
+            if let Some(m) = r.material {
+                p.set(&format!("regions.{}.material", r.name), m)
+                    .expect("int");
+            }
+            let props: BTreeMap<String, f64> = r.properties.clone();
+            for (k, v) in props {
+                p.set(&format!("regions.{}.{k}", r.name), v)
+                    .expect("validated finite");
+            }
+        }
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let n = self.regions.len();
+        if inputs.len() < n {
+            return Err("mesh needs its regions".into());
+        }
+        let regions: Vec<RegionMesh> = inputs[..n]
+            .iter()
+            .map(|a| a.decode())
+            .collect::<Result<_, _>>()?;
+        let patches: Vec<PatchMesh> = inputs[n..]
+            .iter()
+            .map(|a| a.decode())
+            .collect::<Result<_, _>>()?;
+        let parts = VolumeAssembly {
+            regions: self
+                .regions
+                .iter()
+                .zip(&regions)
+                .map(|(g, r)| (g.clone(), r.nodes.as_slice(), r.tets.as_slice()))
+                .collect(),
+            patches: patches
+                .iter()
+                .map(|p| (p.surface.as_str(), p.kind, &p.mesh))
+                .collect(),
+        };
+        let mesh: VolumeMesh = assemble_volume(&parts).map_err(|e| OpError::from(e.to_string()))?;
+        let (nn, nt, nf) = (
+            mesh.nodes.len() as u64,
+            mesh.tets.len() as u64,
+            mesh.triangles.len() as u64,
+        );
+        Ok(Output::new(Artifact::encode(&mesh)?)
+            .count("nodes", nn)
+            .count("tets", nt)
+            .count("triangles", nf))
+    }
+}
