@@ -332,9 +332,6 @@ fn main() {
         let path = out.join(file);
         std::fs::write(&path, text)
             .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
-        println!(
-            "wrote {} ({nv} vertices, {nt} triangles)",
-            path.display()
-        );
+        println!("wrote {} ({nv} vertices, {nt} triangles)", path.display());
     }
 }

@@ -43,7 +43,13 @@ fn build(without: &[(&str, &str)]) -> Model {
         })
         .collect();
     surfaces.extend(box_sides(&bbox()));
-    let mut pairs = vec![("H1", "H2"), ("H1", "F1"), ("H2", "F1"), ("F2", "H1"), ("F2", "H2")];
+    let mut pairs = vec![
+        ("H1", "H2"),
+        ("H1", "F1"),
+        ("H2", "F1"),
+        ("F2", "H1"),
+        ("F2", "H2"),
+    ];
     let sides: Vec<String> = surfaces.iter().skip(4).map(|s| s.0.clone()).collect();
     for g in ["H1", "H2", "F1"] {
         for s in &sides {
@@ -147,8 +153,16 @@ fn without_trims_only_the_patches_outside_the_box_go_and_the_dangling_fault_stay
     }
     assert!(out.discarded.iter().all(|d| d.trim.is_none()));
     assert!(out.discarded.iter().all(|d| d.reason == "outside the box"));
-    assert_eq!(kept_of(m, &out, "F1").len(), 3, "above, in and below the reservoir");
-    assert_eq!(kept_of(m, &out, "F2").len(), 3, "F2's free borders do not trim it");
+    assert_eq!(
+        kept_of(m, &out, "F1").len(),
+        3,
+        "above, in and below the reservoir"
+    );
+    assert_eq!(
+        kept_of(m, &out, "F2").len(),
+        3,
+        "F2's free borders do not trim it"
+    );
 }
 
 #[test]
@@ -160,7 +174,11 @@ fn keeping_f1_below_h1_discards_exactly_the_f1_patch_above_h1() {
     let (lo, hi) = z_range(gone[0]);
     assert_eq!(hi, 0.0, "it reaches the top of the box");
     assert!(lo > -1300.0, "it ends at H1, near z = -1200: {lo}");
-    assert!(out.discarded.iter().any(|d| d.reason.ends_with(": above H1")));
+    assert!(
+        out.discarded
+            .iter()
+            .any(|d| d.reason.ends_with(": above H1"))
+    );
     assert_eq!(kept_of(m, &out, "F1").len(), 2);
 }
 
@@ -189,7 +207,10 @@ fn two_keeps_leave_only_the_reservoir_parts_of_both_faults() {
         let left = kept_of(m, &out, f);
         assert_eq!(left.len(), 1, "{f}");
         let (lo, hi) = z_range(left[0]);
-        assert!(hi - lo < 200.0, "{f}: the 35 m reservoir strip, seen along dip: {lo}..{hi}");
+        assert!(
+            hi - lo < 200.0,
+            "{f}: the 35 m reservoir strip, seen along dip: {lo}..{hi}"
+        );
     }
 }
 
@@ -199,7 +220,12 @@ fn a_keep_with_a_glob_never_judges_the_surface_it_keeps_against() {
     // the trim keeps everything and says so.
     let m = model();
     let e = run(m, &[keep("H*", Side::Below, "H1")]).unwrap_err();
-    assert!(e.message.contains("patches it selects are already below `H1`"), "{}", e.message);
+    assert!(
+        e.message
+            .contains("patches it selects are already below `H1`"),
+        "{}",
+        e.message
+    );
 }
 
 #[test]
@@ -216,7 +242,10 @@ fn a_point_on_h1_west_of_f1_discards_that_patch_and_only_it() {
         let out = run(m, &[trim("H1", TrimAction::DiscardContaining(q))]).expect("trims");
         let gone = discarded_by(m, &out, 0);
         assert_eq!(gone.len(), 1, "exactly one patch holds {q:?}");
-        assert!(gone[0].mesh.vertices.iter().all(|v| v[0] < 502_000.0), "the west one");
+        assert!(
+            gone[0].mesh.vertices.iter().all(|v| v[0] < 502_000.0),
+            "the west one"
+        );
     }
     let off = [p[0], p[1], p[2] + 1.0];
     let e = run(m, &[trim("H1", TrimAction::DiscardContaining(off))]).unwrap_err();
@@ -274,7 +303,10 @@ fn a_later_trim_only_sees_the_patches_earlier_trims_kept() {
     let second = discarded_by(m, &out, 1);
     assert_eq!(second.len(), 1);
     let (_, hi) = z_range(second[0]);
-    assert!(hi < -1100.0, "the reservoir strip, the nearest one left: {hi}");
+    assert!(
+        hi < -1100.0,
+        "the reservoir strip, the nearest one left: {hi}"
+    );
 }
 
 #[test]
@@ -290,8 +322,16 @@ fn area_below_discards_the_thin_reservoir_strips_of_the_box_sides() {
         assert!(p.mesh.area() < 200_000.0);
     }
     let bigger = run(m, &[trim("box.*", TrimAction::DiscardAreaBelow(1.0))]).unwrap_err();
-    assert!(bigger.message.contains("no patch has an area below 1"), "{}", bigger.message);
-    assert!(bigger.message.contains("the smallest is `box."), "{}", bigger.message);
+    assert!(
+        bigger.message.contains("no patch has an area below 1"),
+        "{}",
+        bigger.message
+    );
+    assert!(
+        bigger.message.contains("the smallest is `box."),
+        "{}",
+        bigger.message
+    );
 }
 
 #[test]
@@ -306,10 +346,19 @@ fn a_trim_that_changes_nothing_is_an_error_naming_it() {
     )
     .unwrap_err();
     assert_eq!(e.trim, Some(1));
-    assert!(e.message.starts_with("[[trim]] #2 (surface = \"F2\", keep = { above = \"box.zmin\" })"), "{}", e.message);
+    assert!(
+        e.message
+            .starts_with("[[trim]] #2 (surface = \"F2\", keep = { above = \"box.zmin\" })"),
+        "{}",
+        e.message
+    );
     assert!(e.message.contains("discards nothing"), "{}", e.message);
     let e = run(m, &[trim("G*", TrimAction::DiscardAreaBelow(1.0))]).unwrap_err();
-    assert!(e.message.contains("no patch of a surface matching `G*`"), "{}", e.message);
+    assert!(
+        e.message.contains("no patch of a surface matching `G*`"),
+        "{}",
+        e.message
+    );
     let e = run(m, &[keep("F1", Side::Below, "H9")]).unwrap_err();
     assert!(e.message.contains("no surface `H9`"), "{}", e.message);
 }
@@ -318,8 +367,16 @@ fn a_trim_that_changes_nothing_is_an_error_naming_it() {
 fn a_fault_not_intersected_with_the_horizon_lies_on_both_sides_of_it_and_says_so() {
     let m = build(&[("H1", "F1")]);
     let e = run(&m, &[keep("F1", Side::Below, "H1")]).unwrap_err();
-    assert!(e.message.contains("lies on both sides of `H1`"), "{}", e.message);
-    assert!(e.message.contains("intersect `F1` with `H1`"), "{}", e.message);
+    assert!(
+        e.message.contains("lies on both sides of `H1`"),
+        "{}",
+        e.message
+    );
+    assert!(
+        e.message.contains("intersect `F1` with `H1`"),
+        "{}",
+        e.message
+    );
     assert!(e.patch.as_deref().is_some_and(|p| p.starts_with("F1#")));
     assert!(e.at.is_some());
 }

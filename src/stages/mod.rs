@@ -11,6 +11,6 @@ pub mod quality;
 pub mod regions;
 pub mod surface_mesh;
 pub mod tet_mesh;
-pub mod trims;
 pub mod topology;
+pub mod trims;
 pub mod validate;

@@ -178,18 +178,13 @@ pub fn apply_trims(
         let found: Vec<(usize, String)> = match &t.action {
             TrimAction::Keep { side, of } => {
                 let Some(&(name, mesh)) = surfaces.iter().find(|(n, _)| *n == of.as_str()) else {
-                    return Err(err(
-                        format!("the model has no surface `{of}`"),
-                        None,
-                        None,
-                    ));
+                    return Err(err(format!("the model has no surface `{of}`"), None, None));
                 };
                 let column = columns.entry(name).or_insert_with(|| Column::new(mesh));
                 let mut found = Vec::new();
                 for &i in selected.iter().filter(|&&i| patches[i].surface != of) {
-                    let here = place(&patches[i], column, of).map_err(|(m, at)| {
-                        err(m, Some(patches[i].name), Some(at))
-                    })?;
+                    let here = place(&patches[i], column, of)
+                        .map_err(|(m, at)| err(m, Some(patches[i].name), Some(at)))?;
                     if here != *side {
                         let word = if here == Side::Above {
                             "above"
@@ -202,7 +197,8 @@ pub fn apply_trims(
                 found
             }
             TrimAction::DiscardContaining(p) => {
-                let i = containing(patches, &selected, p, support).map_err(|m| err(m, None, Some(*p)))?;
+                let i = containing(patches, &selected, p, support)
+                    .map_err(|m| err(m, None, Some(*p)))?;
                 vec![(i, format!("{}: contains {}", describe(k, t), pt(p)))]
             }
             TrimAction::DiscardNearest(p) => {
@@ -339,7 +335,11 @@ fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Side, (String, [f64
 }
 
 /// Selected patches by increasing distance to `p` (exact hits first at distance 0), ties by name.
-fn by_distance(patches: &[TrimPatch], selected: &[usize], p: &[f64; 3]) -> Vec<(usize, near::Nearness)> {
+fn by_distance(
+    patches: &[TrimPatch],
+    selected: &[usize],
+    p: &[f64; 3],
+) -> Vec<(usize, near::Nearness)> {
     let mut v: Vec<(usize, near::Nearness)> = selected
         .iter()
         .map(|&i| (i, near::nearness(p, patches[i].mesh)))
@@ -418,7 +418,9 @@ fn nothing(patches: &[TrimPatch], selected: &[usize], action: &TrimAction) -> St
             if judged == 0 {
                 format!("it selects only patches of `{of}` itself")
             } else {
-                format!("all {judged} patches it selects are already {s} `{of}`: it discards nothing")
+                format!(
+                    "all {judged} patches it selects are already {s} `{of}`: it discards nothing"
+                )
             }
         }
         TrimAction::DiscardAreaBelow(a) => {
@@ -427,9 +429,9 @@ fn nothing(patches: &[TrimPatch], selected: &[usize], action: &TrimAction) -> St
                 .map(|&i| (patches[i].mesh.area(), patches[i].name))
                 .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(y.1)));
             match smallest {
-                Some((area, name)) => format!(
-                    "no patch has an area below {a}: the smallest is `{name}` with {area}"
-                ),
+                Some((area, name)) => {
+                    format!("no patch has an area below {a}: the smallest is `{name}` with {area}")
+                }
                 None => format!("no patch has an area below {a}"),
             }
         }

@@ -187,8 +187,10 @@ mod tests {
         assert_eq!(c.locate(&[1.0, 1.0, 5.0]), Verdict::Above);
         assert_eq!(c.locate(&[1.0, 1.0, -5.0]), Verdict::Below);
         assert_eq!(c.locate(&[0.0, 0.0, -5.0]), Verdict::Below);
-        assert_eq!(c.locate(&[2.0, 2.0, 5.0]), Verdict::Above);
+        assert_eq!(c.locate(&[0.0, 0.0, 5.0]), Verdict::Above);
         assert_eq!(c.locate(&[2.0, 2.0, 0.0]), Verdict::On, "a vertex");
+        // On the outer border the perturbation may step off the surface: (2 + ε, 2 + ε²).
+        assert_eq!(c.locate(&[2.0, 2.0, 5.0]), Verdict::Uncovered);
     }
 
     #[test]
