@@ -117,9 +117,24 @@ fn patches_in_box(surfaces: &[(String, TriMesh)], split: &[SplitSurface]) -> Vec
     kept
 }
 
+/// The recipe's `[regions]` points, which name the six regions.
+fn names() -> Vec<(String, [f64; 3])> {
+    [
+        ("overburden_W", [500500.0, 7001000.0, -600.0]),
+        ("overburden_E", [504000.0, 7001000.0, -600.0]),
+        ("reservoir_W", [500500.0, 7001000.0, -1191.6]),
+        ("reservoir_E", [504000.0, 7001000.0, -1264.9]),
+        ("underburden_W", [500500.0, 7001000.0, -2000.0]),
+        ("underburden_E", [504000.0, 7001000.0, -2000.0]),
+    ]
+    .iter()
+    .map(|(n, p)| (n.to_string(), *p))
+    .collect()
+}
+
 fn regions(kept: &[PatchIn]) -> RegionModel {
     let opts = RegionOptions::with_faults(["F1", "F2"]);
-    find_regions_with(kept, &[], &opts).unwrap_or_else(|e| panic!("regions: {e}"))
+    find_regions_with(kept, &names(), &opts).unwrap_or_else(|e| panic!("regions: {e}"))
 }
 
 fn model(surfaces: &[(String, TriMesh)], pairs: &[(String, String)]) -> RegionModel {
@@ -129,28 +144,55 @@ fn model(surfaces: &[(String, TriMesh)], pairs: &[(String, String)]) -> RegionMo
     regions(&kept)
 }
 
+/// CPU seconds used so far by the whole process (every thread), from `/proc/self/stat` (user +
+/// system, in USER_HZ = 100 ticks per second); `None` where that file does not exist. Wall
+/// time on a shared machine overstates the work, so the setup prints both.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the parenthesised command name; utime and stime are fields 14 and 15.
+    let rest = stat.rsplit_once(')')?.1;
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: f64 = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// Runs `f` `n` times; prints its mean wall and CPU time; returns the last result.
+fn timed<T>(what: &str, n: u32, mut f: impl FnMut() -> T) -> T {
+    let (t, c) = (Instant::now(), cpu_seconds());
+    let mut out = None;
+    for _ in 0..n {
+        out = Some(black_box(f()));
+    }
+    let wall = t.elapsed().as_secs_f64() / n as f64;
+    let cpu = match (c, cpu_seconds()) {
+        (Some(a), Some(b)) => format!("{:.3} s", (b - a) / n as f64),
+        _ => "unknown".into(),
+    };
+    eprintln!("{what}: wall {wall:.3} s, cpu {cpu} (mean of {n})");
+    out.expect("n >= 1")
+}
+
 fn bench(c: &mut Criterion) {
     let (surfaces, pairs) = inputs();
-    // One timed pass per stage, to say where the time goes.
-    let t = Instant::now();
-    let xs = intersect_all(&surfaces, &pairs);
-    let t_x = t.elapsed();
-    let t = Instant::now();
-    let split = split_all(&surfaces, &xs);
-    let t_s = t.elapsed();
-    let t = Instant::now();
-    let kept = patches_in_box(&surfaces, &split);
-    let t_p = t.elapsed();
-    let t = Instant::now();
-    let m = regions(&kept);
-    let t_r = t.elapsed();
+    // A few timed passes per stage, to say where the time goes.
+    let n = 3;
+    let xs = timed("intersect", n, || intersect_all(&surfaces, &pairs));
+    let split = timed("split", n, || split_all(&surfaces, &xs));
+    let kept = timed("patches", n, || patches_in_box(&surfaces, &split));
+    let m = timed("regions", n, || regions(&kept));
+    timed("model", n, || model(&surfaces, &pairs));
     eprintln!(
-        "{} pairs, {} patches, {} regions; intersect {t_x:?}, split {t_s:?}, patches {t_p:?}, regions {t_r:?}",
+        "{} pairs, {} patches, {} regions",
         pairs.len(),
         kept.len(),
         m.regions.len()
     );
     assert_eq!(m.regions.len(), 6, "3 layers on each side of F1");
+    let mut named: Vec<&str> = m.regions.iter().map(|r| r.name.as_str()).collect();
+    named.sort_unstable();
+    let mut want: Vec<String> = names().into_iter().map(|n| n.0).collect();
+    want.sort_unstable();
+    assert_eq!(named, want, "every recipe point names its region");
 
     let mut g = c.benchmark_group("model");
     g.sample_size(10);

@@ -115,14 +115,28 @@ fn far_point(q: &P3, bbox: &BBox, k: usize) -> P3 {
     ]
 }
 
+/// Whether the closed box `b` may meet the closed triangle `t`: `false` only when all three
+/// corners lie strictly beyond one face of the box (exact comparisons of input coordinates), so
+/// nothing inside the box (a segment between two of its corners, a point) touches `t`. The
+/// cheap rejection in front of the `orient3d` tests: the rays of [`parity`] are nearly parallel
+/// to x, so their boxes are thin in y and z.
+#[inline]
+pub(super) fn may_meet(b: &BBox, t: &Tri) -> bool {
+    (0..3).all(|k| {
+        !(t[0][k] < b.min[k] && t[1][k] < b.min[k] && t[2][k] < b.min[k])
+            && !(t[0][k] > b.max[k] && t[1][k] > b.max[k] && t[2][k] > b.max[k])
+    })
+}
+
 /// Parity of `q` against the closed surface made of `tris` (exact); `None` when every tried ray
 /// is degenerate.
 pub(super) fn parity(q: &P3, tris: &[Tri], bbox: &BBox) -> Option<Loc> {
     for k in 0..64 {
         let f = far_point(q, bbox, k);
+        let seg = BBox::from_points([q, &f]);
         let mut count = 0usize;
         let mut degenerate = false;
-        for t in tris {
+        for t in tris.iter().filter(|t| may_meet(&seg, t)) {
             match crossing(q, &f, t) {
                 Cross::OnTriangle => return Some(Loc::OnBoundary),
                 Cross::Proper => count += 1,
