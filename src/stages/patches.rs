@@ -58,7 +58,24 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
             }
         }
     }
-    uses.sort_unstable();
+    // A counting sort on the first vertex, then each (small) bucket: the order of a full sort.
+    let mut start = vec![0usize; nv as usize + 1];
+    for u in &uses {
+        start[u.0[0] as usize + 1] += 1;
+    }
+    for i in 0..nv as usize {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut sorted = vec![([0u32; 2], 0u32); uses.len()];
+    for u in &uses {
+        sorted[fill[u.0[0] as usize]] = *u;
+        fill[u.0[0] as usize] += 1;
+    }
+    for w in start.windows(2) {
+        sorted[w[0]..w[1]].sort_unstable();
+    }
+    let uses = sorted;
     for run in uses.chunk_by(|x, y| x.0 == y.0) {
         if split.curve_edges.binary_search(&run[0].0).is_ok() {
             continue;

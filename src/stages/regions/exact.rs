@@ -242,7 +242,13 @@ pub(super) fn one_sided(face_uses: &[super::FaceUse]) -> Vec<u32> {
 }
 
 pub(super) fn patch_tris(patches: &[PatchIn], ids: impl IntoIterator<Item = u32>) -> Vec<Tri> {
-    let mut out = Vec::new();
+    let ids: Vec<u32> = ids.into_iter().collect();
+    let n = ids
+        .iter()
+        .filter_map(|&p| patches.get(p as usize))
+        .map(|p| p.mesh.triangles.len())
+        .sum();
+    let mut out = Vec::with_capacity(n);
     for p in ids {
         let Some(patch) = patches.get(p as usize) else {
             continue;
