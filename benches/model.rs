@@ -43,7 +43,10 @@ fn bbox() -> BBox {
 /// The model's surfaces in name order (as the `model` operation receives them), and the pairs
 /// `recipes/didactic.toml` intersects: every pair among H1, H2, F1 and the six box sides (box
 /// sides not with each other), plus F2 with each horizon; each pair sorted, the list sorted.
-fn inputs() -> (Vec<(String, TriMesh)>, Vec<(String, String)>) {
+type Named = Vec<(String, TriMesh)>;
+type Pairs = Vec<(String, String)>;
+
+fn inputs() -> (Named, Pairs) {
     let mut surfaces: Vec<(String, TriMesh)> = Vec::new();
     for (file, text, _, _) in make_didactic::didactic_files(Some(TRIANGLES)) {
         let name = NAMES

@@ -388,3 +388,18 @@ fn a_vertical_wall_cannot_be_kept_above_and_the_error_names_the_patch_and_point(
     assert!(e.message.contains("does not extend over"), "{}", e.message);
     assert!(e.patch.as_deref().is_some_and(|p| p.starts_with("H1#")));
 }
+
+#[test]
+fn the_split_model_is_the_same_on_one_thread_and_on_four() {
+    // `split_model` splits surfaces in parallel; the trims read its meshes bit for bit.
+    let build_on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a pool")
+            .install(|| build(&[]))
+    };
+    let (one, four) = (build_on(1), build_on(4));
+    assert_eq!(one.split, four.split);
+    assert_eq!(one.patches, four.patches);
+}

@@ -104,13 +104,16 @@ pub fn split_all(
 
 /// Split every surface of a model along all the intersections that involve it (picking each
 /// intersection's side by name), with the other surfaces' meshes for canonical shared points.
-/// The result is in the order of `surfaces`.
+/// The result is in the order of `surfaces`. Surfaces are split in parallel (each on its own,
+/// so the result does not depend on the thread count); on failure the error is the one of the
+/// first failing surface in `surfaces` order.
 pub fn split_model(
     surfaces: &[(&str, &TriMesh)],
     intersections: &[Intersection],
 ) -> Result<Vec<SplitSurface>, SplitError> {
-    surfaces
-        .iter()
+    use rayon::prelude::*;
+    let each: Vec<Result<SplitSurface, SplitError>> = surfaces
+        .par_iter()
         .map(|&(name, mesh)| {
             let mine: Vec<(&Intersection, Side)> = intersections
                 .iter()
@@ -126,7 +129,8 @@ pub fn split_model(
                 .collect();
             split_all_with(name, mesh, &mine, surfaces)
         })
-        .collect()
+        .collect();
+    each.into_iter().collect()
 }
 
 /// One curve point as seen on the surface being split.

@@ -123,8 +123,9 @@ fn far_point(q: &P3, bbox: &BBox, k: usize) -> P3 {
 #[inline]
 pub(super) fn may_meet(b: &BBox, t: &Tri) -> bool {
     (0..3).all(|k| {
-        !(t[0][k] < b.min[k] && t[1][k] < b.min[k] && t[2][k] < b.min[k])
-            && !(t[0][k] > b.max[k] && t[1][k] > b.max[k] && t[2][k] > b.max[k])
+        let lo = t[0][k].min(t[1][k]).min(t[2][k]);
+        let hi = t[0][k].max(t[1][k]).max(t[2][k]);
+        lo <= b.max[k] && b.min[k] <= hi
     })
 }
 
