@@ -439,3 +439,90 @@ fn nothing(patches: &[TrimPatch], selected: &[usize], action: &TrimAction) -> St
         _ => "it discards nothing".into(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recipe::{Span, SurfaceSelector};
+
+    fn unit_box() -> BBox {
+        BBox {
+            min: [-10.0; 3],
+            max: [10.0; 3],
+        }
+    }
+
+    /// A unit right triangle at height `z`, shifted by `dx` in x.
+    fn tri(dx: f64, z: f64) -> TriMesh {
+        TriMesh::new(
+            vec![[dx, 0.0, z], [dx + 1.0, 0.0, z], [dx, 1.0, z]],
+            vec![[0, 1, 2]],
+        )
+    }
+
+    fn nearest(p: [f64; 3]) -> TrimSpec {
+        TrimSpec {
+            surface: SurfaceSelector::new("*"),
+            action: TrimAction::DiscardNearest(p),
+            span: Span::default(),
+        }
+    }
+
+    #[test]
+    fn a_patch_pointing_at_a_missing_vertex_is_an_error_naming_it_not_a_panic() {
+        let bad = TriMesh::new(vec![[0.0; 3]], vec![[0, 1, 2]]);
+        let p = [TrimPatch {
+            name: "s#1",
+            surface: "s",
+            mesh: &bad,
+        }];
+        let e = apply_trims(
+            &p,
+            &[],
+            &[nearest([0.0; 3])],
+            &unit_box(),
+            &Tolerances::default(),
+        )
+        .unwrap_err();
+        assert_eq!(e.trim, None);
+        assert_eq!(e.patch.as_deref(), Some("s#1"));
+        assert!(e.message.contains("refers to vertex 1"), "{}", e.message);
+    }
+
+    #[test]
+    fn two_patches_at_the_same_distance_go_by_name_and_one_outside_the_box_is_not_a_candidate() {
+        let (a, b, far) = (tri(-2.0, 0.0), tri(1.0, 0.0), tri(0.0, 20.0));
+        // The origin is exactly 1 from the corner (1, 0, 0) of `b#1` and (-1, 0, 0) of `a#1`.
+        let p = [
+            TrimPatch {
+                name: "b#1",
+                surface: "b",
+                mesh: &b,
+            },
+            TrimPatch {
+                name: "a#1",
+                surface: "a",
+                mesh: &a,
+            },
+            TrimPatch {
+                name: "c#1",
+                surface: "c",
+                mesh: &far,
+            },
+        ];
+        let out = apply_trims(
+            &p,
+            &[],
+            &[nearest([0.0, 0.0, 0.0])],
+            &unit_box(),
+            &Tolerances::default(),
+        )
+        .expect("trims");
+        assert_eq!(out.keep, vec![true, false, false]);
+        assert_eq!(out.discarded[0].reason, "outside the box");
+        assert_eq!(
+            out.discarded[1].patch, 1,
+            "a#1 before b#1 at equal distance 1"
+        );
+    }
+}
