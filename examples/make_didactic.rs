@@ -12,7 +12,9 @@
 //! Surfaces are triangulated irregularly, as gOcad exports are: jittered grids of varying spacing
 //! with the quad diagonals chosen by a seeded generator, so the output is the same on every machine.
 //!
-//! Usage: `cargo run --example make_didactic -- recipes/data/didactic`
+//! Usage: `cargo run --example make_didactic -- recipes/data/didactic` (the shipped data), or
+//! `cargo run --example make_didactic -- --triangles 100000 /tmp/dense` for about 100 000
+//! triangles per surface (the geometry of `benches/model.rs`).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -170,29 +172,59 @@ fn write_tsurf(name: &str, s: &Surface, style: &Style) -> String {
     o
 }
 
-fn main() {
-    let out = PathBuf::from(
-        std::env::args()
-            .nth(1)
-            .unwrap_or_else(|| "recipes/data/didactic".into()),
-    );
-    std::fs::create_dir_all(&out)
-        .unwrap_or_else(|e| panic!("cannot create {}: {e}", out.display()));
+/// How densely to triangulate: `None` gives the shipped data (the file bytes in
+/// `recipes/data/didactic`); `Some(n)` scales every surface's grid spacing so that it has about
+/// `n` triangles (the model benchmark uses 100 000).
+pub type Density = Option<usize>;
+
+/// The spacing `h` of a surface whose default axes are `(a, b)`, scaled to about `target`
+/// triangles (the grid is graded, so the count is approximate).
+fn scaled(h: f64, target: Density, axes: impl Fn(f64) -> (usize, usize)) -> f64 {
+    match target {
+        None => h,
+        Some(n) => {
+            let (nu, nv) = axes(h);
+            let triangles = 2.0 * (nu - 1) as f64 * (nv - 1) as f64;
+            h * (triangles / n.max(2) as f64).sqrt()
+        }
+    }
+}
+
+/// The four didactic surfaces as gOcad TSurf text, `(file name, text, vertices, triangles)`.
+pub fn didactic_files(target: Density) -> Vec<(&'static str, String, usize, usize)> {
     let mut rng = Rng(0x6765_6F72_6563_6970); // "georecip"
 
     // Horizons: 5400 m squares overhanging the box by 200 m, about 110-180 m triangles.
-    let hx = graded_axis(-200.0, 5200.0, 110.0, 0.0);
-    let hy = graded_axis(-200.0, 5200.0, 110.0, 1.7);
+    let h = scaled(110.0, target, |h| {
+        (
+            graded_axis(-200.0, 5200.0, h, 0.0).len(),
+            graded_axis(-200.0, 5200.0, h, 1.7).len(),
+        )
+    });
+    let hx = graded_axis(-200.0, 5200.0, h, 0.0);
+    let hy = graded_axis(-200.0, 5200.0, h, 1.7);
     let h1 = grid_surface(&hx, &hy, |x, y| [x, y, z_top(x, y)], &mut rng);
-    let hx2 = graded_axis(-200.0, 5200.0, 115.0, 2.9);
-    let hy2 = graded_axis(-200.0, 5200.0, 115.0, 0.4);
+    let h = scaled(115.0, target, |h| {
+        (
+            graded_axis(-200.0, 5200.0, h, 2.9).len(),
+            graded_axis(-200.0, 5200.0, h, 0.4).len(),
+        )
+    });
+    let hx2 = graded_axis(-200.0, 5200.0, h, 2.9);
+    let hy2 = graded_axis(-200.0, 5200.0, h, 0.4);
     let h2 = grid_surface(&hx2, &hy2, |x, y| [x, y, z_top(x, y) - 35.0], &mut rng);
 
     // F1: through-going plane, strike // y, dip 70° towards +x with depth, 3200 m down dip.
     let dip = 70f64.to_radians();
     let (dx, dz) = (dip.cos(), -dip.sin());
-    let su = graded_axis(-1600.0, 1600.0, 120.0, 0.8);
-    let sv = graded_axis(-300.0, 5300.0, 120.0, 2.2);
+    let h = scaled(120.0, target, |h| {
+        (
+            graded_axis(-1600.0, 1600.0, h, 0.8).len(),
+            graded_axis(-300.0, 5300.0, h, 2.2).len(),
+        )
+    });
+    let su = graded_axis(-1600.0, 1600.0, h, 0.8);
+    let sv = graded_axis(-300.0, 5300.0, h, 2.2);
     let f1 = grid_surface(
         &su,
         &sv,
@@ -203,8 +235,16 @@ fn main() {
     // F2: dangling rectangle, strike // x, dip 60° towards +y with depth.
     let dip2 = 60f64.to_radians();
     let (ey, ez) = (dip2.cos(), -dip2.sin());
-    let tu = graded_axis(-800.0, 800.0, 70.0, 0.3);
-    let tv = graded_axis(-350.0, 350.0, 60.0, 1.1);
+    // Both axes scale together: `s` is exactly 1 for the shipped data.
+    let s = scaled(1.0, target, |s| {
+        (
+            graded_axis(-800.0, 800.0, 70.0 * s, 0.3).len(),
+            graded_axis(-350.0, 350.0, 60.0 * s, 1.1).len(),
+        )
+    });
+    let (hu, hv) = (70.0 * s, 60.0 * s);
+    let tu = graded_axis(-800.0, 800.0, hu, 0.3);
+    let tv = graded_axis(-350.0, 350.0, hv, 1.1);
     let f2 = grid_surface(
         &tu,
         &tv,
@@ -254,15 +294,44 @@ fn main() {
             },
         ),
     ];
-    for (file, name, s, style) in files {
+    files
+        .into_iter()
+        .map(|(file, name, s, style)| {
+            (
+                file,
+                write_tsurf(name, s, &style),
+                s.vertices.len(),
+                s.triangles.len(),
+            )
+        })
+        .collect()
+}
+
+#[allow(dead_code)] // the model benchmark includes this file for `didactic_files` only
+fn main() {
+    let mut out = PathBuf::from("recipes/data/didactic");
+    let mut target: Density = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        if a == "--triangles" {
+            let n = args.next().and_then(|n| n.parse::<usize>().ok());
+            match n {
+                Some(n) if n >= 2 => target = Some(n),
+                _ => {
+                    eprintln!("--triangles needs a whole number >= 2 (triangles per surface)");
+                    std::process::exit(2);
+                }
+            }
+        } else {
+            out = PathBuf::from(a);
+        }
+    }
+    std::fs::create_dir_all(&out)
+        .unwrap_or_else(|e| panic!("cannot create {}: {e}", out.display()));
+    for (file, text, nv, nt) in didactic_files(target) {
         let path = out.join(file);
-        std::fs::write(&path, write_tsurf(name, s, &style))
+        std::fs::write(&path, text)
             .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
-        println!(
-            "wrote {} ({} vertices, {} triangles)",
-            path.display(),
-            s.vertices.len(),
-            s.triangles.len()
-        );
+        println!("wrote {} ({nv} vertices, {nt} triangles)", path.display());
     }
 }

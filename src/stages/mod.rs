@@ -13,4 +13,5 @@ pub mod regions;
 pub mod surface_mesh;
 pub mod tet_mesh;
 pub mod topology;
+pub mod trims;
 pub mod validate;

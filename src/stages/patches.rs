@@ -9,7 +9,6 @@
 use crate::geom::{BBox, TriMesh};
 use crate::stages::intersect::split::SplitSurface;
 use std::cmp::Ordering;
-use std::collections::BTreeMap;
 
 /// One patch of a surface.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,7 +45,8 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
         }
         i
     }
-    let mut by_edge: BTreeMap<[u32; 2], Vec<usize>> = BTreeMap::new();
+    // Every (edge, triangle) use, sorted by edge: the triangles around one edge are adjacent.
+    let mut uses: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * n);
     for (t, tri) in m.triangles.iter().enumerate() {
         if tri.iter().any(|&v| v >= nv) {
             continue;
@@ -54,46 +54,81 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             if a != b {
-                by_edge.entry([a.min(b), a.max(b)]).or_default().push(t);
+                uses.push(([a.min(b), a.max(b)], t as u32));
             }
         }
     }
-    for (e, ts) in &by_edge {
-        if split.curve_edges.binary_search(e).is_ok() {
+    // A counting sort on the first vertex, then each (small) bucket: the order of a full sort.
+    let mut start = vec![0usize; nv as usize + 1];
+    for u in &uses {
+        start[u.0[0] as usize + 1] += 1;
+    }
+    for i in 0..nv as usize {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut sorted = vec![([0u32; 2], 0u32); uses.len()];
+    for u in &uses {
+        sorted[fill[u.0[0] as usize]] = *u;
+        fill[u.0[0] as usize] += 1;
+    }
+    for w in start.windows(2) {
+        sorted[w[0]..w[1]].sort_unstable();
+    }
+    let uses = sorted;
+    for run in uses.chunk_by(|x, y| x.0 == y.0) {
+        if split.curve_edges.binary_search(&run[0].0).is_ok() {
             continue;
         }
-        for w in ts.windows(2) {
-            let (ra, rb) = (root(&mut up, w[0]), root(&mut up, w[1]));
+        for w in run.windows(2) {
+            let (ra, rb) = (
+                root(&mut up, w[0].1 as usize),
+                root(&mut up, w[1].1 as usize),
+            );
             if ra != rb {
                 up[ra.max(rb)] = ra.min(rb);
             }
         }
     }
-    let mut comps: BTreeMap<usize, Vec<u32>> = BTreeMap::new();
+    // Components by root, in order of their first (smallest) triangle.
+    let mut comp_of: Vec<u32> = vec![u32::MAX; n];
+    let mut comps: Vec<Vec<u32>> = Vec::new();
     for t in 0..n {
         if m.triangles[t].iter().any(|&v| v >= nv) {
             continue;
         }
         let r = root(&mut up, t);
-        comps.entry(r).or_default().push(t as u32);
+        if comp_of[r] == u32::MAX {
+            comp_of[r] = comps.len() as u32;
+            comps.push(Vec::new());
+        }
+        comps[comp_of[r] as usize].push(t as u32);
     }
+    // Local vertex numbers, reset after each patch (u32::MAX = not yet used by this patch).
+    let mut local: Vec<u32> = vec![u32::MAX; nv as usize];
     let mut out: Vec<(Vec<[f64; 3]>, Patch)> = comps
-        .into_values()
+        .into_iter()
         .map(|triangles| {
-            let mut local: BTreeMap<u32, u32> = BTreeMap::new();
+            let mut used: Vec<u32> = Vec::new();
             let mut vertices = Vec::new();
             let mut tris = Vec::with_capacity(triangles.len());
             for &t in &triangles {
                 let tri = m.triangles[t as usize];
                 tris.push(tri.map(|v| {
-                    *local.entry(v).or_insert_with(|| {
+                    let slot = &mut local[v as usize];
+                    if *slot == u32::MAX {
+                        *slot = vertices.len() as u32;
                         vertices.push(m.vertices[v as usize]);
-                        vertices.len() as u32 - 1
-                    })
+                        used.push(v);
+                    }
+                    *slot
                 }));
             }
+            for v in used {
+                local[v as usize] = u32::MAX;
+            }
             let mut key = vertices.clone();
-            key.sort_by(lex);
+            key.sort_unstable_by(lex);
             let patch = Patch {
                 name: String::new(),
                 triangles,

@@ -5,7 +5,8 @@
 //! a curve of thousands of points is fine.
 
 use crate::geom::{Orientation, orient2d};
-use std::collections::BTreeMap;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, DefaultHasher};
 
 /// Shape quality of a triangle in 2D: twice its area over the sum of its squared edge lengths
 /// (a measure for choosing among valid ears or flips; no decision of validity rests on it).
@@ -117,10 +118,15 @@ pub fn improve(
     let mut locked: Vec<[u32; 2]> = locked.to_vec();
     locked.sort_unstable();
     let is_locked = |a: u32, b: u32| locked.binary_search(&[a.min(b), a.max(b)]).is_ok();
-    let mut owner: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    // Which triangle holds each directed edge: looked up, never iterated, so a hash map with a
+    // fixed (unseeded) hasher cannot make the result depend on anything but the input.
+    let mut owner: HashMap<(u32, u32), usize, BuildHasherDefault<DefaultHasher>> =
+        HashMap::with_capacity_and_hasher(3 * tris.len(), Default::default());
+    let mut edges: Vec<(u32, u32)> = Vec::with_capacity(3 * tris.len());
     for (i, t) in tris.iter().enumerate() {
         for k in 0..3 {
             owner.insert((t[k], t[(k + 1) % 3]), i);
+            edges.push((t[k], t[(k + 1) % 3]));
         }
     }
     let third = |t: &[u32; 3], a: u32, b: u32| {
@@ -128,7 +134,10 @@ pub fn improve(
             .find(|&k| t[k] == a && t[(k + 1) % 3] == b)
             .map(|k| t[(k + 2) % 3])
     };
-    let mut stack: Vec<(u32, u32)> = owner.keys().copied().filter(|&(a, b)| a < b).collect();
+    // Every undirected edge once, largest last: popped in ascending order.
+    let mut stack: Vec<(u32, u32)> = edges.into_iter().filter(|&(a, b)| a < b).collect();
+    stack.sort_unstable();
+    stack.dedup();
     stack.reverse();
     let mut budget = 20 * tris.len() + 100;
     while let Some((a, b)) = stack.pop() {

@@ -104,13 +104,16 @@ pub fn split_all(
 
 /// Split every surface of a model along all the intersections that involve it (picking each
 /// intersection's side by name), with the other surfaces' meshes for canonical shared points.
-/// The result is in the order of `surfaces`.
+/// The result is in the order of `surfaces`. Surfaces are split in parallel (each on its own,
+/// so the result does not depend on the thread count); on failure the error is the one of the
+/// first failing surface in `surfaces` order.
 pub fn split_model(
     surfaces: &[(&str, &TriMesh)],
     intersections: &[Intersection],
 ) -> Result<Vec<SplitSurface>, SplitError> {
-    surfaces
-        .iter()
+    use rayon::prelude::*;
+    let each: Vec<Result<SplitSurface, SplitError>> = surfaces
+        .par_iter()
         .map(|&(name, mesh)| {
             let mine: Vec<(&Intersection, Side)> = intersections
                 .iter()
@@ -126,7 +129,8 @@ pub fn split_model(
                 .collect();
             split_all_with(name, mesh, &mine, surfaces)
         })
-        .collect()
+        .collect();
+    each.into_iter().collect()
 }
 
 /// One curve point as seen on the surface being split.
@@ -460,14 +464,25 @@ pub fn split_all_with(
         let err = |what: &str, v: u32| unsupported(t, vertices[v as usize], what);
         // Chord pieces that are not pieces of the boundary.
         let m = boundary.len();
+        // The first position of each boundary vertex, for lookups by binary search.
+        let mut first: Vec<(u32, usize)> =
+            boundary.iter().enumerate().map(|(i, &v)| (v, i)).collect();
+        first.sort_unstable();
+        first.dedup_by_key(|x| x.0);
+        let position = |v: u32| {
+            first
+                .binary_search_by_key(&v, |x| x.0)
+                .ok()
+                .map(|k| first[k].1)
+        };
         let mut segs: Vec<[u32; 2]> = pieces
             .get(&t)
             .map(|c| {
                 c.iter()
                     .copied()
                     .filter(|s| {
-                        let i = boundary.iter().position(|&v| v == s[0]);
-                        let j = boundary.iter().position(|&v| v == s[1]);
+                        let i = position(s[0]);
+                        let j = position(s[1]);
                         match (i, j) {
                             (Some(i), Some(j)) => (i + 1) % m != j && (j + 1) % m != i,
                             _ => true,

@@ -115,14 +115,29 @@ fn far_point(q: &P3, bbox: &BBox, k: usize) -> P3 {
     ]
 }
 
+/// Whether the closed box `b` may meet the closed triangle `t`: `false` only when all three
+/// corners lie strictly beyond one face of the box (exact comparisons of input coordinates), so
+/// nothing inside the box (a segment between two of its corners, a point) touches `t`. The
+/// cheap rejection in front of the `orient3d` tests: the rays of [`parity`] are nearly parallel
+/// to x, so their boxes are thin in y and z.
+#[inline]
+pub(super) fn may_meet(b: &BBox, t: &Tri) -> bool {
+    (0..3).all(|k| {
+        let lo = t[0][k].min(t[1][k]).min(t[2][k]);
+        let hi = t[0][k].max(t[1][k]).max(t[2][k]);
+        lo <= b.max[k] && b.min[k] <= hi
+    })
+}
+
 /// Parity of `q` against the closed surface made of `tris` (exact); `None` when every tried ray
 /// is degenerate.
 pub(super) fn parity(q: &P3, tris: &[Tri], bbox: &BBox) -> Option<Loc> {
     for k in 0..64 {
         let f = far_point(q, bbox, k);
+        let seg = BBox::from_points([q, &f]);
         let mut count = 0usize;
         let mut degenerate = false;
-        for t in tris {
+        for t in tris.iter().filter(|t| may_meet(&seg, t)) {
             match crossing(q, &f, t) {
                 Cross::OnTriangle => return Some(Loc::OnBoundary),
                 Cross::Proper => count += 1,
@@ -228,7 +243,13 @@ pub(super) fn one_sided(face_uses: &[super::FaceUse]) -> Vec<u32> {
 }
 
 pub(super) fn patch_tris(patches: &[PatchIn], ids: impl IntoIterator<Item = u32>) -> Vec<Tri> {
-    let mut out = Vec::new();
+    let ids: Vec<u32> = ids.into_iter().collect();
+    let n = ids
+        .iter()
+        .filter_map(|&p| patches.get(p as usize))
+        .map(|p| p.mesh.triangles.len())
+        .sum();
+    let mut out = Vec::with_capacity(n);
     for p in ids {
         let Some(patch) = patches.get(p as usize) else {
             continue;

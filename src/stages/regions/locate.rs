@@ -4,7 +4,9 @@
 //! patches and outside every cavity's, and it lies on none of the region's patches (dangling
 //! ones included). The triangles are gathered once, so many points can be located cheaply.
 
-use super::exact::{Loc, Tri, in_coplanar_triangle, one_sided, parity, patch_tris, patches_bbox};
+use super::exact::{
+    Loc, Tri, in_coplanar_triangle, may_meet, one_sided, parity, patch_tris, patches_bbox,
+};
 use super::{PatchIn, Region, RegionModel};
 use crate::geom::{BBox, Orientation, orient3d};
 
@@ -60,9 +62,11 @@ impl Locator {
         if p.iter().any(|c| !c.is_finite()) {
             return Some(false);
         }
+        let at = BBox { min: p, max: p };
         if r.all_box.contains(&p)
             && r.all.iter().any(|t| {
-                orient3d(&t[0], &t[1], &t[2], &p) == Orientation::Zero
+                may_meet(&at, t)
+                    && orient3d(&t[0], &t[1], &t[2], &p) == Orientation::Zero
                     && in_coplanar_triangle(&p, t)
             })
         {
