@@ -132,6 +132,19 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .map(|(n, r)| (n.clone(), r.point))
                 .collect(),
             tolerances: recipe.tolerances.clone(),
+            trims: recipe
+                .trims
+                .iter()
+                .map(|t| {
+                    let at = format!(
+                        "{}:{}:{}",
+                        recipe.path.display(),
+                        t.span.line,
+                        t.span.col
+                    );
+                    (t.clone(), at)
+                })
+                .collect(),
         };
         let model = g.add_op("model", Arc::new(op), &inputs)?;
         g.set_expander(

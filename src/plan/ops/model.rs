@@ -11,6 +11,8 @@ use crate::geom::{BBox, Tolerances, TriMesh};
 use crate::mesh::SurfaceKind;
 use crate::stages::intersect::{Intersection, split};
 use crate::stages::model::{ModelTopology, build_topology};
+use crate::recipe::TrimSpec;
+use crate::stages::trims::{TrimPatch, apply_trims, describe};
 use crate::stages::{patches, regions};
 use serde::{Deserialize, Serialize};
 
@@ -40,6 +42,9 @@ pub struct ModelOp {
     /// Region names by point, from the recipe's `[regions]`.
     pub names: Vec<(String, [f64; 3])>,
     pub tolerances: Tolerances,
+    /// The recipe's `[[trim]]` entries, in order, each with its recipe location (`file:line:col`)
+    /// for error messages.
+    pub trims: Vec<(TrimSpec, String)>,
 }
 
 impl Operation for ModelOp {
@@ -47,7 +52,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        2
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -61,6 +66,13 @@ impl Operation for ModelOp {
             p.set(&format!("regions.{name}.point"), *at)
                 .expect("validated finite");
         }
+        let trims: Vec<String> = self
+            .trims
+            .iter()
+            .enumerate()
+            .map(|(k, (t, _))| describe(k, t))
+            .collect();
+        p.set("trim", trims).expect("strings");
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -83,22 +95,50 @@ impl Operation for ModelOp {
             .collect();
         let split =
             split::split_model(&named, &intersections).map_err(|e| OpError::from(e.to_string()))?;
-        let mut kept = Vec::new();
-        let mut trimmed = 0u64;
-        for (s, sp) in surfaces.iter().zip(&split) {
-            for p in patches::patches(&s.name, sp) {
-                if patches::inside_box(&p, &bbox) {
-                    kept.push(ModelPatch {
-                        name: p.name,
-                        surface: s.name.clone(),
-                        kind: s.kind,
-                        mesh: p.mesh,
-                    });
-                } else {
-                    trimmed += 1;
-                }
-            }
-        }
+        let all: Vec<(usize, patches::Patch)> = split
+            .iter()
+            .enumerate()
+            .flat_map(|(i, sp)| {
+                patches::patches(&surfaces[i].name, sp)
+                    .into_iter()
+                    .map(move |p| (i, p))
+            })
+            .collect();
+        let trim_in: Vec<TrimPatch> = all
+            .iter()
+            .map(|(i, p)| TrimPatch {
+                name: &p.name,
+                surface: &surfaces[*i].name,
+                mesh: &p.mesh,
+            })
+            .collect();
+        let split_named: Vec<(&str, &TriMesh)> = surfaces
+            .iter()
+            .zip(&split)
+            .map(|(s, sp)| (s.name.as_str(), &sp.mesh))
+            .collect();
+        let specs: Vec<TrimSpec> = self.trims.iter().map(|(t, _)| t.clone()).collect();
+        let outcome = apply_trims(&trim_in, &split_named, &specs, &bbox, &self.tolerances)
+            .map_err(|e| {
+                let place = e
+                    .trim
+                    .and_then(|k| self.trims.get(k))
+                    .map(|(_, at)| format!("{at}: "))
+                    .unwrap_or_default();
+                OpError::from(format!("{place}{e}"))
+            })?;
+        let trimmed = outcome.discarded.len() as u64;
+        let kept: Vec<ModelPatch> = all
+            .into_iter()
+            .zip(&outcome.keep)
+            .filter(|(_, keep)| **keep)
+            .map(|((i, p), _)| ModelPatch {
+                name: p.name,
+                surface: surfaces[i].name.clone(),
+                kind: surfaces[i].kind,
+                mesh: p.mesh,
+            })
+            .collect();
         let input: Vec<regions::PatchIn> = kept
             .iter()
             .map(|p| regions::PatchIn {
