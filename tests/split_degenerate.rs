@@ -197,11 +197,9 @@ fn a_fault_ending_on_another_meets_it_at_a_t_junction_inside_a_horizon_face() {
     }
     // g reaches past the west border of h, so their curve dangles on g.
     assert_eq!(patches("g", &out["g"]).len(), 1);
-    assert_eq!(
-        patches("f", &out["f"]).len(),
-        2,
-        "h cuts f in two; g only touches it"
-    );
+    // g's border runs along f's vertex column from bottom to top and cuts f in two; h is
+    // narrower than f, so its curve dangles on f.
+    assert_eq!(patches("f", &out["f"]).len(), 2);
 }
 
 #[test]
@@ -296,5 +294,67 @@ fn curve_points_on_the_edges_of_a_zero_area_triangle_keep_the_surface_conforming
     assert_eq!(
         unmatched, 6,
         "the sliver is re-triangulated with its neighbours' points"
+    );
+}
+
+#[test]
+fn a_fault_ending_inside_another_faults_faces_meets_it_at_one_point_on_all_three_surfaces() {
+    let h = grid(4, 4, |i, j| {
+        [
+            X0 + 50.0 * i as f64,
+            Y0 + 50.0 * j as f64,
+            -100.0 + 0.7 * i as f64 + 0.4 * j as f64,
+        ]
+    });
+    // f is the vertical plane x = X0 + 104 + (y - Y0) / 4, every vertex exactly on it.
+    let fx = |y: f64| X0 + 104.0 + (y - Y0) / 4.0;
+    let f = grid(6, 1, |k, l| {
+        let y = Y0 - 20.0 + 40.0 * k as f64;
+        [fx(y), y, -160.0 + 120.0 * l as f64]
+    });
+    // g's end edge lies in f's plane between two of f's vertex columns: no shared vertex.
+    let (ye, xe) = (Y0 + 102.0, fx(Y0 + 102.0));
+    let g = grid(2, 1, |k, l| {
+        let x = [X0 - 30.0, X0 + 40.0, xe][k];
+        let y = if k == 2 { ye } else { ye + 0.01 * (x - xe) };
+        [x, y, -160.0 + 120.0 * l as f64]
+    });
+    let xs = vec![
+        both("h", &h, "f", &f).expect("meets"),
+        both("h", &h, "g", &g).expect("meets"),
+        both("f", &f, "g", &g).expect("meets"),
+    ];
+    assert!(xs.iter().all(|x| x.curves.len() == 1), "one curve each");
+    let out = split_both_orders(&[("h", &h), ("f", &f), ("g", &g)], &xs);
+    let gh = &xs[1].curves[0].points;
+    let end = [gh[0].clone(), gh[gh.len() - 1].clone()]
+        .into_iter()
+        .find(|p| matches!(p.on_b, georecipe::stages::intersect::Location::Face(_)))
+        .expect("g's curve ends inside a face of h");
+    let sh = &out["h"];
+    let v = *sh.vertex_of_each[1].get(&end.key).expect("a vertex of h");
+    let at = sh.mesh.vertices[v as usize];
+    assert_eq!(
+        curve_degree(sh, v),
+        3,
+        "f's curve is split where g's curve ends"
+    );
+    assert_eq!(patches("h", sh).len(), 3);
+    let sf = &out["f"];
+    let w = vertex_at(sf, at).expect("f has the T point bit for bit");
+    assert_eq!(
+        curve_degree(sf, w),
+        4,
+        "on f, the curves of h and g cross there"
+    );
+    assert_eq!(sf.crossings, vec![w]);
+    // g's border crosses f from bottom to top; h is narrower than f, so its curve dangles.
+    assert_eq!(patches("f", sf).len(), 2);
+    let sg = &out["g"];
+    let u = vertex_at(sg, at).expect("g has the T point bit for bit");
+    assert_eq!(
+        curve_degree(sg, u),
+        3,
+        "on g, h's curve meets the border along f"
     );
 }

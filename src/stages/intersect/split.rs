@@ -26,6 +26,7 @@
 //! points are not inserted.
 
 pub mod arrangement;
+mod symbolic;
 mod triangulate;
 
 use super::Intersection;
@@ -145,6 +146,8 @@ struct Chord {
     v: [u32; 2],
     other: usize,
     other_face: u32,
+    /// Where its two ends lie on the other surface.
+    ends: [Location; 2],
 }
 
 /// As [`split_all`], with the meshes of the other surfaces (by name) used to construct shared
@@ -284,11 +287,13 @@ pub fn split_all_with(
                 if t as usize >= mesh.triangles.len() {
                     return Err(bad(t));
                 }
+                let oloc = |c: &super::CurvePoint| if side == Side::A { c.on_b } else { c.on_a };
                 chords.push(Chord {
                     t,
                     v: [vp, vq],
                     other: ix,
                     other_face: of,
+                    ends: [oloc(p), oloc(q)],
                 });
             }
         }
@@ -323,10 +328,44 @@ pub fn split_all_with(
                     "a curve touches this zero-area triangle",
                 ));
             };
+            // T-junctions known from provenance: an end of chord j inside the face lies on
+            // chord i when its point on j's surface (a vertex, or an edge) lies in the plane
+            // of i's other face.
+            for i in start..end {
+                let ci = &chords[i];
+                let plane = other_mesh(partner[ci.other]).and_then(|m| tri_of(m, ci.other_face));
+                let Some(plane) = plane else { continue };
+                let (p0, p1) = (vertices[ci.v[0] as usize], vertices[ci.v[1] as usize]);
+                let d = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
+                let along = |w: u32| {
+                    let x = vertices[w as usize];
+                    (x[0] - p0[0]) * d[0] + (x[1] - p0[1]) * d[1] + (x[2] - p0[2]) * d[2]
+                };
+                for cj in &chords[start..end] {
+                    let Some(q) = other_mesh(partner[cj.other]).filter(|_| cj.other != ci.other)
+                    else {
+                        continue;
+                    };
+                    for (&w, &at) in cj.v.iter().zip(&cj.ends) {
+                        if !ci.v.contains(&w)
+                            && loc.get(&w) == Some(&Location::Face(t))
+                            && symbolic::lies_in_plane(q, at, &plane)
+                            && along(w) > 0.0
+                            && along(w) < along(ci.v[1])
+                        {
+                            on_chord[i].push(w);
+                        }
+                    }
+                }
+            }
             for i in start..end {
                 for j in i + 1..end {
                     let (ci, cj) = (&chords[i], &chords[j]);
-                    if ci.other == cj.other || ci.v.iter().any(|v| cj.v.contains(v)) {
+                    if ci.other == cj.other
+                        || ci.v.iter().any(|v| cj.v.contains(v))
+                        || on_chord[i].iter().any(|v| cj.v.contains(v))
+                        || on_chord[j].iter().any(|v| ci.v.contains(v))
+                    {
                         continue;
                     }
                     let p = |v: u32| project(&vertices[v as usize], axis);
@@ -343,14 +382,18 @@ pub fn split_all_with(
                             let v = match crossing_at.get(&key) {
                                 Some(&v) => v,
                                 None => {
-                                    let xyz = crossing_xyz(
-                                        &key,
-                                        surface_name,
-                                        mesh,
-                                        others,
-                                        [ci.v, cj.v].map(|s| s.map(|v| vertices[v as usize])),
-                                        axis,
-                                    );
+                                    let xyz = along_edge_xyz(ci, cj, &partner, others)
+                                        .unwrap_or_else(|| {
+                                            crossing_xyz(
+                                                &key,
+                                                surface_name,
+                                                mesh,
+                                                others,
+                                                [ci.v, cj.v]
+                                                    .map(|s| s.map(|v| vertices[v as usize])),
+                                                axis,
+                                            )
+                                        });
                                     vertices.push(xyz);
                                     let v = vertices.len() as u32 - 1;
                                     crossing_at.insert(key, v);
@@ -577,6 +620,33 @@ fn on_open_segment(p: [f64; 2], q: [f64; 2], x: [f64; 2]) -> bool {
         return false;
     }
     (0..2).all(|k| p[k].min(q[k]) <= x[k] && x[k] <= p[k].max(q[k]))
+}
+
+/// The crossing of two chords when exactly one of them runs along an edge of its other surface
+/// (a fault's border edge lying in the plane of the fault it ends on): that edge meeting the
+/// plane of the other chord's other face, built as where that third surface is split, so all
+/// three surfaces get the same bits. `None` otherwise or when a mesh is missing.
+fn along_edge_xyz(
+    ci: &Chord,
+    cj: &Chord,
+    partner: &[&str],
+    others: &[(&str, &TriMesh)],
+) -> Option<[f64; 3]> {
+    let (along, across) = match (
+        symbolic::partner_edge(ci.ends),
+        symbolic::partner_edge(cj.ends),
+    ) {
+        (Some(e), None) => ((ci, e), cj),
+        (None, Some(e)) => ((cj, e), ci),
+        _ => return None,
+    };
+    let ((c, e), m) = (along, find_mesh(others, partner.get(across.other)?)?);
+    let q = find_mesh(others, partner.get(c.other)?)?;
+    let plane = m.triangles.get(across.other_face as usize)?;
+    let corner = |v: u32| m.vertices.get(v as usize).copied();
+    let plane = [corner(plane[0])?, corner(plane[1])?, corner(plane[2])?];
+    let (p, r) = (q.vertices.get(e.0 as usize)?, q.vertices.get(e.1 as usize)?);
+    arrangement::edge_plane(*p, *r, plane)
 }
 
 /// The mesh of surface `n` among `others`.

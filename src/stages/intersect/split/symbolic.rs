@@ -1,0 +1,79 @@
+//! Triple points decided from provenance, not from rounded coordinates. Where a fault ends on
+//! another fault inside a horizon face, the end of the first fault's curve (its border edge
+//! crossing the horizon) lies exactly on the second fault's curve whenever that border edge
+//! lies in the second fault's plane. The constructed coordinates cannot show it (they are
+//! rounded), so it is decided here on input coordinates with exact `orient3d`, and the point
+//! is then built the same way on all three surfaces: the border edge meeting the horizon's
+//! plane.
+
+use super::super::key::Location;
+use super::super::locate::is_degenerate;
+use crate::geom::{Orientation, TriMesh, orient3d};
+
+/// The edge of the partner surface that a chord runs along, from the partner locations of its
+/// two ends: two vertices, an edge and one of its vertices, or one edge twice.
+pub(super) fn partner_edge(ends: [Location; 2]) -> Option<(u32, u32)> {
+    use Location::*;
+    let e = match ends {
+        [Vertex(a), Vertex(b)] if a != b => (a.min(b), a.max(b)),
+        [Edge(i, j), Vertex(a)] | [Vertex(a), Edge(i, j)] if a == i || a == j => (i, j),
+        [Edge(i, j), Edge(k, l)] if (i, j) == (k, l) => (i, j),
+        _ => return None,
+    };
+    Some(e)
+}
+
+/// The points of `q` at `at` (a vertex, or every point of an edge) lie in the plane of the
+/// non-degenerate triangle `plane` (exact). `false` for a face location, a bad index or a
+/// degenerate plane.
+pub(super) fn lies_in_plane(q: &TriMesh, at: Location, plane: &[[f64; 3]; 3]) -> bool {
+    if is_degenerate(plane) {
+        return false;
+    }
+    let on = |v: u32| {
+        q.vertices
+            .get(v as usize)
+            .is_some_and(|p| orient3d(&plane[0], &plane[1], &plane[2], p) == Orientation::Zero)
+    };
+    match at {
+        Location::Vertex(v) => on(v),
+        Location::Edge(i, j) => on(i) && on(j),
+        Location::Face(_) => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_chord_between_two_ends_of_one_partner_edge_runs_along_it() {
+        use Location::*;
+        assert_eq!(partner_edge([Vertex(7), Vertex(3)]), Some((3, 7)));
+        assert_eq!(partner_edge([Edge(3, 7), Vertex(7)]), Some((3, 7)));
+        assert_eq!(partner_edge([Edge(3, 7), Edge(3, 7)]), Some((3, 7)));
+        assert_eq!(partner_edge([Edge(3, 7), Vertex(8)]), None);
+        assert_eq!(partner_edge([Face(1), Vertex(8)]), None);
+    }
+
+    #[test]
+    fn an_edge_in_a_plane_is_found_exactly_and_a_degenerate_plane_never_holds_it() {
+        let q = TriMesh::new(
+            vec![
+                [500_104.25, 7_000_010.0, -160.0],
+                [500_104.25, 7_000_010.0, -40.0],
+                [500_104.26, 7_000_010.0, -40.0],
+            ],
+            vec![[0, 1, 2]],
+        );
+        let wall = [
+            [500_104.25, 6_999_000.0, -500.0],
+            [500_104.25, 7_001_000.0, -500.0],
+            [500_104.25, 7_000_000.0, 500.0],
+        ];
+        assert!(lies_in_plane(&q, Location::Edge(0, 1), &wall));
+        assert!(!lies_in_plane(&q, Location::Edge(1, 2), &wall));
+        let flat = [wall[0], wall[1], wall[1]];
+        assert!(!lies_in_plane(&q, Location::Vertex(0), &flat));
+    }
+}
