@@ -10,20 +10,30 @@
 //! order (a box edge seen from two box sides), a crossing of two curves inside a face as the
 //! common point of the three triangles' planes taken in surface-name order.
 //!
-//! Each original triangle is re-triangulated on its own: its boundary polygon (corners plus the
-//! curve points on its edges, shared with the neighbours, so the result stays conforming) is cut
-//! along the chords the curves draw across it, and each piece is ear-clipped. When no curves
-//! cross inside the triangle, chains are cut one by one ([`cut`]; dangling ends allowed); when
-//! some do, the faces of the chords' arrangement are traced ([`arrangement`]). Every decision
-//! (do two chords cross, which side, which face) is an exact `orient2d` in a projection chosen
-//! exactly for the original triangle, on the (float) coordinates of the points; new triangles
-//! keep the orientation of their parent.
+//! Where a fault ends on another fault inside a third surface's face (a T-junction), the end of
+//! the first curve lies on the second curve; rounded coordinates cannot show it, so it is decided
+//! from provenance ([`symbolic`]: the ending fault's border edge lies in the other fault's plane,
+//! exact `orient3d` on input coordinates) and the point is built the same way on all three
+//! surfaces (that border edge meeting the third surface's plane).
 //!
-//! Not supported, reported as [`SplitError::Unsupported`] with the triangle and a coordinate:
-//! curves branching inside a face (other than crossing), a curve lying entirely inside a single
-//! face, a curve point lying exactly on another curve's segment inside a face, a dangling curve
-//! end in a face where curves cross, a curve touching a zero-area triangle. Isolated touch
-//! points are not inserted.
+//! Each curve segment inside a triangle (a chord) is first cut at every point lying on it:
+//! crossings with other intersections' chords, T-junctions, points exactly on it (exact
+//! `orient2d`), and, for a chord running along an edge of the triangle, the border points of that
+//! edge between its ends. Each original triangle is then re-triangulated on its own as a
+//! constrained triangulation ([`triangulate`]) of its boundary polygon (corners plus the curve
+//! points on its edges, shared with the neighbours, so the result stays conforming), its inner
+//! curve points and its chord pieces: chains from border to border, dangling ends, branches,
+//! closed loops and whole curves inside one face all go through the same steps. Every decision is
+//! an exact `orient2d` in a projection chosen exactly for the original triangle, on the (float)
+//! coordinates of the points; new triangles keep the orientation of their parent. A zero-area
+//! triangle (skipped by `intersect`) with curve points on its edges is fanned into zero-area
+//! triangles so that its neighbours stay conforming.
+//!
+//! Reported as [`SplitError::Unsupported`], with the triangle and a coordinate, only what would
+//! need moving a constructed point: a curve point outside its face or on its border in the
+//! projection (rounding of a point very near an edge), two curve points at one projected place,
+//! two chords of one intersection crossing, a chord inside a zero-area triangle (which
+//! `intersect` never produces). Isolated touch points are not inserted.
 
 pub mod arrangement;
 mod symbolic;
@@ -298,7 +308,14 @@ pub fn split_all_with(
             }
         }
     }
-    chords.sort_by_key(|c| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1]), c.other));
+    // Ties (one segment in two intersections) are broken by the other surface's name, not by
+    // the order the intersections were given in.
+    chords.sort_by(|c, d| {
+        let k = |c: &Chord| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1]));
+        k(c).cmp(&k(d))
+            .then_with(|| partner[c.other].cmp(partner[d.other]))
+            .then(c.other_face.cmp(&d.other_face))
+    });
     chords.dedup_by_key(|c| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1])));
 
     // Crossings of chords of different intersections inside a triangle.
