@@ -358,3 +358,61 @@ fn a_fault_ending_inside_another_faults_faces_meets_it_at_one_point_on_all_three
         "on g, h's curve meets the border along f"
     );
 }
+
+#[test]
+fn a_fault_ending_on_another_exactly_on_a_horizon_edge_meets_it_there_on_all_three_surfaces() {
+    // As above, with a horizon row of vertices at y = Y0 + 102: the T point is on h's edge.
+    let h = grid(4, 4, |i, j| {
+        [
+            X0 + 50.0 * i as f64,
+            Y0 + 51.0 * j as f64,
+            -100.0 + 0.7 * i as f64 + 0.4 * j as f64,
+        ]
+    });
+    let fx = |y: f64| X0 + 104.0 + (y - Y0) / 4.0;
+    let f = grid(6, 1, |k, l| {
+        let y = Y0 - 20.0 + 40.0 * k as f64;
+        [fx(y), y, -160.0 + 120.0 * l as f64]
+    });
+    let (ye, xe) = (Y0 + 102.0, fx(Y0 + 102.0));
+    let g = grid(2, 1, |k, l| {
+        let x = [X0 - 30.0, X0 + 40.0, xe][k];
+        let y = if k == 2 { ye } else { ye + 0.01 * (x - xe) };
+        [x, y, -160.0 + 120.0 * l as f64]
+    });
+    let xs = vec![
+        both("h", &h, "f", &f).expect("meets"),
+        both("h", &h, "g", &g).expect("meets"),
+        both("f", &f, "g", &g).expect("meets"),
+    ];
+    let out = split_both_orders(&[("h", &h), ("f", &f), ("g", &g)], &xs);
+    let gh = &xs[1].curves[0].points;
+    let end = [gh[0].clone(), gh[gh.len() - 1].clone()]
+        .into_iter()
+        .find(|p| p.xyz[0] > X0 + 100.0)
+        .expect("g's curve ends at f");
+    assert!(
+        matches!(end.on_b, georecipe::stages::intersect::Location::Edge(..)),
+        "on an edge of h: {:?}",
+        end.key
+    );
+    let sh = &out["h"];
+    let v = *sh.vertex_of_each[1].get(&end.key).expect("a vertex of h");
+    let at = sh.mesh.vertices[v as usize];
+    assert_eq!(
+        curve_degree(sh, v),
+        3,
+        "f's curve passes where g's curve ends"
+    );
+    assert_eq!(patches("h", sh).len(), 3);
+    let sf = &out["f"];
+    let w = vertex_at(sf, at).expect("f has the T point bit for bit");
+    assert_eq!(
+        curve_degree(sf, w),
+        4,
+        "on f, the curves of h and g cross there"
+    );
+    let sg = &out["g"];
+    let u = vertex_at(sg, at).expect("g has the T point bit for bit");
+    assert_eq!(curve_degree(sg, u), 3);
+}

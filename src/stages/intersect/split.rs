@@ -145,6 +145,8 @@ struct Pt {
     ix: usize,
     key: PointKey,
     loc: Location,
+    /// Where the point lies on the other surface of its intersection.
+    oloc: Location,
     xyz: [f64; 3],
 }
 
@@ -235,10 +237,12 @@ pub fn split_all_with(
                 ix,
                 key: p.key,
                 loc,
+                oloc,
                 xyz,
             });
         }
     }
+    t_on_edges(&mut pts, &partner, others, intersections);
     // Merge: same vertex, or same edge/face with bit-identical coordinates.
     let place = |p: &Pt| -> (Location, [u64; 3]) {
         match p.loc {
@@ -347,11 +351,21 @@ pub fn split_all_with(
             };
             // T-junctions known from provenance: an end of chord j inside the face lies on
             // chord i when its point on j's surface (a vertex, or an edge) lies in the plane
-            // of i's other face.
+            // of i's other face, or when chord i runs along an edge of its other surface and
+            // that point is on an edge coplanar with it.
             for i in start..end {
                 let ci = &chords[i];
-                let plane = other_mesh(partner[ci.other]).and_then(|m| tri_of(m, ci.other_face));
-                let Some(plane) = plane else { continue };
+                let Some(im) = other_mesh(partner[ci.other]) else {
+                    continue;
+                };
+                let Some(plane) = tri_of(im, ci.other_face) else {
+                    continue;
+                };
+                let ie = symbolic::partner_edge(ci.ends);
+                let meets = |q: &TriMesh, at: Location| match (ie, at) {
+                    (Some(e), Location::Edge(a, b)) => symbolic::edges_coplanar(q, (a, b), im, e),
+                    _ => symbolic::lies_in_plane(q, at, &plane),
+                };
                 let (p0, p1) = (vertices[ci.v[0] as usize], vertices[ci.v[1] as usize]);
                 let d = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
                 let along = |w: u32| {
@@ -366,7 +380,7 @@ pub fn split_all_with(
                     for (&w, &at) in cj.v.iter().zip(&cj.ends) {
                         if !ci.v.contains(&w)
                             && loc.get(&w) == Some(&Location::Face(t))
-                            && symbolic::lies_in_plane(q, at, &plane)
+                            && meets(q, at)
                             && along(w) > 0.0
                             && along(w) < along(ci.v[1])
                         {
@@ -664,6 +678,94 @@ fn along_edge_xyz(
     let plane = [corner(plane[0])?, corner(plane[1])?, corner(plane[2])?];
     let (p, r) = (q.vertices.get(e.0 as usize)?, q.vertices.get(e.1 as usize)?);
     arrangement::edge_plane(*p, *r, plane)
+}
+
+/// A fault ending on another exactly where they cross an edge of a third surface (this one):
+/// the point comes twice, from the fault that ends (its border edge or vertex meets this edge)
+/// and from the other (its face meets this edge). When that border lies in the other fault's
+/// plane (exact), the two are one point and take the first one's coordinates. Conversely, a
+/// point where another surface's edge crosses a face of this one lies on this surface's curve
+/// along a third surface's border edge when the two edges are coplanar (exact): it takes their
+/// edge-edge construction, the bits the third surface has.
+fn t_on_edges(
+    pts: &mut [Pt],
+    partner: &[&str],
+    others: &[(&str, &TriMesh)],
+    intersections: &[(&Intersection, Side)],
+) {
+    let mesh_of = |ix: usize| partner.get(ix).and_then(|n| find_mesh(others, n));
+    let corners = |m: &TriMesh, f: u32| -> Option<[[f64; 3]; 3]> {
+        let t = m.triangles.get(f as usize)?;
+        let c = |k: usize| m.vertices.get(t[k] as usize).copied();
+        Some([c(0)?, c(1)?, c(2)?])
+    };
+    let mut by_edge: BTreeMap<Location, Vec<usize>> = BTreeMap::new();
+    for (i, p) in pts.iter().enumerate() {
+        if matches!(p.loc, Location::Edge(..)) {
+            by_edge.entry(p.loc).or_default().push(i);
+        }
+    }
+    for list in by_edge.values() {
+        for &q in list {
+            let (Location::Face(f), Some(fm)) = (pts[q].oloc, mesh_of(pts[q].ix)) else {
+                continue;
+            };
+            let Some(plane) = corners(fm, f) else {
+                continue;
+            };
+            let found = list
+                .iter()
+                .copied()
+                .filter(|&p| pts[p].ix != pts[q].ix && !matches!(pts[p].oloc, Location::Face(_)))
+                .filter(|&p| {
+                    mesh_of(pts[p].ix)
+                        .is_some_and(|gm| symbolic::lies_in_plane(gm, pts[p].oloc, &plane))
+                })
+                .min_by_key(|&p| (partner[pts[p].ix], pts[p].key));
+            if let Some(p) = found {
+                pts[q].xyz = pts[p].xyz;
+            }
+        }
+    }
+    // Curves of this surface along another surface's edge, per face of this surface.
+    let mut along: BTreeMap<u32, Vec<(usize, (u32, u32))>> = BTreeMap::new();
+    for (ix, &(x, side)) in intersections.iter().enumerate() {
+        for c in &x.curves {
+            let n = c.points.len();
+            for (s, &(ta, tb)) in c.segments_faces.iter().enumerate() {
+                let (Some(p), Some(q)) = (c.points.get(s), c.points.get((s + 1) % n.max(1))) else {
+                    continue;
+                };
+                let (t, ends) = if side == Side::A {
+                    (ta, [p.on_b, q.on_b])
+                } else {
+                    (tb, [p.on_a, q.on_a])
+                };
+                if let Some(e) = symbolic::partner_edge(ends) {
+                    along.entry(t).or_default().push((ix, e));
+                }
+            }
+        }
+    }
+    for p in pts.iter_mut() {
+        let (Location::Face(t), Location::Edge(i, j)) = (p.loc, p.oloc) else {
+            continue;
+        };
+        let (Some(sm), Some(list)) = (mesh_of(p.ix), along.get(&t)) else {
+            continue;
+        };
+        let found = list
+            .iter()
+            .filter(|&&(ix, _)| ix != p.ix)
+            .filter_map(|&(ix, e)| Some((partner[ix], mesh_of(ix)?, e)))
+            .filter(|&(_, gm, e)| symbolic::edges_coplanar(sm, (i, j), gm, e))
+            .min_by_key(|&(gn, _, e)| (gn, e));
+        if let Some((gn, gm, e)) = found
+            && let Some(x) = symbolic::edge_edge_xyz(partner[p.ix], sm, (i, j), gn, gm, e)
+        {
+            p.xyz = x;
+        }
+    }
 }
 
 /// The mesh of surface `n` among `others`.

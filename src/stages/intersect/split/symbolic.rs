@@ -6,7 +6,8 @@
 //! is then built the same way on all three surfaces: the border edge meeting the horizon's
 //! plane.
 
-use super::super::key::Location;
+use super::super::construct::point_xyz;
+use super::super::key::{Location, PointKey};
 use super::super::locate::is_degenerate;
 use crate::geom::{Orientation, TriMesh, orient3d};
 
@@ -40,6 +41,40 @@ pub(super) fn lies_in_plane(q: &TriMesh, at: Location, plane: &[[f64; 3]; 3]) ->
         Location::Edge(i, j) => on(i) && on(j),
         Location::Face(_) => false,
     }
+}
+
+/// The lines of edge `s` of surface `p` and edge `e` of surface `q` lie in one plane (exact);
+/// `false` on a bad index. Where `s` crosses a face holding `e`, they then meet at one point.
+pub(super) fn edges_coplanar(p: &TriMesh, s: (u32, u32), q: &TriMesh, e: (u32, u32)) -> bool {
+    let v = |m: &TriMesh, i: u32| m.vertices.get(i as usize).copied();
+    match (v(p, s.0), v(p, s.1), v(q, e.0), v(q, e.1)) {
+        (Some(a), Some(b), Some(c), Some(d)) => orient3d(&a, &b, &c, &d) == Orientation::Zero,
+        _ => false,
+    }
+}
+
+/// Where edge `s` of surface `sn` meets edge `e` of surface `gn`, built exactly as `intersect`
+/// builds that edge-edge point (from the surface whose name sorts first), so the bits agree
+/// with the curve point the two surfaces' own intersection carries. `None` on a bad index.
+pub(super) fn edge_edge_xyz(
+    sn: &str,
+    sm: &TriMesh,
+    s: (u32, u32),
+    gn: &str,
+    gm: &TriMesh,
+    e: (u32, u32),
+) -> Option<[f64; 3]> {
+    let ok = |m: &TriMesh, e: (u32, u32)| e.0.max(e.1) < m.vertices.len() as u32;
+    if !ok(sm, s) || !ok(gm, e) {
+        return None;
+    }
+    let (ls, le) = (Location::edge(s.0, s.1), Location::edge(e.0, e.1));
+    let x = if sn < gn {
+        point_xyz(&PointKey::new(ls, le)?, sm, gm)
+    } else {
+        point_xyz(&PointKey::new(le, ls)?, gm, sm)
+    };
+    x.iter().all(|c| c.is_finite()).then_some(x)
 }
 
 #[cfg(test)]
