@@ -242,7 +242,7 @@ pub fn split_all_with(
             });
         }
     }
-    t_on_edges(&mut pts, &partner, others, intersections);
+    symbolic::t_on_edges(&mut pts, &partner, others, intersections);
     // Merge: same vertex, or same edge/face with bit-identical coordinates.
     let place = |p: &Pt| -> (Location, [u64; 3]) {
         match p.loc {
@@ -645,12 +645,10 @@ pub fn split_all_with(
     })
 }
 
-/// `x` lies in the open segment `pq` (exact `orient2d`, then a coordinate comparison).
+/// `x` lies in the open segment `pq` (a coordinate comparison, then exact `orient2d`).
 fn on_open_segment(p: [f64; 2], q: [f64; 2], x: [f64; 2]) -> bool {
-    if x == p || x == q || orient2d(&p, &q, &x) != Orientation::Zero {
-        return false;
-    }
-    (0..2).all(|k| p[k].min(q[k]) <= x[k] && x[k] <= p[k].max(q[k]))
+    let within = (0..2).all(|k| p[k].min(q[k]) <= x[k] && x[k] <= p[k].max(q[k]));
+    within && x != p && x != q && orient2d(&p, &q, &x) == Orientation::Zero
 }
 
 /// The crossing of two chords when exactly one of them runs along an edge of its other surface
@@ -678,94 +676,6 @@ fn along_edge_xyz(
     let plane = [corner(plane[0])?, corner(plane[1])?, corner(plane[2])?];
     let (p, r) = (q.vertices.get(e.0 as usize)?, q.vertices.get(e.1 as usize)?);
     arrangement::edge_plane(*p, *r, plane)
-}
-
-/// A fault ending on another exactly where they cross an edge of a third surface (this one):
-/// the point comes twice, from the fault that ends (its border edge or vertex meets this edge)
-/// and from the other (its face meets this edge). When that border lies in the other fault's
-/// plane (exact), the two are one point and take the first one's coordinates. Conversely, a
-/// point where another surface's edge crosses a face of this one lies on this surface's curve
-/// along a third surface's border edge when the two edges are coplanar (exact): it takes their
-/// edge-edge construction, the bits the third surface has.
-fn t_on_edges(
-    pts: &mut [Pt],
-    partner: &[&str],
-    others: &[(&str, &TriMesh)],
-    intersections: &[(&Intersection, Side)],
-) {
-    let mesh_of = |ix: usize| partner.get(ix).and_then(|n| find_mesh(others, n));
-    let corners = |m: &TriMesh, f: u32| -> Option<[[f64; 3]; 3]> {
-        let t = m.triangles.get(f as usize)?;
-        let c = |k: usize| m.vertices.get(t[k] as usize).copied();
-        Some([c(0)?, c(1)?, c(2)?])
-    };
-    let mut by_edge: BTreeMap<Location, Vec<usize>> = BTreeMap::new();
-    for (i, p) in pts.iter().enumerate() {
-        if matches!(p.loc, Location::Edge(..)) {
-            by_edge.entry(p.loc).or_default().push(i);
-        }
-    }
-    for list in by_edge.values() {
-        for &q in list {
-            let (Location::Face(f), Some(fm)) = (pts[q].oloc, mesh_of(pts[q].ix)) else {
-                continue;
-            };
-            let Some(plane) = corners(fm, f) else {
-                continue;
-            };
-            let found = list
-                .iter()
-                .copied()
-                .filter(|&p| pts[p].ix != pts[q].ix && !matches!(pts[p].oloc, Location::Face(_)))
-                .filter(|&p| {
-                    mesh_of(pts[p].ix)
-                        .is_some_and(|gm| symbolic::lies_in_plane(gm, pts[p].oloc, &plane))
-                })
-                .min_by_key(|&p| (partner[pts[p].ix], pts[p].key));
-            if let Some(p) = found {
-                pts[q].xyz = pts[p].xyz;
-            }
-        }
-    }
-    // Curves of this surface along another surface's edge, per face of this surface.
-    let mut along: BTreeMap<u32, Vec<(usize, (u32, u32))>> = BTreeMap::new();
-    for (ix, &(x, side)) in intersections.iter().enumerate() {
-        for c in &x.curves {
-            let n = c.points.len();
-            for (s, &(ta, tb)) in c.segments_faces.iter().enumerate() {
-                let (Some(p), Some(q)) = (c.points.get(s), c.points.get((s + 1) % n.max(1))) else {
-                    continue;
-                };
-                let (t, ends) = if side == Side::A {
-                    (ta, [p.on_b, q.on_b])
-                } else {
-                    (tb, [p.on_a, q.on_a])
-                };
-                if let Some(e) = symbolic::partner_edge(ends) {
-                    along.entry(t).or_default().push((ix, e));
-                }
-            }
-        }
-    }
-    for p in pts.iter_mut() {
-        let (Location::Face(t), Location::Edge(i, j)) = (p.loc, p.oloc) else {
-            continue;
-        };
-        let (Some(sm), Some(list)) = (mesh_of(p.ix), along.get(&t)) else {
-            continue;
-        };
-        let found = list
-            .iter()
-            .filter(|&&(ix, _)| ix != p.ix)
-            .filter_map(|&(ix, e)| Some((partner[ix], mesh_of(ix)?, e)))
-            .filter(|&(_, gm, e)| symbolic::edges_coplanar(sm, (i, j), gm, e))
-            .min_by_key(|&(gn, _, e)| (gn, e));
-        if let Some((gn, gm, e)) = found
-            && let Some(x) = symbolic::edge_edge_xyz(partner[p.ix], sm, (i, j), gn, gm, e)
-        {
-            p.xyz = x;
-        }
-    }
 }
 
 /// The mesh of surface `n` among `others`.
