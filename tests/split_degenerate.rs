@@ -416,3 +416,66 @@ fn a_fault_ending_on_another_exactly_on_a_horizon_edge_meets_it_there_on_all_thr
     let u = vertex_at(sg, at).expect("g has the T point bit for bit");
     assert_eq!(curve_degree(sg, u), 3);
 }
+
+#[test]
+fn eight_walls_crossing_in_one_horizon_face_meet_at_shared_crossings() {
+    // One horizon cell of 400 m; eight vertical walls at different angles, some long (through
+    // the cell), some short (ending inside it), each wall a strip of two triangles per 60 m.
+    let h = grid(1, 1, |i, j| {
+        [
+            X0 + 400.0 * i as f64,
+            Y0 + 400.0 * j as f64,
+            -100.0 + 5.0 * i as f64 - 3.0 * j as f64,
+        ]
+    });
+    let wall = |cx: f64, cy: f64, deg: f64, half: f64| {
+        let (s, c) = deg.to_radians().sin_cos();
+        let n = (2.0 * half / 60.0).ceil() as usize;
+        grid(n, 1, |k, l| {
+            let u = -half + 2.0 * half * k as f64 / n as f64;
+            [X0 + cx + u * c, Y0 + cy + u * s, -170.0 + 140.0 * l as f64]
+        })
+    };
+    let walls: Vec<(String, TriMesh)> = [
+        (200.3, 190.7, 3.0, 300.0),
+        (180.1, 210.9, 87.0, 300.0),
+        (150.7, 160.2, 41.0, 320.0),
+        (230.4, 250.6, 133.0, 320.0),
+        (120.9, 260.3, 17.0, 90.0),
+        (280.2, 130.8, 68.0, 110.0),
+        (210.6, 300.1, 152.0, 130.0),
+        (90.4, 110.5, 112.0, 70.0),
+    ]
+    .iter()
+    .enumerate()
+    .map(|(k, &(x, y, a, l))| (format!("w{k}"), wall(x, y, a, l)))
+    .collect();
+    let mut all: Vec<(String, TriMesh)> = vec![("h".to_string(), h)];
+    all.extend(walls);
+    let mut xs = Vec::new();
+    for i in 0..all.len() {
+        for j in i + 1..all.len() {
+            let x = both(&all[i].0, &all[i].1, &all[j].0, &all[j].1).expect("no coplanar contact");
+            if !x.curves.is_empty() {
+                xs.push(x);
+            }
+        }
+    }
+    let refs: Vec<(&str, &TriMesh)> = all.iter().map(|(n, m)| (n.as_str(), m)).collect();
+    let out = split_both_orders(&refs, &xs);
+    let sh = &out["h"];
+    assert!(sh.crossings.len() >= 10, "{} crossings", sh.crossings.len());
+    for &v in &sh.crossings {
+        let at = sh.mesh.vertices[v as usize];
+        let on: Vec<&String> = out
+            .iter()
+            .filter(|(n, s)| *n != "h" && vertex_at(s, at).is_some())
+            .map(|(n, _)| n)
+            .collect();
+        assert_eq!(
+            on.len(),
+            2,
+            "crossing {at:?} is a vertex of two walls: {on:?}"
+        );
+    }
+}
