@@ -4,7 +4,7 @@
 mod intersect_support;
 
 use georecipe::geom::TriMesh;
-use georecipe::stages::intersect::split::{Side, SplitError, split};
+use georecipe::stages::intersect::split::{Side, split};
 use intersect_support::{assert_sound, both, grid};
 
 #[test]
@@ -79,7 +79,7 @@ fn a_curve_ending_inside_faces_is_joined_to_a_corner_and_stays_a_chain_of_edges(
 }
 
 #[test]
-fn a_curve_lying_inside_a_single_face_is_reported_not_mangled() {
+fn a_curve_lying_inside_a_single_face_is_inserted_as_a_chain_of_edges() {
     let a = grid(2, 2, |i, j| [i as f64 * 10.0, j as f64 * 10.0, 0.0]);
     let b = TriMesh::new(
         vec![
@@ -92,11 +92,14 @@ fn a_curve_lying_inside_a_single_face_is_reported_not_mangled() {
     );
     let x = both("a", &a, "b", &b).expect("no coplanar contact");
     assert_eq!(x.curves.len(), 1);
-    let e = split(&a, &x, Side::A).expect_err("the curve lies inside one face of a");
-    assert!(matches!(e, SplitError::Unsupported { .. }), "{e}");
-    assert!(
-        e.to_string().contains("`a`") && e.to_string().contains("inside"),
-        "{e}"
+    let sa = split(&a, &x, Side::A)
+        .unwrap_or_else(|e| panic!("the curve lies inside one face of a: {e}"));
+    assert_sound(&a, &sa);
+    assert_eq!(sa.curve_edges.len(), x.curves[0].segments_faces.len());
+    let in_face_0 = sa.parent.iter().filter(|&&p| p == 0).count();
+    assert_eq!(
+        in_face_0, 7,
+        "three curve points inside face 0 make seven triangles of it"
     );
 }
 

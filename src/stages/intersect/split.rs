@@ -10,29 +10,40 @@
 //! order (a box edge seen from two box sides), a crossing of two curves inside a face as the
 //! common point of the three triangles' planes taken in surface-name order.
 //!
-//! Each original triangle is re-triangulated on its own: its boundary polygon (corners plus the
-//! curve points on its edges, shared with the neighbours, so the result stays conforming) is cut
-//! along the chords the curves draw across it, and each piece is ear-clipped. When no curves
-//! cross inside the triangle, chains are cut one by one ([`cut`]; dangling ends allowed); when
-//! some do, the faces of the chords' arrangement are traced ([`arrangement`]). Every decision
-//! (do two chords cross, which side, which face) is an exact `orient2d` in a projection chosen
-//! exactly for the original triangle, on the (float) coordinates of the points; new triangles
-//! keep the orientation of their parent.
+//! Where a fault ends on another fault inside a third surface's face (a T-junction), the end of
+//! the first curve lies on the second curve; rounded coordinates cannot show it, so it is decided
+//! from provenance ([`symbolic`]: the ending fault's border edge lies in the other fault's plane,
+//! exact `orient3d` on input coordinates) and the point is built the same way on all three
+//! surfaces (that border edge meeting the third surface's plane).
 //!
-//! Not supported, reported as [`SplitError::Unsupported`] with the triangle and a coordinate:
-//! curves branching inside a face (other than crossing), a curve lying entirely inside a single
-//! face, a curve point lying exactly on another curve's segment inside a face, a dangling curve
-//! end in a face where curves cross, a curve touching a zero-area triangle. Isolated touch
-//! points are not inserted.
+//! Each curve segment inside a triangle (a chord) is first cut at every point lying on it:
+//! crossings with other intersections' chords, T-junctions, points exactly on it (exact
+//! `orient2d`), and, for a chord running along an edge of the triangle, the border points of that
+//! edge between its ends. Each original triangle is then re-triangulated on its own as a
+//! constrained triangulation ([`triangulate`]) of its boundary polygon (corners plus the curve
+//! points on its edges, shared with the neighbours, so the result stays conforming), its inner
+//! curve points and its chord pieces: chains from border to border, dangling ends, branches,
+//! closed loops and whole curves inside one face all go through the same steps. Every decision is
+//! an exact `orient2d` in a projection chosen exactly for the original triangle, on the (float)
+//! coordinates of the points; new triangles keep the orientation of their parent. A zero-area
+//! triangle (skipped by `intersect`) with curve points on its edges is fanned into zero-area
+//! triangles so that its neighbours stay conforming.
+//!
+//! Reported as [`SplitError::Unsupported`], with the triangle and a coordinate, only what would
+//! need moving a constructed point: a curve point outside its face or on its border in the
+//! projection (rounding of a point very near an edge), two curve points at one projected place,
+//! two chords of one intersection crossing, a chord inside a zero-area triangle (which
+//! `intersect` never produces). Isolated touch points are not inserted.
 
 pub mod arrangement;
-mod cut;
+mod symbolic;
+mod triangulate;
 
 use super::Intersection;
 use super::key::{Location, PointKey};
 use super::locate::{project, projection_axis};
-use super::polygon::{ear_clip, improve};
-use crate::geom::{Orientation, TriMesh};
+use super::polygon::improve;
+use crate::geom::{Orientation, TriMesh, orient2d};
 use std::collections::BTreeMap;
 use thiserror::Error;
 
@@ -138,6 +149,8 @@ struct Pt {
     ix: usize,
     key: PointKey,
     loc: Location,
+    /// Where the point lies on the other surface of its intersection.
+    oloc: Location,
     xyz: [f64; 3],
 }
 
@@ -149,6 +162,8 @@ struct Chord {
     v: [u32; 2],
     other: usize,
     other_face: u32,
+    /// Where its two ends lie on the other surface.
+    ends: [Location; 2],
 }
 
 /// As [`split_all`], with the meshes of the other surfaces (by name) used to construct shared
@@ -226,10 +241,12 @@ pub fn split_all_with(
                 ix,
                 key: p.key,
                 loc,
+                oloc,
                 xyz,
             });
         }
     }
+    symbolic::t_on_edges(&mut pts, &partner, others, intersections);
     // Merge: same vertex, or same edge/face with bit-identical coordinates.
     let place = |p: &Pt| -> (Location, [u64; 3]) {
         match p.loc {
@@ -288,16 +305,25 @@ pub fn split_all_with(
                 if t as usize >= mesh.triangles.len() {
                     return Err(bad(t));
                 }
+                let oloc = |c: &super::CurvePoint| if side == Side::A { c.on_b } else { c.on_a };
                 chords.push(Chord {
                     t,
                     v: [vp, vq],
                     other: ix,
                     other_face: of,
+                    ends: [oloc(p), oloc(q)],
                 });
             }
         }
     }
-    chords.sort_by_key(|c| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1]), c.other));
+    // Ties (one segment in two intersections) are broken by the other surface's name, not by
+    // the order the intersections were given in.
+    chords.sort_by(|c, d| {
+        let k = |c: &Chord| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1]));
+        k(c).cmp(&k(d))
+            .then_with(|| partner[c.other].cmp(partner[d.other]))
+            .then(c.other_face.cmp(&d.other_face))
+    });
     chords.dedup_by_key(|c| (c.t, c.v[0].min(c.v[1]), c.v[0].max(c.v[1])));
 
     // Crossings of chords of different intersections inside a triangle.
@@ -327,22 +353,60 @@ pub fn split_all_with(
                     "a curve touches this zero-area triangle",
                 ));
             };
+            // T-junctions known from provenance: an end of chord j inside the face lies on
+            // chord i when its point on j's surface (a vertex, or an edge) lies in the plane
+            // of i's other face, or when chord i runs along an edge of its other surface and
+            // that point is on an edge coplanar with it.
+            for i in start..end {
+                let ci = &chords[i];
+                let Some(im) = other_mesh(partner[ci.other]) else {
+                    continue;
+                };
+                let Some(plane) = tri_of(im, ci.other_face) else {
+                    continue;
+                };
+                let ie = symbolic::partner_edge(ci.ends);
+                let meets = |q: &TriMesh, at: Location| match (ie, at) {
+                    (Some(e), Location::Edge(a, b)) => symbolic::edges_coplanar(q, (a, b), im, e),
+                    _ => symbolic::lies_in_plane(q, at, &plane),
+                };
+                let (p0, p1) = (vertices[ci.v[0] as usize], vertices[ci.v[1] as usize]);
+                let d = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
+                let along = |w: u32| {
+                    let x = vertices[w as usize];
+                    (x[0] - p0[0]) * d[0] + (x[1] - p0[1]) * d[1] + (x[2] - p0[2]) * d[2]
+                };
+                for cj in &chords[start..end] {
+                    let Some(q) = other_mesh(partner[cj.other]).filter(|_| cj.other != ci.other)
+                    else {
+                        continue;
+                    };
+                    for (&w, &at) in cj.v.iter().zip(&cj.ends) {
+                        if !ci.v.contains(&w)
+                            && loc.get(&w) == Some(&Location::Face(t))
+                            && meets(q, at)
+                            && along(w) > 0.0
+                            && along(w) < along(ci.v[1])
+                        {
+                            on_chord[i].push(w);
+                        }
+                    }
+                }
+            }
             for i in start..end {
                 for j in i + 1..end {
                     let (ci, cj) = (&chords[i], &chords[j]);
-                    if ci.other == cj.other || ci.v.iter().any(|v| cj.v.contains(v)) {
+                    if ci.other == cj.other
+                        || ci.v.iter().any(|v| cj.v.contains(v))
+                        || on_chord[i].iter().any(|v| cj.v.contains(v))
+                        || on_chord[j].iter().any(|v| ci.v.contains(v))
+                    {
                         continue;
                     }
                     let p = |v: u32| project(&vertices[v as usize], axis);
                     match arrangement::crossing(p(ci.v[0]), p(ci.v[1]), p(cj.v[0]), p(cj.v[1])) {
-                        None => {}
-                        Some(false) => {
-                            return Err(unsupported(
-                                t,
-                                vertices[ci.v[0] as usize],
-                                "a curve point lies on another curve inside this face",
-                            ));
-                        }
+                        // A touch is found below, as a point lying on a chord.
+                        None | Some(false) => {}
                         Some(true) => {
                             let mut key = vec![
                                 (name.clone(), t),
@@ -353,14 +417,18 @@ pub fn split_all_with(
                             let v = match crossing_at.get(&key) {
                                 Some(&v) => v,
                                 None => {
-                                    let xyz = crossing_xyz(
-                                        &key,
-                                        surface_name,
-                                        mesh,
-                                        others,
-                                        [ci.v, cj.v].map(|s| s.map(|v| vertices[v as usize])),
-                                        axis,
-                                    );
+                                    let xyz = along_edge_xyz(ci, cj, &partner, others)
+                                        .unwrap_or_else(|| {
+                                            crossing_xyz(
+                                                &key,
+                                                surface_name,
+                                                mesh,
+                                                others,
+                                                [ci.v, cj.v]
+                                                    .map(|s| s.map(|v| vertices[v as usize])),
+                                                axis,
+                                            )
+                                        });
                                     vertices.push(xyz);
                                     let v = vertices.len() as u32 - 1;
                                     crossing_at.insert(key, v);
@@ -378,7 +446,77 @@ pub fn split_all_with(
         }
         start = end;
     }
-    // Chord pieces between crossings.
+    // Points on each original edge, and inside each original face.
+    let mut on_edge: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
+    let mut in_face: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    for (&v, &l) in &loc {
+        match l {
+            Location::Edge(i, j) => on_edge.entry((i, j)).or_default().push(v),
+            Location::Face(t) => in_face.entry(t).or_default().push(v),
+            Location::Vertex(_) => {}
+        }
+    }
+    // Further points on each chord: the triangle's border points between its ends when it
+    // runs along an edge, else any point of the triangle lying exactly on it.
+    let mut start = 0;
+    while start < chords.len() {
+        let t = chords[start].t;
+        let end = start + chords[start..].iter().take_while(|c| c.t == t).count();
+        let tri = mesh.triangles[t as usize];
+        let corners = tri_of(mesh, t).ok_or_else(|| bad(t))?;
+        let Some((axis, _)) = projection_axis(&corners) else {
+            return Err(unsupported(
+                t,
+                corners[0],
+                "a curve runs inside this zero-area triangle",
+            ));
+        };
+        let sides = |v: u32| -> u8 {
+            (0..3usize)
+                .filter(|&k| {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    v == a || v == b || loc.get(&v) == Some(&Location::Edge(a.min(b), a.max(b)))
+                })
+                .fold(0, |m, k| m | (1 << k))
+        };
+        let edge_of = |k: usize| {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            on_edge.get(&(a.min(b), a.max(b)))
+        };
+        let mut local: Vec<u32> = tri.to_vec();
+        for k in 0..3 {
+            local.extend(edge_of(k).into_iter().flatten());
+        }
+        local.extend(in_face.get(&t).into_iter().flatten());
+        for (c, xs) in chords[start..end].iter().zip(&mut on_chord[start..end]) {
+            let common = sides(c.v[0]) & sides(c.v[1]);
+            if let Some(k) = (0..3).find(|&k| common & (1 << k) != 0) {
+                let (p, q) = (vertices[c.v[0] as usize], vertices[c.v[1] as usize]);
+                let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+                let along = |v: u32| {
+                    let x = vertices[v as usize];
+                    (x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1] + (x[2] - p[2]) * d[2]
+                };
+                let len2 = along(c.v[1]);
+                xs.extend(
+                    edge_of(k)
+                        .into_iter()
+                        .flatten()
+                        .filter(|&&w| along(w) > 0.0 && along(w) < len2),
+                );
+                continue;
+            }
+            let p = |v: u32| project(&vertices[v as usize], axis);
+            let (p0, p1) = (p(c.v[0]), p(c.v[1]));
+            for &w in &local {
+                if !c.v.contains(&w) && on_open_segment(p0, p1, p(w)) {
+                    xs.push(w);
+                }
+            }
+        }
+        start = end;
+    }
+    // Chord pieces between the points on them.
     let mut pieces: BTreeMap<u32, Vec<[u32; 2]>> = BTreeMap::new();
     let mut curve_edges = Vec::new();
     for (c, xs) in chords.iter().zip(&mut on_chord) {
@@ -402,43 +540,20 @@ pub fn split_all_with(
     }
     curve_edges.sort_unstable();
     curve_edges.dedup();
-    let has_crossing: std::collections::BTreeSet<u32> = crossings
-        .iter()
-        .filter_map(|v| match loc.get(v) {
-            Some(Location::Face(t)) => Some(*t),
-            _ => None,
-        })
-        .collect();
-
-    // Points on each original edge.
-    let mut on_edge: BTreeMap<(u32, u32), Vec<u32>> = BTreeMap::new();
-    for (&v, &l) in &loc {
-        if let Location::Edge(i, j) = l {
-            on_edge.entry((i, j)).or_default().push(v);
-        }
-    }
 
     let mut triangles = Vec::with_capacity(mesh.triangles.len());
     let mut parent = Vec::with_capacity(mesh.triangles.len());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let t = t as u32;
         let edge_pts = |a: u32, b: u32| on_edge.get(&(a.min(b), a.max(b)));
-        let touched =
-            pieces.contains_key(&t) || (0..3).any(|k| edge_pts(tri[k], tri[(k + 1) % 3]).is_some());
+        let touched = pieces.contains_key(&t)
+            || in_face.contains_key(&t)
+            || (0..3).any(|k| edge_pts(tri[k], tri[(k + 1) % 3]).is_some());
         if !touched {
             triangles.push(*tri);
             parent.push(t);
             continue;
         }
-        let corners = [0, 1, 2].map(|k| vertices[tri[k] as usize]);
-        let Some((axis, sign)) = projection_axis(&corners) else {
-            return Err(unsupported(
-                t,
-                corners[0],
-                "a curve touches this zero-area triangle",
-            ));
-        };
-        let pt = |v: u32| project(&vertices[v as usize], axis);
         // Boundary cycle, in the triangle's own orientation.
         let mut boundary = Vec::new();
         for k in 0..3 {
@@ -461,7 +576,25 @@ pub fn split_all_with(
                 boundary.extend(along.into_iter().map(|(_, v)| v));
             }
         }
-        let err = |what: &str, v: u32| unsupported(t, vertices[v as usize], what);
+        let corners = [0, 1, 2].map(|k| vertices[tri[k] as usize]);
+        let Some((axis, sign)) = projection_axis(&corners) else {
+            // A zero-area triangle (skipped by `intersect`) with curve points on its edges:
+            // fanned, so that its neighbours stay conforming.
+            let fan = match pieces.contains_key(&t) || in_face.contains_key(&t) {
+                true => None,
+                false => triangulate::fan(&boundary),
+            };
+            let fan = fan.ok_or_else(|| {
+                unsupported(t, corners[0], "a curve runs inside this zero-area triangle")
+            })?;
+            for tr in fan {
+                triangles.push(tr);
+                parent.push(t);
+            }
+            continue;
+        };
+        let pt = |v: u32| project(&vertices[v as usize], axis);
+        let err = |(what, v): triangulate::Refusal| unsupported(t, vertices[v as usize], what);
         // Chord pieces that are not pieces of the boundary.
         let m = boundary.len();
         // The first position of each boundary vertex, for lookups by binary search.
@@ -493,18 +626,23 @@ pub fn split_all_with(
             .unwrap_or_default();
         segs.sort_unstable();
         segs.dedup();
-        let (polys, locked) = if has_crossing.contains(&t) {
-            arranged(&boundary, &segs, &pt, sign, &err)?
-        } else {
-            cut::cut(&boundary, &segs, &pt, sign, &err)?
-        };
-        let mut local = Vec::new();
-        for p in &polys {
-            local.extend(
-                ear_clip(p, &pt, sign)
-                    .ok_or_else(|| err("a piece could not be triangulated", p[0]))?,
-            );
+        let mut inner: Vec<u32> = segs
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|v| !boundary.contains(v))
+            .chain(in_face.get(&t).into_iter().flatten().copied())
+            .collect();
+        inner.sort_unstable();
+        inner.dedup();
+        let mut ct = triangulate::Ct::new(&boundary, &pt, sign).map_err(err)?;
+        for v in inner {
+            ct.insert_point(v).map_err(err)?;
         }
+        for s in &segs {
+            ct.insert_segment(s[0], s[1]).map_err(err)?;
+        }
+        let (mut local, locked) = ct.finish();
         improve(&mut local, &locked, &pt, sign);
         for tr in local {
             triangles.push(tr);
@@ -522,122 +660,37 @@ pub fn split_all_with(
     })
 }
 
-/// The pieces of a triangle where curves cross: dangling chains (ending inside the face) are set
-/// aside, the faces of the remaining arrangement are traced, and each face holding dangling
-/// chains is then cut along them like a triangle without crossings. Returns the polygons and
-/// the curve edges to lock.
-fn arranged(
-    boundary: &[u32],
-    segs: &[[u32; 2]],
-    pt: &dyn Fn(u32) -> [f64; 2],
-    sign: Orientation,
-    err: &dyn Fn(&str, u32) -> SplitError,
-) -> Result<cut::Pieces, SplitError> {
-    let on_b = |v: u32| boundary.contains(&v);
-    let mut inc: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
-    for (i, s) in segs.iter().enumerate() {
-        inc.entry(s[0]).or_default().push(i);
-        inc.entry(s[1]).or_default().push(i);
-    }
-    let mut deg: BTreeMap<u32, usize> = inc.iter().map(|(&v, l)| (v, l.len())).collect();
-    let mut kept = vec![true; segs.len()];
-    let mut stack: Vec<u32> = deg
-        .iter()
-        .filter(|&(&v, &d)| d == 1 && !on_b(v))
-        .map(|(&v, _)| v)
-        .collect();
-    while let Some(v) = stack.pop() {
-        let Some(&i) = inc.get(&v).and_then(|l| l.iter().find(|&&i| kept[i])) else {
-            continue;
-        };
-        kept[i] = false;
-        for w in segs[i] {
-            if let Some(d) = deg.get_mut(&w) {
-                *d = d.saturating_sub(1);
-                if *d == 1 && !on_b(w) {
-                    stack.push(w);
-                }
-            }
-        }
-    }
-    let main: Vec<[u32; 2]> = (0..segs.len())
-        .filter(|&i| kept[i])
-        .map(|i| segs[i])
-        .collect();
-    // Faces traced counter-clockwise in a projection mirrored when needed.
-    let ptm = |v: u32| {
-        let p = pt(v);
-        if sign == Orientation::Negative {
-            [-p[0], p[1]]
-        } else {
-            p
-        }
+/// `x` lies in the open segment `pq` (a coordinate comparison, then exact `orient2d`).
+fn on_open_segment(p: [f64; 2], q: [f64; 2], x: [f64; 2]) -> bool {
+    let within = (0..2).all(|k| p[k].min(q[k]) <= x[k] && x[k] <= p[k].max(q[k]));
+    within && x != p && x != q && orient2d(&p, &q, &x) == Orientation::Zero
+}
+
+/// The crossing of two chords when exactly one of them runs along an edge of its other surface
+/// (a fault's border edge lying in the plane of the fault it ends on): that edge meeting the
+/// plane of the other chord's other face, built as where that third surface is split, so all
+/// three surfaces get the same bits. `None` otherwise or when a mesh is missing.
+fn along_edge_xyz(
+    ci: &Chord,
+    cj: &Chord,
+    partner: &[&str],
+    others: &[(&str, &TriMesh)],
+) -> Option<[f64; 3]> {
+    let (along, across) = match (
+        symbolic::partner_edge(ci.ends),
+        symbolic::partner_edge(cj.ends),
+    ) {
+        (Some(e), None) => ((ci, e), cj),
+        (None, Some(e)) => ((cj, e), ci),
+        _ => return None,
     };
-    let faces = arrangement::faces(boundary, &main, &ptm).ok_or_else(|| {
-        err(
-            "curves cross here and a piece of curve is detached",
-            boundary[0],
-        )
-    })?;
-    let mut locked = main.clone();
-    let stripped: Vec<usize> = (0..segs.len()).filter(|&i| !kept[i]).collect();
-    if stripped.is_empty() {
-        return Ok((faces, locked));
-    }
-    let mut taken = vec![false; segs.len()];
-    let mut polys = Vec::new();
-    for f in faces {
-        // Dangling chains leaving a vertex of `f` into its interior, with everything beyond.
-        let mut mine: Vec<[u32; 2]> = Vec::new();
-        for &a in &f {
-            for &i in inc.get(&a).map(Vec::as_slice).unwrap_or(&[]) {
-                if kept[i] || taken[i] {
-                    continue;
-                }
-                let w = if segs[i][0] == a {
-                    segs[i][1]
-                } else {
-                    segs[i][0]
-                };
-                if !cut::chain_inside(&f, &[a, w], pt, sign) {
-                    continue;
-                }
-                taken[i] = true;
-                mine.push(segs[i]);
-                let mut todo = vec![w];
-                while let Some(u) = todo.pop() {
-                    for &j in inc.get(&u).map(Vec::as_slice).unwrap_or(&[]) {
-                        if kept[j] || taken[j] {
-                            continue;
-                        }
-                        taken[j] = true;
-                        mine.push(segs[j]);
-                        let x = if segs[j][0] == u {
-                            segs[j][1]
-                        } else {
-                            segs[j][0]
-                        };
-                        if x != a {
-                            todo.push(x);
-                        }
-                    }
-                }
-            }
-        }
-        if mine.is_empty() {
-            polys.push(f);
-            continue;
-        }
-        mine.sort_unstable();
-        mine.dedup();
-        let (p, l) = cut::cut(&f, &mine, pt, sign, err)?;
-        polys.extend(p);
-        locked.extend(l);
-    }
-    if let Some(&i) = stripped.iter().find(|&&i| !taken[i]) {
-        return Err(err("a curve lies entirely inside this face", segs[i][0]));
-    }
-    Ok((polys, locked))
+    let ((c, e), m) = (along, find_mesh(others, partner.get(across.other)?)?);
+    let q = find_mesh(others, partner.get(c.other)?)?;
+    let plane = m.triangles.get(across.other_face as usize)?;
+    let corner = |v: u32| m.vertices.get(v as usize).copied();
+    let plane = [corner(plane[0])?, corner(plane[1])?, corner(plane[2])?];
+    let (p, r) = (q.vertices.get(e.0 as usize)?, q.vertices.get(e.1 as usize)?);
+    arrangement::edge_plane(*p, *r, plane)
 }
 
 /// The mesh of surface `n` among `others`.

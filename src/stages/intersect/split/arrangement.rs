@@ -1,16 +1,13 @@
-//! The arrangement of the curve chords inside one triangle when curves of several intersections
-//! cross there, and the constructions that make the points shared by three surfaces identical on
-//! all of them.
+//! Chords of several intersections crossing inside one triangle, and the constructions that make
+//! the points shared by three surfaces identical on all of them.
 //!
-//! What it decides: whether two chords cross (exact `orient2d` on the projected coordinates),
-//! and which faces the chords cut the triangle into (edges around each vertex sorted by angle
-//! with exact sign tests, then faces traced by the "next edge clockwise" rule). Constructed
-//! coordinates (a crossing point; an edge meeting a face) are floats computed from inputs put in
-//! a canonical order first, so every surface that constructs the same point gets the same bits.
+//! What it decides: whether two chords cross (exact `orient2d` on the projected coordinates).
+//! Constructed coordinates (a crossing point; an edge meeting a face) are floats computed from
+//! inputs put in a canonical order first, so every surface that constructs the same point gets
+//! the same bits.
 
 use crate::geom::predicates::{cross, dot, sub};
 use crate::geom::{Orientation, orient2d};
-use std::collections::BTreeMap;
 
 /// Segments `pq` and `rs` cross at a single point interior to both (exact). `None` when they
 /// do not meet, `Some(true)` for a proper crossing, `Some(false)` for any other contact
@@ -100,128 +97,9 @@ fn snap(x: &mut [f64; 3], t: &[[f64; 3]; 3]) {
     }
 }
 
-/// The faces of the planar graph made of the polygon `boundary` (counter-clockwise in `pt`) and
-/// the `chords` inside it, each face a counter-clockwise vertex cycle. `None` when the graph is
-/// not a subdivision this routine handles (a vertex with fewer than two edges, i.e. a dangling
-/// chord end, or a traced cycle that repeats a vertex, i.e. a chord piece not attached to the
-/// rest).
-pub fn faces(
-    boundary: &[u32],
-    chords: &[[u32; 2]],
-    pt: &dyn Fn(u32) -> [f64; 2],
-) -> Option<Vec<Vec<u32>>> {
-    let m = boundary.len();
-    if m < 3 {
-        return None;
-    }
-    let mut adj: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
-    let add = |a: u32, b: u32, adj: &mut BTreeMap<u32, Vec<u32>>| {
-        if a != b {
-            adj.entry(a).or_default().push(b);
-            adj.entry(b).or_default().push(a);
-        }
-    };
-    for k in 0..m {
-        add(boundary[k], boundary[(k + 1) % m], &mut adj);
-    }
-    for c in chords {
-        add(c[0], c[1], &mut adj);
-    }
-    for (&v, n) in adj.iter_mut() {
-        n.sort_unstable();
-        n.dedup();
-        if n.len() < 2 {
-            return None;
-        }
-        let o = pt(v);
-        // Counter-clockwise order by angle, exactly: half plane first, then orientation.
-        let half = |w: u32| {
-            let p = pt(w);
-            let (dx, dy) = (p[0] - o[0], p[1] - o[1]);
-            u8::from(dy < 0.0 || (dy == 0.0 && dx < 0.0))
-        };
-        n.sort_by(|&a, &b| {
-            half(a)
-                .cmp(&half(b))
-                .then_with(|| match orient2d(&o, &pt(a), &pt(b)) {
-                    Orientation::Positive => std::cmp::Ordering::Less,
-                    Orientation::Negative => std::cmp::Ordering::Greater,
-                    Orientation::Zero => a.cmp(&b),
-                })
-        });
-    }
-    // The outer face is the one through the reversed boundary edge boundary[1] -> boundary[0].
-    let outer = (boundary[1 % m], boundary[0]);
-    let mut seen: BTreeMap<(u32, u32), bool> = BTreeMap::new();
-    let mut out = Vec::new();
-    let darts: Vec<(u32, u32)> = adj
-        .iter()
-        .flat_map(|(&u, n)| n.iter().map(move |&v| (u, v)))
-        .collect();
-    let limit = darts.len() + 1;
-    for &d0 in &darts {
-        if seen.contains_key(&d0) {
-            continue;
-        }
-        let mut cycle = Vec::new();
-        let mut d = d0;
-        let mut is_outer = false;
-        loop {
-            if seen.insert(d, true).is_some() || cycle.len() > limit {
-                return None;
-            }
-            is_outer |= d == outer;
-            cycle.push(d.0);
-            // Next dart: at d.1, the neighbour just before d.0 in counter-clockwise order
-            // (turning as far right as possible keeps the face on the left).
-            let n = adj.get(&d.1)?;
-            let i = n.iter().position(|&w| w == d.0)?;
-            let w = n[(i + n.len() - 1) % n.len()];
-            d = (d.1, w);
-            if d == d0 {
-                break;
-            }
-        }
-        if is_outer {
-            continue;
-        }
-        let mut sorted = cycle.clone();
-        sorted.sort_unstable();
-        if sorted.windows(2).any(|w| w[0] == w[1]) {
-            return None;
-        }
-        out.push(cycle);
-    }
-    Some(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn two_crossing_chords_cut_a_square_into_four_faces() {
-        // Square 0..3 with a centre 4 where the two diagonals cross.
-        let pts: Vec<[f64; 2]> = vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [1.0, 1.0]];
-        let pt = |v: u32| pts[v as usize];
-        let f = faces(&[0, 1, 2, 3], &[[0, 4], [4, 2], [1, 4], [4, 3]], &pt).expect("faces");
-        assert_eq!(f.len(), 4);
-        for c in &f {
-            assert_eq!(c.len(), 3, "{c:?}");
-            assert!(c.contains(&4));
-            assert_eq!(
-                orient2d(&pt(c[0]), &pt(c[1]), &pt(c[2])),
-                Orientation::Positive
-            );
-        }
-    }
-
-    #[test]
-    fn a_dangling_chord_is_refused() {
-        let pts: Vec<[f64; 2]> = vec![[0.0, 0.0], [2.0, 0.0], [0.0, 2.0], [0.5, 0.5]];
-        let pt = |v: u32| pts[v as usize];
-        assert_eq!(faces(&[0, 1, 2], &[[0, 3]], &pt), None);
-    }
 
     #[test]
     fn crossing_tells_proper_crossings_from_touches() {
