@@ -2,7 +2,8 @@
 //! measures of `stages::quality` (never re-derived here), binned on fixed edges so that two
 //! builds can be compared bin by bin, and drawn as small SVG bar charts.
 //!
-//! Bins: mean ratio on [0, 1] in 20 bins (1.0 = regular tet, the last bin includes 1.0);
+//! Bins: mean ratio on [0, 1] in 20 bins (1.0 = regular tet; the last bin includes 1.0 and the
+//! values rounding puts just above it);
 //! `c/c*` on [1, 2] in 20 bins plus an "above" count for values ≥ 2 (1.0 = equilateral). A value
 //! below the first edge (rounding) goes to the first bin; NaN values are counted as invalid.
 
@@ -27,7 +28,8 @@ pub struct Histogram {
     pub hi: f64,
     /// `BINS` equal bins between `lo` and `hi`.
     pub counts: Vec<usize>,
-    /// Values ≥ `hi` (not in any bin; always 0 for the mean ratio, whose last bin holds 1.0).
+    /// Values ≥ `hi` (not in any bin; always 0 for the mean ratio, whose last bin holds 1.0 and
+    /// the rounding errors above it).
     pub above: usize,
     /// NaN values.
     pub invalid: usize,
@@ -45,20 +47,22 @@ impl Histogram {
         }
     }
 
-    /// Adds one value; `closed` puts `hi` itself in the last bin.
+    /// Adds one value; `closed` puts `hi` and anything above it in the last bin (for a measure
+    /// bounded by `hi`, where a larger value is a rounding error: a mean ratio of 1 + 1e-16).
     fn add(&mut self, v: f64, closed: bool) {
         if v.is_nan() {
             self.invalid += 1;
-        } else if v > self.hi || (v == self.hi && !closed) {
+        } else if v >= self.hi && !closed {
             self.above += 1;
         } else {
             let b = ((v - self.lo) / (self.hi - self.lo) * BINS as f64).floor();
-            let b = if b.is_finite() && b > 0.0 {
-                b as usize
+            // Float-to-int casts saturate: +inf lands in the last bin.
+            let b = if b > 0.0 {
+                (b as usize).min(BINS - 1)
             } else {
                 0
             };
-            self.counts[b.min(BINS - 1)] += 1;
+            self.counts[b] += 1;
         }
     }
 
@@ -240,14 +244,24 @@ mod tests {
     #[test]
     fn values_fall_in_the_bin_of_their_range_and_the_closed_end_stays_in() {
         let mut h = Histogram::new("r", 0.0, 1.0);
-        for v in [0.0, 0.049, 0.05, 0.5, 1.0, f64::NAN, -1e-9] {
+        for v in [
+            0.0,
+            0.049,
+            0.05,
+            0.5,
+            1.0,
+            f64::NAN,
+            -1e-9,
+            1.0 + 1e-15,
+            f64::INFINITY,
+        ] {
             h.add(v, true);
         }
         assert_eq!(h.counts[0], 3);
         assert_eq!(h.counts[1], 1);
         assert_eq!(h.counts[10], 1);
-        assert_eq!(h.counts[19], 1);
-        assert_eq!((h.above, h.invalid, h.total()), (0, 1, 7));
+        assert_eq!(h.counts[19], 3);
+        assert_eq!((h.above, h.invalid, h.total()), (0, 1, 9));
     }
 
     #[test]

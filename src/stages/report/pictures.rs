@@ -1,9 +1,9 @@
 //! The two pictures of a report, rendered by us as SVG (see `view` for the projection and the
 //! size bound):
 //!
-//! 1. the model: every tagged surface triangle of the mesh, coloured by surface name; box sides
-//!    are drawn only when they lie behind the model's centre (the three far walls make a backdrop,
-//!    the near ones would hide everything);
+//! 1. the model: every tagged surface triangle of the mesh, coloured by surface name; a box-side
+//!    triangle is drawn only when the model's centre lies between its plane and the viewer (the
+//!    far walls make a backdrop, the near ones would hide everything);
 //! 2. the mesh: a cut-away of the tets, coloured by region. A tet is kept when its centroid is
 //!    not in front of the vertical plane through the centre of the mesh's box that faces the
 //!    viewer; the faces drawn are those of kept tets that no other kept tet shares (the outside of
@@ -48,10 +48,6 @@ fn centre(b: &BBox) -> [f64; 3] {
     std::array::from_fn(|k| 0.5 * (b.min[k] + b.max[k]))
 }
 
-fn is_empty(b: &BBox) -> bool {
-    (0..3).any(|k| !(b.min[k] <= b.max[k]))
-}
-
 /// Whether `p` is strictly on the viewer's side of the plane through `o` spanned by `a` and `b`
 /// (whose right-hand normal `a × b` points at the viewer).
 fn in_front(o: &[f64; 3], a: &[f64; 3], b: &[f64; 3], p: &[f64; 3]) -> bool {
@@ -70,40 +66,23 @@ pub fn model(mesh: &VolumeMesh, title: &str) -> (Picture, Vec<Rgb>) {
         .collect();
     let cam = Camera::oblique();
     let c = centre(&frame);
-    // Box sides: a side is drawn when its mean point is not in front of the plane through the
-    // centre facing the viewer.
-    let mut sum = vec![([0.0f64; 3], 0usize); mesh.surface_groups.len()];
-    for (t, &g) in mesh.triangles.iter().zip(&mesh.triangle_group) {
-        if let (Some(s), Some(p)) = (sum.get_mut(g as usize), tri_points(mesh, t)) {
-            for q in p {
-                for k in 0..3 {
-                    s.0[k] += q[k];
-                }
-            }
-            s.1 += 3;
-        }
-    }
-    let hidden: Vec<bool> = mesh
-        .surface_groups
-        .iter()
-        .zip(&sum)
-        .map(|(g, (s, n))| {
-            g.kind == SurfaceKind::Box
-                && *n > 0
-                && !is_empty(&frame)
-                && in_front(&c, &cam.right, &cam.up, &s.map(|v| v / *n as f64))
-        })
-        .collect();
+    // Box sides: a box triangle is drawn when the model's centre lies between it and the viewer
+    // (it belongs to a far wall), whatever the grouping of the sides.
+    let reach = (0..3)
+        .map(|k| frame.max[k] - frame.min[k])
+        .fold(0.0f64, f64::max)
+        .max(1.0);
     let faces: Vec<Face> = mesh
         .triangles
         .iter()
         .zip(&mesh.triangle_group)
-        .filter(|(_, g)| hidden.get(**g as usize) == Some(&false))
         .filter_map(|(t, &g)| {
-            Some(Face {
-                pts: tri_points(mesh, t)?,
-                colour: g,
-            })
+            let group = mesh.surface_groups.get(g as usize)?;
+            let pts = tri_points(mesh, t)?;
+            if group.kind == SurfaceKind::Box && !far_wall(&pts, &c, &cam.toward, reach) {
+                return None;
+            }
+            Some(Face { pts, colour: g })
         })
         .collect();
     let pic = view::draw(
@@ -119,6 +98,14 @@ pub fn model(mesh: &VolumeMesh, title: &str) -> (Picture, Vec<Rgb>) {
         },
     );
     (pic, colours)
+}
+
+/// Whether the plane of triangle `p` has `centre` strictly on the viewer's side (the viewer is
+/// `reach` away along `toward`): both exact `orient3d` signs agree and are not zero.
+fn far_wall(p: &[[f64; 3]; 3], centre: &[f64; 3], toward: &[f64; 3], reach: f64) -> bool {
+    let eye: [f64; 3] = std::array::from_fn(|k| p[0][k] + reach * toward[k]);
+    let s = orient3d(&p[0], &p[1], &p[2], centre);
+    s != Orientation::Zero && s == orient3d(&p[0], &p[1], &p[2], &eye)
 }
 
 /// Outward faces of a positively oriented tet `abcd` (opposite d, c, b, a).
@@ -249,6 +236,21 @@ mod tests {
         assert!(kept > 0 && kept < 12, "kept {kept}");
         assert!(pic.visible > 0);
         assert_eq!(pic.svg.matches("<path").count(), pic.drawn);
+    }
+
+    #[test]
+    fn only_the_far_walls_of_the_box_are_drawn() {
+        let c = [0.5, 0.5, 0.5];
+        let cam = Camera::oblique();
+        let top = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+        let bottom = [[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]];
+        // The viewer is above, south-west: the floor and the north and east walls are far.
+        let north = [[0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0]];
+        let south = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(!far_wall(&top, &c, &cam.toward, 1.0));
+        assert!(far_wall(&bottom, &c, &cam.toward, 1.0));
+        assert!(far_wall(&north, &c, &cam.toward, 1.0));
+        assert!(!far_wall(&south, &c, &cam.toward, 1.0));
     }
 
     #[test]
