@@ -12,7 +12,19 @@ fn the_report_of_three_meshed_peer_regions_is_complete_and_small() {
     let Some(dir) = peers::shared_dir() else {
         return;
     };
-    let regions = ["overburden_W", "reservoir_W", "underburden_W"];
+    // REPORT_ALL=1 meshes the six regions (slower); REPORT_OUT=DIR writes the two documents there.
+    let regions: Vec<&str> = if std::env::var("REPORT_ALL").is_ok() {
+        vec![
+            "overburden_W",
+            "overburden_E",
+            "reservoir_W",
+            "reservoir_E",
+            "underburden_W",
+            "underburden_E",
+        ]
+    } else {
+        vec!["overburden_W", "reservoir_W", "underburden_W"]
+    };
     let (mesh, volumes) = peers::peer_mesh(&dir, &regions).unwrap_or_else(|e| panic!("{e}"));
     mesh.check_indices().expect("a consistent mesh");
     let input = ReportInput::from_mesh("didactic_W", "peer-boundaries", &mesh);

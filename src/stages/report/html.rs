@@ -34,9 +34,9 @@ pub fn render(input: &ReportInput, f: &Facts) -> String {
         h,
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width,initial-scale=1\"><title>{title} — georecipe report</title><style>{CSS}</style></head><body>\n"
     );
-    let _ = write!(
+    let _ = writeln!(
         h,
-        "<h1>{title}</h1><p class=\"sub\">Recipe <code>{}</code> · georecipe {}</p>\n",
+        "<h1>{title}</h1><p class=\"sub\">Recipe <code>{}</code> · georecipe {}</p>",
         esc(input.recipe_path),
         env!("CARGO_PKG_VERSION")
     );
@@ -94,7 +94,7 @@ fn legend(h: &mut String, items: impl Iterator<Item = (String, Rgb)>) {
 fn bound_note(p: &Picture) -> String {
     if p.cell > 0.0 {
         format!(
-            " Size bound: {} of {} visible faces drawn — at most {} faces per picture, so only the face nearest the viewer in each {}-unit square cell of the 960-unit-wide picture is kept.",
+            " Size bound: {} of {} visible faces drawn — at most {} faces per picture, so only the face nearest the viewer in each {}-unit square cell of the picture (at most 960 units wide) is kept.",
             count(p.drawn),
             count(p.visible),
             count(FACE_CAP),
@@ -122,9 +122,9 @@ fn pictures_section(h: &mut String, input: &ReportInput) {
             .zip(&colours)
             .map(|(g, c)| (g.name.clone(), *c)),
     );
-    let _ = write!(
+    let _ = writeln!(
         h,
-        "<figcaption>Figure 1. The model's surface triangles seen from the south-west, 30° above the horizon (parallel projection, far triangles painted first), coloured by surface name; box sides in grey, only the three far ones.{}</figcaption></figure>\n",
+        "<figcaption>Figure 1. The model's surface triangles seen from the south-west, 30° above the horizon (parallel projection, far triangles painted first), coloured by surface name; box sides in grey, only where the model's centre lies between them and the viewer.{}</figcaption></figure>",
         bound_note(&p1)
     );
     let (p2, kept, colours) =
@@ -138,9 +138,9 @@ fn pictures_section(h: &mut String, input: &ReportInput) {
             .zip(&colours)
             .map(|(r, c)| (r.name.clone(), *c)),
     );
-    let _ = write!(
+    let _ = writeln!(
         h,
-        "<figcaption>Figure 2. The tetrahedra coloured by region, same view, cut by the vertical plane through the centre of the mesh's box facing the viewer: the {} of {} tets whose centroid lies behind it are kept, and their faces that no other kept tet shares and that face the viewer are drawn.{}</figcaption></figure>\n",
+        "<figcaption>Figure 2. The tetrahedra coloured by region, same view, cut by the vertical plane through the centre of the mesh's box facing the viewer: the {} of {} tets whose centroid lies behind it are kept, and their faces that no other kept tet shares and that face the viewer are drawn.{}</figcaption></figure>",
         count(kept),
         count(m.tets.len()),
         bound_note(&p2)

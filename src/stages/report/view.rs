@@ -9,8 +9,8 @@
 //!
 //! Size bound (the rule quoted in every caption): when more than `cap` faces would be drawn, the
 //! picture is divided into square cells of `cell` units and only the face nearest the viewer whose
-//! projected centroid falls in a cell is kept; `cell` starts at one unit (of a 960-unit-wide
-//! picture) and doubles until at most `cap` faces remain. Faces smaller than a cell are mostly
+//! projected centroid falls in a cell is kept; `cell` starts at one unit (of a picture at most
+//! 960 units wide and 640 high) and doubles until at most `cap` faces remain. Faces smaller than a cell are mostly
 //! hidden or invisible anyway, so the picture keeps its look while its size stays bounded.
 
 use super::palette::Rgb;
@@ -127,6 +127,7 @@ fn shade_of(level: u8) -> f64 {
 struct Fit {
     min: [f64; 2],
     scale: f64,
+    width: f64,
     height: f64,
 }
 
@@ -162,6 +163,7 @@ impl Fit {
             return Fit {
                 min: [0.0; 2],
                 scale: 0.0,
+                width: 2.0 * MARGIN,
                 height: 2.0 * MARGIN,
             };
         }
@@ -179,7 +181,8 @@ impl Fit {
         Fit {
             min: [lo[0], hi[1]],
             scale,
-            height: (dy * scale + 2.0 * MARGIN).ceil(),
+            width: (dx * scale + 2.0 * MARGIN).ceil().min(WIDTH),
+            height: (dy * scale + 2.0 * MARGIN).ceil().min(MAX_HEIGHT),
         }
     }
     /// Picture coordinates (y down).
@@ -215,8 +218,8 @@ pub fn draw(faces: &[Face], frame: &BBox, style: &Style) -> Picture {
     // Far first; ties by input order (the sort is stable), so the bytes are deterministic.
     flat.sort_by(|a, b| a.depth.total_cmp(&b.depth));
     let visible = flat.len();
-    let (keep, cell) = bound(&flat, fit.height, style.cap);
-    let svg = write_svg(&flat, &keep, fit.height, style);
+    let (keep, cell) = bound(&flat, fit.width, fit.height, style.cap);
+    let svg = write_svg(&flat, &keep, fit.width, fit.height, style);
     Picture {
         svg,
         visible,
@@ -226,13 +229,13 @@ pub fn draw(faces: &[Face], frame: &BBox, style: &Style) -> Picture {
 }
 
 /// Which faces to draw under the size bound (see the module doc), and the cell size used.
-fn bound(flat: &[Flat], height: f64, cap: usize) -> (Vec<bool>, f64) {
+fn bound(flat: &[Flat], width: f64, height: f64, cap: usize) -> (Vec<bool>, f64) {
     if flat.len() <= cap {
         return (vec![true; flat.len()], 0.0);
     }
     let mut cell = 1.0f64;
     loop {
-        let nx = (WIDTH / cell).ceil() as usize + 1;
+        let nx = (width / cell).ceil() as usize + 1;
         let ny = (height / cell).ceil() as usize + 1;
         let mut taken = vec![false; nx * ny];
         let mut keep = vec![false; flat.len()];
@@ -250,14 +253,14 @@ fn bound(flat: &[Flat], height: f64, cap: usize) -> (Vec<bool>, f64) {
                 n += 1;
             }
         }
-        if n <= cap || cell >= WIDTH {
+        if n <= cap || cell >= width.max(height) {
             return (keep, cell);
         }
         cell *= 2.0;
     }
 }
 
-fn write_svg(flat: &[Flat], keep: &[bool], height: f64, style: &Style) -> String {
+fn write_svg(flat: &[Flat], keep: &[bool], width: f64, height: f64, style: &Style) -> String {
     let id = style.id;
     let mut used: Vec<(u32, u8)> = flat
         .iter()
@@ -271,9 +274,9 @@ fn write_svg(flat: &[Flat], keep: &[bool], height: f64, style: &Style) -> String
     let _ = write!(
         s,
         "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {} {}\" width=\"{}\" height=\"{}\" role=\"img\"><title>{}</title><style>",
-        WIDTH,
+        width,
         height,
-        WIDTH,
+        width,
         height,
         esc(style.title)
     );
