@@ -228,6 +228,11 @@ fn model_tables(h: &mut String, input: &ReportInput, f: &Facts) {
             .and_then(|i| f.region_volume.get(i))
             .copied()
             .unwrap_or(f64::NAN);
+        // The mesh's count when the mesh has the region, else the summary's.
+        let tets = at
+            .and_then(|i| f.region_tets.get(i))
+            .copied()
+            .unwrap_or(r.tets);
         let sides: Vec<String> = r
             .patches
             .iter()
@@ -239,7 +244,7 @@ fn model_tables(h: &mut String, input: &ReportInput, f: &Facts) {
             colour.hex(),
             esc(&r.name),
             r.material.map_or("-".to_string(), |v| v.to_string()),
-            count(r.tets),
+            count(tets),
             num(r.volume, 0),
             num(mesh_vol, 0),
             sides.join(", ")

@@ -9,7 +9,8 @@
 //! the same input gives the same bytes (fixed float precision in HTML, sorted keys and shortest
 //! round-trip floats in JSON, index-ordered groups). Every name is HTML-escaped.
 //!
-//! Submodules: `input` (the typed input), `text` (escaping, number formats), `palette`
+//! Submodules: `input` (the typed input), `model` (patch and region summaries of a region
+//! model), `text` (escaping, number formats), `palette`
 //! (colours), `view` (projection, painter's algorithm, size bound), `pictures` (the two
 //! pictures), `histogram` (bins and bar charts), `html` and `json` (the two documents).
 
@@ -17,6 +18,7 @@ mod histogram;
 mod html;
 mod input;
 mod json;
+mod model;
 mod palette;
 mod pictures;
 mod text;
@@ -27,6 +29,7 @@ pub use input::{
     CurveSummary, PatchSide, PatchSummary, RegionSummary, ReportInput, StepSummary, SurfaceSummary,
     region_tets_and_volumes,
 };
+pub use model::model_summaries;
 pub use pictures::FACE_CAP;
 
 use crate::stages::quality::{self, QualityReport};
