@@ -199,6 +199,8 @@ fn the_html_names_every_region_and_surface_and_has_both_seed_tables() {
     );
     assert!(html.contains("What re-ran and why"));
     assert!(html.contains("parameter mesh.size changed"));
+    assert!(html.contains("2 steps: 1 ran, 1 cached."));
+    assert!(html.contains("<details><summary>1 cached steps</summary>"));
     assert_balanced(&html);
 }
 

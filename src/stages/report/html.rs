@@ -71,7 +71,11 @@ fn summary(h: &mut String, input: &ReportInput) {
     card(h, m.nodes.len(), "mesh nodes");
     card(h, m.triangles.len(), "surface triangles");
     card(h, m.tets.len(), "tetrahedra");
-    let ran = input.steps.iter().filter(|s| s.state != "cached").count();
+    let ran = input
+        .steps
+        .iter()
+        .filter(|s| s.state == "ran" || s.state == "failed")
+        .count();
     if !input.steps.is_empty() {
         card(h, ran, &format!("of {} steps re-ran", input.steps.len()));
     }
@@ -356,12 +360,31 @@ fn steps(h: &mut String, input: &ReportInput) {
         .map(|s| s.duration_ms)
         .filter(|d| d.is_finite())
         .sum();
+    // Counts per state, the engine's states in a fixed order, then any other state by name.
+    let mut by_state: std::collections::BTreeMap<&str, usize> = Default::default();
+    for s in &input.steps {
+        *by_state.entry(s.state.as_str()).or_default() += 1;
+    }
+    let order = ["ran", "failed", "skipped", "cut off", "cached"];
+    let mut parts: Vec<String> = order
+        .iter()
+        .filter_map(|st| {
+            by_state
+                .get(st)
+                .map(|n| format!("{} {}", count(*n), esc(st)))
+        })
+        .collect();
+    parts.extend(
+        by_state
+            .iter()
+            .filter(|(st, _)| !order.contains(st))
+            .map(|(st, n)| format!("{} {}", count(*n), esc(st))),
+    );
     let _ = write!(
         h,
-        "<p>{} of {} steps re-ran or were cut off; {} came from the cache. Time in steps: {} ms.</p>",
-        count(other.len()),
+        "<p>{} steps: {}. A step is cut off when an input re-ran but gave the same output, so it did not re-run. Time in steps: {} ms.</p>",
         count(input.steps.len()),
-        count(cached.len()),
+        parts.join(", "),
         num(total, 1)
     );
     let head = "<table><tr><th class=\"l\">step</th><th class=\"l\">state</th><th class=\"l\">reason</th><th>ms</th></tr>";
