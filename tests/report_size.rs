@@ -14,6 +14,9 @@ fn a_million_tet_mesh_gives_a_page_of_a_few_megabytes_with_bounded_pictures() {
     assert!(m.tets.len() > 990_000);
     m.check_indices().unwrap();
     let html = render_html(&ReportInput::from_mesh("grid", "grid.toml", &m));
+    if let Ok(out) = std::env::var("REPORT_OUT") {
+        std::fs::write(format!("{out}/grid.html"), &html).unwrap();
+    }
     let s_faces = html.matches("<path class=\"s").count();
     let r_faces = html.matches("<path class=\"r").count();
     eprintln!(

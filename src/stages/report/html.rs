@@ -98,11 +98,11 @@ fn legend(h: &mut String, items: impl Iterator<Item = (String, Rgb)>) {
 fn bound_note(p: &Picture) -> String {
     if p.cell > 0.0 {
         format!(
-            " Size bound: {} of {} visible faces drawn — at most {} faces per picture, so only the face nearest the viewer in each {}-unit square cell of the picture (at most 960 units wide) is kept.",
+            " Size bound: {} of {} visible faces drawn — at most {} faces per picture, so the corners are snapped to a grid of {}-unit squares: faces that collapse, and faces with the same snapped corners as a nearer one, are left out (the others cover them without gaps).",
             count(p.drawn),
             count(p.visible),
             count(FACE_CAP),
-            num(p.cell, 0)
+            num(p.cell, 1)
         )
     } else {
         format!(

@@ -8,10 +8,11 @@
 //! the (right, up) screen frame faces the viewer, because right × up = towards the viewer).
 //!
 //! Size bound (the rule quoted in every caption): when more than `cap` faces would be drawn, the
-//! picture is divided into square cells of `cell` units and only the face nearest the viewer whose
-//! projected centroid falls in a cell is kept; `cell` starts at one unit (of a picture at most
-//! 960 units wide and 640 high) and doubles until at most `cap` faces remain. Faces smaller than a cell are mostly
-//! hidden or invisible anyway, so the picture keeps its look while its size stays bounded.
+//! corners are snapped to a square grid of `cell` units (vertex clustering in the picture): a
+//! face whose snapped corners collapse is dropped (its neighbours, snapped alike, cover it
+//! without a gap), and of faces with the same snapped corners only the nearest is kept (it hides
+//! the others exactly). `cell` starts at one unit (of a picture at most 960 units wide and 640
+//! high) and grows by a quarter until at most `cap` faces remain.
 
 use super::palette::Rgb;
 use super::text::{coord, esc};
@@ -219,13 +220,19 @@ pub fn draw(faces: &[Face], frame: &BBox, style: &Style) -> Picture {
     flat.sort_by(|a, b| a.depth.total_cmp(&b.depth));
     let visible = flat.len();
     let (keep, cell) = bound(&flat, fit.width, fit.height, style.cap);
-    let svg = write_svg(&flat, &keep, fit.width, fit.height, style);
+    let svg = write_svg(&flat, &keep, cell, fit.width, fit.height, style);
     Picture {
         svg,
         visible,
         drawn: keep.iter().filter(|&&k| k).count(),
         cell,
     }
+}
+
+/// Grid coordinates of a picture point snapped to a grid of `cell` units.
+fn snap(p: [f64; 2], cell: f64) -> [i64; 2] {
+    // Float-to-int casts saturate, so no input can overflow here.
+    [(p[0] / cell).round() as i64, (p[1] / cell).round() as i64]
 }
 
 /// Which faces to draw under the size bound (see the module doc), and the cell size used.
@@ -235,32 +242,37 @@ fn bound(flat: &[Flat], width: f64, height: f64, cap: usize) -> (Vec<bool>, f64)
     }
     let mut cell = 1.0f64;
     loop {
-        let nx = (width / cell).ceil() as usize + 1;
-        let ny = (height / cell).ceil() as usize + 1;
-        let mut taken = vec![false; nx * ny];
-        let mut keep = vec![false; flat.len()];
-        let mut n = 0usize;
-        // Nearest first: the first face to reach a cell keeps it.
-        for (i, f) in flat.iter().enumerate().rev() {
-            let cx = (f.p[0][0] + f.p[1][0] + f.p[2][0]) / 3.0;
-            let cy = (f.p[0][1] + f.p[1][1] + f.p[2][1]) / 3.0;
-            let ix = ((cx / cell).floor().max(0.0) as usize).min(nx - 1);
-            let iy = ((cy / cell).floor().max(0.0) as usize).min(ny - 1);
-            let t = &mut taken[iy * nx + ix];
-            if !*t {
-                *t = true;
+        // (sorted snapped corners, nearest first) of every face that does not collapse.
+        let mut keys: Vec<([[i64; 2]; 3], std::cmp::Reverse<usize>)> = flat
+            .iter()
+            .enumerate()
+            .filter_map(|(i, f)| {
+                let mut k = f.p.map(|q| snap(q, cell));
+                k.sort_unstable();
+                (k[0] != k[1] && k[1] != k[2]).then_some((k, std::cmp::Reverse(i)))
+            })
+            .collect();
+        keys.sort_unstable();
+        keys.dedup_by(|b, a| a.0 == b.0);
+        if keys.len() <= cap || cell >= width.max(height) {
+            let mut keep = vec![false; flat.len()];
+            for (_, std::cmp::Reverse(i)) in keys {
                 keep[i] = true;
-                n += 1;
             }
-        }
-        if n <= cap || cell >= width.max(height) {
             return (keep, cell);
         }
-        cell *= 2.0;
+        cell *= 1.25;
     }
 }
 
-fn write_svg(flat: &[Flat], keep: &[bool], width: f64, height: f64, style: &Style) -> String {
+fn write_svg(
+    flat: &[Flat],
+    keep: &[bool],
+    cell: f64,
+    width: f64,
+    height: f64,
+    style: &Style,
+) -> String {
     let id = style.id;
     let mut used: Vec<(u32, u8)> = flat
         .iter()
@@ -300,17 +312,23 @@ fn write_svg(flat: &[Flat], keep: &[bool], width: f64, height: f64, style: &Styl
     }
     let _ = write!(s, "</style><g class=\"{id}\">");
     for (f, _) in flat.iter().zip(keep).filter(|(_, k)| **k) {
+        // Under the size bound the corners are drawn snapped, so neighbours stay watertight.
+        let p = if cell > 0.0 {
+            f.p.map(|q| snap(q, cell).map(|v| v as f64 * cell))
+        } else {
+            f.p
+        };
         let _ = write!(
             s,
             "<path class=\"{id}{}_{}\" d=\"M{} {} {} {} {} {}z\"/>",
             f.colour,
             f.level,
-            coord(f.p[0][0]),
-            coord(f.p[0][1]),
-            coord(f.p[1][0]),
-            coord(f.p[1][1]),
-            coord(f.p[2][0]),
-            coord(f.p[2][1])
+            coord(p[0][0]),
+            coord(p[0][1]),
+            coord(p[1][0]),
+            coord(p[1][1]),
+            coord(p[2][0]),
+            coord(p[2][1])
         );
     }
     s.push_str("</g>");
@@ -416,12 +434,45 @@ mod tests {
     }
 
     #[test]
-    fn the_size_bound_keeps_at_most_cap_faces_and_the_nearest_one() {
-        let faces: Vec<Face> = (0..500).map(|i| tri(i as f64 * 1e-3, 0)).collect();
-        let p = draw(&faces, &frame(), &style(1, false));
-        assert_eq!((p.visible, p.drawn), (500, 1));
-        assert!(p.cell >= 1.0);
-        assert_eq!(p.svg.matches("<path").count(), 1);
+    fn the_size_bound_keeps_at_most_cap_faces_of_a_fine_surface() {
+        // A plane of 100 × 100 squares (20 000 triangles), capped at 2 000.
+        let n = 100;
+        let mut faces = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                let (x, y, h) = (i as f64 / n as f64, j as f64 / n as f64, 1.0 / n as f64);
+                faces.push(Face {
+                    pts: [[x, y, 0.0], [x + h, y, 0.0], [x + h, y + h, 0.0]],
+                    colour: 0,
+                });
+                faces.push(Face {
+                    pts: [[x, y, 0.0], [x + h, y + h, 0.0], [x, y + h, 0.0]],
+                    colour: 1,
+                });
+            }
+        }
+        let p = draw(&faces, &frame(), &style(2000, false));
+        assert_eq!(p.visible, 20_000);
+        assert!(p.drawn <= 2000 && p.drawn > 200, "drawn {}", p.drawn);
+        assert!(p.cell >= 2.0);
+        assert_eq!(p.svg.matches("<path").count(), p.drawn);
+    }
+
+    #[test]
+    fn of_faces_that_coincide_in_the_picture_the_nearest_is_kept() {
+        let cam = Camera::oblique();
+        let far = tri(0.0, 0);
+        let mut near = far;
+        near.colour = 1;
+        for q in &mut near.pts {
+            for k in 0..3 {
+                q[k] += 0.5 * cam.toward[k];
+            }
+        }
+        let p = draw(&[near, far], &frame(), &style(1, false));
+        assert_eq!((p.visible, p.drawn), (2, 1));
+        assert!(p.svg.contains("class=\"t1_"));
+        assert!(!p.svg.contains("class=\"t0_"));
     }
 
     #[test]
