@@ -338,3 +338,23 @@ fn a_report_of_a_bare_mesh_lists_its_groups_as_surfaces_and_regions() {
     let html = render_html(&i);
     assert!(html.contains("empty"));
 }
+
+#[test]
+fn a_default_input_with_only_a_mesh_renders() {
+    let m = mesh();
+    let i = ReportInput {
+        model_name: "partial",
+        mesh: &m,
+        ..Default::default()
+    };
+    let (html, json) = render_both(&i);
+    assert_balanced(&html);
+    assert!(html.contains("upper") && html.contains("Table 2."));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["counts"]["tets"], 12);
+    assert_eq!(
+        v["counts"]["regions"], 0,
+        "model regions come from the summaries"
+    );
+    assert_eq!(v["mesh"]["regions"].as_array().unwrap().len(), 3);
+}

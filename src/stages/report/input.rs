@@ -92,6 +92,35 @@ pub struct ReportInput<'a> {
     pub steps: Vec<StepSummary>,
 }
 
+/// The empty mesh a default [`ReportInput`] points at.
+static EMPTY_MESH: VolumeMesh = VolumeMesh {
+    nodes: Vec::new(),
+    tets: Vec::new(),
+    tet_region: Vec::new(),
+    regions: Vec::new(),
+    triangles: Vec::new(),
+    triangle_group: Vec::new(),
+    surface_groups: Vec::new(),
+};
+
+/// Nothing: empty names and lists and an empty mesh, so a caller can write
+/// `ReportInput { model_name, mesh: &mesh, ..Default::default() }` and fields added later do not
+/// break it.
+impl Default for ReportInput<'_> {
+    fn default() -> Self {
+        ReportInput {
+            model_name: "",
+            recipe_path: "",
+            surfaces: Vec::new(),
+            curves: Vec::new(),
+            patches: Vec::new(),
+            regions: Vec::new(),
+            mesh: &EMPTY_MESH,
+            steps: Vec::new(),
+        }
+    }
+}
+
 impl<'a> ReportInput<'a> {
     /// A report of a bare mesh: one surface per surface group (its FE triangles as the imported
     /// count, no findings), one region per region group (tets, summed tet volume), no curves,
