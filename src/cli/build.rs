@@ -61,6 +61,8 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         count(NodeState::Failed),
         count(NodeState::Skipped)
     );
+    // The report is written for failed builds too: it says what failed and what ran.
+    let written = super::report::write_report(&recipe, &args.recipe, &report, &output_dir)?;
     if !report.ok {
         return Err(Failure(format!(
             "error: build of {} failed: {summary}",
@@ -108,6 +110,9 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
             report.duration_ms / 1000.0,
             output_dir.display()
         );
+        if let Some(html) = written.first() {
+            eprintln!("{:>12} {}", "Report", html.display());
+        }
     }
     Ok(report)
 }
@@ -125,6 +130,14 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
         .map_err(|e| Failure(format!("error: cannot write in {}: {e}", dir.display())))?;
     tmp.write_all(bytes)
         .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
+    #[cfg(unix)]
+    {
+        // Readable like any other output (a temporary file starts private).
+        use std::os::unix::fs::PermissionsExt;
+        let _ = tmp
+            .as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644));
+    }
     tmp.persist(path)
         .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
     Ok(())

@@ -8,6 +8,7 @@ mod build;
 mod cache;
 mod load;
 mod render;
+mod report;
 mod tetmesh;
 mod watch;
 

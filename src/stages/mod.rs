@@ -10,6 +10,7 @@ pub mod model;
 pub mod patches;
 pub mod quality;
 pub mod regions;
+pub mod report;
 pub mod surface_mesh;
 pub mod tet_mesh;
 pub mod topology;
