@@ -80,3 +80,23 @@ fn a_missing_recipe_is_an_error_not_a_panic() {
     let s = Scratch::didactic();
     fails_with(&s, &["build", "nope.toml"], &["nope.toml"]);
 }
+
+#[test]
+fn a_trim_that_discards_nothing_fails_the_model_and_points_at_its_recipe_line() {
+    let s = Scratch::didactic();
+    s.edit(
+        "[mesh]\n",
+        "[[trim]]\nsurface = \"F1\"\ndiscard = { area_below = 0.001 }\n\n[mesh]\n",
+    );
+    let (ok, r, err) = s.build(&[]);
+    assert!(!ok);
+    assert!(
+        nodes_in_state(&r, "failed").contains(&"model".to_string()),
+        "{err}"
+    );
+    assert!(
+        err.contains("didactic.toml:"),
+        "the trim's line is named: {err}"
+    );
+    assert!(err.contains("F1"), "{err}");
+}

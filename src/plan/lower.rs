@@ -136,12 +136,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .trims
                 .iter()
                 .map(|t| {
-                    let at = format!(
-                        "{}:{}:{}",
-                        recipe.path.display(),
-                        t.span.line,
-                        t.span.col
-                    );
+                    let at = format!("{}:{}:{}", recipe.path.display(), t.span.line, t.span.col);
                     (t.clone(), at)
                 })
                 .collect(),

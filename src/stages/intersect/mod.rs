@@ -8,8 +8,9 @@
 //! Pipeline: candidate pairs from R-trees of triangle boxes ([`candidates`]), exact contact of
 //! each pair ([`contact`], built on [`locate`]), merging of points by key ([`key`]), iterative
 //! polyline walk ([`assemble`]), coordinates from keys ([`construct`]). The box sides are
-//! ordinary surfaces ([`box_sides()`]). [`split`] is the first splitting step: it re-triangulates
-//! one surface to conform to the curves of one intersection.
+//! ordinary surfaces ([`box_sides()`]). [`split`] re-triangulates every surface to conform to
+//! all its intersection curves at once (one exact constrained triangulation per original
+//! triangle), with the points where three surfaces meet shared bit for bit.
 //!
 //! Symmetry: the surface whose name sorts first is always `a`, so `intersect(s, t)` and
 //! `intersect(t, s)` give identical results (same curves, order and direction).
