@@ -8,7 +8,7 @@
 use super::complex::Complex;
 use super::flips::{Scratch, improve_tet};
 use super::slivers::insert_node_for;
-use super::smooth::smooth_node;
+use super::smooth::{relax_node, smooth_node};
 
 type P = [f64; 3];
 
@@ -18,8 +18,12 @@ const ROUNDS: usize = 3;
 const FLIP_BELOW: f64 = 0.45;
 /// Tets below this mean ratio after flipping get an inserted node.
 const INSERT_BELOW: f64 = 0.3;
-/// Nodes whose ball is worse than this are smoothed in every round; the others once at the end.
-const SMOOTH_BELOW: f64 = 0.6;
+/// Nodes whose ball is worse than this get max-min smoothing; all get Laplacian relaxation.
+const SMOOTH_BELOW: f64 = 0.3;
+/// Laplacian relaxation may lower a ball's worst quality for a better mean while it stays above.
+const RELAX_KEEP: f64 = 0.5;
+/// Laplacian relaxation passes before and after the rounds.
+const RELAX_PASSES: usize = 2;
 
 /// Optimize in place. `protected` lists every boundary and embedded triangle; nodes below
 /// `n_fixed` never move.
@@ -31,7 +35,8 @@ pub fn optimize(
 ) -> (Vec<P>, Vec<[u32; 4]>) {
     let mut cx = Complex::new(nodes, tets, n_fixed, protected);
     let mut scratch = Scratch::default();
-    smooth_pass(&mut cx, 1.0);
+    relax_pass(&mut cx);
+    smooth_pass(&mut cx, SMOOTH_BELOW);
     for _ in 0..ROUNDS {
         let mut changed = false;
         for _ in 0..4 {
@@ -52,34 +57,11 @@ pub fn optimize(
             break;
         }
     }
-    smooth_pass(&mut cx, 1.0);
+    relax_pass(&mut cx);
+    smooth_pass(&mut cx, SMOOTH_BELOW);
     for (_, t) in bad_tets(&cx, FLIP_BELOW) {
         improve_tet(&mut cx, t, &mut scratch);
     }
     cx.into_parts()
 }
 
-/// Live tets below `below`, worst first (ties by slot).
-fn bad_tets(cx: &Complex, below: f64) -> Vec<(f64, u32)> {
-    let mut v: Vec<(f64, u32)> = (0..cx.tets.len())
-        .filter(|&i| cx.alive[i])
-        .map(|i| (cx.quality(cx.tets[i]), i as u32))
-        .filter(|(q, _)| *q < below)
-        .collect();
-    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    v
-}
-
-/// Smooth every free node whose ball's worst quality is below `below`, in index order.
-fn smooth_pass(cx: &mut Complex, below: f64) {
-    for v in cx.n_fixed..cx.nodes.len() {
-        let v = v as u32;
-        let worst = cx.node_tets[v as usize]
-            .iter()
-            .map(|&t| cx.quality(cx.tets[t as usize]))
-            .fold(f64::INFINITY, f64::min);
-        if worst < below {
-            smooth_node(cx, v);
-        }
-    }
-}

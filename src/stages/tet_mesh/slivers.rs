@@ -26,14 +26,7 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
         return false;
     }
     let tv = cx.tets[t as usize];
-    let mut seed = vec![t];
-    for f in outward_faces(tv) {
-        if !cx.face_protected(f)
-            && let Some(u) = cx.across(f, t)
-        {
-            seed.push(u);
-        }
-    }
+    let seed = seed_of(cx, t);
     let mut ids: Vec<u32> = seed.iter().flat_map(|&s| cx.tets[s as usize]).collect();
     ids.sort_unstable();
     ids.dedup();
@@ -41,11 +34,32 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
     let ct = centroid(tv.iter().map(|&i| cx.nodes[i as usize]));
     let mid = [0, 1, 2].map(|m| 0.5 * (mean[m] + ct[m]));
     for p in [mean, mid, ct] {
-        if try_insert(cx, &seed, p) {
+        // An undone attempt re-creates the tets in other slots: find the bad one again.
+        let Some(t) = cx.node_tets[tv[0] as usize]
+            .iter()
+            .copied()
+            .find(|&u| cx.tets[u as usize] == tv)
+        else {
+            return false;
+        };
+        if try_insert(cx, &seed_of(cx, t), p) {
             return true;
         }
     }
     false
+}
+
+/// The tet `t` and its neighbours across unprotected faces.
+fn seed_of(cx: &Complex, t: u32) -> Vec<u32> {
+    let mut seed = vec![t];
+    for f in outward_faces(cx.tets[t as usize]) {
+        if !cx.face_protected(f)
+            && let Some(u) = cx.across(f, t)
+        {
+            seed.push(u);
+        }
+    }
+    seed
 }
 
 fn centroid(it: impl Iterator<Item = P>) -> P {

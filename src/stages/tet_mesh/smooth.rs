@@ -86,6 +86,55 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
     Some(w)
 }
 
+/// Worst and mean quality of the ball of `v` with `v` at `p`; None if a tet is not positive.
+fn worst_and_mean_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64)> {
+    let w = worst_at(cx, v, p)?;
+    let ball = &cx.node_tets[v as usize];
+    let mut s = 0.0;
+    for &t in ball {
+        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        s += mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+    }
+    Some((w, s / ball.len() as f64))
+}
+
+/// Laplacian step for the free node `v`: towards the centroid of its neighbours, accepted when
+/// the ball's worst quality rises, or when its mean rises while the worst stays at least
+/// `keep` (a good ball may trade a little of its worst for a better average). True when moved.
+pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
+    if (v as usize) < cx.n_fixed || cx.node_tets[v as usize].is_empty() {
+        return false;
+    }
+    let cur = cx.nodes[v as usize];
+    let Some((w0, m0)) = worst_and_mean_at(cx, v, &cur) else {
+        return false;
+    };
+    let mut sum = [0.0; 3];
+    let mut n = 0.0;
+    for &t in &cx.node_tets[v as usize] {
+        for &w in &cx.tets[t as usize] {
+            if w != v {
+                let p = cx.nodes[w as usize];
+                for m in 0..3 {
+                    sum[m] += p[m];
+                }
+                n += 1.0;
+            }
+        }
+    }
+    let centre = sum.map(|s| s / n);
+    for step in [1.0, 0.5, 0.25] {
+        let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
+        if let Some((w, m)) = worst_and_mean_at(cx, v, &p)
+            && (w > w0 || (w >= keep.min(w0) && m > m0))
+        {
+            cx.nodes[v as usize] = p;
+            return true;
+        }
+    }
+    false
+}
+
 /// Move the free node `v` to raise the worst quality of its ball. Returns the new worst
 /// quality when the node moved.
 pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
