@@ -27,7 +27,7 @@ fn read(path: &str) -> BoundaryMesh {
     read_by_extension(path, &bytes).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn region(dir: &str, name: &str) -> RegionInput {
+pub fn region(dir: &str, name: &str) -> RegionInput {
     let off = read(&format!("{dir}/region_L1_{name}.off"));
     let (mut vertices, boundary) = (off.vertices, off.triangles);
     let meta: serde_json::Value = serde_json::from_str(

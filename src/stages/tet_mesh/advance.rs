@@ -304,8 +304,7 @@ impl State<'_> {
                         .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
                     // On the last attempt before back-tracking, any valid point will do.
                     if q_min > 0.0
-                        && (near_node
-                            || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc))
+                        && (near_node || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc))
                     {
                         continue;
                     }

@@ -65,3 +65,37 @@ pub fn optimize(
     cx.into_parts()
 }
 
+/// Live tets below `below`, worst first (ties by slot).
+fn bad_tets(cx: &Complex, below: f64) -> Vec<(f64, u32)> {
+    let mut v: Vec<(f64, u32)> = (0..cx.tets.len())
+        .filter(|&i| cx.alive[i])
+        .map(|i| (cx.quality(cx.tets[i]), i as u32))
+        .filter(|(q, _)| *q < below)
+        .collect();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    v
+}
+
+/// Laplacian relaxation of every free node, in index order.
+fn relax_pass(cx: &mut Complex) {
+    for _ in 0..RELAX_PASSES {
+        for v in cx.n_fixed..cx.nodes.len() {
+            relax_node(cx, v as u32, RELAX_KEEP);
+        }
+    }
+}
+
+/// Max-min smoothing of every free node whose ball's worst quality is below `below`, in index
+/// order.
+fn smooth_pass(cx: &mut Complex, below: f64) {
+    for v in cx.n_fixed..cx.nodes.len() {
+        let v = v as u32;
+        let worst = cx.node_tets[v as usize]
+            .iter()
+            .map(|&t| cx.quality(cx.tets[t as usize]))
+            .fold(f64::INFINITY, f64::min);
+        if worst < below {
+            smooth_node(cx, v);
+        }
+    }
+}

@@ -12,11 +12,16 @@
 use crate::geom::predicates::{Orientation, orient3d};
 
 use super::complex::{Complex, P, sorted3};
+use super::quality::mean_ratio;
 use super::smooth::smooth_node;
 use super::verify::outward_faces;
 
 /// Largest cavity (tets) an insertion may replace.
 const MAX_CAVITY: usize = 48;
+/// Cone tets below this quality make the cavity grow across their (unprotected) face...
+const ROOMY_BELOW: f64 = 0.3;
+/// ... while the cavity is smaller than this.
+const ROOMY_CAVITY: usize = 24;
 /// The worst quality must rise by at least this much.
 const GAIN: f64 = 1e-6;
 
@@ -33,20 +38,70 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
     let mean = centroid(ids.iter().map(|&i| cx.nodes[i as usize]));
     let ct = centroid(tv.iter().map(|&i| cx.nodes[i as usize]));
     let mid = [0, 1, 2].map(|m| 0.5 * (mean[m] + ct[m]));
-    for p in [mean, mid, ct] {
-        // An undone attempt re-creates the tets in other slots: find the bad one again.
-        let Some(t) = cx.node_tets[tv[0] as usize]
-            .iter()
-            .copied()
-            .find(|&u| cx.tets[u as usize] == tv)
-        else {
-            return false;
-        };
-        if try_insert(cx, &seed_of(cx, t), p) {
-            return true;
+    let scale = {
+        let [a, b, c, d] = tv.map(|i| cx.nodes[i as usize]);
+        (dist(&a, &b) + dist(&a, &c) + dist(&a, &d) + dist(&b, &c) + dist(&b, &d) + dist(&c, &d))
+            / 6.0
+    };
+    for p0 in [mean, mid, ct] {
+        let mut p = p0;
+        for _ in 0..MAX_PUSHES {
+            // An undone attempt re-creates the tets in other slots: find the bad one again.
+            let Some(t) = cx.node_tets[tv[0] as usize]
+                .iter()
+                .copied()
+                .find(|&u| cx.tets[u as usize] == tv)
+            else {
+                return false;
+            };
+            match try_insert(cx, &seed_of(cx, t), p) {
+                Attempt::Done => return true,
+                Attempt::Failed => break,
+                Attempt::Behind(f) => match push_inside(cx, f, p, PUSH * scale) {
+                    Some(q) => p = q,
+                    None => break,
+                },
+            }
         }
     }
     false
+}
+
+/// Insertion attempts per starting point (the point is pushed off a protected face between).
+const MAX_PUSHES: usize = 4;
+/// How far inside a protected face a point is pushed, in mean edge lengths of the bad tet.
+const PUSH: f64 = 0.2;
+
+enum Attempt {
+    Done,
+    Failed,
+    /// The point does not see this protected hull face from inside.
+    Behind([u32; 3]),
+}
+
+/// `p` moved to `offset` inside the plane of the (outward) hull face `f`.
+fn push_inside(cx: &Complex, f: [u32; 3], p: P, offset: f64) -> Option<P> {
+    let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ];
+    let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if !(nl > 0.0) || !nl.is_finite() {
+        return None;
+    }
+    let n = n.map(|x| x / nl);
+    let out = (p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2];
+    let q = [0, 1, 2].map(|m| p[m] - n[m] * (out + offset));
+    q.iter().all(|x| x.is_finite()).then_some(q)
+}
+
+#[inline]
+fn dist(a: &P, b: &P) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// The tet `t` and its neighbours across unprotected faces.
@@ -75,9 +130,9 @@ fn centroid(it: impl Iterator<Item = P>) -> P {
 }
 
 /// Grow the cavity from `seed` until `p` sees its hull, insert, smooth; undo if not better.
-fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> bool {
+fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
     if !p.iter().all(|x| x.is_finite()) {
-        return false;
+        return Attempt::Failed;
     }
     let mut cavity = seed.to_vec();
     let hull = loop {
@@ -86,15 +141,30 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> bool {
             let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
             orient3d(&a, &c, &b, &p) != Orientation::Positive
         });
-        let Some(&f) = blocked else { break hull };
-        if cx.face_protected(f) || cavity.len() >= MAX_CAVITY {
-            return false;
+        // Once `p` sees the hull, unprotected faces that would make a poor cone tet are
+        // opened too, to give the new node room.
+        let poor = || {
+            hull.iter().find(|f| {
+                let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
+                !cx.face_protected(**f)
+                    && cavity.len() < ROOMY_CAVITY
+                    && mean_ratio(&a, &c, &b, &p) < ROOMY_BELOW
+            })
+        };
+        let Some(&f) = blocked.or_else(poor) else {
+            break hull;
+        };
+        if cx.face_protected(f) {
+            return Attempt::Behind(f);
+        }
+        if cavity.len() >= MAX_CAVITY {
+            return Attempt::Failed;
         }
         let Some(u) = cx.node_tets[f[0] as usize].iter().copied().find(|&u| {
             let uv = cx.tets[u as usize];
             uv.contains(&f[1]) && uv.contains(&f[2]) && !cavity.contains(&u)
         }) else {
-            return false;
+            return Attempt::Failed;
         };
         cavity.push(u);
     };
@@ -106,7 +176,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> bool {
     faces.sort_unstable();
     for w in faces.windows(2) {
         if w[0] == w[1] && cx.face_protected(w[0]) {
-            return false;
+            return Attempt::Failed;
         }
     }
     let mut on_hull: Vec<u32> = hull.iter().flatten().copied().collect();
@@ -115,7 +185,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> bool {
     for &c in &cavity {
         for v in cx.tets[c as usize] {
             if on_hull.binary_search(&v).is_err() && (v as usize) < cx.n_fixed {
-                return false;
+                return Attempt::Failed;
             }
         }
     }
@@ -139,7 +209,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> bool {
         .map(|&t| cx.quality(cx.tets[t as usize]))
         .fold(f64::INFINITY, f64::min);
     if new_q > old_q + GAIN {
-        return true;
+        return Attempt::Done;
     }
     for id in new_ids {
         cx.remove_tet(id);
@@ -149,7 +219,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> bool {
     for t in old_tets {
         cx.add_tet(t);
     }
-    false
+    Attempt::Failed
 }
 
 #[cfg(test)]

@@ -242,7 +242,11 @@ mod tests {
                 pp[m] += h;
                 let (q1, _) = quality_and_gradient(&cx, [0, 1, 2, 3], v, &pp);
                 let fd = (q1 - q) / h;
-                assert!((fd - g[m]).abs() < 1e-4, "node {v} axis {m}: {fd} vs {}", g[m]);
+                assert!(
+                    (fd - g[m]).abs() < 1e-4,
+                    "node {v} axis {m}: {fd} vs {}",
+                    g[m]
+                );
             }
         }
     }
