@@ -33,6 +33,8 @@ const MAX_LEVEL: u32 = 8;
 const MIN_QUALITY: [f64; 6] = [0.3, 0.15, 0.05, 0.02, 0.005, 0.0];
 /// New nodes closer than this fraction of the local size to a front face are not created.
 const FACE_CLEARANCE: f64 = 0.3;
+/// Cell size of the front's grid, in mean boundary edge lengths.
+const FRONT_CELL: f64 = 2.0;
 /// Candidate apexes whose tetrahedron has a (float) mean ratio below this are never considered.
 const FLAT: f64 = 1e-9;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
@@ -81,7 +83,7 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         tets: Vec::new(),
         tet_alive: Vec::new(),
         node_tets: vec![Vec::new(); pts.len()],
-        front: Front::new(lo, hi, avg),
+        front: Front::new(lo, hi, FRONT_CELL * avg),
         bg: {
             let mut all = input.boundary.clone();
             all.extend_from_slice(&input.embedded);
