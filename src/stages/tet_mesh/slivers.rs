@@ -90,7 +90,8 @@ fn push_inside(cx: &Complex, f: [u32; 3], p: P, offset: f64) -> Option<P> {
         u[0] * w[1] - u[1] * w[0],
     ];
     let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    if !(nl > 0.0) || !nl.is_finite() {
+    // Written so that a NaN length is refused too.
+    if nl.is_nan() || nl <= 0.0 || !nl.is_finite() {
         return None;
     }
     let n = n.map(|x| x / nl);

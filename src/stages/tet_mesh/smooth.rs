@@ -38,8 +38,8 @@ fn quality_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> (f64, P) {
     let mut gl = [0.0; 3];
     let mut l2 = 0.0;
     for (i, y) in x.iter().enumerate() {
-        for j in i + 1..4 {
-            let e = sub(y, &x[j]);
+        for z in &x[i + 1..] {
+            let e = sub(y, z);
             l2 += dot(&e, &e);
         }
         if i != k {
