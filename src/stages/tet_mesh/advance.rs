@@ -387,6 +387,7 @@ impl State<'_> {
             }
         }
         let (lo, hi) = bbox_of([pa, pb, pc, pd].into_iter());
+        let new_boxes = new_faces.map(|nf| bbox_of(nf.iter().map(|&i| &pts[i as usize])));
         let mut near = std::mem::take(&mut self.scratch2);
         self.front.query(&lo, &hi, &mut near);
         let tet = [a, b, c, d];
@@ -400,15 +401,21 @@ impl State<'_> {
             if (0..3).any(|k| glo[k] > hi[k] || ghi[k] < lo[k]) {
                 continue;
             }
+            // Bounding boxes first (exact comparisons): a point outside the tet's box is outside
+            // the tet, triangles with disjoint boxes do not meet — the exact predicates, slow on
+            // the many coplanar configurations of planar boundaries, run only when needed.
             for &w in &gv {
-                if !tet.contains(&w) && point_in_closed_tet(&self.nodes[w as usize], pa, pb, pc, pd)
+                let pw = &self.nodes[w as usize];
+                if !tet.contains(&w)
+                    && (0..3).all(|k| lo[k] <= pw[k] && pw[k] <= hi[k])
+                    && point_in_closed_tet(pw, pa, pb, pc, pd)
                 {
                     ok = false;
                     break 'outer;
                 }
             }
-            for nf in &new_faces {
-                if same_set(nf, &gv) {
+            for (nf, (flo, fhi)) in new_faces.iter().zip(&new_boxes) {
+                if same_set(nf, &gv) || (0..3).any(|k| glo[k] > fhi[k] || ghi[k] < flo[k]) {
                     continue;
                 }
                 if tri_tri_improper(*nf, gv, &self.nodes) {
