@@ -1,6 +1,7 @@
-//! Single-thread throughput of the tetrahedral mesher (tets/s) on a peer boundary that no one
-//! here wrote: `../shared/data/peer-boundaries/region_L1_reservoir_W.off` (the thin reservoir
-//! layer, 3842 triangles). Skips with a note when ../shared is absent.
+//! Single-thread throughput of the tetrahedral mesher (tets/s, optimization included) on peer
+//! boundaries that no one here wrote: `../shared/data/peer-boundaries/region_L1_<name>.off` for
+//! the thin reservoir layer (`reservoir_W`, 3842 triangles, ~5.4k tets) and the overburden
+//! (`overburden_W`, 3622 triangles, ~18.5k tets). Skips with a note when ../shared is absent.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use georecipe::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
@@ -43,35 +44,37 @@ fn read_off(path: &str) -> Option<Off> {
 }
 
 fn bench(c: &mut Criterion) {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/peer-boundaries/region_L1_reservoir_W.off"
-    );
-    let Some((vertices, boundary)) = read_off(path) else {
-        eprintln!("skipping: ../shared is absent");
-        return;
-    };
-    let input = RegionInput {
-        name: "reservoir_W".into(),
-        vertices,
-        boundary,
-        embedded: vec![],
-    };
-    let size = SizeField::default();
-    let opts = TetMeshOptions::default();
-    let tets = match mesh_region(&input, &size, &opts) {
-        Ok(out) => out.tets.len(),
-        Err(e) => {
-            eprintln!("skipping: {e}");
-            return;
-        }
-    };
     let mut g = c.benchmark_group("tet_mesh");
     g.sample_size(10);
-    g.throughput(Throughput::Elements(tets as u64));
-    g.bench_function("reservoir_W single thread", |b| {
-        b.iter(|| mesh_region(&input, &size, &opts))
-    });
+    for name in ["reservoir_W", "overburden_W"] {
+        let path = format!(
+            "{}/../shared/data/peer-boundaries/region_L1_{name}.off",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let Some((vertices, boundary)) = read_off(&path) else {
+            eprintln!("skipping: ../shared is absent");
+            return;
+        };
+        let input = RegionInput {
+            name: name.into(),
+            vertices,
+            boundary,
+            embedded: vec![],
+        };
+        let size = SizeField::default();
+        let opts = TetMeshOptions::default();
+        let tets = match mesh_region(&input, &size, &opts) {
+            Ok(out) => out.tets.len(),
+            Err(e) => {
+                eprintln!("skipping: {e}");
+                return;
+            }
+        };
+        g.throughput(Throughput::Elements(tets as u64));
+        g.bench_function(format!("{name} single thread"), |b| {
+            b.iter(|| mesh_region(&input, &size, &opts))
+        });
+    }
     g.finish();
 }
 

@@ -33,6 +33,10 @@ const MAX_LEVEL: u32 = 8;
 const MIN_QUALITY: [f64; 6] = [0.3, 0.15, 0.05, 0.02, 0.005, 0.0];
 /// New nodes closer than this fraction of the local size to a front face are not created.
 const FACE_CLEARANCE: f64 = 0.3;
+/// Cell size of the front's grid, in mean boundary edge lengths.
+const FRONT_CELL: f64 = 2.0;
+/// Candidate apexes whose tetrahedron has a (float) mean ratio below this are never considered.
+const FLAT: f64 = 1e-9;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
 const NEAR_IDEAL: f64 = 1.0;
 
@@ -79,7 +83,7 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         tets: Vec::new(),
         tet_alive: Vec::new(),
         node_tets: vec![Vec::new(); pts.len()],
-        front: Front::new(lo, hi, avg),
+        front: Front::new(lo, hi, FRONT_CELL * avg),
         bg: {
             let mut all = input.boundary.clone();
             all.extend_from_slice(&input.embedded);
@@ -235,16 +239,20 @@ impl State<'_> {
 
         for (pass, &radius) in SEARCH_RADIUS.iter().enumerate() {
             let rad = radius * h.max(le);
-            let lo = [
-                m[0].min(ideal[0]) - rad,
-                m[1].min(ideal[1]) - rad,
-                m[2].min(ideal[2]) - rad,
-            ];
-            let hi = [
-                m[0].max(ideal[0]) + rad,
-                m[1].max(ideal[1]) + rad,
-                m[2].max(ideal[2]) + rad,
-            ];
+            let (lo, hi) = if pass == 0 {
+                // The first pass only looks at nodes within NEAR_IDEAL·h of the ideal apex and at
+                // clearances around it: a box around the ideal apex finds every face that matters.
+                let hc = h.max(0.8 * self.bg.size_at(&m));
+                let r0 = (NEAR_IDEAL * h)
+                    .max(NEW_NODE_CLEARANCE * hc)
+                    .max(FACE_CLEARANCE * hc);
+                (ideal.map(|x| x - r0), ideal.map(|x| x + r0))
+            } else {
+                (
+                    [0, 1, 2].map(|k| m[k].min(ideal[k]) - rad),
+                    [0, 1, 2].map(|k| m[k].max(ideal[k]) + rad),
+                )
+            };
             let mut near = std::mem::take(&mut self.scratch);
             self.front.query(&lo, &hi, &mut near);
             let mut cand_nodes: Vec<u32> = Vec::with_capacity(near.len() * 3);
@@ -266,10 +274,13 @@ impl State<'_> {
                 if dist(&p, &m) > rad + h || (pass == 0 && dw > NEAR_IDEAL * h) {
                     continue;
                 }
-                if orient3d(&a, &b, &c, &p) != Orientation::Positive {
+                // Ranking only (validity is decided exactly in `valid`): a candidate the float
+                // measure finds flat or inverted is skipped before the costlier exact test, which
+                // coplanar boundary nodes would send down its slow exact path.
+                let q = mean_ratio(&a, &b, &c, &p);
+                if q < FLAT || orient3d(&a, &b, &c, &p) != Orientation::Positive {
                     continue;
                 }
-                let q = mean_ratio(&a, &b, &c, &p);
                 cands.push((q, w, Cand::Node(w)));
             }
             if pass == 0 {
@@ -277,7 +288,7 @@ impl State<'_> {
                 // nodes instead of seeding ever smaller ones.
                 let hc = h.max(0.8 * self.bg.size_at(&m));
                 if nearest > NEW_NODE_CLEARANCE * hc
-                    && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc, &lo, &hi)
+                    && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc)
                 {
                     let q = mean_ratio(&a, &b, &c, &ideal);
                     cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
@@ -295,8 +306,7 @@ impl State<'_> {
                         .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
                     // On the last attempt before back-tracking, any valid point will do.
                     if q_min > 0.0
-                        && (near_node
-                            || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc, &lo, &hi))
+                        && (near_node || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc))
                     {
                         continue;
                     }
@@ -321,24 +331,20 @@ impl State<'_> {
         None
     }
 
-    /// Is `p` at least `clear` away from every front face near it other than `fid`? (A float
-    /// heuristic steering node placement, not a validity decision.)
-    fn clear_of_faces(&mut self, p: &P, fid: u32, clear: f64, lo: &P, hi: &P) -> bool {
-        let mut near = std::mem::take(&mut self.scratch2);
-        self.front.query(lo, hi, &mut near);
-        let mut ok = true;
-        for &g in &near {
+    /// Is `p` at least `clear` away from every front face near it (in the last apex search box)
+    /// other than `fid`? (A float heuristic steering node placement, not a validity decision.)
+    fn clear_of_faces(&self, p: &P, fid: u32, clear: f64) -> bool {
+        // `scratch` holds the faces near the apex search box (the caller's last query).
+        for &g in &self.scratch {
             if g == fid {
                 continue;
             }
             let [a, b, c] = self.front.faces[g as usize].map(|i| self.nodes[i as usize]);
             if point_triangle_distance(p, &a, &b, &c) < clear {
-                ok = false;
-                break;
+                return false;
             }
         }
-        self.scratch2 = near;
-        ok
+        true
     }
 
     /// Exact validity of the tetrahedron `f + cand`.
@@ -381,6 +387,7 @@ impl State<'_> {
             }
         }
         let (lo, hi) = bbox_of([pa, pb, pc, pd].into_iter());
+        let new_boxes = new_faces.map(|nf| bbox_of(nf.iter().map(|&i| &pts[i as usize])));
         let mut near = std::mem::take(&mut self.scratch2);
         self.front.query(&lo, &hi, &mut near);
         let tet = [a, b, c, d];
@@ -394,15 +401,21 @@ impl State<'_> {
             if (0..3).any(|k| glo[k] > hi[k] || ghi[k] < lo[k]) {
                 continue;
             }
+            // Bounding boxes first (exact comparisons): a point outside the tet's box is outside
+            // the tet, triangles with disjoint boxes do not meet — the exact predicates, slow on
+            // the many coplanar configurations of planar boundaries, run only when needed.
             for &w in &gv {
-                if !tet.contains(&w) && point_in_closed_tet(&self.nodes[w as usize], pa, pb, pc, pd)
+                let pw = &self.nodes[w as usize];
+                if !tet.contains(&w)
+                    && (0..3).all(|k| lo[k] <= pw[k] && pw[k] <= hi[k])
+                    && point_in_closed_tet(pw, pa, pb, pc, pd)
                 {
                     ok = false;
                     break 'outer;
                 }
             }
-            for nf in &new_faces {
-                if same_set(nf, &gv) {
+            for (nf, (flo, fhi)) in new_faces.iter().zip(&new_boxes) {
+                if same_set(nf, &gv) || (0..3).any(|k| glo[k] > fhi[k] || ghi[k] < flo[k]) {
                     continue;
                 }
                 if tri_tri_improper(*nf, gv, &self.nodes) {

@@ -138,7 +138,9 @@ impl Front {
         None
     }
 
-    /// Live faces whose bounding-box cells meet the box `lo..hi`, in increasing id order.
+    /// Live faces whose bounding-box cells meet the box `lo..hi`, each once, in an order fixed
+    /// by the history of the front (callers only use order-independent results). Cells drop
+    /// their dead entries lazily, once they are at least half dead.
     pub fn query(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
         self.generation = self.generation.wrapping_add(1);
@@ -147,17 +149,15 @@ impl Front {
             self.generation = 1;
         }
         let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
-        for x in cl[0]..=ch[0] {
+        for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
-                for z in cl[2]..=ch[2] {
+                for x in cl[0]..=ch[0] {
                     let i = self.index(x, y, z);
                     let v = &mut self.cells[i];
-                    if v.len() > 8 {
-                        let alive = &self.alive;
-                        v.retain(|&id| alive[id as usize]);
-                    }
+                    let mut dead = 0;
                     for &id in v.iter() {
                         if !self.alive[id as usize] {
+                            dead += 1;
                             continue;
                         }
                         let s = &mut self.stamp[id as usize];
@@ -166,10 +166,13 @@ impl Front {
                             out.push(id);
                         }
                     }
+                    if dead > 4 && 2 * dead >= v.len() {
+                        let alive = &self.alive;
+                        v.retain(|&id| alive[id as usize]);
+                    }
                 }
             }
         }
-        out.sort_unstable();
     }
 }
 

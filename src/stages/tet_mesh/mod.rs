@@ -9,22 +9,30 @@
 //! tetrahedron is accepted only after exact tests (`exact`): positive `orient3d`, none of its new
 //! faces improperly intersects a front face, and no front node lies in it. When a face has no
 //! valid apex the mesher back-tracks (deletes the tetrahedra around it, restores the front and
-//! re-meshes the cavity), iteratively, never recursively. Afterwards `optimize` smooths interior
-//! nodes, only accepting moves that keep every tetrahedron positive (exact). `verify` checks the
+//! re-meshes the cavity), iteratively, never recursively. Afterwards `optimize` raises the worst
+//! qualities: optimization-based smoothing of interior nodes (`smooth`), 2-3 flips and edge
+//! removal (`flips`) and node insertion for bad tets nothing else fixes (`slivers`), over a tet
+//! complex with adjacency (`complex`); every change keeps every tetrahedron positive (exact) and
+//! every boundary and embedded face a face. `verify` checks the
 //! result exactly before `mesh_region` returns it, so a partial or overlapping mesh is an error,
 //! never a result.
 //!
 //! Submodules: `exact` (intersection predicates), `quality` (measures), `check` (input
 //! validation), `front` (front faces and their spatial grid), `advance` (the front loop and
-//! back-tracking), `optimize` (smoothing), `verify` (exact output check).
+//! back-tracking), `optimize` (the optimization driver) with `complex`, `smooth`, `flips` and
+//! `slivers`, `verify` (exact output check).
 
 mod advance;
 mod check;
+mod complex;
 pub mod exact;
+mod flips;
 mod front;
 mod optimize;
 pub mod quality;
 mod sizing;
+mod slivers;
+mod smooth;
 mod verify;
 
 pub use check::check_input;
@@ -149,7 +157,15 @@ pub fn mesh_region(
     check_input(input)?;
     let mut mesh = advance::advance_front(input, size)?;
     if opts.optimize {
-        optimize::optimize(&mut mesh.nodes, &mut mesh.tets, input.vertices.len());
+        let protected = input.boundary.iter().chain(&input.embedded).copied();
+        let (nodes, tets) = optimize::optimize(
+            std::mem::take(&mut mesh.nodes),
+            std::mem::take(&mut mesh.tets),
+            input.vertices.len(),
+            protected,
+        );
+        mesh.nodes = nodes;
+        mesh.tets = tets;
     }
     let (nodes, tets) = compact(mesh.nodes, mesh.tets, input.vertices.len());
     let mut out = TetMeshOutput {

@@ -1,82 +1,181 @@
-//! Quality optimization after the front closes: smoothing of interior nodes. Each move is
-//! accepted only when every tetrahedron around the node stays positive (exact `orient3d`) and the
-//! worst mean ratio of the ball improves, so optimization can never invert or flatten a tet.
-//! Nodes are visited in index order (Gauss-Seidel), single-threaded: the result is deterministic.
+//! Quality optimization after the front closes: rounds of optimization-based smoothing of the
+//! free nodes (`smooth`), flips around the bad tets (`flips`) and, for what is left, node
+//! insertion (`slivers`). Every change keeps every tet positive (exact `orient3d`), never moves
+//! an input vertex and never removes a boundary or embedded face, so the optimizer cannot break
+//! what `advance` built; `verify` checks the result anyway. Everything runs in slot order on one
+//! thread with sorted work lists: the result is deterministic.
 
-use crate::geom::predicates::{Orientation, orient3d};
-
-use super::quality::mean_ratio;
+use super::complex::Complex;
+use super::flips::{Scratch, improve_tet};
+use super::slivers::insert_node_for;
+use super::smooth::{relax_node, smooth_node};
 
 type P = [f64; 3];
 
-const PASSES: usize = 3;
+/// Rounds of smoothing + flips + insertion.
+const ROUNDS: usize = 3;
+/// Tets below this mean ratio are flip candidates.
+const FLIP_BELOW: f64 = 0.45;
+/// Tets below this mean ratio after flipping get an inserted node.
+const INSERT_BELOW: f64 = 0.3;
+/// Nodes whose ball is worse than this get max-min smoothing; all get Laplacian relaxation.
+const SMOOTH_BELOW: f64 = 0.3;
+/// Laplacian relaxation may lower a ball's worst quality for a better mean while it stays above.
+const RELAX_KEEP: f64 = 0.5;
+/// Laplacian relaxation passes before and after the rounds.
+const RELAX_PASSES: usize = 2;
 
-pub fn optimize(nodes: &mut [P], tets: &mut [[u32; 4]], n_input: usize) {
-    let mut ball: Vec<Vec<u32>> = vec![Vec::new(); nodes.len()];
-    for (i, t) in tets.iter().enumerate() {
-        for &v in t {
-            ball[v as usize].push(i as u32);
+/// Optimize in place. `protected` lists every boundary and embedded triangle; nodes below
+/// `n_fixed` never move.
+pub fn optimize(
+    nodes: Vec<P>,
+    tets: Vec<[u32; 4]>,
+    n_fixed: usize,
+    protected: impl Iterator<Item = [u32; 3]>,
+) -> (Vec<P>, Vec<[u32; 4]>) {
+    let mut cx = Complex::new(nodes, tets, n_fixed, protected);
+    let mut scratch = Scratch::default();
+    relax_pass(&mut cx);
+    smooth_pass(&mut cx, SMOOTH_BELOW);
+    for _ in 0..ROUNDS {
+        let mut changed = false;
+        for _ in 0..4 {
+            let mut flipped = false;
+            for (_, t) in bad_tets(&cx, FLIP_BELOW) {
+                flipped |= improve_tet(&mut cx, t, &mut scratch);
+            }
+            changed |= flipped;
+            if !flipped {
+                break;
+            }
+        }
+        smooth_pass(&mut cx, SMOOTH_BELOW);
+        for (_, t) in bad_tets(&cx, INSERT_BELOW) {
+            changed |= insert_node_for(&mut cx, t);
+        }
+        if !changed {
+            break;
         }
     }
-    for _ in 0..PASSES {
-        for (v, b) in ball.iter().enumerate().skip(n_input) {
-            if b.is_empty() {
-                continue;
-            }
-            smooth_node(v, b, nodes, tets);
+    relax_pass(&mut cx);
+    smooth_pass(&mut cx, SMOOTH_BELOW);
+    for (_, t) in bad_tets(&cx, FLIP_BELOW) {
+        improve_tet(&mut cx, t, &mut scratch);
+    }
+    cx.into_parts()
+}
+
+/// Live tets below `below`, worst first (ties by slot).
+fn bad_tets(cx: &Complex, below: f64) -> Vec<(f64, u32)> {
+    let mut v: Vec<(f64, u32)> = (0..cx.tets.len())
+        .filter(|&i| cx.alive[i])
+        .map(|i| (cx.quality(cx.tets[i]), i as u32))
+        .filter(|(q, _)| *q < below)
+        .collect();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    v
+}
+
+/// Laplacian relaxation of every free node, in index order.
+fn relax_pass(cx: &mut Complex) {
+    for _ in 0..RELAX_PASSES {
+        for v in cx.n_fixed..cx.nodes.len() {
+            relax_node(cx, v as u32, RELAX_KEEP);
         }
     }
 }
 
-fn worst(v: usize, p: &P, ball: &[u32], nodes: &[P], tets: &[[u32; 4]]) -> Option<f64> {
-    let mut w = f64::INFINITY;
-    for &t in ball {
-        let q = tets[t as usize].map(|i| {
-            if i as usize == v {
-                *p
-            } else {
-                nodes[i as usize]
-            }
-        });
-        if orient3d(&q[0], &q[1], &q[2], &q[3]) != Orientation::Positive {
-            return None;
+/// Max-min smoothing of every free node whose ball's worst quality is below `below`, in index
+/// order.
+fn smooth_pass(cx: &mut Complex, below: f64) {
+    for v in cx.n_fixed..cx.nodes.len() {
+        let v = v as u32;
+        let worst = cx.node_tets[v as usize]
+            .iter()
+            .map(|&t| cx.quality(cx.tets[t as usize]))
+            .fold(f64::INFINITY, f64::min);
+        if worst < below {
+            smooth_node(cx, v);
         }
-        w = w.min(mean_ratio(&q[0], &q[1], &q[2], &q[3]));
     }
-    Some(w)
 }
 
-fn smooth_node(v: usize, ball: &[u32], nodes: &mut [P], tets: &[[u32; 4]]) {
-    let cur = nodes[v];
-    let Some(q0) = worst(v, &cur, ball, nodes, tets) else {
-        return;
-    };
-    // Target: mean of the centroids of the ball's tets weighted towards the node's neighbours.
-    let mut sum = [0.0; 3];
-    let mut n = 0.0;
-    for &t in ball {
-        for &w in &tets[t as usize] {
-            if w as usize != v {
-                let p = nodes[w as usize];
-                for k in 0..3 {
-                    sum[k] += p[k];
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::super::{RegionInput, SizeField, TetMeshOutput, advance, stats_of, verify};
+    use super::*;
+
+    /// The cube [0,3]^3, each side split into 3x3 quads of two triangles (outward), with a
+    /// dangling square at z = 1.5 (two triangles) inside.
+    fn cube_with_embedded_square() -> RegionInput {
+        let mut ids: BTreeMap<[i64; 3], u32> = BTreeMap::new();
+        let mut vertices = Vec::new();
+        let mut id = |p: [i64; 3], vertices: &mut Vec<[f64; 3]>| {
+            *ids.entry(p).or_insert_with(|| {
+                vertices.push(p.map(|c| c as f64 * 0.5));
+                (vertices.len() - 1) as u32
+            })
+        };
+        let mut boundary = Vec::new();
+        for k in 0..3 {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            for side in [0i64, 6] {
+                for i in 0..3i64 {
+                    for j in 0..3i64 {
+                        let mut q = |a: i64, b: i64| {
+                            let mut p = [0i64; 3];
+                            p[k] = side;
+                            p[u] = 2 * a;
+                            p[v] = 2 * b;
+                            id(p, &mut vertices)
+                        };
+                        let (a, b, c, d) = (q(i, j), q(i + 1, j), q(i + 1, j + 1), q(i, j + 1));
+                        if side > 0 {
+                            boundary.push([a, b, c]);
+                            boundary.push([a, c, d]);
+                        } else {
+                            boundary.push([a, c, b]);
+                            boundary.push([a, d, c]);
+                        }
+                    }
                 }
-                n += 1.0;
             }
         }
-    }
-    let target = [sum[0] / n, sum[1] / n, sum[2] / n];
-    for step in [1.0, 0.5, 0.25] {
-        let p = [
-            cur[0] + (target[0] - cur[0]) * step,
-            cur[1] + (target[1] - cur[1]) * step,
-            cur[2] + (target[2] - cur[2]) * step,
-        ];
-        if let Some(q) = worst(v, &p, ball, nodes, tets)
-            && q > q0
-        {
-            nodes[v] = p;
-            return;
+        let sq = [[2, 2, 3], [4, 2, 3], [4, 4, 3], [2, 4, 3]].map(|p| id(p, &mut vertices));
+        RegionInput {
+            name: "cube".into(),
+            vertices,
+            boundary,
+            embedded: vec![[sq[0], sq[1], sq[2]], [sq[0], sq[2], sq[3]]],
         }
+    }
+
+    #[test]
+    fn the_optimizer_keeps_every_protected_face_and_input_vertex_and_never_inverts_a_tet() {
+        let input = cube_with_embedded_square();
+        let raw = advance::advance_front(&input, &SizeField::default()).expect("meshes");
+        let n_in = input.vertices.len();
+        let before = TetMeshOutput {
+            nodes: raw.nodes.clone(),
+            tets: raw.tets.clone(),
+            stats: Default::default(),
+        };
+        verify(&input, &before).expect("the raw mesh is valid");
+        let protected = input.boundary.iter().chain(&input.embedded).copied();
+        let (nodes, tets) = optimize(raw.nodes, raw.tets, n_in, protected);
+        let after = TetMeshOutput {
+            nodes,
+            tets,
+            stats: Default::default(),
+        };
+        assert_eq!(&after.nodes[..n_in], &input.vertices[..]);
+        // verify: every tet positive (exact), every boundary face once, every embedded face
+        // once on each side, no hole or overlap, volume balanced.
+        verify(&input, &after).expect("the optimized mesh is valid");
+        let (s0, s1) = (stats_of(&before, n_in, 0), stats_of(&after, n_in, 0));
+        assert!(s1.min_mean_ratio >= s0.min_mean_ratio, "{s0:?} -> {s1:?}");
+        assert!(s1.min_mean_ratio >= 0.3, "{s1:?}");
     }
 }

@@ -1,0 +1,260 @@
+//! The tetrahedral complex the quality optimizer edits: tets with a free list, node→tets
+//! incidence, and what must never change — the protected faces (boundary and embedded
+//! triangles), their edges, and the fixed nodes (every input vertex). Adjacency is derived from
+//! the incidence lists (a face's other tet is the one sharing its three nodes), which stay short,
+//! so no face table has to be kept consistent through flips and insertions.
+//!
+//! Every local operation (`flips`, `slivers`) replaces a set of tets by another with the same
+//! boundary; it is accepted only when every new tet is positive by the exact `orient3d`. Positive
+//! tets over an unchanged boundary cover the old set exactly once (the cone/degree argument), so
+//! exact positivity is the whole validity test.
+
+use std::collections::HashSet;
+
+use crate::geom::predicates::{Orientation, orient3d};
+
+use super::quality::mean_ratio;
+use super::verify::outward_faces;
+
+pub type P = [f64; 3];
+
+pub struct Complex {
+    pub nodes: Vec<P>,
+    pub tets: Vec<[u32; 4]>,
+    pub alive: Vec<bool>,
+    free: Vec<u32>,
+    pub node_tets: Vec<Vec<u32>>,
+    /// Nodes below this index never move and never disappear.
+    pub n_fixed: usize,
+    protected_faces: HashSet<[u32; 3]>,
+    protected_edges: HashSet<[u32; 2]>,
+}
+
+#[inline]
+pub fn sorted3(f: [u32; 3]) -> [u32; 3] {
+    let mut k = f;
+    k.sort_unstable();
+    k
+}
+
+#[inline]
+fn sorted2(a: u32, b: u32) -> [u32; 2] {
+    if a <= b { [a, b] } else { [b, a] }
+}
+
+impl Complex {
+    pub fn new(
+        nodes: Vec<P>,
+        tets: Vec<[u32; 4]>,
+        n_fixed: usize,
+        protected: impl Iterator<Item = [u32; 3]>,
+    ) -> Self {
+        let mut node_tets = vec![Vec::new(); nodes.len()];
+        for (i, t) in tets.iter().enumerate() {
+            for &v in t {
+                node_tets[v as usize].push(i as u32);
+            }
+        }
+        let mut protected_faces = HashSet::new();
+        let mut protected_edges = HashSet::new();
+        for f in protected {
+            protected_faces.insert(sorted3(f));
+            for k in 0..3 {
+                protected_edges.insert(sorted2(f[k], f[(k + 1) % 3]));
+            }
+        }
+        Complex {
+            alive: vec![true; tets.len()],
+            nodes,
+            tets,
+            free: Vec::new(),
+            node_tets,
+            n_fixed,
+            protected_faces,
+            protected_edges,
+        }
+    }
+
+    /// The live tets, in slot order.
+    pub fn into_parts(self) -> (Vec<P>, Vec<[u32; 4]>) {
+        let tets = self
+            .tets
+            .iter()
+            .zip(&self.alive)
+            .filter(|(_, a)| **a)
+            .map(|(t, _)| *t)
+            .collect();
+        (self.nodes, tets)
+    }
+
+    #[inline]
+    pub fn face_protected(&self, f: [u32; 3]) -> bool {
+        self.protected_faces.contains(&sorted3(f))
+    }
+
+    #[inline]
+    pub fn edge_protected(&self, a: u32, b: u32) -> bool {
+        self.protected_edges.contains(&sorted2(a, b))
+    }
+
+    #[inline]
+    pub fn quality(&self, t: [u32; 4]) -> f64 {
+        let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
+        mean_ratio(&a, &b, &c, &d)
+    }
+
+    #[inline]
+    pub fn positive(&self, t: [u32; 4]) -> bool {
+        let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
+        orient3d(&a, &b, &c, &d) == Orientation::Positive
+    }
+
+    pub fn add_tet(&mut self, t: [u32; 4]) -> u32 {
+        let id = match self.free.pop() {
+            Some(id) => {
+                self.tets[id as usize] = t;
+                self.alive[id as usize] = true;
+                id
+            }
+            None => {
+                self.tets.push(t);
+                self.alive.push(true);
+                (self.tets.len() - 1) as u32
+            }
+        };
+        for v in t {
+            self.node_tets[v as usize].push(id);
+        }
+        id
+    }
+
+    pub fn remove_tet(&mut self, id: u32) {
+        if !self.alive[id as usize] {
+            return;
+        }
+        self.alive[id as usize] = false;
+        for v in self.tets[id as usize] {
+            self.node_tets[v as usize].retain(|&x| x != id);
+        }
+        self.free.push(id);
+    }
+
+    pub fn add_node(&mut self, p: P) -> u32 {
+        self.nodes.push(p);
+        self.node_tets.push(Vec::new());
+        (self.nodes.len() - 1) as u32
+    }
+
+    /// The live tet other than `not` that has the three nodes of `f`.
+    pub fn across(&self, f: [u32; 3], not: u32) -> Option<u32> {
+        let [a, b, c] = f;
+        self.node_tets[a as usize].iter().copied().find(|&t| {
+            t != not && {
+                let tv = &self.tets[t as usize];
+                tv.contains(&b) && tv.contains(&c)
+            }
+        })
+    }
+
+    /// Tets around the edge `ab` as a closed ring `r_0..r_{n-1}` such that every
+    /// `[a, b, r_i, r_{i+1}]` is a (positive) tet of the complex. None when the ring is open (a
+    /// boundary edge) or not a single cycle.
+    pub fn edge_ring(&self, a: u32, b: u32, ring: &mut Vec<u32>, ring_tets: &mut Vec<u32>) -> bool {
+        ring.clear();
+        ring_tets.clear();
+        let mut pairs: Vec<(u32, u32, u32)> = Vec::new();
+        for &t in &self.node_tets[a as usize] {
+            let tv = self.tets[t as usize];
+            if !tv.contains(&b) {
+                continue;
+            }
+            let Some((c, d)) = ordered_rest(tv, a, b) else {
+                return false;
+            };
+            pairs.push((c, d, t));
+        }
+        let n = pairs.len();
+        if n < 3 {
+            return false;
+        }
+        let (start, mut next, t0) = pairs[0];
+        ring.push(start);
+        ring_tets.push(t0);
+        while next != start {
+            if ring.len() > n {
+                return false;
+            }
+            let Some(&(c, d, t)) = pairs.iter().find(|p| p.0 == next) else {
+                return false;
+            };
+            ring.push(c);
+            ring_tets.push(t);
+            next = d;
+        }
+        ring.len() == n
+    }
+
+    /// The faces of the tet set `set` that no other tet of the set shares, oriented outward.
+    pub fn hull_of(&self, set: &[u32]) -> Vec<[u32; 3]> {
+        let mut faces: Vec<([u32; 3], [u32; 3])> = Vec::with_capacity(set.len() * 4);
+        for &t in set {
+            for f in outward_faces(self.tets[t as usize]) {
+                faces.push((sorted3(f), f));
+            }
+        }
+        faces.sort_unstable();
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i < faces.len() {
+            let mut j = i + 1;
+            while j < faces.len() && faces[j].0 == faces[i].0 {
+                j += 1;
+            }
+            if j - i == 1 {
+                out.push(faces[i].1);
+            }
+            i = j;
+        }
+        out
+    }
+}
+
+/// For a positive tet `t` with nodes `a` and `b`, the other two nodes `(c, d)` ordered so that
+/// `[a, b, c, d]` is an even permutation of `t` (hence positive too).
+pub fn ordered_rest(t: [u32; 4], a: u32, b: u32) -> Option<(u32, u32)> {
+    let i = t.iter().position(|&v| v == a)?;
+    let j = t.iter().position(|&v| v == b)?;
+    let mut rest = [0usize; 2];
+    let mut n = 0;
+    for k in 0..4 {
+        if k != i && k != j {
+            rest[n] = k;
+            n += 1;
+        }
+    }
+    let perm = [i, j, rest[0], rest[1]];
+    let mut inv = 0;
+    for x in 0..4 {
+        for y in x + 1..4 {
+            if perm[x] > perm[y] {
+                inv += 1;
+            }
+        }
+    }
+    let (c, d) = (t[rest[0]], t[rest[1]]);
+    Some(if inv % 2 == 0 { (c, d) } else { (d, c) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_rest_of_a_tet_keeps_its_orientation() {
+        let t = [0, 1, 2, 3];
+        assert_eq!(ordered_rest(t, 0, 1), Some((2, 3)));
+        assert_eq!(ordered_rest(t, 1, 0), Some((3, 2)));
+        assert_eq!(ordered_rest(t, 2, 3), Some((0, 1)));
+        assert_eq!(ordered_rest(t, 0, 2), Some((3, 1)));
+    }
+}

@@ -1,0 +1,225 @@
+//! Topological flips that raise the worst quality of the tets they touch: the 2-3 face flip and
+//! edge removal (the 3-2 flip, the 4-4 flip and in general an edge of `n` tets replaced by the
+//! `2n - 4` tets over the best triangulation of its ring, found by dynamic programming over the
+//! ring polygon — Klincsek's max-min triangulation).
+//!
+//! A flip never removes a protected face (boundary or embedded) or an edge of one, and is accepted
+//! only when every new tet is positive by the exact `orient3d` and the worst mean ratio strictly
+//! improves — so flipping always terminates and never inverts a tet.
+
+use super::complex::Complex;
+
+/// A flip must raise the worst quality by at least this much (avoids cycling on ties).
+const GAIN: f64 = 1e-6;
+/// Rings larger than this are not tried (quality of such rings rarely improves by removal).
+const MAX_RING: usize = 8;
+
+/// Try to improve the tet in slot `t` by a flip of one of its faces or edges. Returns true when
+/// a flip was made (the slot may then hold another tet).
+pub fn improve_tet(cx: &mut Complex, t: u32, scratch: &mut Scratch) -> bool {
+    if !cx.alive[t as usize] {
+        return false;
+    }
+    let tv = cx.tets[t as usize];
+    for e in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+        if remove_edge(cx, tv[e.0], tv[e.1], scratch) {
+            return true;
+        }
+    }
+    for f in super::verify::outward_faces(tv) {
+        if flip23(cx, t, [f[0], f[2], f[1]]) {
+            return true;
+        }
+    }
+    false
+}
+
+#[derive(Default)]
+pub struct Scratch {
+    ring: Vec<u32>,
+    ring_tets: Vec<u32>,
+    best: Vec<f64>,
+    split: Vec<usize>,
+}
+
+/// 2-3 flip of the face `f` of tet `t` (`f` oriented so that `t`'s fourth node is on its
+/// positive side): the two tets sharing it become three around the edge joining their apexes.
+pub fn flip23(cx: &mut Complex, t: u32, f: [u32; 3]) -> bool {
+    if cx.face_protected(f) {
+        return false;
+    }
+    let tv = cx.tets[t as usize];
+    let Some(&d) = tv.iter().find(|v| !f.contains(v)) else {
+        return false;
+    };
+    let Some(u) = cx.across(f, t) else {
+        return false;
+    };
+    let uv = cx.tets[u as usize];
+    let Some(&e) = uv.iter().find(|v| !f.contains(v)) else {
+        return false;
+    };
+    let old = cx.quality(tv).min(cx.quality(uv));
+    let [a, b, c] = f;
+    let new = [[e, d, a, b], [e, d, b, c], [e, d, c, a]];
+    let q = new
+        .iter()
+        .map(|&n| cx.quality(n))
+        .fold(f64::INFINITY, f64::min);
+    if q <= old + GAIN || !new.iter().all(|&n| cx.positive(n)) {
+        return false;
+    }
+    cx.remove_tet(t);
+    cx.remove_tet(u);
+    for n in new {
+        cx.add_tet(n);
+    }
+    true
+}
+
+/// Remove the edge `ab` when the best triangulation of its ring beats the tets around it.
+pub fn remove_edge(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch) -> bool {
+    if cx.edge_protected(a, b) {
+        return false;
+    }
+    if !cx.edge_ring(a, b, &mut s.ring, &mut s.ring_tets) {
+        return false;
+    }
+    let n = s.ring.len();
+    if n > MAX_RING {
+        return false;
+    }
+    let old = s
+        .ring_tets
+        .iter()
+        .map(|&t| cx.quality(cx.tets[t as usize]))
+        .fold(f64::INFINITY, f64::min);
+    // best[i*n+j]: best worst-quality of a triangulation of the sub-polygon r_i..r_j.
+    s.best.clear();
+    s.best.resize(n * n, f64::INFINITY);
+    s.split.clear();
+    s.split.resize(n * n, usize::MAX);
+    let ring = &s.ring;
+    let tri_q = |i: usize, k: usize, j: usize| -> f64 {
+        let (ri, rk, rj) = (ring[i], ring[k], ring[j]);
+        cx.quality([ri, rk, rj, b]).min(cx.quality([ri, rj, rk, a]))
+    };
+    for len in 2..n {
+        for i in 0..n - len {
+            let j = i + len;
+            let mut bq = f64::NEG_INFINITY;
+            let mut bk = usize::MAX;
+            for k in i + 1..j {
+                let q = s.best[i * n + k].min(s.best[k * n + j]).min(tri_q(i, k, j));
+                if q > bq {
+                    bq = q;
+                    bk = k;
+                }
+            }
+            s.best[i * n + j] = bq;
+            s.split[i * n + j] = bk;
+        }
+    }
+    if s.best[n - 1] <= old + GAIN {
+        return false;
+    }
+    // Collect the triangles of the best triangulation (explicit stack, no recursion).
+    let mut tris: Vec<[u32; 3]> = Vec::with_capacity(n - 2);
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j - i < 2 {
+            continue;
+        }
+        let k = s.split[i * n + j];
+        if k == usize::MAX {
+            return false;
+        }
+        tris.push([ring[i], ring[k], ring[j]]);
+        stack.push((i, k));
+        stack.push((k, j));
+    }
+    let mut new = Vec::with_capacity(2 * tris.len());
+    for [ri, rk, rj] in tris {
+        new.push([ri, rk, rj, b]);
+        new.push([ri, rj, rk, a]);
+    }
+    if !new.iter().all(|&t| cx.positive(t)) {
+        return false;
+    }
+    let old_tets = std::mem::take(&mut s.ring_tets);
+    for &t in &old_tets {
+        cx.remove_tet(t);
+    }
+    s.ring_tets = old_tets;
+    for t in new {
+        cx.add_tet(t);
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two tets sharing a face, with apexes far apart: the 2-3 flip makes three better tets.
+    #[test]
+    fn a_flat_pair_of_tets_is_flipped_into_three_positive_better_ones() {
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 0.9, 0.0],
+            [0.5, 0.3, 0.1],
+            [0.5, 0.3, -0.1],
+        ];
+        // [0,1,2,3] positive (3 above), [0,2,1,4] positive (4 below); both flat (mean ratio
+        // about 0.36), the three tets around the edge 3-4 about 0.46.
+        let tets = vec![[0, 1, 2, 3], [0, 2, 1, 4]];
+        let mut cx = Complex::new(nodes, tets, 0, std::iter::empty());
+        let before = cx.quality([0, 1, 2, 3]).min(cx.quality([0, 2, 1, 4]));
+        assert!(flip23(&mut cx, 0, [0, 1, 2]));
+        let (nodes, tets) = cx.into_parts();
+        let cx2 = Complex::new(nodes, tets.clone(), 0, std::iter::empty());
+        assert!(tets.iter().all(|&t| cx2.positive(t)));
+        assert_eq!(tets.len(), 3);
+        let after = tets.iter().map(|&t| cx2.quality(t)).fold(1.0, f64::min);
+        assert!(after > before + 0.05, "{before} -> {after}");
+    }
+
+    #[test]
+    fn a_protected_face_is_never_flipped_away() {
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 0.9, 0.0],
+            [0.5, 0.3, 0.2],
+            [0.5, 0.3, -0.2],
+        ];
+        let tets = vec![[0, 1, 2, 3], [0, 2, 1, 4]];
+        let mut cx = Complex::new(nodes, tets, 0, [[0, 1, 2]].into_iter());
+        assert!(!flip23(&mut cx, 0, [0, 1, 2]));
+        assert!(!improve_tet(&mut cx, 0, &mut Scratch::default()));
+    }
+
+    /// Three tets around an edge that passes close to a ring edge (so one of them is flat): the
+    /// 3-2 flip removes the edge.
+    #[test]
+    fn a_short_edge_with_three_tets_is_removed_by_a_3_2_flip() {
+        let nodes = vec![
+            [0.5, 0.02, 0.5],
+            [0.5, 0.02, -0.5],
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 0.9, 0.0],
+        ];
+        // edge (1 -> 0) points +z; ring 2,3,4 is counter-clockwise seen from +z.
+        let tets = vec![[1, 0, 2, 3], [1, 0, 3, 4], [1, 0, 4, 2]];
+        let mut cx = Complex::new(nodes, tets.clone(), 0, std::iter::empty());
+        assert!(tets.iter().all(|&t| cx.positive(t)));
+        let mut s = Scratch::default();
+        assert!(remove_edge(&mut cx, 1, 0, &mut s));
+        let (nodes, tets) = cx.into_parts();
+        assert_eq!(tets.len(), 2);
+        let cx2 = Complex::new(nodes, tets.clone(), 0, std::iter::empty());
+        assert!(tets.iter().all(|&t| cx2.positive(t)));
+    }
+}

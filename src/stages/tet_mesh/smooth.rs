@@ -1,0 +1,282 @@
+//! Optimization-based smoothing of one free node: maximise the worst mean ratio of the tets
+//! around it. The objective is non-smooth (a minimum), so each step climbs the gradient of the
+//! worst tet (or of the near-worst ones together) with a backtracking line search, after a first
+//! try towards the centroid of the node's neighbours. A move is accepted only when every tet of
+//! the ball stays positive by the exact `orient3d` and the worst quality strictly rises.
+
+use crate::geom::predicates::{Orientation, orient3d};
+
+use super::complex::{Complex, P};
+use super::quality::mean_ratio;
+
+/// Gradient steps per call.
+const ITERATIONS: usize = 12;
+/// Tets within this much of the worst share the ascent direction.
+const NEAR_WORST: f64 = 0.02;
+
+/// Quality of `t` with node `v` placed at `p`, and its gradient with respect to `p`.
+fn quality_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> (f64, P) {
+    let x = t.map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+    let q = mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+    let k = t.iter().position(|&i| i == v).unwrap_or(0);
+    // The face opposite `k`, ordered so that its right-hand normal points towards node k.
+    let f = match k {
+        0 => [1, 3, 2],
+        1 => [0, 2, 3],
+        2 => [0, 3, 1],
+        _ => [0, 1, 2],
+    };
+    let (a, b, c) = (x[f[0]], x[f[1]], x[f[2]]);
+    let u = sub(&b, &a);
+    let w = sub(&c, &a);
+    let n = [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ];
+    let vol6 = dot(&n, &sub(p, &a));
+    let mut gl = [0.0; 3];
+    let mut l2 = 0.0;
+    for (i, y) in x.iter().enumerate() {
+        for z in &x[i + 1..] {
+            let e = sub(y, z);
+            l2 += dot(&e, &e);
+        }
+        if i != k {
+            let e = sub(p, y);
+            for m in 0..3 {
+                gl[m] += 2.0 * e[m];
+            }
+        }
+    }
+    if vol6 <= 0.0 || l2 <= 0.0 || q <= 0.0 {
+        return (q, [0.0; 3]);
+    }
+    // q = c V^(2/3) / L  =>  grad q = q (2/3 grad V / V - grad L / L), grad V / V = n / vol6.
+    let g = [0, 1, 2].map(|m| q * (2.0 / 3.0 * n[m] / vol6 - gl[m] / l2));
+    (q, g)
+}
+
+#[inline]
+fn sub(a: &P, b: &P) -> P {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline]
+fn dot(a: &P, b: &P) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Worst quality of the ball of `v` with `v` at `p`; None if a tet is not positive (exact).
+pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
+    let mut w = f64::INFINITY;
+    for &t in &cx.node_tets[v as usize] {
+        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        w = w.min(mean_ratio(&x[0], &x[1], &x[2], &x[3]));
+    }
+    if w <= 0.0 {
+        return None;
+    }
+    for &t in &cx.node_tets[v as usize] {
+        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        if orient3d(&x[0], &x[1], &x[2], &x[3]) != Orientation::Positive {
+            return None;
+        }
+    }
+    Some(w)
+}
+
+/// Worst and mean quality of the ball of `v` with `v` at `p`; None if a tet is not positive.
+fn worst_and_mean_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64)> {
+    let w = worst_at(cx, v, p)?;
+    let ball = &cx.node_tets[v as usize];
+    let mut s = 0.0;
+    for &t in ball {
+        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        s += mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+    }
+    Some((w, s / ball.len() as f64))
+}
+
+/// Laplacian step for the free node `v`: towards the centroid of its neighbours, accepted when
+/// the ball's worst quality rises, or when its mean rises while the worst stays at least
+/// `keep` (a good ball may trade a little of its worst for a better average). True when moved.
+pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
+    if (v as usize) < cx.n_fixed || cx.node_tets[v as usize].is_empty() {
+        return false;
+    }
+    let cur = cx.nodes[v as usize];
+    let Some((w0, m0)) = worst_and_mean_at(cx, v, &cur) else {
+        return false;
+    };
+    let mut sum = [0.0; 3];
+    let mut n = 0.0;
+    for &t in &cx.node_tets[v as usize] {
+        for &w in &cx.tets[t as usize] {
+            if w != v {
+                let p = cx.nodes[w as usize];
+                for m in 0..3 {
+                    sum[m] += p[m];
+                }
+                n += 1.0;
+            }
+        }
+    }
+    let centre = sum.map(|s| s / n);
+    for step in [1.0, 0.5, 0.25] {
+        let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
+        if let Some((w, m)) = worst_and_mean_at(cx, v, &p)
+            && (w > w0 || (w >= keep.min(w0) && m > m0))
+        {
+            cx.nodes[v as usize] = p;
+            return true;
+        }
+    }
+    false
+}
+
+/// Move the free node `v` to raise the worst quality of its ball. Returns the new worst
+/// quality when the node moved.
+pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
+    if (v as usize) < cx.n_fixed || cx.node_tets[v as usize].is_empty() {
+        return None;
+    }
+    let start = cx.nodes[v as usize];
+    let mut cur = start;
+    let mut best = worst_at(cx, v, &cur)?;
+    let q0 = best;
+    // Scale of the ball: mean distance to the neighbours.
+    let mut sum = [0.0; 3];
+    let mut scale = 0.0;
+    let mut n = 0.0;
+    for &t in &cx.node_tets[v as usize] {
+        for &w in &cx.tets[t as usize] {
+            if w != v {
+                let p = cx.nodes[w as usize];
+                for m in 0..3 {
+                    sum[m] += p[m];
+                }
+                scale += dot(&sub(&p, &cur), &sub(&p, &cur)).sqrt();
+                n += 1.0;
+            }
+        }
+    }
+    let centre = sum.map(|s| s / n);
+    scale /= n;
+    for step in [1.0, 0.5, 0.25] {
+        let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
+        if let Some(q) = worst_at(cx, v, &p)
+            && q > best
+        {
+            best = q;
+            cur = p;
+            break;
+        }
+    }
+    let mut alpha = 0.1 * scale;
+    for _ in 0..ITERATIONS {
+        let mut dir = [0.0; 3];
+        for &t in &cx.node_tets[v as usize] {
+            let (q, g) = quality_and_gradient(cx, cx.tets[t as usize], v, &cur);
+            if q <= best + NEAR_WORST {
+                let gn = dot(&g, &g).sqrt();
+                if gn > 0.0 {
+                    for m in 0..3 {
+                        dir[m] += g[m] / gn;
+                    }
+                }
+            }
+        }
+        let dn = dot(&dir, &dir).sqrt();
+        if dn <= 0.0 || !dn.is_finite() {
+            break;
+        }
+        let dir = dir.map(|d| d / dn);
+        let mut moved = false;
+        let mut a = alpha;
+        for _ in 0..6 {
+            let p = [0, 1, 2].map(|m| cur[m] + dir[m] * a);
+            if let Some(q) = worst_at(cx, v, &p)
+                && q > best
+            {
+                best = q;
+                cur = p;
+                moved = true;
+                break;
+            }
+            a *= 0.5;
+        }
+        if !moved {
+            break;
+        }
+        alpha = (a * 2.0).min(0.2 * scale);
+    }
+    if best > q0 && cur != start {
+        cx.nodes[v as usize] = cur;
+        Some(best)
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_gradient_of_the_mean_ratio_matches_finite_differences() {
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.1, 0.0],
+            [0.3, 0.9, 0.1],
+            [0.4, 0.3, 0.6],
+        ];
+        let cx = Complex::new(nodes.clone(), vec![[0, 1, 2, 3]], 0, std::iter::empty());
+        for v in 0..4u32 {
+            let p = nodes[v as usize];
+            let (q, g) = quality_and_gradient(&cx, [0, 1, 2, 3], v, &p);
+            assert!(q > 0.0);
+            for m in 0..3 {
+                let h = 1e-6;
+                let mut pp = p;
+                pp[m] += h;
+                let (q1, _) = quality_and_gradient(&cx, [0, 1, 2, 3], v, &pp);
+                let fd = (q1 - q) / h;
+                assert!(
+                    (fd - g[m]).abs() < 1e-4,
+                    "node {v} axis {m}: {fd} vs {}",
+                    g[m]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_badly_placed_free_node_moves_to_a_better_ball_and_fixed_nodes_never_move() {
+        // An octahedron around node 6, pushed towards one corner.
+        let nodes = vec![
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [0.6, 0.1, 0.05],
+        ];
+        let c = 6;
+        let mut tets = Vec::new();
+        for (x, y) in [(0, 2), (2, 1), (1, 3), (3, 0)] {
+            tets.push([y, x, 4, c]);
+            tets.push([x, y, 5, c]);
+        }
+        let mut cx = Complex::new(nodes, tets.clone(), 6, std::iter::empty());
+        for &t in &tets {
+            assert!(cx.positive(t), "{t:?}");
+        }
+        let before = worst_at(&cx, c, &cx.nodes[c as usize]).unwrap();
+        let after = smooth_node(&mut cx, c).expect("moves");
+        assert!(after > before + 0.2, "{before} -> {after}");
+        assert!(tets.iter().all(|&t| cx.positive(t)));
+        assert_eq!(smooth_node(&mut cx, 0), None);
+    }
+}
