@@ -52,7 +52,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        3
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
