@@ -113,12 +113,14 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
         intersections.push(id);
     }
 
-    // The topological model needs the box: it is what closes the regions.
-    if let Some(bx) = box_node {
-        let mut inputs = vec![bx];
+    // The topological model needs something that closes the regions: the box, or surfaces that
+    // are sealed already (`[model] sealed = true`, e.g. a gOcad Model3d).
+    if box_node.is_some() || recipe.model.sealed {
+        let mut inputs: Vec<NodeId> = box_node.into_iter().collect();
         inputs.extend(surface_nodes.values().copied());
         inputs.extend(intersections.iter().copied());
         let op = ModelOp {
+            has_box: box_node.is_some(),
             n_surfaces: surface_nodes.len(),
             faults: recipe
                 .surfaces
@@ -152,7 +154,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
         return Ok(g);
     }
 
-    // Without a box there is no closed model: the curves of the imports and intersections are
+    // Without a box or sealed surfaces there is no closed model: the curves of the imports and intersections are
     // discretized and exported, nothing is meshed.
     let mut curve_inputs = import_ids.clone();
     curve_inputs.extend(intersections);

@@ -31,6 +31,10 @@ pub struct ModelSpec {
     pub name: String,
     /// Default `m`.
     pub units: Units,
+    /// Default `false`. `true`: the surfaces close every region themselves (e.g. a gOcad
+    /// Model3d), so the model is built without a `[box]`; with a `[box]` as well, the box sides
+    /// join the model and patches outside the box are trimmed away as usual.
+    pub sealed: bool,
     #[serde(skip)]
     pub span: Span,
 }

@@ -1,8 +1,8 @@
 //! `model`: the topological model. Every surface (imports and box sides) is split along all its
 //! intersection curves, cut into patches, the patches outside the box are trimmed away, and the
 //! regions are found by face-uses, faults being the surfaces allowed to dangle; then the model's
-//! vertices, named curves and patch boundaries are derived (`stages::model`). Inputs: the box,
-//! then the surfaces (`n_surfaces`, in name order), then the intersections. The expander attached
+//! vertices, named curves and patch boundaries are derived (`stages::model`). Inputs: the box
+//! (when `has_box`; a sealed model may have none), then the surfaces (`n_surfaces`, in name order), then the intersections. The expander attached
 //! to this node (`plan::ops::expand`) adds the per-curve, per-patch and per-region nodes.
 
 use super::SurfaceData;
@@ -36,6 +36,10 @@ pub struct ModelData {
 }
 
 pub struct ModelOp {
+    /// Whether the first input is the box. Without one (a sealed model, `[model] sealed = true`)
+    /// the bounding box of all surfaces stands in for it: it sets the trims' tolerance and, as it
+    /// contains every patch, discards none as outside.
+    pub has_box: bool,
     pub n_surfaces: usize,
     /// Surfaces that may end inside the model (the recipe's faults).
     pub faults: Vec<String>,
@@ -56,6 +60,7 @@ impl Operation for ModelOp {
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
+        p.set("box", self.has_box).expect("bool");
         for (k, v) in self.tolerances.fields() {
             p.set(&format!("tolerances.{k}"), v)
                 .expect("validated finite");
@@ -76,8 +81,12 @@ impl Operation for ModelOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let (bbox, rest) = inputs.split_first().ok_or("model needs the box")?;
-        let bbox: BBox = bbox.decode()?;
+        let (bbox, rest) = if self.has_box {
+            let (bbox, rest) = inputs.split_first().ok_or("model needs the box")?;
+            (Some(bbox.decode::<BBox>()?), rest)
+        } else {
+            (None, inputs)
+        };
         if rest.len() < self.n_surfaces {
             return Err("model needs its surfaces".into());
         }
@@ -89,6 +98,10 @@ impl Operation for ModelOp {
             .iter()
             .map(|a| a.decode())
             .collect::<Result<_, _>>()?;
+        let bbox = match bbox {
+            Some(b) => b,
+            None => surfaces_bbox(&surfaces)?,
+        };
         let named: Vec<(&str, &TriMesh)> = surfaces
             .iter()
             .map(|s| (s.name.as_str(), &s.mesh))
@@ -168,6 +181,15 @@ impl Operation for ModelOp {
         let names: Vec<&str> = model.regions.iter().map(|r| r.name.as_str()).collect();
         Ok(out.note(format!("regions: {}", names.join(", "))))
     }
+}
+
+/// The bounding box of every vertex of `surfaces`: the stand-in for the box of a sealed model.
+fn surfaces_bbox(surfaces: &[SurfaceData]) -> Result<BBox, OpError> {
+    let b = BBox::from_points(surfaces.iter().flat_map(|s| s.mesh.vertices.iter()));
+    if b.is_empty() {
+        return Err("a sealed model needs at least one surface with vertices".into());
+    }
+    Ok(b)
 }
 
 impl ModelData {

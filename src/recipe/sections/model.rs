@@ -1,4 +1,4 @@
-//! `[model]` (name and units) and `[tolerances]` (the fields of `crate::geom::Tolerances`).
+//! `[model]` (name, units and whether the surfaces are sealed) and `[tolerances]` (the fields of `crate::geom::Tolerances`).
 //! Decides that the model name is a portable file-name stem and that every tolerance is in its
 //! documented range.
 
@@ -8,7 +8,7 @@ use crate::geom::Tolerances;
 use crate::recipe::reader::{self as rd, Ctx, Value};
 use crate::recipe::spec::{ModelSpec, Units};
 
-const MODEL_KEYS: &[&str] = &["name", "units"];
+const MODEL_KEYS: &[&str] = &["name", "units", "sealed"];
 
 pub(crate) fn read_model(
     ctx: &mut Ctx<'_>,
@@ -59,9 +59,14 @@ pub(crate) fn read_model(
         ),
         None => Some(Units::Metre),
     };
+    let sealed = match t.get("sealed") {
+        Some(x) => rd::boolean(ctx, x, "model.sealed"),
+        None => Some(false),
+    };
     Some(ModelSpec {
         name: name?,
         units: units?,
+        sealed: sealed?,
         span: ctx.span(v.span()),
     })
 }
