@@ -56,7 +56,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        4
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
