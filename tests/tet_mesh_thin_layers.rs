@@ -1,7 +1,6 @@
 //! Issue 6: `recipe tetmesh` on the thin (35 m) reservoir layer as full builds of the didactic
 //! model cut it. Each case must mesh (the exact `verify` inside the mesher passes) and, when the
-//! independent checker is available, pass `check_mesh.py` too. Cases still stuck are `#[ignore]`d
-//! with the reason, so `cargo test -- --ignored` shows where the mesher stands.
+//! independent checker is available, pass `check_mesh.py` too.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -65,19 +64,16 @@ fn the_east_reservoir_block_with_500_m_triangles_on_a_35_m_layer_meshes_and_veri
 }
 
 #[test]
-#[ignore = "issue 6 open: the front is still stuck at the box corner x=505000, y=7000000"]
 fn the_refined_east_reservoir_block_meshes_past_the_box_corner_and_verifies() {
     mesh_case("resE_refb", "reservoir_E", true);
 }
 
 #[test]
-#[ignore = "issue 6 open: the front is still stuck near (501727, 7003026, -1281)"]
 fn the_east_reservoir_block_of_the_f2_75_build_meshes_and_verifies() {
     mesh_case("resE_f2_75", "reservoir_E", true);
 }
 
 #[test]
-#[ignore = "issue 6 open: the front is still stuck near (500487, 7002310, -1233)"]
 fn the_west_reservoir_block_with_500_m_triangles_meshes_and_verifies() {
     mesh_case("resW_size500", "reservoir_W", false);
 }
