@@ -37,6 +37,15 @@ const FACE_CLEARANCE: f64 = 0.3;
 const FRONT_CELL: f64 = 2.0;
 /// Candidate apexes whose tetrahedron has a (float) mean ratio below this are never considered.
 const FLAT: f64 = 1e-9;
+/// Heights of last-resort Steiner apexes over a stuck face, in local target sizes (not the
+/// face's own size, so that tiny faces do not seed tinier nodes): down to 1/200 of the size, for
+/// layers far thinner than their boundary triangles.
+const STEINER_HEIGHTS: [f64; 5] = [0.4, 0.2, 0.1, 0.05, 0.025];
+/// No new node is created closer than this (in local background sizes) to an existing node:
+/// without it, slivers over slivers seed ever tinier faces and the front never closes.
+const MIN_NODE_GAP: f64 = 0.004;
+/// Steiner apexes keep at least this (in local sizes) from every node near the stuck face.
+const STEINER_GAP: f64 = 0.05;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
 const NEAR_IDEAL: f64 = 1.0;
 
@@ -153,6 +162,15 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         backtracks += 1;
         let at = centroid(&f, &st.nodes);
         if *level > MAX_LEVEL || backtracks > max_backtracks {
+            // Last resort before giving up: a Steiner point low over the stuck face.
+            let m = centroid(&f, &st.nodes);
+            let hc = st
+                .target(mean_edge(&f, &st.nodes), &m)
+                .max(0.8 * st.bg.size_at(&m));
+            if let Some(c) = st.steiner_apex(fid, f, hc) {
+                st.build(fid, c);
+                continue;
+            }
             return Err(TetMeshError::new(
                 st.name,
                 format!(
@@ -304,6 +322,13 @@ impl State<'_> {
                     let near_node = cand_nodes
                         .iter()
                         .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
+                    let tiny = cand_nodes
+                        .iter()
+                        .chain(&f)
+                        .any(|&w| dist(&self.nodes[w as usize], &p) < MIN_NODE_GAP * hc);
+                    if tiny {
+                        continue;
+                    }
                     // On the last attempt before back-tracking, any valid point will do.
                     if q_min > 0.0
                         && (near_node || !self.clear_of_faces(&p, fid, 0.5 * FACE_CLEARANCE * hc))
@@ -326,6 +351,90 @@ impl State<'_> {
                 if self.valid(fid, f, cand) {
                     return Some(cand);
                 }
+            }
+        }
+        None
+    }
+
+    /// Last resort before back-tracking (thin layers: the opposite front is closer than any
+    /// standard candidate): a Steiner point low over the face. Candidates sit above interior
+    /// points of the face at decreasing heights (down to a tiny fraction of the local size, for
+    /// gaps far thinner than the faces), and part-way from the face towards each nearby front
+    /// node (the centre of the cavity lies in that direction). Ranked by the float mean ratio;
+    /// each is accepted only by the exact validity test, so the tetrahedron is positive and
+    /// crosses nothing — a flat one is left to the optimizer.
+    fn steiner_apex(&mut self, fid: u32, f: [u32; 3], height: f64) -> Option<Cand> {
+        let [a, b, c] = f.map(|i| self.nodes[i as usize]);
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if nl <= 0.0 || !nl.is_finite() {
+            return None;
+        }
+        let nu = n.map(|x| x / nl);
+        let mut pts: Vec<P> = Vec::new();
+        const BARY: [[f64; 3]; 7] = [
+            [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
+            [0.6, 0.2, 0.2],
+            [0.2, 0.6, 0.2],
+            [0.2, 0.2, 0.6],
+            [0.2, 0.4, 0.4],
+            [0.4, 0.2, 0.4],
+            [0.4, 0.4, 0.2],
+        ];
+        for frac in STEINER_HEIGHTS {
+            let t = height * frac;
+            for w in &BARY {
+                pts.push([0, 1, 2].map(|k| w[0] * a[k] + w[1] * b[k] + w[2] * c[k] + nu[k] * t));
+            }
+        }
+        let m = centroid(&f, &self.nodes);
+        let r = 3.0 * height.max(mean_edge(&f, &self.nodes));
+        let mut near = std::mem::take(&mut self.scratch);
+        self.front
+            .query(&m.map(|x| x - r), &m.map(|x| x + r), &mut near);
+        let mut others: Vec<u32> = near
+            .iter()
+            .flat_map(|&g| self.front.faces[g as usize])
+            .filter(|w| !f.contains(w))
+            .collect();
+        self.scratch = near;
+        others.sort_unstable();
+        others.dedup();
+        for &w in &others {
+            let q = self.nodes[w as usize];
+            if orient3d(&a, &b, &c, &q) != Orientation::Positive {
+                continue;
+            }
+            for s in [0.5, 0.3, 0.15, 0.05] {
+                pts.push([0, 1, 2].map(|k| m[k] + (q[k] - m[k]) * s));
+            }
+        }
+        // Never a node nearly on top of another: that would seed ever smaller faces.
+        let clear = STEINER_GAP * height;
+        let mut cands: Vec<(f64, usize)> = pts
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.iter().all(|x| x.is_finite()))
+            .filter(|(_, p)| {
+                others
+                    .iter()
+                    .chain(&f)
+                    .all(|&w| dist(&self.nodes[w as usize], p) >= clear)
+            })
+            .map(|(i, p)| (mean_ratio(&a, &b, &c, p), i))
+            .filter(|(q, _)| *q > 0.0)
+            .collect();
+        cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+        for &(_, i) in &cands {
+            let cand = Cand::New(pts[i]);
+            if self.valid(fid, f, cand) {
+                return Some(cand);
             }
         }
         None
