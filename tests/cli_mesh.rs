@@ -7,7 +7,6 @@ mod common_cli;
 use common_cli::*;
 use georecipe::mesh::read::read_volume_msh;
 use std::collections::BTreeMap;
-use std::path::Path;
 use std::process::Command;
 
 const REGIONS: [&str; 6] = [
@@ -18,23 +17,6 @@ const REGIONS: [&str; 6] = [
     "underburden_E",
     "underburden_W",
 ];
-
-fn checker() -> Option<std::path::PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/tools/check_mesh.py");
-    if !p.is_file() {
-        eprintln!("skipping the independent check: ../shared is absent");
-        return None;
-    }
-    let ok = Command::new("python3")
-        .args(["-c", "import numpy, meshio"])
-        .status()
-        .is_ok_and(|s| s.success());
-    if !ok {
-        eprintln!("skipping the independent check: python3 with numpy and meshio is absent");
-        return None;
-    }
-    Some(p)
-}
 
 #[test]
 fn the_shipped_example_builds_a_mesh_that_the_independent_checker_accepts_in_msh_and_vtu() {

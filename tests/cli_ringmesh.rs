@@ -8,10 +8,12 @@
 //! regions as the file has REGION records other than `Universe`, and has the independent checker
 //! (`../shared/tools/check_mesh.py`) verify the msh with that region count.
 
+mod common_cli;
+use common_cli::checker;
 use georecipe::geom::BBox;
 use georecipe::stages::import::{ImportOptions, import_surfaces, parse_gocad};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 fn data_dir() -> Option<PathBuf> {
@@ -25,23 +27,6 @@ fn data_dir() -> Option<PathBuf> {
         eprintln!("skipping: ../shared is absent");
         None
     }
-}
-
-fn checker() -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/tools/check_mesh.py");
-    if !p.is_file() {
-        eprintln!("skipping the independent check: ../shared is absent");
-        return None;
-    }
-    let ok = Command::new("python3")
-        .args(["-c", "import numpy, meshio"])
-        .status()
-        .is_ok_and(|s| s.success());
-    if !ok {
-        eprintln!("skipping the independent check: python3 with numpy and meshio is absent");
-        return None;
-    }
-    Some(p)
 }
 
 /// A recipe surface name for a TSurf name: characters a recipe name may not hold become `_`,

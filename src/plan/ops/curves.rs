@@ -8,7 +8,7 @@
 
 use super::{ExportOp, SurfaceData};
 use crate::engine::{
-    Artifact, Expander, Expansion, OpError, Operation, Output, Params, RunContext,
+    Artifact, Expander, Expansion, NodeId, OpError, Operation, Output, Params, RunContext,
 };
 use crate::geom::Tolerances;
 use crate::plan::lower::curve_subdivision;
@@ -265,37 +265,15 @@ impl Expander for DiscretizeExpander {
             return Err(recipe::render(&unmatched).into());
         }
         let curves_node = x.node("curves").ok_or("no `curves` node")?;
-        let mut export_inputs = Vec::new();
-        for name in &self.import_nodes {
-            export_inputs.push(
-                x.node(name)
-                    .ok_or_else(|| OpError::from(format!("no node `{name}`")))?,
-            );
-        }
+        let mut export_inputs = existing_nodes(x, &self.import_nodes)?;
         for c in &set.curves {
-            let extract = x
-                .add_op(
-                    &format!("curve:{}", c.name),
-                    Arc::new(CurveExtractOp {
-                        name: c.name.clone(),
-                        from_model: false,
-                    }),
-                    &[curves_node],
-                )
-                .map_err(graph_error)?;
-            let (rule_path, rule) = curve_subdivision(&self.recipe, &c.name);
-            let d = x
-                .add_op(
-                    &format!("discretize:{}", c.name),
-                    Arc::new(DiscretizeOp {
-                        name: c.name.clone(),
-                        rule_path,
-                        rule,
-                    }),
-                    &[extract],
-                )
-                .map_err(graph_error)?;
-            export_inputs.push(d);
+            export_inputs.push(add_curve_nodes(
+                x,
+                &self.recipe,
+                &c.name,
+                curves_node,
+                false,
+            )?);
         }
         let export = ExportOp {
             model: self.recipe.model.name.clone(),
@@ -316,6 +294,49 @@ impl Expander for DiscretizeExpander {
     }
 }
 
-fn graph_error(e: crate::engine::GraphError) -> OpError {
+/// Adds `curve:<name>` (extracted from `source`: the model, or the curve set) and
+/// `discretize:<name>` under the recipe's rule for that curve; returns the discretize node.
+pub(super) fn add_curve_nodes(
+    x: &mut Expansion,
+    recipe: &Recipe,
+    name: &str,
+    source: NodeId,
+    from_model: bool,
+) -> Result<NodeId, OpError> {
+    let extract = x
+        .add_op(
+            &format!("curve:{name}"),
+            Arc::new(CurveExtractOp {
+                name: name.to_string(),
+                from_model,
+            }),
+            &[source],
+        )
+        .map_err(graph_error)?;
+    let (rule_path, rule) = curve_subdivision(recipe, name);
+    x.add_op(
+        &format!("discretize:{name}"),
+        Arc::new(DiscretizeOp {
+            name: name.to_string(),
+            rule_path,
+            rule,
+        }),
+        &[extract],
+    )
+    .map_err(graph_error)
+}
+
+/// The ids of nodes that must already be in the graph (e.g. the imports), in order.
+pub(super) fn existing_nodes(x: &Expansion, names: &[String]) -> Result<Vec<NodeId>, OpError> {
+    names
+        .iter()
+        .map(|n| {
+            x.node(n)
+                .ok_or_else(|| OpError::from(format!("no node `{n}`")))
+        })
+        .collect()
+}
+
+pub(super) fn graph_error(e: crate::engine::GraphError) -> OpError {
     OpError::from(e.to_string())
 }

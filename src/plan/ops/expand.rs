@@ -5,14 +5,11 @@
 //! subdivision therefore re-runs that curve, the patches it bounds, the regions those bound,
 //! `mesh` and `export`, and nothing else.
 
+use super::curves::{add_curve_nodes, existing_nodes, graph_error};
 use super::patch::patch_curves;
-use super::{
-    AssembleOp, CurveExtractOp, DiscretizeOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp,
-    TetMeshOp,
-};
+use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp};
 use crate::engine::{Artifact, Expander, Expansion, NodeId, OpError};
 use crate::mesh::RegionGroup;
-use crate::plan::lower::curve_subdivision;
 use crate::recipe::{self, Recipe};
 use crate::stages::regions::FaceUse;
 use crate::stages::surface_mesh::SurfaceSize;
@@ -23,10 +20,6 @@ pub struct ModelExpander {
     pub recipe: Arc<Recipe>,
     /// Names of the import nodes whose validation reports the export writes.
     pub import_nodes: Vec<String>,
-}
-
-fn graph_error(e: crate::engine::GraphError) -> OpError {
-    OpError::from(e.to_string())
 }
 
 impl ModelExpander {
@@ -84,38 +77,10 @@ impl Expander for ModelExpander {
             return Err(recipe::render(&unmatched).into());
         }
         let model_node = x.node("model").ok_or("no `model` node")?;
-        let mut export_inputs: Vec<NodeId> = Vec::new();
-        for name in &self.import_nodes {
-            export_inputs.push(
-                x.node(name)
-                    .ok_or_else(|| OpError::from(format!("no node `{name}`")))?,
-            );
-        }
+        let mut export_inputs: Vec<NodeId> = existing_nodes(x, &self.import_nodes)?;
         let mut discretized = Vec::with_capacity(topo.curves.len());
         for c in &topo.curves {
-            let extract = x
-                .add_op(
-                    &format!("curve:{}", c.name),
-                    Arc::new(CurveExtractOp {
-                        name: c.name.clone(),
-                        from_model: true,
-                    }),
-                    &[model_node],
-                )
-                .map_err(graph_error)?;
-            let (rule_path, rule) = curve_subdivision(&self.recipe, &c.name);
-            let d = x
-                .add_op(
-                    &format!("discretize:{}", c.name),
-                    Arc::new(DiscretizeOp {
-                        name: c.name.clone(),
-                        rule_path,
-                        rule,
-                    }),
-                    &[extract],
-                )
-                .map_err(graph_error)?;
-            discretized.push(d);
+            discretized.push(add_curve_nodes(x, &self.recipe, &c.name, model_node, true)?);
         }
         let n_curves = discretized.len();
         export_inputs.extend(discretized.iter().copied());
