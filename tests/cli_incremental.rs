@@ -107,3 +107,51 @@ fn changing_an_imported_surface_reruns_its_import_and_what_depends_on_its_geomet
             || n.starts_with("surface:box")
     });
 }
+
+#[test]
+fn a_trim_reruns_the_model_and_only_the_meshes_of_what_it_removed_or_touched() {
+    let s = Scratch::didactic_built();
+    // What the shipped example has before the edit (nothing runs: every node is cached).
+    let (ok, before, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let f2_before: Vec<String> = all_nodes(&before)
+        .into_iter()
+        .filter(|n| n.starts_with("surface_mesh:F2#"))
+        .collect();
+    assert_eq!(
+        f2_before.len(),
+        3,
+        "F2 above, inside and below the reservoir"
+    );
+    // Keep only the part of the dangling fault F2 below the top of the reservoir.
+    let (ran, r) = ran_after(
+        &s,
+        "[output]",
+        "[[trim]]\nsurface = \"F2\"\nkeep = { below = \"H1\" }\n\n[output]",
+    );
+    let all = all_nodes(&r);
+    let f2_after: Vec<&String> = all
+        .iter()
+        .filter(|n| n.starts_with("surface_mesh:F2#"))
+        .collect();
+    assert_eq!(
+        f2_after.len(),
+        2,
+        "the F2 patch above H1 is gone: {f2_after:?}"
+    );
+    for must in ["model", "tet_mesh:overburden_E", "mesh", "export"] {
+        assert!(
+            ran.contains(&must.to_string()),
+            "`{must}` did not re-run: {ran:?}"
+        );
+    }
+    // Only F2's own curves and patches may be re-meshed, and only the region that held the
+    // removed patch is re-meshed: the reservoir and underburden keep their F2 faces.
+    assert_none_ran(&ran, &all, |n| {
+        n.starts_with("discretize:") && !n.starts_with("discretize:F2")
+            || n.starts_with("surface_mesh:") && !n.starts_with("surface_mesh:F2#")
+            || n.starts_with("tet_mesh:") && n != "tet_mesh:overburden_E"
+            || n.starts_with("import:")
+            || n.starts_with("intersect:")
+    });
+}
