@@ -183,9 +183,9 @@ fn the_html_names_every_region_and_surface_and_has_both_seed_tables() {
     for name in ["upper", "lower", "empty", "box.top", "H1", "H1#0"] {
         assert!(html.contains(name), "{name} missing");
     }
-    assert!(html.contains("Table 1. Surface triangles"));
-    assert!(html.contains("Table 2. Tetrahedra"));
-    for col in ["&gt; 1.15 (%)", "&lt; 0.1 (%)", "min dihedral", "SD"] {
+    assert!(html.contains("Table 1: surface triangles"));
+    assert!(html.contains("Table 2: tetrahedra"));
+    for col in ["% &gt; 1.15", "% &lt; 0.1", "min dihedral", "SD"] {
         assert!(html.contains(col), "column {col} missing");
     }
     // Figures, legends, histograms (2 pictures + 3 region + 3 surface charts).
@@ -349,7 +349,7 @@ fn a_default_input_with_only_a_mesh_renders() {
     };
     let (html, json) = render_both(&i);
     assert_balanced(&html);
-    assert!(html.contains("upper") && html.contains("Table 2."));
+    assert!(html.contains("upper") && html.contains("Table 2:"));
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["counts"]["tets"], 12);
     assert_eq!(

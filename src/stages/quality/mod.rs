@@ -6,6 +6,7 @@
 //! Rows are in group/region index order with an "all" row last, so the output is deterministic.
 //! An empty group keeps its row with zero counts and NaN statistics (rendered as "-", JSON null).
 
+pub mod layout;
 pub mod measures;
 
 pub use measures::{PAPER_MEAN_RATIO_SCALE, tet_mean_ratio, tet_min_dihedral_deg, triangle_ratio};
@@ -211,18 +212,29 @@ fn f(v: f64, digits: usize) -> String {
     }
 }
 
-/// Renders rows (header first) as right-aligned columns, the first column left-aligned.
-fn render(header: &[&str], rows: Vec<Vec<String>>) -> String {
+/// A table as aligned text: the title, then right-aligned columns, the first left-aligned.
+pub fn render_text(table: &layout::Table) -> String {
+    let cells = |row: &[layout::Cell]| -> Vec<String> {
+        row.iter()
+            .map(|c| match c {
+                layout::Cell::Name(s) => s.clone(),
+                layout::Cell::Count(n) => n.to_string(),
+                layout::Cell::Number { value, digits } => f(*value, *digits),
+            })
+            .collect()
+    };
+    let header: Vec<String> = table.columns.iter().map(|h| h.to_string()).collect();
+    let body: Vec<Vec<String>> = table.rows.iter().map(|r| cells(r)).collect();
     let mut width: Vec<usize> = header.iter().map(|h| h.chars().count()).collect();
-    for r in &rows {
+    for r in &body {
         for (w, c) in width.iter_mut().zip(r) {
             *w = (*w).max(c.chars().count());
         }
     }
-    let mut out = String::new();
-    let mut line = |cells: Vec<String>| {
+    let mut out = format!("{}\n", table.title);
+    for r in std::iter::once(&header).chain(&body) {
         let mut s = String::new();
-        for (i, (c, w)) in cells.iter().zip(&width).enumerate() {
+        for (i, (c, w)) in r.iter().zip(&width).enumerate() {
             if i == 0 {
                 let _ = write!(s, "{c:<w$}");
             } else {
@@ -231,84 +243,16 @@ fn render(header: &[&str], rows: Vec<Vec<String>>) -> String {
         }
         out.push_str(s.trim_end());
         out.push('\n');
-    };
-    line(header.iter().map(|h| h.to_string()).collect());
-    for r in rows {
-        line(r);
     }
     out
 }
 
 /// Table 1 as aligned text (c/c*: 1.0 ideal; percentages of triangles above 1.15 and 1.5).
 pub fn render_table1(rows: &[TriQuality]) -> String {
-    let header = [
-        "surface",
-        "nodes",
-        "triangles",
-        "c/c* avg",
-        "SD",
-        "max",
-        "% > 1.15",
-        "% > 1.5",
-    ];
-    let body = rows
-        .iter()
-        .map(|r| {
-            vec![
-                r.name.clone(),
-                r.nodes.to_string(),
-                r.triangles.to_string(),
-                f(r.avg, 4),
-                f(r.sd, 4),
-                f(r.max, 4),
-                f(r.pct_gt_1_15, 2),
-                f(r.pct_gt_1_5, 2),
-            ]
-        })
-        .collect();
-    format!(
-        "Table 1: surface triangles, c/c* (1.0 = equilateral)\n{}",
-        render(&header, body)
-    )
+    render_text(&layout::table1(rows))
 }
 
 /// Table 2 as aligned text (mean ratio normalised to 1.0, with the paper's 0.79 scale alongside).
 pub fn render_table2(rows: &[TetQuality]) -> String {
-    let header = [
-        "region",
-        "nodes",
-        "elements",
-        "MR avg",
-        "SD",
-        "min",
-        "% < 0.3",
-        "% < 0.2",
-        "% < 0.1",
-        "min dihedral",
-        "avg x0.79",
-        "min x0.79",
-    ];
-    let body = rows
-        .iter()
-        .map(|r| {
-            vec![
-                r.name.clone(),
-                r.nodes.to_string(),
-                r.elements.to_string(),
-                f(r.avg, 4),
-                f(r.sd, 4),
-                f(r.min, 4),
-                f(r.pct_lt_0_3, 2),
-                f(r.pct_lt_0_2, 2),
-                f(r.pct_lt_0_1, 2),
-                f(r.min_dihedral_deg, 2),
-                f(r.avg_paper, 4),
-                f(r.min_paper, 4),
-            ]
-        })
-        .collect();
-    format!(
-        "Table 2: tetrahedra, mean ratio (1.0 = regular tet; the seed's scale is x0.79), min dihedral in degrees\n{}",
-        render(&header, body)
-    )
+    render_text(&layout::table2(rows))
 }

@@ -11,6 +11,7 @@ use super::pictures::{self, FACE_CAP};
 use super::text::{count, esc, num};
 use super::view::Picture;
 use crate::mesh::SurfaceKind;
+use crate::stages::quality::layout::{self, Cell, Table};
 use crate::stages::quality::{TetQuality, TriQuality};
 use crate::stages::regions::Side;
 use std::fmt::Write as _;
@@ -257,56 +258,43 @@ fn model_tables(h: &mut String, input: &ReportInput, f: &Facts) {
     h.push_str("</table></section>\n");
 }
 
-fn quality_tables(h: &mut String, t1: &[TriQuality], t2: &[TetQuality]) {
-    h.push_str("<section><h2>Quality (the seed's Tables 1 and 2)</h2>");
-    h.push_str("<h3>Table 1. Surface triangles, c/c* (1.0 = equilateral)</h3>");
-    h.push_str("<table><tr><th class=\"l\">surface</th><th>nodes</th><th>triangles</th><th>average</th><th>SD</th><th>max</th><th>&gt; 1.15 (%)</th><th>&gt; 1.5 (%)</th></tr>");
-    for (i, r) in t1.iter().enumerate() {
-        let _ = write!(
-            h,
-            "<tr{}><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            if i + 1 == t1.len() {
-                " class=\"all\""
-            } else {
-                ""
-            },
-            esc(&r.name),
-            count(r.nodes),
-            count(r.triangles),
-            num(r.avg, 3),
-            num(r.sd, 3),
-            num(r.max, 2),
-            num(r.pct_gt_1_15, 2),
-            num(r.pct_gt_1_5, 2)
-        );
+/// One quality table from its shared layout; the last ("all") row is set apart.
+fn quality_table(h: &mut String, table: &Table) {
+    let _ = write!(h, "<h3>{}</h3><table><tr>", esc(table.title));
+    for (i, c) in table.columns.iter().enumerate() {
+        let class = if i == 0 { " class=\"l\"" } else { "" };
+        let _ = write!(h, "<th{class}>{}</th>", esc(c));
+    }
+    h.push_str("</tr>");
+    for (i, row) in table.rows.iter().enumerate() {
+        h.push_str(if i + 1 == table.rows.len() {
+            "<tr class=\"all\">"
+        } else {
+            "<tr>"
+        });
+        for c in row {
+            match c {
+                Cell::Name(s) => {
+                    let _ = write!(h, "<td class=\"l\">{}</td>", esc(s));
+                }
+                Cell::Count(n) => {
+                    let _ = write!(h, "<td>{}</td>", count(*n));
+                }
+                Cell::Number { value, digits } => {
+                    let _ = write!(h, "<td>{}</td>", num(*value, *digits));
+                }
+            }
+        }
+        h.push_str("</tr>");
     }
     h.push_str("</table>");
-    h.push_str("<h3>Table 2. Tetrahedra, mean ratio (1.0 = regular tet; the seed's scale gives it 0.79)</h3>");
-    h.push_str("<table><tr><th class=\"l\">region</th><th>nodes</th><th>elements</th><th>average</th><th>SD</th><th>min</th><th>&lt; 0.3 (%)</th><th>&lt; 0.2 (%)</th><th>&lt; 0.1 (%)</th><th>min dihedral (°)</th><th>average ×0.79</th><th>min ×0.79</th></tr>");
-    for (i, r) in t2.iter().enumerate() {
-        let _ = write!(
-            h,
-            "<tr{}><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            if i + 1 == t2.len() {
-                " class=\"all\""
-            } else {
-                ""
-            },
-            esc(&r.name),
-            count(r.nodes),
-            count(r.elements),
-            num(r.avg, 3),
-            num(r.sd, 3),
-            num(r.min, 3),
-            num(r.pct_lt_0_3, 2),
-            num(r.pct_lt_0_2, 2),
-            num(r.pct_lt_0_1, 2),
-            num(r.min_dihedral_deg, 1),
-            num(r.avg_paper, 3),
-            num(r.min_paper, 3)
-        );
-    }
-    h.push_str("</table><p class=\"small\">Thresholds and statistics as in the seed (population SD; strict comparisons), computed like <code>tools/check_mesh.py</code>. The percentages of Table 2 are of the normalised mean ratio.</p></section>\n");
+}
+
+fn quality_tables(h: &mut String, t1: &[TriQuality], t2: &[TetQuality]) {
+    h.push_str("<section><h2>Quality (the seed's Tables 1 and 2)</h2>");
+    quality_table(h, &layout::table1(t1));
+    quality_table(h, &layout::table2(t2));
+    h.push_str("<p class=\"small\">Thresholds and statistics as in the seed (population SD; strict comparisons), computed like <code>tools/check_mesh.py</code>. The percentages of Table 2 are of the normalised mean ratio.</p></section>\n");
 }
 
 fn histogram_grid(h: &mut String, hs: &[Histogram], colours: &[Rgb], measure: &str, marks: &[f64]) {
