@@ -465,8 +465,8 @@ mod tests {
         let mut near = far;
         near.colour = 1;
         for q in &mut near.pts {
-            for k in 0..3 {
-                q[k] += 0.5 * cam.toward[k];
+            for (c, t) in q.iter_mut().zip(cam.toward) {
+                *c += 0.5 * t;
             }
         }
         let p = draw(&[near, far], &frame(), &style(1, false));
