@@ -20,6 +20,9 @@ use georecipe::stages::surface_mesh::{SurfaceSize, mesh_patch_with};
 use std::collections::BTreeMap;
 use std::path::Path;
 
+/// Nodes and triangles gathered from several patches.
+type Soup = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+
 fn load(store: &Store, lock: &LockFile, node: &str) -> Result<Artifact, String> {
     let n = lock
         .nodes
@@ -102,7 +105,7 @@ fn run(recipe_path: &str, cache: &str, only: Option<&str>) -> Result<(), String>
         "{:<16} {:>7} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7}",
         "patch", "nodes", "tris", "avg", "SD", "max", ">1.15", ">1.5"
     );
-    let mut per_surface: BTreeMap<String, (Vec<[f64; 3]>, Vec<[u32; 3]>)> = BTreeMap::new();
+    let mut per_surface: BTreeMap<String, Soup> = BTreeMap::new();
     let mut all_nodes = Vec::new();
     let mut all_tris = Vec::new();
     let mut secs = 0.0;

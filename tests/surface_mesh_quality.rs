@@ -71,7 +71,10 @@ fn a_25_m_border_graded_into_a_200_m_interior_stays_near_equilateral() {
     let (out, q) = mesh_and_check(&input, &recipe_size(), 1.035, 2.0);
     assert!(q.pct_above_1_5 == 0.0, "{q:?}");
     // Graded: far more triangles than a uniform 200 m mesh (~230), far fewer than 25 m (~14800).
-    assert!(out.triangles.len() > 1500 && out.triangles.len() < 8000, "{q:?}");
+    assert!(
+        out.triangles.len() > 1500 && out.triangles.len() < 8000,
+        "{q:?}"
+    );
 }
 
 #[test]

@@ -90,10 +90,7 @@ pub fn curvature_nodes(support: &TriMesh, normals: &[[f64; 3]], size: f64) -> Ve
         let mut h = h0;
         for _ in 0..16 {
             let r = h * 0.5;
-            let turn: f64 = turns
-                .locate_within_distance(m, r * r)
-                .map(|x| x.data)
-                .sum();
+            let turn: f64 = turns.locate_within_distance(m, r * r).map(|x| x.data).sum();
             let need = 0.5 * CURVE_ANGLE;
             if turn >= need * (1.0 - 1e-9) || !(h < size) {
                 break;
@@ -283,7 +280,12 @@ mod tests {
         ];
         let m = TriMesh::new(vs, ts);
         let nodes = curvature_nodes(&m, &normals_of(&m), 200.0);
-        assert!(nodes.is_empty(), "{} nodes, h = {:?}", nodes.len(), nodes.first());
+        assert!(
+            nodes.is_empty(),
+            "{} nodes, h = {:?}",
+            nodes.len(),
+            nodes.first()
+        );
     }
 
     #[test]

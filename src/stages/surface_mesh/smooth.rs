@@ -74,8 +74,7 @@ impl Smoother<'_> {
                 };
                 let before = energy(self.tri_shape(t)) + energy(self.tri_shape(nb));
                 let p = |k: u32| &self.p3[k as usize];
-                let after =
-                    energy(shape(p(p0), p(p1), p(q))) + energy(shape(p(q), p(p2), p(p0)));
+                let after = energy(shape(p(p0), p(p1), p(q))) + energy(shape(p(q), p(p2), p(p0)));
                 if after < before * (1.0 - 1e-9) {
                     self.cdt.flip(t, i);
                     flips += 1;
@@ -136,7 +135,11 @@ impl Smoother<'_> {
                     let left = cross(&nn, &e);
                     let ll = dot(&left, &left).sqrt();
                     let el = dot(&e, &e).sqrt();
-                    let k = if ll > 0.0 { 0.5 * 3f64.sqrt() * el / ll } else { 0.0 };
+                    let k = if ll > 0.0 {
+                        0.5 * 3f64.sqrt() * el / ll
+                    } else {
+                        0.0
+                    };
                     for c in 0..3 {
                         ideal[c] += 0.5 * (pa[c] + pb[c]) + k * left[c];
                     }
@@ -165,11 +168,8 @@ impl Smoother<'_> {
                 };
                 let valid = fan.iter().all(|&t| {
                     let (a, b) = opposite(t);
-                    orient2d(
-                        &on.uv,
-                        &self.cdt.pts[a as usize],
-                        &self.cdt.pts[b as usize],
-                    ) == Orientation::Positive
+                    orient2d(&on.uv, &self.cdt.pts[a as usize], &self.cdt.pts[b as usize])
+                        == Orientation::Positive
                 });
                 if !valid {
                     continue;
