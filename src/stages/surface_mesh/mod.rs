@@ -15,8 +15,13 @@
 //! 4. `refine` (geometric pass): frontal Delaunay point insertion with sizes from `size` (graded
 //!    from the boundary discretization, bounded by the support's curvature) measured in 3D, placed
 //!    in the flattening's local metric; new points are mapped onto the support through it.
-//! 5. `smooth` (topological pass + smoothing): 3D quality flips and Laplacian smoothing with
-//!    pull-back onto the support, guarded by exact orientation tests in the plane.
+//! 5. `smooth` (topological pass + smoothing): 3D quality flips and smoothing towards the
+//!    neighbours' mean or the fan's equilateral apexes, with pull-back onto the support, guarded
+//!    by exact orientation tests in the plane.
+//!
+//! Sizes grade at most `MAX_SURFACE_GROWTH` (1.15) per element on a surface, whatever growth the
+//! recipe allows for volumes: the seed's Table 1 judges surface triangles, and grading is what
+//! costs them quality (see the constant).
 //! 6. `verify`: exact topological and geometric validity; `mesh_patch` never returns a mesh that
 //!    fails it.
 //!
