@@ -3,11 +3,14 @@
 //! With g = growth - 1, the x_i the given loop and constraint nodes and h_i their local segment
 //! length (mean of the adjacent given segments):
 //!   up(x) = min_i(h_i + g·|x - x_i|), down(x) = max_i(h_i - g·|x - x_i|),
-//!   h(x) = clamp(max(min(size, up(x)), down(x)), min_size, max_size).
+//!   h(x) = clamp(min(up(x), max(size, down(x))), min_size, max_size).
 //! So sizes start from the boundary discretization and change away from it by at most g per unit
 //! of length in either direction (a Lipschitz bound, which gives the 2:1-like balance of the
 //! seed's octree without a tree to balance): a fine boundary grows towards `size`, and a boundary
-//! coarser than `size` shrinks towards it instead of meeting tiny triangles.
+//! coarser than `size` shrinks towards it instead of meeting tiny triangles. Where a fine and a
+//! coarse boundary meet (a 25 m horizon curve ending on a 200 m box edge), `up` wins: the fine
+//! curve keeps elements of its own size all along, instead of fans of slivers hanging from a few
+//! coarse points near the corner.
 //! Curvature: each support vertex where the support's normal turns faster than `CURVE_ANGLE` per
 //! element of the target size adds an up-only node with h = CURVE_ANGLE / κ (κ: the largest
 //! normal turn per unit length across the vertex's edges, from the dihedral angles of the support
@@ -27,6 +30,15 @@ pub const CURVE_ANGLE: f64 = 0.35;
 
 /// Up-only size nodes from the support's curvature (see the module doc), for vertices where the
 /// curvature size is below `size`.
+///
+/// One edge's estimate h = CURVE_ANGLE · len / angle trusts that edge's facets; on a split support
+/// a sliver a few centimetres wide with a facet-level kink of under a degree would ask for metre
+/// elements. So an estimate counts only if the normal really turns by `CURVE_ANGLE` near it: the
+/// dihedral angles of the support edges whose midpoints lie within h/2 must add up to at least
+/// half of `CURVE_ANGLE` (half: a disk centred at the end of a bend sees only half of it); else h
+/// grows (in proportion, as it would across parallel creases) until they do or it reaches `size`. A smooth bend faceted finely or coarsely passes unchanged (the creases
+/// across a disk of diameter h turn the normal by about CURVE_ANGLE by construction); an isolated
+/// shallow kink does not refine at all.
 pub fn curvature_nodes(support: &TriMesh, normals: &[[f64; 3]], size: f64) -> Vec<([f64; 3], f64)> {
     let mut edges: BTreeMap<(u32, u32), u32> = BTreeMap::new();
     for (t, tri) in support.triangles.iter().enumerate() {
@@ -39,7 +51,9 @@ pub fn curvature_nodes(support: &TriMesh, normals: &[[f64; 3]], size: f64) -> Ve
     let height = |t: u32, elen: f64| {
         crate::geom::trimesh::triangle_area(support.corners(t as usize)) * 2.0 / elen
     };
-    let mut out = Vec::new();
+    let origin = support.vertices.first().copied().unwrap_or([0.0; 3]);
+    // (a, b, edge length, dihedral angle, single-edge estimate of h) of every bent interior edge.
+    let mut bent = Vec::new();
     for (&(a, b), &t) in &edges {
         if a > b {
             continue;
@@ -56,14 +70,42 @@ pub fn curvature_nodes(support: &TriMesh, normals: &[[f64; 3]], size: f64) -> Ve
             continue;
         }
         let len = (height(t, elen) + height(u, elen)) / 2.0;
-        let h = CURVE_ANGLE * len / angle;
+        bent.push((a, b, elen, angle, CURVE_ANGLE * len / angle));
+    }
+    let mid = |a: u32, b: u32| {
+        let (pa, pb) = (support.vertices[a as usize], support.vertices[b as usize]);
+        [0, 1, 2].map(|k| (pa[k] + pb[k]) * 0.5 - origin[k])
+    };
+    let turns: Tree = RTree::bulk_load(
+        bent.iter()
+            .map(|&(a, b, _, angle, _)| GeomWithData::new(mid(a, b), angle))
+            .collect(),
+    );
+    let mut out = Vec::new();
+    for &(a, b, elen, _, h0) in &bent {
+        if !(h0 < size) {
+            continue;
+        }
+        let m = mid(a, b);
+        let mut h = h0;
+        for _ in 0..16 {
+            let r = h * 0.5;
+            let turn: f64 = turns.locate_within_distance(m, r * r).map(|x| x.data).sum();
+            let need = 0.5 * CURVE_ANGLE;
+            if turn >= need * (1.0 - 1e-9) || !(h < size) {
+                break;
+            }
+            h *= (need / turn.max(1e-3 * need)).min(4.0);
+        }
         if !(h < size) {
             continue;
         }
         // Nodes along the edge, about h apart (at most 64 per edge).
-        let m = ((elen / h).ceil() as usize).clamp(1, 64);
-        for k in 0..=m {
-            let s = k as f64 / m as f64;
+        let (pa, pb) = (support.vertices[a as usize], support.vertices[b as usize]);
+        let e = sub(&pb, &pa);
+        let n = ((elen / h).ceil() as usize).clamp(1, 64);
+        for k in 0..=n {
+            let s = k as f64 / n as f64;
             out.push(([pa[0] + s * e[0], pa[1] + s * e[1], pa[2] + s * e[2]], h));
         }
     }
@@ -155,11 +197,8 @@ impl SizeField {
                 .min(self.hmin_curv)
                 .clamp(self.min_size, self.max_size);
         }
-        // up(x) can only lower h below `size` if some node is finer than `size`.
-        if self.hmin_nodes < h {
-            h = up(&self.tree, self.hmin_nodes, self.slope, q, h);
-        }
-        // down(x) can only raise h if some node is coarser than h, and only from within reach.
+        // down(x) can only raise h above `size` if some node is coarser than `size`, and only
+        // from within reach.
         if self.hmax_nodes > h {
             let reach = (self.hmax_nodes - h) / self.slope;
             let mut low = h;
@@ -167,6 +206,10 @@ impl SizeField {
                 low = low.max(m.data - self.slope * dist(m.geom(), &q));
             }
             h = low;
+        }
+        // up(x) bounds everything: a fine boundary node keeps its size next to a coarse one.
+        if self.hmin_nodes < h {
+            h = up(&self.tree, self.hmin_nodes, self.slope, q, h);
         }
         // Curvature last: a tight hinge needs small elements whatever the boundary says.
         if self.hmin_curv < h {
@@ -200,6 +243,74 @@ mod tests {
             ts.push([a, d, c]);
         }
         TriMesh::new(vs, ts)
+    }
+
+    fn normals_of(m: &TriMesh) -> Vec<[f64; 3]> {
+        (0..m.triangles.len())
+            .map(|t| {
+                let [a, b, c] = m.corners(t);
+                let n = crate::geom::predicates::cross(&sub(b, a), &sub(c, a));
+                let l = dot(&n, &n).sqrt();
+                [n[0] / l, n[1] / l, n[2] / l]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_sliver_with_a_shallow_kink_asks_for_no_refinement() {
+        // A 1000 m square, flat except a 5 cm wide sliver strip along x = 500 whose far side is
+        // 1 mm higher (a kink of about 1°, as splitting a support leaves behind).
+        let vs = vec![
+            [0.0, 0.0, 0.0],
+            [500.0, 0.0, 0.0],
+            [500.05, 0.0, 0.001],
+            [1000.0, 0.0, 0.001],
+            [0.0, 1000.0, 0.0],
+            [500.0, 1000.0, 0.0],
+            [500.05, 1000.0, 0.001],
+            [1000.0, 1000.0, 0.001],
+        ];
+        let ts = vec![
+            [0, 1, 5],
+            [0, 5, 4],
+            [1, 2, 6],
+            [1, 6, 5],
+            [2, 3, 7],
+            [2, 7, 6],
+        ];
+        let m = TriMesh::new(vs, ts);
+        let nodes = curvature_nodes(&m, &normals_of(&m), 200.0);
+        assert!(
+            nodes.is_empty(),
+            "{} nodes, h = {:?}",
+            nodes.len(),
+            nodes.first()
+        );
+    }
+
+    #[test]
+    fn a_finely_faceted_bend_still_bounds_the_size() {
+        // A half cylinder of radius 150 m faceted every 1° (2.6 m facets): same bound as 9°.
+        let (n, r) = (180usize, 150.0);
+        let mut vs = Vec::new();
+        for j in 0..=1 {
+            for i in 0..=n {
+                let a = std::f64::consts::PI * i as f64 / n as f64;
+                vs.push([r * a.cos(), 600.0 * j as f64, r * a.sin()]);
+            }
+        }
+        let mut ts = Vec::new();
+        for i in 0..n as u32 {
+            let (a, b, c, d) = (i, i + 1, i + 1 + n as u32 + 1, i + n as u32 + 1);
+            ts.push([a, c, b]);
+            ts.push([a, d, c]);
+        }
+        let m = TriMesh::new(vs, ts);
+        let nodes = curvature_nodes(&m, &normals_of(&m), 200.0);
+        assert!(!nodes.is_empty());
+        for (_, h) in &nodes {
+            assert!(*h > 40.0 && *h < 80.0, "h = {h}");
+        }
     }
 
     #[test]

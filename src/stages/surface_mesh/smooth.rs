@@ -1,21 +1,29 @@
 //! The topological pass (quality edge flips) and the smoothing pass (Laplacian with pull-back
 //! onto the support), both in 3D, both guarded in the parameter plane.
 //!
-//! - A free interior edge is flipped when the worse of its two triangles' 3D shapes improves and
+//! - A free interior edge is flipped when the sum of its two triangles' squared 3D c/c* drops and
 //!   the quadrilateral is strictly convex in the parameter plane (exact `orient2d`), so the
 //!   triangulation of the plane stays valid.
-//! - A generated node moves to the mean of its neighbours in 3D, then is projected back onto the
-//!   support (closest point: a walk over the support from the triangle the node sits on, the
-//!   global R-tree search as the fallback); its parameter comes from that projection. The move is kept
-//!   only if every incident triangle stays strictly counter-clockwise in the plane (exact) and the
-//!   worst incident 3D shape does not degrade. Given loop and constraint nodes never move.
+//! - A generated node tries the mean of its neighbours and the mean of the equilateral apexes on
+//!   its fan's opposite edges (in 3D), each projected back onto the support (closest point: a
+//!   walk over the support from the triangle the node sits on, the global R-tree search as the
+//!   fallback); its parameter comes from that projection. A move is kept only if every incident
+//!   triangle stays strictly counter-clockwise in the plane (exact), the fan's sum of squared c/c*
+//!   drops and its worst shape does not degrade noticeably. Given loop and constraint nodes never
+//!   move.
 //!
 //! Sweeps go in index order (Gauss–Seidel), so the result does not depend on anything but input.
 
 use super::cdt::{Cdt, FREE, NONE, next, prev};
 use super::quality::shape;
 use super::support::Support;
+use crate::geom::predicates::{cross, dot, sub};
 use crate::geom::{Orientation, orient2d};
+
+/// The squared c/c* of a triangle of shape `s` (1/s²; large for a degenerate triangle).
+fn energy(s: f64) -> f64 {
+    if s > 1e-12 { 1.0 / (s * s) } else { 1e24 }
+}
 
 pub struct Smoother<'a> {
     pub cdt: &'a mut Cdt,
@@ -37,7 +45,9 @@ impl Smoother<'_> {
         )
     }
 
-    /// One sweep of quality flips; returns how many edges flipped.
+    /// One sweep of quality flips; returns how many edges flipped. An edge flips when the sum of
+    /// the squared c/c* of its two triangles drops: the mean quality improves and the worse
+    /// triangle weighs most. The sum strictly decreases with every flip, so sweeps terminate.
     pub fn flip_sweep(&mut self) -> usize {
         let mut flips = 0;
         let n = self.cdt.tri.len();
@@ -62,10 +72,10 @@ impl Smoother<'_> {
                 let Some(q) = w.iter().copied().find(|&x| x != p1 && x != p2) else {
                     continue;
                 };
-                let before = self.tri_shape(t).min(self.tri_shape(nb));
+                let before = energy(self.tri_shape(t)) + energy(self.tri_shape(nb));
                 let p = |k: u32| &self.p3[k as usize];
-                let after = shape(p(p0), p(p1), p(q)).min(shape(p(q), p(p2), p(p0)));
-                if after > before * (1.0 + 1e-9) + 1e-12 {
+                let after = energy(shape(p(p0), p(p1), p(q))) + energy(shape(p(q), p(p2), p(p0)));
+                if after < before * (1.0 - 1e-9) {
                     self.cdt.flip(t, i);
                     flips += 1;
                     break;
@@ -75,7 +85,15 @@ impl Smoother<'_> {
         flips
     }
 
-    /// One Laplacian sweep over the generated nodes; returns how many moved.
+    /// One smoothing sweep over the generated nodes; returns how many moved.
+    ///
+    /// Each node tries two targets: the mean of its neighbours (Laplacian) and the mean of the
+    /// apexes of the equilateral triangles erected on its fan's opposite edges (in the plane of
+    /// the fan), which follows a graded mesh instead of pulling nodes to the coarse side. Each
+    /// target is projected onto the support; the position kept is the valid one (every fan
+    /// triangle strictly counter-clockwise in the plane, exactly) with the least fan energy (sum
+    /// of squared c/c*), if that beats the current one and does not make the worst fan triangle
+    /// noticeably worse.
     pub fn smooth_sweep(&mut self) -> usize {
         let mut fan = Vec::new();
         let mut moved = 0;
@@ -84,46 +102,87 @@ impl Smoother<'_> {
             if fan.is_empty() || fan.iter().any(|&t| !self.cdt.inside[t as usize]) {
                 continue;
             }
-            let mut sum = [0.0; 3];
-            let mut worst = f64::INFINITY;
-            for &t in &fan {
+            let opposite = |t: u32| {
                 let tv = self.cdt.tri[t as usize];
                 let k = tv.iter().position(|&x| x == v).unwrap_or(0);
-                let nb = &self.p3[tv[next(k)] as usize];
+                (tv[next(k)], tv[prev(k)])
+            };
+            let x0 = self.p3[v as usize];
+            let mut lap = [0.0; 3];
+            let mut normal = [0.0; 3];
+            for &t in &fan {
+                let (a, b) = opposite(t);
+                let (pa, pb) = (&self.p3[a as usize], &self.p3[b as usize]);
                 for c in 0..3 {
-                    sum[c] += nb[c];
+                    lap[c] += pa[c];
                 }
-                worst = worst.min(self.tri_shape(t));
+                let n = cross(&sub(pa, &x0), &sub(pb, &x0));
+                for c in 0..3 {
+                    normal[c] += n[c];
+                }
             }
             let m = fan.len() as f64;
-            let target = [sum[0] / m, sum[1] / m, sum[2] / m];
-            let hint = self.stri.get(v as usize).copied().unwrap_or(u32::MAX);
-            let Some(on) = self.support.project_from(hint, &target) else {
-                continue;
+            lap = lap.map(|x| x / m);
+            let nl = dot(&normal, &normal).sqrt();
+            let mut ideal = [0.0; 3];
+            if nl > 0.0 {
+                let nn = normal.map(|x| x / nl);
+                for &t in &fan {
+                    let (a, b) = opposite(t);
+                    let (pa, pb) = (&self.p3[a as usize], &self.p3[b as usize]);
+                    let e = sub(pb, pa);
+                    // v sits to the left of a -> b seen from the normal: left = n x e.
+                    let left = cross(&nn, &e);
+                    let ll = dot(&left, &left).sqrt();
+                    let el = dot(&e, &e).sqrt();
+                    let k = if ll > 0.0 {
+                        0.5 * 3f64.sqrt() * el / ll
+                    } else {
+                        0.0
+                    };
+                    for c in 0..3 {
+                        ideal[c] += 0.5 * (pa[c] + pb[c]) + k * left[c];
+                    }
+                }
+                ideal = ideal.map(|x| x / m);
+            } else {
+                ideal = lap;
+            }
+            let fan_quality = |x: &[f64; 3]| {
+                let mut e = 0.0;
+                let mut worst = f64::INFINITY;
+                for &t in &fan {
+                    let (a, b) = opposite(t);
+                    let s = shape(x, &self.p3[a as usize], &self.p3[b as usize]);
+                    e += energy(s);
+                    worst = worst.min(s);
+                }
+                (e, worst)
             };
-            let ok = fan.iter().all(|&t| {
-                let tv = self.cdt.tri[t as usize];
-                let k = tv.iter().position(|&x| x == v).unwrap_or(0);
-                orient2d(
-                    &on.uv,
-                    &self.cdt.pts[tv[next(k)] as usize],
-                    &self.cdt.pts[tv[prev(k)] as usize],
-                ) == Orientation::Positive
-            });
-            if !ok {
-                continue;
+            let (e0, w0) = fan_quality(&x0);
+            let hint = self.stri.get(v as usize).copied().unwrap_or(u32::MAX);
+            let mut best: Option<(f64, super::support::OnSupport)> = None;
+            for target in [ideal, lap] {
+                let Some(on) = self.support.project_from(hint, &target) else {
+                    continue;
+                };
+                let valid = fan.iter().all(|&t| {
+                    let (a, b) = opposite(t);
+                    orient2d(&on.uv, &self.cdt.pts[a as usize], &self.cdt.pts[b as usize])
+                        == Orientation::Positive
+                });
+                if !valid {
+                    continue;
+                }
+                let (e, w) = fan_quality(&on.xyz);
+                if e < e0 * (1.0 - 1e-9)
+                    && w >= w0.min(0.9) * 0.999
+                    && best.as_ref().is_none_or(|(eb, _)| e < *eb)
+                {
+                    best = Some((e, on));
+                }
             }
-            let mut new_worst = f64::INFINITY;
-            for &t in &fan {
-                let tv = self.cdt.tri[t as usize];
-                let k = tv.iter().position(|&x| x == v).unwrap_or(0);
-                new_worst = new_worst.min(shape(
-                    &on.xyz,
-                    &self.p3[tv[next(k)] as usize],
-                    &self.p3[tv[prev(k)] as usize],
-                ));
-            }
-            if new_worst >= worst.min(0.9) * 0.999 {
+            if let Some((_, on)) = best {
                 self.cdt.pts[v as usize] = on.uv;
                 self.p3[v as usize] = on.xyz;
                 self.stri[v as usize] = on.tri;
