@@ -13,7 +13,7 @@ use std::collections::HashSet;
 
 use crate::geom::predicates::{Orientation, orient3d};
 
-use super::quality::mean_ratio;
+use super::quality::shape;
 use super::verify::outward_faces;
 
 pub type P = [f64; 3];
@@ -97,10 +97,12 @@ impl Complex {
         self.protected_edges.contains(&sorted2(a, b))
     }
 
+    /// The optimizer's measure of a tet (`quality::shape`: mean ratio capped by the dihedral
+    /// sines).
     #[inline]
     pub fn quality(&self, t: [u32; 4]) -> f64 {
         let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
-        mean_ratio(&a, &b, &c, &d)
+        shape(&a, &b, &c, &d)
     }
 
     #[inline]

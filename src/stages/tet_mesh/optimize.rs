@@ -13,13 +13,13 @@ use super::smooth::{relax_node, smooth_node};
 type P = [f64; 3];
 
 /// Rounds of smoothing + flips + insertion.
-const ROUNDS: usize = 3;
+const ROUNDS: usize = 8;
 /// Tets below this mean ratio are flip candidates.
 const FLIP_BELOW: f64 = 0.45;
 /// Tets below this mean ratio after flipping get an inserted node.
-const INSERT_BELOW: f64 = 0.3;
+const INSERT_BELOW: f64 = 0.35;
 /// Nodes whose ball is worse than this get max-min smoothing; all get Laplacian relaxation.
-const SMOOTH_BELOW: f64 = 0.3;
+const SMOOTH_BELOW: f64 = 0.4;
 /// Laplacian relaxation may lower a ball's worst quality for a better mean while it stays above.
 const RELAX_KEEP: f64 = 0.5;
 /// Laplacian relaxation passes before and after the rounds.

@@ -12,7 +12,7 @@
 use crate::geom::predicates::{Orientation, orient3d};
 
 use super::complex::{Complex, P, sorted3};
-use super::quality::mean_ratio;
+use super::quality::shape;
 use super::smooth::smooth_node;
 use super::verify::outward_faces;
 
@@ -149,7 +149,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
                 let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
                 !cx.face_protected(**f)
                     && cavity.len() < ROOMY_CAVITY
-                    && mean_ratio(&a, &c, &b, &p) < ROOMY_BELOW
+                    && shape(&a, &c, &b, &p) < ROOMY_BELOW
             })
         };
         let Some(&f) = blocked.or_else(poor) else {

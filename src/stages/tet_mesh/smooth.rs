@@ -7,7 +7,7 @@
 use crate::geom::predicates::{Orientation, orient3d};
 
 use super::complex::{Complex, P};
-use super::quality::mean_ratio;
+use super::quality::{mean_ratio, shape};
 
 /// Gradient steps per call.
 const ITERATIONS: usize = 12;
@@ -57,6 +57,31 @@ fn quality_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> (f64, P) {
     (q, g)
 }
 
+/// The optimizer's shape measure (`quality::shape`) of `t` with `v` at `p`, and its gradient:
+/// the analytic mean-ratio gradient where the mean ratio is the binding measure, else forward
+/// differences of the dihedral-sine term (steps of `1e-6 · scale`).
+fn shape_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P, scale: f64) -> (f64, P) {
+    let at = |p: &P| {
+        let x = t.map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        shape(&x[0], &x[1], &x[2], &x[3])
+    };
+    let q = at(p);
+    let (mr, g) = quality_and_gradient(cx, t, v, p);
+    if mr <= q || q <= 0.0 {
+        return (q, g);
+    }
+    let h = 1e-6 * scale;
+    if h.is_nan() || h <= 0.0 {
+        return (q, [0.0; 3]);
+    }
+    let g = [0, 1, 2].map(|m| {
+        let mut y = *p;
+        y[m] += h;
+        (at(&y) - q) / h
+    });
+    (q, g)
+}
+
 #[inline]
 fn sub(a: &P, b: &P) -> P {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
@@ -72,7 +97,7 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
     let mut w = f64::INFINITY;
     for &t in &cx.node_tets[v as usize] {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        w = w.min(mean_ratio(&x[0], &x[1], &x[2], &x[3]));
+        w = w.min(shape(&x[0], &x[1], &x[2], &x[3]));
     }
     if w <= 0.0 {
         return None;
@@ -93,7 +118,7 @@ fn worst_and_mean_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64)> {
     let mut s = 0.0;
     for &t in ball {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        s += mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+        s += shape(&x[0], &x[1], &x[2], &x[3]);
     }
     Some((w, s / ball.len() as f64))
 }
@@ -177,7 +202,7 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
     for _ in 0..ITERATIONS {
         let mut dir = [0.0; 3];
         for &t in &cx.node_tets[v as usize] {
-            let (q, g) = quality_and_gradient(cx, cx.tets[t as usize], v, &cur);
+            let (q, g) = shape_and_gradient(cx, cx.tets[t as usize], v, &cur, scale);
             if q <= best + NEAR_WORST {
                 let gn = dot(&g, &g).sqrt();
                 if gn > 0.0 {
