@@ -19,7 +19,8 @@ pub fn mean_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
     if l2 <= 0.0 {
         return 0.0;
     }
-    let m = 12.0 * (3.0 * v.abs()).powf(2.0 / 3.0) / l2;
+    let c = (3.0 * v.abs()).cbrt();
+    let m = 12.0 * c * c / l2;
     if v < 0.0 { -m } else { m }
 }
 
@@ -34,11 +35,8 @@ pub fn min_sine(a: &P, b: &P, c: &P, d: &P) -> f64 {
     let v = signed_volume(a, b, c, d);
     let p = [a, b, c, d];
     // Twice the area of the face opposite node i.
-    let area2 = |i: usize| {
-        let f: Vec<&P> = (0..4).filter(|&k| k != i).map(|k| p[k]).collect();
-        len2(&cross(&sub(f[1], f[0]), &sub(f[2], f[0]))).sqrt()
-    };
-    let ar = [area2(0), area2(1), area2(2), area2(3)];
+    let area2 = |x: &P, y: &P, z: &P| len2(&cross(&sub(y, x), &sub(z, x))).sqrt();
+    let ar = [area2(b, c, d), area2(a, c, d), area2(a, b, d), area2(a, b, c)];
     let mut m = f64::INFINITY;
     for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
         // The edge ij is shared by the faces opposite the two other nodes k and l.

@@ -195,6 +195,10 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
         .iter()
         .map(|&t| cx.quality(t))
         .fold(f64::INFINITY, f64::min);
+    let mut touched: Vec<u32> = old_tets.iter().flatten().copied().collect();
+    touched.sort_unstable();
+    touched.dedup();
+    let saved = cx.stamps(&touched);
     for &c in &cavity {
         cx.remove_tet(c);
     }
@@ -215,11 +219,12 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
     for id in new_ids {
         cx.remove_tet(id);
     }
-    cx.nodes.pop();
-    cx.node_tets.pop();
+    cx.pop_node();
     for t in old_tets {
         cx.add_tet(t);
     }
+    // Nothing changed: a later round may skip what was tried here.
+    cx.restore_stamps(&touched, &saved);
     Attempt::Failed
 }
 

@@ -153,7 +153,7 @@ pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
         if let Some((w, m)) = worst_and_mean_at(cx, v, &p)
             && (w > w0 || (w >= keep.min(w0) && m > m0))
         {
-            cx.nodes[v as usize] = p;
+            cx.move_node(v, p);
             return true;
         }
     }
@@ -237,7 +237,7 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
         alpha = (a * 2.0).min(0.2 * scale);
     }
     if best > q0 && cur != start {
-        cx.nodes[v as usize] = cur;
+        cx.move_node(v, cur);
         Some(best)
     } else {
         None
