@@ -36,7 +36,12 @@ pub fn min_sine(a: &P, b: &P, c: &P, d: &P) -> f64 {
     let p = [a, b, c, d];
     // Twice the area of the face opposite node i.
     let area2 = |x: &P, y: &P, z: &P| len2(&cross(&sub(y, x), &sub(z, x))).sqrt();
-    let ar = [area2(b, c, d), area2(a, c, d), area2(a, b, d), area2(a, b, c)];
+    let ar = [
+        area2(b, c, d),
+        area2(a, c, d),
+        area2(a, b, d),
+        area2(a, b, c),
+    ];
     let mut m = f64::INFINITY;
     for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
         // The edge ij is shared by the faces opposite the two other nodes k and l.
@@ -124,20 +129,35 @@ mod tests {
     #[test]
     fn the_smallest_dihedral_sine_matches_the_smallest_dihedral_angle() {
         let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.3, 0.9, 0.0]);
-        for d in [[0.4, 0.3, 0.6], [0.4, 0.3, 0.05], [2.0, 0.2, 0.3], [0.35, 0.35, 1e-3]] {
+        for d in [
+            [0.4, 0.3, 0.6],
+            [0.4, 0.3, 0.05],
+            [2.0, 0.2, 0.3],
+            [0.35, 0.35, 1e-3],
+        ] {
             let deg = min_dihedral_deg(&a, &b, &c, &d);
             let s = min_sine(&a, &b, &c, &d);
             // The smallest sine is that of the smallest angle or of the largest (near 180°).
             assert!(s <= deg.to_radians().sin() + 1e-12, "{d:?}: {s} vs {deg}");
             assert!(s > 0.0);
         }
-        let (p, q, r, w) = ([1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]);
+        let (p, q, r, w) = (
+            [1.0, 1.0, 1.0],
+            [1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+        );
         let s = min_sine(&p, &q, &r, &w);
         assert!((s - 70.528779f64.to_radians().sin()).abs() < 1e-9, "{s}");
         // A 10° dihedral scores 0.3, the mean-ratio bar.
         assert!((SINE_SCALE * 10f64.to_radians().sin() - 0.3).abs() < 1e-12);
         // A sliver (four nearly coplanar nodes on a square) scores low by both.
-        let sl = shape(&[0.0, 0.0, 0.0], &[1.0, 0.0, 0.02], &[1.0, 1.0, 0.0], &[0.0, 1.0, 0.02]);
+        let sl = shape(
+            &[0.0, 0.0, 0.0],
+            &[1.0, 0.0, 0.02],
+            &[1.0, 1.0, 0.0],
+            &[0.0, 1.0, 0.02],
+        );
         assert!(sl.abs() < 0.1, "{sl}");
     }
 

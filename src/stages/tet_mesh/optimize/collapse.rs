@@ -17,22 +17,30 @@ const GAIN: f64 = 1e-6;
 /// Balls larger than this are not contracted (keeps each attempt cheap).
 const MAX_BALL: usize = 64;
 
-/// Try to contract the edges of the tet in slot `t` that have a free end, shortest first. True
-/// when one was contracted.
+/// Try to contract a free node of the tet in slot `t` onto one of its neighbours (any node it
+/// shares a tet with), shortest edge first. True when one was contracted.
 pub fn collapse_for(cx: &mut Complex, t: u32) -> bool {
     if !cx.alive[t as usize] {
         return false;
     }
     let tv = cx.tets[t as usize];
-    let mut edges: Vec<(f64, u32, u32)> = Vec::with_capacity(12);
-    for i in 0..4 {
-        for j in 0..4 {
-            let (v, w) = (tv[i], tv[j]);
-            if i != j && (v as usize) >= cx.n_fixed {
-                let (p, q) = (cx.nodes[v as usize], cx.nodes[w as usize]);
-                let l = (0..3).map(|m| (p[m] - q[m]).powi(2)).sum::<f64>();
-                edges.push((l, v, w));
-            }
+    let mut edges: Vec<(f64, u32, u32)> = Vec::new();
+    for v in tv {
+        if (v as usize) < cx.n_fixed {
+            continue;
+        }
+        let p = cx.nodes[v as usize];
+        let mut around: Vec<u32> = cx.node_tets[v as usize]
+            .iter()
+            .flat_map(|&u| cx.tets[u as usize])
+            .filter(|&w| w != v)
+            .collect();
+        around.sort_unstable();
+        around.dedup();
+        for w in around {
+            let q = cx.nodes[w as usize];
+            let l = (0..3).map(|m| (p[m] - q[m]).powi(2)).sum::<f64>();
+            edges.push((l, v, w));
         }
     }
     edges.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
