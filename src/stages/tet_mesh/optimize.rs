@@ -31,7 +31,7 @@ const FLIP_BELOW: f64 = 0.45;
 /// Tets below this shape measure after flipping get an inserted node.
 const INSERT_BELOW: f64 = 0.35;
 /// Nodes whose ball is worse than this get max-min smoothing; all get Laplacian relaxation.
-const SMOOTH_BELOW: f64 = 0.4;
+const SMOOTH_BELOW: f64 = 0.3;
 /// Laplacian relaxation may lower a ball's worst quality for a better mean while it stays above.
 const RELAX_KEEP: f64 = 0.5;
 /// Laplacian relaxation passes before and after the rounds.

@@ -118,7 +118,7 @@ fn worst_and_mean_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64)> {
     let mut s = 0.0;
     for &t in ball {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        s += shape(&x[0], &x[1], &x[2], &x[3]);
+        s += mean_ratio(&x[0], &x[1], &x[2], &x[3]);
     }
     Some((w, s / ball.len() as f64))
 }
