@@ -43,7 +43,18 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
         (dist(&a, &b) + dist(&a, &c) + dist(&a, &d) + dist(&b, &c) + dist(&b, &d) + dist(&c, &d))
             / 6.0
     };
-    for p0 in [mean, mid, ct] {
+    // Over each protected face of the tet, a point at a good apex height: there a new node can
+    // take the face over from an apex that other tets hold in a poor place.
+    let mut starts = vec![mean, mid, ct];
+    for f in outward_faces(tv) {
+        if cx.face_protected(f) {
+            let fc = centroid(f.iter().map(|&i| cx.nodes[i as usize]));
+            let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
+            let h = APEX_HEIGHT * (dist(&a, &b) + dist(&b, &c) + dist(&c, &a)) / 3.0;
+            starts.extend(push_inside(cx, f, fc, h));
+        }
+    }
+    for p0 in starts {
         let mut p = p0;
         for _ in 0..MAX_PUSHES {
             // An undone attempt re-creates the tets in other slots: find the bad one again.
@@ -67,6 +78,8 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
     false
 }
 
+/// Height of the start point over a protected face, in mean edge lengths of the face.
+const APEX_HEIGHT: f64 = 0.4;
 /// Insertion attempts per starting point (the point is pushed off a protected face between).
 const MAX_PUSHES: usize = 4;
 /// How far inside a protected face a point is pushed, in mean edge lengths of the bad tet.
