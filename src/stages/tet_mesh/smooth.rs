@@ -11,6 +11,8 @@ use super::quality::{mean_ratio, shape};
 
 /// Gradient steps per call.
 const ITERATIONS: usize = 12;
+/// Laplacian relaxation never takes a ball's worst shape below this (or below where it was).
+const RELAX_FLOOR: f64 = 0.35;
 /// Tets within this much of the worst share the ascent direction.
 const NEAR_WORST: f64 = 0.02;
 
@@ -111,27 +113,32 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
     Some(w)
 }
 
-/// Worst and mean quality of the ball of `v` with `v` at `p`; None if a tet is not positive.
-fn worst_and_mean_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64)> {
-    let w = worst_at(cx, v, p)?;
+/// The ball of `v` with `v` at `p`: worst shape (`quality::shape`), worst mean ratio and mean
+/// mean ratio; None if a tet is not positive.
+fn ball_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64, f64)> {
+    let shape_worst = worst_at(cx, v, p)?;
     let ball = &cx.node_tets[v as usize];
     let mut s = 0.0;
+    let mut w = f64::INFINITY;
     for &t in ball {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        s += mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+        let q = mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+        s += q;
+        w = w.min(q);
     }
-    Some((w, s / ball.len() as f64))
+    Some((shape_worst, w, s / ball.len() as f64))
 }
 
 /// Laplacian step for the free node `v`: towards the centroid of its neighbours, accepted when
-/// the ball's worst quality rises, or when its mean rises while the worst stays at least
-/// `keep` (a good ball may trade a little of its worst for a better average). True when moved.
+/// the ball's worst shape rises, or when its mean mean ratio rises while its worst mean ratio
+/// stays at least `keep` (a good ball may trade a little of its worst for a better average) and
+/// its worst shape stays above the optimizer's bar (or where it was). True when moved.
 pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
     if (v as usize) < cx.n_fixed || cx.node_tets[v as usize].is_empty() {
         return false;
     }
     let cur = cx.nodes[v as usize];
-    let Some((w0, m0)) = worst_and_mean_at(cx, v, &cur) else {
+    let Some((s0, w0, m0)) = ball_at(cx, v, &cur) else {
         return false;
     };
     let mut sum = [0.0; 3];
@@ -150,8 +157,8 @@ pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
     let centre = sum.map(|s| s / n);
     for step in [1.0, 0.5, 0.25] {
         let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
-        if let Some((w, m)) = worst_and_mean_at(cx, v, &p)
-            && (w > w0 || (w >= keep.min(w0) && m > m0))
+        if let Some((s1, w, m)) = ball_at(cx, v, &p)
+            && (s1 > s0 || (w >= keep.min(w0) && s1 >= RELAX_FLOOR.min(s0) && m > m0))
         {
             cx.move_node(v, p);
             return true;
