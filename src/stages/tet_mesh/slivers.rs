@@ -52,10 +52,21 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
             let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
             let h = APEX_HEIGHT * (dist(&a, &b) + dist(&b, &c) + dist(&c, &a)) / 3.0;
             starts.extend(push_inside(cx, f, fc, h));
+            // Half-way to the apex's level: in a thin layer the apex sits on the other side,
+            // often beside the face rather than over it.
+            if let Some(&apex) = tv.iter().find(|v| !f.contains(v))
+                && let Some(on) = push_inside(cx, f, cx.nodes[apex as usize], 0.0)
+            {
+                let depth = dist(&on, &cx.nodes[apex as usize]);
+                starts.extend(push_inside(cx, f, fc, 0.5 * depth));
+            }
         }
     }
     for p0 in starts {
         let mut p = p0;
+        // Each push goes half as deep as the one before, so that between two close protected
+        // faces (a thin layer's top and bottom) the point settles between them.
+        let mut push = PUSH * scale;
         for _ in 0..MAX_PUSHES {
             // An undone attempt re-creates the tets in other slots: find the bad one again.
             let Some(t) = cx.node_tets[tv[0] as usize]
@@ -68,8 +79,11 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
             match try_insert(cx, &seed_of(cx, t), p) {
                 Attempt::Done => return true,
                 Attempt::Failed => break,
-                Attempt::Behind(f) => match push_inside(cx, f, p, PUSH * scale) {
-                    Some(q) => p = q,
+                Attempt::Behind(f) => match push_inside(cx, f, p, push) {
+                    Some(q) => {
+                        p = q;
+                        push *= 0.5;
+                    }
                     None => break,
                 },
             }
@@ -81,8 +95,9 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
 /// Height of the start point over a protected face, in mean edge lengths of the face.
 const APEX_HEIGHT: f64 = 0.4;
 /// Insertion attempts per starting point (the point is pushed off a protected face between).
-const MAX_PUSHES: usize = 4;
-/// How far inside a protected face a point is pushed, in mean edge lengths of the bad tet.
+const MAX_PUSHES: usize = 6;
+/// How far inside a protected face a point is first pushed, in mean edge lengths of the bad
+/// tet.
 const PUSH: f64 = 0.2;
 
 enum Attempt {
