@@ -147,7 +147,10 @@ mod tests {
             [-1.0, 1.0, -1.0],
             [-1.0, -1.0, 1.0],
         );
+        // This regular tet is negatively oriented: the sign follows the orientation.
         let s = min_sine(&p, &q, &r, &w);
+        assert!((s + 70.528779f64.to_radians().sin()).abs() < 1e-9, "{s}");
+        let s = min_sine(&q, &p, &r, &w);
         assert!((s - 70.528779f64.to_radians().sin()).abs() < 1e-9, "{s}");
         // A 10° dihedral scores 0.3, the mean-ratio bar.
         assert!((SINE_SCALE * 10f64.to_radians().sin() - 0.3).abs() < 1e-12);
