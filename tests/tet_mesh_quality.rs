@@ -1,5 +1,5 @@
-//! Issue 6: the tet optimizer must reach the seed's bar — mean ratio >= 0.3 and smallest dihedral
-//! >= 10° — wherever the boundary allows it, on region inputs cut from our shipped example
+//! Issue 6: the tet optimizer must reach the seed's bar (mean ratio at least 0.3, smallest
+//! dihedral at least 10°) wherever the boundary allows it, on region inputs cut from our shipped example
 //! (`tests/data/tet_mesh/quality/README.md` says where each case comes from and what the
 //! boundary forces). Every mesh is verified exactly inside `mesh_region`.
 
