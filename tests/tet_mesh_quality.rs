@@ -1,7 +1,7 @@
 //! Issue 6: the tet optimizer must reach the seed's bar (mean ratio at least 0.3, smallest
-//! dihedral at least 10°) wherever the boundary allows it, on region inputs cut from our shipped example
-//! (`tests/data/tet_mesh/quality/README.md` says where each case comes from and what the
-//! boundary forces). Every mesh is verified exactly inside `mesh_region`.
+//! dihedral at least 10°) wherever the boundary allows it, on region inputs cut from our shipped
+//! example (`tests/data/tet_mesh/quality/README.md` says where each case comes from and what
+//! the boundary forces). Every mesh is verified exactly inside `mesh_region`.
 
 use std::collections::BTreeMap;
 use std::path::Path;
