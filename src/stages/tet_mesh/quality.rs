@@ -147,11 +147,13 @@ mod tests {
             [-1.0, 1.0, -1.0],
             [-1.0, -1.0, 1.0],
         );
-        // This regular tet is negatively oriented: the sign follows the orientation.
+        // This regular tet is negatively oriented: the sign follows the orientation. Its
+        // dihedral angles are all acos(1/3), whose sine is sqrt(8)/3.
+        let regular = 8f64.sqrt() / 3.0;
         let s = min_sine(&p, &q, &r, &w);
-        assert!((s + 70.528779f64.to_radians().sin()).abs() < 1e-9, "{s}");
+        assert!((s + regular).abs() < 1e-12, "{s}");
         let s = min_sine(&q, &p, &r, &w);
-        assert!((s - 70.528779f64.to_radians().sin()).abs() < 1e-9, "{s}");
+        assert!((s - regular).abs() < 1e-12, "{s}");
         // A 10° dihedral scores 0.3, the mean-ratio bar.
         assert!((SINE_SCALE * 10f64.to_radians().sin() - 0.3).abs() < 1e-12);
         // A sliver (four nearly coplanar nodes on a square) scores low by both.
