@@ -13,7 +13,7 @@ use std::collections::HashSet;
 
 use crate::geom::predicates::{Orientation, orient3d};
 
-use super::quality::mean_ratio;
+use super::quality::shape;
 use super::verify::outward_faces;
 
 pub type P = [f64; 3];
@@ -26,6 +26,10 @@ pub struct Complex {
     pub node_tets: Vec<Vec<u32>>,
     /// Nodes below this index never move and never disappear.
     pub n_fixed: usize,
+    /// Per node, a counter bumped whenever a tet with the node is added or removed, the node
+    /// moves or a neighbour of it moves: a tet's [`Complex::stamp_of`] changes whenever anything
+    /// a local operation on it could depend on changes, so failed attempts are not repeated.
+    stamp: Vec<u64>,
     protected_faces: HashSet<[u32; 3]>,
     protected_edges: HashSet<[u32; 2]>,
 }
@@ -63,6 +67,7 @@ impl Complex {
                 protected_edges.insert(sorted2(f[k], f[(k + 1) % 3]));
             }
         }
+        let n_nodes = node_tets.len();
         Complex {
             alive: vec![true; tets.len()],
             nodes,
@@ -70,6 +75,7 @@ impl Complex {
             free: Vec::new(),
             node_tets,
             n_fixed,
+            stamp: vec![0; n_nodes],
             protected_faces,
             protected_edges,
         }
@@ -97,10 +103,12 @@ impl Complex {
         self.protected_edges.contains(&sorted2(a, b))
     }
 
+    /// The optimizer's measure of a tet (`quality::shape`: mean ratio capped by the dihedral
+    /// sines).
     #[inline]
     pub fn quality(&self, t: [u32; 4]) -> f64 {
         let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
-        mean_ratio(&a, &b, &c, &d)
+        shape(&a, &b, &c, &d)
     }
 
     #[inline]
@@ -124,6 +132,7 @@ impl Complex {
         };
         for v in t {
             self.node_tets[v as usize].push(id);
+            self.stamp[v as usize] += 1;
         }
         id
     }
@@ -135,6 +144,7 @@ impl Complex {
         self.alive[id as usize] = false;
         for v in self.tets[id as usize] {
             self.node_tets[v as usize].retain(|&x| x != id);
+            self.stamp[v as usize] += 1;
         }
         self.free.push(id);
     }
@@ -142,7 +152,46 @@ impl Complex {
     pub fn add_node(&mut self, p: P) -> u32 {
         self.nodes.push(p);
         self.node_tets.push(Vec::new());
+        self.stamp.push(0);
         (self.nodes.len() - 1) as u32
+    }
+
+    /// Remove the last node, which no tet may use any more (an undone insertion).
+    pub fn pop_node(&mut self) {
+        if self.node_tets.last().is_some_and(|b| b.is_empty()) {
+            self.nodes.pop();
+            self.node_tets.pop();
+            self.stamp.pop();
+        }
+    }
+
+    /// Move the node `v` to `p` (the caller has checked its ball stays positive).
+    pub fn move_node(&mut self, v: u32, p: P) {
+        self.nodes[v as usize] = p;
+        self.stamp[v as usize] += 1;
+        for i in 0..self.node_tets[v as usize].len() {
+            let t = self.tets[self.node_tets[v as usize][i] as usize];
+            for w in t {
+                self.stamp[w as usize] += 1;
+            }
+        }
+    }
+
+    /// The stamps of `nodes`, to restore after an undone change.
+    pub fn stamps(&self, nodes: &[u32]) -> Vec<u64> {
+        nodes.iter().map(|&v| self.stamp[v as usize]).collect()
+    }
+
+    /// Put back stamps saved by [`Complex::stamps`] once the complex is exactly as it was.
+    pub fn restore_stamps(&mut self, nodes: &[u32], saved: &[u64]) {
+        for (&v, &s) in nodes.iter().zip(saved) {
+            self.stamp[v as usize] = s;
+        }
+    }
+
+    /// Sum of the stamps of the nodes of `t`: unchanged exactly while nothing near `t` changed.
+    pub fn stamp_of(&self, t: [u32; 4]) -> u64 {
+        t.iter().map(|&v| self.stamp[v as usize]).sum()
     }
 
     /// The live tet other than `not` that has the three nodes of `f`.

@@ -19,8 +19,60 @@ pub fn mean_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
     if l2 <= 0.0 {
         return 0.0;
     }
-    let m = 12.0 * (3.0 * v.abs()).powf(2.0 / 3.0) / l2;
+    let c = (3.0 * v.abs()).cbrt();
+    let m = 12.0 * c * c / l2;
     if v < 0.0 { -m } else { m }
+}
+
+/// Scale that maps the sine of a 10° dihedral angle to a mean ratio of 0.3, so that
+/// [`shape`] treats the two bars of the seed's Table 2 (mean ratio ≥ 0.3, min dihedral ≥ 10°) alike.
+pub const SINE_SCALE: f64 = 0.3 / 0.173_648_177_666_930_35;
+
+/// The smallest sine of the six dihedral angles of `abcd` (0 for a flat tet, negative for an
+/// inverted one). Small both for a tiny angle and for one near 180°. Uses
+/// `sin θ_e = 3·V·|e| / (2·A_f·A_g)` for the edge `e` shared by the faces `f` and `g`.
+pub fn min_sine(a: &P, b: &P, c: &P, d: &P) -> f64 {
+    let v = signed_volume(a, b, c, d);
+    let p = [a, b, c, d];
+    // Twice the area of the face opposite node i.
+    let area2 = |x: &P, y: &P, z: &P| len2(&cross(&sub(y, x), &sub(z, x))).sqrt();
+    let ar = [
+        area2(b, c, d),
+        area2(a, c, d),
+        area2(a, b, d),
+        area2(a, b, c),
+    ];
+    let mut m = f64::INFINITY;
+    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+        // The edge ij is shared by the faces opposite the two other nodes k and l.
+        let (k, l) = match (i, j) {
+            (0, 1) => (2, 3),
+            (0, 2) => (1, 3),
+            (0, 3) => (1, 2),
+            (1, 2) => (0, 3),
+            (1, 3) => (0, 2),
+            _ => (0, 1),
+        };
+        let e = len2(&sub(p[j], p[i])).sqrt();
+        let den = ar[k] * ar[l];
+        if den <= 0.0 {
+            return 0.0;
+        }
+        // areas are doubled: sin = 3 V e / (2 A_k A_l) = 6 V e / (ar_k ar_l)
+        m = m.min(6.0 * v * e / den);
+    }
+    if m.is_finite() { m } else { 0.0 }
+}
+
+/// The optimizer's objective: the mean ratio, capped by the scaled smallest dihedral sine, so a
+/// tet is "good" only when both of Table 2's measures are (1 ≈ regular; ≤ 0 flat or inverted).
+#[inline]
+pub fn shape(a: &P, b: &P, c: &P, d: &P) -> f64 {
+    let q = mean_ratio(a, b, c, d);
+    if q <= 0.0 {
+        return q;
+    }
+    q.min(SINE_SCALE * min_sine(a, b, c, d))
 }
 
 #[inline]
@@ -72,6 +124,46 @@ mod tests {
         let q = mean_ratio(&a, &b, &c, &d).abs();
         assert!((q - 1.0).abs() < 1e-12, "{q}");
         assert!((min_dihedral_deg(&a, &b, &c, &d) - 70.528779).abs() < 1e-4);
+    }
+
+    #[test]
+    fn the_smallest_dihedral_sine_matches_the_smallest_dihedral_angle() {
+        let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.3, 0.9, 0.0]);
+        for d in [
+            [0.4, 0.3, 0.6],
+            [0.4, 0.3, 0.05],
+            [2.0, 0.2, 0.3],
+            [0.35, 0.35, 1e-3],
+        ] {
+            let deg = min_dihedral_deg(&a, &b, &c, &d);
+            let s = min_sine(&a, &b, &c, &d);
+            // The smallest sine is that of the smallest angle or of the largest (near 180°).
+            assert!(s <= deg.to_radians().sin() + 1e-12, "{d:?}: {s} vs {deg}");
+            assert!(s > 0.0);
+        }
+        let (p, q, r, w) = (
+            [1.0, 1.0, 1.0],
+            [1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+        );
+        // This regular tet is negatively oriented: the sign follows the orientation. Its
+        // dihedral angles are all acos(1/3), whose sine is sqrt(8)/3.
+        let regular = 8f64.sqrt() / 3.0;
+        let s = min_sine(&p, &q, &r, &w);
+        assert!((s + regular).abs() < 1e-12, "{s}");
+        let s = min_sine(&q, &p, &r, &w);
+        assert!((s - regular).abs() < 1e-12, "{s}");
+        // A 10° dihedral scores 0.3, the mean-ratio bar.
+        assert!((SINE_SCALE * 10f64.to_radians().sin() - 0.3).abs() < 1e-12);
+        // A sliver (four nearly coplanar nodes on a square) scores low by both.
+        let sl = shape(
+            &[0.0, 0.0, 0.0],
+            &[1.0, 0.0, 0.02],
+            &[1.0, 1.0, 0.0],
+            &[0.0, 1.0, 0.02],
+        );
+        assert!(sl.abs() < 0.1, "{sl}");
     }
 
     #[test]

@@ -12,7 +12,7 @@
 use crate::geom::predicates::{Orientation, orient3d};
 
 use super::complex::{Complex, P, sorted3};
-use super::quality::mean_ratio;
+use super::quality::shape;
 use super::smooth::smooth_node;
 use super::verify::outward_faces;
 
@@ -43,8 +43,30 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
         (dist(&a, &b) + dist(&a, &c) + dist(&a, &d) + dist(&b, &c) + dist(&b, &d) + dist(&c, &d))
             / 6.0
     };
-    for p0 in [mean, mid, ct] {
+    // Over each protected face of the tet, a point at a good apex height: there a new node can
+    // take the face over from an apex that other tets hold in a poor place.
+    let mut starts = vec![mean, mid, ct];
+    for f in outward_faces(tv) {
+        if cx.face_protected(f) {
+            let fc = centroid(f.iter().map(|&i| cx.nodes[i as usize]));
+            let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
+            let h = APEX_HEIGHT * (dist(&a, &b) + dist(&b, &c) + dist(&c, &a)) / 3.0;
+            starts.extend(push_inside(cx, f, fc, h));
+            // Half-way to the apex's level: in a thin layer the apex sits on the other side,
+            // often beside the face rather than over it.
+            if let Some(&apex) = tv.iter().find(|v| !f.contains(v))
+                && let Some(on) = push_inside(cx, f, cx.nodes[apex as usize], 0.0)
+            {
+                let depth = dist(&on, &cx.nodes[apex as usize]);
+                starts.extend(push_inside(cx, f, fc, 0.5 * depth));
+            }
+        }
+    }
+    for p0 in starts {
         let mut p = p0;
+        // Each push goes half as deep as the one before, so that between two close protected
+        // faces (a thin layer's top and bottom) the point settles between them.
+        let mut push = PUSH * scale;
         for _ in 0..MAX_PUSHES {
             // An undone attempt re-creates the tets in other slots: find the bad one again.
             let Some(t) = cx.node_tets[tv[0] as usize]
@@ -57,8 +79,11 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
             match try_insert(cx, &seed_of(cx, t), p) {
                 Attempt::Done => return true,
                 Attempt::Failed => break,
-                Attempt::Behind(f) => match push_inside(cx, f, p, PUSH * scale) {
-                    Some(q) => p = q,
+                Attempt::Behind(f) => match push_inside(cx, f, p, push) {
+                    Some(q) => {
+                        p = q;
+                        push *= 0.5;
+                    }
                     None => break,
                 },
             }
@@ -67,9 +92,12 @@ pub fn insert_node_for(cx: &mut Complex, t: u32) -> bool {
     false
 }
 
+/// Height of the start point over a protected face, in mean edge lengths of the face.
+const APEX_HEIGHT: f64 = 0.4;
 /// Insertion attempts per starting point (the point is pushed off a protected face between).
-const MAX_PUSHES: usize = 4;
-/// How far inside a protected face a point is pushed, in mean edge lengths of the bad tet.
+const MAX_PUSHES: usize = 6;
+/// How far inside a protected face a point is first pushed, in mean edge lengths of the bad
+/// tet.
 const PUSH: f64 = 0.2;
 
 enum Attempt {
@@ -149,7 +177,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
                 let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
                 !cx.face_protected(**f)
                     && cavity.len() < ROOMY_CAVITY
-                    && mean_ratio(&a, &c, &b, &p) < ROOMY_BELOW
+                    && shape(&a, &c, &b, &p) < ROOMY_BELOW
             })
         };
         let Some(&f) = blocked.or_else(poor) else {
@@ -195,6 +223,10 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
         .iter()
         .map(|&t| cx.quality(t))
         .fold(f64::INFINITY, f64::min);
+    let mut touched: Vec<u32> = old_tets.iter().flatten().copied().collect();
+    touched.sort_unstable();
+    touched.dedup();
+    let saved = cx.stamps(&touched);
     for &c in &cavity {
         cx.remove_tet(c);
     }
@@ -215,11 +247,12 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
     for id in new_ids {
         cx.remove_tet(id);
     }
-    cx.nodes.pop();
-    cx.node_tets.pop();
+    cx.pop_node();
     for t in old_tets {
         cx.add_tet(t);
     }
+    // Nothing changed: a later round may skip what was tried here.
+    cx.restore_stamps(&touched, &saved);
     Attempt::Failed
 }
 

@@ -7,10 +7,12 @@
 use crate::geom::predicates::{Orientation, orient3d};
 
 use super::complex::{Complex, P};
-use super::quality::mean_ratio;
+use super::quality::{mean_ratio, shape};
 
 /// Gradient steps per call.
 const ITERATIONS: usize = 12;
+/// Laplacian relaxation never takes a ball's worst shape below this (or below where it was).
+const RELAX_FLOOR: f64 = 0.35;
 /// Tets within this much of the worst share the ascent direction.
 const NEAR_WORST: f64 = 0.02;
 
@@ -57,6 +59,31 @@ fn quality_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> (f64, P) {
     (q, g)
 }
 
+/// The optimizer's shape measure (`quality::shape`) of `t` with `v` at `p`, and its gradient:
+/// the analytic mean-ratio gradient where the mean ratio is the binding measure, else forward
+/// differences of the dihedral-sine term (steps of `1e-6 · scale`).
+fn shape_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P, scale: f64) -> (f64, P) {
+    let at = |p: &P| {
+        let x = t.map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        shape(&x[0], &x[1], &x[2], &x[3])
+    };
+    let q = at(p);
+    let (mr, g) = quality_and_gradient(cx, t, v, p);
+    if mr <= q || q <= 0.0 {
+        return (q, g);
+    }
+    let h = 1e-6 * scale;
+    if h.is_nan() || h <= 0.0 {
+        return (q, [0.0; 3]);
+    }
+    let g = [0, 1, 2].map(|m| {
+        let mut y = *p;
+        y[m] += h;
+        (at(&y) - q) / h
+    });
+    (q, g)
+}
+
 #[inline]
 fn sub(a: &P, b: &P) -> P {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
@@ -72,7 +99,7 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
     let mut w = f64::INFINITY;
     for &t in &cx.node_tets[v as usize] {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        w = w.min(mean_ratio(&x[0], &x[1], &x[2], &x[3]));
+        w = w.min(shape(&x[0], &x[1], &x[2], &x[3]));
     }
     if w <= 0.0 {
         return None;
@@ -86,27 +113,32 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
     Some(w)
 }
 
-/// Worst and mean quality of the ball of `v` with `v` at `p`; None if a tet is not positive.
-fn worst_and_mean_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64)> {
-    let w = worst_at(cx, v, p)?;
+/// The ball of `v` with `v` at `p`: worst shape (`quality::shape`), worst mean ratio and mean
+/// mean ratio; None if a tet is not positive.
+fn ball_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64, f64)> {
+    let shape_worst = worst_at(cx, v, p)?;
     let ball = &cx.node_tets[v as usize];
     let mut s = 0.0;
+    let mut w = f64::INFINITY;
     for &t in ball {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        s += mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+        let q = mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+        s += q;
+        w = w.min(q);
     }
-    Some((w, s / ball.len() as f64))
+    Some((shape_worst, w, s / ball.len() as f64))
 }
 
 /// Laplacian step for the free node `v`: towards the centroid of its neighbours, accepted when
-/// the ball's worst quality rises, or when its mean rises while the worst stays at least
-/// `keep` (a good ball may trade a little of its worst for a better average). True when moved.
+/// the ball's worst shape rises, or when its mean mean ratio rises while its worst mean ratio
+/// stays at least `keep` (a good ball may trade a little of its worst for a better average) and
+/// its worst shape stays above the optimizer's bar (or where it was). True when moved.
 pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
     if (v as usize) < cx.n_fixed || cx.node_tets[v as usize].is_empty() {
         return false;
     }
     let cur = cx.nodes[v as usize];
-    let Some((w0, m0)) = worst_and_mean_at(cx, v, &cur) else {
+    let Some((s0, w0, m0)) = ball_at(cx, v, &cur) else {
         return false;
     };
     let mut sum = [0.0; 3];
@@ -125,10 +157,10 @@ pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
     let centre = sum.map(|s| s / n);
     for step in [1.0, 0.5, 0.25] {
         let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
-        if let Some((w, m)) = worst_and_mean_at(cx, v, &p)
-            && (w > w0 || (w >= keep.min(w0) && m > m0))
+        if let Some((s1, w, m)) = ball_at(cx, v, &p)
+            && (s1 > s0 || (w >= keep.min(w0) && s1 >= RELAX_FLOOR.min(s0) && m > m0))
         {
-            cx.nodes[v as usize] = p;
+            cx.move_node(v, p);
             return true;
         }
     }
@@ -177,7 +209,7 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
     for _ in 0..ITERATIONS {
         let mut dir = [0.0; 3];
         for &t in &cx.node_tets[v as usize] {
-            let (q, g) = quality_and_gradient(cx, cx.tets[t as usize], v, &cur);
+            let (q, g) = shape_and_gradient(cx, cx.tets[t as usize], v, &cur, scale);
             if q <= best + NEAR_WORST {
                 let gn = dot(&g, &g).sqrt();
                 if gn > 0.0 {
@@ -212,7 +244,7 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
         alpha = (a * 2.0).min(0.2 * scale);
     }
     if best > q0 && cur != start {
-        cx.nodes[v as usize] = cur;
+        cx.move_node(v, cur);
         Some(best)
     } else {
         None
