@@ -7,11 +7,12 @@
 
 use std::collections::HashMap;
 
-use crate::geom::predicates::{Orientation, orient3d};
+use crate::geom::predicates::Orientation;
 
-use super::exact::{point_in_closed_tet, tri_tri_improper};
+use super::exact::{orient3d, tri_tri_improper_with};
 use super::front::{Front, bbox_of};
 use super::quality::mean_ratio;
+use super::sides::{SideCache, orientation_of};
 use super::sizing::Background;
 use super::verify::outward_faces;
 use super::{RegionInput, SizeField, TetMeshError};
@@ -67,6 +68,7 @@ struct State<'a> {
     constrained: std::collections::HashSet<[u32; 3]>,
     scratch: Vec<u32>,
     scratch2: Vec<u32>,
+    signs: SideCache,
 }
 
 #[derive(Clone, Copy)]
@@ -101,6 +103,7 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         },
         scratch: Vec::new(),
         scratch2: Vec::new(),
+        signs: SideCache::default(),
         constrained: input
             .embedded
             .iter()
@@ -280,7 +283,7 @@ impl State<'_> {
             self.scratch = near;
             cand_nodes.sort_unstable();
             cand_nodes.dedup();
-            let mut cands: Vec<(f64, u32, Cand)> = Vec::new();
+            let mut cands: Vec<(f64, u32, Cand, f64)> = Vec::new();
             let mut nearest = f64::INFINITY;
             for &w in &cand_nodes {
                 if f.contains(&w) {
@@ -299,7 +302,7 @@ impl State<'_> {
                 if q < FLAT || orient3d(&a, &b, &c, &p) != Orientation::Positive {
                     continue;
                 }
-                cands.push((q, w, Cand::Node(w)));
+                cands.push((q, w, Cand::Node(w), q));
             }
             if pass == 0 {
                 // Clearances use the background size so that small faces close on existing
@@ -309,7 +312,7 @@ impl State<'_> {
                     && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc)
                 {
                     let q = mean_ratio(&a, &b, &c, &ideal);
-                    cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
+                    cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal), q));
                 }
             } else {
                 for frac in [0.6, 0.35, 0.2, 0.1] {
@@ -336,15 +339,11 @@ impl State<'_> {
                         continue;
                     }
                     let q = mean_ratio(&a, &b, &c, &p);
-                    cands.push((q * NEW_NODE_PREFERENCE * 0.5, u32::MAX, Cand::New(p)));
+                    cands.push((q * NEW_NODE_PREFERENCE * 0.5, u32::MAX, Cand::New(p), q));
                 }
             }
             cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
-            for &(_, _, cand) in &cands {
-                let q = match cand {
-                    Cand::Node(w) => mean_ratio(&a, &b, &c, &self.nodes[w as usize]),
-                    Cand::New(p) => mean_ratio(&a, &b, &c, &p),
-                };
+            for &(_, _, cand, q) in &cands {
                 if q < q_min {
                     continue;
                 }
@@ -449,6 +448,12 @@ impl State<'_> {
                 continue;
             }
             let [a, b, c] = self.front.faces[g as usize].map(|i| self.nodes[i as usize]);
+            // A triangle whose bounding box is farther than `clear` is farther than `clear`.
+            if (0..3).any(|k| {
+                p[k] + clear < a[k].min(b[k]).min(c[k]) || p[k] - clear > a[k].max(b[k]).max(c[k])
+            }) {
+                continue;
+            }
             if point_triangle_distance(p, &a, &b, &c) < clear {
                 return false;
             }
@@ -487,8 +492,10 @@ impl State<'_> {
         if orient3d(pa, pb, pc, pd) != Orientation::Positive {
             return false;
         }
-        let new_faces = [[a, b, d], [b, c, d], [c, a, d]];
-        for nf in &new_faces {
+        let tet = [a, b, c, d];
+        // The tet's outward faces; the last three are the new faces `abd`, `bcd`, `cad`.
+        let planes = outward_faces(tet);
+        for nf in &planes[1..] {
             // The same orientation already on the front means overlap — unless the reverse is
             // there too: both sides of an open embedded face, and the tet closes the near one.
             if self.front.find(*nf).is_some() && self.front.find([nf[0], nf[2], nf[1]]).is_none() {
@@ -496,41 +503,48 @@ impl State<'_> {
             }
         }
         let (lo, hi) = bbox_of([pa, pb, pc, pd].into_iter());
-        let new_boxes = new_faces.map(|nf| bbox_of(nf.iter().map(|&i| &pts[i as usize])));
+        let new_boxes = [1, 2, 3].map(|k| bbox_of(planes[k].iter().map(|&i| &pts[i as usize])));
         let mut near = std::mem::take(&mut self.scratch2);
         self.front.query(&lo, &hi, &mut near);
-        let tet = [a, b, c, d];
+        self.signs.start(self.nodes.len());
         let mut ok = true;
-        'outer: for &g in &near {
+        for &g in &near {
             if g == fid {
                 continue;
             }
             let gv = self.front.faces[g as usize];
             let (glo, ghi) = bbox_of(gv.iter().map(|&i| &self.nodes[i as usize]));
+            // Bounding boxes first (exact comparisons): triangles with disjoint boxes do not meet.
             if (0..3).any(|k| glo[k] > hi[k] || ghi[k] < lo[k]) {
                 continue;
             }
-            // Bounding boxes first (exact comparisons): a point outside the tet's box is outside
-            // the tet, triangles with disjoint boxes do not meet — the exact predicates, slow on
-            // the many coplanar configurations of planar boundaries, run only when needed.
-            for &w in &gv {
-                let pw = &self.nodes[w as usize];
-                if !tet.contains(&w)
-                    && (0..3).all(|k| lo[k] <= pw[k] && pw[k] <= hi[k])
-                    && point_in_closed_tet(pw, pa, pb, pc, pd)
-                {
-                    ok = false;
-                    break 'outer;
-                }
+            // Exact sides of g's vertices against the tet's four planes (+1 outside), shared by
+            // every face around a node.
+            let sg = gv.map(|w| self.signs.of(w, &tet, &planes, &self.nodes));
+            // All of g strictly outside one plane, but for the tet vertices it shares on that
+            // plane: g meets the closed tet at most in shared vertices or a shared edge.
+            if (0..4).any(|k| (0..3).all(|i| sg[i][k] > 0 || planes[k].contains(&gv[i]))) {
+                continue;
             }
-            for (nf, (flo, fhi)) in new_faces.iter().zip(&new_boxes) {
-                if same_set(nf, &gv) || (0..3).any(|k| glo[k] > fhi[k] || ghi[k] < flo[k]) {
+            // A front node in the closed tet (on no plane's outer side).
+            if (0..3).any(|i| !tet.contains(&gv[i]) && sg[i].iter().all(|&s| s <= 0)) {
+                ok = false;
+                break;
+            }
+            for k in 1..4 {
+                let nf = planes[k];
+                let (flo, fhi) = &new_boxes[k - 1];
+                if same_set(&nf, &gv) || (0..3).any(|j| glo[j] > fhi[j] || ghi[j] < flo[j]) {
                     continue;
                 }
-                if tri_tri_improper(*nf, gv, &self.nodes) {
+                let ou = [0, 1, 2].map(|i| orientation_of(sg[i][k]));
+                if tri_tri_improper_with(nf, gv, ou, &self.nodes) {
                     ok = false;
-                    break 'outer;
+                    break;
                 }
+            }
+            if !ok {
+                break;
             }
         }
         self.scratch2 = near;

@@ -19,7 +19,7 @@
 //!
 //! Submodules: `exact` (intersection predicates), `quality` (measures), `check` (input
 //! validation), `front` (front faces and their spatial grid), `advance` (the front loop and
-//! back-tracking), `optimize` (the optimization driver) with `complex`, `smooth`, `flips` and
+//! back-tracking), `sides` (exact sides of front nodes against a candidate's planes), `optimize` (the optimization driver) with `complex`, `smooth`, `flips` and
 //! `slivers`, `verify` (exact output check).
 
 mod advance;
@@ -30,6 +30,7 @@ mod flips;
 mod front;
 mod optimize;
 pub mod quality;
+mod sides;
 mod sizing;
 mod slivers;
 mod smooth;
