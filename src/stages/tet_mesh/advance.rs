@@ -35,7 +35,7 @@ const MIN_QUALITY: [f64; 6] = [0.3, 0.15, 0.05, 0.02, 0.005, 0.0];
 /// New nodes closer than this fraction of the local size to a front face are not created.
 const FACE_CLEARANCE: f64 = 0.3;
 /// Cell size of the front's grid, in mean boundary edge lengths.
-const FRONT_CELL: f64 = 2.0;
+const FRONT_CELL: f64 = 1.0;
 /// Candidate apexes whose tetrahedron has a (float) mean ratio below this are never considered.
 const FLAT: f64 = 1e-9;
 /// Heights of last-resort Steiner apexes over a stuck face, in local target sizes (not the
@@ -47,6 +47,8 @@ const STEINER_HEIGHTS: [f64; 5] = [0.4, 0.2, 0.1, 0.05, 0.025];
 const MIN_NODE_GAP: f64 = 0.004;
 /// Steiner apexes keep at least this (in local sizes) from every node near the stuck face.
 const STEINER_GAP: f64 = 0.05;
+/// Candidates tested per pass before a face is deferred (all of them on the last attempt).
+const MAX_TRIES: usize = 8;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
 const NEAR_IDEAL: f64 = 1.0;
 
@@ -186,6 +188,11 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         let lvl = *level;
         st.backtrack(fid, lvl);
     }
+    if std::env::var("TS_DBG").is_ok() {
+        let c: Vec<usize> = DBG.iter().map(|x| x.load(std::sync::atomic::Ordering::Relaxed)).collect();
+        eprintln!("loop {} bboxpass {} ok {} validp0 {} validp1 {}", c[6], c[7], c[8], c[9], c[10]);
+        eprintln!("valid {} nearfaces {} pass0 {} pass1 {} near0 {} near1 {} tets {} backtracks {backtracks} steps {steps}", c[0], c[1], c[2], c[3], c[4], c[5], st.tets.len());
+    }
     let mut nodes = st.nodes;
     let mut tets = Vec::with_capacity(st.tets.len());
     for (t, alive) in st.tets.iter().zip(&st.tet_alive) {
@@ -258,6 +265,7 @@ impl State<'_> {
             m[2] + nu[2] * height,
         ];
 
+        let mut tried: Vec<u32> = Vec::new();
         for (pass, &radius) in SEARCH_RADIUS.iter().enumerate() {
             let rad = radius * h.max(le);
             let (lo, hi) = if pass == 0 {
@@ -275,11 +283,28 @@ impl State<'_> {
                 )
             };
             let mut near = std::mem::take(&mut self.scratch);
-            self.front.query(&lo, &hi, &mut near);
-            let mut cand_nodes: Vec<u32> = Vec::with_capacity(near.len() * 3);
-            for &g in &near {
-                cand_nodes.extend_from_slice(&self.front.faces[g as usize]);
+            let mut cand_nodes: Vec<u32>;
+            if pass == 0 {
+                self.front.query(&lo, &hi, &mut near);
+                cand_nodes = Vec::with_capacity(near.len() * 3);
+                for &g in &near {
+                    cand_nodes.extend_from_slice(&self.front.faces[g as usize]);
+                }
+            } else {
+                // The wide search scans the node grid; the faces `clear_of_faces` needs are
+                // those near the segment from the face to the ideal apex.
+                cand_nodes = Vec::new();
+                self.front.query_nodes(&lo, &hi, &mut cand_nodes);
+                let hc = h.max(0.8 * self.bg.size_at(&m));
+                let r = 0.5 * FACE_CLEARANCE * hc;
+                self.front.query(
+                    &[0, 1, 2].map(|k| m[k].min(ideal[k]) - r),
+                    &[0, 1, 2].map(|k| m[k].max(ideal[k]) + r),
+                    &mut near,
+                );
             }
+            dbg_count(2 + pass, 1);
+            dbg_count(4 + pass, near.len());
             self.scratch = near;
             cand_nodes.sort_unstable();
             cand_nodes.dedup();
@@ -343,10 +368,25 @@ impl State<'_> {
                 }
             }
             cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+            // Before the last attempt only the best few are tested: a face whose best candidates
+            // all fail is deferred, and the front around it usually offers a good apex later.
+            let mut budget = if q_min > 0.0 { MAX_TRIES } else { usize::MAX };
             for &(_, _, cand, q) in &cands {
                 if q < q_min {
                     continue;
                 }
+                if let Cand::Node(w) = cand {
+                    // Already tested (and failed) on the first pass.
+                    if pass > 0 && tried.contains(&w) {
+                        continue;
+                    }
+                    tried.push(w);
+                }
+                if budget == 0 {
+                    break;
+                }
+                budget -= 1;
+                dbg_count(9 + pass, 1);
                 if self.valid(fid, f, cand) {
                     return Some(cand);
                 }
@@ -481,6 +521,7 @@ impl State<'_> {
     }
 
     fn valid_with(&mut self, fid: u32, f: [u32; 3], d: u32) -> bool {
+        dbg_count(0, 1);
         let [a, b, c] = f;
         let pts = &self.nodes;
         let (pa, pb, pc, pd) = (
@@ -506,18 +547,21 @@ impl State<'_> {
         let new_boxes = [1, 2, 3].map(|k| bbox_of(planes[k].iter().map(|&i| &pts[i as usize])));
         let mut near = std::mem::take(&mut self.scratch2);
         self.front.query(&lo, &hi, &mut near);
+        dbg_count(1, near.len());
         self.signs.start(self.nodes.len());
         let mut ok = true;
         for &g in &near {
             if g == fid {
                 continue;
             }
+            dbg_count(6, 1);
             let gv = self.front.faces[g as usize];
             let (glo, ghi) = bbox_of(gv.iter().map(|&i| &self.nodes[i as usize]));
             // Bounding boxes first (exact comparisons): triangles with disjoint boxes do not meet.
             if (0..3).any(|k| glo[k] > hi[k] || ghi[k] < lo[k]) {
                 continue;
             }
+            dbg_count(7, 1);
             // Exact sides of g's vertices against the tet's four planes (+1 outside), shared by
             // every face around a node.
             let sg = gv.map(|w| self.signs.of(w, &tet, &planes, &self.nodes));
@@ -548,6 +592,7 @@ impl State<'_> {
             }
         }
         self.scratch2 = near;
+        if ok { dbg_count(8, 1); }
         ok
     }
 
@@ -697,4 +742,9 @@ fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
         }
     };
     dist(p, &q)
+}
+
+static DBG: [std::sync::atomic::AtomicUsize; 12] = [const { std::sync::atomic::AtomicUsize::new(0) }; 12];
+fn dbg_count(i: usize, n: usize) {
+    DBG[i].fetch_add(n, std::sync::atomic::Ordering::Relaxed);
 }

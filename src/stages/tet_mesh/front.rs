@@ -2,7 +2,9 @@
 //! region not yet meshed, with a priority queue (smallest face first, ties by id so the order is
 //! deterministic) and a uniform grid over face bounding boxes for the locality queries of the
 //! exact validity tests. A face is found by its canonical rotation, so the two sides of an
-//! embedded triangle are two distinct front faces.
+//! embedded triangle are two distinct front faces. A second grid over the same cells holds the
+//! front's nodes (each once, in the cell of its position), so the wide candidate search of a
+//! stuck face scans nodes, not the several cells each face's box covers.
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
@@ -25,6 +27,11 @@ pub struct Front {
     stamp: Vec<u32>,
     generation: u32,
     pub n_alive: usize,
+    /// Nodes by cell; a node stays listed while it has live faces (dropped lazily after).
+    node_cells: Vec<Vec<u32>>,
+    /// Live front faces using each node.
+    node_deg: Vec<u32>,
+    node_listed: Vec<bool>,
 }
 
 impl Front {
@@ -62,6 +69,9 @@ impl Front {
             stamp: Vec::new(),
             generation: 0,
             n_alive: 0,
+            node_cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
+            node_deg: Vec::new(),
+            node_listed: Vec::new(),
         }
     }
 
@@ -99,6 +109,20 @@ impl Front {
         self.map.insert(canon(f), id);
         self.heap.push(Reverse((key.max(0.0).to_bits(), id)));
         self.n_alive += 1;
+        for &v in &f {
+            let i = v as usize;
+            if self.node_deg.len() <= i {
+                self.node_deg.resize(i + 1, 0);
+                self.node_listed.resize(i + 1, false);
+            }
+            self.node_deg[i] += 1;
+            if !self.node_listed[i] {
+                self.node_listed[i] = true;
+                let c = self.cell_of(&pts[i]);
+                let k = self.index(c[0], c[1], c[2]);
+                self.node_cells[k].push(v);
+            }
+        }
         let (lo, hi) = bbox_of(f.iter().map(|&i| &pts[i as usize]));
         let (cl, ch) = (self.cell_of(&lo), self.cell_of(&hi));
         for x in cl[0]..=ch[0] {
@@ -118,6 +142,9 @@ impl Front {
             self.alive[i] = false;
             self.map.remove(&canon(self.faces[i]));
             self.n_alive -= 1;
+            for v in self.faces[i] {
+                self.node_deg[v as usize] -= 1;
+            }
         }
     }
 
@@ -169,6 +196,37 @@ impl Front {
                     if dead > 4 && 2 * dead >= v.len() {
                         let alive = &self.alive;
                         v.retain(|&id| alive[id as usize]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Front {
+    /// Nodes of live front faces whose cell meets the box `lo..hi` (so every such node inside
+    /// the box, and some near it), each once, in cell order. Cells drop nodes without live
+    /// faces lazily, once at least half of their entries are such.
+    pub fn query_nodes(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
+        out.clear();
+        let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
+        for z in cl[2]..=ch[2] {
+            for y in cl[1]..=ch[1] {
+                for x in cl[0]..=ch[0] {
+                    let i = self.index(x, y, z);
+                    let v = &mut self.node_cells[i];
+                    let before = out.len();
+                    out.extend(v.iter().copied().filter(|&w| self.node_deg[w as usize] > 0));
+                    let dead = v.len() - (out.len() - before);
+                    if dead > 4 && 2 * dead >= v.len() {
+                        let (deg, listed) = (&self.node_deg, &mut self.node_listed);
+                        v.retain(|&w| {
+                            let keep = deg[w as usize] > 0;
+                            if !keep {
+                                listed[w as usize] = false;
+                            }
+                            keep
+                        });
                     }
                 }
             }
