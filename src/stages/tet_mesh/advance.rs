@@ -10,8 +10,7 @@ use std::collections::HashMap;
 use crate::geom::predicates::Orientation;
 
 use super::exact::{orient3d, tri_tri_improper_with};
-use super::front::{Front, bbox_of};
-use super::quality::mean_ratio;
+use super::front::{FaceMap, Front, bbox_of};
 use super::sides::{SideCache, orientation_of};
 use super::sizing::Background;
 use super::verify::outward_faces;
@@ -126,7 +125,7 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
     // Keyed by the stuck face's centroid bits, not its node ids: re-meshing a cavity re-creates
     // nodes at the same places under new ids, and the retry level must still grow.
     let mut levels: HashMap<[u64; 3], u32> = HashMap::new();
-    let mut defers: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut defers: FaceMap<u32> = FaceMap::default();
     let mut backtracks = 0usize;
     let max_backtracks = 100 + input.boundary.len() / 8;
     let max_steps = 400 * (input.boundary.len() + input.embedded.len()) + 100_000;
@@ -323,7 +322,7 @@ impl State<'_> {
                 // Ranking only (validity is decided exactly in `valid`): a candidate the float
                 // measure finds flat or inverted is skipped before the costlier exact test, which
                 // coplanar boundary nodes would send down its slow exact path.
-                let q = mean_ratio(&a, &b, &c, &p);
+                let q = rank_ratio(&a, &b, &c, &p);
                 if q < FLAT || orient3d(&a, &b, &c, &p) != Orientation::Positive {
                     continue;
                 }
@@ -336,7 +335,7 @@ impl State<'_> {
                 if nearest > NEW_NODE_CLEARANCE * hc
                     && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc)
                 {
-                    let q = mean_ratio(&a, &b, &c, &ideal);
+                    let q = rank_ratio(&a, &b, &c, &ideal);
                     cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal), q));
                 }
             } else {
@@ -363,7 +362,7 @@ impl State<'_> {
                     {
                         continue;
                     }
-                    let q = mean_ratio(&a, &b, &c, &p);
+                    let q = rank_ratio(&a, &b, &c, &p);
                     cands.push((q * NEW_NODE_PREFERENCE * 0.5, u32::MAX, Cand::New(p), q));
                 }
             }
@@ -466,7 +465,7 @@ impl State<'_> {
                     .chain(&f)
                     .all(|&w| dist(&self.nodes[w as usize], p) >= clear)
             })
-            .map(|(i, p)| (mean_ratio(&a, &b, &c, p), i))
+            .map(|(i, p)| (rank_ratio(&a, &b, &c, p), i))
             .filter(|(q, _)| *q > 0.0)
             .collect();
         cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
@@ -674,6 +673,26 @@ impl State<'_> {
             self.node_tets[v as usize].retain(|&x| x != t);
         }
     }
+}
+
+/// The normalised mean ratio of `abcd` (as `quality::mean_ratio`, with a cube root instead of a
+/// general power: this ranks every candidate apex, so it is on the hot path). A float measure for
+/// ranking only; validity is decided exactly elsewhere.
+#[inline]
+fn rank_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
+    let sub = |x: &P, y: &P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let l2 = |v: &P| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+    let vol = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0]))
+        / 6.0;
+    let s = l2(&u) + l2(&v) + l2(&w) + l2(&sub(c, b)) + l2(&sub(d, b)) + l2(&sub(d, c));
+    if s <= 0.0 || !s.is_finite() {
+        return 0.0;
+    }
+    let t = 3.0 * vol;
+    let m = 12.0 * (t * t).cbrt() / s;
+    if vol < 0.0 { -m } else { m }
 }
 
 #[inline]

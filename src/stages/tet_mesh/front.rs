@@ -8,6 +8,7 @@
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
 
 use super::verify::canon;
 
@@ -16,7 +17,7 @@ type P = [f64; 3];
 pub struct Front {
     pub faces: Vec<[u32; 3]>,
     pub alive: Vec<bool>,
-    map: HashMap<[u32; 3], u32>,
+    map: FaceMap<u32>,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
     /// Dense grid over the region's bounding box; points outside clamp to the border cells
     /// (monotone, so box overlaps are preserved).
@@ -60,7 +61,7 @@ impl Front {
         Front {
             faces: Vec::new(),
             alive: Vec::new(),
-            map: HashMap::new(),
+            map: FaceMap::default(),
             heap: BinaryHeap::new(),
             cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
             dims,
@@ -231,6 +232,41 @@ impl Front {
                 }
             }
         }
+    }
+}
+
+/// A map keyed by triangles (node triples), hashed with a multiply-xorshift over the 32-bit
+/// words: the front's lookups are on the hot path and the keys are not adversarial. Never
+/// iterated, so its order reaches no output.
+pub type FaceMap<V> = HashMap<[u32; 3], V, BuildHasherDefault<WordHasher>>;
+
+#[derive(Default)]
+pub struct WordHasher(u64);
+
+impl Hasher for WordHasher {
+    #[inline]
+    fn finish(&self) -> u64 {
+        let h = self.0 ^ (self.0 >> 29);
+        h.wrapping_mul(0xbf58_476d_1ce4_e5b9) ^ (h >> 32)
+    }
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(4);
+        for c in &mut chunks {
+            self.write_u32(u32::from_le_bytes([c[0], c[1], c[2], c[3]]));
+        }
+        for &b in chunks.remainder() {
+            self.write_u32(b as u32);
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (self.0.rotate_left(23) ^ i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    }
+    #[inline]
+    fn write_usize(&mut self, i: usize) {
+        self.write_u32(i as u32);
+        self.write_u32((i >> 32) as u32);
     }
 }
 
