@@ -115,6 +115,9 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             })
             .collect(),
     };
+    for (v, p) in pts.iter().enumerate() {
+        st.front.add_node(v as u32, p);
+    }
     for t in &input.boundary {
         st.add_face([t[0], t[2], t[1]]);
     }
@@ -601,7 +604,9 @@ impl State<'_> {
             Cand::New(p) => {
                 self.nodes.push(p);
                 self.node_tets.push(Vec::new());
-                (self.nodes.len() - 1) as u32
+                let v = (self.nodes.len() - 1) as u32;
+                self.front.add_node(v, &p);
+                v
             }
         };
         let [a, b, c] = self.front.faces[fid as usize];
@@ -637,10 +642,14 @@ impl State<'_> {
             );
         }
         if level > 1 {
-            for (ti, t) in self.tets.iter().enumerate() {
-                if self.tet_alive[ti] && t.iter().any(|&v| dist(&self.nodes[v as usize], &m) <= rad)
-                {
-                    del.push(ti as u32);
+            // Tets with a node within `rad`: the live tets around every such node (`node_tets`
+            // lists only live tets), the nodes found through the node grid.
+            let mut near = Vec::new();
+            self.front
+                .nodes_near(&m.map(|x| x - rad), &m.map(|x| x + rad), &mut near);
+            for &v in &near {
+                if dist(&self.nodes[v as usize], &m) <= rad {
+                    del.extend_from_slice(&self.node_tets[v as usize]);
                 }
             }
         }

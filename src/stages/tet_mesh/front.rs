@@ -33,6 +33,11 @@ pub struct Front {
     /// Live front faces using each node.
     node_deg: Vec<u32>,
     node_listed: Vec<bool>,
+    /// Every node ever placed (input vertices and interior nodes), by cell: for back-tracking.
+    all_nodes: Vec<Vec<u32>>,
+    /// Face ids stored in `cells` (live or not), and the count after the last full sweep.
+    entries: usize,
+    swept: usize,
 }
 
 impl Front {
@@ -73,6 +78,9 @@ impl Front {
             node_cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
             node_deg: Vec::new(),
             node_listed: Vec::new(),
+            all_nodes: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
+            entries: 0,
+            swept: 0,
         }
     }
 
@@ -131,10 +139,44 @@ impl Front {
                 for z in cl[2]..=ch[2] {
                     let i = self.index(x, y, z);
                     self.cells[i].push(id);
+                    self.entries += 1;
                 }
             }
         }
+        // Cells drop dead faces when queried; those no query visits again are swept here, each
+        // time the stored entries double (amortised constant time per face).
+        if self.entries > 2 * self.swept + (1 << 16) {
+            let alive = &self.alive;
+            let mut n = 0;
+            for c in &mut self.cells {
+                c.retain(|&g| alive[g as usize]);
+                c.shrink_to(2 * c.len());
+                n += c.len();
+            }
+            self.entries = n;
+            self.swept = n;
+        }
         id
+    }
+
+    /// Record a node (never moved afterwards) for `nodes_near`.
+    pub fn add_node(&mut self, v: u32, p: &P) {
+        let c = self.cell_of(p);
+        let k = self.index(c[0], c[1], c[2]);
+        self.all_nodes[k].push(v);
+    }
+
+    /// Every recorded node whose cell meets the box `lo..hi` (a superset of the nodes in it).
+    pub fn nodes_near(&self, lo: &P, hi: &P, out: &mut Vec<u32>) {
+        out.clear();
+        let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
+        for z in cl[2]..=ch[2] {
+            for y in cl[1]..=ch[1] {
+                for x in cl[0]..=ch[0] {
+                    out.extend_from_slice(&self.all_nodes[self.index(x, y, z)]);
+                }
+            }
+        }
     }
 
     pub fn remove(&mut self, id: u32) {
@@ -197,6 +239,7 @@ impl Front {
                     if dead > 4 && 2 * dead >= v.len() {
                         let alive = &self.alive;
                         v.retain(|&id| alive[id as usize]);
+                        self.entries -= dead;
                     }
                 }
             }
