@@ -191,9 +191,24 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         st.backtrack(fid, lvl);
     }
     if std::env::var("TS_DBG").is_ok() {
-        let c: Vec<usize> = DBG.iter().map(|x| x.load(std::sync::atomic::Ordering::Relaxed)).collect();
-        eprintln!("loop {} bboxpass {} ok {} validp0 {} validp1 {}", c[6], c[7], c[8], c[9], c[10]);
-        eprintln!("valid {} nearfaces {} pass0 {} pass1 {} near0 {} near1 {} tets {} backtracks {backtracks} steps {steps}", c[0], c[1], c[2], c[3], c[4], c[5], st.tets.len());
+        let c: Vec<usize> = DBG
+            .iter()
+            .map(|x| x.load(std::sync::atomic::Ordering::Relaxed))
+            .collect();
+        eprintln!(
+            "loop {} bboxpass {} ok {} validp0 {} validp1 {}",
+            c[6], c[7], c[8], c[9], c[10]
+        );
+        eprintln!(
+            "valid {} nearfaces {} pass0 {} pass1 {} near0 {} near1 {} tets {} backtracks {backtracks} steps {steps}",
+            c[0],
+            c[1],
+            c[2],
+            c[3],
+            c[4],
+            c[5],
+            st.tets.len()
+        );
     }
     let mut nodes = st.nodes;
     let mut tets = Vec::with_capacity(st.tets.len());
@@ -594,7 +609,9 @@ impl State<'_> {
             }
         }
         self.scratch2 = near;
-        if ok { dbg_count(8, 1); }
+        if ok {
+            dbg_count(8, 1);
+        }
         ok
     }
 
@@ -772,7 +789,8 @@ fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
     dist(p, &q)
 }
 
-static DBG: [std::sync::atomic::AtomicUsize; 12] = [const { std::sync::atomic::AtomicUsize::new(0) }; 12];
+static DBG: [std::sync::atomic::AtomicUsize; 12] =
+    [const { std::sync::atomic::AtomicUsize::new(0) }; 12];
 fn dbg_count(i: usize, n: usize) {
     DBG[i].fetch_add(n, std::sync::atomic::Ordering::Relaxed);
 }
