@@ -23,6 +23,8 @@ type P = [f64; 3];
 const NEW_NODE_CLEARANCE: f64 = 0.55;
 /// Score factor of a new node against reusing an existing one of the same quality.
 const NEW_NODE_PREFERENCE: f64 = 0.75;
+/// `NEW_NODE_PREFERENCE` cubed, for scores in cubed mean ratios (`rank_ratio3`).
+const PREF3: f64 = NEW_NODE_PREFERENCE * NEW_NODE_PREFERENCE * NEW_NODE_PREFERENCE;
 /// Search radius for existing candidate nodes, in local sizes, on the first and second passes.
 const SEARCH_RADIUS: [f64; 2] = [1.6, 4.0];
 /// How many times the same face may trigger back-tracking before the region is declared stuck.
@@ -235,6 +237,11 @@ fn dist(a: &P, b: &P) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
+#[inline]
+fn dist2(a: &P, b: &P) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
+}
+
 fn centroid(f: &[u32; 3], pts: &[P]) -> P {
     let [a, b, c] = f.map(|i| pts[i as usize]);
     [
@@ -326,22 +333,24 @@ impl State<'_> {
             cand_nodes.sort_unstable();
             cand_nodes.dedup();
             let mut cands: Vec<(f64, u32, Cand, f64)> = Vec::new();
-            let mut nearest = f64::INFINITY;
+            // Squared distances throughout (same comparisons, no roots).
+            let mut nearest2 = f64::INFINITY;
+            let (far2, near_ideal2) = ((rad + h) * (rad + h), (NEAR_IDEAL * h) * (NEAR_IDEAL * h));
             for &w in &cand_nodes {
                 if f.contains(&w) {
                     continue;
                 }
                 let p = self.nodes[w as usize];
-                let dw = dist(&p, &ideal);
-                nearest = nearest.min(dw);
-                if dist(&p, &m) > rad + h || (pass == 0 && dw > NEAR_IDEAL * h) {
+                let dw2 = dist2(&p, &ideal);
+                nearest2 = nearest2.min(dw2);
+                if dist2(&p, &m) > far2 || (pass == 0 && dw2 > near_ideal2) {
                     continue;
                 }
                 // Ranking only (validity is decided exactly in `valid`): a candidate the float
                 // measure finds flat or inverted is skipped before the costlier exact test, which
                 // coplanar boundary nodes would send down its slow exact path.
-                let q = rank_ratio(&a, &b, &c, &p);
-                if q < FLAT || orient3d(&a, &b, &c, &p) != Orientation::Positive {
+                let q = rank_ratio3(&a, &b, &c, &p);
+                if q < FLAT * FLAT * FLAT || orient3d(&a, &b, &c, &p) != Orientation::Positive {
                     continue;
                 }
                 cands.push((q, w, Cand::Node(w), q));
@@ -350,11 +359,11 @@ impl State<'_> {
                 // Clearances use the background size so that small faces close on existing
                 // nodes instead of seeding ever smaller ones.
                 let hc = h.max(0.8 * self.bg.size_at(&m));
-                if nearest > NEW_NODE_CLEARANCE * hc
+                if nearest2 > (NEW_NODE_CLEARANCE * hc).powi(2)
                     && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc)
                 {
-                    let q = rank_ratio(&a, &b, &c, &ideal);
-                    cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal), q));
+                    let q = rank_ratio3(&a, &b, &c, &ideal);
+                    cands.push((q * PREF3, u32::MAX, Cand::New(ideal), q));
                 }
             } else {
                 for frac in [0.6, 0.35, 0.2, 0.1] {
@@ -364,13 +373,14 @@ impl State<'_> {
                         m[2] + nu[2] * height * frac,
                     ];
                     let hc = h.max(0.8 * self.bg.size_at(&m));
-                    let near_node = cand_nodes
-                        .iter()
-                        .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
-                    let tiny = cand_nodes
-                        .iter()
-                        .chain(&f)
-                        .any(|&w| dist(&self.nodes[w as usize], &p) < MIN_NODE_GAP * hc);
+                    let closest2 = |ws: &[u32]| {
+                        ws.iter()
+                            .map(|&w| dist2(&self.nodes[w as usize], &p))
+                            .fold(f64::INFINITY, f64::min)
+                    };
+                    let dc2 = closest2(&cand_nodes);
+                    let near_node = dc2 < (0.3 * hc).powi(2);
+                    let tiny = dc2.min(closest2(&f)) < (MIN_NODE_GAP * hc).powi(2);
                     if tiny {
                         continue;
                     }
@@ -380,16 +390,17 @@ impl State<'_> {
                     {
                         continue;
                     }
-                    let q = rank_ratio(&a, &b, &c, &p);
-                    cands.push((q * NEW_NODE_PREFERENCE * 0.5, u32::MAX, Cand::New(p), q));
+                    let q = rank_ratio3(&a, &b, &c, &p);
+                    cands.push((q * PREF3 * 0.125, u32::MAX, Cand::New(p), q));
                 }
             }
             cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
             // Before the last attempt only the best few are tested: a face whose best candidates
             // all fail is deferred, and the front around it usually offers a good apex later.
             let mut budget = if q_min > 0.0 { MAX_TRIES } else { usize::MAX };
+            let q_min3 = q_min * q_min * q_min;
             for &(_, _, cand, q) in &cands {
-                if q < q_min {
+                if q < q_min3 {
                     continue;
                 }
                 if let Cand::Node(w) = cand {
@@ -483,7 +494,7 @@ impl State<'_> {
                     .chain(&f)
                     .all(|&w| dist(&self.nodes[w as usize], p) >= clear)
             })
-            .map(|(i, p)| (rank_ratio(&a, &b, &c, p), i))
+            .map(|(i, p)| (rank_ratio3(&a, &b, &c, p), i))
             .filter(|(q, _)| *q > 0.0)
             .collect();
         cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
@@ -701,11 +712,12 @@ impl State<'_> {
     }
 }
 
-/// The normalised mean ratio of `abcd` (as `quality::mean_ratio`, with a cube root instead of a
-/// general power: this ranks every candidate apex, so it is on the hot path). A float measure for
-/// ranking only; validity is decided exactly elsewhere.
+/// The cube of the normalised mean ratio of `abcd` (signed like the volume), without a root:
+/// `1728·(3V)² / (Σ l²)³`. It ranks every candidate apex, so it is on the hot path; the cube is
+/// monotone, so rankings and thresholds (compared cubed) are those of `quality::mean_ratio`. A
+/// float measure for ranking only; validity is decided exactly elsewhere.
 #[inline]
-fn rank_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
+fn rank_ratio3(a: &P, b: &P, c: &P, d: &P) -> f64 {
     let sub = |x: &P, y: &P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
     let l2 = |v: &P| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
@@ -717,7 +729,7 @@ fn rank_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
         return 0.0;
     }
     let t = 3.0 * vol;
-    let m = 12.0 * (t * t).cbrt() / s;
+    let m = 1728.0 * (t * t) / (s * s * s);
     if vol < 0.0 { -m } else { m }
 }
 

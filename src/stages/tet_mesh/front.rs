@@ -14,6 +14,9 @@ use super::verify::canon;
 
 type P = [f64; 3];
 
+/// Face-grid cells per node-grid cell along each axis.
+const NODE_CELLS: usize = 2;
+
 pub struct Front {
     pub faces: Vec<[u32; 3]>,
     pub alive: Vec<bool>,
@@ -33,6 +36,9 @@ pub struct Front {
     /// Live front faces using each node.
     node_deg: Vec<u32>,
     node_listed: Vec<bool>,
+    /// The node grids' cells: `NODE_CELLS`³ face-grid cells each (points are stored once, so
+    /// coarser cells cost nothing at insertion and make wide searches visit far fewer cells).
+    ndims: [usize; 3],
     /// Every node ever placed (input vertices and interior nodes), by cell: for back-tracking.
     all_nodes: Vec<Vec<u32>>,
     /// Face ids stored in `cells` (live or not), and the count after the last full sweep.
@@ -63,6 +69,7 @@ impl Front {
             cell *= 1.5;
             dims = dims_for(cell);
         }
+        let nd = dims.map(|d| d.div_ceil(NODE_CELLS));
         Front {
             faces: Vec::new(),
             alive: Vec::new(),
@@ -75,10 +82,11 @@ impl Front {
             stamp: Vec::new(),
             generation: 0,
             n_alive: 0,
-            node_cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
+            node_cells: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
             node_deg: Vec::new(),
             node_listed: Vec::new(),
-            all_nodes: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
+            ndims: nd,
+            all_nodes: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
             entries: 0,
             swept: 0,
         }
@@ -101,6 +109,17 @@ impl Front {
     #[inline]
     fn index(&self, x: usize, y: usize, z: usize) -> usize {
         x + self.dims[0] * (y + self.dims[1] * z)
+    }
+
+    /// The node-grid cell of face-grid cell `c`.
+    #[inline]
+    fn ncell(&self, c: [usize; 3]) -> [usize; 3] {
+        c.map(|x| x / NODE_CELLS)
+    }
+
+    #[inline]
+    fn nindex(&self, c: [usize; 3]) -> usize {
+        c[0] + self.ndims[0] * (c[1] + self.ndims[1] * c[2])
     }
 
     /// Id of the live face with exactly this orientation, if any.
@@ -127,8 +146,7 @@ impl Front {
             self.node_deg[i] += 1;
             if !self.node_listed[i] {
                 self.node_listed[i] = true;
-                let c = self.cell_of(&pts[i]);
-                let k = self.index(c[0], c[1], c[2]);
+                let k = self.nindex(self.ncell(self.cell_of(&pts[i])));
                 self.node_cells[k].push(v);
             }
         }
@@ -161,19 +179,18 @@ impl Front {
 
     /// Record a node (never moved afterwards) for `nodes_near`.
     pub fn add_node(&mut self, v: u32, p: &P) {
-        let c = self.cell_of(p);
-        let k = self.index(c[0], c[1], c[2]);
+        let k = self.nindex(self.ncell(self.cell_of(p)));
         self.all_nodes[k].push(v);
     }
 
     /// Every recorded node whose cell meets the box `lo..hi` (a superset of the nodes in it).
     pub fn nodes_near(&self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
+        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
-                    out.extend_from_slice(&self.all_nodes[self.index(x, y, z)]);
+                    out.extend_from_slice(&self.all_nodes[self.nindex([x, y, z])]);
                 }
             }
         }
@@ -253,11 +270,11 @@ impl Front {
     /// faces lazily, once at least half of their entries are such.
     pub fn query_nodes(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
+        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
-                    let i = self.index(x, y, z);
+                    let i = self.nindex([x, y, z]);
                     let v = &mut self.node_cells[i];
                     let before = out.len();
                     out.extend(v.iter().copied().filter(|&w| self.node_deg[w as usize] > 0));
