@@ -192,26 +192,6 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         let lvl = *level;
         st.backtrack(fid, lvl);
     }
-    if std::env::var("TS_DBG").is_ok() {
-        let c: Vec<usize> = DBG
-            .iter()
-            .map(|x| x.load(std::sync::atomic::Ordering::Relaxed))
-            .collect();
-        eprintln!(
-            "loop {} bboxpass {} ok {} validp0 {} validp1 {}",
-            c[6], c[7], c[8], c[9], c[10]
-        );
-        eprintln!(
-            "valid {} nearfaces {} pass0 {} pass1 {} near0 {} near1 {} tets {} backtracks {backtracks} steps {steps}",
-            c[0],
-            c[1],
-            c[2],
-            c[3],
-            c[4],
-            c[5],
-            st.tets.len()
-        );
-    }
     let mut nodes = st.nodes;
     let mut tets = Vec::with_capacity(st.tets.len());
     for (t, alive) in st.tets.iter().zip(&st.tet_alive) {
@@ -327,8 +307,6 @@ impl State<'_> {
                     &mut near,
                 );
             }
-            dbg_count(2 + pass, 1);
-            dbg_count(4 + pass, near.len());
             self.scratch = near;
             cand_nodes.sort_unstable();
             cand_nodes.dedup();
@@ -414,7 +392,6 @@ impl State<'_> {
                     break;
                 }
                 budget -= 1;
-                dbg_count(9 + pass, 1);
                 if self.valid(fid, f, cand) {
                     return Some(cand);
                 }
@@ -549,7 +526,6 @@ impl State<'_> {
     }
 
     fn valid_with(&mut self, fid: u32, f: [u32; 3], d: u32) -> bool {
-        dbg_count(0, 1);
         let [a, b, c] = f;
         let pts = &self.nodes;
         let (pa, pb, pc, pd) = (
@@ -575,21 +551,18 @@ impl State<'_> {
         let new_boxes = [1, 2, 3].map(|k| bbox_of(planes[k].iter().map(|&i| &pts[i as usize])));
         let mut near = std::mem::take(&mut self.scratch2);
         self.front.query(&lo, &hi, &mut near);
-        dbg_count(1, near.len());
         self.signs.start(self.nodes.len());
         let mut ok = true;
         for &g in &near {
             if g == fid {
                 continue;
             }
-            dbg_count(6, 1);
             let gv = self.front.faces[g as usize];
             let (glo, ghi) = bbox_of(gv.iter().map(|&i| &self.nodes[i as usize]));
             // Bounding boxes first (exact comparisons): triangles with disjoint boxes do not meet.
             if (0..3).any(|k| glo[k] > hi[k] || ghi[k] < lo[k]) {
                 continue;
             }
-            dbg_count(7, 1);
             // Exact sides of g's vertices against the tet's four planes (+1 outside), shared by
             // every face around a node.
             let sg = gv.map(|w| self.signs.of(w, &tet, &planes, &self.nodes));
@@ -620,9 +593,6 @@ impl State<'_> {
             }
         }
         self.scratch2 = near;
-        if ok {
-            dbg_count(8, 1);
-        }
         ok
     }
 
@@ -799,10 +769,4 @@ fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
         }
     };
     dist(p, &q)
-}
-
-static DBG: [std::sync::atomic::AtomicUsize; 12] =
-    [const { std::sync::atomic::AtomicUsize::new(0) }; 12];
-fn dbg_count(i: usize, n: usize) {
-    DBG[i].fetch_add(n, std::sync::atomic::Ordering::Relaxed);
 }

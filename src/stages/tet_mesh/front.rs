@@ -14,6 +14,9 @@ use super::verify::canon;
 
 type P = [f64; 3];
 
+/// The query stamp of a removed face (face ids are never reused, so a dead face stays dead).
+const DEAD: u32 = u32::MAX;
+
 /// Face-grid cells per node-grid cell along each axis.
 const NODE_CELLS: usize = 2;
 
@@ -28,6 +31,7 @@ pub struct Front {
     dims: [usize; 3],
     origin: P,
     inv_cell: f64,
+    /// Per face: the last query that listed it, or `DEAD`.
     stamp: Vec<u32>,
     generation: u32,
     pub n_alive: usize,
@@ -200,6 +204,7 @@ impl Front {
         let i = id as usize;
         if self.alive[i] {
             self.alive[i] = false;
+            self.stamp[i] = DEAD;
             self.map.remove(&canon(self.faces[i]));
             self.n_alive -= 1;
             for v in self.faces[i] {
@@ -230,9 +235,12 @@ impl Front {
     /// their dead entries lazily, once they are at least half dead.
     pub fn query(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        self.generation = self.generation.wrapping_add(1);
-        if self.generation == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
+        self.generation += 1;
+        if self.generation == DEAD {
+            self.stamp
+                .iter_mut()
+                .filter(|s| **s != DEAD)
+                .for_each(|s| *s = 0);
             self.generation = 1;
         }
         let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
@@ -242,20 +250,19 @@ impl Front {
                     let i = self.index(x, y, z);
                     let v = &mut self.cells[i];
                     let mut dead = 0;
+                    // One look-up per entry: the stamp says dead, already listed, or new.
                     for &id in v.iter() {
-                        if !self.alive[id as usize] {
-                            dead += 1;
-                            continue;
-                        }
                         let s = &mut self.stamp[id as usize];
-                        if *s != self.generation {
+                        if *s == DEAD {
+                            dead += 1;
+                        } else if *s != self.generation {
                             *s = self.generation;
                             out.push(id);
                         }
                     }
                     if dead > 4 && 2 * dead >= v.len() {
-                        let alive = &self.alive;
-                        v.retain(|&id| alive[id as usize]);
+                        let stamp = &self.stamp;
+                        v.retain(|&id| stamp[id as usize] != DEAD);
                         self.entries -= dead;
                     }
                 }
