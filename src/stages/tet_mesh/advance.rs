@@ -72,6 +72,9 @@ struct State<'a> {
     scratch: Vec<u32>,
     scratch2: Vec<u32>,
     signs: SideCache,
+    /// Per node: the last first-pass search that listed it (de-duplication without sorting).
+    seen: Vec<u32>,
+    seen_gen: u32,
 }
 
 #[derive(Clone, Copy)]
@@ -107,6 +110,8 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         scratch: Vec::new(),
         scratch2: Vec::new(),
         signs: SideCache::default(),
+        seen: Vec::new(),
+        seen_gen: 0,
         constrained: input
             .embedded
             .iter()
@@ -290,9 +295,25 @@ impl State<'_> {
             let mut cand_nodes: Vec<u32>;
             if pass == 0 {
                 self.front.query(&lo, &hi, &mut near);
-                cand_nodes = Vec::with_capacity(near.len() * 3);
+                // Each node once (a stamp per node, not a sort: every use below is
+                // order-independent — minima, and a ranking sorted by score then index).
+                cand_nodes = Vec::with_capacity(near.len());
+                self.seen_gen = self.seen_gen.wrapping_add(1);
+                if self.seen_gen == 0 {
+                    self.seen.iter_mut().for_each(|s| *s = 0);
+                    self.seen_gen = 1;
+                }
+                if self.seen.len() < self.nodes.len() {
+                    self.seen.resize(self.nodes.len(), 0);
+                }
                 for &g in &near {
-                    cand_nodes.extend_from_slice(&self.front.faces[g as usize]);
+                    for w in self.front.faces[g as usize] {
+                        let s = &mut self.seen[w as usize];
+                        if *s != self.seen_gen {
+                            *s = self.seen_gen;
+                            cand_nodes.push(w);
+                        }
+                    }
                 }
             } else {
                 // The wide search scans the node grid; the faces `clear_of_faces` needs are
@@ -308,8 +329,6 @@ impl State<'_> {
                 );
             }
             self.scratch = near;
-            cand_nodes.sort_unstable();
-            cand_nodes.dedup();
             let mut cands: Vec<(f64, u32, Cand, f64)> = Vec::new();
             // Squared distances throughout (same comparisons, no roots).
             let mut nearest2 = f64::INFINITY;
