@@ -342,6 +342,38 @@ mod tests {
     }
 
     #[test]
+    fn the_shortcut_orient3d_agrees_with_the_adaptive_predicate_on_degenerate_and_general_points() {
+        // A small lattice with repeated points, points sharing one coordinate (axis planes),
+        // general positions and tiny offsets: every quadruple is compared.
+        let mut pts: Vec<P> = Vec::new();
+        for &x in &[0.0, 1.0, 1.0 + 1e-12] {
+            for &y in &[0.0, 2.5] {
+                for &z in &[-3.0, 0.1] {
+                    pts.push([x, y, z]);
+                }
+            }
+        }
+        pts.push([0.3, 0.7, 0.0]);
+        pts.push([0.0, 0.0, -3.0]);
+        let n = pts.len();
+        let mut zero = 0;
+        for i in 0..n {
+            for j in 0..n {
+                for k in 0..n {
+                    for l in (0..n).step_by(3) {
+                        let (a, b, c, d) = (&pts[i], &pts[j], &pts[k], &pts[l]);
+                        let fast = orient3d(a, b, c, d);
+                        assert_eq!(fast, crate::geom::predicates::orient3d(a, b, c, d));
+                        zero += (fast == Orientation::Zero) as usize;
+                    }
+                }
+            }
+        }
+        // The shortcuts were exercised (and agreed), and not every case was degenerate.
+        assert!(zero > 0 && zero < n * n * n * n.div_ceil(3));
+    }
+
+    #[test]
     fn a_segment_piercing_a_triangle_is_an_intersection_and_one_beside_it_is_not() {
         let p = pts();
         assert!(seg_tri_closed(&p[4], &p[5], &p[0], &p[1], &p[2]));

@@ -348,3 +348,72 @@ pub fn bbox_of<'a>(it: impl Iterator<Item = &'a P>) -> (P, P) {
     }
     (lo, hi)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 4x4 grid of unit squares (two triangles each) in the plane z = 0, and one node above.
+    fn sheet() -> (Vec<P>, Vec<[u32; 3]>) {
+        let mut pts = Vec::new();
+        for j in 0..5 {
+            for i in 0..5 {
+                pts.push([i as f64, j as f64, 0.0]);
+            }
+        }
+        pts.push([2.0, 2.0, 3.0]);
+        let mut tris = Vec::new();
+        for j in 0..4u32 {
+            for i in 0..4u32 {
+                let a = i + 5 * j;
+                tris.push([a, a + 1, a + 6]);
+                tris.push([a, a + 6, a + 5]);
+            }
+        }
+        (pts, tris)
+    }
+
+    #[test]
+    fn the_wide_node_search_lists_each_live_front_node_once_and_drops_nodes_left_without_faces() {
+        let (pts, tris) = sheet();
+        let mut front = Front::new([0.0; 3], [4.0, 4.0, 3.0], 0.5);
+        let ids: Vec<u32> = tris.iter().map(|&t| front.add(t, 1.0, &pts)).collect();
+        let mut out = Vec::new();
+        front.query_nodes(&[-1.0; 3], &[5.0, 5.0, 4.0], &mut out);
+        let mut sorted = out.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        assert_eq!(sorted.len(), out.len(), "a node listed twice");
+        assert_eq!(sorted, (0..25).collect::<Vec<u32>>());
+        // Remove the two triangles at the corner (0, 0): node 0 has no live face left.
+        front.remove(ids[0]);
+        front.remove(ids[1]);
+        front.query_nodes(&[-1.0; 3], &[5.0, 5.0, 4.0], &mut out);
+        assert!(!out.contains(&0));
+        assert!(out.contains(&1) && out.contains(&5) && out.contains(&6));
+        // Faces: the removed ones are gone from the box query, the others are there once.
+        let mut faces = Vec::new();
+        front.query(&[-1.0; 3], &[5.0, 5.0, 4.0], &mut faces);
+        faces.sort_unstable();
+        assert_eq!(faces, ids[2..].to_vec());
+    }
+
+    #[test]
+    fn the_back_tracking_node_search_finds_every_recorded_node_in_its_box() {
+        let (pts, _) = sheet();
+        let mut front = Front::new([0.0; 3], [4.0, 4.0, 3.0], 0.5);
+        for (v, p) in pts.iter().enumerate() {
+            front.add_node(v as u32, p);
+        }
+        let (lo, hi) = ([1.5, 1.5, -0.5], [2.5, 2.5, 3.5]);
+        let mut out = Vec::new();
+        front.nodes_near(&lo, &hi, &mut out);
+        for (v, p) in pts.iter().enumerate() {
+            if (0..3).all(|k| lo[k] <= p[k] && p[k] <= hi[k]) {
+                assert!(out.contains(&(v as u32)), "node {v} at {p:?} missed");
+            }
+        }
+        assert!(out.contains(&25) && out.contains(&12));
+        assert!(!out.contains(&0), "a far node listed");
+    }
+}

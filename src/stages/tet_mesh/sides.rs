@@ -70,3 +70,53 @@ pub fn orientation_of(s: i8) -> Orientation {
         _ => Orientation::Zero,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stages::tet_mesh::verify::outward_faces;
+
+    #[test]
+    fn signs_against_a_tets_planes_match_the_predicate_and_are_fresh_for_each_candidate() {
+        let mut pts: Vec<P> = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.2, 0.2, 0.2],  // inside
+            [2.0, 2.0, 2.0],  // outside the slanted face only
+            [0.5, 0.5, 0.0],  // on the base plane and the slanted one
+            [0.0, 0.0, -1.0], // below the base, on two side planes
+            [0.3, 0.3, 0.6],  // just outside the slanted face
+        ];
+        let tet = [0, 1, 2, 3];
+        let planes = outward_faces(tet);
+        let mut cache = SideCache::default();
+        cache.start(pts.len());
+        assert_eq!(cache.of(4, &tet, &planes, &pts), [-1, -1, -1, -1]);
+        assert_eq!(cache.of(5, &tet, &planes, &pts), [-1, -1, 1, -1]);
+        assert_eq!(cache.of(6, &tet, &planes, &pts), [0, -1, 0, -1]);
+        assert_eq!(cache.of(7, &tet, &planes, &pts), [1, 0, -1, 0]);
+        assert_eq!(cache.of(8, &tet, &planes, &pts), [-1, -1, 1, -1]);
+        // A tet vertex: on the three planes through it, inside the fourth.
+        assert_eq!(cache.of(3, &tet, &planes, &pts), [-1, 0, 0, 0]);
+        for w in 4..9u32 {
+            let s = cache.of(w, &tet, &planes, &pts);
+            for (k, f) in planes.iter().enumerate() {
+                let o = orient3d(
+                    &pts[f[0] as usize],
+                    &pts[f[1] as usize],
+                    &pts[f[2] as usize],
+                    &pts[w as usize],
+                );
+                assert_eq!(orientation_of(s[k]), o, "node {w} plane {k}");
+            }
+        }
+        // A new candidate (another tet over the same nodes) must not see the old signs.
+        pts.push([0.0, 0.0, 2.0]);
+        let tet2 = [0, 1, 2, 9];
+        let planes2 = outward_faces(tet2);
+        cache.start(pts.len());
+        assert_eq!(cache.of(8, &tet2, &planes2, &pts)[2], -1);
+    }
+}
