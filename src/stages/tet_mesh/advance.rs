@@ -4,6 +4,12 @@
 //! When no candidate is valid the front is stuck there: delete the tetrahedra around the face
 //! (a wider ball at each retry), restore the front around the cavity and carry on — an explicit
 //! loop, never recursion. Gives up with an error naming the region and the stuck face.
+//!
+//! Cost: a face tests at most `MAX_TRIES` candidates per pass before it is deferred (all of them
+//! on its last attempt), the wide second pass scans the front's node grid rather than its face
+//! grid, and the validity test decides each nearby front node's sides against the candidate's
+//! four planes once (`sides`), skipping every front face strictly outside one plane before any
+//! triangle-triangle test.
 
 use std::collections::HashMap;
 
