@@ -4,14 +4,20 @@
 //! When no candidate is valid the front is stuck there: delete the tetrahedra around the face
 //! (a wider ball at each retry), restore the front around the cavity and carry on — an explicit
 //! loop, never recursion. Gives up with an error naming the region and the stuck face.
+//!
+//! Cost: a face tests at most `MAX_TRIES` candidates per pass before it is deferred (all of them
+//! on its last attempt), the wide second pass scans the front's node grid rather than its face
+//! grid, and the validity test decides each nearby front node's sides against the candidate's
+//! four planes once (`sides`), skipping every front face strictly outside one plane before any
+//! triangle-triangle test.
 
 use std::collections::HashMap;
 
-use crate::geom::predicates::{Orientation, orient3d};
+use crate::geom::predicates::Orientation;
 
-use super::exact::{point_in_closed_tet, tri_tri_improper};
-use super::front::{Front, bbox_of};
-use super::quality::mean_ratio;
+use super::exact::{orient3d, tri_tri_improper_with};
+use super::front::{FaceMap, Front, bbox_of};
+use super::sides::{SideCache, orientation_of};
 use super::sizing::Background;
 use super::verify::outward_faces;
 use super::{RegionInput, SizeField, TetMeshError};
@@ -23,6 +29,8 @@ type P = [f64; 3];
 const NEW_NODE_CLEARANCE: f64 = 0.55;
 /// Score factor of a new node against reusing an existing one of the same quality.
 const NEW_NODE_PREFERENCE: f64 = 0.75;
+/// `NEW_NODE_PREFERENCE` cubed, for scores in cubed mean ratios (`rank_ratio3`).
+const PREF3: f64 = NEW_NODE_PREFERENCE * NEW_NODE_PREFERENCE * NEW_NODE_PREFERENCE;
 /// Search radius for existing candidate nodes, in local sizes, on the first and second passes.
 const SEARCH_RADIUS: [f64; 2] = [1.6, 4.0];
 /// How many times the same face may trigger back-tracking before the region is declared stuck.
@@ -34,7 +42,7 @@ const MIN_QUALITY: [f64; 6] = [0.3, 0.15, 0.05, 0.02, 0.005, 0.0];
 /// New nodes closer than this fraction of the local size to a front face are not created.
 const FACE_CLEARANCE: f64 = 0.3;
 /// Cell size of the front's grid, in mean boundary edge lengths.
-const FRONT_CELL: f64 = 2.0;
+const FRONT_CELL: f64 = 1.0;
 /// Candidate apexes whose tetrahedron has a (float) mean ratio below this are never considered.
 const FLAT: f64 = 1e-9;
 /// Heights of last-resort Steiner apexes over a stuck face, in local target sizes (not the
@@ -46,6 +54,8 @@ const STEINER_HEIGHTS: [f64; 5] = [0.4, 0.2, 0.1, 0.05, 0.025];
 const MIN_NODE_GAP: f64 = 0.004;
 /// Steiner apexes keep at least this (in local sizes) from every node near the stuck face.
 const STEINER_GAP: f64 = 0.05;
+/// Candidates tested per pass before a face is deferred (all of them on the last attempt).
+const MAX_TRIES: usize = 8;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
 const NEAR_IDEAL: f64 = 1.0;
 
@@ -67,6 +77,10 @@ struct State<'a> {
     constrained: std::collections::HashSet<[u32; 3]>,
     scratch: Vec<u32>,
     scratch2: Vec<u32>,
+    signs: SideCache,
+    /// Per node: the last first-pass search that listed it (de-duplication without sorting).
+    seen: Vec<u32>,
+    seen_gen: u32,
 }
 
 #[derive(Clone, Copy)]
@@ -101,6 +115,9 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         },
         scratch: Vec::new(),
         scratch2: Vec::new(),
+        signs: SideCache::default(),
+        seen: Vec::new(),
+        seen_gen: 0,
         constrained: input
             .embedded
             .iter()
@@ -111,6 +128,9 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             })
             .collect(),
     };
+    for (v, p) in pts.iter().enumerate() {
+        st.front.add_node(v as u32, p);
+    }
     for t in &input.boundary {
         st.add_face([t[0], t[2], t[1]]);
     }
@@ -121,7 +141,7 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
     // Keyed by the stuck face's centroid bits, not its node ids: re-meshing a cavity re-creates
     // nodes at the same places under new ids, and the retry level must still grow.
     let mut levels: HashMap<[u64; 3], u32> = HashMap::new();
-    let mut defers: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut defers: FaceMap<u32> = FaceMap::default();
     let mut backtracks = 0usize;
     let max_backtracks = 100 + input.boundary.len() / 8;
     let max_steps = 400 * (input.boundary.len() + input.embedded.len()) + 100_000;
@@ -208,6 +228,11 @@ fn dist(a: &P, b: &P) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
+#[inline]
+fn dist2(a: &P, b: &P) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
+}
+
 fn centroid(f: &[u32; 3], pts: &[P]) -> P {
     let [a, b, c] = f.map(|i| pts[i as usize]);
     [
@@ -255,6 +280,7 @@ impl State<'_> {
             m[2] + nu[2] * height,
         ];
 
+        let mut tried: Vec<u32> = Vec::new();
         for (pass, &radius) in SEARCH_RADIUS.iter().enumerate() {
             let rad = radius * h.max(le);
             let (lo, hi) = if pass == 0 {
@@ -272,44 +298,75 @@ impl State<'_> {
                 )
             };
             let mut near = std::mem::take(&mut self.scratch);
-            self.front.query(&lo, &hi, &mut near);
-            let mut cand_nodes: Vec<u32> = Vec::with_capacity(near.len() * 3);
-            for &g in &near {
-                cand_nodes.extend_from_slice(&self.front.faces[g as usize]);
+            let mut cand_nodes: Vec<u32>;
+            if pass == 0 {
+                self.front.query(&lo, &hi, &mut near);
+                // Each node once (a stamp per node, not a sort: every use below is
+                // order-independent — minima, and a ranking sorted by score then index).
+                cand_nodes = Vec::with_capacity(near.len());
+                self.seen_gen = self.seen_gen.wrapping_add(1);
+                if self.seen_gen == 0 {
+                    self.seen.iter_mut().for_each(|s| *s = 0);
+                    self.seen_gen = 1;
+                }
+                if self.seen.len() < self.nodes.len() {
+                    self.seen.resize(self.nodes.len(), 0);
+                }
+                for &g in &near {
+                    for w in self.front.faces[g as usize] {
+                        let s = &mut self.seen[w as usize];
+                        if *s != self.seen_gen {
+                            *s = self.seen_gen;
+                            cand_nodes.push(w);
+                        }
+                    }
+                }
+            } else {
+                // The wide search scans the node grid; the faces `clear_of_faces` needs are
+                // those near the segment from the face to the ideal apex.
+                cand_nodes = Vec::new();
+                self.front.query_nodes(&lo, &hi, &mut cand_nodes);
+                let hc = h.max(0.8 * self.bg.size_at(&m));
+                let r = 0.5 * FACE_CLEARANCE * hc;
+                self.front.query(
+                    &[0, 1, 2].map(|k| m[k].min(ideal[k]) - r),
+                    &[0, 1, 2].map(|k| m[k].max(ideal[k]) + r),
+                    &mut near,
+                );
             }
             self.scratch = near;
-            cand_nodes.sort_unstable();
-            cand_nodes.dedup();
-            let mut cands: Vec<(f64, u32, Cand)> = Vec::new();
-            let mut nearest = f64::INFINITY;
+            let mut cands: Vec<(f64, u32, Cand, f64)> = Vec::new();
+            // Squared distances throughout (same comparisons, no roots).
+            let mut nearest2 = f64::INFINITY;
+            let (far2, near_ideal2) = ((rad + h) * (rad + h), (NEAR_IDEAL * h) * (NEAR_IDEAL * h));
             for &w in &cand_nodes {
                 if f.contains(&w) {
                     continue;
                 }
                 let p = self.nodes[w as usize];
-                let dw = dist(&p, &ideal);
-                nearest = nearest.min(dw);
-                if dist(&p, &m) > rad + h || (pass == 0 && dw > NEAR_IDEAL * h) {
+                let dw2 = dist2(&p, &ideal);
+                nearest2 = nearest2.min(dw2);
+                if dist2(&p, &m) > far2 || (pass == 0 && dw2 > near_ideal2) {
                     continue;
                 }
                 // Ranking only (validity is decided exactly in `valid`): a candidate the float
                 // measure finds flat or inverted is skipped before the costlier exact test, which
                 // coplanar boundary nodes would send down its slow exact path.
-                let q = mean_ratio(&a, &b, &c, &p);
-                if q < FLAT || orient3d(&a, &b, &c, &p) != Orientation::Positive {
+                let q = rank_ratio3(&a, &b, &c, &p);
+                if q < FLAT * FLAT * FLAT || orient3d(&a, &b, &c, &p) != Orientation::Positive {
                     continue;
                 }
-                cands.push((q, w, Cand::Node(w)));
+                cands.push((q, w, Cand::Node(w), q));
             }
             if pass == 0 {
                 // Clearances use the background size so that small faces close on existing
                 // nodes instead of seeding ever smaller ones.
                 let hc = h.max(0.8 * self.bg.size_at(&m));
-                if nearest > NEW_NODE_CLEARANCE * hc
+                if nearest2 > (NEW_NODE_CLEARANCE * hc).powi(2)
                     && self.clear_of_faces(&ideal, fid, FACE_CLEARANCE * hc)
                 {
-                    let q = mean_ratio(&a, &b, &c, &ideal);
-                    cands.push((q * NEW_NODE_PREFERENCE, u32::MAX, Cand::New(ideal)));
+                    let q = rank_ratio3(&a, &b, &c, &ideal);
+                    cands.push((q * PREF3, u32::MAX, Cand::New(ideal), q));
                 }
             } else {
                 for frac in [0.6, 0.35, 0.2, 0.1] {
@@ -319,13 +376,14 @@ impl State<'_> {
                         m[2] + nu[2] * height * frac,
                     ];
                     let hc = h.max(0.8 * self.bg.size_at(&m));
-                    let near_node = cand_nodes
-                        .iter()
-                        .any(|&w| dist(&self.nodes[w as usize], &p) < 0.3 * hc);
-                    let tiny = cand_nodes
-                        .iter()
-                        .chain(&f)
-                        .any(|&w| dist(&self.nodes[w as usize], &p) < MIN_NODE_GAP * hc);
+                    let closest2 = |ws: &[u32]| {
+                        ws.iter()
+                            .map(|&w| dist2(&self.nodes[w as usize], &p))
+                            .fold(f64::INFINITY, f64::min)
+                    };
+                    let dc2 = closest2(&cand_nodes);
+                    let near_node = dc2 < (0.3 * hc).powi(2);
+                    let tiny = dc2.min(closest2(&f)) < (MIN_NODE_GAP * hc).powi(2);
                     if tiny {
                         continue;
                     }
@@ -335,19 +393,30 @@ impl State<'_> {
                     {
                         continue;
                     }
-                    let q = mean_ratio(&a, &b, &c, &p);
-                    cands.push((q * NEW_NODE_PREFERENCE * 0.5, u32::MAX, Cand::New(p)));
+                    let q = rank_ratio3(&a, &b, &c, &p);
+                    cands.push((q * PREF3 * 0.125, u32::MAX, Cand::New(p), q));
                 }
             }
             cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
-            for &(_, _, cand) in &cands {
-                let q = match cand {
-                    Cand::Node(w) => mean_ratio(&a, &b, &c, &self.nodes[w as usize]),
-                    Cand::New(p) => mean_ratio(&a, &b, &c, &p),
-                };
-                if q < q_min {
+            // Before the last attempt only the best few are tested: a face whose best candidates
+            // all fail is deferred, and the front around it usually offers a good apex later.
+            let mut budget = if q_min > 0.0 { MAX_TRIES } else { usize::MAX };
+            let q_min3 = q_min * q_min * q_min;
+            for &(_, _, cand, q) in &cands {
+                if q < q_min3 {
                     continue;
                 }
+                if let Cand::Node(w) = cand {
+                    // Already tested (and failed) on the first pass.
+                    if pass > 0 && tried.contains(&w) {
+                        continue;
+                    }
+                    tried.push(w);
+                }
+                if budget == 0 {
+                    break;
+                }
+                budget -= 1;
                 if self.valid(fid, f, cand) {
                     return Some(cand);
                 }
@@ -427,7 +496,7 @@ impl State<'_> {
                     .chain(&f)
                     .all(|&w| dist(&self.nodes[w as usize], p) >= clear)
             })
-            .map(|(i, p)| (mean_ratio(&a, &b, &c, p), i))
+            .map(|(i, p)| (rank_ratio3(&a, &b, &c, p), i))
             .filter(|(q, _)| *q > 0.0)
             .collect();
         cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
@@ -449,6 +518,12 @@ impl State<'_> {
                 continue;
             }
             let [a, b, c] = self.front.faces[g as usize].map(|i| self.nodes[i as usize]);
+            // A triangle whose bounding box is farther than `clear` is farther than `clear`.
+            if (0..3).any(|k| {
+                p[k] + clear < a[k].min(b[k]).min(c[k]) || p[k] - clear > a[k].max(b[k]).max(c[k])
+            }) {
+                continue;
+            }
             if point_triangle_distance(p, &a, &b, &c) < clear {
                 return false;
             }
@@ -487,8 +562,10 @@ impl State<'_> {
         if orient3d(pa, pb, pc, pd) != Orientation::Positive {
             return false;
         }
-        let new_faces = [[a, b, d], [b, c, d], [c, a, d]];
-        for nf in &new_faces {
+        let tet = [a, b, c, d];
+        // The tet's outward faces; the last three are the new faces `abd`, `bcd`, `cad`.
+        let planes = outward_faces(tet);
+        for nf in &planes[1..] {
             // The same orientation already on the front means overlap — unless the reverse is
             // there too: both sides of an open embedded face, and the tet closes the near one.
             if self.front.find(*nf).is_some() && self.front.find([nf[0], nf[2], nf[1]]).is_none() {
@@ -496,41 +573,48 @@ impl State<'_> {
             }
         }
         let (lo, hi) = bbox_of([pa, pb, pc, pd].into_iter());
-        let new_boxes = new_faces.map(|nf| bbox_of(nf.iter().map(|&i| &pts[i as usize])));
+        let new_boxes = [1, 2, 3].map(|k| bbox_of(planes[k].iter().map(|&i| &pts[i as usize])));
         let mut near = std::mem::take(&mut self.scratch2);
         self.front.query(&lo, &hi, &mut near);
-        let tet = [a, b, c, d];
+        self.signs.start(self.nodes.len());
         let mut ok = true;
-        'outer: for &g in &near {
+        for &g in &near {
             if g == fid {
                 continue;
             }
             let gv = self.front.faces[g as usize];
             let (glo, ghi) = bbox_of(gv.iter().map(|&i| &self.nodes[i as usize]));
+            // Bounding boxes first (exact comparisons): triangles with disjoint boxes do not meet.
             if (0..3).any(|k| glo[k] > hi[k] || ghi[k] < lo[k]) {
                 continue;
             }
-            // Bounding boxes first (exact comparisons): a point outside the tet's box is outside
-            // the tet, triangles with disjoint boxes do not meet — the exact predicates, slow on
-            // the many coplanar configurations of planar boundaries, run only when needed.
-            for &w in &gv {
-                let pw = &self.nodes[w as usize];
-                if !tet.contains(&w)
-                    && (0..3).all(|k| lo[k] <= pw[k] && pw[k] <= hi[k])
-                    && point_in_closed_tet(pw, pa, pb, pc, pd)
-                {
-                    ok = false;
-                    break 'outer;
-                }
+            // Exact sides of g's vertices against the tet's four planes (+1 outside), shared by
+            // every face around a node.
+            let sg = gv.map(|w| self.signs.of(w, &tet, &planes, &self.nodes));
+            // All of g strictly outside one plane, but for the tet vertices it shares on that
+            // plane: g meets the closed tet at most in shared vertices or a shared edge.
+            if (0..4).any(|k| (0..3).all(|i| sg[i][k] > 0 || planes[k].contains(&gv[i]))) {
+                continue;
             }
-            for (nf, (flo, fhi)) in new_faces.iter().zip(&new_boxes) {
-                if same_set(nf, &gv) || (0..3).any(|k| glo[k] > fhi[k] || ghi[k] < flo[k]) {
+            // A front node in the closed tet (on no plane's outer side).
+            if (0..3).any(|i| !tet.contains(&gv[i]) && sg[i].iter().all(|&s| s <= 0)) {
+                ok = false;
+                break;
+            }
+            for k in 1..4 {
+                let nf = planes[k];
+                let (flo, fhi) = &new_boxes[k - 1];
+                if same_set(&nf, &gv) || (0..3).any(|j| glo[j] > fhi[j] || ghi[j] < flo[j]) {
                     continue;
                 }
-                if tri_tri_improper(*nf, gv, &self.nodes) {
+                let ou = [0, 1, 2].map(|i| orientation_of(sg[i][k]));
+                if tri_tri_improper_with(nf, gv, ou, &self.nodes) {
                     ok = false;
-                    break 'outer;
+                    break;
                 }
+            }
+            if !ok {
+                break;
             }
         }
         self.scratch2 = near;
@@ -543,7 +627,9 @@ impl State<'_> {
             Cand::New(p) => {
                 self.nodes.push(p);
                 self.node_tets.push(Vec::new());
-                (self.nodes.len() - 1) as u32
+                let v = (self.nodes.len() - 1) as u32;
+                self.front.add_node(v, &p);
+                v
             }
         };
         let [a, b, c] = self.front.faces[fid as usize];
@@ -579,10 +665,14 @@ impl State<'_> {
             );
         }
         if level > 1 {
-            for (ti, t) in self.tets.iter().enumerate() {
-                if self.tet_alive[ti] && t.iter().any(|&v| dist(&self.nodes[v as usize], &m) <= rad)
-                {
-                    del.push(ti as u32);
+            // Tets with a node within `rad`: the live tets around every such node (`node_tets`
+            // lists only live tets), the nodes found through the node grid.
+            let mut near = Vec::new();
+            self.front
+                .nodes_near(&m.map(|x| x - rad), &m.map(|x| x + rad), &mut near);
+            for &v in &near {
+                if dist(&self.nodes[v as usize], &m) <= rad {
+                    del.extend_from_slice(&self.node_tets[v as usize]);
                 }
             }
         }
@@ -615,6 +705,27 @@ impl State<'_> {
             self.node_tets[v as usize].retain(|&x| x != t);
         }
     }
+}
+
+/// The cube of the normalised mean ratio of `abcd` (signed like the volume), without a root:
+/// `1728·(3V)² / (Σ l²)³`. It ranks every candidate apex, so it is on the hot path; the cube is
+/// monotone, so rankings and thresholds (compared cubed) are those of `quality::mean_ratio`. A
+/// float measure for ranking only; validity is decided exactly elsewhere.
+#[inline]
+fn rank_ratio3(a: &P, b: &P, c: &P, d: &P) -> f64 {
+    let sub = |x: &P, y: &P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let l2 = |v: &P| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+    let vol = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+        + u[2] * (v[0] * w[1] - v[1] * w[0]))
+        / 6.0;
+    let s = l2(&u) + l2(&v) + l2(&w) + l2(&sub(c, b)) + l2(&sub(d, b)) + l2(&sub(d, c));
+    if s <= 0.0 || !s.is_finite() {
+        return 0.0;
+    }
+    let t = 3.0 * vol;
+    let m = 1728.0 * (t * t) / (s * s * s);
+    if vol < 0.0 { -m } else { m }
 }
 
 #[inline]

@@ -7,9 +7,27 @@
 //! meet exactly in the vertices/edge they share by index; any other contact — including two
 //! distinct nodes at identical coordinates — is an improper intersection.
 
-use crate::geom::predicates::{Orientation, orient2d, orient3d};
+use crate::geom::predicates::{Orientation, orient2d};
 
 type P = [f64; 3];
+
+/// The exact `orient3d` of `crate::geom`, after two exact shortcuts for the degenerate inputs the
+/// mesher meets all the time and on which the adaptive predicate takes its slowest path: a
+/// repeated point (a determinant with two equal rows is zero) and four points sharing one
+/// coordinate exactly (all on one axis-aligned plane, e.g. a box side: a zero column). Both are
+/// decided by float equality, which is exact; everything else goes to the adaptive predicate.
+#[inline]
+pub fn orient3d(a: &P, b: &P, c: &P, d: &P) -> Orientation {
+    if d == a || d == b || d == c || a == b || b == c || c == a {
+        return Orientation::Zero;
+    }
+    for k in 0..3 {
+        if a[k] == d[k] && b[k] == d[k] && c[k] == d[k] {
+            return Orientation::Zero;
+        }
+    }
+    crate::geom::predicates::orient3d(a, b, c, d)
+}
 
 #[inline]
 fn proj(p: &P, axis: usize) -> [f64; 2] {
@@ -123,9 +141,7 @@ pub fn point_in_closed_tet(x: &P, a: &P, b: &P, c: &P, d: &P) -> bool {
 /// vertices or edge they share by index. Identical vertex sets are not an intersection (the caller
 /// decides what a repeated face means).
 pub fn tri_tri_improper(t: [u32; 3], u: [u32; 3], pts: &[P]) -> bool {
-    let shared_of = |i: u32| t.contains(&i) && u.contains(&i);
-    let k = t.iter().filter(|&&i| u.contains(&i)).count();
-    if k == 3 {
+    if t.iter().all(|i| u.contains(i)) {
         return false;
     }
     let tp = [
@@ -133,15 +149,28 @@ pub fn tri_tri_improper(t: [u32; 3], u: [u32; 3], pts: &[P]) -> bool {
         &pts[t[1] as usize],
         &pts[t[2] as usize],
     ];
+    let ou = [0, 1, 2].map(|i| orient3d(tp[0], tp[1], tp[2], &pts[u[i] as usize]));
+    tri_tri_improper_with(t, u, ou, pts)
+}
+
+/// `tri_tri_improper` when the caller already knows `ou`, the exact orientations
+/// `orient3d(t0, t1, t2, u_i)` of `u`'s vertices against `t`'s plane (the mesher shares them
+/// between the tests of one candidate tetrahedron).
+pub fn tri_tri_improper_with(t: [u32; 3], u: [u32; 3], ou: [Orientation; 3], pts: &[P]) -> bool {
+    let shared_of = |i: u32| t.contains(&i) && u.contains(&i);
+    let k = t.iter().filter(|&&i| u.contains(&i)).count();
+    if k == 3 {
+        return false;
+    }
     let up = [
         &pts[u[0] as usize],
         &pts[u[1] as usize],
         &pts[u[2] as usize],
     ];
-    let ou = [
-        orient3d(tp[0], tp[1], tp[2], up[0]),
-        orient3d(tp[0], tp[1], tp[2], up[1]),
-        orient3d(tp[0], tp[1], tp[2], up[2]),
+    let tp = [
+        &pts[t[0] as usize],
+        &pts[t[1] as usize],
+        &pts[t[2] as usize],
     ];
     if separated(&ou, &u, &shared_of) {
         return false;
@@ -310,6 +339,38 @@ mod tests {
             [1.0, 1.0, 0.0],
             [0.5, -0.5, 0.0],
         ]
+    }
+
+    #[test]
+    fn the_shortcut_orient3d_agrees_with_the_adaptive_predicate_on_degenerate_and_general_points() {
+        // A small lattice with repeated points, points sharing one coordinate (axis planes),
+        // general positions and tiny offsets: every quadruple is compared.
+        let mut pts: Vec<P> = Vec::new();
+        for &x in &[0.0, 1.0, 1.0 + 1e-12] {
+            for &y in &[0.0, 2.5] {
+                for &z in &[-3.0, 0.1] {
+                    pts.push([x, y, z]);
+                }
+            }
+        }
+        pts.push([0.3, 0.7, 0.0]);
+        pts.push([0.0, 0.0, -3.0]);
+        let n = pts.len();
+        let mut zero = 0;
+        for i in 0..n {
+            for j in 0..n {
+                for k in 0..n {
+                    for l in (0..n).step_by(3) {
+                        let (a, b, c, d) = (&pts[i], &pts[j], &pts[k], &pts[l]);
+                        let fast = orient3d(a, b, c, d);
+                        assert_eq!(fast, crate::geom::predicates::orient3d(a, b, c, d));
+                        zero += (fast == Orientation::Zero) as usize;
+                    }
+                }
+            }
+        }
+        // The shortcuts were exercised (and agreed), and not every case was degenerate.
+        assert!(zero > 0 && zero < n * n * n * n.div_ceil(3));
     }
 
     #[test]

@@ -2,19 +2,28 @@
 //! region not yet meshed, with a priority queue (smallest face first, ties by id so the order is
 //! deterministic) and a uniform grid over face bounding boxes for the locality queries of the
 //! exact validity tests. A face is found by its canonical rotation, so the two sides of an
-//! embedded triangle are two distinct front faces.
+//! embedded triangle are two distinct front faces. A second grid over the same cells holds the
+//! front's nodes (each once, in the cell of its position), so the wide candidate search of a
+//! stuck face scans nodes, not the several cells each face's box covers.
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
 
 use super::verify::canon;
 
 type P = [f64; 3];
 
+/// The query stamp of a removed face (face ids are never reused, so a dead face stays dead).
+const DEAD: u32 = u32::MAX;
+
+/// Face-grid cells per node-grid cell along each axis.
+const NODE_CELLS: usize = 2;
+
 pub struct Front {
     pub faces: Vec<[u32; 3]>,
     pub alive: Vec<bool>,
-    map: HashMap<[u32; 3], u32>,
+    map: FaceMap<u32>,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
     /// Dense grid over the region's bounding box; points outside clamp to the border cells
     /// (monotone, so box overlaps are preserved).
@@ -22,9 +31,23 @@ pub struct Front {
     dims: [usize; 3],
     origin: P,
     inv_cell: f64,
+    /// Per face: the last query that listed it, or `DEAD`.
     stamp: Vec<u32>,
     generation: u32,
     pub n_alive: usize,
+    /// Nodes by cell; a node stays listed while it has live faces (dropped lazily after).
+    node_cells: Vec<Vec<u32>>,
+    /// Live front faces using each node.
+    node_deg: Vec<u32>,
+    node_listed: Vec<bool>,
+    /// The node grids' cells: `NODE_CELLS`³ face-grid cells each (points are stored once, so
+    /// coarser cells cost nothing at insertion and make wide searches visit far fewer cells).
+    ndims: [usize; 3],
+    /// Every node ever placed (input vertices and interior nodes), by cell: for back-tracking.
+    all_nodes: Vec<Vec<u32>>,
+    /// Face ids stored in `cells` (live or not), and the count after the last full sweep.
+    entries: usize,
+    swept: usize,
 }
 
 impl Front {
@@ -50,10 +73,11 @@ impl Front {
             cell *= 1.5;
             dims = dims_for(cell);
         }
+        let nd = dims.map(|d| d.div_ceil(NODE_CELLS));
         Front {
             faces: Vec::new(),
             alive: Vec::new(),
-            map: HashMap::new(),
+            map: FaceMap::default(),
             heap: BinaryHeap::new(),
             cells: vec![Vec::new(); dims[0] * dims[1] * dims[2]],
             dims,
@@ -62,6 +86,13 @@ impl Front {
             stamp: Vec::new(),
             generation: 0,
             n_alive: 0,
+            node_cells: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
+            node_deg: Vec::new(),
+            node_listed: Vec::new(),
+            ndims: nd,
+            all_nodes: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
+            entries: 0,
+            swept: 0,
         }
     }
 
@@ -84,6 +115,17 @@ impl Front {
         x + self.dims[0] * (y + self.dims[1] * z)
     }
 
+    /// The node-grid cell of face-grid cell `c`.
+    #[inline]
+    fn ncell(&self, c: [usize; 3]) -> [usize; 3] {
+        c.map(|x| x / NODE_CELLS)
+    }
+
+    #[inline]
+    fn nindex(&self, c: [usize; 3]) -> usize {
+        c[0] + self.ndims[0] * (c[1] + self.ndims[1] * c[2])
+    }
+
     /// Id of the live face with exactly this orientation, if any.
     #[inline]
     pub fn find(&self, f: [u32; 3]) -> Option<u32> {
@@ -99,6 +141,19 @@ impl Front {
         self.map.insert(canon(f), id);
         self.heap.push(Reverse((key.max(0.0).to_bits(), id)));
         self.n_alive += 1;
+        for &v in &f {
+            let i = v as usize;
+            if self.node_deg.len() <= i {
+                self.node_deg.resize(i + 1, 0);
+                self.node_listed.resize(i + 1, false);
+            }
+            self.node_deg[i] += 1;
+            if !self.node_listed[i] {
+                self.node_listed[i] = true;
+                let k = self.nindex(self.ncell(self.cell_of(&pts[i])));
+                self.node_cells[k].push(v);
+            }
+        }
         let (lo, hi) = bbox_of(f.iter().map(|&i| &pts[i as usize]));
         let (cl, ch) = (self.cell_of(&lo), self.cell_of(&hi));
         for x in cl[0]..=ch[0] {
@@ -106,18 +161,55 @@ impl Front {
                 for z in cl[2]..=ch[2] {
                     let i = self.index(x, y, z);
                     self.cells[i].push(id);
+                    self.entries += 1;
                 }
             }
         }
+        // Cells drop dead faces when queried; those no query visits again are swept here, each
+        // time the stored entries double (amortised constant time per face).
+        if self.entries > 2 * self.swept + (1 << 16) {
+            let alive = &self.alive;
+            let mut n = 0;
+            for c in &mut self.cells {
+                c.retain(|&g| alive[g as usize]);
+                c.shrink_to(2 * c.len());
+                n += c.len();
+            }
+            self.entries = n;
+            self.swept = n;
+        }
         id
+    }
+
+    /// Record a node (never moved afterwards) for `nodes_near`.
+    pub fn add_node(&mut self, v: u32, p: &P) {
+        let k = self.nindex(self.ncell(self.cell_of(p)));
+        self.all_nodes[k].push(v);
+    }
+
+    /// Every recorded node whose cell meets the box `lo..hi` (a superset of the nodes in it).
+    pub fn nodes_near(&self, lo: &P, hi: &P, out: &mut Vec<u32>) {
+        out.clear();
+        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
+        for z in cl[2]..=ch[2] {
+            for y in cl[1]..=ch[1] {
+                for x in cl[0]..=ch[0] {
+                    out.extend_from_slice(&self.all_nodes[self.nindex([x, y, z])]);
+                }
+            }
+        }
     }
 
     pub fn remove(&mut self, id: u32) {
         let i = id as usize;
         if self.alive[i] {
             self.alive[i] = false;
+            self.stamp[i] = DEAD;
             self.map.remove(&canon(self.faces[i]));
             self.n_alive -= 1;
+            for v in self.faces[i] {
+                self.node_deg[v as usize] -= 1;
+            }
         }
     }
 
@@ -143,9 +235,12 @@ impl Front {
     /// their dead entries lazily, once they are at least half dead.
     pub fn query(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        self.generation = self.generation.wrapping_add(1);
-        if self.generation == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
+        self.generation += 1;
+        if self.generation == DEAD {
+            self.stamp
+                .iter_mut()
+                .filter(|s| **s != DEAD)
+                .for_each(|s| *s = 0);
             self.generation = 1;
         }
         let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
@@ -155,24 +250,90 @@ impl Front {
                     let i = self.index(x, y, z);
                     let v = &mut self.cells[i];
                     let mut dead = 0;
+                    // One look-up per entry: the stamp says dead, already listed, or new.
                     for &id in v.iter() {
-                        if !self.alive[id as usize] {
-                            dead += 1;
-                            continue;
-                        }
                         let s = &mut self.stamp[id as usize];
-                        if *s != self.generation {
+                        if *s == DEAD {
+                            dead += 1;
+                        } else if *s != self.generation {
                             *s = self.generation;
                             out.push(id);
                         }
                     }
                     if dead > 4 && 2 * dead >= v.len() {
-                        let alive = &self.alive;
-                        v.retain(|&id| alive[id as usize]);
+                        let stamp = &self.stamp;
+                        v.retain(|&id| stamp[id as usize] != DEAD);
+                        self.entries -= dead;
                     }
                 }
             }
         }
+    }
+}
+
+impl Front {
+    /// Nodes of live front faces whose cell meets the box `lo..hi` (so every such node inside
+    /// the box, and some near it), each once, in cell order. Cells drop nodes without live
+    /// faces lazily, once at least half of their entries are such.
+    pub fn query_nodes(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
+        out.clear();
+        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
+        for z in cl[2]..=ch[2] {
+            for y in cl[1]..=ch[1] {
+                for x in cl[0]..=ch[0] {
+                    let i = self.nindex([x, y, z]);
+                    let v = &mut self.node_cells[i];
+                    let before = out.len();
+                    out.extend(v.iter().copied().filter(|&w| self.node_deg[w as usize] > 0));
+                    let dead = v.len() - (out.len() - before);
+                    if dead > 4 && 2 * dead >= v.len() {
+                        let (deg, listed) = (&self.node_deg, &mut self.node_listed);
+                        v.retain(|&w| {
+                            let keep = deg[w as usize] > 0;
+                            if !keep {
+                                listed[w as usize] = false;
+                            }
+                            keep
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A map keyed by triangles (node triples), hashed with a multiply-xorshift over the 32-bit
+/// words: the front's lookups are on the hot path and the keys are not adversarial. Never
+/// iterated, so its order reaches no output.
+pub type FaceMap<V> = HashMap<[u32; 3], V, BuildHasherDefault<WordHasher>>;
+
+#[derive(Default)]
+pub struct WordHasher(u64);
+
+impl Hasher for WordHasher {
+    #[inline]
+    fn finish(&self) -> u64 {
+        let h = self.0 ^ (self.0 >> 29);
+        h.wrapping_mul(0xbf58_476d_1ce4_e5b9) ^ (h >> 32)
+    }
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(4);
+        for c in &mut chunks {
+            self.write_u32(u32::from_le_bytes([c[0], c[1], c[2], c[3]]));
+        }
+        for &b in chunks.remainder() {
+            self.write_u32(b as u32);
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (self.0.rotate_left(23) ^ i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    }
+    #[inline]
+    fn write_usize(&mut self, i: usize) {
+        self.write_u32(i as u32);
+        self.write_u32((i >> 32) as u32);
     }
 }
 
@@ -186,4 +347,73 @@ pub fn bbox_of<'a>(it: impl Iterator<Item = &'a P>) -> (P, P) {
         }
     }
     (lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 4x4 grid of unit squares (two triangles each) in the plane z = 0, and one node above.
+    fn sheet() -> (Vec<P>, Vec<[u32; 3]>) {
+        let mut pts = Vec::new();
+        for j in 0..5 {
+            for i in 0..5 {
+                pts.push([i as f64, j as f64, 0.0]);
+            }
+        }
+        pts.push([2.0, 2.0, 3.0]);
+        let mut tris = Vec::new();
+        for j in 0..4u32 {
+            for i in 0..4u32 {
+                let a = i + 5 * j;
+                tris.push([a, a + 1, a + 6]);
+                tris.push([a, a + 6, a + 5]);
+            }
+        }
+        (pts, tris)
+    }
+
+    #[test]
+    fn the_wide_node_search_lists_each_live_front_node_once_and_drops_nodes_left_without_faces() {
+        let (pts, tris) = sheet();
+        let mut front = Front::new([0.0; 3], [4.0, 4.0, 3.0], 0.5);
+        let ids: Vec<u32> = tris.iter().map(|&t| front.add(t, 1.0, &pts)).collect();
+        let mut out = Vec::new();
+        front.query_nodes(&[-1.0; 3], &[5.0, 5.0, 4.0], &mut out);
+        let mut sorted = out.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        assert_eq!(sorted.len(), out.len(), "a node listed twice");
+        assert_eq!(sorted, (0..25).collect::<Vec<u32>>());
+        // Remove the two triangles at the corner (0, 0): node 0 has no live face left.
+        front.remove(ids[0]);
+        front.remove(ids[1]);
+        front.query_nodes(&[-1.0; 3], &[5.0, 5.0, 4.0], &mut out);
+        assert!(!out.contains(&0));
+        assert!(out.contains(&1) && out.contains(&5) && out.contains(&6));
+        // Faces: the removed ones are gone from the box query, the others are there once.
+        let mut faces = Vec::new();
+        front.query(&[-1.0; 3], &[5.0, 5.0, 4.0], &mut faces);
+        faces.sort_unstable();
+        assert_eq!(faces, ids[2..].to_vec());
+    }
+
+    #[test]
+    fn the_back_tracking_node_search_finds_every_recorded_node_in_its_box() {
+        let (pts, _) = sheet();
+        let mut front = Front::new([0.0; 3], [4.0, 4.0, 3.0], 0.5);
+        for (v, p) in pts.iter().enumerate() {
+            front.add_node(v as u32, p);
+        }
+        let (lo, hi) = ([1.5, 1.5, -0.5], [2.5, 2.5, 3.5]);
+        let mut out = Vec::new();
+        front.nodes_near(&lo, &hi, &mut out);
+        for (v, p) in pts.iter().enumerate() {
+            if (0..3).all(|k| lo[k] <= p[k] && p[k] <= hi[k]) {
+                assert!(out.contains(&(v as u32)), "node {v} at {p:?} missed");
+            }
+        }
+        assert!(out.contains(&25) && out.contains(&12));
+        assert!(!out.contains(&0), "a far node listed");
+    }
 }

@@ -17,10 +17,12 @@
 //! result exactly before `mesh_region` returns it, so a partial or overlapping mesh is an error,
 //! never a result.
 //!
-//! Submodules: `exact` (intersection predicates), `quality` (measures), `check` (input
-//! validation), `front` (front faces and their spatial grid), `advance` (the front loop and
-//! back-tracking), `optimize` (the optimization driver) with `complex`, `smooth`, `flips` and
-//! `slivers`, `verify` (exact output check).
+//! Submodules: `exact` (intersection predicates, with exact shortcuts for repeated and
+//! axis-coplanar points), `quality` (measures), `check` (input validation), `front` (front faces,
+//! their spatial grid, and grids of front nodes and of all nodes), `advance` (the front loop and
+//! back-tracking), `sides` (exact sides of nearby front nodes against a candidate's planes, shared
+//! by the validity tests of one candidate), `optimize` (the optimization driver) with `complex`,
+//! `smooth`, `flips` and `slivers`, `verify` (exact output check).
 
 mod advance;
 mod check;
@@ -30,6 +32,7 @@ mod flips;
 mod front;
 mod optimize;
 pub mod quality;
+mod sides;
 mod sizing;
 mod slivers;
 mod smooth;
