@@ -38,7 +38,7 @@ impl Operation for TetMeshOp {
         "tet_mesh"
     }
     fn version(&self) -> u32 {
-        3
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
