@@ -31,7 +31,12 @@ degrees). The coverage check then compares areas projected on the horizontal pla
 aggregate the planar patches only; `all` adds the lifted horizons. Patches that are neither
 planar nor a height field are skipped and counted.
 
-usage: gmsh_same_curves.py DUMP_DIR [--label NAME] [--markdown]
+Variant `--graded R`: instead of MeshSizeExtendFromBoundary (which interpolates the curve sizes
+across the whole patch, so a patch bounded by fine curves stays fine inside), Gmsh's sizes come
+from an Extend field on all the patch's curves: the curve size growing linearly with the distance
+by R per unit length up to the surface's size, as ours grows (R = 0.15: MAX_SURFACE_GROWTH - 1).
+
+usage: gmsh_same_curves.py DUMP_DIR [--label NAME] [--markdown] [--repeat N] [--graded R]
 """
 
 import argparse
@@ -206,9 +211,11 @@ def loop_area(loop, normal):
     return abs(tot @ normal) / 2.0
 
 
-def gmsh_patch(p, normal, lifted=False):
+def gmsh_patch(p, normal, lifted=False, repeat=1, graded=None):
     """Meshes patch p with Gmsh on our curve nodes, in the plane of `normal`; with `lifted`, the
     plane is horizontal and Gmsh's interior nodes are lifted onto the support afterwards.
+    With `repeat`, meshes that many times and keeps the fastest time. With `graded` (a rate
+    per unit length), sizes come from an Extend field instead of MeshSizeExtendFromBoundary.
     Returns (verts, tris, secs, n_curve_nodes)."""
     pts = curve_points(p)
     # A local orthonormal frame with the plane's normal as third axis: UTM coordinates waste
@@ -275,14 +282,30 @@ def gmsh_patch(p, normal, lifted=False):
     if emb:
         gmsh.model.mesh.embed(1, emb, 2, surf)
 
-    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 1)
     gmsh.option.setNumber("Mesh.MeshSizeMax", p.size)
+    if graded is None:
+        gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 1)
+    else:
+        # Sizes from the curve segments, growing linearly with the distance from the curves by
+        # `graded` per unit length up to the surface's size (Gmsh's Extend field).
+        gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+        hmin = min(min(ls) for ls in seglen)
+        f = gmsh.model.mesh.field.add("Extend")
+        gmsh.model.mesh.field.setNumbers(f, "CurvesList", sorted(line_of.values()))
+        gmsh.model.mesh.field.setNumbers(f, "SurfacesList", [surf])
+        gmsh.model.mesh.field.setNumber(f, "DistMax", max(p.size - hmin, 1e-3 * p.size) / graded)
+        gmsh.model.mesh.field.setNumber(f, "SizeMax", p.size)
+        gmsh.model.mesh.field.setNumber(f, "Power", 1.0)
+        gmsh.model.mesh.field.setAsBackgroundMesh(f)
     gmsh.option.setNumber("Mesh.Algorithm", 6)
     gmsh.option.setNumber("General.NumThreads", 1)
-    gmsh.model.mesh.generate(1)
-    t0 = time.perf_counter()
-    gmsh.model.mesh.generate(2)
-    secs = time.perf_counter() - t0
+    secs = math.inf
+    for _ in range(max(1, repeat)):
+        gmsh.model.mesh.clear()
+        gmsh.model.mesh.generate(1)
+        t0 = time.perf_counter()
+        gmsh.model.mesh.generate(2)
+        secs = min(secs, time.perf_counter() - t0)
 
     tags, xyz, _ = gmsh.model.mesh.getNodes()
     local = xyz.reshape(-1, 3)
@@ -296,7 +319,7 @@ def gmsh_patch(p, normal, lifted=False):
         tris = [[pos[int(a)] for a in en[i : i + 3]] for i in range(0, len(en), 3)]
 
     # Boundary check: Gmsh must hold exactly one node per geometry point (our curve nodes), in
-    # place, and none inside a line. Those nodes then get our exact coordinates back (Gmsh saw
+    # place, and none inside a line; its boundary edges are exactly our loop segments. Those nodes then get our exact coordinates back (Gmsh saw
     # them projected on the plane, at most the planarity tolerance away).
     for _, tag in gmsh.model.getEntities(1):
         nt, _, _ = gmsh.model.mesh.getNodes(1, tag, includeBoundary=False)
@@ -304,6 +327,7 @@ def gmsh_patch(p, normal, lifted=False):
             raise RuntimeError(f"{p.name}: Gmsh added {len(nt)} nodes inside segment {tag}")
     point_of_tag = {t: i for i, t in enumerate(ptag)}
     seen = 0
+    node_of = {}
     on_points = []
     for _, tag in gmsh.model.getEntities(0):
         nt, _, _ = gmsh.model.mesh.getNodes(0, tag)
@@ -316,9 +340,29 @@ def gmsh_patch(p, normal, lifted=False):
         if err > 1e-9 * diam:
             raise RuntimeError(f"{p.name}: Gmsh moved curve node {ours} by {err:g}")
         xyz[i] = ours
+        node_of[point_of_tag[tag]] = i
         seen += 1
     if seen != len(coords):
         raise RuntimeError(f"{p.name}: Gmsh has {seen} nodes on curves, ours {len(coords)}")
+    # Every loop segment is a boundary edge of Gmsh's mesh and nothing else is; every constraint
+    # segment is an inner edge.
+    uses = {}
+    for t in tris:
+        for k in range(3):
+            e = tuple(sorted((t[k], t[(k + 1) % 3])))
+            uses[e] = uses.get(e, 0) + 1
+    for k, pairs in enumerate(segs):
+        want = 1 if k < p.n_loops else 2
+        for a, b in pairs:
+            e = tuple(sorted((node_of[a], node_of[b])))
+            if uses.get(e, 0) != want:
+                raise RuntimeError(
+                    f"{p.name}: segment {coords[a]}-{coords[b]} is in {uses.get(e, 0)} "
+                    f"Gmsh triangles, expected {want}"
+                )
+    n_loop_segs = sum(len(pairs) for pairs in segs[: p.n_loops])
+    if sum(1 for u in uses.values() if u == 1) != n_loop_segs:
+        raise RuntimeError(f"{p.name}: Gmsh's mesh has a boundary edge that is not ours")
     if lifted:
         inner = sorted(set(range(len(xyz))) - set(pos[int(t)] for t in on_points))
         xyz[inner, 2] = lift(p, xyz[inner, :2])
@@ -369,6 +413,13 @@ def main():
     ap.add_argument("dump_dir")
     ap.add_argument("--label", default="")
     ap.add_argument("--markdown", action="store_true")
+    ap.add_argument(
+        "--graded",
+        type=float,
+        default=None,
+        help="Gmsh variant: size grows from the curves by this rate per unit length (Extend field)",
+    )
+    ap.add_argument("--repeat", type=int, default=1, help="time each patch N times, keep the fastest")
     args = ap.parse_args()
 
     files = sorted(f for f in os.listdir(args.dump_dir) if f.endswith(".txt"))
@@ -388,7 +439,7 @@ def main():
                 skipped.append((p.name, p.surface))
                 continue
             normal = np.array([0.0, 0.0, 1.0])
-        gv, gt, gsecs, nb = gmsh_patch(p, normal, lifted)
+        gv, gt, gsecs, nb = gmsh_patch(p, normal, lifted, args.repeat, args.graded)
         checked_nodes += nb
         qo = c_ratios(p.verts, p.tris)
         qg = c_ratios(gv, gt)
