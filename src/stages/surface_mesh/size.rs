@@ -228,7 +228,12 @@ mod tests {
 
     /// A half cylinder of radius 150 m faceted every 9°, 600 m long.
     fn half_cylinder() -> TriMesh {
-        let (n, r) = (20usize, 150.0);
+        half_cylinder_with(20)
+    }
+
+    /// A half cylinder of radius 150 m in `n` facets, 600 m long.
+    fn half_cylinder_with(n: usize) -> TriMesh {
+        let r = 150.0;
         let mut vs = Vec::new();
         for j in 0..=1 {
             for i in 0..=n {
@@ -291,21 +296,7 @@ mod tests {
     #[test]
     fn a_finely_faceted_bend_still_bounds_the_size() {
         // A half cylinder of radius 150 m faceted every 1° (2.6 m facets): same bound as 9°.
-        let (n, r) = (180usize, 150.0);
-        let mut vs = Vec::new();
-        for j in 0..=1 {
-            for i in 0..=n {
-                let a = std::f64::consts::PI * i as f64 / n as f64;
-                vs.push([r * a.cos(), 600.0 * j as f64, r * a.sin()]);
-            }
-        }
-        let mut ts = Vec::new();
-        for i in 0..n as u32 {
-            let (a, b, c, d) = (i, i + 1, i + 1 + n as u32 + 1, i + n as u32 + 1);
-            ts.push([a, c, b]);
-            ts.push([a, d, c]);
-        }
-        let m = TriMesh::new(vs, ts);
+        let m = half_cylinder_with(180);
         let nodes = curvature_nodes(&m, &normals_of(&m), 200.0);
         assert!(!nodes.is_empty());
         for (_, h) in &nodes {
