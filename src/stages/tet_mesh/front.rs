@@ -14,11 +14,19 @@ use super::verify::canon;
 
 type P = [f64; 3];
 
-/// The query stamp of a removed face (face ids are never reused, so a dead face stays dead).
-const DEAD: u32 = u32::MAX;
-
 /// Face-grid cells per node-grid cell along each axis.
 const NODE_CELLS: usize = 2;
+
+/// One face listed in one grid cell. `first` has bit k set when the face's cell range starts at
+/// this cell along axis k: a box query reports the face only in the first cell of the overlap of
+/// the two ranges (where, along each axis, the face starts or the query does), so each face comes
+/// out once without a per-face "already listed" stamp — the query reads only the cell lists,
+/// never an array indexed by face id, whose random accesses dominated on large regions.
+#[derive(Clone, Copy)]
+struct Entry {
+    id: u32,
+    first: u8,
+}
 
 pub struct Front {
     pub faces: Vec<[u32; 3]>,
@@ -26,28 +34,27 @@ pub struct Front {
     map: FaceMap<u32>,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
     /// Dense grid over the region's bounding box; points outside clamp to the border cells
-    /// (monotone, so box overlaps are preserved).
-    cells: Vec<Vec<u32>>,
+    /// (monotone, so box overlaps are preserved). Cells list live faces only: a removed face
+    /// leaves its cells at once (order-preserving), so no query skips dead entries.
+    cells: Vec<Vec<Entry>>,
     dims: [usize; 3],
     origin: P,
     inv_cell: f64,
-    /// Per face: the last query that listed it, or `DEAD`.
-    stamp: Vec<u32>,
-    generation: u32,
+    /// Per face: the linear indices of the first and last cells of its range.
+    range: Vec<[u32; 2]>,
     pub n_alive: usize,
-    /// Nodes by cell; a node stays listed while it has live faces (dropped lazily after).
+    /// Nodes by cell: exactly the nodes with live faces (a node leaves its cell when its last
+    /// live face is removed).
     node_cells: Vec<Vec<u32>>,
     /// Live front faces using each node.
     node_deg: Vec<u32>,
-    node_listed: Vec<bool>,
+    /// Per node: its node-grid cell (set when it is listed).
+    node_cell: Vec<u32>,
     /// The node grids' cells: `NODE_CELLS`³ face-grid cells each (points are stored once, so
     /// coarser cells cost nothing at insertion and make wide searches visit far fewer cells).
     ndims: [usize; 3],
     /// Every node ever placed (input vertices and interior nodes), by cell: for back-tracking.
     all_nodes: Vec<Vec<u32>>,
-    /// Face ids stored in `cells` (live or not), and the count after the last full sweep.
-    entries: usize,
-    swept: usize,
 }
 
 impl Front {
@@ -83,16 +90,13 @@ impl Front {
             dims,
             origin: lo,
             inv_cell: 1.0 / cell,
-            stamp: Vec::new(),
-            generation: 0,
+            range: Vec::new(),
             n_alive: 0,
             node_cells: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
             node_deg: Vec::new(),
-            node_listed: Vec::new(),
+            node_cell: Vec::new(),
             ndims: nd,
             all_nodes: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
-            entries: 0,
-            swept: 0,
         }
     }
 
@@ -113,6 +117,13 @@ impl Front {
     #[inline]
     fn index(&self, x: usize, y: usize, z: usize) -> usize {
         x + self.dims[0] * (y + self.dims[1] * z)
+    }
+
+    /// The cell coordinates of a linear cell index.
+    #[inline]
+    fn coords(&self, i: usize) -> [usize; 3] {
+        let (x, yz) = (i % self.dims[0], i / self.dims[0]);
+        [x, yz % self.dims[1], yz / self.dims[1]]
     }
 
     /// The node-grid cell of face-grid cell `c`.
@@ -137,7 +148,6 @@ impl Front {
         let id = self.faces.len() as u32;
         self.faces.push(f);
         self.alive.push(true);
-        self.stamp.push(0);
         self.map.insert(canon(f), id);
         self.heap.push(Reverse((key.max(0.0).to_bits(), id)));
         self.n_alive += 1;
@@ -145,38 +155,30 @@ impl Front {
             let i = v as usize;
             if self.node_deg.len() <= i {
                 self.node_deg.resize(i + 1, 0);
-                self.node_listed.resize(i + 1, false);
+                self.node_cell.resize(i + 1, 0);
             }
             self.node_deg[i] += 1;
-            if !self.node_listed[i] {
-                self.node_listed[i] = true;
+            if self.node_deg[i] == 1 {
                 let k = self.nindex(self.ncell(self.cell_of(&pts[i])));
+                self.node_cell[i] = k as u32;
                 self.node_cells[k].push(v);
             }
         }
         let (lo, hi) = bbox_of(f.iter().map(|&i| &pts[i as usize]));
         let (cl, ch) = (self.cell_of(&lo), self.cell_of(&hi));
-        for x in cl[0]..=ch[0] {
+        self.range.push([
+            self.index(cl[0], cl[1], cl[2]) as u32,
+            self.index(ch[0], ch[1], ch[2]) as u32,
+        ]);
+        for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
-                for z in cl[2]..=ch[2] {
+                for x in cl[0]..=ch[0] {
+                    let first =
+                        (x == cl[0]) as u8 | ((y == cl[1]) as u8) << 1 | ((z == cl[2]) as u8) << 2;
                     let i = self.index(x, y, z);
-                    self.cells[i].push(id);
-                    self.entries += 1;
+                    self.cells[i].push(Entry { id, first });
                 }
             }
-        }
-        // Cells drop dead faces when queried; those no query visits again are swept here, each
-        // time the stored entries double (amortised constant time per face).
-        if self.entries > 2 * self.swept + (1 << 16) {
-            let alive = &self.alive;
-            let mut n = 0;
-            for c in &mut self.cells {
-                c.retain(|&g| alive[g as usize]);
-                c.shrink_to(2 * c.len());
-                n += c.len();
-            }
-            self.entries = n;
-            self.swept = n;
         }
         id
     }
@@ -202,13 +204,33 @@ impl Front {
 
     pub fn remove(&mut self, id: u32) {
         let i = id as usize;
-        if self.alive[i] {
-            self.alive[i] = false;
-            self.stamp[i] = DEAD;
-            self.map.remove(&canon(self.faces[i]));
-            self.n_alive -= 1;
-            for v in self.faces[i] {
-                self.node_deg[v as usize] -= 1;
+        if !self.alive.get(i).copied().unwrap_or(false) {
+            return;
+        }
+        self.alive[i] = false;
+        self.map.remove(&canon(self.faces[i]));
+        self.n_alive -= 1;
+        for v in self.faces[i] {
+            let w = v as usize;
+            self.node_deg[w] -= 1;
+            if self.node_deg[w] == 0 {
+                let cell = &mut self.node_cells[self.node_cell[w] as usize];
+                if let Some(at) = cell.iter().position(|&u| u == v) {
+                    cell.remove(at);
+                }
+            }
+        }
+        let [a, b] = self.range[i];
+        let (cl, ch) = (self.coords(a as usize), self.coords(b as usize));
+        for z in cl[2]..=ch[2] {
+            for y in cl[1]..=ch[1] {
+                for x in cl[0]..=ch[0] {
+                    let c = self.index(x, y, z);
+                    let cell = &mut self.cells[c];
+                    if let Some(at) = cell.iter().position(|e| e.id == id) {
+                        cell.remove(at);
+                    }
+                }
             }
         }
     }
@@ -231,39 +253,25 @@ impl Front {
     }
 
     /// Live faces whose bounding-box cells meet the box `lo..hi`, each once, in an order fixed
-    /// by the history of the front (callers only use order-independent results). Cells drop
-    /// their dead entries lazily, once they are at least half dead.
+    /// by the history of the front (callers only use order-independent results): cell order
+    /// (z, y, x), and within a cell the order of insertion.
     pub fn query(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        self.generation += 1;
-        if self.generation == DEAD {
-            self.stamp
-                .iter_mut()
-                .filter(|s| **s != DEAD)
-                .for_each(|s| *s = 0);
-            self.generation = 1;
-        }
         let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
         for z in cl[2]..=ch[2] {
+            let fz = if z == cl[2] { 4 } else { 0 };
             for y in cl[1]..=ch[1] {
+                let fy = if y == cl[1] { 2 } else { 0 };
+                let row = self.index(0, y, z);
                 for x in cl[0]..=ch[0] {
-                    let i = self.index(x, y, z);
-                    let v = &mut self.cells[i];
-                    let mut dead = 0;
-                    // One look-up per entry: the stamp says dead, already listed, or new.
-                    for &id in v.iter() {
-                        let s = &mut self.stamp[id as usize];
-                        if *s == DEAD {
-                            dead += 1;
-                        } else if *s != self.generation {
-                            *s = self.generation;
-                            out.push(id);
+                    let fx = if x == cl[0] { 1 } else { 0 };
+                    // Axes along which this cell is the query's first: a face is reported here
+                    // when, along every other axis, its range starts here.
+                    let need = 7 & !(fx | fy | fz);
+                    for e in &self.cells[row + x] {
+                        if e.first & need == need {
+                            out.push(e.id);
                         }
-                    }
-                    if dead > 4 && 2 * dead >= v.len() {
-                        let stamp = &self.stamp;
-                        v.retain(|&id| stamp[id as usize] != DEAD);
-                        self.entries -= dead;
                     }
                 }
             }
@@ -273,29 +281,14 @@ impl Front {
 
 impl Front {
     /// Nodes of live front faces whose cell meets the box `lo..hi` (so every such node inside
-    /// the box, and some near it), each once, in cell order. Cells drop nodes without live
-    /// faces lazily, once at least half of their entries are such.
+    /// the box, and some near it), each once, in cell order.
     pub fn query_nodes(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
         let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
-                    let i = self.nindex([x, y, z]);
-                    let v = &mut self.node_cells[i];
-                    let before = out.len();
-                    out.extend(v.iter().copied().filter(|&w| self.node_deg[w as usize] > 0));
-                    let dead = v.len() - (out.len() - before);
-                    if dead > 4 && 2 * dead >= v.len() {
-                        let (deg, listed) = (&self.node_deg, &mut self.node_listed);
-                        v.retain(|&w| {
-                            let keep = deg[w as usize] > 0;
-                            if !keep {
-                                listed[w as usize] = false;
-                            }
-                            keep
-                        });
-                    }
+                    out.extend_from_slice(&self.node_cells[self.nindex([x, y, z])]);
                 }
             }
         }
