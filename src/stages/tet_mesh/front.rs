@@ -17,6 +17,12 @@ type P = [f64; 3];
 /// Face-grid cells per node-grid cell along each axis.
 const NODE_CELLS: usize = 2;
 
+/// The face grid is coarsened when live faces meet more than this many cells each on average
+/// (about 2.5 per axis: faces about twice the cell size)...
+const COARSEN_AT: usize = 16;
+/// ... and the front has at least this many faces (small fronts are cheap anyway).
+const COARSEN_MIN_FACES: usize = 1024;
+
 /// One face listed in one grid cell. `first` has bit k set when the face's cell range starts at
 /// this cell along axis k: a box query reports the face only in the first cell of the overlap of
 /// the two ranges (where, along each axis, the face starts or the query does), so each face comes
@@ -40,6 +46,14 @@ pub struct Front {
     dims: [usize; 3],
     origin: P,
     inv_cell: f64,
+    /// The box's extent, for re-gridding.
+    ext: P,
+    /// Grid entries (face, cell) of live faces: their mean per face says whether the faces have
+    /// outgrown the cells (see `coarsen`).
+    entries: usize,
+    /// The first grid's cell, which the node grids keep for good.
+    inv_cell0: f64,
+    dims0: [usize; 3],
     /// Per face: the linear indices of the first and last cells of its range.
     range: Vec<[u32; 2]>,
     pub n_alive: usize,
@@ -90,6 +104,10 @@ impl Front {
             dims,
             origin: lo,
             inv_cell: 1.0 / cell,
+            ext,
+            entries: 0,
+            inv_cell0: 1.0 / cell,
+            dims0: dims,
             range: Vec::new(),
             n_alive: 0,
             node_cells: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
@@ -126,10 +144,20 @@ impl Front {
         [x, yz % self.dims[1], yz / self.dims[1]]
     }
 
-    /// The node-grid cell of face-grid cell `c`.
+    /// The node-grid cell of `p`: `NODE_CELLS`³ cells of the first face grid (the node grids
+    /// never change, even when the face grid is coarsened).
     #[inline]
-    fn ncell(&self, c: [usize; 3]) -> [usize; 3] {
-        c.map(|x| x / NODE_CELLS)
+    fn ncell(&self, p: &P) -> [usize; 3] {
+        let mut c = [0usize; 3];
+        for k in 0..3 {
+            let v = ((p[k] - self.origin[k]) * self.inv_cell0).floor();
+            c[k] = if v.is_nan() || v < 0.0 {
+                0
+            } else {
+                (v as usize).min(self.dims0[k] - 1)
+            } / NODE_CELLS;
+        }
+        c
     }
 
     #[inline]
@@ -159,17 +187,28 @@ impl Front {
             }
             self.node_deg[i] += 1;
             if self.node_deg[i] == 1 {
-                let k = self.nindex(self.ncell(self.cell_of(&pts[i])));
+                let k = self.nindex(self.ncell(&pts[i]));
                 self.node_cell[i] = k as u32;
                 self.node_cells[k].push(v);
             }
         }
+        self.range.push([0, 0]);
+        self.insert(id, pts);
+        if self.n_alive >= COARSEN_MIN_FACES && self.entries > COARSEN_AT * self.n_alive {
+            self.coarsen(pts);
+        }
+        id
+    }
+
+    /// List face `id` in the cells its bounding box meets.
+    fn insert(&mut self, id: u32, pts: &[P]) {
+        let f = self.faces[id as usize];
         let (lo, hi) = bbox_of(f.iter().map(|&i| &pts[i as usize]));
         let (cl, ch) = (self.cell_of(&lo), self.cell_of(&hi));
-        self.range.push([
+        self.range[id as usize] = [
             self.index(cl[0], cl[1], cl[2]) as u32,
             self.index(ch[0], ch[1], ch[2]) as u32,
-        ]);
+        ];
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
@@ -177,22 +216,46 @@ impl Front {
                         (x == cl[0]) as u8 | ((y == cl[1]) as u8) << 1 | ((z == cl[2]) as u8) << 2;
                     let i = self.index(x, y, z);
                     self.cells[i].push(Entry { id, first });
+                    self.entries += 1;
                 }
             }
         }
-        id
+    }
+
+    /// The faces have outgrown the cells (interior sizes grow away from the boundary, which set
+    /// the first cell size): double the cell size and list the live faces again, in id order so
+    /// each cell keeps insertion order. Each face then meets about 8× fewer cells, and queries
+    /// (boxes of a few local sizes) visit 8× fewer cells: without it both grow with the ratio of
+    /// interior to boundary sizes, which is what made large regions slower per tetrahedron.
+    fn coarsen(&mut self, pts: &[P]) {
+        let cell = 2.0 / self.inv_cell;
+        let dims = self
+            .ext
+            .map(|e| ((e / cell).floor() as usize).saturating_add(1).min(1 << 20));
+        if dims == self.dims {
+            return;
+        }
+        self.dims = dims;
+        self.inv_cell = 1.0 / cell;
+        self.cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+        self.entries = 0;
+        for id in 0..self.faces.len() as u32 {
+            if self.alive[id as usize] {
+                self.insert(id, pts);
+            }
+        }
     }
 
     /// Record a node (never moved afterwards) for `nodes_near`.
     pub fn add_node(&mut self, v: u32, p: &P) {
-        let k = self.nindex(self.ncell(self.cell_of(p)));
+        let k = self.nindex(self.ncell(p));
         self.all_nodes[k].push(v);
     }
 
     /// Every recorded node whose cell meets the box `lo..hi` (a superset of the nodes in it).
     pub fn nodes_near(&self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
+        let (cl, ch) = (self.ncell(lo), self.ncell(hi));
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
@@ -229,6 +292,7 @@ impl Front {
                     let cell = &mut self.cells[c];
                     if let Some(at) = cell.iter().position(|e| e.id == id) {
                         cell.remove(at);
+                        self.entries -= 1;
                     }
                 }
             }
@@ -284,7 +348,7 @@ impl Front {
     /// the box, and some near it), each once, in cell order.
     pub fn query_nodes(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
+        let (cl, ch) = (self.ncell(lo), self.ncell(hi));
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
