@@ -456,6 +456,60 @@ mod tests {
     }
 
     #[test]
+    fn after_coarsening_a_box_query_lists_every_live_face_meeting_it_once_and_no_removed_face() {
+        // Triangles of growing size (up to 8 cells across) scattered over a 40-cell box, so the
+        // faces outgrow the cells and the grid is coarsened while they are added.
+        let mut seed = 12345u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut pts: Vec<P> = Vec::new();
+        let mut tris = Vec::new();
+        for i in 0..3000u32 {
+            let s = 0.5 + 8.0 * i as f64 / 3000.0;
+            let o = [rnd() * 40.0, rnd() * 40.0, rnd() * 40.0];
+            for _ in 0..3 {
+                pts.push([0, 1, 2].map(|k| o[k] + s * rnd()));
+            }
+            tris.push([3 * i, 3 * i + 1, 3 * i + 2]);
+        }
+        let mut front = Front::new([0.0; 3], [50.0; 3], 1.0);
+        let ids: Vec<u32> = tris.iter().map(|&t| front.add(t, 1.0, &pts)).collect();
+        assert!(front.inv_cell < 1.0, "the grid was not coarsened");
+        for &id in ids.iter().step_by(3) {
+            front.remove(id);
+        }
+        let mut out = Vec::new();
+        for _ in 0..50 {
+            let c = [rnd() * 45.0, rnd() * 45.0, rnd() * 45.0];
+            let r = 0.5 + 4.0 * rnd();
+            let (lo, hi) = (c.map(|x| x - r), c.map(|x| x + r));
+            front.query(&lo, &hi, &mut out);
+            let mut sorted = out.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            assert_eq!(sorted.len(), out.len(), "a face listed twice");
+            for (i, &id) in ids.iter().enumerate() {
+                let (flo, fhi) = bbox_of(tris[i].iter().map(|&v| &pts[v as usize]));
+                let meets = (0..3).all(|k| flo[k] <= hi[k] && fhi[k] >= lo[k]);
+                let live = i % 3 != 0;
+                if live && meets {
+                    assert!(sorted.binary_search(&id).is_ok(), "face {id} missed");
+                }
+                if !live {
+                    assert!(
+                        sorted.binary_search(&id).is_err(),
+                        "removed face {id} listed"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn the_back_tracking_node_search_finds_every_recorded_node_in_its_box() {
         let (pts, _) = sheet();
         let mut front = Front::new([0.0; 3], [4.0, 4.0, 3.0], 0.5);
