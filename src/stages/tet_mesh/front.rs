@@ -5,6 +5,12 @@
 //! embedded triangle are two distinct front faces. A second grid over the same cells holds the
 //! front's nodes (each once, in the cell of its position), so the wide candidate search of a
 //! stuck face scans nodes, not the several cells each face's box covers.
+//!
+//! Cost at scale: cells list live faces only (a removed face leaves its cells at once), a query
+//! de-duplicates by cell position rather than by a per-face stamp, so it reads nothing indexed
+//! by face id; and the face grid doubles its cells when faces outgrow them (interior sizes grow
+//! away from the boundary that set the first cell size), so faces meet and queries visit a
+//! bounded number of cells whatever the region's size.
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
