@@ -5,6 +5,12 @@
 //! embedded triangle are two distinct front faces. A second grid over the same cells holds the
 //! front's nodes (each once, in the cell of its position), so the wide candidate search of a
 //! stuck face scans nodes, not the several cells each face's box covers.
+//!
+//! Cost at scale: cells list live faces only (a removed face leaves its cells at once), a query
+//! de-duplicates by cell position rather than by a per-face stamp, so it reads nothing indexed
+//! by face id; and the face grid doubles its cells when faces outgrow them (interior sizes grow
+//! away from the boundary that set the first cell size), so faces meet and queries visit a
+//! bounded number of cells whatever the region's size.
 
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
@@ -14,11 +20,25 @@ use super::verify::canon;
 
 type P = [f64; 3];
 
-/// The query stamp of a removed face (face ids are never reused, so a dead face stays dead).
-const DEAD: u32 = u32::MAX;
-
 /// Face-grid cells per node-grid cell along each axis.
 const NODE_CELLS: usize = 2;
+
+/// The face grid is coarsened when live faces meet more than this many cells each on average
+/// (about 2.5 per axis: faces about twice the cell size)...
+const COARSEN_AT: usize = 16;
+/// ... and the front has at least this many faces (small fronts are cheap anyway).
+const COARSEN_MIN_FACES: usize = 1024;
+
+/// One face listed in one grid cell. `first` has bit k set when the face's cell range starts at
+/// this cell along axis k: a box query reports the face only in the first cell of the overlap of
+/// the two ranges (where, along each axis, the face starts or the query does), so each face comes
+/// out once without a per-face "already listed" stamp — the query reads only the cell lists,
+/// never an array indexed by face id, whose random accesses dominated on large regions.
+#[derive(Clone, Copy)]
+struct Entry {
+    id: u32,
+    first: u8,
+}
 
 pub struct Front {
     pub faces: Vec<[u32; 3]>,
@@ -26,28 +46,35 @@ pub struct Front {
     map: FaceMap<u32>,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
     /// Dense grid over the region's bounding box; points outside clamp to the border cells
-    /// (monotone, so box overlaps are preserved).
-    cells: Vec<Vec<u32>>,
+    /// (monotone, so box overlaps are preserved). Cells list live faces only: a removed face
+    /// leaves its cells at once (order-preserving), so no query skips dead entries.
+    cells: Vec<Vec<Entry>>,
     dims: [usize; 3],
     origin: P,
     inv_cell: f64,
-    /// Per face: the last query that listed it, or `DEAD`.
-    stamp: Vec<u32>,
-    generation: u32,
+    /// The box's extent, for re-gridding.
+    ext: P,
+    /// Grid entries (face, cell) of live faces: their mean per face says whether the faces have
+    /// outgrown the cells (see `coarsen`).
+    entries: usize,
+    /// The first grid's cell, which the node grids keep for good.
+    inv_cell0: f64,
+    dims0: [usize; 3],
+    /// Per face: the linear indices of the first and last cells of its range.
+    range: Vec<[u32; 2]>,
     pub n_alive: usize,
-    /// Nodes by cell; a node stays listed while it has live faces (dropped lazily after).
+    /// Nodes by cell: exactly the nodes with live faces (a node leaves its cell when its last
+    /// live face is removed).
     node_cells: Vec<Vec<u32>>,
     /// Live front faces using each node.
     node_deg: Vec<u32>,
-    node_listed: Vec<bool>,
+    /// Per node: its node-grid cell (set when it is listed).
+    node_cell: Vec<u32>,
     /// The node grids' cells: `NODE_CELLS`³ face-grid cells each (points are stored once, so
     /// coarser cells cost nothing at insertion and make wide searches visit far fewer cells).
     ndims: [usize; 3],
     /// Every node ever placed (input vertices and interior nodes), by cell: for back-tracking.
     all_nodes: Vec<Vec<u32>>,
-    /// Face ids stored in `cells` (live or not), and the count after the last full sweep.
-    entries: usize,
-    swept: usize,
 }
 
 impl Front {
@@ -83,16 +110,17 @@ impl Front {
             dims,
             origin: lo,
             inv_cell: 1.0 / cell,
-            stamp: Vec::new(),
-            generation: 0,
+            ext,
+            entries: 0,
+            inv_cell0: 1.0 / cell,
+            dims0: dims,
+            range: Vec::new(),
             n_alive: 0,
             node_cells: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
             node_deg: Vec::new(),
-            node_listed: Vec::new(),
+            node_cell: Vec::new(),
             ndims: nd,
             all_nodes: vec![Vec::new(); nd[0] * nd[1] * nd[2]],
-            entries: 0,
-            swept: 0,
         }
     }
 
@@ -115,10 +143,27 @@ impl Front {
         x + self.dims[0] * (y + self.dims[1] * z)
     }
 
-    /// The node-grid cell of face-grid cell `c`.
+    /// The cell coordinates of a linear cell index.
     #[inline]
-    fn ncell(&self, c: [usize; 3]) -> [usize; 3] {
-        c.map(|x| x / NODE_CELLS)
+    fn coords(&self, i: usize) -> [usize; 3] {
+        let (x, yz) = (i % self.dims[0], i / self.dims[0]);
+        [x, yz % self.dims[1], yz / self.dims[1]]
+    }
+
+    /// The node-grid cell of `p`: `NODE_CELLS`³ cells of the first face grid (the node grids
+    /// never change, even when the face grid is coarsened).
+    #[inline]
+    fn ncell(&self, p: &P) -> [usize; 3] {
+        let mut c = [0usize; 3];
+        for k in 0..3 {
+            let v = ((p[k] - self.origin[k]) * self.inv_cell0).floor();
+            c[k] = if v.is_nan() || v < 0.0 {
+                0
+            } else {
+                (v as usize).min(self.dims0[k] - 1)
+            } / NODE_CELLS;
+        }
+        c
     }
 
     #[inline]
@@ -137,7 +182,6 @@ impl Front {
         let id = self.faces.len() as u32;
         self.faces.push(f);
         self.alive.push(true);
-        self.stamp.push(0);
         self.map.insert(canon(f), id);
         self.heap.push(Reverse((key.max(0.0).to_bits(), id)));
         self.n_alive += 1;
@@ -145,52 +189,79 @@ impl Front {
             let i = v as usize;
             if self.node_deg.len() <= i {
                 self.node_deg.resize(i + 1, 0);
-                self.node_listed.resize(i + 1, false);
+                self.node_cell.resize(i + 1, 0);
             }
             self.node_deg[i] += 1;
-            if !self.node_listed[i] {
-                self.node_listed[i] = true;
-                let k = self.nindex(self.ncell(self.cell_of(&pts[i])));
+            if self.node_deg[i] == 1 {
+                let k = self.nindex(self.ncell(&pts[i]));
+                self.node_cell[i] = k as u32;
                 self.node_cells[k].push(v);
             }
         }
-        let (lo, hi) = bbox_of(f.iter().map(|&i| &pts[i as usize]));
-        let (cl, ch) = (self.cell_of(&lo), self.cell_of(&hi));
-        for x in cl[0]..=ch[0] {
-            for y in cl[1]..=ch[1] {
-                for z in cl[2]..=ch[2] {
-                    let i = self.index(x, y, z);
-                    self.cells[i].push(id);
-                    self.entries += 1;
-                }
-            }
-        }
-        // Cells drop dead faces when queried; those no query visits again are swept here, each
-        // time the stored entries double (amortised constant time per face).
-        if self.entries > 2 * self.swept + (1 << 16) {
-            let alive = &self.alive;
-            let mut n = 0;
-            for c in &mut self.cells {
-                c.retain(|&g| alive[g as usize]);
-                c.shrink_to(2 * c.len());
-                n += c.len();
-            }
-            self.entries = n;
-            self.swept = n;
+        self.range.push([0, 0]);
+        self.insert(id, pts);
+        if self.n_alive >= COARSEN_MIN_FACES && self.entries > COARSEN_AT * self.n_alive {
+            self.coarsen(pts);
         }
         id
     }
 
+    /// List face `id` in the cells its bounding box meets.
+    fn insert(&mut self, id: u32, pts: &[P]) {
+        let f = self.faces[id as usize];
+        let (lo, hi) = bbox_of(f.iter().map(|&i| &pts[i as usize]));
+        let (cl, ch) = (self.cell_of(&lo), self.cell_of(&hi));
+        self.range[id as usize] = [
+            self.index(cl[0], cl[1], cl[2]) as u32,
+            self.index(ch[0], ch[1], ch[2]) as u32,
+        ];
+        for z in cl[2]..=ch[2] {
+            for y in cl[1]..=ch[1] {
+                for x in cl[0]..=ch[0] {
+                    let first =
+                        (x == cl[0]) as u8 | ((y == cl[1]) as u8) << 1 | ((z == cl[2]) as u8) << 2;
+                    let i = self.index(x, y, z);
+                    self.cells[i].push(Entry { id, first });
+                    self.entries += 1;
+                }
+            }
+        }
+    }
+
+    /// The faces have outgrown the cells (interior sizes grow away from the boundary, which set
+    /// the first cell size): double the cell size and list the live faces again, in id order so
+    /// each cell keeps insertion order. Each face then meets about 8× fewer cells, and queries
+    /// (boxes of a few local sizes) visit 8× fewer cells: without it both grow with the ratio of
+    /// interior to boundary sizes, which is what made large regions slower per tetrahedron.
+    fn coarsen(&mut self, pts: &[P]) {
+        let cell = 2.0 / self.inv_cell;
+        let dims = self
+            .ext
+            .map(|e| ((e / cell).floor() as usize).saturating_add(1).min(1 << 20));
+        if dims == self.dims {
+            return;
+        }
+        self.dims = dims;
+        self.inv_cell = 1.0 / cell;
+        self.cells = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+        self.entries = 0;
+        for id in 0..self.faces.len() as u32 {
+            if self.alive[id as usize] {
+                self.insert(id, pts);
+            }
+        }
+    }
+
     /// Record a node (never moved afterwards) for `nodes_near`.
     pub fn add_node(&mut self, v: u32, p: &P) {
-        let k = self.nindex(self.ncell(self.cell_of(p)));
+        let k = self.nindex(self.ncell(p));
         self.all_nodes[k].push(v);
     }
 
     /// Every recorded node whose cell meets the box `lo..hi` (a superset of the nodes in it).
     pub fn nodes_near(&self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
+        let (cl, ch) = (self.ncell(lo), self.ncell(hi));
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
@@ -202,13 +273,34 @@ impl Front {
 
     pub fn remove(&mut self, id: u32) {
         let i = id as usize;
-        if self.alive[i] {
-            self.alive[i] = false;
-            self.stamp[i] = DEAD;
-            self.map.remove(&canon(self.faces[i]));
-            self.n_alive -= 1;
-            for v in self.faces[i] {
-                self.node_deg[v as usize] -= 1;
+        if !self.alive.get(i).copied().unwrap_or(false) {
+            return;
+        }
+        self.alive[i] = false;
+        self.map.remove(&canon(self.faces[i]));
+        self.n_alive -= 1;
+        for v in self.faces[i] {
+            let w = v as usize;
+            self.node_deg[w] -= 1;
+            if self.node_deg[w] == 0 {
+                let cell = &mut self.node_cells[self.node_cell[w] as usize];
+                if let Some(at) = cell.iter().position(|&u| u == v) {
+                    cell.remove(at);
+                }
+            }
+        }
+        let [a, b] = self.range[i];
+        let (cl, ch) = (self.coords(a as usize), self.coords(b as usize));
+        for z in cl[2]..=ch[2] {
+            for y in cl[1]..=ch[1] {
+                for x in cl[0]..=ch[0] {
+                    let c = self.index(x, y, z);
+                    let cell = &mut self.cells[c];
+                    if let Some(at) = cell.iter().position(|e| e.id == id) {
+                        cell.remove(at);
+                        self.entries -= 1;
+                    }
+                }
             }
         }
     }
@@ -231,39 +323,25 @@ impl Front {
     }
 
     /// Live faces whose bounding-box cells meet the box `lo..hi`, each once, in an order fixed
-    /// by the history of the front (callers only use order-independent results). Cells drop
-    /// their dead entries lazily, once they are at least half dead.
+    /// by the history of the front (callers only use order-independent results): cell order
+    /// (z, y, x), and within a cell the order of insertion.
     pub fn query(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        self.generation += 1;
-        if self.generation == DEAD {
-            self.stamp
-                .iter_mut()
-                .filter(|s| **s != DEAD)
-                .for_each(|s| *s = 0);
-            self.generation = 1;
-        }
         let (cl, ch) = (self.cell_of(lo), self.cell_of(hi));
         for z in cl[2]..=ch[2] {
+            let fz = if z == cl[2] { 4 } else { 0 };
             for y in cl[1]..=ch[1] {
+                let fy = if y == cl[1] { 2 } else { 0 };
+                let row = self.index(0, y, z);
                 for x in cl[0]..=ch[0] {
-                    let i = self.index(x, y, z);
-                    let v = &mut self.cells[i];
-                    let mut dead = 0;
-                    // One look-up per entry: the stamp says dead, already listed, or new.
-                    for &id in v.iter() {
-                        let s = &mut self.stamp[id as usize];
-                        if *s == DEAD {
-                            dead += 1;
-                        } else if *s != self.generation {
-                            *s = self.generation;
-                            out.push(id);
+                    let fx = if x == cl[0] { 1 } else { 0 };
+                    // Axes along which this cell is the query's first: a face is reported here
+                    // when, along every other axis, its range starts here.
+                    let need = 7 & !(fx | fy | fz);
+                    for e in &self.cells[row + x] {
+                        if e.first & need == need {
+                            out.push(e.id);
                         }
-                    }
-                    if dead > 4 && 2 * dead >= v.len() {
-                        let stamp = &self.stamp;
-                        v.retain(|&id| stamp[id as usize] != DEAD);
-                        self.entries -= dead;
                     }
                 }
             }
@@ -273,29 +351,14 @@ impl Front {
 
 impl Front {
     /// Nodes of live front faces whose cell meets the box `lo..hi` (so every such node inside
-    /// the box, and some near it), each once, in cell order. Cells drop nodes without live
-    /// faces lazily, once at least half of their entries are such.
+    /// the box, and some near it), each once, in cell order.
     pub fn query_nodes(&mut self, lo: &P, hi: &P, out: &mut Vec<u32>) {
         out.clear();
-        let (cl, ch) = (self.ncell(self.cell_of(lo)), self.ncell(self.cell_of(hi)));
+        let (cl, ch) = (self.ncell(lo), self.ncell(hi));
         for z in cl[2]..=ch[2] {
             for y in cl[1]..=ch[1] {
                 for x in cl[0]..=ch[0] {
-                    let i = self.nindex([x, y, z]);
-                    let v = &mut self.node_cells[i];
-                    let before = out.len();
-                    out.extend(v.iter().copied().filter(|&w| self.node_deg[w as usize] > 0));
-                    let dead = v.len() - (out.len() - before);
-                    if dead > 4 && 2 * dead >= v.len() {
-                        let (deg, listed) = (&self.node_deg, &mut self.node_listed);
-                        v.retain(|&w| {
-                            let keep = deg[w as usize] > 0;
-                            if !keep {
-                                listed[w as usize] = false;
-                            }
-                            keep
-                        });
-                    }
+                    out.extend_from_slice(&self.node_cells[self.nindex([x, y, z])]);
                 }
             }
         }
@@ -396,6 +459,60 @@ mod tests {
         front.query(&[-1.0; 3], &[5.0, 5.0, 4.0], &mut faces);
         faces.sort_unstable();
         assert_eq!(faces, ids[2..].to_vec());
+    }
+
+    #[test]
+    fn after_coarsening_a_box_query_lists_every_live_face_meeting_it_once_and_no_removed_face() {
+        // Triangles of growing size (up to 8 cells across) scattered over a 40-cell box, so the
+        // faces outgrow the cells and the grid is coarsened while they are added.
+        let mut seed = 12345u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut pts: Vec<P> = Vec::new();
+        let mut tris = Vec::new();
+        for i in 0..3000u32 {
+            let s = 0.5 + 8.0 * i as f64 / 3000.0;
+            let o = [rnd() * 40.0, rnd() * 40.0, rnd() * 40.0];
+            for _ in 0..3 {
+                pts.push([0, 1, 2].map(|k| o[k] + s * rnd()));
+            }
+            tris.push([3 * i, 3 * i + 1, 3 * i + 2]);
+        }
+        let mut front = Front::new([0.0; 3], [50.0; 3], 1.0);
+        let ids: Vec<u32> = tris.iter().map(|&t| front.add(t, 1.0, &pts)).collect();
+        assert!(front.inv_cell < 1.0, "the grid was not coarsened");
+        for &id in ids.iter().step_by(3) {
+            front.remove(id);
+        }
+        let mut out = Vec::new();
+        for _ in 0..50 {
+            let c = [rnd() * 45.0, rnd() * 45.0, rnd() * 45.0];
+            let r = 0.5 + 4.0 * rnd();
+            let (lo, hi) = (c.map(|x| x - r), c.map(|x| x + r));
+            front.query(&lo, &hi, &mut out);
+            let mut sorted = out.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            assert_eq!(sorted.len(), out.len(), "a face listed twice");
+            for (i, &id) in ids.iter().enumerate() {
+                let (flo, fhi) = bbox_of(tris[i].iter().map(|&v| &pts[v as usize]));
+                let meets = (0..3).all(|k| flo[k] <= hi[k] && fhi[k] >= lo[k]);
+                let live = i % 3 != 0;
+                if live && meets {
+                    assert!(sorted.binary_search(&id).is_ok(), "face {id} missed");
+                }
+                if !live {
+                    assert!(
+                        sorted.binary_search(&id).is_err(),
+                        "removed face {id} listed"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
