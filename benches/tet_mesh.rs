@@ -15,13 +15,12 @@
 use std::collections::BTreeMap;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use georecipe::mesh::read::{BoundaryMesh, read_by_extension};
 use georecipe::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
 
-const DIR: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../shared/data/peer-boundaries"
-);
+#[path = "../tests/peer_support/region.rs"]
+mod peer_support;
+use peer_support::{peer_dir, peer_region};
+
 const REGIONS: [&str; 6] = [
     "overburden_E",
     "overburden_W",
@@ -30,56 +29,6 @@ const REGIONS: [&str; 6] = [
     "underburden_E",
     "underburden_W",
 ];
-
-fn read(path: &str) -> Option<BoundaryMesh> {
-    let bytes = std::fs::read(path).ok()?;
-    read_by_extension(path, &bytes).ok()
-}
-
-/// One region's boundary, with the dangling fault's triangles embedded as the meta file lists
-/// (msh nodes matched to OFF vertices on coordinates rounded to 1e-6, as the OFF files print).
-fn region(name: &str) -> Option<RegionInput> {
-    let off = read(&format!("{DIR}/region_L1_{name}.off"))?;
-    let (mut vertices, boundary) = (off.vertices, off.triangles);
-    let meta: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(format!("{DIR}/didactic_L1_meta.json")).ok()?,
-    )
-    .ok()?;
-    let ents: Vec<i32> = meta["embedded"][name]
-        .as_array()?
-        .iter()
-        .filter_map(|v| v.as_i64())
-        .map(|v| v as i32)
-        .collect();
-    let mut embedded = Vec::new();
-    if !ents.is_empty() {
-        let msh = read(&format!("{DIR}/didactic_L1_surface.msh"))?;
-        let key = |p: [f64; 3]| p.map(|c| (c * 1e6).round() as i64);
-        let mut index: BTreeMap<[i64; 3], u32> = BTreeMap::new();
-        for (i, p) in vertices.iter().enumerate() {
-            index.insert(key(*p), i as u32);
-        }
-        for (t, tag) in msh.triangles.iter().zip(&msh.triangle_tag) {
-            if !ents.contains(tag) {
-                continue;
-            }
-            let tri = t.map(|v| {
-                let p = msh.vertices[v as usize];
-                *index.entry(key(p)).or_insert_with(|| {
-                    vertices.push(p);
-                    (vertices.len() - 1) as u32
-                })
-            });
-            embedded.push(tri);
-        }
-    }
-    Some(RegionInput {
-        name: name.into(),
-        vertices,
-        boundary,
-        embedded,
-    })
-}
 
 /// The cube `[0, n·step]^3`, each side split into `n x n` squares of two triangles, oriented
 /// outward (a boundary any checkout can rebuild; `n = 62` gives about a million tets).
@@ -137,13 +86,17 @@ fn mesh_all(inputs: &[RegionInput], size: &SizeField, opts: &TetMeshOptions) -> 
 fn bench(c: &mut Criterion) {
     let size = SizeField::default();
     let opts = TetMeshOptions::default();
-    let Some(all) = REGIONS
+    let Some(dir) = peer_dir() else { return };
+    let all = match REGIONS
         .iter()
-        .map(|n| region(n))
-        .collect::<Option<Vec<_>>>()
-    else {
-        eprintln!("skipping: ../shared is absent");
-        return;
+        .map(|n| peer_region(&dir, n))
+        .collect::<Result<Vec<_>, _>>()
+    {
+        Ok(all) => all,
+        Err(e) => {
+            eprintln!("skipping: {e}");
+            return;
+        }
     };
     let mut g = c.benchmark_group("tet_mesh");
     g.sample_size(10);

@@ -3,78 +3,17 @@
 //! triangles taken from `didactic_L1_surface.msh` as embedded faces where the meta file says so.
 //! Each region must mesh and pass `verify`; per-region figures are printed.
 
-use std::collections::BTreeMap;
 use std::time::Instant;
 
-use georecipe::mesh::read::{BoundaryMesh, read_by_extension};
-use georecipe::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region, verify};
+use georecipe::stages::tet_mesh::{SizeField, TetMeshOptions, mesh_region, verify};
 
-fn shared() -> Option<String> {
-    let dir = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/peer-boundaries"
-    );
-    if std::path::Path::new(dir).exists() {
-        Some(dir.to_string())
-    } else {
-        eprintln!("skipping: ../shared is absent");
-        None
-    }
-}
-
-fn read(path: &str) -> BoundaryMesh {
-    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    read_by_extension(path, &bytes).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn region(dir: &str, name: &str) -> RegionInput {
-    let off = read(&format!("{dir}/region_L1_{name}.off"));
-    let (mut vertices, boundary) = (off.vertices, off.triangles);
-    let meta: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(format!("{dir}/didactic_L1_meta.json")).unwrap(),
-    )
-    .unwrap();
-    let ents: Vec<i32> = meta["embedded"][name]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_i64().unwrap() as i32)
-        .collect();
-    let mut embedded = Vec::new();
-    if !ents.is_empty() {
-        let msh = read(&format!("{dir}/didactic_L1_surface.msh"));
-        // The OFF files print coordinates with 6 decimals: match msh nodes to OFF vertices on
-        // coordinates rounded to 1e-6 and use the OFF coordinates; add the others as they are.
-        let key = |p: [f64; 3]| p.map(|c| (c * 1e6).round() as i64);
-        let mut index: BTreeMap<[i64; 3], u32> = BTreeMap::new();
-        for (i, p) in vertices.iter().enumerate() {
-            index.insert(key(*p), i as u32);
-        }
-        for (t, tag) in msh.triangles.iter().zip(&msh.triangle_tag) {
-            if !ents.contains(tag) {
-                continue;
-            }
-            let tri = t.map(|v| {
-                let p = msh.vertices[v as usize];
-                *index.entry(key(p)).or_insert_with(|| {
-                    vertices.push(p);
-                    (vertices.len() - 1) as u32
-                })
-            });
-            embedded.push(tri);
-        }
-    }
-    RegionInput {
-        name: name.into(),
-        vertices,
-        boundary,
-        embedded,
-    }
-}
+#[path = "peer_support/region.rs"]
+mod peer_support;
+use peer_support::{peer_dir, peer_region};
 
 fn run(name: &str) {
-    let Some(dir) = shared() else { return };
-    let input = region(&dir, name);
+    let Some(dir) = peer_dir() else { return };
+    let input = peer_region(&dir, name).unwrap_or_else(|e| panic!("{e}"));
     let t0 = Instant::now();
     let out = mesh_region(&input, &SizeField::default(), &TetMeshOptions::default())
         .unwrap_or_else(|e| panic!("{e}"));
