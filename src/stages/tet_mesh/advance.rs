@@ -191,6 +191,12 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
                 st.build(fid, c);
                 continue;
             }
+            // Then a flat gap: a front face lying (to rounding) on the boundary surface it must
+            // close against, which only a near-zero-volume tetrahedron can fill.
+            if let Some(c) = st.flat_apex(fid, f) {
+                st.build(fid, c);
+                continue;
+            }
             return Err(TetMeshError::new(
                 st.name,
                 format!(
@@ -497,13 +503,57 @@ impl State<'_> {
                     .all(|&w| dist(&self.nodes[w as usize], p) >= clear)
             })
             .map(|(i, p)| (rank_ratio3(&a, &b, &c, p), i))
-            .filter(|(q, _)| *q > 0.0)
+            .filter(|(q, _)| *q > FLAT * FLAT * FLAT)
             .collect();
         cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
         for &(_, i) in &cands {
             let cand = Cand::New(pts[i]);
             if self.valid(fid, f, cand) {
                 return Some(cand);
+            }
+        }
+        None
+    }
+
+    /// The very last resort: an existing front node that makes an exactly positive but nearly
+    /// flat tetrahedron with the stuck face — the candidates the `FLAT` cut skips everywhere
+    /// else. Needed where a front face lies within rounding of the boundary triangles behind it:
+    /// a boundary quad split along one diagonal, nearly coplanar, and a tetrahedron that took
+    /// the other diagonal as a face leaves a gap of volume ~1e-14 that no Steiner point fits in
+    /// and that back-tracking re-creates (the same face picks the same best apex again). The
+    /// sliver closing the gap is accepted by the exact validity test like any other tetrahedron
+    /// and left to the optimizer's flips. Nodes are ranked by their float mean ratio (ties by
+    /// index), nearest first among those the float measure calls flat.
+    fn flat_apex(&mut self, fid: u32, f: [u32; 3]) -> Option<Cand> {
+        let [a, b, c] = f.map(|i| self.nodes[i as usize]);
+        let m = centroid(&f, &self.nodes);
+        let r = 1.5 * mean_edge(&f, &self.nodes);
+        if !r.is_finite() {
+            return None;
+        }
+        let mut ws = Vec::new();
+        self.front
+            .query_nodes(&m.map(|x| x - r), &m.map(|x| x + r), &mut ws);
+        let mut cands: Vec<(f64, f64, u32)> = ws
+            .into_iter()
+            .filter(|w| !f.contains(w))
+            .filter(|&w| {
+                let p = &self.nodes[w as usize];
+                dist(p, &m) <= r && orient3d(&a, &b, &c, p) == Orientation::Positive
+            })
+            .map(|w| {
+                let p = &self.nodes[w as usize];
+                (rank_ratio3(&a, &b, &c, p), dist2(p, &m), w)
+            })
+            .collect();
+        cands.sort_by(|x, y| {
+            y.0.total_cmp(&x.0)
+                .then(x.1.total_cmp(&y.1))
+                .then(x.2.cmp(&y.2))
+        });
+        for &(_, _, w) in &cands {
+            if self.valid(fid, f, Cand::Node(w)) {
+                return Some(Cand::Node(w));
             }
         }
         None
