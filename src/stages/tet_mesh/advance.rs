@@ -175,6 +175,11 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             st.front.requeue(fid, k);
             continue;
         }
+        // A flat pocket (see `flat_apex`) is closed at once: back-tracking would only re-create it.
+        if let Some(c) = st.flat_apex(fid, f, true) {
+            st.build(fid, c);
+            continue;
+        }
         let level = levels
             .entry(centroid(&f, &st.nodes).map(f64::to_bits))
             .or_insert(0);
@@ -193,7 +198,7 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             }
             // Then a flat gap: a front face lying (to rounding) on the boundary surface it must
             // close against, which only a near-zero-volume tetrahedron can fill.
-            if let Some(c) = st.flat_apex(fid, f) {
+            if let Some(c) = st.flat_apex(fid, f, false) {
                 st.build(fid, c);
                 continue;
             }
@@ -522,9 +527,11 @@ impl State<'_> {
     /// the other diagonal as a face leaves a gap of volume ~1e-14 that no Steiner point fits in
     /// and that back-tracking re-creates (the same face picks the same best apex again). The
     /// sliver closing the gap is accepted by the exact validity test like any other tetrahedron
-    /// and left to the optimizer's flips. Nodes are ranked by their float mean ratio (ties by
-    /// index), nearest first among those the float measure calls flat.
-    fn flat_apex(&mut self, fid: u32, f: [u32; 3]) -> Option<Cand> {
+    /// and left to the optimizer's flips. Nodes are ranked by their float mean ratio, then by
+    /// distance, then by index. With `pocket_only`, only apexes that close a pocket
+    /// (`closes_pocket`) count: tried before every back-track, since a flat pocket is exactly
+    /// what back-tracking re-creates.
+    fn flat_apex(&mut self, fid: u32, f: [u32; 3], pocket_only: bool) -> Option<Cand> {
         let [a, b, c] = f.map(|i| self.nodes[i as usize]);
         let m = centroid(&f, &self.nodes);
         let r = 1.5 * mean_edge(&f, &self.nodes);
@@ -537,6 +544,7 @@ impl State<'_> {
         let mut cands: Vec<(f64, f64, u32)> = ws
             .into_iter()
             .filter(|w| !f.contains(w))
+            .filter(|&w| !pocket_only || self.closes_pocket(f, w))
             .filter(|&w| {
                 let p = &self.nodes[w as usize];
                 dist(p, &m) <= r && orient3d(&a, &b, &c, p) == Orientation::Positive
@@ -557,6 +565,17 @@ impl State<'_> {
             }
         }
         None
+    }
+
+    /// Would the tetrahedron `f + w` close a pocket of the front: are at least two of its new
+    /// faces already on the front, facing it? Then it adds at most one face.
+    fn closes_pocket(&self, f: [u32; 3], w: u32) -> bool {
+        let [a, b, c] = f;
+        [[a, w, b], [b, w, c], [c, w, a]]
+            .iter()
+            .filter(|r| self.front.find(**r).is_some())
+            .count()
+            >= 2
     }
 
     /// Is `p` at least `clear` away from every front face near it (in the last apex search box)
