@@ -54,6 +54,8 @@ const STEINER_HEIGHTS: [f64; 5] = [0.4, 0.2, 0.1, 0.05, 0.025];
 const MIN_NODE_GAP: f64 = 0.004;
 /// Steiner apexes keep at least this (in local sizes) from every node near the stuck face.
 const STEINER_GAP: f64 = 0.05;
+/// Back-tracks at one place after which a flat pocket there is closed by a sliver.
+const POCKET_LEVEL: u32 = 4;
 /// Candidates tested per pass before a face is deferred (all of them on the last attempt).
 const MAX_TRIES: usize = 8;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
@@ -175,14 +177,18 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
             st.front.requeue(fid, k);
             continue;
         }
-        // A flat pocket (see `flat_apex`) is closed at once: back-tracking would only re-create it.
-        if let Some(c) = st.flat_apex(fid, f, true) {
-            st.build(fid, c);
-            continue;
-        }
         let level = levels
             .entry(centroid(&f, &st.nodes).map(f64::to_bits))
             .or_insert(0);
+        // A flat pocket (see `flat_apex`) that back-tracking has already re-created here is
+        // closed: back-tracking would only re-create it again. (Not on the first time, so that
+        // regions that back-tracking does clear keep their meshes.)
+        if *level >= POCKET_LEVEL {
+            if let Some(c) = st.flat_apex(fid, f, true) {
+                st.build(fid, c);
+                continue;
+            }
+        }
         *level += 1;
         backtracks += 1;
         let at = centroid(&f, &st.nodes);
