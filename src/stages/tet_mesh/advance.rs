@@ -3,7 +3,10 @@
 //! point itself), accept the first one that passes the exact validity test, update the front.
 //! When no candidate is valid the front is stuck there: delete the tetrahedra around the face
 //! (a wider ball at each retry), restore the front around the cavity and carry on — an explicit
-//! loop, never recursion. Gives up with an error naming the region and the stuck face.
+//! loop, never recursion. A flat pocket (a front face within rounding of the boundary
+//! triangles behind it, which back-tracking keeps re-creating) is closed by an exactly positive
+//! sliver that the optimizer's flips later remove. Gives up with an error naming the region and
+//! the stuck face.
 //!
 //! Cost: a face tests at most `MAX_TRIES` candidates per pass before it is deferred (all of them
 //! on its last attempt), the wide second pass scans the front's node grid rather than its face
@@ -183,11 +186,11 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         // A flat pocket (see `flat_apex`) that back-tracking has already re-created here is
         // closed: back-tracking would only re-create it again. (Not on the first time, so that
         // regions that back-tracking does clear keep their meshes.)
-        if *level >= POCKET_LEVEL {
-            if let Some(c) = st.flat_apex(fid, f, true) {
-                st.build(fid, c);
-                continue;
-            }
+        if *level >= POCKET_LEVEL
+            && let Some(c) = st.flat_apex(fid, f, true)
+        {
+            st.build(fid, c);
+            continue;
         }
         *level += 1;
         backtracks += 1;
