@@ -3,7 +3,10 @@
 //! point itself), accept the first one that passes the exact validity test, update the front.
 //! When no candidate is valid the front is stuck there: delete the tetrahedra around the face
 //! (a wider ball at each retry), restore the front around the cavity and carry on — an explicit
-//! loop, never recursion. Gives up with an error naming the region and the stuck face.
+//! loop, never recursion. A flat pocket (a front face within rounding of the boundary
+//! triangles behind it, which back-tracking keeps re-creating) is closed by an exactly positive
+//! sliver that the optimizer's flips later remove. Gives up with an error naming the region and
+//! the stuck face.
 //!
 //! Cost: a face tests at most `MAX_TRIES` candidates per pass before it is deferred (all of them
 //! on its last attempt), the wide second pass scans the front's node grid rather than its face
@@ -54,6 +57,8 @@ const STEINER_HEIGHTS: [f64; 5] = [0.4, 0.2, 0.1, 0.05, 0.025];
 const MIN_NODE_GAP: f64 = 0.004;
 /// Steiner apexes keep at least this (in local sizes) from every node near the stuck face.
 const STEINER_GAP: f64 = 0.05;
+/// Back-tracks at one place after which a flat pocket there is closed by a sliver.
+const POCKET_LEVEL: u32 = 4;
 /// Candidates tested per pass before a face is deferred (all of them on the last attempt).
 const MAX_TRIES: usize = 8;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
@@ -178,6 +183,15 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
         let level = levels
             .entry(centroid(&f, &st.nodes).map(f64::to_bits))
             .or_insert(0);
+        // A flat pocket (see `flat_apex`) that back-tracking has already re-created here is
+        // closed: back-tracking would only re-create it again. (Not on the first time, so that
+        // regions that back-tracking does clear keep their meshes.)
+        if *level >= POCKET_LEVEL
+            && let Some(c) = st.flat_apex(fid, f, true)
+        {
+            st.build(fid, c);
+            continue;
+        }
         *level += 1;
         backtracks += 1;
         let at = centroid(&f, &st.nodes);
@@ -188,6 +202,12 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
                 .target(mean_edge(&f, &st.nodes), &m)
                 .max(0.8 * st.bg.size_at(&m));
             if let Some(c) = st.steiner_apex(fid, f, hc) {
+                st.build(fid, c);
+                continue;
+            }
+            // Then a flat gap: a front face lying (to rounding) on the boundary surface it must
+            // close against, which only a near-zero-volume tetrahedron can fill.
+            if let Some(c) = st.flat_apex(fid, f, false) {
                 st.build(fid, c);
                 continue;
             }
@@ -497,7 +517,7 @@ impl State<'_> {
                     .all(|&w| dist(&self.nodes[w as usize], p) >= clear)
             })
             .map(|(i, p)| (rank_ratio3(&a, &b, &c, p), i))
-            .filter(|(q, _)| *q > 0.0)
+            .filter(|(q, _)| *q > FLAT * FLAT * FLAT)
             .collect();
         cands.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
         for &(_, i) in &cands {
@@ -507,6 +527,64 @@ impl State<'_> {
             }
         }
         None
+    }
+
+    /// The very last resort: an existing front node that makes an exactly positive but nearly
+    /// flat tetrahedron with the stuck face — the candidates the `FLAT` cut skips everywhere
+    /// else. Needed where a front face lies within rounding of the boundary triangles behind it:
+    /// a boundary quad split along one diagonal, nearly coplanar, and a tetrahedron that took
+    /// the other diagonal as a face leaves a gap of volume ~1e-14 that no Steiner point fits in
+    /// and that back-tracking re-creates (the same face picks the same best apex again). The
+    /// sliver closing the gap is accepted by the exact validity test like any other tetrahedron
+    /// and left to the optimizer's flips. Nodes are ranked by their float mean ratio, then by
+    /// distance, then by index. With `pocket_only`, only apexes that close a pocket
+    /// (`closes_pocket`) count: tried before every back-track, since a flat pocket is exactly
+    /// what back-tracking re-creates.
+    fn flat_apex(&mut self, fid: u32, f: [u32; 3], pocket_only: bool) -> Option<Cand> {
+        let [a, b, c] = f.map(|i| self.nodes[i as usize]);
+        let m = centroid(&f, &self.nodes);
+        let r = 1.5 * mean_edge(&f, &self.nodes);
+        if !r.is_finite() {
+            return None;
+        }
+        let mut ws = Vec::new();
+        self.front
+            .query_nodes(&m.map(|x| x - r), &m.map(|x| x + r), &mut ws);
+        let mut cands: Vec<(f64, f64, u32)> = ws
+            .into_iter()
+            .filter(|w| !f.contains(w))
+            .filter(|&w| !pocket_only || self.closes_pocket(f, w))
+            .filter(|&w| {
+                let p = &self.nodes[w as usize];
+                dist(p, &m) <= r && orient3d(&a, &b, &c, p) == Orientation::Positive
+            })
+            .map(|w| {
+                let p = &self.nodes[w as usize];
+                (rank_ratio3(&a, &b, &c, p), dist2(p, &m), w)
+            })
+            .collect();
+        cands.sort_by(|x, y| {
+            y.0.total_cmp(&x.0)
+                .then(x.1.total_cmp(&y.1))
+                .then(x.2.cmp(&y.2))
+        });
+        for &(_, _, w) in &cands {
+            if self.valid(fid, f, Cand::Node(w)) {
+                return Some(Cand::Node(w));
+            }
+        }
+        None
+    }
+
+    /// Would the tetrahedron `f + w` close a pocket of the front: are at least two of its new
+    /// faces already on the front, facing it? Then it adds at most one face.
+    fn closes_pocket(&self, f: [u32; 3], w: u32) -> bool {
+        let [a, b, c] = f;
+        [[a, w, b], [b, w, c], [c, w, a]]
+            .iter()
+            .filter(|r| self.front.find(**r).is_some())
+            .count()
+            >= 2
     }
 
     /// Is `p` at least `clear` away from every front face near it (in the last apex search box)
