@@ -38,7 +38,7 @@ impl Operation for TetMeshOp {
         "tet_mesh"
     }
     fn version(&self) -> u32 {
-        4
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
