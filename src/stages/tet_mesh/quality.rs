@@ -6,16 +6,23 @@ use crate::geom::predicates::{cross, dot, signed_volume, sub};
 
 type P = [f64; 3];
 
-/// Normalised mean ratio: `12·(3V)^(2/3) / Σ l²`, 1 for the regular tetrahedron, ≤ 0 for a flat or
-/// inverted one (negative volumes give a negative value so rankings stay monotone).
-pub fn mean_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
-    let v = signed_volume(a, b, c, d);
+/// The signed volume and the sum of the six squared edge lengths, the two ingredients of the
+/// mean ratio.
+#[inline]
+fn volume_and_edges(a: &P, b: &P, c: &P, d: &P) -> (f64, f64) {
     let l2 = len2(&sub(b, a))
         + len2(&sub(c, a))
         + len2(&sub(d, a))
         + len2(&sub(c, b))
         + len2(&sub(d, b))
         + len2(&sub(d, c));
+    (signed_volume(a, b, c, d), l2)
+}
+
+/// Normalised mean ratio: `12·(3V)^(2/3) / Σ l²`, 1 for the regular tetrahedron, ≤ 0 for a flat or
+/// inverted one (negative volumes give a negative value so rankings stay monotone).
+pub fn mean_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
+    let (v, l2) = volume_and_edges(a, b, c, d);
     if l2 <= 0.0 {
         return 0.0;
     }
@@ -28,13 +35,7 @@ pub fn mean_ratio(a: &P, b: &P, c: &P, d: &P) -> f64 {
 /// Monotone in the mean ratio, so comparisons against cubed bars need no root at all.
 #[inline]
 pub fn mean_ratio_cubed(a: &P, b: &P, c: &P, d: &P) -> f64 {
-    let v = signed_volume(a, b, c, d);
-    let l2 = len2(&sub(b, a))
-        + len2(&sub(c, a))
-        + len2(&sub(d, a))
-        + len2(&sub(c, b))
-        + len2(&sub(d, b))
-        + len2(&sub(d, c));
+    let (v, l2) = volume_and_edges(a, b, c, d);
     if l2 <= 0.0 {
         return 0.0;
     }
