@@ -278,18 +278,7 @@ impl State<'_> {
         let f = self.front.faces[fid as usize];
         let [a, b, c] = f.map(|i| self.nodes[i as usize]);
         let m = centroid(&f, &self.nodes);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if nl <= 0.0 || !nl.is_finite() {
-            return None;
-        }
-        let nu = [n[0] / nl, n[1] / nl, n[2] / nl];
+        let nu = unit_normal(&a, &b, &c)?;
         let le = mean_edge(&f, &self.nodes);
         let h = self.target(le, &m);
         let r2 = (dist(&m, &a).powi(2) + dist(&m, &b).powi(2) + dist(&m, &c).powi(2)) / 3.0;
@@ -454,18 +443,7 @@ impl State<'_> {
     /// crosses nothing — a flat one is left to the optimizer.
     fn steiner_apex(&mut self, fid: u32, f: [u32; 3], height: f64) -> Option<Cand> {
         let [a, b, c] = f.map(|i| self.nodes[i as usize]);
-        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if nl <= 0.0 || !nl.is_finite() {
-            return None;
-        }
-        let nu = n.map(|x| x / nl);
+        let nu = unit_normal(&a, &b, &c)?;
         let mut pts: Vec<P> = Vec::new();
         const BARY: [[f64; 3]; 7] = [
             [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
@@ -872,4 +850,21 @@ fn point_triangle_distance(p: &P, a: &P, b: &P, c: &P) -> f64 {
         }
     };
     dist(p, &q)
+}
+
+/// The unit normal of triangle `a b c` (right-handed), or `None` when it is degenerate. A float
+/// direction for placing candidate apexes; validity is decided exactly elsewhere.
+fn unit_normal(a: &P, b: &P, c: &P) -> Option<P> {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let nl = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if nl <= 0.0 || !nl.is_finite() {
+        return None;
+    }
+    Some(n.map(|x| x / nl))
 }
