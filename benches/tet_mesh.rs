@@ -1,14 +1,18 @@
 //! Single-thread throughput of the tetrahedral mesher (tets/s, optimization and `verify`
-//! included) on peer boundaries that no one here wrote (`../shared/data/peer-boundaries/`,
-//! meshed by Gmsh at level L1). Three scales:
-//! - `reservoir_W` (thin layer, ~5.4k tets) and `overburden_W` (~18.4k tets) alone;
-//! - `all six L1 regions` (~100k tets): the six regions one after the other, the dangling fault's
-//!   triangles embedded where `didactic_L1_meta.json` says — what TetGen `pq1.2/15YA` per region
-//!   and Gmsh HXT were measured on;
-//! - `cube62` (~1.03M tets): a 6.2 km cube with 100 m boundary triangles, built here so a fresh
-//!   checkout rebuilds it (the peer boundaries split in four per triangle get the front stuck in
-//!   the thin reservoir and at the box/fault corners: a robustness issue, not a speed one). Run it
-//!   alone, it takes minutes: `cargo bench --bench tet_mesh -- cube62`.
+//! included; the default method, Delaunay with local recovery) on peer boundaries that no one
+//! here wrote (`../shared/data/peer-boundaries/`, meshed by Gmsh at level L1). Three scales:
+//! - `reservoir_W` (thin layer) and `overburden_W` alone;
+//! - `all six L1 regions` (~150k tets): the six regions one after the other, the dangling fault's
+//!   triangles embedded where `didactic_L1_meta.json` says;
+//! - `cube62` (~0.94M tets): a 6.2 km cube with 100 m boundary triangles on a structured grid,
+//!   built here so a fresh checkout rebuilds it. Its squares are cospherical, so about a quarter
+//!   of its triangles are not Delaunay faces: the Delaunay method gives way to the advancing front
+//!   at once, and this scale measures the front. Run it alone, it takes about a minute:
+//!   `cargo bench --bench tet_mesh -- cube62`.
+//!
+//! The comparison with TetGen and Gmsh HXT at L2/L3 (0.6M and 2.2M tets) is made by
+//! `benches/peers/tet_regions.sh` on the boundaries `bench_peers.py` writes (see
+//! `benches/peers/README.md`), and the mesher's own peak memory by `examples/tet_memory.rs`.
 //!
 //! Skips with a note when ../shared is absent.
 

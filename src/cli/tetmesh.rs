@@ -8,7 +8,7 @@ use crate::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use crate::stages::export::{Format, export};
 use crate::stages::quality;
 use crate::stages::regions;
-use crate::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
+use crate::stages::tet_mesh::{Method, RegionInput, SizeField, TetMeshOptions, mesh_region};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -42,6 +42,10 @@ pub struct TetmeshArgs {
     /// Skip quality optimization
     #[arg(long)]
     pub no_optimize: bool,
+    /// Meshing method: `delaunay` (falls back to the front where boundary recovery fails) or
+    /// `front` (advancing front only)
+    #[arg(long, default_value = "delaunay", value_parser = ["delaunay", "front"])]
+    pub method: String,
     /// Region name [default: the boundary file's stem]
     #[arg(long)]
     pub name: Option<String>,
@@ -181,11 +185,24 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     };
     let opts = TetMeshOptions {
         optimize: !a.no_optimize,
+        method: if a.method == "front" {
+            Method::Front
+        } else {
+            Method::Delaunay
+        },
         ..TetMeshOptions::default()
     };
     let t0 = std::time::Instant::now();
     let out = mesh_region(&input, &field, &opts).map_err(|e| Failure(format!("error: {e}")))?;
     let secs = t0.elapsed().as_secs_f64();
+    let how = match (&out.stats.fallback, opts.method) {
+        (_, Method::Front) => "advancing front".to_string(),
+        (Some(why), _) => format!("advancing front (Delaunay gave way: {why})"),
+        (None, _) => format!(
+            "Delaunay, {} boundary triangles recovered",
+            out.stats.recovered_faces
+        ),
+    };
 
     let mut triangles = input.boundary.clone();
     triangles.extend(&input.embedded);
@@ -232,7 +249,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         eprintln!("       Wrote {}", dir.join(&file).display());
     }
     eprintln!(
-        "    Finished {}: {} tets, {} nodes in {:.2}s ({:.0} tets/s)",
+        "    Finished {}: {} tets, {} nodes in {:.2}s ({:.0} tets/s; {how})",
         name,
         mesh.tets.len(),
         mesh.nodes.len(),

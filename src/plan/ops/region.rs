@@ -38,7 +38,8 @@ impl Operation for TetMeshOp {
         "tet_mesh"
     }
     fn version(&self) -> u32 {
-        5
+        // 6: Delaunay meshing with local recovery (the front as hole filler and fallback).
+        6
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

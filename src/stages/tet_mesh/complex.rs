@@ -13,7 +13,7 @@ use std::collections::HashSet;
 
 use crate::geom::predicates::{Orientation, orient3d};
 
-use super::quality::shape;
+use super::quality::{shape, shape_and_mean_ratio};
 use super::verify::outward_faces;
 
 pub type P = [f64; 3];
@@ -22,6 +22,9 @@ pub struct Complex {
     pub nodes: Vec<P>,
     pub tets: Vec<[u32; 4]>,
     pub alive: Vec<bool>,
+    /// `quality` (shape) and mean ratio of each live tet, kept current through every change.
+    pub shape: Vec<f64>,
+    pub mean_ratio: Vec<f64>,
     free: Vec<u32>,
     pub node_tets: Vec<Vec<u32>>,
     /// Nodes below this index never move and never disappear.
@@ -68,8 +71,17 @@ impl Complex {
             }
         }
         let n_nodes = node_tets.len();
+        let (shape, mean_ratio) = tets
+            .iter()
+            .map(|t| {
+                let [a, b, c, d] = t.map(|i| nodes[i as usize]);
+                shape_and_mean_ratio(&a, &b, &c, &d)
+            })
+            .unzip();
         Complex {
             alive: vec![true; tets.len()],
+            shape,
+            mean_ratio,
             nodes,
             tets,
             free: Vec::new(),
@@ -112,21 +124,32 @@ impl Complex {
     }
 
     #[inline]
+    fn measures(&self, t: [u32; 4]) -> (f64, f64) {
+        let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
+        shape_and_mean_ratio(&a, &b, &c, &d)
+    }
+
+    #[inline]
     pub fn positive(&self, t: [u32; 4]) -> bool {
         let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
         orient3d(&a, &b, &c, &d) == Orientation::Positive
     }
 
     pub fn add_tet(&mut self, t: [u32; 4]) -> u32 {
+        let (q, m) = self.measures(t);
         let id = match self.free.pop() {
             Some(id) => {
                 self.tets[id as usize] = t;
                 self.alive[id as usize] = true;
+                self.shape[id as usize] = q;
+                self.mean_ratio[id as usize] = m;
                 id
             }
             None => {
                 self.tets.push(t);
                 self.alive.push(true);
+                self.shape.push(q);
+                self.mean_ratio.push(m);
                 (self.tets.len() - 1) as u32
             }
         };
@@ -170,7 +193,9 @@ impl Complex {
         self.nodes[v as usize] = p;
         self.stamp[v as usize] += 1;
         for i in 0..self.node_tets[v as usize].len() {
-            let t = self.tets[self.node_tets[v as usize][i] as usize];
+            let id = self.node_tets[v as usize][i] as usize;
+            let t = self.tets[id];
+            (self.shape[id], self.mean_ratio[id]) = self.measures(t);
             for w in t {
                 self.stamp[w as usize] += 1;
             }

@@ -27,7 +27,7 @@ type P = [f64; 3];
 /// Rounds of smoothing + flips + insertion.
 const ROUNDS: usize = 8;
 /// Tets below this shape measure are flip and contraction candidates.
-const FLIP_BELOW: f64 = 0.45;
+const FLIP_BELOW: f64 = 0.5;
 /// Tets below this shape measure after flipping get an inserted node.
 const INSERT_BELOW: f64 = 0.35;
 /// Nodes whose ball is worse than this get max-min smoothing; all get Laplacian relaxation.
@@ -35,7 +35,7 @@ const SMOOTH_BELOW: f64 = 0.3;
 /// Laplacian relaxation may lower a ball's worst quality for a better mean while it stays above.
 const RELAX_KEEP: f64 = 0.5;
 /// Laplacian relaxation passes before and after the rounds.
-const RELAX_PASSES: usize = 2;
+const RELAX_PASSES: usize = 1;
 
 /// Optimize in place. `protected` lists every boundary and embedded triangle; nodes below
 /// `n_fixed` never move.
@@ -134,7 +134,7 @@ fn flip_pass(cx: &mut Complex, scratch: &mut Scratch, memo: &mut Memo) -> bool {
 fn bad_tets(cx: &Complex, below: f64) -> Vec<(f64, u32)> {
     let mut v: Vec<(f64, u32)> = (0..cx.tets.len())
         .filter(|&i| cx.alive[i])
-        .map(|i| (cx.quality(cx.tets[i]), i as u32))
+        .map(|i| (cx.shape[i], i as u32))
         .filter(|(q, _)| *q < below)
         .collect();
     v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));

@@ -14,8 +14,8 @@ use super::SizeField;
 
 type P = [f64; 3];
 
-/// Largest number of background cells; the cell size grows to respect it.
-const MAX_CELLS: usize = 2_000_000;
+/// Largest number of background cells (the advancing front's); the cell size grows to respect it.
+pub const MAX_CELLS: usize = 2_000_000;
 
 pub struct Background {
     origin: P,
@@ -27,6 +27,11 @@ pub struct Background {
 impl Background {
     /// Build from the triangles that bound or are embedded in the region.
     pub fn new(pts: &[P], tris: &[[u32; 3]], field: &SizeField) -> Self {
+        Self::with_max_cells(pts, tris, field, MAX_CELLS)
+    }
+
+    /// As `new`, on at most `max_cells` cells.
+    pub fn with_max_cells(pts: &[P], tris: &[[u32; 3]], field: &SizeField, max_cells: usize) -> Self {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for p in pts {
@@ -60,7 +65,7 @@ impl Background {
         let dims_for =
             |c: f64| ext.map(|e| ((e / c).floor() as usize).saturating_add(1).min(1 << 20));
         let mut dims = dims_for(cell);
-        while dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]) > MAX_CELLS {
+        while dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]) > max_cells {
             cell *= 1.5;
             dims = dims_for(cell);
         }

@@ -7,7 +7,7 @@
 use crate::geom::predicates::{Orientation, orient3d};
 
 use super::complex::{Complex, P};
-use super::quality::{mean_ratio, shape};
+use super::quality::{mean_ratio, shape, shape_and_mean_ratio};
 
 /// Gradient steps per call.
 const ITERATIONS: usize = 12;
@@ -114,19 +114,44 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
 }
 
 /// The ball of `v` with `v` at `p`: worst shape (`quality::shape`), worst mean ratio and mean
-/// mean ratio; None if a tet is not positive.
+/// mean ratio; None if a tet is not positive (exact).
 fn ball_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64, f64)> {
-    let shape_worst = worst_at(cx, v, p)?;
     let ball = &cx.node_tets[v as usize];
     let mut s = 0.0;
     let mut w = f64::INFINITY;
+    let mut sw = f64::INFINITY;
     for &t in ball {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        let q = mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+        let (sh, q) = shape_and_mean_ratio(&x[0], &x[1], &x[2], &x[3]);
+        if sh <= 0.0 {
+            return None;
+        }
+        sw = sw.min(sh);
         s += q;
         w = w.min(q);
     }
-    Some((shape_worst, w, s / ball.len() as f64))
+    for &t in ball {
+        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        if orient3d(&x[0], &x[1], &x[2], &x[3]) != Orientation::Positive {
+            return None;
+        }
+    }
+    Some((sw, w, s / ball.len() as f64))
+}
+
+/// The ball of `v` where it stands, from the complex's cached measures.
+fn ball_now(cx: &Complex, v: u32) -> Option<(f64, f64, f64)> {
+    let ball = &cx.node_tets[v as usize];
+    let mut s = 0.0;
+    let mut w = f64::INFINITY;
+    let mut sw = f64::INFINITY;
+    for &t in ball {
+        sw = sw.min(cx.shape[t as usize]);
+        let q = cx.mean_ratio[t as usize];
+        s += q;
+        w = w.min(q);
+    }
+    (sw > 0.0).then_some((sw, w, s / ball.len() as f64))
 }
 
 /// Laplacian step for the free node `v`: towards the centroid of its neighbours, accepted when
@@ -138,7 +163,7 @@ pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
         return false;
     }
     let cur = cx.nodes[v as usize];
-    let Some((s0, w0, m0)) = ball_at(cx, v, &cur) else {
+    let Some((s0, w0, m0)) = ball_now(cx, v) else {
         return false;
     };
     let mut sum = [0.0; 3];

@@ -27,14 +27,23 @@ pub(crate) fn canon(f: [u32; 3]) -> [u32; 3] {
     }
 }
 
-/// Sorted faces; the count of a face is the length of its run.
-struct FaceCounts(Vec<[u32; 3]>);
+/// A tet face keyed by its sorted nodes, with its orientation relative to that order (`odd`)
+/// and the tet it bounds.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Face {
+    key: [u32; 3],
+    odd: bool,
+    tet: u32,
+}
 
-impl FaceCounts {
-    fn get(&self, f: &[u32; 3]) -> u32 {
-        let lo = self.0.partition_point(|x| x < f);
-        let hi = lo + self.0[lo..].partition_point(|x| x == f);
-        (hi - lo) as u32
+/// The sorted nodes of `f` and whether `f` is an odd permutation of them.
+#[inline]
+fn keyed(f: [u32; 3]) -> ([u32; 3], bool) {
+    let c = canon(f);
+    if c[1] < c[2] {
+        (c, false)
+    } else {
+        ([c[0], c[2], c[1]], true)
     }
 }
 
@@ -68,9 +77,9 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     if out.tets.is_empty() {
         return Err(TetMeshError::new(name, "the mesh has no tetrahedra", None));
     }
-    // Every tet's outward faces (canonical rotation), sorted: a face's count is the length of its
-    // run. A sorted Vec takes 12 bytes per face where a hash map took several times that.
-    let mut faces: Vec<[u32; 3]> = Vec::with_capacity(out.tets.len() * 4);
+    // Every tet's outward faces, sorted by their sorted nodes: a face's tets form a run, and the
+    // runs are read once alongside the sorted input triangles (a sort and a linear scan).
+    let mut faces: Vec<Face> = Vec::with_capacity(out.tets.len() * 4);
     for (ti, t) in out.tets.iter().enumerate() {
         if let Some(&v) = t.iter().find(|&&v| v as usize >= nodes.len()) {
             return Err(TetMeshError::new(
@@ -88,67 +97,111 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
             ));
         }
         for f in outward_faces(*t) {
-            faces.push(canon(f));
+            let (key, odd) = keyed(f);
+            faces.push(Face {
+                key,
+                odd,
+                tet: ti as u32,
+            });
         }
     }
     faces.sort_unstable();
-    let faces = FaceCounts(faces);
-    let mut expected_single: Vec<[u32; 3]> = Vec::with_capacity(input.boundary.len());
-    for (i, t) in input.boundary.iter().enumerate() {
-        let c = canon(*t);
-        let got = faces.get(&c);
-        let rev = faces.get(&canon([t[0], t[2], t[1]]));
-        if got != 1 || rev != 0 {
+    // The boundary and embedded triangles sorted the same way, walked alongside the faces.
+    let sorted_input = |tris: &[[u32; 3]]| {
+        let mut v: Vec<([u32; 3], usize)> =
+            tris.iter().enumerate().map(|(i, t)| (keyed(*t).0, i)).collect();
+        v.sort_unstable();
+        v
+    };
+    let bnd = sorted_input(&input.boundary);
+    let emb = sorted_input(&input.embedded);
+    let boundary_error = |i: usize, got: usize, rev: usize| {
+        let t = input.boundary[i];
+        TetMeshError::new(
+            name,
+            format!(
+                "boundary triangle {i} {t:?} is the face of {got} tets on the inner side and {rev} outside (expected 1 and 0)"
+            ),
+            Some(input.vertices[t[0] as usize]),
+        )
+    };
+    let embedded_error = |i: usize, got: usize, rev: usize| {
+        let t = input.embedded[i];
+        TetMeshError::new(
+            name,
+            format!(
+                "embedded triangle {i} {t:?} is the face of {got} + {rev} tets (expected one on each side)"
+            ),
+            Some(input.vertices[t[0] as usize]),
+        )
+    };
+    let (mut ib, mut ie) = (0, 0);
+    for run in faces.chunk_by(|a, b| a.key == b.key) {
+        let f = run[0];
+        if ib < bnd.len() && bnd[ib].0 < f.key {
+            return Err(boundary_error(bnd[ib].1, 0, 0));
+        }
+        if ie < emb.len() && emb[ie].0 < f.key {
+            return Err(embedded_error(emb[ie].1, 0, 0));
+        }
+        // (same orientation as the input triangle, reversed)
+        let counts = |t: [u32; 3]| {
+            let odd = keyed(t).1;
+            let same = run.iter().filter(|x| x.odd == odd).count();
+            (same, run.len() - same)
+        };
+        if ib < bnd.len() && bnd[ib].0 == f.key {
+            let i = bnd[ib].1;
+            let (got, rev) = counts(input.boundary[i]);
+            if got != 1 || rev != 0 {
+                return Err(boundary_error(i, got, rev));
+            }
+            ib += 1;
+            continue;
+        }
+        if ie < emb.len() && emb[ie].0 == f.key {
+            let i = emb[ie].1;
+            let (got, rev) = counts(input.embedded[i]);
+            if got != 1 || rev != 1 {
+                return Err(embedded_error(i, got, rev));
+            }
+            ie += 1;
+            continue;
+        }
+        // Every other face: exactly one tet on each side.
+        let tv = out.tets[f.tet as usize];
+        let of = outward_faces(tv)
+            .into_iter()
+            .find(|g| keyed(*g).0 == f.key)
+            .unwrap_or(f.key);
+        let same = run.iter().filter(|x| x.odd == f.odd).count();
+        if same > 1 {
             return Err(TetMeshError::new(
                 name,
                 format!(
-                    "boundary triangle {i} {t:?} is the face of {got} tets on the inner side and {rev} outside (expected 1 and 0)"
+                    "face {of:?} of tet {} is an outward face of {same} tets (overlap)",
+                    f.tet
                 ),
-                Some(input.vertices[t[0] as usize]),
+                Some(nodes[of[0] as usize]),
             ));
         }
-        expected_single.push(c);
-    }
-    expected_single.sort_unstable();
-    for (i, t) in input.embedded.iter().enumerate() {
-        let got = faces.get(&canon(*t));
-        let rev = faces.get(&canon([t[0], t[2], t[1]]));
-        if got != 1 || rev != 1 {
+        if run.len() != 2 {
             return Err(TetMeshError::new(
                 name,
                 format!(
-                    "embedded triangle {i} {t:?} is the face of {got} + {rev} tets (expected one on each side)"
+                    "face {of:?} of tet {} has {} tets on its other side (hole or overlap in the mesh)",
+                    f.tet,
+                    run.len() - 1
                 ),
-                Some(input.vertices[t[0] as usize]),
+                Some(nodes[of[0] as usize]),
             ));
         }
     }
-    // Every face other than the boundary ones: exactly one tet on each side.
-    for (ti, t) in out.tets.iter().enumerate() {
-        for f in outward_faces(*t) {
-            let c = canon(f);
-            let n = faces.get(&c);
-            if n != 1 {
-                return Err(TetMeshError::new(
-                    name,
-                    format!("face {f:?} of tet {ti} is an outward face of {n} tets (overlap)"),
-                    Some(nodes[f[0] as usize]),
-                ));
-            }
-            if expected_single.binary_search(&c).is_ok() {
-                continue;
-            }
-            let r = faces.get(&canon([f[0], f[2], f[1]]));
-            if r != 1 {
-                return Err(TetMeshError::new(
-                    name,
-                    format!(
-                        "face {f:?} of tet {ti} has {r} tets on its other side (hole or overlap in the mesh)"
-                    ),
-                    Some(nodes[f[0] as usize]),
-                ));
-            }
-        }
+    if ib < bnd.len() {
+        return Err(boundary_error(bnd[ib].1, 0, 0));
+    }
+    if ie < emb.len() {
+        return Err(embedded_error(emb[ie].1, 0, 0));
     }
     let o = reference_point(&input.vertices);
     let expect = enclosed_volume(&input.vertices, &input.boundary);

@@ -1,0 +1,143 @@
+//! Insertion order: points sorted along a Hilbert curve, so consecutive insertions are close and
+//! each walk is short; for the first triangulation, in rounds of growing size (a biased
+//! randomized insertion order whose "random" rounds come from a hash of the point's index, so the
+//! order, and the mesh, are the same on every run).
+
+type P = [f64; 3];
+
+const BITS: u32 = 21;
+
+/// The Hilbert key of a point with integer coordinates below `2^BITS` (Skilling's transform from
+/// axes to the transposed Hilbert index, then bit interleaving).
+fn hilbert_key(mut x: [u32; 3]) -> u64 {
+    let m = 1u32 << (BITS - 1);
+    let mut q = m;
+    while q > 1 {
+        let p = q - 1;
+        for i in 0..3 {
+            if x[i] & q != 0 {
+                x[0] ^= p;
+            } else {
+                let t = (x[0] ^ x[i]) & p;
+                x[0] ^= t;
+                x[i] ^= t;
+            }
+        }
+        q >>= 1;
+    }
+    for i in 1..3 {
+        x[i] ^= x[i - 1];
+    }
+    let mut t = 0;
+    let mut q = m;
+    while q > 1 {
+        if x[2] & q != 0 {
+            t ^= q - 1;
+        }
+        q >>= 1;
+    }
+    for xi in &mut x {
+        *xi ^= t;
+    }
+    let mut key = 0u64;
+    for b in (0..BITS).rev() {
+        for xi in &x {
+            key = (key << 1) | ((xi >> b) & 1) as u64;
+        }
+    }
+    key
+}
+
+/// Sort `ids` along a Hilbert curve through the bounding box of their points (ties by id).
+pub fn hilbert_sort(ids: &mut [u32], pts: &[P]) {
+    if ids.len() < 2 {
+        return;
+    }
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &i in ids.iter() {
+        let p = pts[i as usize];
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f64, f64::max);
+    let scale = if ext > 0.0 {
+        ((1u64 << BITS) - 1) as f64 / ext
+    } else {
+        0.0
+    };
+    let mut keyed: Vec<(u64, u32)> = ids
+        .iter()
+        .map(|&i| {
+            let p = pts[i as usize];
+            let c = [0, 1, 2].map(|k| (((p[k] - lo[k]) * scale) as u32).min((1 << BITS) - 1));
+            (hilbert_key(c), i)
+        })
+        .collect();
+    keyed.sort_unstable();
+    for (slot, (_, i)) in ids.iter_mut().zip(keyed) {
+        *slot = i;
+    }
+}
+
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Biased randomized insertion order: round `r` from the end holds about half of what is left,
+/// each round Hilbert-sorted. Deterministic (the rounds come from a hash of the index).
+pub fn brio(ids: &[u32], pts: &[P]) -> Vec<u32> {
+    const ROUNDS: u32 = 12;
+    let mut rounds: Vec<Vec<u32>> = vec![Vec::new(); ROUNDS as usize + 1];
+    for &i in ids {
+        let level = mix(i as u64).trailing_zeros().min(ROUNDS);
+        rounds[(ROUNDS - level) as usize].push(i);
+    }
+    let mut out = Vec::with_capacity(ids.len());
+    for mut r in rounds {
+        hilbert_sort(&mut r, pts);
+        out.extend(r);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hilbert_keys_of_a_grid_are_distinct_and_neighbours_follow_each_other() {
+        let n = 8u32;
+        let mut keys = Vec::new();
+        for x in 0..n {
+            for y in 0..n {
+                for z in 0..n {
+                    let s = 1 << (BITS - 3);
+                    keys.push((hilbert_key([x * s, y * s, z * s]), [x, y, z]));
+                }
+            }
+        }
+        keys.sort_unstable();
+        keys.dedup_by_key(|k| k.0);
+        assert_eq!(keys.len(), (n * n * n) as usize);
+        for w in keys.windows(2) {
+            let d: u32 = (0..3).map(|k| w[0].1[k].abs_diff(w[1].1[k])).sum();
+            assert_eq!(d, 1, "consecutive cells {:?} and {:?} are not neighbours", w[0].1, w[1].1);
+        }
+    }
+
+    #[test]
+    fn brio_keeps_every_point_once() {
+        let pts: Vec<P> = (0..1000).map(|i| [(i % 10) as f64, (i / 10 % 10) as f64, (i / 100) as f64]).collect();
+        let ids: Vec<u32> = (0..1000).collect();
+        let mut o = brio(&ids, &pts);
+        assert_eq!(o.len(), 1000);
+        o.sort_unstable();
+        assert_eq!(o, ids);
+    }
+}

@@ -1,0 +1,148 @@
+//! Interior nodes by Delaunay refinement against the size field. In rounds, every tet whose
+//! circumradius exceeds `SPLIT_RADIUS` times the local size proposes a point: its circumcenter,
+//! or, when the tet stands on a boundary face and its circumcenter lies beyond that face, the
+//! ideal apex over the face (the point an advancing front would place). The round's points are
+//! inserted in Hilbert order; each is kept only if no vertex of its cavity is closer than
+//! `MIN_SPACING` sizes and it stands at least `MIN_HEIGHT` sizes off every boundary face of its
+//! cavity, so the spacing follows the size field and no flat tet is made against the boundary.
+//! Only the tets a round created are examined in the next one. Deterministic: one thread, sorted
+//! work lists.
+
+use super::super::sizing::Background;
+use super::order::hilbert_sort;
+use super::tri::{FACE, Limits, NONE, P, Tri};
+
+/// A tet is split when its circumradius exceeds this many local sizes (a regular tet of edge h
+/// has circumradius 0.61 h).
+const SPLIT_RADIUS: f64 = 0.9;
+/// Smallest distance from a new point to any vertex of its cavity, in local sizes.
+const MIN_SPACING: f64 = 0.75;
+/// Smallest distance from a new point to the plane of a boundary face of its cavity, in sizes.
+const MIN_HEIGHT: f64 = 0.35;
+/// Height of the ideal apex over a boundary face, in mean edge lengths (regular tet).
+const APEX_HEIGHT: f64 = 0.816;
+
+/// Refine in place.
+pub fn refine(tri: &mut Tri, bg: &Background) {
+    let mut work: Vec<u32> = tri.live_tets().collect();
+    tri.created.clear();
+    tri.record = true;
+    let mut cands: Vec<(P, u32)> = Vec::new();
+    let mut ids: Vec<u32> = Vec::new();
+    let mut cpts: Vec<P> = Vec::new();
+    while !work.is_empty() {
+        cands.clear();
+        for &t in &work {
+            if !tri.alive(t) {
+                continue;
+            }
+            if let Some(p) = proposal(tri, t, bg) {
+                cands.push((p, t));
+            }
+        }
+        if cands.is_empty() {
+            break;
+        }
+        cpts.clear();
+        cpts.extend(cands.iter().map(|c| c.0));
+        ids.clear();
+        ids.extend(0..cands.len() as u32);
+        hilbert_sort(&mut ids, &cpts);
+        tri.created.clear();
+        let mut round = 0;
+        for &k in &ids {
+            let (p, from) = cands[k as usize];
+            let h = bg.size_at(&p);
+            let lim = Limits {
+                min_dist: MIN_SPACING * h,
+                min_height: MIN_HEIGHT * h,
+            };
+            let start = if tri.alive(from) { from } else { NONE };
+            if tri.insert(p, start, &lim).is_ok() {
+                round += 1;
+            }
+        }
+        if round == 0 {
+            break;
+        }
+        work = std::mem::take(&mut tri.created);
+        work.sort_unstable();
+        work.dedup();
+    }
+    tri.record = false;
+}
+
+/// The point tet `t` proposes, if it is too large.
+fn proposal(tri: &Tri, t: u32, bg: &Background) -> Option<P> {
+    let tv = tri.tets[t as usize];
+    let [a, b, c, d] = tv.map(|v| tri.pts[v as usize]);
+    let (cc, r) = circumcenter(&a, &b, &c, &d)?;
+    let g = [0, 1, 2].map(|k| 0.25 * (a[k] + b[k] + c[k] + d[k]));
+    let h = bg.size_at(&g).min(bg.size_at(&cc));
+    if r <= SPLIT_RADIUS * h {
+        return None;
+    }
+    // Against a boundary face the circumcenter may lie outside: take the ideal apex instead.
+    for (i, f) in FACE.iter().enumerate() {
+        let on_boundary = tri.adj[t as usize][i] == NONE || tri.cons[t as usize] & (1 << i) != 0;
+        if !on_boundary {
+            continue;
+        }
+        let [x, y, z] = [f[0], f[1], f[2]].map(|k| tri.pts[tv[k] as usize]);
+        let n = normal(&x, &y, &z);
+        let beyond = (0..3).map(|k| (cc[k] - x[k]) * n[k]).sum::<f64>() > 0.0;
+        if beyond {
+            let le = (dist(&x, &y) + dist(&y, &z) + dist(&z, &x)) / 3.0;
+            let hh = APEX_HEIGHT * le.min(h);
+            return Some([0, 1, 2].map(|k| (x[k] + y[k] + z[k]) / 3.0 - hh * n[k]));
+        }
+    }
+    Some(cc)
+}
+
+fn dist(a: &P, b: &P) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Unit normal of `xyz` (pointing out of the tet for an outward face).
+fn normal(x: &P, y: &P, z: &P) -> P {
+    let u = [y[0] - x[0], y[1] - x[1], y[2] - x[2]];
+    let w = [z[0] - x[0], z[1] - x[1], z[2] - x[2]];
+    let n = [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt().max(f64::MIN_POSITIVE);
+    n.map(|c| c / l)
+}
+
+/// Circumcenter and circumradius (float), `None` for a flat tet.
+pub fn circumcenter(a: &P, b: &P, c: &P, d: &P) -> Option<(P, f64)> {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+    let cross = |p: &P, q: &P| {
+        [
+            p[1] * q[2] - p[2] * q[1],
+            p[2] * q[0] - p[0] * q[2],
+            p[0] * q[1] - p[1] * q[0],
+        ]
+    };
+    let vw = cross(&v, &w);
+    let wu = cross(&w, &u);
+    let uv = cross(&u, &v);
+    let den = 2.0 * (u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2]);
+    if den == 0.0 || !den.is_finite() {
+        return None;
+    }
+    let (lu, lv, lw) = (
+        u[0] * u[0] + u[1] * u[1] + u[2] * u[2],
+        v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
+        w[0] * w[0] + w[1] * w[1] + w[2] * w[2],
+    );
+    let o = [0, 1, 2].map(|k| (lu * vw[k] + lv * wu[k] + lw * uv[k]) / den);
+    let r = (o[0] * o[0] + o[1] * o[1] + o[2] * o[2]).sqrt();
+    Some(([a[0] + o[0], a[1] + o[1], a[2] + o[2]], r))
+}
+

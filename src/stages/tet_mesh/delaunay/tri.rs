@@ -1,0 +1,517 @@
+//! The kernel: an incremental tetrahedralization (Bowyer–Watson) with adjacency and constraint
+//! faces. A point is inserted by removing the cavity of tets whose circumsphere strictly contains
+//! it (exact `insphere`) and starring the cavity's boundary from the point. Cavities never cross a
+//! constraint face or the hull (a missing neighbour), and the cavity is shrunk until every
+//! boundary face sees the point strictly (exact `orient3d`), so every new tet is positive whatever
+//! the constraints do to the Delaunay property. Without constraints the result is the Delaunay
+//! tetrahedralization. Nothing here knows about sizes or boundaries: callers pass the checks an
+//! insertion must pass (`Limits`).
+
+use crate::geom::predicates::{Orientation, insphere};
+
+use super::super::exact::orient3d;
+
+pub type P = [f64; 3];
+/// No neighbour (hull or removed) / dead tet marker.
+pub const NONE: u32 = u32::MAX;
+
+/// The face opposite each vertex of a positive tet, ordered so its normal points out of the tet.
+pub const FACE: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+
+/// What an insertion must respect besides validity.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Limits {
+    /// Reject the point if a vertex of its cavity is closer than this.
+    pub min_dist: f64,
+    /// Reject the point if it is closer than this to the plane of a cavity boundary face that is
+    /// a constraint or on the hull.
+    pub min_height: f64,
+}
+
+/// Why a point was not inserted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reject {
+    /// The walk left the triangulation (across the hull).
+    Outside,
+    /// The point coincides with a vertex.
+    Duplicate,
+    /// The point lies on a constraint face or no valid cavity exists around it.
+    NotVisible,
+    /// `Limits` refused it.
+    TooClose,
+}
+
+pub struct Tri {
+    pub pts: Vec<P>,
+    /// Vertices of each tet, positively oriented; `[NONE; 4]` for a free slot.
+    pub tets: Vec<[u32; 4]>,
+    /// `adj[t][i] = 4 u + j`: face `i` of `t` is face `j` of `u`; `NONE` on the hull.
+    pub adj: Vec<[u32; 4]>,
+    /// Bit `i`: face `i` is a constraint (cavities never cross it).
+    pub cons: Vec<u8>,
+    free: Vec<u32>,
+    mark: Vec<u32>,
+    stamp: u32,
+    /// A live tet near the last insertion: where walks start by default.
+    pub hint: u32,
+    walk_turn: usize,
+    cavity: Vec<u32>,
+    stack: Vec<u32>,
+    bnd: Vec<(u32, u8)>,
+    keys: Vec<(u64, u32)>,
+    /// Tets created by insertions, while `record` is on.
+    pub created: Vec<u32>,
+    pub record: bool,
+}
+
+impl Tri {
+    /// The single positive tet `super_tet` over `pts` (its four vertices must be in `pts`).
+    pub fn new(pts: Vec<P>, super_tet: [u32; 4]) -> Self {
+        let mut t = Tri {
+            pts,
+            tets: vec![super_tet],
+            adj: vec![[NONE; 4]],
+            cons: vec![0],
+            free: Vec::new(),
+            mark: vec![0],
+            stamp: 0,
+            hint: 0,
+            walk_turn: 0,
+            cavity: Vec::new(),
+            stack: Vec::new(),
+            bnd: Vec::new(),
+            keys: Vec::new(),
+            created: Vec::new(),
+            record: false,
+        };
+        t.created.push(0);
+        t
+    }
+
+    /// Room for `n` more tets without reallocating.
+    pub fn reserve(&mut self, n: usize) {
+        self.tets.reserve(n);
+        self.adj.reserve(n);
+        self.cons.reserve(n);
+        self.mark.reserve(n);
+    }
+
+    #[inline]
+    pub fn alive(&self, t: u32) -> bool {
+        self.tets[t as usize][0] != NONE
+    }
+
+    /// The outward face `i` of tet `t` as vertex ids.
+    #[inline]
+    pub fn face(&self, t: u32, i: usize) -> [u32; 3] {
+        let tv = self.tets[t as usize];
+        let f = FACE[i];
+        [tv[f[0]], tv[f[1]], tv[f[2]]]
+    }
+
+    /// Remove tet `t`: its neighbours see the hull there.
+    pub fn kill(&mut self, t: u32) {
+        for i in 0..4 {
+            let n = self.adj[t as usize][i];
+            if n != NONE {
+                self.adj[(n >> 2) as usize][(n & 3) as usize] = NONE;
+            }
+        }
+        self.tets[t as usize] = [NONE; 4];
+        self.adj[t as usize] = [NONE; 4];
+        self.cons[t as usize] = 0;
+        self.free.push(t);
+    }
+
+    /// A slot for the tet `tv` (a free one first), with no neighbours and no constraint.
+    pub fn alloc(&mut self, tv: [u32; 4]) -> u32 {
+        let id = match self.free.pop() {
+            Some(id) => id,
+            None => {
+                self.tets.push([NONE; 4]);
+                self.adj.push([NONE; 4]);
+                self.cons.push(0);
+                self.mark.push(0);
+                (self.tets.len() - 1) as u32
+            }
+        };
+        self.tets[id as usize] = tv;
+        self.adj[id as usize] = [NONE; 4];
+        self.cons[id as usize] = 0;
+        id
+    }
+
+    /// Add positive tets that fill holes of the triangulation: their faces are linked to each
+    /// other and to `surface` (sorted face → `4 u + j` of the kept tet across it); faces in
+    /// `constraints` (sorted) are marked; the rest are hull.
+    pub fn link_in(
+        &mut self,
+        tets: &[[u32; 4]],
+        surface: &std::collections::HashMap<[u32; 3], u32>,
+        constraints: &std::collections::HashSet<[u32; 3]>,
+    ) {
+        let mut open: std::collections::HashMap<[u32; 3], u32> = Default::default();
+        for &tv in tets {
+            let id = self.alloc(tv);
+            for i in 0..4 {
+                let mut key = self.face(id, i);
+                key.sort_unstable();
+                if constraints.contains(&key) {
+                    self.cons[id as usize] |= 1 << i;
+                }
+                let me = 4 * id + i as u32;
+                let other = open.remove(&key).or_else(|| surface.get(&key).copied());
+                match other {
+                    Some(o) => {
+                        self.adj[id as usize][i] = o;
+                        self.adj[(o >> 2) as usize][(o & 3) as usize] = me;
+                    }
+                    None => {
+                        open.insert(key, me);
+                    }
+                }
+            }
+            self.hint = id;
+        }
+    }
+
+    /// Mark face `i` of `t` (and its twin) as a constraint.
+    pub fn constrain(&mut self, t: u32, i: usize) {
+        self.cons[t as usize] |= 1 << i;
+        let n = self.adj[t as usize][i];
+        if n != NONE {
+            self.cons[(n >> 2) as usize] |= 1 << (n & 3);
+        }
+    }
+
+    pub fn live_tets(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.tets.len() as u32).filter(move |&t| self.alive(t))
+    }
+
+    fn next_stamp(&mut self) -> u32 {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.stamp = 1;
+        }
+        self.stamp
+    }
+
+    /// Walk from `start` towards `p`; the tet containing `p` (closed), or `Outside` if the walk
+    /// has to cross the hull.
+    pub fn locate(&mut self, p: &P, start: u32) -> Result<u32, Reject> {
+        let mut t = if start != NONE && self.alive(start) {
+            start
+        } else {
+            self.any_live().ok_or(Reject::Outside)?
+        };
+        let cap = 64 + 4 * self.tets.len();
+        for _ in 0..cap {
+            let tv = self.tets[t as usize];
+            self.walk_turn = self.walk_turn.wrapping_add(1);
+            let mut next = None;
+            for jj in 0..4 {
+                let i = (jj + self.walk_turn) & 3;
+                let f = FACE[i];
+                let (a, b, c) = (
+                    &self.pts[tv[f[0]] as usize],
+                    &self.pts[tv[f[1]] as usize],
+                    &self.pts[tv[f[2]] as usize],
+                );
+                if orient3d(a, b, c, p) == Orientation::Positive {
+                    next = Some(i);
+                    break;
+                }
+            }
+            match next {
+                None => return Ok(t),
+                Some(i) => {
+                    let n = self.adj[t as usize][i];
+                    if n == NONE {
+                        return Err(Reject::Outside);
+                    }
+                    t = n >> 2;
+                }
+            }
+        }
+        // A walk that cycles (possible once constraints break the Delaunay property): scan.
+        self.live_tets()
+            .find(|&t| {
+                let tv = self.tets[t as usize];
+                FACE.iter().all(|f| {
+                    orient3d(
+                        &self.pts[tv[f[0]] as usize],
+                        &self.pts[tv[f[1]] as usize],
+                        &self.pts[tv[f[2]] as usize],
+                        p,
+                    ) != Orientation::Positive
+                })
+            })
+            .ok_or(Reject::Outside)
+    }
+
+    fn any_live(&self) -> Option<u32> {
+        if self.hint != NONE && (self.hint as usize) < self.tets.len() && self.alive(self.hint) {
+            return Some(self.hint);
+        }
+        self.live_tets().next()
+    }
+
+    /// Insert a new point `p` starting the walk at `start` (or the hint); returns its vertex id.
+    pub fn insert(&mut self, p: P, start: u32, lim: &Limits) -> Result<u32, Reject> {
+        self.prepare(&p, start, lim)?;
+        let v = self.pts.len() as u32;
+        self.pts.push(p);
+        self.apply(v);
+        Ok(v)
+    }
+
+    /// Insert the existing point `v` (in `pts` but in no tet yet).
+    pub fn insert_vertex(&mut self, v: u32, start: u32, lim: &Limits) -> Result<(), Reject> {
+        let p = self.pts[v as usize];
+        self.prepare(&p, start, lim)?;
+        self.apply(v);
+        Ok(())
+    }
+
+    /// Locate `p`, build and check its cavity (nothing changes yet).
+    fn prepare(&mut self, p: &P, start: u32, lim: &Limits) -> Result<(), Reject> {
+        let root = self.locate(p, start)?;
+        let rv = self.tets[root as usize];
+        if rv.iter().any(|&v| self.pts[v as usize] == *p) {
+            return Err(Reject::Duplicate);
+        }
+        let d2 = lim.min_dist * lim.min_dist;
+        if rv.iter().any(|&v| dist2(&self.pts[v as usize], p) < d2) {
+            return Err(Reject::TooClose);
+        }
+        self.grow_cavity(root, p, d2)?;
+        self.make_star_shaped(root, p)?;
+        self.check_limits(p, lim)
+    }
+
+    /// Tets whose circumsphere strictly contains `p`, connected to `root` without crossing a
+    /// constraint or the hull.
+    fn grow_cavity(&mut self, root: u32, p: &P, min_d2: f64) -> Result<(), Reject> {
+        let s = self.next_stamp();
+        self.cavity.clear();
+        self.stack.clear();
+        self.mark[root as usize] = s;
+        self.cavity.push(root);
+        self.stack.push(root);
+        while let Some(t) = self.stack.pop() {
+            for i in 0..4 {
+                if self.cons[t as usize] & (1 << i) != 0 {
+                    continue;
+                }
+                let n = self.adj[t as usize][i];
+                if n == NONE {
+                    continue;
+                }
+                let u = n >> 2;
+                if self.mark[u as usize] == s {
+                    continue;
+                }
+                let uv = self.tets[u as usize];
+                let [a, b, c, d] = uv.map(|v| &self.pts[v as usize]);
+                if insphere(a, b, c, d, p) == Orientation::Positive {
+                    if min_d2 > 0.0 && [a, b, c, d].iter().any(|q| dist2(q, p) < min_d2) {
+                        return Err(Reject::TooClose);
+                    }
+                    self.mark[u as usize] = s;
+                    self.cavity.push(u);
+                    self.stack.push(u);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Collect the cavity's boundary faces.
+    fn collect_boundary(&mut self) {
+        let s = self.stamp;
+        self.bnd.clear();
+        for &t in &self.cavity {
+            for i in 0..4 {
+                let n = self.adj[t as usize][i];
+                if n == NONE || self.mark[(n >> 2) as usize] != s {
+                    self.bnd.push((t, i as u8));
+                }
+            }
+        }
+    }
+
+    /// Shrink the cavity until every boundary face sees `p` strictly.
+    fn make_star_shaped(&mut self, root: u32, p: &P) -> Result<(), Reject> {
+        loop {
+            self.collect_boundary();
+            let mut bad: Vec<u32> = Vec::new();
+            for &(t, i) in &self.bnd {
+                let f = self.face(t, i as usize);
+                let [a, b, c] = f.map(|v| &self.pts[v as usize]);
+                if orient3d(a, b, c, p) != Orientation::Negative {
+                    bad.push(t);
+                }
+            }
+            // A constraint with the cavity on both sides (the cavity went round a dangling
+            // face's edge): the side `p` cannot see leaves the cavity.
+            let s = self.stamp;
+            for &t in &self.cavity {
+                let c = self.cons[t as usize];
+                if c == 0 {
+                    continue;
+                }
+                for i in 0..4 {
+                    let n = self.adj[t as usize][i];
+                    if c & (1 << i) == 0 || n == NONE || self.mark[(n >> 2) as usize] != s {
+                        continue;
+                    }
+                    let f = self.face(t, i);
+                    let [a, b, c3] = f.map(|v| &self.pts[v as usize]);
+                    bad.push(if orient3d(a, b, c3, p) == Orientation::Negative {
+                        n >> 2
+                    } else {
+                        t
+                    });
+                }
+            }
+            if bad.is_empty() {
+                return Ok(());
+            }
+            if bad.contains(&root) {
+                return Err(Reject::NotVisible);
+            }
+            // Drop the offending tets, then keep what stays connected to the root.
+            for &t in &bad {
+                self.mark[t as usize] = 0;
+            }
+            let s2 = self.next_stamp();
+            self.cavity.clear();
+            self.stack.clear();
+            self.mark[root as usize] = s2;
+            self.cavity.push(root);
+            self.stack.push(root);
+            while let Some(t) = self.stack.pop() {
+                for i in 0..4 {
+                    if self.cons[t as usize] & (1 << i) != 0 {
+                        continue;
+                    }
+                    let n = self.adj[t as usize][i];
+                    if n == NONE {
+                        continue;
+                    }
+                    let u = n >> 2;
+                    if self.mark[u as usize] == s {
+                        self.mark[u as usize] = s2;
+                        self.cavity.push(u);
+                        self.stack.push(u);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The spacing was checked while the cavity grew; here the height over boundary faces.
+    fn check_limits(&self, p: &P, lim: &Limits) -> Result<(), Reject> {
+        if lim.min_height > 0.0 {
+            for &(t, i) in &self.bnd {
+                let hull = self.adj[t as usize][i as usize] == NONE;
+                if !hull && self.cons[t as usize] & (1 << i) == 0 {
+                    continue;
+                }
+                let f = self.face(t, i as usize);
+                let [a, b, c] = f.map(|v| self.pts[v as usize]);
+                if height(&a, &b, &c, p) < lim.min_height {
+                    return Err(Reject::TooClose);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Replace the cavity by the star of its boundary from the new vertex `p`.
+    fn apply(&mut self, v: u32) {
+        // New tets' records first: the cavity's slots are reused.
+        let mut recs: Vec<([u32; 4], u32, bool)> = Vec::with_capacity(self.bnd.len());
+        for &(t, i) in &self.bnd {
+            let f = self.face(t, i as usize);
+            let outer = self.adj[t as usize][i as usize];
+            let con = self.cons[t as usize] & (1 << i) != 0;
+            recs.push(([f[0], f[2], f[1], v], outer, con));
+        }
+        for k in 0..self.cavity.len() {
+            let t = self.cavity[k];
+            self.tets[t as usize] = [NONE; 4];
+            self.free.push(t);
+        }
+        self.keys.clear();
+        let mut ids: Vec<u32> = Vec::with_capacity(recs.len());
+        for (tv, outer, con) in recs {
+            let id = match self.free.pop() {
+                Some(id) => {
+                    self.tets[id as usize] = tv;
+                    self.adj[id as usize] = [NONE, NONE, NONE, outer];
+                    self.cons[id as usize] = if con { 1 << 3 } else { 0 };
+                    id
+                }
+                None => {
+                    self.tets.push(tv);
+                    self.adj.push([NONE, NONE, NONE, outer]);
+                    self.cons.push(if con { 1 << 3 } else { 0 });
+                    self.mark.push(0);
+                    (self.tets.len() - 1) as u32
+                }
+            };
+            if outer != NONE {
+                self.adj[(outer >> 2) as usize][(outer & 3) as usize] = 4 * id + 3;
+            }
+            // Faces 0, 1, 2 contain `v` and the base edge without vertex 0, 1, 2 respectively.
+            for k in 0..3usize {
+                let (x, y) = match k {
+                    0 => (tv[1], tv[2]),
+                    1 => (tv[0], tv[2]),
+                    _ => (tv[0], tv[1]),
+                };
+                let (lo, hi) = if x < y { (x, y) } else { (y, x) };
+                self.keys
+                    .push((((lo as u64) << 32) | hi as u64, 4 * id + k as u32));
+            }
+            ids.push(id);
+        }
+        self.keys.sort_unstable();
+        for pair in self.keys.chunks(2) {
+            if let [(ka, a), (kb, b)] = *pair {
+                debug_assert_eq!(ka, kb);
+                let _ = (ka, kb);
+                self.adj[(a >> 2) as usize][(a & 3) as usize] = b;
+                self.adj[(b >> 2) as usize][(b & 3) as usize] = a;
+            }
+        }
+        self.hint = *ids.last().unwrap_or(&self.hint);
+        if self.record {
+            self.created.extend_from_slice(&ids);
+        }
+    }
+}
+
+#[inline]
+fn dist2(a: &P, b: &P) -> f64 {
+    let e = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    e[0] * e[0] + e[1] * e[1] + e[2] * e[2]
+}
+
+/// Distance from `p` to the plane of `abc` (float: a size test, not a decision of validity).
+pub fn height(a: &P, b: &P, c: &P, p: &P) -> f64 {
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if l == 0.0 {
+        return 0.0;
+    }
+    ((p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2]).abs() / l
+}
