@@ -1,6 +1,6 @@
 //! Delaunay meshing of a region: the Delaunay tetrahedralization of the boundary and embedded
-//! vertices (`tri`, inserted in `order`), local boundary recovery whose holes the advancing front
-//! fills (`recover`), then interior nodes by Delaunay refinement against the background size field
+//! vertices (`tri`, inserted in `order`), local boundary recovery (`recover`: 4-4 flips where a
+//! cocircular quad took the other diagonal (`flip`), then holes that the advancing front fills), then interior nodes by Delaunay refinement against the background size field
 //! (`refine`). No node is ever placed on a boundary or embedded face: recovery removes and re-meshes
 //! tets instead of splitting faces, and refinement cavities never cross a constraint. It is the
 //! fast path of `mesh_region`; when recovery meets something it cannot settle, the caller falls

@@ -243,9 +243,9 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     // Tets no flood reached are walled in by holes (e.g. behind box sides whose cospherical
     // squares the tetrahedralization split the other way): they join the holes, whose inner part
     // the front meshes whatever side they were on.
-    for t in 0..side.len() {
-        if side[t] == Side::Unknown && tri.alive(t as u32) {
-            side[t] = Side::Hole;
+    for (t, s) in side.iter_mut().enumerate() {
+        if *s == Side::Unknown && tri.alive(t as u32) {
+            *s = Side::Hole;
         }
     }
 
@@ -490,9 +490,8 @@ fn star(tri: &Tri, v: u32, start: u32) -> Vec<u32> {
     while k < out.len() {
         let t = out[k];
         k += 1;
-        let tv = tri.tets[t as usize];
-        for i in 0..4 {
-            if tv[i] == v {
+        for (i, &w) in tri.tets[t as usize].iter().enumerate() {
+            if w == v {
                 continue;
             }
             let a = tri.adj[t as usize][i];
