@@ -290,9 +290,13 @@ impl Tri {
         self.check_limits(p, lim)
     }
 
-    /// Tets whose circumsphere strictly contains `p`, connected to `root` without crossing a
-    /// constraint or the hull.
-    fn grow_cavity(&mut self, root: u32, p: &P, min_d2: f64) -> Result<(), Reject> {
+    /// A new cavity grown from `root` across faces that are neither constraints nor hull, taking
+    /// each neighbour `u` that `take(self, u, mark_of_u)` accepts.
+    fn flood(
+        &mut self,
+        root: u32,
+        mut take: impl FnMut(&Self, u32, u32) -> Result<bool, Reject>,
+    ) -> Result<(), Reject> {
         let s = self.next_stamp();
         self.cavity.clear();
         self.stack.clear();
@@ -301,23 +305,13 @@ impl Tri {
         self.stack.push(root);
         while let Some(t) = self.stack.pop() {
             for i in 0..4 {
-                if self.cons[t as usize] & (1 << i) != 0 {
-                    continue;
-                }
                 let n = self.adj[t as usize][i];
-                if n == NONE {
+                if self.cons[t as usize] & (1 << i) != 0 || n == NONE {
                     continue;
                 }
                 let u = n >> 2;
-                if self.mark[u as usize] == s {
-                    continue;
-                }
-                let uv = self.tets[u as usize];
-                let [a, b, c, d] = uv.map(|v| &self.pts[v as usize]);
-                if insphere(a, b, c, d, p) == Orientation::Positive {
-                    if min_d2 > 0.0 && [a, b, c, d].iter().any(|q| dist2(q, p) < min_d2) {
-                        return Err(Reject::TooClose);
-                    }
+                let m = self.mark[u as usize];
+                if m != s && take(self, u, m)? {
                     self.mark[u as usize] = s;
                     self.cavity.push(u);
                     self.stack.push(u);
@@ -325,6 +319,21 @@ impl Tri {
             }
         }
         Ok(())
+    }
+
+    /// Tets whose circumsphere strictly contains `p`, connected to `root` without crossing a
+    /// constraint or the hull; `TooClose` as soon as one has a vertex nearer than `min_d2`.
+    fn grow_cavity(&mut self, root: u32, p: &P, min_d2: f64) -> Result<(), Reject> {
+        self.flood(root, |tri, u, _| {
+            let [a, b, c, d] = tri.tets[u as usize].map(|v| &tri.pts[v as usize]);
+            if insphere(a, b, c, d, p) != Orientation::Positive {
+                return Ok(false);
+            }
+            if min_d2 > 0.0 && [a, b, c, d].iter().any(|q| dist2(q, p) < min_d2) {
+                return Err(Reject::TooClose);
+            }
+            Ok(true)
+        })
     }
 
     /// Collect the cavity's boundary faces.
@@ -385,29 +394,8 @@ impl Tri {
             for &t in &bad {
                 self.mark[t as usize] = 0;
             }
-            let s2 = self.next_stamp();
-            self.cavity.clear();
-            self.stack.clear();
-            self.mark[root as usize] = s2;
-            self.cavity.push(root);
-            self.stack.push(root);
-            while let Some(t) = self.stack.pop() {
-                for i in 0..4 {
-                    if self.cons[t as usize] & (1 << i) != 0 {
-                        continue;
-                    }
-                    let n = self.adj[t as usize][i];
-                    if n == NONE {
-                        continue;
-                    }
-                    let u = n >> 2;
-                    if self.mark[u as usize] == s {
-                        self.mark[u as usize] = s2;
-                        self.cavity.push(u);
-                        self.stack.push(u);
-                    }
-                }
-            }
+            let kept = self.stamp;
+            self.flood(root, |_, _, m| Ok(m == kept))?;
         }
     }
 
