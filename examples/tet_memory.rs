@@ -89,11 +89,19 @@ fn main() {
     println!(
         "{boundary}: {tets} tets in {secs:.2} s ({:.0} tets/s, {method:?}{}), peak {} MB over {} MB before: {:.0} B/tet{}; MR avg {:.4} min {:.3}, min dihedral {:.1}",
         tets as f64 / secs,
-        out.stats.fallback.as_deref().map(|f| format!(", fell back: {f}")).unwrap_or_default(),
+        out.stats
+            .fallback
+            .as_deref()
+            .map(|f| format!(", fell back: {f}"))
+            .unwrap_or_default(),
         peak / 1024,
         before / 1024,
         extra as f64 / tets as f64,
-        if reset { "" } else { " (peak not reset: includes reading)" },
+        if reset {
+            ""
+        } else {
+            " (peak not reset: includes reading)"
+        },
         out.stats.avg_mean_ratio,
         out.stats.min_mean_ratio,
         out.stats.min_dihedral_deg

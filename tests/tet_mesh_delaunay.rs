@@ -37,7 +37,9 @@ fn box_with_fanned_top(n: u32, w: f64, l: f64, h: f64, origin: P) -> RegionInput
     };
     let step = w / n as f64;
     let row = |y: f64, z: f64, id: &mut dyn FnMut(f64, f64, f64) -> u32| {
-        (0..=n).map(|i| id(i as f64 * step, y, z)).collect::<Vec<u32>>()
+        (0..=n)
+            .map(|i| id(i as f64 * step, y, z))
+            .collect::<Vec<u32>>()
     };
     let a = row(0.0, h, &mut id); // top, y = 0
     let b = row(l, h, &mut id); // top, y = l
@@ -65,7 +67,11 @@ fn box_with_fanned_top(n: u32, w: f64, l: f64, h: f64, origin: P) -> RegionInput
     // The fan from a[0] over the b row and the one from b[n] over the a row share the diagonal
     // a[0]-b[n]; drop the degenerate ones (a[0] a[0] .. and b[n] b[n] ..).
     tris.retain(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]);
-    let centre = [origin[0] + w / 2.0, origin[1] + l / 2.0, origin[2] + h / 2.0];
+    let centre = [
+        origin[0] + w / 2.0,
+        origin[1] + l / 2.0,
+        origin[2] + h / 2.0,
+    ];
     outward(&pts, &mut tris, centre);
     RegionInput {
         name: "fanned box".into(),
@@ -227,7 +233,11 @@ fn refinement_never_dissolves_a_dangling_fault_whose_tip_it_goes_round() {
     let input = cube_with_fanned_fault(6, 60.0, 40);
     let out = mesh_with(&input, Method::Delaunay);
     assert_eq!(out.stats.fallback, None);
-    assert!(out.stats.new_nodes > 50, "{} new nodes", out.stats.new_nodes);
+    assert!(
+        out.stats.new_nodes > 50,
+        "{} new nodes",
+        out.stats.new_nodes
+    );
 }
 
 #[test]

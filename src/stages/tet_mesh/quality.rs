@@ -294,4 +294,47 @@ mod tests {
         );
         assert_eq!(q, 0.0);
     }
+
+    #[test]
+    fn above_a_mean_ratio_of_0_7_skipping_the_dihedral_sines_changes_no_shape() {
+        // Perturbed regular tets (a fixed linear congruential sequence): wherever the mean ratio
+        // is at least 0.7, the scaled smallest sine is above it, so `shape` is the mean ratio.
+        let mut x: u64 = 12345;
+        let mut next = || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let reg = [
+            [1.0, -1.0, -1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, 1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+        ];
+        let mut checked = 0;
+        for k in 0..200_000 {
+            let amp = 1.6 * (k % 100) as f64 / 100.0;
+            let t: Vec<P> = reg
+                .iter()
+                .map(|p| {
+                    [
+                        p[0] + amp * next(),
+                        p[1] + amp * next(),
+                        p[2] + amp * next(),
+                    ]
+                })
+                .collect();
+            let q = mean_ratio(&t[0], &t[1], &t[2], &t[3]);
+            if q < 0.7 {
+                continue;
+            }
+            checked += 1;
+            let sine = SINE_SCALE * min_sine(&t[0], &t[1], &t[2], &t[3]);
+            assert!(sine > q, "sine {sine} below mean ratio {q} for {t:?}");
+            let sh = shape(&t[0], &t[1], &t[2], &t[3]);
+            assert!((sh - q).abs() <= 1e-12, "{sh} vs {q}");
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
 }

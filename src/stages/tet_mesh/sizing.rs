@@ -31,7 +31,12 @@ impl Background {
     }
 
     /// As `new`, on at most `max_cells` cells.
-    pub fn with_max_cells(pts: &[P], tris: &[[u32; 3]], field: &SizeField, max_cells: usize) -> Self {
+    pub fn with_max_cells(
+        pts: &[P],
+        tris: &[[u32; 3]],
+        field: &SizeField,
+        max_cells: usize,
+    ) -> Self {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for p in pts {

@@ -108,8 +108,11 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     faces.sort_unstable();
     // The boundary and embedded triangles sorted the same way, walked alongside the faces.
     let sorted_input = |tris: &[[u32; 3]]| {
-        let mut v: Vec<([u32; 3], usize)> =
-            tris.iter().enumerate().map(|(i, t)| (keyed(*t).0, i)).collect();
+        let mut v: Vec<([u32; 3], usize)> = tris
+            .iter()
+            .enumerate()
+            .map(|(i, t)| (keyed(*t).0, i))
+            .collect();
         v.sort_unstable();
         v
     };

@@ -127,13 +127,19 @@ mod tests {
         assert_eq!(keys.len(), (n * n * n) as usize);
         for w in keys.windows(2) {
             let d: u32 = (0..3).map(|k| w[0].1[k].abs_diff(w[1].1[k])).sum();
-            assert_eq!(d, 1, "consecutive cells {:?} and {:?} are not neighbours", w[0].1, w[1].1);
+            assert_eq!(
+                d, 1,
+                "consecutive cells {:?} and {:?} are not neighbours",
+                w[0].1, w[1].1
+            );
         }
     }
 
     #[test]
     fn brio_keeps_every_point_once() {
-        let pts: Vec<P> = (0..1000).map(|i| [(i % 10) as f64, (i / 10 % 10) as f64, (i / 100) as f64]).collect();
+        let pts: Vec<P> = (0..1000)
+            .map(|i| [(i % 10) as f64, (i / 10 % 10) as f64, (i / 100) as f64])
+            .collect();
         let ids: Vec<u32> = (0..1000).collect();
         let mut o = brio(&ids, &pts);
         assert_eq!(o.len(), 1000);

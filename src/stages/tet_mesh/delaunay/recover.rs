@@ -95,7 +95,10 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         }
     }
     let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
-    let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f64, f64::max).max(1.0);
+    let ext = (0..3)
+        .map(|k| hi[k] - lo[k])
+        .fold(0.0f64, f64::max)
+        .max(1.0);
     let s = 1.0e3 * ext;
     for d in [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]] {
         pts.push([c[0] + s * d[0], c[1] + s * d[1], c[2] + s * d[2]]);
@@ -119,9 +122,13 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     tri.reserve(7 * ids.len() + 2 * input.boundary.len() + 64);
     for v in brio(&ids, &input.vertices) {
         let p = input.vertices[v as usize];
-        tri.insert_vertex(v, NONE, &Limits::default()).map_err(|r| {
-            err(format!("boundary vertex {v} could not be inserted ({r:?})"), Some(p))
-        })?;
+        tri.insert_vertex(v, NONE, &Limits::default())
+            .map_err(|r| {
+                err(
+                    format!("boundary vertex {v} could not be inserted ({r:?})"),
+                    Some(p),
+                )
+            })?;
     }
 
     // Which constraint triangles are faces.
@@ -278,7 +285,8 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
             }
         };
         let (sub, back) = compact_input(name, &tri.pts, &sub_b, &sub_e);
-        check_input(&sub).map_err(|e| err(format!("a recovery hole is not valid: {}", e.message), e.at))?;
+        check_input(&sub)
+            .map_err(|e| err(format!("a recovery hole is not valid: {}", e.message), e.at))?;
         let raw = advance_front(&sub, size)?;
         let mut map = back;
         for p in &raw.nodes[sub.vertices.len()..] {
@@ -369,18 +377,17 @@ fn hole_surface(
             }
             continue;
         }
-        let in_hole: Vec<(u32, usize)> =
-            hs.iter().filter(|(t, _)| side[*t as usize] == Side::Hole).collect();
+        let in_hole: Vec<(u32, usize)> = hs
+            .iter()
+            .filter(|(t, _)| side[*t as usize] == Side::Hole)
+            .collect();
         if embedded {
             match in_hole.len() {
                 2 => sub_e.push(f),
                 1 => sub_b.push(tri.face(in_hole[0].0, in_hole[0].1)),
                 _ => {}
             }
-        } else if in_hole
-            .iter()
-            .any(|&(t, i)| same_turn(tri.face(t, i), f))
-        {
+        } else if in_hole.iter().any(|&(t, i)| same_turn(tri.face(t, i), f)) {
             sub_b.push(f);
         }
     }
@@ -543,7 +550,10 @@ fn meets(tri: &Tri, t: u32, f: [u32; 3]) -> bool {
     for i in 0..4 {
         for j in i + 1..4 {
             let (a, b) = (tv[i], tv[j]);
-            let rest: Vec<u32> = (0..4).filter(|&k| k != i && k != j).map(|k| tv[k]).collect();
+            let rest: Vec<u32> = (0..4)
+                .filter(|&k| k != i && k != j)
+                .map(|k| tv[k])
+                .collect();
             for &x in &f {
                 if x == a || x == b {
                     continue;

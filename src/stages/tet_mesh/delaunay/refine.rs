@@ -113,7 +113,9 @@ fn normal(x: &P, y: &P, z: &P) -> P {
         u[2] * w[0] - u[0] * w[2],
         u[0] * w[1] - u[1] * w[0],
     ];
-    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt().max(f64::MIN_POSITIVE);
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
     n.map(|c| c / l)
 }
 
@@ -145,4 +147,3 @@ pub fn circumcenter(a: &P, b: &P, c: &P, d: &P) -> Option<(P, f64)> {
     let r = (o[0] * o[0] + o[1] * o[1] + o[2] * o[2]).sqrt();
     Some(([a[0] + o[0], a[1] + o[1], a[2] + o[2]], r))
 }
-
