@@ -8,6 +8,8 @@
 //! Only the tets a round created are examined in the next one. Deterministic: one thread, sorted
 //! work lists.
 
+use crate::geom::predicates::{cross, dot, sub};
+
 use super::super::sizing::Background;
 use super::order::hilbert_sort;
 use super::tri::{FACE, Limits, NONE, P, Tri};
@@ -106,44 +108,20 @@ fn dist(a: &P, b: &P) -> f64 {
 
 /// Unit normal of `xyz` (pointing out of the tet for an outward face).
 fn normal(x: &P, y: &P, z: &P) -> P {
-    let u = [y[0] - x[0], y[1] - x[1], y[2] - x[2]];
-    let w = [z[0] - x[0], z[1] - x[1], z[2] - x[2]];
-    let n = [
-        u[1] * w[2] - u[2] * w[1],
-        u[2] * w[0] - u[0] * w[2],
-        u[0] * w[1] - u[1] * w[0],
-    ];
-    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
-        .sqrt()
-        .max(f64::MIN_POSITIVE);
+    let n = cross(&sub(y, x), &sub(z, x));
+    let l = dot(&n, &n).sqrt().max(f64::MIN_POSITIVE);
     n.map(|c| c / l)
 }
 
 /// Circumcenter and circumradius (float), `None` for a flat tet.
 pub fn circumcenter(a: &P, b: &P, c: &P, d: &P) -> Option<(P, f64)> {
-    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
-    let cross = |p: &P, q: &P| {
-        [
-            p[1] * q[2] - p[2] * q[1],
-            p[2] * q[0] - p[0] * q[2],
-            p[0] * q[1] - p[1] * q[0],
-        ]
-    };
-    let vw = cross(&v, &w);
-    let wu = cross(&w, &u);
-    let uv = cross(&u, &v);
-    let den = 2.0 * (u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2]);
+    let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+    let (vw, wu, uv) = (cross(&v, &w), cross(&w, &u), cross(&u, &v));
+    let den = 2.0 * dot(&u, &vw);
     if den == 0.0 || !den.is_finite() {
         return None;
     }
-    let (lu, lv, lw) = (
-        u[0] * u[0] + u[1] * u[1] + u[2] * u[2],
-        v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
-        w[0] * w[0] + w[1] * w[1] + w[2] * w[2],
-    );
+    let (lu, lv, lw) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
     let o = [0, 1, 2].map(|k| (lu * vw[k] + lv * wu[k] + lw * uv[k]) / den);
-    let r = (o[0] * o[0] + o[1] * o[1] + o[2] * o[2]).sqrt();
-    Some(([a[0] + o[0], a[1] + o[1], a[2] + o[2]], r))
+    Some(([a[0] + o[0], a[1] + o[1], a[2] + o[2]], dot(&o, &o).sqrt()))
 }

@@ -7,7 +7,7 @@
 //! tetrahedralization. Nothing here knows about sizes or boundaries: callers pass the checks an
 //! insertion must pass (`Limits`).
 
-use crate::geom::predicates::{Orientation, insphere};
+use crate::geom::predicates::{Orientation, cross, dot, insphere, sub};
 
 use super::super::exact::orient3d;
 
@@ -484,22 +484,16 @@ impl Tri {
 
 #[inline]
 fn dist2(a: &P, b: &P) -> f64 {
-    let e = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    e[0] * e[0] + e[1] * e[1] + e[2] * e[2]
+    let e = sub(a, b);
+    dot(&e, &e)
 }
 
 /// Distance from `p` to the plane of `abc` (float: a size test, not a decision of validity).
 pub fn height(a: &P, b: &P, c: &P, p: &P) -> f64 {
-    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let n = [
-        u[1] * w[2] - u[2] * w[1],
-        u[2] * w[0] - u[0] * w[2],
-        u[0] * w[1] - u[1] * w[0],
-    ];
-    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let n = cross(&sub(b, a), &sub(c, a));
+    let l = dot(&n, &n).sqrt();
     if l == 0.0 {
         return 0.0;
     }
-    ((p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2]).abs() / l
+    dot(&sub(p, a), &n).abs() / l
 }
