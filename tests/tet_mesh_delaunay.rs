@@ -143,14 +143,22 @@ fn the_fanned_box_at_utm_coordinates_is_recovered_too() {
 }
 
 #[test]
-fn delaunay_and_front_fill_the_same_volume_with_tets_of_comparable_quality() {
+fn delaunay_and_front_meshes_of_the_fanned_box_have_comparable_quality() {
     let input = box_with_fanned_top(16, 16.0, 4.0, 3.0, [0.0; 3]);
     let d = mesh_with(&input, Method::Delaunay);
     let f = mesh_with(&input, Method::Front);
+    eprintln!("delaunay {:?}\nfront {:?}", d.stats, f.stats);
+    assert!(d.stats.recovered_faces > 0 && d.stats.fallback.is_none());
+    // Both fill the box (`verify` checked each against the enclosed volume); the Delaunay mesh,
+    // whose needle top went through a hole meshed by the front, must be about as good.
     assert!((volume(&d) - volume(&f)).abs() < 1e-9 * volume(&f));
-    assert_eq!(f.stats.recovered_faces, 0);
-    // The needles of the top bound both meshes' worst tets; neither may invert or flatten one.
-    assert!(d.stats.min_mean_ratio > 0.0 && f.stats.min_mean_ratio > 0.0);
+    assert!(
+        (d.stats.avg_mean_ratio - f.stats.avg_mean_ratio).abs() < 0.1,
+        "averages {} and {}",
+        d.stats.avg_mean_ratio,
+        f.stats.avg_mean_ratio
+    );
+    assert!(d.stats.min_mean_ratio >= 0.5 * f.stats.min_mean_ratio);
 }
 
 /// A cube of side `s` with `n` squares per side edge, two triangles per square, and a dangling

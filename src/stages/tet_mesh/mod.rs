@@ -187,16 +187,18 @@ pub fn mesh_region(
     opts: &TetMeshOptions,
 ) -> Result<TetMeshOutput, TetMeshError> {
     check_input(input)?;
+    let mut fallback = None;
     let (mut mesh, figures) = match opts.method {
         Method::Delaunay => match delaunay::mesh(input, size) {
-            Ok((m, f)) => (m, f),
-            Err(e) => {
-                let m = advance::advance_front(input, size)?;
-                let f = delaunay::Figures {
-                    fallback: Some(e.to_string()),
-                    ..Default::default()
-                };
-                (m, f)
+            Ok(done) => done,
+            Err(why) => {
+                // The front meshes the region; if it fails too, its error says why both did.
+                let m = advance::advance_front(input, size).map_err(|mut e| {
+                    e.message = format!("{} (after Delaunay gave way: {})", e.message, why.message);
+                    e
+                })?;
+                fallback = Some(why.to_string());
+                (m, delaunay::Figures::default())
             }
         },
         Method::Front => (advance::advance_front(input, size)?, Default::default()),
@@ -220,7 +222,7 @@ pub fn mesh_region(
     };
     out.stats = stats_of(&out, input.vertices.len(), mesh.backtracks);
     out.stats.recovered_faces = figures.missing_faces;
-    out.stats.fallback = figures.fallback;
+    out.stats.fallback = fallback;
     verify(input, &out)?;
     Ok(out)
 }

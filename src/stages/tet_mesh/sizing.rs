@@ -15,7 +15,7 @@ use super::SizeField;
 type P = [f64; 3];
 
 /// Largest number of background cells (the advancing front's); the cell size grows to respect it.
-pub const MAX_CELLS: usize = 2_000_000;
+const MAX_CELLS: usize = 2_000_000;
 
 pub struct Background {
     origin: P,

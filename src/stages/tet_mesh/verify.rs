@@ -171,14 +171,17 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
             ie += 1;
             continue;
         }
-        // Every other face: exactly one tet on each side.
-        let tv = out.tets[f.tet as usize];
-        let of = outward_faces(tv)
-            .into_iter()
-            .find(|g| keyed(*g).0 == f.key)
-            .unwrap_or(f.key);
+        // Every other face: exactly one tet on each side. (`of`: the face as its tet orients it,
+        // for the messages.)
+        let of = || {
+            outward_faces(out.tets[f.tet as usize])
+                .into_iter()
+                .find(|g| keyed(*g).0 == f.key)
+                .unwrap_or(f.key)
+        };
         let same = run.iter().filter(|x| x.odd == f.odd).count();
         if same > 1 {
+            let of = of();
             return Err(TetMeshError::new(
                 name,
                 format!(
@@ -189,6 +192,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
             ));
         }
         if run.len() != 2 {
+            let of = of();
             return Err(TetMeshError::new(
                 name,
                 format!(

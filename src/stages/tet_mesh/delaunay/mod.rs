@@ -29,8 +29,6 @@ const MIN_SIZE_CELLS: usize = 4096;
 pub struct Figures {
     /// Boundary and embedded triangles recovered through holes.
     pub missing_faces: usize,
-    /// Set by the caller when this method failed and the front meshed the region instead.
-    pub fallback: Option<String>,
 }
 
 pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures), TetMeshError> {
@@ -44,11 +42,11 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
     // Drop the enclosing tet's four corners: ids after them shift down by four.
     let n = conf.n_input;
     let map = |v: u32| if (v as usize) < n { v } else { v - 4 };
-    let mut nodes = tri.pts;
+    let mut nodes = std::mem::take(&mut tri.pts);
     nodes.drain(n..n + 4);
-    let tets: Vec<[u32; 4]> = (0..tri.tets.len())
-        .filter(|&t| tri.tets[t][0] != tri::NONE)
-        .map(|t| tri.tets[t].map(map))
+    let tets: Vec<[u32; 4]> = tri
+        .live_tets()
+        .map(|t| tri.tets[t as usize].map(map))
         .collect();
     Ok((
         RawMesh {
@@ -58,7 +56,6 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
         },
         Figures {
             missing_faces: conf.missing,
-            fallback: None,
         },
     ))
 }

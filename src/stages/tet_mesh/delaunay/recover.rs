@@ -258,7 +258,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
 
     // The holes' inner part, meshed by the front.
     let mut extra: Vec<[u32; 4]> = Vec::new();
-    if !missing.is_empty() {
+    if side.contains(&Side::Hole) {
         // Where the hole's inner part pinches along an edge (hole and kept tets alternate round
         // it), the kept tets round that edge join the hole, until its surface is a manifold.
         let mut grown = 0;

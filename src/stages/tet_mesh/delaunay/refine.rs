@@ -92,8 +92,7 @@ fn proposal(tri: &Tri, t: u32, bg: &Background) -> Option<P> {
         }
         let [x, y, z] = [f[0], f[1], f[2]].map(|k| tri.pts[tv[k] as usize]);
         let n = normal(&x, &y, &z);
-        let beyond = (0..3).map(|k| (cc[k] - x[k]) * n[k]).sum::<f64>() > 0.0;
-        if beyond {
+        if dot(&sub(&cc, &x), &n) > 0.0 {
             let le = (dist(&x, &y) + dist(&y, &z) + dist(&z, &x)) / 3.0;
             let hh = APEX_HEIGHT * le.min(h);
             return Some([0, 1, 2].map(|k| (x[k] + y[k] + z[k]) / 3.0 - hh * n[k]));

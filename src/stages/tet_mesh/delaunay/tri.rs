@@ -59,6 +59,8 @@ pub struct Tri {
     stack: Vec<u32>,
     bnd: Vec<(u32, u8)>,
     keys: Vec<(u64, u32)>,
+    /// The new tets of an insertion (vertices, outer neighbour, constraint), before they go in.
+    recs: Vec<([u32; 4], u32, bool)>,
     /// Tets created by insertions, while `record` is on.
     pub created: Vec<u32>,
     pub record: bool,
@@ -67,7 +69,7 @@ pub struct Tri {
 impl Tri {
     /// The single positive tet `super_tet` over `pts` (its four vertices must be in `pts`).
     pub fn new(pts: Vec<P>, super_tet: [u32; 4]) -> Self {
-        let mut t = Tri {
+        Tri {
             pts,
             tets: vec![super_tet],
             adj: vec![[NONE; 4]],
@@ -81,11 +83,10 @@ impl Tri {
             stack: Vec::new(),
             bnd: Vec::new(),
             keys: Vec::new(),
+            recs: Vec::new(),
             created: Vec::new(),
             record: false,
-        };
-        t.created.push(0);
-        t
+        }
     }
 
     /// Room for `n` more tets without reallocating.
@@ -420,7 +421,8 @@ impl Tri {
     /// Replace the cavity by the star of its boundary from the new vertex `p`.
     fn apply(&mut self, v: u32) {
         // New tets' records first: the cavity's slots are reused.
-        let mut recs: Vec<([u32; 4], u32, bool)> = Vec::with_capacity(self.bnd.len());
+        let mut recs = std::mem::take(&mut self.recs);
+        recs.clear();
         for &(t, i) in &self.bnd {
             let f = self.face(t, i as usize);
             let outer = self.adj[t as usize][i as usize];
@@ -433,23 +435,13 @@ impl Tri {
             self.free.push(t);
         }
         self.keys.clear();
-        let mut ids: Vec<u32> = Vec::with_capacity(recs.len());
-        for (tv, outer, con) in recs {
-            let id = match self.free.pop() {
-                Some(id) => {
-                    self.tets[id as usize] = tv;
-                    self.adj[id as usize] = [NONE, NONE, NONE, outer];
-                    self.cons[id as usize] = if con { 1 << 3 } else { 0 };
-                    id
-                }
-                None => {
-                    self.tets.push(tv);
-                    self.adj.push([NONE, NONE, NONE, outer]);
-                    self.cons.push(if con { 1 << 3 } else { 0 });
-                    self.mark.push(0);
-                    (self.tets.len() - 1) as u32
-                }
-            };
+        let mut last = self.hint;
+        for &(tv, outer, con) in &recs {
+            let id = self.alloc(tv);
+            self.adj[id as usize][3] = outer;
+            if con {
+                self.cons[id as usize] = 1 << 3;
+            }
             if outer != NONE {
                 self.adj[(outer >> 2) as usize][(outer & 3) as usize] = 4 * id + 3;
             }
@@ -464,8 +456,12 @@ impl Tri {
                 self.keys
                     .push((((lo as u64) << 32) | hi as u64, 4 * id + k as u32));
             }
-            ids.push(id);
+            if self.record {
+                self.created.push(id);
+            }
+            last = id;
         }
+        self.recs = recs;
         self.keys.sort_unstable();
         for pair in self.keys.chunks(2) {
             if let [(ka, a), (kb, b)] = *pair {
@@ -475,10 +471,7 @@ impl Tri {
                 self.adj[(b >> 2) as usize][(b & 3) as usize] = a;
             }
         }
-        self.hint = *ids.last().unwrap_or(&self.hint);
-        if self.record {
-            self.created.extend_from_slice(&ids);
-        }
+        self.hint = last;
     }
 }
 
