@@ -3,8 +3,6 @@
 //! is reported with the triangle(s) or edge and coordinates instead of surfacing later as a stuck
 //! front. Intersections are decided with the exact tests of `exact`.
 
-use std::collections::BTreeMap;
-
 use rstar::{AABB, RTree, primitives::GeomWithData, primitives::Rectangle};
 
 use super::exact::{tri_tri_improper, triangle_is_degenerate};
@@ -33,20 +31,22 @@ pub fn check_input(input: &RegionInput) -> Result<(), TetMeshError> {
     if input.boundary.is_empty() {
         return err("the boundary has no triangles".into(), None);
     }
-    let all: Vec<(&str, usize, [u32; 3])> = input
+    let all: Vec<[u32; 3]> = input
         .boundary
         .iter()
-        .enumerate()
-        .map(|(i, t)| ("boundary", i, *t))
-        .chain(
-            input
-                .embedded
-                .iter()
-                .enumerate()
-                .map(|(i, t)| ("embedded", i, *t)),
-        )
+        .chain(&input.embedded)
+        .copied()
         .collect();
-    for &(kind, i, t) in &all {
+    let nb = input.boundary.len();
+    let named = |k: usize| {
+        if k < nb {
+            ("boundary", k)
+        } else {
+            ("embedded", k - nb)
+        }
+    };
+    for (k, &t) in all.iter().enumerate() {
+        let (kind, i) = named(k);
         if let Some(&v) = t.iter().find(|&&v| v as usize >= n) {
             return err(
                 format!(
@@ -79,50 +79,78 @@ pub fn check_input(input: &RegionInput) -> Result<(), TetMeshError> {
             None,
         );
     }
-    check_self_intersection(input, &all)
+    check_self_intersection(input, &all, named)
 }
 
+/// Every boundary triangle once, and every directed edge matched by exactly one opposite edge.
+/// Sorted vectors, not maps of lists: on a thin layer (about one boundary triangle per tet) a map
+/// with a list per edge was the mesher's largest allocation.
 fn check_closed(input: &RegionInput) -> Result<(), TetMeshError> {
-    let mut directed: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
-    let mut faces: BTreeMap<[u32; 3], usize> = BTreeMap::new();
+    let fail = |m: String, v: u32| {
+        Err(TetMeshError::new(
+            &input.name,
+            m,
+            Some(input.vertices[v as usize]),
+        ))
+    };
+    let mut faces: Vec<([u32; 3], u32)> = input
+        .boundary
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let mut s = *t;
+            s.sort_unstable();
+            (s, i as u32)
+        })
+        .collect();
+    faces.sort_unstable();
+    // The first repeat in triangle order: the smallest second index of a run, with the first.
+    if let Some((j, i)) = faces
+        .windows(2)
+        .filter(|w| w[0].0 == w[1].0)
+        .map(|w| (w[0].1, w[1].1))
+        .min_by_key(|&(_, i)| i)
+    {
+        let t = input.boundary[i as usize];
+        return fail(
+            format!("boundary triangles {j} and {i} use the same vertices {t:?}"),
+            t[0],
+        );
+    }
+    drop(faces);
+    let mut directed: Vec<(u32, u32, u32)> = Vec::with_capacity(3 * input.boundary.len());
     for (i, t) in input.boundary.iter().enumerate() {
-        let mut s = *t;
-        s.sort_unstable();
-        if let Some(j) = faces.insert(s, i) {
-            return Err(TetMeshError::new(
-                &input.name,
-                format!("boundary triangles {j} and {i} use the same vertices {t:?}"),
-                Some(input.vertices[t[0] as usize]),
-            ));
-        }
         for e in 0..3 {
-            directed.entry((t[e], t[(e + 1) % 3])).or_default().push(i);
+            directed.push((t[e], t[(e + 1) % 3], i as u32));
         }
     }
-    for (&(u, v), tris) in &directed {
-        let at = Some(input.vertices[u as usize]);
-        if tris.len() > 1 {
-            return Err(TetMeshError::new(
-                &input.name,
+    directed.sort_unstable();
+    let runs = directed.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1));
+    for run in runs {
+        let (u, v) = (run[0].0, run[0].1);
+        let to = input.vertices[v as usize];
+        if run.len() > 1 {
+            let tris: Vec<u32> = run.iter().map(|r| r.2).collect();
+            return fail(
                 format!(
-                    "boundary edge {u}-{v} (to {:?}) is traversed in the same direction by triangles {tris:?}: inconsistent orientation or non-manifold edge",
-                    input.vertices[v as usize]
+                    "boundary edge {u}-{v} (to {to:?}) is traversed in the same direction by triangles {tris:?}: inconsistent orientation or non-manifold edge"
                 ),
-                at,
-            ));
+                u,
+            );
         }
-        match directed.get(&(v, u)) {
-            Some(r) if r.len() == 1 => {}
-            _ => {
-                return Err(TetMeshError::new(
-                    &input.name,
-                    format!(
-                        "the boundary is not closed: edge {u}-{v} (to {:?}) of triangle {} has no opposite triangle",
-                        input.vertices[v as usize], tris[0]
-                    ),
-                    at,
-                ));
-            }
+        let lo = directed.partition_point(|r| (r.0, r.1) < (v, u));
+        let opposite = directed[lo..]
+            .iter()
+            .take_while(|r| (r.0, r.1) == (v, u))
+            .count();
+        if opposite != 1 {
+            return fail(
+                format!(
+                    "the boundary is not closed: edge {u}-{v} (to {to:?}) of triangle {} has no opposite triangle",
+                    run[0].2
+                ),
+                u,
+            );
         }
     }
     Ok(())
@@ -151,30 +179,39 @@ pub(crate) fn reference_point(pts: &[P]) -> P {
     [o[0] / n, o[1] / n, o[2] / n]
 }
 
+/// No two triangles meet improperly. Candidate pairs come from an R-tree of single-precision
+/// boxes around the vertices' centroid, rounded outward (half the memory of double boxes; a box is
+/// only a filter, the exact test decides).
 fn check_self_intersection(
     input: &RegionInput,
-    all: &[(&str, usize, [u32; 3])],
+    all: &[[u32; 3]],
+    named: impl Fn(usize) -> (&'static str, usize),
 ) -> Result<(), TetMeshError> {
     let pts = &input.vertices;
-    let boxes: Vec<GeomWithData<Rectangle<P>, usize>> = all
+    let o = reference_point(pts);
+    let boxes: Vec<GeomWithData<Rectangle<[f32; 3]>, u32>> = all
         .iter()
         .enumerate()
-        .map(|(k, &(_, _, t))| {
-            let (lo, hi) = bbox(t, pts);
-            GeomWithData::new(Rectangle::from_corners(lo, hi), k)
+        .map(|(k, &t)| {
+            let (lo, hi) = bbox(t, pts, o);
+            GeomWithData::new(Rectangle::from_corners(lo, hi), k as u32)
         })
         .collect();
     let tree = RTree::bulk_load(boxes);
-    for (k, &(kind, i, t)) in all.iter().enumerate() {
-        let (lo, hi) = bbox(t, pts);
-        let mut hits: Vec<usize> = tree
-            .locate_in_envelope_intersecting(AABB::from_corners(lo, hi))
-            .map(|g| g.data)
-            .filter(|&j| j > k)
-            .collect();
+    let mut hits: Vec<usize> = Vec::new();
+    for (k, &t) in all.iter().enumerate() {
+        let (lo, hi) = bbox(t, pts, o);
+        hits.clear();
+        hits.extend(
+            tree.locate_in_envelope_intersecting(AABB::from_corners(lo, hi))
+                .map(|g| g.data as usize)
+                .filter(|&j| j > k),
+        );
         hits.sort_unstable();
-        for j in hits {
-            let (kind2, i2, u) = all[j];
+        let (kind, i) = named(k);
+        for &j in &hits {
+            let u = all[j];
+            let (kind2, i2) = named(j);
             let mut a = t;
             let mut b = u;
             a.sort_unstable();
@@ -209,15 +246,102 @@ fn check_self_intersection(
     Ok(())
 }
 
-fn bbox(t: [u32; 3], pts: &[P]) -> (P, P) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
+/// The single-precision box of triangle `t` relative to `o`, rounded outward.
+fn bbox(t: [u32; 3], pts: &[P], o: P) -> ([f32; 3], [f32; 3]) {
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
     for &v in &t {
         let p = pts[v as usize];
         for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
+            let x = p[k] - o[k];
+            let r = x as f32;
+            let (down, up) = match f64::from(r).partial_cmp(&x) {
+                Some(std::cmp::Ordering::Greater) => (r.next_down(), r),
+                Some(std::cmp::Ordering::Less) => (r, r.next_up()),
+                _ => (r, r),
+            };
+            lo[k] = lo[k].min(down);
+            hi[k] = hi[k].max(up);
         }
     }
     (lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The four outward faces of the tetrahedron `v` (by the sign of each face's volume with the
+    /// opposite vertex).
+    fn tet_shell(pts: &[P], v: [u32; 4]) -> Vec<[u32; 3]> {
+        (0..4)
+            .map(|k| {
+                let f = [v[(k + 1) % 4], v[(k + 2) % 4], v[(k + 3) % 4]];
+                let [a, b, c] = f.map(|i| pts[i as usize]);
+                let d = pts[v[k] as usize];
+                if crate::geom::predicates::signed_volume(&a, &b, &c, &d) > 0.0 {
+                    [f[0], f[2], f[1]]
+                } else {
+                    f
+                }
+            })
+            .collect()
+    }
+
+    /// Two centimetre tetrahedra at UTM coordinates, the second shifted by `shift`.
+    fn two_tets(shift: f64) -> RegionInput {
+        let o = [500_000.123, 7_000_000.456, -1_234.5];
+        let corner = |d: [f64; 3], s: f64| [o[0] + d[0] + s, o[1] + d[1] + s, o[2] + d[2] + s];
+        let unit = [
+            [0.0, 0.0, 0.0],
+            [0.01, 0.0, 0.0],
+            [0.0, 0.01, 0.0],
+            [0.0, 0.0, 0.01],
+        ];
+        let mut vertices: Vec<P> = unit.iter().map(|&d| corner(d, 0.0)).collect();
+        vertices.extend(unit.iter().map(|&d| corner(d, shift)));
+        let mut boundary = tet_shell(&vertices, [0, 1, 2, 3]);
+        boundary.extend(tet_shell(&vertices, [4, 5, 6, 7]));
+        RegionInput {
+            name: "two".into(),
+            vertices,
+            boundary,
+            embedded: vec![],
+        }
+    }
+
+    #[test]
+    fn two_centimetre_shells_crossing_at_utm_coordinates_are_found_and_apart_they_pass() {
+        let e = check_input(&two_tets(0.002)).unwrap_err();
+        assert!(e.message.contains("self-intersection"), "{e}");
+        check_input(&two_tets(0.02)).expect("disjoint shells are valid");
+    }
+
+    #[test]
+    fn a_repeated_boundary_triangle_names_the_first_repeat_in_triangle_order() {
+        let mut input = two_tets(0.02);
+        let t = input.boundary[1];
+        input.boundary.push([t[1], t[2], t[0]]);
+        input.boundary.push(input.boundary[5]);
+        let e = check_input(&input).unwrap_err();
+        assert!(
+            e.message
+                .contains("boundary triangles 1 and 8 use the same vertices"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn an_edge_traversed_twice_the_same_way_names_both_triangles() {
+        let mut input = two_tets(0.02);
+        // Turn one shell's face round: its three edges now run the same way as a neighbour's.
+        input.boundary[6].swap(1, 2);
+        let e = check_input(&input).unwrap_err();
+        assert!(e.message.contains("same direction by triangles"), "{e}");
+        assert!(
+            e.message.contains(", 6]") || e.message.contains("[6,"),
+            "{e}"
+        );
+        assert!(e.at.is_some());
+    }
 }
