@@ -189,6 +189,20 @@ impl Complex {
     }
 
     /// Move the node `v` to `p` (the caller has checked its ball stays positive).
+    /// [`Complex::move_node`] with the ball's (shape, mean ratio) at `p` already computed, in
+    /// `node_tets[v]` order.
+    pub fn move_node_measured(&mut self, v: u32, p: P, measures: &[(f64, f64)]) {
+        self.nodes[v as usize] = p;
+        self.stamp[v as usize] += 1;
+        for (i, &m) in measures.iter().enumerate() {
+            let id = self.node_tets[v as usize][i] as usize;
+            (self.shape[id], self.mean_ratio[id]) = m;
+            for w in self.tets[id] {
+                self.stamp[w as usize] += 1;
+            }
+        }
+    }
+
     pub fn move_node(&mut self, v: u32, p: P) {
         self.nodes[v as usize] = p;
         self.stamp[v as usize] += 1;

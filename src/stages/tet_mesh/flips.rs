@@ -59,7 +59,7 @@ pub fn flip23(cx: &mut Complex, t: u32, f: [u32; 3]) -> bool {
     let Some(&e) = uv.iter().find(|v| !f.contains(v)) else {
         return false;
     };
-    let old = cx.quality(tv).min(cx.quality(uv));
+    let old = cx.shape[t as usize].min(cx.shape[u as usize]);
     let [a, b, c] = f;
     let new = [[e, d, a, b], [e, d, b, c], [e, d, c, a]];
     let q = new
@@ -92,7 +92,7 @@ pub fn remove_edge(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch) -> bool {
     let old = s
         .ring_tets
         .iter()
-        .map(|&t| cx.quality(cx.tets[t as usize]))
+        .map(|&t| cx.shape[t as usize])
         .fold(f64::INFINITY, f64::min);
     // best[i*n+j]: best worst-quality of a triangulation of the sub-polygon r_i..r_j.
     s.best.clear();

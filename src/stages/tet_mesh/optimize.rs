@@ -143,9 +143,10 @@ fn bad_tets(cx: &Complex, below: f64) -> Vec<(f64, u32)> {
 
 /// Laplacian relaxation of every free node, in index order.
 fn relax_pass(cx: &mut Complex) {
+    let mut measures = Vec::new();
     for _ in 0..RELAX_PASSES {
         for v in cx.n_fixed..cx.nodes.len() {
-            relax_node(cx, v as u32, RELAX_KEEP);
+            relax_node(cx, v as u32, RELAX_KEEP, &mut measures);
         }
     }
 }

@@ -239,7 +239,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
     smooth_node(cx, v);
     let new_q = cx.node_tets[v as usize]
         .iter()
-        .map(|&t| cx.quality(cx.tets[t as usize]))
+        .map(|&t| cx.shape[t as usize])
         .fold(f64::INFINITY, f64::min);
     if new_q > old_q + GAIN {
         return Attempt::Done;

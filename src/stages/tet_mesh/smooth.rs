@@ -114,18 +114,21 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
 }
 
 /// The ball of `v` with `v` at `p`: worst shape (`quality::shape`), worst mean ratio and mean
-/// mean ratio; None if a tet is not positive (exact).
-fn ball_at(cx: &Complex, v: u32, p: &P) -> Option<(f64, f64, f64)> {
+/// mean ratio; None if a tet is not positive (exact). Each tet's (shape, mean ratio) is left in
+/// `measures`, in ball order, for [`Complex::move_node_measured`].
+fn ball_at(cx: &Complex, v: u32, p: &P, measures: &mut Vec<(f64, f64)>) -> Option<(f64, f64, f64)> {
     let ball = &cx.node_tets[v as usize];
     let mut s = 0.0;
     let mut w = f64::INFINITY;
     let mut sw = f64::INFINITY;
+    measures.clear();
     for &t in ball {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
         let (sh, q) = shape_and_mean_ratio(&x[0], &x[1], &x[2], &x[3]);
         if sh <= 0.0 {
             return None;
         }
+        measures.push((sh, q));
         sw = sw.min(sh);
         s += q;
         w = w.min(q);
@@ -158,7 +161,8 @@ fn ball_now(cx: &Complex, v: u32) -> Option<(f64, f64, f64)> {
 /// the ball's worst shape rises, or when its mean mean ratio rises while its worst mean ratio
 /// stays at least `keep` (a good ball may trade a little of its worst for a better average) and
 /// its worst shape stays above the optimizer's bar (or where it was). True when moved.
-pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
+/// `measures` is scratch space.
+pub fn relax_node(cx: &mut Complex, v: u32, keep: f64, measures: &mut Vec<(f64, f64)>) -> bool {
     if (v as usize) < cx.n_fixed || cx.node_tets[v as usize].is_empty() {
         return false;
     }
@@ -182,10 +186,10 @@ pub fn relax_node(cx: &mut Complex, v: u32, keep: f64) -> bool {
     let centre = sum.map(|s| s / n);
     for step in [1.0, 0.5, 0.25] {
         let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
-        if let Some((s1, w, m)) = ball_at(cx, v, &p)
+        if let Some((s1, w, m)) = ball_at(cx, v, &p, measures)
             && (s1 > s0 || (w >= keep.min(w0) && s1 >= RELAX_FLOOR.min(s0) && m > m0))
         {
-            cx.move_node(v, p);
+            cx.move_node_measured(v, p, measures);
             return true;
         }
     }

@@ -60,7 +60,7 @@ pub fn collapse(cx: &mut Complex, v: u32, w: u32) -> bool {
     let mut new_tets = Vec::with_capacity(ball.len());
     for &t in &ball {
         let tv = cx.tets[t as usize];
-        old = old.min(cx.quality(tv));
+        old = old.min(cx.shape[t as usize]);
         if !tv.contains(&w) {
             new_tets.push(tv.map(|x| if x == v { w } else { x }));
         }
