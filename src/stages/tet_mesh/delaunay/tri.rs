@@ -200,12 +200,36 @@ impl Tri {
 
     /// Walk from `start` towards `p`; the tet containing `p` (closed), or `Outside` if the walk
     /// has to cross the hull.
+    /// A floating-point walk comes near `p` first (it never crosses the face it came through);
+    /// the exact walk then decides from where it stopped, so the float only chooses the path.
     pub fn locate(&mut self, p: &P, start: u32) -> Result<u32, Reject> {
         let mut t = if start != NONE && self.alive(start) {
             start
         } else {
             self.any_live().ok_or(Reject::Outside)?
         };
+        let mut came = 4;
+        for _ in 0..FLOAT_WALK {
+            let tv = self.tets[t as usize];
+            self.walk_turn = self.walk_turn.wrapping_add(1);
+            let next = (0..4).map(|jj| (jj + self.walk_turn) & 3).find(|&i| {
+                let f = FACE[i];
+                i != came
+                    && above(
+                        &self.pts[tv[f[0]] as usize],
+                        &self.pts[tv[f[1]] as usize],
+                        &self.pts[tv[f[2]] as usize],
+                        p,
+                    )
+            });
+            let Some(i) = next else { break };
+            let n = self.adj[t as usize][i];
+            if n == NONE {
+                break;
+            }
+            t = n >> 2;
+            came = (n & 3) as usize;
+        }
         let cap = 64 + 4 * self.tets.len();
         for _ in 0..cap {
             let tv = self.tets[t as usize];
@@ -482,6 +506,17 @@ fn dist2(a: &P, b: &P) -> f64 {
 }
 
 /// Distance from `p` to the plane of `abc` (float: a size test, not a decision of validity).
+/// Steps of the floating-point walk before the exact one takes over.
+const FLOAT_WALK: usize = 1 << 16;
+
+/// Floating-point `orient3d(a, b, c, p) == Positive` (the same sign convention), to steer walks
+/// only.
+#[inline]
+fn above(a: &P, b: &P, c: &P, p: &P) -> bool {
+    let (ad, bd, cd) = (sub(a, p), sub(b, p), sub(c, p));
+    dot(&ad, &cross(&bd, &cd)) < 0.0
+}
+
 pub fn height(a: &P, b: &P, c: &P, p: &P) -> f64 {
     let n = cross(&sub(b, a), &sub(c, a));
     let l = dot(&n, &n).sqrt();
