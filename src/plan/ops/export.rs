@@ -3,6 +3,7 @@
 //! Output: a `FileSet` the engine writes atomically under the recipe's output directory: the
 //! mesh in every recipe format, the seed's Tables 1 and 2 (`<model>.quality.txt`, `.json`), the
 //! curve discretization (`<model>.curves.vtu`) and the import validation (`validation.json`).
+//! The mesh is decoded once and dropped before the files are packed into the artifact.
 
 use super::{CurveNodes, SurfaceData};
 use crate::engine::{Artifact, FileSet, OpError, Operation, Output, Params, RunContext};
@@ -82,7 +83,9 @@ impl Operation for ExportOp {
         }
         let n = files.len() as u64;
         let nodes: usize = curves.iter().map(|(_, n)| n.len()).sum();
-        Ok(Output::new(Artifact::encode(&FileSet { files })?)
+        // Consumed into the artifact (same bytes as `Artifact::encode`), freeing each file as
+        // it is copied, so the set and its encoding are never both whole in memory.
+        Ok(Output::new(FileSet { files }.into_artifact())
             .count("files", n)
             .count("curve_nodes", nodes as u64))
     }
