@@ -227,7 +227,10 @@ impl FileSet {
         buf.reserve_exact(total - host_len);
         buf.resize(total, 0);
         buf.copy_within(..host_len, head);
-        let mut w = Cursor { buf: &mut buf, at: 0 };
+        let mut w = Cursor {
+            buf: &mut buf,
+            at: 0,
+        };
         w.varint(files.len() + 1);
         let mut host_done = false;
         for (k, v) in files {
@@ -466,11 +469,23 @@ mod tests {
         }
         let mut trailing = good.clone();
         trailing.push(0);
-        assert!(FileSet::entries(&trailing).unwrap_err().contains("trailing"));
+        assert!(
+            FileSet::entries(&trailing)
+                .unwrap_err()
+                .contains("trailing")
+        );
         // A length far beyond the bytes, an endless varint, a non-UTF-8 path, paths out of order.
         assert!(FileSet::entries(&[1, 0xff, 0xff, 0xff, 0xff, 0x0f]).is_err());
-        assert!(FileSet::entries(&[0xff; 12]).unwrap_err().contains("varint"));
-        assert!(FileSet::entries(&[1, 2, 0xc3, 0x28, 0]).unwrap_err().contains("UTF-8"));
+        assert!(
+            FileSet::entries(&[0xff; 12])
+                .unwrap_err()
+                .contains("varint")
+        );
+        assert!(
+            FileSet::entries(&[1, 2, 0xc3, 0x28, 0])
+                .unwrap_err()
+                .contains("UTF-8")
+        );
         let swapped = [2, 1, b'b', 0, 1, b'a', 0];
         assert!(FileSet::entries(&swapped).unwrap_err().contains("order"));
         let repeated = [2, 1, b'a', 0, 1, b'a', 0];
@@ -493,11 +508,24 @@ mod tests {
 
     #[test]
     fn varint_lengths_match_postcard_at_every_edge() {
-        for v in [0usize, 1, 127, 128, 16_383, 16_384, 2_097_151, 2_097_152, usize::MAX] {
+        for v in [
+            0usize,
+            1,
+            127,
+            128,
+            16_383,
+            16_384,
+            2_097_151,
+            2_097_152,
+            usize::MAX,
+        ] {
             let want = postcard::to_stdvec(&v).unwrap();
             assert_eq!(varint_len(v), want.len(), "{v}");
             assert_eq!(encode_varint(v).as_slice(), &want[..], "{v}");
-            let mut r = Reader { bytes: &want, at: 0 };
+            let mut r = Reader {
+                bytes: &want,
+                at: 0,
+            };
             assert_eq!(r.varint("v"), Ok(v));
         }
     }

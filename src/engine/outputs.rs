@@ -94,7 +94,9 @@ mod tests {
     #[test]
     fn an_output_equal_on_disk_is_left_alone_and_any_difference_is_rewritten() {
         let dir = tempfile::tempdir().unwrap();
-        let big: Vec<u8> = (0..3 * COMPARE_CHUNK + 17).map(|i| (i % 251) as u8).collect();
+        let big: Vec<u8> = (0..3 * COMPARE_CHUNK + 17)
+            .map(|i| (i % 251) as u8)
+            .collect();
         let files: Vec<(&str, &[u8])> = vec![("a/big.bin", &big), ("empty", b"")];
         let (hashes, written) = write_fileset(dir.path(), &files).unwrap();
         assert_eq!(written, ["a/big.bin", "empty"]);

@@ -47,9 +47,15 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<(String, Vec<u8>)> {
             g + 1
         );
     }
-    vec![
-        (format!("{model}.1.node"), node.into_bytes()),
-        (format!("{model}.1.ele"), ele.into_bytes()),
-        (format!("{model}.1.face"), face.into_bytes()),
+    [
+        (format!("{model}.1.node"), node),
+        (format!("{model}.1.ele"), ele),
+        (format!("{model}.1.face"), face),
     ]
+    .into_iter()
+    .map(|(name, mut text)| {
+        text.shrink_to_fit();
+        (name, text.into_bytes())
+    })
+    .collect()
 }
