@@ -284,6 +284,69 @@ impl FileSet {
     }
 }
 
+/// Builds a [`FileSet`]'s encoding one file at a time, in path order, freeing each file as it
+/// is appended: the bytes (and hash) are those of `Artifact::encode` of the whole set, but the
+/// set never exists whole beside its encoding (the peak is the encoding plus the last file).
+#[derive(Debug)]
+pub struct FileSetEncoder {
+    buf: Vec<u8>,
+    announced: usize,
+    pushed: usize,
+    last: Option<String>,
+}
+
+impl FileSetEncoder {
+    /// An encoder for exactly `n_files` files.
+    pub fn new(n_files: usize) -> FileSetEncoder {
+        let mut buf = Vec::new();
+        buf.extend_from_slice(encode_varint(n_files).as_slice());
+        FileSetEncoder {
+            buf,
+            announced: n_files,
+            pushed: 0,
+            last: None,
+        }
+    }
+
+    /// Appends one file; paths must come in strictly increasing order (as a `BTreeMap` holds
+    /// them) and no more than announced.
+    pub fn push(&mut self, path: &str, bytes: Vec<u8>) -> Result<(), String> {
+        if self.pushed == self.announced {
+            return Err(format!(
+                "file `{path}` is one more than the {} announced",
+                self.announced
+            ));
+        }
+        if let Some(prev) = &self.last
+            && prev.as_str() >= path
+        {
+            return Err(format!("file `{path}` comes after `{prev}` in path order"));
+        }
+        self.buf.reserve_exact(entry_len(path, bytes.len()));
+        self.buf
+            .extend_from_slice(encode_varint(path.len()).as_slice());
+        self.buf.extend_from_slice(path.as_bytes());
+        self.buf
+            .extend_from_slice(encode_varint(bytes.len()).as_slice());
+        self.buf.extend_from_slice(&bytes);
+        drop(bytes);
+        self.pushed += 1;
+        self.last = Some(path.to_string());
+        Ok(())
+    }
+
+    /// The artifact, once every announced file was pushed.
+    pub fn finish(self) -> Result<Artifact, String> {
+        if self.pushed != self.announced {
+            return Err(format!(
+                "{} files announced but {} pushed",
+                self.announced, self.pushed
+            ));
+        }
+        Ok(Artifact::from_bytes(self.buf))
+    }
+}
+
 /// Bytes of the unsigned LEB128 varint postcard writes for a length.
 fn varint_len(v: usize) -> usize {
     let bits = usize::BITS - (v | 1).leading_zeros();
@@ -504,6 +567,30 @@ mod tests {
             let _ = FileSet::entries(&junk);
         }
         assert_eq!(FileSet::entries(&[0]).unwrap(), vec![]);
+    }
+
+    #[test]
+    fn a_file_set_encoded_file_by_file_has_postcards_bytes() {
+        for set in sets() {
+            let want = postcard::to_stdvec(&set).unwrap();
+            let mut enc = FileSetEncoder::new(set.files.len());
+            for (k, v) in set.files {
+                enc.push(&k, v).unwrap();
+            }
+            assert_eq!(enc.finish().unwrap().bytes(), &want[..]);
+        }
+    }
+
+    #[test]
+    fn a_file_set_encoder_refuses_files_out_of_order_or_miscounted() {
+        let mut enc = FileSetEncoder::new(2);
+        enc.push("b", vec![1]).unwrap();
+        assert!(enc.push("a", vec![2]).unwrap_err().contains("order"));
+        assert!(enc.push("b", vec![2]).unwrap_err().contains("order"));
+        assert!(FileSetEncoder::new(2).finish().is_err());
+        enc.push("c", vec![]).unwrap();
+        assert!(enc.push("d", vec![]).unwrap_err().contains("announced"));
+        assert!(enc.finish().is_ok());
     }
 
     #[test]
