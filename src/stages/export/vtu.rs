@@ -103,7 +103,11 @@ impl Writer {
                 let mut n = 0usize;
                 for v in values {
                     if n > 0 {
-                        self.xml.push(if n % per_line == 0 { '\n' } else { ' ' });
+                        self.xml.push(if n.is_multiple_of(per_line) {
+                            '\n'
+                        } else {
+                            ' '
+                        });
                     }
                     v.ascii(&mut self.xml);
                     n += 1;
