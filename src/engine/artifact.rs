@@ -91,32 +91,49 @@ impl<'de> Deserialize<'de> for Hash {
 }
 
 /// Immutable output bytes of a node, with their hash. Cheap to clone.
+///
+/// The bytes live in the `Vec` they were produced in (no copy into a fresh allocation), and
+/// every encoder here sizes that `Vec` exactly, so no growth slack lives as long as the artifact.
 #[derive(Clone)]
 pub struct Artifact {
-    bytes: Arc<[u8]>,
+    bytes: Arc<Vec<u8>>,
     hash: Hash,
 }
 
 impl Artifact {
+    /// Takes `b` as it is (its spare capacity, if any, stays with it).
     pub fn from_bytes(b: Vec<u8>) -> Artifact {
         let hash = Hash::of(&b);
         Artifact {
-            bytes: b.into(),
+            bytes: Arc::new(b),
             hash,
         }
     }
 
-    /// Serialize `v` with postcard.
+    /// Serialize `v` with postcard, into a buffer of exactly the encoded size.
     pub fn encode<T: Serialize>(v: &T) -> Result<Artifact, OpError> {
-        postcard::to_stdvec(v)
-            .map(Artifact::from_bytes)
-            .map_err(|e| OpError::from(format!("cannot encode output: {e}")))
+        let failed = |e: postcard::Error| OpError::from(format!("cannot encode output: {e}"));
+        let mut buf = vec![0u8; postcard::experimental::serialized_size(v).map_err(failed)?];
+        let used = postcard::to_slice(v, &mut buf).map_err(failed)?.len();
+        buf.truncate(used);
+        Ok(Artifact::from_bytes(buf))
     }
 
     /// Deserialize with postcard; a mismatch in type is an error, never a panic.
     pub fn decode<T: DeserializeOwned>(&self) -> Result<T, OpError> {
         postcard::from_bytes(&self.bytes).map_err(|e| {
             OpError::from(format!("cannot decode artifact {}: {e}", self.hash.short()))
+        })
+    }
+
+    /// The files of an artifact that encodes a [`FileSet`], read in place (see
+    /// [`FileSet::entries`]); the error names the artifact.
+    pub fn file_entries(&self) -> Result<Vec<(&str, &[u8])>, OpError> {
+        FileSet::entries(&self.bytes).map_err(|e| {
+            OpError::from(format!(
+                "artifact {} is not a file set: {e}",
+                self.hash.short()
+            ))
         })
     }
 
@@ -170,6 +187,264 @@ impl FileSet {
         self.files.insert(path.to_string(), bytes);
         self
     }
+
+    /// The length of the set's postcard encoding: `varint(n)`, then per file in path order
+    /// `varint(path length)`, the path's UTF-8, `varint(byte count)`, the bytes.
+    pub fn encoded_len(&self) -> usize {
+        varint_len(self.files.len())
+            + self
+                .files
+                .iter()
+                .map(|(k, v)| entry_len(k, v.len()))
+                .sum::<usize>()
+    }
+
+    /// Encodes the set into an artifact with exactly the bytes (hence the hash) of
+    /// `Artifact::encode(&self)`, consuming it. The largest file's buffer is grown in place to
+    /// the whole encoding (its bytes moved to their final offset) and every other file is copied
+    /// in and freed at once, so the peak is the encoding plus the other files, not twice the set.
+    pub fn into_artifact(self) -> Artifact {
+        let total = self.encoded_len();
+        let mut files = self.files;
+        let Some(host_key) = files
+            .iter()
+            .max_by_key(|(_, v)| v.len())
+            .map(|(k, _)| k.clone())
+        else {
+            return Artifact::from_bytes(vec![0]); // varint(0): no files
+        };
+        let mut buf = files.remove(&host_key).unwrap_or_default();
+        let host_len = buf.len();
+        // Offset of the host's bytes: the count, the entries before it, its own header.
+        let head = varint_len(files.len() + 1)
+            + files
+                .range::<String, _>(..&host_key)
+                .map(|(k, v)| entry_len(k, v.len()))
+                .sum::<usize>()
+            + varint_len(host_key.len())
+            + host_key.len()
+            + varint_len(host_len);
+        buf.reserve_exact(total - host_len);
+        buf.resize(total, 0);
+        buf.copy_within(..host_len, head);
+        let mut w = Cursor {
+            buf: &mut buf,
+            at: 0,
+        };
+        w.varint(files.len() + 1);
+        let mut host_done = false;
+        for (k, v) in files {
+            if !host_done && k > host_key {
+                w.header(&host_key, host_len);
+                w.at += host_len;
+                host_done = true;
+            }
+            w.header(&k, v.len());
+            w.put(&v);
+        }
+        if !host_done {
+            w.header(&host_key, host_len);
+            w.at += host_len;
+        }
+        debug_assert_eq!(w.at, total);
+        Artifact::from_bytes(buf)
+    }
+
+    /// Reads the files of an encoded set in place: `(path, bytes)` in path order, borrowing
+    /// `bytes`. Truncated or malformed bytes, a path that is not UTF-8, paths out of order or
+    /// repeated, and trailing bytes are errors naming the byte offset; nothing panics.
+    pub fn entries(bytes: &[u8]) -> Result<Vec<(&str, &[u8])>, String> {
+        let mut r = Reader { bytes, at: 0 };
+        let n = r.varint("the file count")?;
+        let mut out: Vec<(&str, &[u8])> = Vec::with_capacity(n.min(bytes.len() / 2));
+        for i in 0..n {
+            let at = r.at;
+            let len = r.varint("a path length")?;
+            let path = std::str::from_utf8(r.take(len, "a path")?)
+                .map_err(|e| format!("path of file {i} at byte {at} is not UTF-8: {e}"))?;
+            let len = r.varint("a file length")?;
+            let data = r.take(len, "file contents")?;
+            if let Some((prev, _)) = out.last()
+                && *prev >= path
+            {
+                return Err(format!(
+                    "file `{path}` at byte {at} is not after `{prev}` in path order"
+                ));
+            }
+            out.push((path, data));
+        }
+        if r.at != bytes.len() {
+            return Err(format!(
+                "{} trailing bytes after the last file (at byte {})",
+                bytes.len() - r.at,
+                r.at
+            ));
+        }
+        Ok(out)
+    }
+}
+
+/// Builds a [`FileSet`]'s encoding one file at a time, in path order, freeing each file as it
+/// is appended: the bytes (and hash) are those of `Artifact::encode` of the whole set, but the
+/// set never exists whole beside its encoding (the peak is the encoding plus the last file).
+#[derive(Debug)]
+pub struct FileSetEncoder {
+    buf: Vec<u8>,
+    announced: usize,
+    pushed: usize,
+    last: Option<String>,
+}
+
+impl FileSetEncoder {
+    /// An encoder for exactly `n_files` files.
+    pub fn new(n_files: usize) -> FileSetEncoder {
+        let mut buf = Vec::new();
+        buf.extend_from_slice(encode_varint(n_files).as_slice());
+        FileSetEncoder {
+            buf,
+            announced: n_files,
+            pushed: 0,
+            last: None,
+        }
+    }
+
+    /// Appends one file; paths must come in strictly increasing order (as a `BTreeMap` holds
+    /// them) and no more than announced.
+    pub fn push(&mut self, path: &str, bytes: Vec<u8>) -> Result<(), String> {
+        if self.pushed == self.announced {
+            return Err(format!(
+                "file `{path}` is one more than the {} announced",
+                self.announced
+            ));
+        }
+        if let Some(prev) = &self.last
+            && prev.as_str() >= path
+        {
+            return Err(format!("file `{path}` comes after `{prev}` in path order"));
+        }
+        self.buf.reserve_exact(entry_len(path, bytes.len()));
+        self.buf
+            .extend_from_slice(encode_varint(path.len()).as_slice());
+        self.buf.extend_from_slice(path.as_bytes());
+        self.buf
+            .extend_from_slice(encode_varint(bytes.len()).as_slice());
+        self.buf.extend_from_slice(&bytes);
+        drop(bytes);
+        self.pushed += 1;
+        self.last = Some(path.to_string());
+        Ok(())
+    }
+
+    /// The artifact, once every announced file was pushed.
+    pub fn finish(self) -> Result<Artifact, String> {
+        if self.pushed != self.announced {
+            return Err(format!(
+                "{} files announced but {} pushed",
+                self.announced, self.pushed
+            ));
+        }
+        Ok(Artifact::from_bytes(self.buf))
+    }
+}
+
+/// Bytes of the unsigned LEB128 varint postcard writes for a length.
+fn varint_len(v: usize) -> usize {
+    let bits = usize::BITS - (v | 1).leading_zeros();
+    bits.div_ceil(7) as usize
+}
+
+fn entry_len(path: &str, len: usize) -> usize {
+    varint_len(path.len()) + path.len() + varint_len(len) + len
+}
+
+/// A varint as a small stack buffer and its length.
+struct Varint([u8; 10], usize);
+
+impl Varint {
+    fn as_slice(&self) -> &[u8] {
+        &self.0[..self.1]
+    }
+}
+
+fn encode_varint(mut v: usize) -> Varint {
+    let mut out = Varint([0; 10], 0);
+    loop {
+        let low = (v & 0x7f) as u8;
+        v >>= 7;
+        if v == 0 {
+            out.0[out.1] = low;
+            out.1 += 1;
+            return out;
+        }
+        out.0[out.1] = low | 0x80;
+        out.1 += 1;
+    }
+}
+
+/// Writes into a buffer sized beforehand (by `FileSet::encoded_len`).
+struct Cursor<'a> {
+    buf: &'a mut [u8],
+    at: usize,
+}
+
+impl Cursor<'_> {
+    fn put(&mut self, b: &[u8]) {
+        self.buf[self.at..self.at + b.len()].copy_from_slice(b);
+        self.at += b.len();
+    }
+    fn varint(&mut self, v: usize) {
+        self.put(encode_varint(v).as_slice());
+    }
+    fn header(&mut self, path: &str, len: usize) {
+        self.varint(path.len());
+        self.put(path.as_bytes());
+        self.varint(len);
+    }
+}
+
+/// Reads an encoded set, checking every length against what is left.
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    fn varint(&mut self, what: &str) -> Result<usize, String> {
+        let start = self.at;
+        let mut v: u64 = 0;
+        for i in 0..10 {
+            let Some(&b) = self.bytes.get(self.at) else {
+                return Err(format!("{what} at byte {start} is truncated"));
+            };
+            self.at += 1;
+            if i == 9 && b > 1 {
+                break;
+            }
+            v |= u64::from(b & 0x7f) << (7 * i);
+            if b & 0x80 == 0 {
+                return usize::try_from(v)
+                    .map_err(|_| format!("{what} at byte {start} is too large ({v})"));
+            }
+        }
+        Err(format!("{what} at byte {start} is not a valid varint"))
+    }
+
+    fn take(&mut self, len: usize, what: &str) -> Result<&'a [u8], String> {
+        let end = self
+            .at
+            .checked_add(len)
+            .filter(|&e| e <= self.bytes.len())
+            .ok_or_else(|| {
+                format!(
+                    "{what} at byte {} claims {len} bytes but only {} remain",
+                    self.at,
+                    self.bytes.len() - self.at
+                )
+            })?;
+        let out = &self.bytes[self.at..end];
+        self.at = end;
+        Ok(out)
+    }
 }
 
 #[cfg(test)]
@@ -191,5 +466,154 @@ mod tests {
         assert_eq!(a.decode::<(u8, u8)>().unwrap(), (1, 2));
         assert!(a.decode::<FileSet>().is_err() || a.decode::<String>().is_err());
         assert!(Artifact::from_bytes(vec![]).decode::<u64>().is_err());
+    }
+
+    fn sets() -> Vec<FileSet> {
+        let bytes = |n: usize| (0..n).map(|i| (i * 7 + n) as u8).collect::<Vec<u8>>();
+        let mut out = vec![
+            FileSet::new(),
+            FileSet::new().with("a.msh", bytes(200)),
+            FileSet::new()
+                .with("validation.json", bytes(200))
+                .with("m.vtu", bytes(70_000))
+                .with("m.msh", bytes(69_999))
+                .with("m.curves.vtu", vec![]),
+        ];
+        // Varint edges for file lengths, path lengths and the file count.
+        for n in [127, 128, 16_383, 16_384, 2_097_152] {
+            out.push(FileSet::new().with("x", bytes(n)).with("y", bytes(3)));
+            out.push(FileSet::new().with(&"p".repeat(n.min(16_384)), bytes(5)));
+        }
+        let mut many = FileSet::new();
+        for i in 0..130 {
+            many = many.with(&format!("f{i:03}"), bytes(i));
+        }
+        out.push(many);
+        out
+    }
+
+    #[test]
+    fn a_file_set_encodes_to_exactly_the_bytes_postcard_writes() {
+        for set in sets() {
+            let want = postcard::to_stdvec(&set).unwrap();
+            assert_eq!(set.encoded_len(), want.len());
+            let generic = Artifact::encode(&set).unwrap();
+            assert_eq!(generic.bytes(), &want[..]);
+            let a = set.clone().into_artifact();
+            assert_eq!(a.bytes(), &want[..], "{} files", set.files.len());
+            assert_eq!(a.hash(), Hash::of(&want));
+            assert_eq!(a.decode::<FileSet>().unwrap(), set);
+        }
+    }
+
+    #[test]
+    fn a_file_set_is_read_in_place_with_its_paths_in_order() {
+        for set in sets() {
+            let a = set.clone().into_artifact();
+            let entries = a.file_entries().unwrap();
+            let want: Vec<(&str, &[u8])> = set
+                .files
+                .iter()
+                .map(|(k, v)| (k.as_str(), v.as_slice()))
+                .collect();
+            assert_eq!(entries, want);
+        }
+    }
+
+    #[test]
+    fn truncated_or_garbage_file_set_bytes_are_errors_not_panics() {
+        let set = FileSet::new()
+            .with("a.txt", b"hello".to_vec())
+            .with("b.txt", vec![7; 300]);
+        let good = postcard::to_stdvec(&set).unwrap();
+        for cut in 0..good.len() {
+            let e = FileSet::entries(&good[..cut]).unwrap_err();
+            assert!(e.contains("byte"), "{e}");
+        }
+        let mut trailing = good.clone();
+        trailing.push(0);
+        assert!(
+            FileSet::entries(&trailing)
+                .unwrap_err()
+                .contains("trailing")
+        );
+        // A length far beyond the bytes, an endless varint, a non-UTF-8 path, paths out of order.
+        assert!(FileSet::entries(&[1, 0xff, 0xff, 0xff, 0xff, 0x0f]).is_err());
+        assert!(
+            FileSet::entries(&[0xff; 12])
+                .unwrap_err()
+                .contains("varint")
+        );
+        assert!(
+            FileSet::entries(&[1, 2, 0xc3, 0x28, 0])
+                .unwrap_err()
+                .contains("UTF-8")
+        );
+        let swapped = [2, 1, b'b', 0, 1, b'a', 0];
+        assert!(FileSet::entries(&swapped).unwrap_err().contains("order"));
+        let repeated = [2, 1, b'a', 0, 1, b'a', 0];
+        assert!(FileSet::entries(&repeated).is_err());
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..2000 {
+            let n = (state % 40) as usize;
+            let junk: Vec<u8> = (0..n)
+                .map(|_| {
+                    state ^= state << 13;
+                    state ^= state >> 7;
+                    state ^= state << 17;
+                    (state >> 24) as u8
+                })
+                .collect();
+            let _ = FileSet::entries(&junk);
+        }
+        assert_eq!(FileSet::entries(&[0]).unwrap(), vec![]);
+    }
+
+    #[test]
+    fn a_file_set_encoded_file_by_file_has_postcards_bytes() {
+        for set in sets() {
+            let want = postcard::to_stdvec(&set).unwrap();
+            let mut enc = FileSetEncoder::new(set.files.len());
+            for (k, v) in set.files {
+                enc.push(&k, v).unwrap();
+            }
+            assert_eq!(enc.finish().unwrap().bytes(), &want[..]);
+        }
+    }
+
+    #[test]
+    fn a_file_set_encoder_refuses_files_out_of_order_or_miscounted() {
+        let mut enc = FileSetEncoder::new(2);
+        enc.push("b", vec![1]).unwrap();
+        assert!(enc.push("a", vec![2]).unwrap_err().contains("order"));
+        assert!(enc.push("b", vec![2]).unwrap_err().contains("order"));
+        assert!(FileSetEncoder::new(2).finish().is_err());
+        enc.push("c", vec![]).unwrap();
+        assert!(enc.push("d", vec![]).unwrap_err().contains("announced"));
+        assert!(enc.finish().is_ok());
+    }
+
+    #[test]
+    fn varint_lengths_match_postcard_at_every_edge() {
+        for v in [
+            0usize,
+            1,
+            127,
+            128,
+            16_383,
+            16_384,
+            2_097_151,
+            2_097_152,
+            usize::MAX,
+        ] {
+            let want = postcard::to_stdvec(&v).unwrap();
+            assert_eq!(varint_len(v), want.len(), "{v}");
+            assert_eq!(encode_varint(v).as_slice(), &want[..], "{v}");
+            let mut r = Reader {
+                bytes: &want,
+                at: 0,
+            };
+            assert_eq!(r.varint("v"), Ok(v));
+        }
     }
 }

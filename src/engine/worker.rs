@@ -2,7 +2,7 @@
 //! key up in the cache (verifying what it reads) and run the operation on a miss, storing the
 //! result; then write any emitted files. Panics inside an operation become node failures.
 
-use crate::engine::artifact::{Artifact, FileSet, Hash};
+use crate::engine::artifact::{Artifact, Hash};
 use crate::engine::build::Event;
 use crate::engine::op::{Operation, RunContext};
 use crate::engine::outputs::write_fileset;
@@ -117,11 +117,12 @@ pub(crate) fn run_job(
             if op.emits_files()
                 && let Ok(p) = &done.result
             {
+                // Read in place: the files are written straight from the artifact's bytes.
                 let written = p
                     .artifact
-                    .decode::<FileSet>()
+                    .file_entries()
                     .map_err(|e| e.message)
-                    .and_then(|set| write_fileset(output_dir, &set));
+                    .and_then(|files| write_fileset(output_dir, &files));
                 match written {
                     Ok((hashes, written)) => {
                         done.files = hashes;

@@ -3,12 +3,16 @@
 //! Output: a `FileSet` the engine writes atomically under the recipe's output directory: the
 //! mesh in every recipe format, the seed's Tables 1 and 2 (`<model>.quality.txt`, `.json`), the
 //! curve discretization (`<model>.curves.vtu`) and the import validation (`validation.json`).
+//! The files are produced one at a time in path order and appended to the artifact as they
+//! come (`FileSetEncoder`: the bytes of the `FileSet` encoding), so the whole set never sits in
+//! memory beside its encoding; the decoded mesh is dropped after its last file.
 
 use super::{CurveNodes, SurfaceData};
-use crate::engine::{Artifact, FileSet, OpError, Operation, Output, Params, RunContext};
+use crate::engine::artifact::FileSetEncoder;
+use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use crate::mesh::VolumeMesh;
 use crate::stages::export::curves::write_curves_vtu;
-use crate::stages::export::{Format, export};
+use crate::stages::export::{Format, export, file_names};
 use crate::stages::quality;
 use std::collections::BTreeMap;
 
@@ -54,36 +58,95 @@ impl Operation for ExportOp {
             let c: CurveNodes = a.decode()?;
             curves.push((c.name, c.nodes));
         }
-        let mut files = BTreeMap::new();
-        let validation = serde_json::to_string_pretty(&serde_json::Value::Object(reports))
-            .map_err(|e| OpError::from(e.to_string()))?;
-        files.insert("validation.json".to_string(), validation.into_bytes());
-        files.insert(
-            format!("{}.curves.vtu", self.model),
-            write_curves_vtu(&curves),
-        );
+        let nodes: usize = curves.iter().map(|(_, n)| n.len()).sum();
+        // Every file's name and source, known before any is written; a later format writing
+        // the same name replaces an earlier one.
+        let mut plan: BTreeMap<String, Source> = BTreeMap::new();
+        plan.insert("validation.json".to_string(), Source::Validation);
+        plan.insert(format!("{}.curves.vtu", self.model), Source::Curves);
+        let mut mesh = None;
+        let mut quality = None;
         if self.with_mesh {
-            let mesh: VolumeMesh = inputs[inputs.len() - 1].decode()?;
             for f in &self.formats {
                 let format = Format::from_name(f)
                     .ok_or_else(|| OpError::from(format!("unknown output format `{f}`")))?;
-                for (name, bytes) in export(&mesh, &self.model, format).map_err(OpError::from)? {
-                    files.insert(name, bytes);
+                for name in file_names(&self.model, format) {
+                    plan.insert(name, Source::Mesh(format));
                 }
             }
-            let q = quality::report(&mesh);
-            files.insert(
-                format!("{}.quality.txt", self.model),
-                q.render().into_bytes(),
-            );
-            let json =
-                serde_json::to_string_pretty(&q).map_err(|e| OpError::from(e.to_string()))?;
-            files.insert(format!("{}.quality.json", self.model), json.into_bytes());
+            plan.insert(format!("{}.quality.txt", self.model), Source::QualityTxt);
+            plan.insert(format!("{}.quality.json", self.model), Source::QualityJson);
+            let m: VolumeMesh = inputs[inputs.len() - 1].decode()?;
+            quality = Some(quality::report(&m));
+            mesh = Some(m);
         }
-        let n = files.len() as u64;
-        let nodes: usize = curves.iter().map(|(_, n)| n.len()).sum();
-        Ok(Output::new(Artifact::encode(&FileSet { files })?)
-            .count("files", n)
+        let last_mesh_file = plan
+            .values()
+            .rposition(|s| matches!(s, Source::Mesh(_)))
+            .unwrap_or(0);
+        // Files are produced in path order and appended to the artifact at once, so the peak
+        // is the encoding plus the file being written (plus the mesh until its last file).
+        let n = plan.len();
+        let mut enc = FileSetEncoder::new(n);
+        let mut pending: BTreeMap<String, Vec<u8>> = BTreeMap::new();
+        for (i, (name, source)) in plan.iter().enumerate() {
+            let bytes = match source {
+                Source::Validation => {
+                    let reports = std::mem::take(&mut reports);
+                    serde_json::to_string_pretty(&serde_json::Value::Object(reports))
+                        .map_err(|e| OpError::from(e.to_string()))?
+                        .into_bytes()
+                }
+                Source::Curves => write_curves_vtu(&curves),
+                Source::QualityTxt | Source::QualityJson => {
+                    let q = quality
+                        .as_ref()
+                        .ok_or_else(|| OpError::from("export: no mesh for the quality tables"))?;
+                    if matches!(source, Source::QualityTxt) {
+                        q.render().into_bytes()
+                    } else {
+                        serde_json::to_string_pretty(q)
+                            .map_err(|e| OpError::from(e.to_string()))?
+                            .into_bytes()
+                    }
+                }
+                Source::Mesh(format) => match pending.remove(name) {
+                    Some(b) => b,
+                    None => {
+                        let m = mesh
+                            .as_ref()
+                            .ok_or_else(|| OpError::from("export: no mesh to write"))?;
+                        let mut this = None;
+                        for (file, b) in export(m, &self.model, *format).map_err(OpError::from)? {
+                            if file == *name {
+                                this = Some(b);
+                            } else if matches!(plan.get(&file), Some(Source::Mesh(f)) if f == format)
+                            {
+                                pending.insert(file, b);
+                            }
+                        }
+                        this.ok_or_else(|| {
+                            OpError::from(format!("export: {format:?} wrote no file `{name}`"))
+                        })?
+                    }
+                },
+            };
+            if i == last_mesh_file {
+                mesh = None;
+            }
+            enc.push(name, bytes).map_err(OpError::from)?;
+        }
+        Ok(Output::new(enc.finish().map_err(OpError::from)?)
+            .count("files", n as u64)
             .count("curve_nodes", nodes as u64))
     }
+}
+
+/// Where one output file comes from.
+enum Source {
+    Validation,
+    Curves,
+    Mesh(Format),
+    QualityTxt,
+    QualityJson,
 }

@@ -34,8 +34,7 @@ pub fn write_curves_vtu(curves: &[(String, Vec<[f64; 3]>)]) -> Vec<u8> {
     s.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
     let mut k = 0usize;
     for (_, nodes) in curves {
-        let ids: Vec<String> = (k..k + nodes.len()).map(|i| i.to_string()).collect();
-        s.push_str(&ids.join(" "));
+        joined(&mut s, k..k + nodes.len());
         s.push('\n');
         k += nodes.len();
     }
@@ -46,16 +45,22 @@ pub fn write_curves_vtu(curves: &[(String, Vec<[f64; 3]>)]) -> Vec<u8> {
         let _ = write!(s, "{off} ");
     }
     s.push_str("\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    s.push_str(&vec!["4"; curves.len()].join(" "));
+    joined(&mut s, std::iter::repeat_n(4, curves.len()));
     s.push_str("\n</DataArray>\n</Cells>\n<CellData Scalars=\"curve\">\n<DataArray type=\"Int32\" Name=\"curve\" format=\"ascii\">\n");
-    s.push_str(
-        &(0..curves.len())
-            .map(|i| i.to_string())
-            .collect::<Vec<_>>()
-            .join(" "),
-    );
+    joined(&mut s, 0..curves.len());
     s.push_str("\n</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+    s.shrink_to_fit();
     s.into_bytes()
+}
+
+/// Appends `items` separated by single spaces.
+fn joined(s: &mut String, items: impl Iterator<Item = usize>) {
+    for (i, v) in items.enumerate() {
+        if i > 0 {
+            s.push(' ');
+        }
+        let _ = write!(s, "{v}");
+    }
 }
 
 fn xml_escape(s: &str) -> String {

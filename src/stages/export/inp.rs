@@ -36,13 +36,13 @@ fn label(name: &str, fallback: &str, taken: &mut BTreeSet<String>) -> String {
 }
 
 /// Writes `items` comma-separated, at most 16 per line (the Abaqus data-line limit).
-fn list(s: &mut String, items: impl Iterator<Item = String>) {
+fn list(s: &mut String, items: impl Iterator<Item = usize>) {
     let mut k = 0;
     for it in items {
         if k > 0 {
             s.push_str(if k % 16 == 0 { ",\n" } else { ", " });
         }
-        s.push_str(&it);
+        let _ = write!(s, "{it}");
         k += 1;
     }
     if k > 0 {
@@ -131,7 +131,7 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     for (g, sel) in by_group.iter().enumerate() {
         let nodes: BTreeSet<u32> = sel.iter().flat_map(|&t| mesh.triangles[t]).collect();
         let _ = writeln!(s, "*Nset, nset={}", group_labels[g]);
-        list(&mut s, nodes.iter().map(|v| (v + 1).to_string()));
+        list(&mut s, nodes.iter().map(|&v| v as usize + 1));
         // Element faces grouped by face number (one element set per face side).
         let mut sides: BTreeMap<usize, BTreeSet<usize>> = BTreeMap::new();
         for &t in sel {
@@ -151,7 +151,7 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
         }
         for (f, elems) in &sides {
             let _ = writeln!(s, "*Elset, elset={}_S{f}", group_labels[g]);
-            list(&mut s, elems.iter().map(|e| e.to_string()));
+            list(&mut s, elems.iter().copied());
         }
         if !sides.is_empty() {
             let _ = writeln!(s, "*Surface, type=ELEMENT, name={}", group_labels[g]);
@@ -160,6 +160,7 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
             }
         }
     }
+    s.shrink_to_fit();
     Ok(s.into_bytes())
 }
 

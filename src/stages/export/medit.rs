@@ -34,5 +34,6 @@ pub(super) fn write(mesh: &VolumeMesh) -> Vec<u8> {
         }
     }
     s.push_str("\nEnd\n");
+    s.shrink_to_fit();
     s.into_bytes()
 }

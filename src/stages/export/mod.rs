@@ -94,15 +94,32 @@ pub fn export(
             "model name '{model_name}' cannot be used as a file name"
         ));
     }
-    Ok(match format {
-        Format::Msh => vec![(format!("{model_name}.msh"), msh::write(mesh, false))],
-        Format::MshBinary => vec![(format!("{model_name}.msh"), msh::write(mesh, true))],
-        Format::Vtu => vec![(format!("{model_name}.vtu"), vtu::write(mesh, false))],
-        Format::VtuBinary => vec![(format!("{model_name}.vtu"), vtu::write(mesh, true))],
-        Format::TetGen => tetgen::write(mesh, model_name),
-        Format::Medit => vec![(format!("{model_name}.mesh"), medit::write(mesh))],
-        Format::Inp => vec![(format!("{model_name}.inp"), inp::write(mesh, model_name)?)],
-    })
+    let contents = match format {
+        Format::Msh => vec![msh::write(mesh, false)],
+        Format::MshBinary => vec![msh::write(mesh, true)],
+        Format::Vtu => vec![vtu::write(mesh, false)],
+        Format::VtuBinary => vec![vtu::write(mesh, true)],
+        Format::TetGen => Vec::from(tetgen::write(mesh, model_name)),
+        Format::Medit => vec![medit::write(mesh)],
+        Format::Inp => vec![inp::write(mesh, model_name)?],
+    };
+    Ok(file_names(model_name, format)
+        .into_iter()
+        .zip(contents)
+        .collect())
+}
+
+/// The names of the files [`export`] writes for `format`, in the order it returns them
+/// (known before any is written, so a caller can produce them in its own order).
+pub fn file_names(model_name: &str, format: Format) -> Vec<String> {
+    let exts: &[&str] = match format {
+        Format::Msh | Format::MshBinary => &["msh"],
+        Format::Vtu | Format::VtuBinary => &["vtu"],
+        Format::TetGen => &["1.node", "1.ele", "1.face"],
+        Format::Medit => &["mesh"],
+        Format::Inp => &["inp"],
+    };
+    exts.iter().map(|e| format!("{model_name}.{e}")).collect()
 }
 
 /// The union of the regions' property names, sorted.
@@ -161,6 +178,18 @@ mod tests {
         }
         assert_eq!(Format::from_name("GMSH"), Some(Format::Msh));
         assert_eq!(Format::from_name("stl"), None);
+    }
+
+    #[test]
+    fn file_names_are_the_names_export_returns_in_order() {
+        let all = [Format::VtuBinary, Format::Inp]
+            .into_iter()
+            .chain(Format::ALL);
+        for f in all {
+            let files = export(&VolumeMesh::default(), "m", f).unwrap();
+            let names: Vec<String> = files.into_iter().map(|(n, _)| n).collect();
+            assert_eq!(names, file_names("m", f), "{f:?}");
+        }
     }
 
     #[test]

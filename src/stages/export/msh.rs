@@ -255,9 +255,6 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         F::S(if total > 0 { 1 } else { 0 }),
         F::S(total),
     ]);
-    // Element tag of each tet / triangle, for the data sections.
-    let mut tet_tag = vec![0u64; mesh.tets.len()];
-    let mut tri_tag = vec![0u64; mesh.triangles.len()];
     let mut next = 1u64;
     for (r, sel) in tets_by_region
         .iter()
@@ -274,7 +271,6 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
                 F::S(c as u64 + 1),
                 F::S(d as u64 + 1),
             ]);
-            tet_tag[t] = next;
             next += 1;
         }
     }
@@ -292,21 +288,19 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
                 F::S(b as u64 + 1),
                 F::S(c as u64 + 1),
             ]);
-            tri_tag[t] = next;
             next += 1;
         }
     }
     o.end("Elements");
 
-    // Attributes as element data, in element-tag order.
+    // Attributes as element data, in element-tag order: the order the elements were written
+    // in (tets by region, then triangles by group), so the tags are 1, 2, ... again.
     if total > 0 && !mesh.regions.is_empty() {
-        let mut order: Vec<(u64, Option<usize>)> = tet_tag
-            .iter()
-            .enumerate()
-            .map(|(t, &k)| (k, Some(t)))
-            .collect();
-        order.extend(tri_tag.iter().map(|&k| (k, None)));
-        order.sort_unstable_by_key(|e| e.0);
+        let order = Order {
+            tets: &tets_by_region,
+            tris: &tris_by_group,
+            total: total as usize,
+        };
         let region_of = |t: usize| &mesh.regions[mesh.tet_region[t] as usize];
         let material = |t: Option<usize>| {
             t.and_then(|t| region_of(t).material)
@@ -321,22 +315,32 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
             element_data(&mut o, &name, &order, value);
         }
     }
+    o.buf.shrink_to_fit();
     o.buf
 }
 
-fn element_data(
-    o: &mut Out,
-    name: &str,
-    order: &[(u64, Option<usize>)],
-    value: impl Fn(Option<usize>) -> f64,
-) {
+/// The elements in tag order: `Some(tet)` for each tet by region, then `None` per triangle.
+struct Order<'a> {
+    tets: &'a [Vec<usize>],
+    tris: &'a [Vec<usize>],
+    total: usize,
+}
+
+impl Order<'_> {
+    fn iter(&self) -> impl Iterator<Item = Option<usize>> + '_ {
+        let tets = self.tets.iter().flatten().map(|&t| Some(t));
+        tets.chain(self.tris.iter().flatten().map(|_| None))
+    }
+}
+
+fn element_data(o: &mut Out, name: &str, order: &Order, value: impl Fn(Option<usize>) -> f64) {
     o.text("$ElementData\n");
     o.text(&format!(
         "1\n{}\n1\n0\n3\n0\n1\n{}\n",
         quoted(name),
-        order.len()
+        order.total
     ));
-    for &(k, t) in order {
+    for (k, t) in (1u64..).zip(order.iter()) {
         if o.binary {
             o.rec(&[F::I(i32::try_from(k).unwrap_or(i32::MAX)), F::D(value(t))]);
         } else {

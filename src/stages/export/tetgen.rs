@@ -1,12 +1,14 @@
 //! TetGen `.node` / `.ele` / `.face` writer (TetGen's file formats, 1-based indices): nodes
 //! without attributes or markers; tets with one attribute, the region id (region index + 1, as
 //! TetGen's `-A` region attributes); faces with a boundary marker = surface group index + 1.
-//! Files are named `<model>.1.node` etc., as TetGen names the first refinement's output.
+//! Files are named `<model>.1.node` etc. (by `super::file_names`), as TetGen names the first
+//! refinement's output.
 
 use crate::mesh::VolumeMesh;
 use std::fmt::Write as _;
 
-pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<(String, Vec<u8>)> {
+/// The `.node`, `.ele` and `.face` texts, in that order (named by `super::file_names`).
+pub(super) fn write(mesh: &VolumeMesh, model: &str) -> [Vec<u8>; 3] {
     let mut node = String::new();
     let _ = writeln!(node, "# {model}: node x y z\n{} 3 0 0", mesh.nodes.len());
     for (i, p) in mesh.nodes.iter().enumerate() {
@@ -47,9 +49,8 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<(String, Vec<u8>)> {
             g + 1
         );
     }
-    vec![
-        (format!("{model}.1.node"), node.into_bytes()),
-        (format!("{model}.1.ele"), ele.into_bytes()),
-        (format!("{model}.1.face"), face.into_bytes()),
-    ]
+    [node, ele, face].map(|mut text| {
+        text.shrink_to_fit();
+        text.into_bytes()
+    })
 }
