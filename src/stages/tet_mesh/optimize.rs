@@ -28,6 +28,14 @@ type P = [f64; 3];
 const ROUNDS: usize = 8;
 /// Tets below this shape measure are flip and contraction candidates.
 const FLIP_BELOW: f64 = 0.5;
+/// In a region whose free nodes are fewer than this share of its nodes (a thin layer, where the
+/// boundary makes the mesh), smoothing has little to move: flips and contractions are the remedy,
+/// and they act on tets up to `THIN_FLIP_BELOW`. Such a region is small next to its boundary, so
+/// this costs little. On the peer model's 35 m reservoir at 50 m sizes (free shares 1.4 % and
+/// 2.5 %) the average mean ratio rose from 0.878 to 0.882 and the minimum from 0.50 to 0.56; the
+/// same layer at 25 m sizes (5.6 % and 8 %) gained 0.003 for twice the time, so it is left out.
+const THIN_FREE_SHARE: f64 = 0.05;
+const THIN_FLIP_BELOW: f64 = 0.8;
 /// Tets below this shape measure after flipping get an inserted node.
 const INSERT_BELOW: f64 = 0.35;
 /// Nodes whose ball is worse than this get max-min smoothing; all get Laplacian relaxation.
@@ -46,6 +54,12 @@ pub fn optimize(
     protected: impl Iterator<Item = [u32; 3]>,
 ) -> (Vec<P>, Vec<[u32; 4]>) {
     let mut cx = Complex::new(nodes, tets, n_fixed, protected);
+    let free = (cx.nodes.len() - n_fixed) as f64;
+    let flip_below = if free < THIN_FREE_SHARE * cx.nodes.len() as f64 {
+        THIN_FLIP_BELOW
+    } else {
+        FLIP_BELOW
+    };
     let mut scratch = Scratch::default();
     let mut memo = Memo::default();
     relax_pass(&mut cx);
@@ -53,7 +67,7 @@ pub fn optimize(
     for _ in 0..ROUNDS {
         let mut changed = false;
         for _ in 0..4 {
-            let flipped = flip_pass(&mut cx, &mut scratch, &mut memo);
+            let flipped = flip_pass(&mut cx, &mut scratch, &mut memo, flip_below);
             changed |= flipped;
             if !flipped {
                 break;
@@ -80,7 +94,7 @@ pub fn optimize(
     }
     relax_pass(&mut cx);
     smooth_pass(&mut cx, SMOOTH_BELOW, &mut memo);
-    flip_pass(&mut cx, &mut scratch, &mut memo);
+    flip_pass(&mut cx, &mut scratch, &mut memo, flip_below);
     cx.into_parts()
 }
 
@@ -110,10 +124,11 @@ fn sorted4(t: [u32; 4]) -> [u32; 4] {
     k
 }
 
-/// One pass of flips over the tets below `FLIP_BELOW`, worst first. True when a flip was made.
-fn flip_pass(cx: &mut Complex, scratch: &mut Scratch, memo: &mut Memo) -> bool {
+/// One pass of flips and contractions over the tets below `below`, worst first. True when one was
+/// made.
+fn flip_pass(cx: &mut Complex, scratch: &mut Scratch, memo: &mut Memo, below: f64) -> bool {
     let mut flipped = false;
-    for (_, t) in bad_tets(cx, FLIP_BELOW) {
+    for (_, t) in bad_tets(cx, below) {
         if !cx.alive[t as usize] {
             continue;
         }
