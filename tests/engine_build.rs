@@ -379,6 +379,9 @@ fn emitted_files_are_written_rewritten_when_deleted_and_locked() {
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "41\n");
     let h = Hash::of(b"41\n");
     assert_eq!(r1.output_files.get("out/m.txt"), Some(&h));
+    // The report keeps the other artifacts, not the emitting node's: its bytes are on disk.
+    assert!(r1.artifact("a").is_some());
+    assert!(r1.artifact("export").is_none());
     let lock = LockFile::from_report(&r1);
     assert_eq!(lock.outputs.get("out/m.txt"), Some(&h));
     assert!(lock.to_text().contains("\"out/m.txt\""));

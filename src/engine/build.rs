@@ -9,7 +9,7 @@ use crate::engine::artifact::Hash;
 use crate::engine::dirlock::DirLock;
 use crate::engine::error::EngineError;
 use crate::engine::executor::Coordinator;
-use crate::engine::graph::BuildGraph;
+use crate::engine::graph::{BuildGraph, Work};
 use crate::engine::manifest::Manifest;
 use crate::engine::store::Store;
 use crate::engine::worker::{Done, Job, panic_text, run_job};
@@ -172,7 +172,10 @@ pub fn build(
     let mut artifacts = BTreeMap::new();
     for i in order {
         if let Some((Some(report), artifact)) = results.get_mut(i).and_then(Option::take) {
-            if let Some(a) = artifact {
+            // A file-emitting node's bytes are on disk by now: not kept (they are the largest
+            // artifact of a build, and the caller's report phase would otherwise hold them).
+            let emits = matches!(&graph.nodes[i].work, Work::Op(op) if op.emits_files());
+            if let Some(a) = artifact.filter(|_| !emits) {
                 artifacts.insert(report.name.clone(), a);
             }
             nodes.push(report);

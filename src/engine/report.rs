@@ -89,7 +89,8 @@ pub struct BuildReport {
     /// False when any node failed or was skipped.
     pub ok: bool,
     pub duration_ms: f64,
-    /// Final artifact of every node that has one, by node name.
+    /// Final artifact of every node that has one, by node name; not of nodes that emit files
+    /// (their bytes are in `output_files` on disk).
     pub artifacts: BTreeMap<String, Artifact>,
 }
 
