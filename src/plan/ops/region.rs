@@ -39,7 +39,8 @@ impl Operation for TetMeshOp {
     }
     fn version(&self) -> u32 {
         // 6: Delaunay meshing with local recovery (the front as hole filler and fallback).
-        6
+        // 7: floating-point location walks; flips and contractions up to 0.8 in thin layers.
+        7
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
