@@ -13,15 +13,7 @@ fn main() -> Result<(), String> {
     let bytes = std::fs::read(input).map_err(|e| format!("{input}: {e}"))?;
     let mesh = read_volume_msh(&bytes, input).map_err(|e| e.to_string())?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
-    for f in [
-        Format::Msh,
-        Format::MshBinary,
-        Format::Vtu,
-        Format::VtuBinary,
-        Format::TetGen,
-        Format::Medit,
-        Format::Inp,
-    ] {
+    for f in Format::EVERY {
         for (name, data) in export(&mesh, "m", f)? {
             let path = format!("{dir}/{}.{name}", f.name());
             std::fs::write(&path, data).map_err(|e| format!("{path}: {e}"))?;

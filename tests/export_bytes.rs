@@ -47,16 +47,6 @@ fn digest(files: &[(String, Vec<u8>)]) -> String {
     h.finalize().to_hex()[..16].to_string()
 }
 
-const ALL: [Format; 7] = [
-    Format::Msh,
-    Format::MshBinary,
-    Format::Vtu,
-    Format::VtuBinary,
-    Format::TetGen,
-    Format::Medit,
-    Format::Inp,
-];
-
 #[test]
 fn every_format_writes_the_same_bytes_as_before_the_memory_rework() {
     let m = awkward_mesh();
@@ -69,7 +59,7 @@ fn every_format_writes_the_same_bytes_as_before_the_memory_rework() {
         "f0e39c1f9f040e15",
         "080e621be4bdc593",
     ];
-    for (f, want) in ALL.into_iter().zip(expected) {
+    for (f, want) in Format::EVERY.into_iter().zip(expected) {
         let files = export(&m, "golden", f).unwrap();
         assert_eq!(digest(&files), want, "{f:?} bytes changed");
     }

@@ -46,6 +46,18 @@ impl Format {
         Format::Medit,
     ];
 
+    /// Every format the writers know, including those a recipe cannot name yet (VTU binary,
+    /// Abaqus), in a fixed order.
+    pub const EVERY: [Format; 7] = [
+        Format::Msh,
+        Format::MshBinary,
+        Format::Vtu,
+        Format::VtuBinary,
+        Format::TetGen,
+        Format::Medit,
+        Format::Inp,
+    ];
+
     /// Parses a recipe/CLI name (case-insensitive; a few aliases).
     pub fn from_name(s: &str) -> Option<Format> {
         match s.trim().to_ascii_lowercase().as_str() {
