@@ -155,3 +155,38 @@ fn a_trim_reruns_the_model_and_only_the_meshes_of_what_it_removed_or_touched() {
             || n.starts_with("intersect:")
     });
 }
+
+#[test]
+fn choosing_the_front_for_one_region_reruns_only_that_region_the_mesh_and_the_export() {
+    let s = Scratch::didactic_built();
+    let tets = |r: &serde_json::Value| {
+        r["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|n| n["name"] == "tet_mesh:underburden_W")
+            .expect("the region's node")["counts"]["tets"]
+            .as_u64()
+            .unwrap()
+    };
+    let (ok, before, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let (ran, after) = ran_after(
+        &s,
+        "[regions]",
+        "[mesh.regions.underburden_W]\ntet_method = \"front\"\n\n[regions]",
+    );
+    assert_eq!(ran, vec!["export", "mesh", "tet_mesh:underburden_W"]);
+    // The front places its own nodes: a different mesh of the same region (fewer tets).
+    assert!(
+        tets(&after) < tets(&before),
+        "{} -> {}",
+        tets(&before),
+        tets(&after)
+    );
+    // Back to the default: the region re-runs (its settings are now keyed under
+    // `mesh.regions`), makes the first mesh again, and the mesh and export are cut off.
+    let (ran, again) = ran_after(&s, "tet_method = \"front\"", "tet_method = \"delaunay\"");
+    assert_eq!(ran, vec!["tet_mesh:underburden_W"]);
+    assert_eq!(tets(&again), tets(&before));
+}

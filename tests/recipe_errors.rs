@@ -579,3 +579,24 @@ fn windows_line_endings_and_a_byte_order_mark_keep_positions_right() {
     assert_eq!(d[0].snippet, "size = -1.0");
     assert!(d[0].to_string().contains("|        ^^^^"), "{}", d[0]);
 }
+
+#[test]
+fn the_tet_method_defaults_to_delaunay_is_inherited_by_regions_and_a_wrong_one_is_named() {
+    use georecipe::recipe::TetMethod;
+    let regions =
+        "[regions]\nres = { point = [1.0, 1.0, -1.0] }\nover = { point = [1.0, 1.0, -9.0] }\n";
+    let r = ok(&format!("{BASE}{regions}"));
+    assert_eq!(r.mesh.tet_method, TetMethod::Delaunay);
+    let text = format!(
+        "{}[mesh.regions]\nres = {{ size = 0.5, tet_method = \"delaunay\" }}\nover = {{ size = 0.5 }}\n{regions}",
+        BASE.replace("size = 1.0", "size = 1.0\ntet_method = \"front\"")
+    );
+    let r = ok(&text);
+    assert_eq!(r.mesh.tet_method, TetMethod::Front);
+    assert_eq!(r.mesh.regions["res"].tet_method, TetMethod::Delaunay);
+    assert_eq!(r.mesh.regions["over"].tet_method, TetMethod::Front);
+    let text = BASE.replace("size = 1.0", "size = 1.0\ntet_method = \"frontal\"");
+    let (d, rendered) = single_at(&text, "\"frontal\"", 0);
+    assert!(d.message.contains("`mesh.tet_method`"), "{rendered}");
+    assert!(rendered.contains("front"), "{rendered}");
+}

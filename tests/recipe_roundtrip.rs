@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use georecipe::recipe::{
     BoxExtent, Format, Grading, ImportFormat, OnInvalid, Recipe, Side, Subdivision, SurfaceKind,
-    TrimAction, Units, parse,
+    TetMethod, TrimAction, Units, parse,
 };
 
 fn load(name: &str) -> (PathBuf, String) {
@@ -148,6 +148,8 @@ fn the_reference_recipe_parses_and_sets_every_key() {
         }
     );
     assert_eq!(r.mesh.surface_size("box.zmin"), 400.0);
+    assert_eq!(r.mesh.tet_method, TetMethod::Delaunay);
+    assert_eq!(r.mesh.regions["reservoir"].tet_method, TetMethod::Front);
     assert_eq!(r.regions["reservoir"].properties["permeability"], 1e-13);
     assert_eq!(r.output.formats.len(), 5);
     // `all` among top, base, f1 and the box: 3 pairs plus 3 x 6 with the sides; plus explicit ones.

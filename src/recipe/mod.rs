@@ -129,7 +129,7 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     let root_span = 0..0;
     let mut ctx = Ctx::new(&src);
     reader::check_keys(&mut ctx, root, "", ROOT_KEYS, &|k| {
-        ["size", "min_size", "max_size", "growth"]
+        ["size", "min_size", "max_size", "growth", "tet_method"]
             .contains(&k)
             .then(|| format!("`{k}` belongs in `[mesh]`"))
             .or_else(|| suggest(k, ROOT_KEYS, "valid top-level tables are"))

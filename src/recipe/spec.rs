@@ -140,6 +140,7 @@ pub struct TrimSpec {
 }
 
 pub use crate::stages::discretize::{Grading, Subdivision};
+pub use crate::stages::tet_mesh::Method as TetMethod;
 
 /// One `[mesh.curves]` entry.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -167,6 +168,8 @@ pub struct RegionMeshSpec {
     pub min_size: f64,
     pub max_size: f64,
     pub growth: f64,
+    /// How the region is filled; default the global `[mesh] tet_method`.
+    pub tet_method: TetMethod,
     #[serde(skip)]
     pub span: Span,
 }
@@ -182,6 +185,9 @@ pub struct MeshSpec {
     pub max_size: f64,
     /// Size growth ratio between neighbouring elements in volumes, > 1, default 1.3.
     pub growth: f64,
+    /// How regions are filled with tets: `"delaunay"` (default) or `"front"` (the seed's
+    /// advancing front).
+    pub tet_method: TetMethod,
     /// In recipe order; see [`MeshSpec::curve_rule`] for precedence.
     pub curves: Vec<CurveRule>,
     /// In recipe order; see [`MeshSpec::surface_size`] for precedence.

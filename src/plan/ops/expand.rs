@@ -13,7 +13,7 @@ use crate::mesh::RegionGroup;
 use crate::recipe::{self, Recipe};
 use crate::stages::regions::FaceUse;
 use crate::stages::surface_mesh::SurfaceSize;
-use crate::stages::tet_mesh::SizeField;
+use crate::stages::tet_mesh::{Method, SizeField};
 use std::sync::Arc;
 
 pub struct ModelExpander {
@@ -42,7 +42,8 @@ impl ModelExpander {
         )
     }
 
-    fn region_size(&self, region: &str) -> (String, SizeField) {
+    /// The recipe path of the region's mesh settings, its size field and its tet method.
+    fn region_size(&self, region: &str) -> (String, SizeField, Method) {
         let m = &self.recipe.mesh;
         match m.regions.get(region) {
             Some(r) => (
@@ -53,6 +54,7 @@ impl ModelExpander {
                     max_size: r.max_size,
                     growth: r.growth,
                 },
+                r.tet_method,
             ),
             None => (
                 "mesh".to_string(),
@@ -62,6 +64,7 @@ impl ModelExpander {
                     max_size: m.max_size,
                     growth: m.growth,
                 },
+                m.tet_method,
             ),
         }
     }
@@ -132,7 +135,7 @@ impl Expander for ModelExpander {
                 })
                 .collect();
             let inputs: Vec<NodeId> = patches.iter().map(|&p| meshed[p as usize]).collect();
-            let (size_path, size) = self.region_size(&r.name);
+            let (size_path, size, method) = self.region_size(&r.name);
             let id = x
                 .add_op(
                     &format!("tet_mesh:{}", r.name),
@@ -145,6 +148,7 @@ impl Expander for ModelExpander {
                         sides,
                         size_path,
                         size,
+                        method,
                     }),
                     &inputs,
                 )

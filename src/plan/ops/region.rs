@@ -7,7 +7,7 @@ use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use crate::mesh::{RegionGroup, VolumeMesh};
 use crate::stages::model::{VolumeAssembly, assemble_volume, region_input};
 use crate::stages::regions::{FaceUse, Side};
-use crate::stages::tet_mesh::{SizeField, TetMeshOptions, mesh_region};
+use crate::stages::tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -31,6 +31,9 @@ pub struct TetMeshOp {
     /// Recipe path of the size rule (`mesh.regions.<r>` or `mesh`).
     pub size_path: String,
     pub size: SizeField,
+    /// `tet_method` at `size_path`; in the key only when it is not the default, so recipes that
+    /// do not name it keep their keys.
+    pub method: Method,
 }
 
 impl Operation for TetMeshOp {
@@ -67,6 +70,10 @@ impl Operation for TetMeshOp {
             .expect("validated finite");
         p.set(&format!("{path}.growth"), self.size.growth)
             .expect("validated finite");
+        if self.method != Method::default() {
+            p.set(&format!("{path}.tet_method"), "front")
+                .expect("string");
+        }
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -80,8 +87,12 @@ impl Operation for TetMeshOp {
         let get = |p: u32| meshes.get(p as usize).map(|m| &m.mesh);
         let input = region_input(&self.name, &self.sides, &get)
             .map_err(|e| OpError::from(e.to_string()))?;
-        let out = mesh_region(&input, &self.size, &TetMeshOptions::default())
-            .map_err(|e| OpError::from(e.to_string()))?;
+        let opts = TetMeshOptions {
+            method: self.method,
+            ..TetMeshOptions::default()
+        };
+        let out =
+            mesh_region(&input, &self.size, &opts).map_err(|e| OpError::from(e.to_string()))?;
         let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
         Ok(Output::new(Artifact::encode(&RegionMesh {
             name: self.name.clone(),

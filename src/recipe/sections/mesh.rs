@@ -1,7 +1,8 @@
 //! `[mesh]`: element sizes. The global size (required) with its bounds and growth, curve
-//! subdivisions by curve selector, sizes per surface selector and per named region. Decides the
-//! defaults (`min_size = size/100`, `max_size = size*10`, `growth = 1.3`, curve `ratio = 1`,
-//! `grading = "geometric"`), that bounds are ordered, and that every selector side names a
+//! subdivisions by curve selector, sizes per surface selector and per named region, and the tet
+//! method (global, overridable per region). Decides the defaults (`min_size = size/100`,
+//! `max_size = size*10`, `growth = 1.3`, curve `ratio = 1`, `grading = "geometric"`,
+//! `tet_method = "delaunay"`), that bounds are ordered, and that every selector side names a
 //! known surface and every region key a `[regions]` name. Rules keep their recipe order, which
 //! breaks precedence ties (see `MeshSpec::curve_rule`).
 
@@ -14,14 +15,21 @@ use super::Names;
 use crate::recipe::reader::{self as rd, Ctx, Value, name_help, path_join};
 use crate::recipe::selector::{CurveSelector, SurfaceSelector};
 use crate::recipe::spec::{
-    CurveRule, Grading, MeshSpec, RegionMeshSpec, Subdivision, SurfaceSizeRule,
+    CurveRule, Grading, MeshSpec, RegionMeshSpec, Subdivision, SurfaceSizeRule, TetMethod,
 };
 
 const KEYS: &[&str] = &[
-    "size", "min_size", "max_size", "growth", "curves", "surfaces", "regions",
+    "size",
+    "min_size",
+    "max_size",
+    "growth",
+    "tet_method",
+    "curves",
+    "surfaces",
+    "regions",
 ];
 const CURVE_KEYS: &[&str] = &["count", "size", "ratio", "grading"];
-const REGION_KEYS: &[&str] = &["size", "min_size", "max_size", "growth"];
+const REGION_KEYS: &[&str] = &["size", "min_size", "max_size", "growth", "tet_method"];
 /// Largest accepted segment count for one curve: beyond this a recipe is surely a typo.
 const MAX_COUNT: i64 = 10_000_000;
 
@@ -30,10 +38,12 @@ struct Sizes {
     min_size: f64,
     max_size: f64,
     growth: f64,
+    tet_method: TetMethod,
 }
 
-/// Reads `size`, `min_size`, `max_size`, `growth` of `t`, defaulting to `dflt` (or, for the
-/// global table, to the documented rules), and checks `min_size <= size <= max_size`.
+/// Reads `size`, `min_size`, `max_size`, `growth` and `tet_method` of `t`, defaulting to `dflt`
+/// (or, for the global table, to the documented rules), and checks `min_size <= size <=
+/// max_size`.
 fn sizes(
     ctx: &mut Ctx<'_>,
     t: &DeTable<'_>,
@@ -65,6 +75,18 @@ fn sizes(
     let growth = match t.get("growth") {
         Some(v) => rd::number_above(ctx, v, &path_join(path, "growth"), 1.0, "greater than 1"),
         None => Some(dflt.map_or(1.3, |d| d.growth)),
+    };
+    let tet_method = match t.get("tet_method") {
+        Some(v) => rd::choice(
+            ctx,
+            v,
+            &path_join(path, "tet_method"),
+            &[
+                ("delaunay", TetMethod::Delaunay),
+                ("front", TetMethod::Front),
+            ],
+        ),
+        None => Some(dflt.map_or(TetMethod::Delaunay, |d| d.tet_method)),
     };
     let size = size?;
     let min_size = match &min {
@@ -103,11 +125,13 @@ fn sizes(
         ok = false;
     }
     let growth = growth?;
+    let tet_method = tet_method?;
     ok.then_some(Sizes {
         size,
         min_size,
         max_size,
         growth,
+        tet_method,
     })
 }
 
@@ -147,6 +171,7 @@ pub(crate) fn read(
         min_size: global.min_size,
         max_size: global.max_size,
         growth: global.growth,
+        tet_method: global.tet_method,
         curves,
         surfaces,
         regions: region_sizes,
@@ -351,6 +376,7 @@ fn region_rules(
                     min_size: s.min_size,
                     max_size: s.max_size,
                     growth: s.growth,
+                    tet_method: s.tet_method,
                     span: ctx.span(k.span()),
                 },
             );

@@ -98,8 +98,9 @@ pub struct TetMeshOptions {
     pub method: Method,
 }
 
-/// Meshing method of a region.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// Meshing method of a region (in a recipe: `tet_method = "delaunay"` or `"front"`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Delaunay tetrahedralization, local boundary recovery, Delaunay refinement; the advancing
     /// front fills recovery holes, and meshes the whole region when recovery fails.
