@@ -127,3 +127,53 @@ fn the_build_lists_the_model_in_json_and_prints_the_quality_tables() {
             .is_ok_and(|t| t.contains("reservoir_E"))
     );
 }
+
+#[test]
+fn every_recipe_format_is_written_and_meshio_reads_the_binary_vtu_and_the_abaqus_file_whole() {
+    let s = Scratch::didactic();
+    s.edit(
+        "formats = [\"msh\", \"vtu\"]",
+        "formats = [\"msh\", \"vtu-binary\", \"tetgen\", \"medit\", \"inp\"]",
+    );
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let dir = s.path("out/didactic");
+    let bytes = std::fs::read(dir.join("didactic.msh")).expect("the msh is written");
+    let tets = read_volume_msh(&bytes, "didactic.msh")
+        .expect("reads")
+        .tets
+        .len();
+    for f in [
+        "didactic.1.node",
+        "didactic.mesh",
+        "didactic.inp",
+        "didactic.vtu",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let script = "import sys, meshio\n\
+                  for f in sys.argv[1:]:\n    \
+                  m = meshio.read(f)\n    \
+                  print(sum(len(b.data) for b in m.cells if b.type == 'tetra'))\n";
+    let out = Command::new("python3")
+        .args(["-c", script])
+        .arg(dir.join("didactic.inp"))
+        .arg(dir.join("didactic.vtu"))
+        .output();
+    let Ok(out) = out
+        .as_ref()
+        .map_err(|_| eprintln!("skipping the meshio read: no python3"))
+    else {
+        return;
+    };
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if stderr.contains("No module named") {
+        eprintln!("skipping the meshio read: no meshio");
+        return;
+    }
+    let counts: Vec<String> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(counts, [tets.to_string(), tets.to_string()], "{stderr}");
+}

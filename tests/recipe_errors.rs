@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use georecipe::recipe::{Diagnostic, Recipe, check_files, parse};
+use georecipe::recipe::{Diagnostic, Format, Recipe, check_files, parse};
 
 const FILE: &str = "recipes/bad.toml";
 
@@ -599,4 +599,18 @@ fn the_tet_method_defaults_to_delaunay_is_inherited_by_regions_and_a_wrong_one_i
     let (d, rendered) = single_at(&text, "\"frontal\"", 0);
     assert!(d.message.contains("`mesh.tet_method`"), "{rendered}");
     assert!(rendered.contains("front"), "{rendered}");
+}
+
+#[test]
+fn two_encodings_of_one_format_are_refused_because_they_write_the_same_file() {
+    let text = format!("{BASE}[output]\nformats = [\"vtu\", \"msh\", \"msh-binary\"]\n");
+    let (d, rendered) = single_at(&text, "\"msh-binary\"", 0);
+    assert!(
+        d.message.contains("`msh` and `msh-binary`") && d.message.contains("same file"),
+        "{rendered}"
+    );
+    let r = ok(&format!(
+        "{BASE}[output]\nformats = [\"vtu-binary\", \"inp\"]\n"
+    ));
+    assert_eq!(r.output.formats, [Format::VtuBinary, Format::Inp]);
 }

@@ -250,20 +250,26 @@ pub enum Format {
     MshBinary,
     /// VTK unstructured grid XML.
     Vtu,
+    /// VTK unstructured grid XML with raw appended binary data (large meshes).
+    VtuBinary,
     /// TetGen `.node`/`.ele`/`.face`.
     Tetgen,
     /// MEDIT `.mesh`.
     Medit,
+    /// Abaqus `.inp` (C3D4 elements, region element sets, surface node sets and surfaces).
+    Inp,
 }
 
 impl Format {
     /// Every format with its recipe spelling.
-    pub const ALL: [(&'static str, Format); 5] = [
+    pub const ALL: [(&'static str, Format); 7] = [
         ("msh", Format::Msh),
         ("msh-binary", Format::MshBinary),
         ("vtu", Format::Vtu),
+        ("vtu-binary", Format::VtuBinary),
         ("tetgen", Format::Tetgen),
         ("medit", Format::Medit),
+        ("inp", Format::Inp),
     ];
 
     pub fn as_str(self) -> &'static str {

@@ -59,7 +59,10 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
         ctx.error(
             v.span(),
             "`output.formats` is empty".into(),
-            Some("list at least one of `msh`, `msh-binary`, `vtu`, `tetgen`, `medit`".into()),
+            Some(
+                "list at least one of `msh`, `msh-binary`, `vtu`, `vtu-binary`, `tetgen`, `medit`, `inp`"
+                    .into(),
+            ),
         );
         return None;
     }
@@ -78,7 +81,29 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
                 );
                 ok = false;
             }
-            Some(f) => out.push(f),
+            Some(f) => {
+                // The two encodings of one format write the same file.
+                let twin = match f {
+                    Format::Msh => Some(Format::MshBinary),
+                    Format::MshBinary => Some(Format::Msh),
+                    Format::Vtu => Some(Format::VtuBinary),
+                    Format::VtuBinary => Some(Format::Vtu),
+                    _ => None,
+                };
+                if let Some(t) = twin.filter(|t| out.contains(t)) {
+                    ctx.error(
+                        e.span(),
+                        format!(
+                            "formats `{}` and `{}` in `output.formats` both write the same file",
+                            t.as_str(),
+                            f.as_str()
+                        ),
+                        Some("list one encoding of each format".into()),
+                    );
+                    ok = false;
+                }
+                out.push(f);
+            }
             None => ok = false,
         }
     }
