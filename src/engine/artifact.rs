@@ -188,68 +188,6 @@ impl FileSet {
         self
     }
 
-    /// The length of the set's postcard encoding: `varint(n)`, then per file in path order
-    /// `varint(path length)`, the path's UTF-8, `varint(byte count)`, the bytes.
-    pub fn encoded_len(&self) -> usize {
-        varint_len(self.files.len())
-            + self
-                .files
-                .iter()
-                .map(|(k, v)| entry_len(k, v.len()))
-                .sum::<usize>()
-    }
-
-    /// Encodes the set into an artifact with exactly the bytes (hence the hash) of
-    /// `Artifact::encode(&self)`, consuming it. The largest file's buffer is grown in place to
-    /// the whole encoding (its bytes moved to their final offset) and every other file is copied
-    /// in and freed at once, so the peak is the encoding plus the other files, not twice the set.
-    pub fn into_artifact(self) -> Artifact {
-        let total = self.encoded_len();
-        let mut files = self.files;
-        let Some(host_key) = files
-            .iter()
-            .max_by_key(|(_, v)| v.len())
-            .map(|(k, _)| k.clone())
-        else {
-            return Artifact::from_bytes(vec![0]); // varint(0): no files
-        };
-        let mut buf = files.remove(&host_key).unwrap_or_default();
-        let host_len = buf.len();
-        // Offset of the host's bytes: the count, the entries before it, its own header.
-        let head = varint_len(files.len() + 1)
-            + files
-                .range::<String, _>(..&host_key)
-                .map(|(k, v)| entry_len(k, v.len()))
-                .sum::<usize>()
-            + varint_len(host_key.len())
-            + host_key.len()
-            + varint_len(host_len);
-        buf.reserve_exact(total - host_len);
-        buf.resize(total, 0);
-        buf.copy_within(..host_len, head);
-        let mut w = Cursor {
-            buf: &mut buf,
-            at: 0,
-        };
-        w.varint(files.len() + 1);
-        let mut host_done = false;
-        for (k, v) in files {
-            if !host_done && k > host_key {
-                w.header(&host_key, host_len);
-                w.at += host_len;
-                host_done = true;
-            }
-            w.header(&k, v.len());
-            w.put(&v);
-        }
-        if !host_done {
-            w.header(&host_key, host_len);
-            w.at += host_len;
-        }
-        debug_assert_eq!(w.at, total);
-        Artifact::from_bytes(buf)
-    }
-
     /// Reads the files of an encoded set in place: `(path, bytes)` in path order, borrowing
     /// `bytes`. Truncated or malformed bytes, a path that is not UTF-8, paths out of order or
     /// repeated, and trailing bytes are errors naming the byte offset; nothing panics.
@@ -381,27 +319,6 @@ fn encode_varint(mut v: usize) -> Varint {
     }
 }
 
-/// Writes into a buffer sized beforehand (by `FileSet::encoded_len`).
-struct Cursor<'a> {
-    buf: &'a mut [u8],
-    at: usize,
-}
-
-impl Cursor<'_> {
-    fn put(&mut self, b: &[u8]) {
-        self.buf[self.at..self.at + b.len()].copy_from_slice(b);
-        self.at += b.len();
-    }
-    fn varint(&mut self, v: usize) {
-        self.put(encode_varint(v).as_slice());
-    }
-    fn header(&mut self, path: &str, len: usize) {
-        self.varint(path.len());
-        self.put(path.as_bytes());
-        self.varint(len);
-    }
-}
-
 /// Reads an encoded set, checking every length against what is left.
 struct Reader<'a> {
     bytes: &'a [u8],
@@ -493,23 +410,9 @@ mod tests {
     }
 
     #[test]
-    fn a_file_set_encodes_to_exactly_the_bytes_postcard_writes() {
-        for set in sets() {
-            let want = postcard::to_stdvec(&set).unwrap();
-            assert_eq!(set.encoded_len(), want.len());
-            let generic = Artifact::encode(&set).unwrap();
-            assert_eq!(generic.bytes(), &want[..]);
-            let a = set.clone().into_artifact();
-            assert_eq!(a.bytes(), &want[..], "{} files", set.files.len());
-            assert_eq!(a.hash(), Hash::of(&want));
-            assert_eq!(a.decode::<FileSet>().unwrap(), set);
-        }
-    }
-
-    #[test]
     fn a_file_set_is_read_in_place_with_its_paths_in_order() {
         for set in sets() {
-            let a = set.clone().into_artifact();
+            let a = Artifact::encode(&set).unwrap();
             let entries = a.file_entries().unwrap();
             let want: Vec<(&str, &[u8])> = set
                 .files
@@ -570,9 +473,10 @@ mod tests {
     }
 
     #[test]
-    fn a_file_set_encoded_file_by_file_has_postcards_bytes() {
+    fn a_file_set_encoded_whole_or_file_by_file_has_postcards_bytes() {
         for set in sets() {
             let want = postcard::to_stdvec(&set).unwrap();
+            assert_eq!(Artifact::encode(&set).unwrap().bytes(), &want[..]);
             let mut enc = FileSetEncoder::new(set.files.len());
             for (k, v) in set.files {
                 enc.push(&k, v).unwrap();
