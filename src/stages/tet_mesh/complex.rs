@@ -189,6 +189,15 @@ impl Complex {
     }
 
     /// Move the node `v` to `p` (the caller has checked its ball stays positive).
+    pub fn move_node(&mut self, v: u32, p: P) {
+        self.nodes[v as usize] = p;
+        let measures: Vec<(f64, f64)> = self.node_tets[v as usize]
+            .iter()
+            .map(|&t| self.measures(self.tets[t as usize]))
+            .collect();
+        self.move_node_measured(v, p, &measures);
+    }
+
     /// [`Complex::move_node`] with the ball's (shape, mean ratio) at `p` already computed, in
     /// `node_tets[v]` order.
     pub fn move_node_measured(&mut self, v: u32, p: P, measures: &[(f64, f64)]) {
@@ -198,19 +207,6 @@ impl Complex {
             let id = self.node_tets[v as usize][i] as usize;
             (self.shape[id], self.mean_ratio[id]) = m;
             for w in self.tets[id] {
-                self.stamp[w as usize] += 1;
-            }
-        }
-    }
-
-    pub fn move_node(&mut self, v: u32, p: P) {
-        self.nodes[v as usize] = p;
-        self.stamp[v as usize] += 1;
-        for i in 0..self.node_tets[v as usize].len() {
-            let id = self.node_tets[v as usize][i] as usize;
-            let t = self.tets[id];
-            (self.shape[id], self.mean_ratio[id]) = self.measures(t);
-            for w in t {
                 self.stamp[w as usize] += 1;
             }
         }

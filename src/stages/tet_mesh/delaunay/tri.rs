@@ -199,8 +199,7 @@ impl Tri {
     }
 
     /// Walk from `start` towards `p`; the tet containing `p` (closed), or `Outside` if the walk
-    /// has to cross the hull.
-    /// A floating-point walk comes near `p` first (it never crosses the face it came through);
+    /// has to cross the hull. A floating-point walk comes near `p` first (it never crosses the face it came through);
     /// the exact walk then decides from where it stopped, so the float only chooses the path.
     pub fn locate(&mut self, p: &P, start: u32) -> Result<u32, Reject> {
         let mut t = if start != NONE && self.alive(start) {
@@ -505,7 +504,6 @@ fn dist2(a: &P, b: &P) -> f64 {
     dot(&e, &e)
 }
 
-/// Distance from `p` to the plane of `abc` (float: a size test, not a decision of validity).
 /// Steps of the floating-point walk before the exact one takes over.
 const FLOAT_WALK: usize = 1 << 16;
 
@@ -517,6 +515,7 @@ fn above(a: &P, b: &P, c: &P, p: &P) -> bool {
     dot(&ad, &cross(&bd, &cd)) < 0.0
 }
 
+/// Distance from `p` to the plane of `abc` (float: a size test, not a decision of validity).
 pub fn height(a: &P, b: &P, c: &P, p: &P) -> f64 {
     let n = cross(&sub(b, a), &sub(c, a));
     let l = dot(&n, &n).sqrt();
