@@ -44,7 +44,7 @@ pub struct TetmeshArgs {
     pub no_optimize: bool,
     /// Meshing method: `delaunay` (falls back to the front where boundary recovery fails) or
     /// `front` (advancing front only)
-    #[arg(long, default_value = "delaunay", value_parser = ["delaunay", "front"])]
+    #[arg(long, default_value = "delaunay", value_parser = Method::NAMES.map(|(n, _)| n))]
     pub method: String,
     /// Region name [default: the boundary file's stem]
     #[arg(long)]
@@ -185,11 +185,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     };
     let opts = TetMeshOptions {
         optimize: !a.no_optimize,
-        method: if a.method == "front" {
-            Method::Front
-        } else {
-            Method::Delaunay
-        },
+        method: Method::from_name(&a.method).unwrap_or_default(),
         ..TetMeshOptions::default()
     };
     let t0 = std::time::Instant::now();

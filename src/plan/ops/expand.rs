@@ -43,7 +43,7 @@ impl ModelExpander {
     }
 
     /// The recipe path of the region's mesh settings, its size field and its tet method.
-    fn region_size(&self, region: &str) -> (String, SizeField, Method) {
+    fn region_settings(&self, region: &str) -> (String, SizeField, Method) {
         let m = &self.recipe.mesh;
         match m.regions.get(region) {
             Some(r) => (
@@ -135,7 +135,7 @@ impl Expander for ModelExpander {
                 })
                 .collect();
             let inputs: Vec<NodeId> = patches.iter().map(|&p| meshed[p as usize]).collect();
-            let (size_path, size, method) = self.region_size(&r.name);
+            let (size_path, size, method) = self.region_settings(&r.name);
             let id = x
                 .add_op(
                     &format!("tet_mesh:{}", r.name),

@@ -71,7 +71,7 @@ impl Operation for TetMeshOp {
         p.set(&format!("{path}.growth"), self.size.growth)
             .expect("validated finite");
         if self.method != Method::default() {
-            p.set(&format!("{path}.tet_method"), "front")
+            p.set(&format!("{path}.tet_method"), self.method.name())
                 .expect("string");
         }
         p

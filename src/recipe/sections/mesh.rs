@@ -77,15 +77,7 @@ fn sizes(
         None => Some(dflt.map_or(1.3, |d| d.growth)),
     };
     let tet_method = match t.get("tet_method") {
-        Some(v) => rd::choice(
-            ctx,
-            v,
-            &path_join(path, "tet_method"),
-            &[
-                ("delaunay", TetMethod::Delaunay),
-                ("front", TetMethod::Front),
-            ],
-        ),
+        Some(v) => rd::choice(ctx, v, &path_join(path, "tet_method"), &TetMethod::NAMES),
         None => Some(dflt.map_or(TetMethod::Delaunay, |d| d.tet_method)),
     };
     let size = size?;

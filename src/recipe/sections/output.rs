@@ -82,20 +82,12 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
                 ok = false;
             }
             Some(f) => {
-                // The two encodings of one format write the same file.
-                let twin = match f {
-                    Format::Msh => Some(Format::MshBinary),
-                    Format::MshBinary => Some(Format::Msh),
-                    Format::Vtu => Some(Format::VtuBinary),
-                    Format::VtuBinary => Some(Format::Vtu),
-                    _ => None,
-                };
-                if let Some(t) = twin.filter(|t| out.contains(t)) {
+                if let Some(&g) = out.iter().find(|&&g| same_file(g, f)) {
                     ctx.error(
                         e.span(),
                         format!(
                             "formats `{}` and `{}` in `output.formats` both write the same file",
-                            t.as_str(),
+                            g.as_str(),
                             f.as_str()
                         ),
                         Some("list one encoding of each format".into()),
@@ -108,4 +100,16 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
         }
     }
     ok.then_some(out)
+}
+
+/// Whether two formats write a file of the same name (the two encodings of msh or of VTU), as the
+/// export stage names its files.
+fn same_file(a: Format, b: Format) -> bool {
+    let names = |f: Format| {
+        crate::stages::export::Format::from_name(f.as_str())
+            .map(|e| crate::stages::export::file_names("m", e))
+            .unwrap_or_default()
+    };
+    let b = names(b);
+    names(a).iter().any(|n| b.contains(n))
 }

@@ -110,6 +110,24 @@ pub enum Method {
     Front,
 }
 
+impl Method {
+    /// Every method with its name in recipes (`tet_method`) and on the command line.
+    pub const NAMES: [(&'static str, Method); 2] =
+        [("delaunay", Method::Delaunay), ("front", Method::Front)];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Delaunay => "delaunay",
+            Method::Front => "front",
+        }
+    }
+
+    /// The method named `s`, if any.
+    pub fn from_name(s: &str) -> Option<Method> {
+        Method::NAMES.iter().find(|(n, _)| *n == s).map(|&(_, m)| m)
+    }
+}
+
 impl Default for TetMeshOptions {
     fn default() -> Self {
         TetMeshOptions {
