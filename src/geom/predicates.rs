@@ -58,9 +58,31 @@ fn c3(p: &[f64; 3]) -> Coord3D<f64> {
     }
 }
 
+/// Half an ulp of 1 (Shewchuk's machine epsilon for round-to-nearest doubles).
+const EPS: f64 = f64::EPSILON / 2.0;
+/// Shewchuk's first-stage error bounds: a float determinant larger in magnitude than this times
+/// its permanent has the exact determinant's sign.
+const ORIENT3D_BOUND: f64 = (7.0 + 56.0 * EPS) * EPS;
+const INSPHERE_BOUND: f64 = (16.0 + 224.0 * EPS) * EPS;
+
 /// Exact side of `d` relative to the oriented plane `abc` (see the module doc for the sign).
+/// The float determinant decides when its error bound proves its sign (nearly always, and
+/// inlined); otherwise `robust`'s adaptive arithmetic does.
 #[inline]
 pub fn orient3d(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Orientation {
+    let (u, v, w) = (sub(a, d), sub(b, d), sub(c, d));
+    let (vw, wv) = (v[0] * w[1], w[0] * v[1]);
+    let (wu, uw) = (w[0] * u[1], u[0] * w[1]);
+    let (uv, vu) = (u[0] * v[1], v[0] * u[1]);
+    // robust's sign: positive when d is below abc.
+    let det = u[2] * (vw - wv) + v[2] * (wu - uw) + w[2] * (uv - vu);
+    let permanent = (vw.abs() + wv.abs()) * u[2].abs()
+        + (wu.abs() + uw.abs()) * v[2].abs()
+        + (uv.abs() + vu.abs()) * w[2].abs();
+    let bound = ORIENT3D_BOUND * permanent;
+    if det > bound || -det > bound {
+        return Orientation::from_f64(-det);
+    }
     Orientation::from_f64(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)))
 }
 
@@ -98,7 +120,37 @@ pub fn insphere(
 ) -> Orientation {
     // robust::insphere is positive when e is inside for abcd with robust::orient3d > 0, i.e.
     // negatively oriented in our convention; swapping a and b flips the orientation.
-    Orientation::from_f64(robust::insphere(c3(b), c3(a), c3(c), c3(d), c3(e)))
+    let (a, b) = (b, a);
+    let [p, q, r, s] = [sub(a, e), sub(b, e), sub(c, e), sub(d, e)];
+    // 2x2 minors of the x, y columns, and their magnitudes.
+    let m = |u: &[f64; 3], v: &[f64; 3]| (u[0] * v[1], v[0] * u[1]);
+    let (pq, qr, rs, sp, pr, qs) = (
+        m(&p, &q),
+        m(&q, &r),
+        m(&r, &s),
+        m(&s, &p),
+        m(&p, &r),
+        m(&q, &s),
+    );
+    let d2 = |x: (f64, f64)| x.0 - x.1;
+    let a2 = |x: (f64, f64)| x.0.abs() + x.1.abs();
+    let pqr = p[2] * d2(qr) - q[2] * d2(pr) + r[2] * d2(pq);
+    let qrs = q[2] * d2(rs) - r[2] * d2(qs) + s[2] * d2(qr);
+    let rsp = r[2] * d2(sp) + s[2] * d2(pr) + p[2] * d2(rs);
+    let spq = s[2] * d2(pq) + p[2] * d2(qs) + q[2] * d2(sp);
+    let lift = |u: &[f64; 3]| dot(u, u);
+    let (lp, lq, lr, ls) = (lift(&p), lift(&q), lift(&r), lift(&s));
+    let det = (ls * pqr - lr * spq) + (lq * rsp - lp * qrs);
+    let [zp, zq, zr, zs] = [p[2].abs(), q[2].abs(), r[2].abs(), s[2].abs()];
+    let permanent = (a2(rs) * zq + a2(qs) * zr + a2(qr) * zs) * lp
+        + (a2(sp) * zr + a2(pr) * zs + a2(rs) * zp) * lq
+        + (a2(pq) * zs + a2(qs) * zp + a2(sp) * zq) * lr
+        + (a2(qr) * zp + a2(pr) * zq + a2(pq) * zr) * ls;
+    let bound = INSPHERE_BOUND * permanent;
+    if det > bound || -det > bound {
+        return Orientation::from_f64(det);
+    }
+    Orientation::from_f64(robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e)))
 }
 
 /// Signed volume of the tetrahedron `abcd` (floating point, for measures, never for decisions).
@@ -180,6 +232,56 @@ mod tests {
             insphere(&A, &B, &C, &d, &[1.0, 1.0, 1.0]),
             Orientation::Zero
         );
+    }
+
+    /// Points at UTM magnitudes, many of them on shared planes and spheres (a lattice), so the
+    /// float filters meet both easy and undecidable cases.
+    fn lattice_points(n: usize, seed: u64) -> Vec<[f64; 3]> {
+        let mut x = seed;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let o = [512_345.125, 7_012_345.5, -1234.25];
+        (0..n)
+            .map(|_| {
+                let r = next();
+                let jitter = if r % 4 == 0 {
+                    ((r >> 8) % 1000) as f64 * 1e-12
+                } else {
+                    0.0
+                };
+                [0, 1, 2].map(|k| o[k] + ((r >> (16 + 8 * k)) % 4) as f64 * 0.5 + jitter)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_inlined_filters_give_the_signs_of_robusts_adaptive_predicates() {
+        let p = lattice_points(64, 0x9e37_79b9_7f4a_7c15);
+        let mut zeros = [0usize; 2];
+        for i in 0..p.len() {
+            let (a, b, c, d, e) = (
+                p[i],
+                p[(i * 7 + 1) % 64],
+                p[(i * 11 + 2) % 64],
+                p[(i * 13 + 3) % 64],
+                p[(i * 17 + 5) % 64],
+            );
+            for (u, v, w, x, y) in [(a, b, c, d, e), (e, d, c, b, a), (b, a, d, c, e)] {
+                let want = Orientation::from_f64(-robust::orient3d(c3(&u), c3(&v), c3(&w), c3(&x)));
+                assert_eq!(orient3d(&u, &v, &w, &x), want);
+                let want =
+                    Orientation::from_f64(robust::insphere(c3(&v), c3(&u), c3(&w), c3(&x), c3(&y)));
+                assert_eq!(insphere(&u, &v, &w, &x, &y), want);
+                zeros[0] += (orient3d(&u, &v, &w, &x) == Orientation::Zero) as usize;
+                zeros[1] += (want == Orientation::Zero) as usize;
+            }
+        }
+        // The lattice does produce degenerate cases, which only the adaptive stage settles.
+        assert!(zeros[0] > 0 && zeros[1] > 0, "{zeros:?}");
     }
 
     #[test]

@@ -43,7 +43,9 @@ impl Operation for TetMeshOp {
     fn version(&self) -> u32 {
         // 6: Delaunay meshing with local recovery (the front as hole filler and fallback).
         // 7: floating-point location walks; flips and contractions up to 0.8 in thin layers.
-        7
+        // 8: refinement drops points whose tet is gone; tets and nodes laid out along a Hilbert
+        //    curve (16 bits per axis) before optimization.
+        8
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

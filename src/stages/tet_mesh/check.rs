@@ -3,8 +3,7 @@
 //! is reported with the triangle(s) or edge and coordinates instead of surfacing later as a stuck
 //! front. Intersections are decided with the exact tests of `exact`.
 
-use rstar::{AABB, RTree, primitives::GeomWithData, primitives::Rectangle};
-
+use super::box_pairs::for_each_overlapping_pair;
 use super::exact::{tri_tri_improper, triangle_is_degenerate};
 use super::{RegionInput, TetMeshError};
 
@@ -189,61 +188,52 @@ fn check_self_intersection(
 ) -> Result<(), TetMeshError> {
     let pts = &input.vertices;
     let o = reference_point(pts);
-    let boxes: Vec<GeomWithData<Rectangle<[f32; 3]>, u32>> = all
-        .iter()
-        .enumerate()
-        .map(|(k, &t)| {
-            let (lo, hi) = bbox(t, pts, o);
-            GeomWithData::new(Rectangle::from_corners(lo, hi), k as u32)
-        })
-        .collect();
-    let tree = RTree::bulk_load(boxes);
-    let mut hits: Vec<usize> = Vec::new();
-    for (k, &t) in all.iter().enumerate() {
-        let (lo, hi) = bbox(t, pts, o);
-        hits.clear();
-        hits.extend(
-            tree.locate_in_envelope_intersecting(AABB::from_corners(lo, hi))
-                .map(|g| g.data as usize)
-                .filter(|&j| j > k),
-        );
-        hits.sort_unstable();
-        let (kind, i) = named(k);
-        for &j in &hits {
-            let u = all[j];
-            let (kind2, i2) = named(j);
-            let mut a = t;
-            let mut b = u;
-            a.sort_unstable();
-            b.sort_unstable();
-            if a == b {
-                return Err(TetMeshError::new(
-                    &input.name,
-                    format!(
-                        "{kind} triangle {i} {t:?} and {kind2} triangle {i2} {u:?} use the same vertices"
-                    ),
-                    Some(pts[t[0] as usize]),
-                ));
-            }
-            if tri_tri_improper(t, u, pts) {
-                let at = pts[t[0] as usize];
-                return Err(TetMeshError::new(
-                    &input.name,
-                    format!(
-                        "self-intersection: {kind} triangle {i} {t:?} ({:?}, {:?}, {:?}) intersects {kind2} triangle {i2} {u:?} ({:?}, {:?}, {:?})",
-                        pts[t[0] as usize],
-                        pts[t[1] as usize],
-                        pts[t[2] as usize],
-                        pts[u[0] as usize],
-                        pts[u[1] as usize],
-                        pts[u[2] as usize]
-                    ),
-                    Some(at),
-                ));
-            }
+    let boxes: Vec<_> = all.iter().map(|&t| bbox(t, pts, o)).collect();
+    // The first failing pair in (k, j) order is reported, whatever order the pairs come in.
+    let mut first: Option<(usize, usize)> = None;
+    for_each_overlapping_pair(&boxes, |k, j| {
+        let (k, j) = (k as usize, j as usize);
+        if first.is_some_and(|f| f <= (k, j)) {
+            return;
         }
+        let (mut a, mut b) = (all[k], all[j]);
+        a.sort_unstable();
+        b.sort_unstable();
+        if a == b || tri_tri_improper(all[k], all[j], pts) {
+            first = Some((k, j));
+        }
+    });
+    let Some((k, j)) = first else {
+        return Ok(());
+    };
+    let (t, u) = (all[k], all[j]);
+    let (kind, i) = named(k);
+    let (kind2, i2) = named(j);
+    let (mut a, mut b) = (t, u);
+    a.sort_unstable();
+    b.sort_unstable();
+    if a == b {
+        return Err(TetMeshError::new(
+            &input.name,
+            format!(
+                "{kind} triangle {i} {t:?} and {kind2} triangle {i2} {u:?} use the same vertices"
+            ),
+            Some(pts[t[0] as usize]),
+        ));
     }
-    Ok(())
+    Err(TetMeshError::new(
+        &input.name,
+        format!(
+            "self-intersection: {kind} triangle {i} {t:?} ({:?}, {:?}, {:?}) intersects {kind2} triangle {i2} {u:?} ({:?}, {:?}, {:?})",
+            pts[t[0] as usize],
+            pts[t[1] as usize],
+            pts[t[2] as usize],
+            pts[u[0] as usize],
+            pts[u[1] as usize],
+            pts[u[2] as usize]
+        ),
+        Some(pts[t[0] as usize]),
+    ))
 }
 
 /// The single-precision box of triangle `t` relative to `o`, rounded outward.

@@ -171,15 +171,14 @@ pub fn min_dihedral_deg(a: &P, b: &P, c: &P, d: &P) -> f64 {
             [0.0; 3]
         };
     }
-    let mut min = 180.0f64;
+    // The angle falls as its cosine rises: one arc cosine, of the largest cosine.
+    let mut max_cos = f64::NEG_INFINITY;
     for i in 0..4 {
         for j in i + 1..4 {
-            let cosang = -dot(&n[i], &n[j]);
-            let ang = cosang.clamp(-1.0, 1.0).acos().to_degrees();
-            min = min.min(ang);
+            max_cos = max_cos.max((-dot(&n[i], &n[j])).clamp(-1.0, 1.0));
         }
     }
-    min
+    max_cos.acos().to_degrees().min(180.0)
 }
 
 #[cfg(test)]

@@ -59,29 +59,27 @@ fn quality_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> (f64, P) {
     (q, g)
 }
 
-/// The optimizer's shape measure (`quality::shape`) of `t` with `v` at `p`, and its gradient:
-/// the analytic mean-ratio gradient where the mean ratio is the binding measure, else forward
-/// differences of the dihedral-sine term (steps of `1e-6 · scale`).
-fn shape_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P, scale: f64) -> (f64, P) {
+/// The gradient of the optimizer's shape measure (`quality::shape`) of `t` with `v` at `p`, whose
+/// value there is `q`: the analytic mean-ratio gradient where the mean ratio is the binding
+/// measure, else forward differences of the dihedral-sine term (steps of `1e-6 · scale`).
+fn shape_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P, scale: f64, q: f64) -> P {
     let at = |p: &P| {
         let x = t.map(|i| if i == v { *p } else { cx.nodes[i as usize] });
         shape(&x[0], &x[1], &x[2], &x[3])
     };
-    let q = at(p);
     let (mr, g) = quality_and_gradient(cx, t, v, p);
     if mr <= q || q <= 0.0 {
-        return (q, g);
+        return g;
     }
     let h = 1e-6 * scale;
     if h.is_nan() || h <= 0.0 {
-        return (q, [0.0; 3]);
+        return [0.0; 3];
     }
-    let g = [0, 1, 2].map(|m| {
+    [0, 1, 2].map(|m| {
         let mut y = *p;
         y[m] += h;
         (at(&y) - q) / h
-    });
-    (q, g)
+    })
 }
 
 #[inline]
@@ -96,13 +94,19 @@ fn dot(a: &P, b: &P) -> f64 {
 
 /// Worst quality of the ball of `v` with `v` at `p`; None if a tet is not positive (exact).
 pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
+    worst_above(cx, v, p, 0.0)
+}
+
+/// Worst quality of the ball of `v` with `v` at `p` when it is above `floor >= 0` and every tet
+/// is positive (exact); None otherwise, as soon as one tet is at or below `floor`.
+fn worst_above(cx: &Complex, v: u32, p: &P, floor: f64) -> Option<f64> {
     let mut w = f64::INFINITY;
     for &t in &cx.node_tets[v as usize] {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
         w = w.min(shape(&x[0], &x[1], &x[2], &x[3]));
-    }
-    if w <= 0.0 {
-        return None;
+        if w <= floor {
+            return None;
+        }
     }
     for &t in &cx.node_tets[v as usize] {
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
@@ -113,10 +117,20 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
     Some(w)
 }
 
-/// The ball of `v` with `v` at `p`: worst shape (`quality::shape`), worst mean ratio and mean
-/// mean ratio; None if a tet is not positive (exact). Each tet's (shape, mean ratio) is left in
-/// `measures`, in ball order, for [`Complex::move_node_measured`].
-fn ball_at(cx: &Complex, v: u32, p: &P, measures: &mut Vec<(f64, f64)>) -> Option<(f64, f64, f64)> {
+/// What a relaxation move must reach (see [`relax_node`]): a worst shape above `s0`, or a worst
+/// mean ratio at least `w_keep`, a worst shape at least `s_floor` and a mean mean ratio above `m0`.
+struct Bar {
+    s0: f64,
+    w_keep: f64,
+    s_floor: f64,
+    m0: f64,
+}
+
+/// Whether the ball of `v` with `v` at `p` passes `bar` with every tet positive (exact). Each
+/// tet's (shape, mean ratio) is left in `measures`, in ball order, for
+/// [`Complex::move_node_measured`]. The worsts only fall as tets are measured, so the ball is
+/// given up at the first tet that makes both ways out of reach.
+fn ball_passes(cx: &Complex, v: u32, p: &P, bar: &Bar, measures: &mut Vec<(f64, f64)>) -> bool {
     let ball = &cx.node_tets[v as usize];
     let mut s = 0.0;
     let mut w = f64::INFINITY;
@@ -126,20 +140,23 @@ fn ball_at(cx: &Complex, v: u32, p: &P, measures: &mut Vec<(f64, f64)>) -> Optio
         let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
         let (sh, q) = shape_and_mean_ratio(&x[0], &x[1], &x[2], &x[3]);
         if sh <= 0.0 {
-            return None;
+            return false;
         }
         measures.push((sh, q));
         sw = sw.min(sh);
         s += q;
         w = w.min(q);
-    }
-    for &t in ball {
-        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
-        if orient3d(&x[0], &x[1], &x[2], &x[3]) != Orientation::Positive {
-            return None;
+        if sw <= bar.s0 && (w < bar.w_keep || sw < bar.s_floor) {
+            return false;
         }
     }
-    Some((sw, w, s / ball.len() as f64))
+    if sw <= bar.s0 && s / ball.len() as f64 <= bar.m0 {
+        return false;
+    }
+    ball.iter().all(|&t| {
+        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        orient3d(&x[0], &x[1], &x[2], &x[3]) == Orientation::Positive
+    })
 }
 
 /// The ball of `v` where it stands, from the complex's cached measures.
@@ -184,11 +201,15 @@ pub fn relax_node(cx: &mut Complex, v: u32, keep: f64, measures: &mut Vec<(f64, 
         }
     }
     let centre = sum.map(|s| s / n);
+    let bar = Bar {
+        s0,
+        w_keep: keep.min(w0),
+        s_floor: RELAX_FLOOR.min(s0),
+        m0,
+    };
     for step in [1.0, 0.5, 0.25] {
         let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
-        if let Some((s1, w, m)) = ball_at(cx, v, &p, measures)
-            && (s1 > s0 || (w >= keep.min(w0) && s1 >= RELAX_FLOOR.min(s0) && m > m0))
-        {
+        if ball_passes(cx, v, &p, &bar, measures) {
             cx.move_node_measured(v, p, measures);
             return true;
         }
@@ -226,9 +247,7 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
     scale /= n;
     for step in [1.0, 0.5, 0.25] {
         let p = [0, 1, 2].map(|m| cur[m] + (centre[m] - cur[m]) * step);
-        if let Some(q) = worst_at(cx, v, &p)
-            && q > best
-        {
+        if let Some(q) = worst_above(cx, v, &p, best) {
             best = q;
             cur = p;
             break;
@@ -238,8 +257,11 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
     for _ in 0..ITERATIONS {
         let mut dir = [0.0; 3];
         for &t in &cx.node_tets[v as usize] {
-            let (q, g) = shape_and_gradient(cx, cx.tets[t as usize], v, &cur, scale);
+            let tv = cx.tets[t as usize];
+            let x = tv.map(|i| if i == v { cur } else { cx.nodes[i as usize] });
+            let q = shape(&x[0], &x[1], &x[2], &x[3]);
             if q <= best + NEAR_WORST {
+                let g = shape_gradient(cx, tv, v, &cur, scale, q);
                 let gn = dot(&g, &g).sqrt();
                 if gn > 0.0 {
                     for m in 0..3 {
@@ -257,9 +279,7 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
         let mut a = alpha;
         for _ in 0..6 {
             let p = [0, 1, 2].map(|m| cur[m] + dir[m] * a);
-            if let Some(q) = worst_at(cx, v, &p)
-                && q > best
-            {
+            if let Some(q) = worst_above(cx, v, &p, best) {
                 best = q;
                 cur = p;
                 moved = true;

@@ -47,6 +47,43 @@ fn keyed(f: [u32; 3]) -> ([u32; 3], bool) {
     }
 }
 
+/// The outward faces of every tet, sorted (by their sorted nodes, orientation, tet): placed in
+/// buckets by smallest node (a counting sort), then each short bucket sorted.
+fn sorted_faces(tets: &[[u32; 4]], n_nodes: usize) -> Vec<Face> {
+    let mut start = vec![0u32; n_nodes + 1];
+    for t in tets {
+        for f in outward_faces(*t) {
+            start[keyed(f).0[0] as usize + 1] += 1;
+        }
+    }
+    for i in 0..n_nodes {
+        start[i + 1] += start[i];
+    }
+    let blank = Face {
+        key: [0; 3],
+        odd: false,
+        tet: 0,
+    };
+    let mut faces = vec![blank; tets.len() * 4];
+    let mut next = start.clone();
+    for (ti, t) in tets.iter().enumerate() {
+        for f in outward_faces(*t) {
+            let (key, odd) = keyed(f);
+            let slot = &mut next[key[0] as usize];
+            faces[*slot as usize] = Face {
+                key,
+                odd,
+                tet: ti as u32,
+            };
+            *slot += 1;
+        }
+    }
+    for w in start.windows(2) {
+        faces[w[0] as usize..w[1] as usize].sort_unstable();
+    }
+    faces
+}
+
 /// Every tet positive (exact), each boundary triangle the outward face of exactly one tet and of
 /// none reversed, each embedded triangle a face of exactly two tets (one per side), every other
 /// face shared by exactly two tets with opposite orientations, and the tets' total volume equal
@@ -79,7 +116,6 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     }
     // Every tet's outward faces, sorted by their sorted nodes: a face's tets form a run, and the
     // runs are read once alongside the sorted input triangles (a sort and a linear scan).
-    let mut faces: Vec<Face> = Vec::with_capacity(out.tets.len() * 4);
     for (ti, t) in out.tets.iter().enumerate() {
         if let Some(&v) = t.iter().find(|&&v| v as usize >= nodes.len()) {
             return Err(TetMeshError::new(
@@ -96,16 +132,8 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
                 Some(a),
             ));
         }
-        for f in outward_faces(*t) {
-            let (key, odd) = keyed(f);
-            faces.push(Face {
-                key,
-                odd,
-                tet: ti as u32,
-            });
-        }
     }
-    faces.sort_unstable();
+    let faces = sorted_faces(&out.tets, nodes.len());
     // The boundary and embedded triangles sorted the same way, walked alongside the faces.
     let sorted_input = |tris: &[[u32; 3]]| {
         let mut v: Vec<([u32; 3], usize)> = tris

@@ -44,10 +44,12 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
     let map = |v: u32| if (v as usize) < n { v } else { v - 4 };
     let mut nodes = std::mem::take(&mut tri.pts);
     nodes.drain(n..n + 4);
-    let tets: Vec<[u32; 4]> = tri
+    let mut tets: Vec<[u32; 4]> = tri
         .live_tets()
         .map(|t| tri.tets[t as usize].map(map))
         .collect();
+    drop(tri);
+    order::spatial_layout(&mut nodes, &mut tets, n);
     Ok((
         RawMesh {
             nodes,

@@ -59,6 +59,8 @@ pub struct Tri {
     stack: Vec<u32>,
     bnd: Vec<(u32, u8)>,
     keys: Vec<(u64, u32)>,
+    /// Scratch hash table pairing `keys`.
+    table: Vec<(u64, u32)>,
     /// The new tets of an insertion (vertices, outer neighbour, constraint), before they go in.
     recs: Vec<([u32; 4], u32, bool)>,
     /// Tets created by insertions, while `record` is on.
@@ -83,6 +85,7 @@ impl Tri {
             stack: Vec::new(),
             bnd: Vec::new(),
             keys: Vec::new(),
+            table: Vec::new(),
             recs: Vec::new(),
             created: Vec::new(),
             record: false,
@@ -485,13 +488,29 @@ impl Tri {
             last = id;
         }
         self.recs = recs;
-        self.keys.sort_unstable();
-        for pair in self.keys.chunks(2) {
-            if let [(ka, a), (kb, b)] = *pair {
-                debug_assert_eq!(ka, kb);
-                let _ = (ka, kb);
-                self.adj[(a >> 2) as usize][(a & 3) as usize] = b;
-                self.adj[(b >> 2) as usize][(b & 3) as usize] = a;
+        // Each edge key comes twice (the two new tets on either side of one new face): pair
+        // them through an open-addressing table twice the keys' size or more.
+        let bits = (2 * self.keys.len())
+            .next_power_of_two()
+            .trailing_zeros()
+            .max(4);
+        self.table.clear();
+        self.table.resize(1 << bits, (EMPTY, 0));
+        let mask = (1usize << bits) - 1;
+        for &(key, face) in &self.keys {
+            let mut slot = (key.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits)) as usize;
+            loop {
+                let (k, other) = self.table[slot];
+                if k == EMPTY {
+                    self.table[slot] = (key, face);
+                    break;
+                }
+                if k == key {
+                    self.adj[(face >> 2) as usize][(face & 3) as usize] = other;
+                    self.adj[(other >> 2) as usize][(other & 3) as usize] = face;
+                    break;
+                }
+                slot = (slot + 1) & mask;
             }
         }
         self.hint = last;
@@ -503,6 +522,9 @@ fn dist2(a: &P, b: &P) -> f64 {
     let e = sub(a, b);
     dot(&e, &e)
 }
+
+/// A free slot of the edge table (no edge has both ends `u32::MAX`).
+const EMPTY: u64 = u64::MAX;
 
 /// Steps of the floating-point walk before the exact one takes over.
 const FLOAT_WALK: usize = 1 << 16;
