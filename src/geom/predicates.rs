@@ -1,5 +1,8 @@
 //! Exact orientation predicates (Shewchuk's adaptive arithmetic via `robust`), wrapped so that
-//! every caller uses one sign convention.
+//! every caller uses one sign convention. `orient3d` and `insphere`, called millions of times by
+//! the tet mesher, first try Shewchuk's first-stage filter inline (the float determinant and its
+//! proven error bound); only when it cannot decide does `robust` run, so the sign is always the
+//! exact one.
 //!
 //! Convention: `orient3d(a, b, c, d)` is `Positive` when `d` lies on the side of the plane
 //! `abc` that the right-hand normal `(b-a)×(c-a)` points to, i.e. when the tetrahedron `abcd` has

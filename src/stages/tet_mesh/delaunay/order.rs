@@ -15,16 +15,15 @@ const BITS: u32 = 16;
 fn hilbert_key(mut x: [u32; 3]) -> u64 {
     let m = 1u32 << (BITS - 1);
     let mut q = m;
+    // Branch-free (the bits are data, so branches on them mispredict): where bit q of x[i] is
+    // set, invert the low bits of x[0]; else exchange the low bits of x[0] and x[i].
     while q > 1 {
         let p = q - 1;
         for i in 0..3 {
-            if x[i] & q != 0 {
-                x[0] ^= p;
-            } else {
-                let t = (x[0] ^ x[i]) & p;
-                x[0] ^= t;
-                x[i] ^= t;
-            }
+            let set = 0u32.wrapping_sub(u32::from(x[i] & q != 0));
+            let t = (x[0] ^ x[i]) & p & !set;
+            x[0] ^= (p & set) | t;
+            x[i] ^= t;
         }
         q >>= 1;
     }
@@ -34,9 +33,7 @@ fn hilbert_key(mut x: [u32; 3]) -> u64 {
     let mut t = 0;
     let mut q = m;
     while q > 1 {
-        if x[2] & q != 0 {
-            t ^= q - 1;
-        }
+        t ^= (q - 1) & 0u32.wrapping_sub(u32::from(x[2] & q != 0));
         q >>= 1;
     }
     for xi in &mut x {

@@ -16,6 +16,7 @@ use crate::geom::predicates::Orientation;
 use super::super::advance::advance_front;
 use super::super::check::check_input;
 use super::super::exact::orient3d;
+use super::super::front::FaceMap;
 use super::super::{RegionInput, SizeField, TetMeshError};
 use super::flip::coplanar;
 use super::order::brio;
@@ -132,7 +133,8 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     }
 
     // Which constraint triangles are faces.
-    let mut cons_index: HashMap<[u32; 3], usize> = HashMap::new();
+    // Looked up once per tet face, never iterated: the front's fast word hash.
+    let mut cons_index: FaceMap<usize> = FaceMap::default();
     let all: Vec<([u32; 3], bool)> = input
         .boundary
         .iter()
@@ -411,7 +413,7 @@ fn pinched_edges(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
 }
 
 /// Per constraint (index into the list `cons_index` maps to): the (tet, face) pairs holding it.
-fn find_holders(tri: &Tri, cons_index: &HashMap<[u32; 3], usize>, n: usize) -> Vec<Holders> {
+fn find_holders(tri: &Tri, cons_index: &FaceMap<usize>, n: usize) -> Vec<Holders> {
     let mut holders = vec![Holders([NONE; 2]); n];
     for t in tri.live_tets() {
         for i in 0..4 {

@@ -192,11 +192,12 @@ impl Tri {
         (0..self.tets.len() as u32).filter(move |&t| self.alive(t))
     }
 
+    /// A fresh even stamp `s`: a flood marks the tets it takes `s` and those it refused `s + 1`.
     fn next_stamp(&mut self) -> u32 {
-        self.stamp = self.stamp.wrapping_add(1);
-        if self.stamp == 0 {
+        self.stamp = self.stamp.wrapping_add(2);
+        if self.stamp < 2 {
             self.mark.iter_mut().for_each(|m| *m = 0);
-            self.stamp = 1;
+            self.stamp = 2;
         }
         self.stamp
     }
@@ -318,7 +319,7 @@ impl Tri {
     }
 
     /// A new cavity grown from `root` across faces that are neither constraints nor hull, taking
-    /// each neighbour `u` that `take(self, u, mark_of_u)` accepts.
+    /// each neighbour `u` that `take(self, u, mark_of_u)` accepts (asked once per tet and flood).
     fn flood(
         &mut self,
         root: u32,
@@ -338,10 +339,16 @@ impl Tri {
                 }
                 let u = n >> 2;
                 let m = self.mark[u as usize];
-                if m != s && take(self, u, m)? {
+                // A tet refused once is refused again (the test depends on it alone): not retried.
+                if m == s || m == s + 1 {
+                    continue;
+                }
+                if take(self, u, m)? {
                     self.mark[u as usize] = s;
                     self.cavity.push(u);
                     self.stack.push(u);
+                } else {
+                    self.mark[u as usize] = s + 1;
                 }
             }
         }
