@@ -190,29 +190,27 @@ fn check_self_intersection(
     let o = reference_point(pts);
     let boxes: Vec<_> = all.iter().map(|&t| bbox(t, pts, o)).collect();
     // The first failing pair in (k, j) order is reported, whatever order the pairs come in.
-    let mut first: Option<(usize, usize)> = None;
+    // With whether the two use the same vertices.
+    let mut first: Option<(usize, usize, bool)> = None;
     for_each_overlapping_pair(&boxes, |k, j| {
         let (k, j) = (k as usize, j as usize);
-        if first.is_some_and(|f| f <= (k, j)) {
+        if first.is_some_and(|f| (f.0, f.1) <= (k, j)) {
             return;
         }
         let (mut a, mut b) = (all[k], all[j]);
         a.sort_unstable();
         b.sort_unstable();
         if a == b || tri_tri_improper(all[k], all[j], pts) {
-            first = Some((k, j));
+            first = Some((k, j, a == b));
         }
     });
-    let Some((k, j)) = first else {
+    let Some((k, j, same)) = first else {
         return Ok(());
     };
     let (t, u) = (all[k], all[j]);
     let (kind, i) = named(k);
     let (kind2, i2) = named(j);
-    let (mut a, mut b) = (t, u);
-    a.sort_unstable();
-    b.sort_unstable();
-    if a == b {
+    if same {
         return Err(TetMeshError::new(
             &input.name,
             format!(

@@ -16,9 +16,15 @@ const RELAX_FLOOR: f64 = 0.35;
 /// Tets within this much of the worst share the ascent direction.
 const NEAR_WORST: f64 = 0.02;
 
+/// The corners of tet `t` with node `v` moved to `p`.
+#[inline]
+fn placed(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> [P; 4] {
+    t.map(|i| if i == v { *p } else { cx.nodes[i as usize] })
+}
+
 /// Quality of `t` with node `v` placed at `p`, and its gradient with respect to `p`.
 fn quality_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> (f64, P) {
-    let x = t.map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+    let x = placed(cx, t, v, p);
     let q = mean_ratio(&x[0], &x[1], &x[2], &x[3]);
     let k = t.iter().position(|&i| i == v).unwrap_or(0);
     // The face opposite `k`, ordered so that its right-hand normal points towards node k.
@@ -64,7 +70,7 @@ fn quality_and_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P) -> (f64, P) {
 /// measure, else forward differences of the dihedral-sine term (steps of `1e-6 · scale`).
 fn shape_gradient(cx: &Complex, t: [u32; 4], v: u32, p: &P, scale: f64, q: f64) -> P {
     let at = |p: &P| {
-        let x = t.map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        let x = placed(cx, t, v, p);
         shape(&x[0], &x[1], &x[2], &x[3])
     };
     let (mr, g) = quality_and_gradient(cx, t, v, p);
@@ -102,14 +108,14 @@ pub fn worst_at(cx: &Complex, v: u32, p: &P) -> Option<f64> {
 fn worst_above(cx: &Complex, v: u32, p: &P, floor: f64) -> Option<f64> {
     let mut w = f64::INFINITY;
     for &t in &cx.node_tets[v as usize] {
-        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        let x = placed(cx, cx.tets[t as usize], v, p);
         w = w.min(shape(&x[0], &x[1], &x[2], &x[3]));
         if w <= floor {
             return None;
         }
     }
     for &t in &cx.node_tets[v as usize] {
-        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        let x = placed(cx, cx.tets[t as usize], v, p);
         if orient3d(&x[0], &x[1], &x[2], &x[3]) != Orientation::Positive {
             return None;
         }
@@ -137,7 +143,7 @@ fn ball_passes(cx: &Complex, v: u32, p: &P, bar: &Bar, measures: &mut Vec<(f64, 
     let mut sw = f64::INFINITY;
     measures.clear();
     for &t in ball {
-        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        let x = placed(cx, cx.tets[t as usize], v, p);
         let (sh, q) = shape_and_mean_ratio(&x[0], &x[1], &x[2], &x[3]);
         if sh <= 0.0 {
             return false;
@@ -154,7 +160,7 @@ fn ball_passes(cx: &Complex, v: u32, p: &P, bar: &Bar, measures: &mut Vec<(f64, 
         return false;
     }
     ball.iter().all(|&t| {
-        let x = cx.tets[t as usize].map(|i| if i == v { *p } else { cx.nodes[i as usize] });
+        let x = placed(cx, cx.tets[t as usize], v, p);
         orient3d(&x[0], &x[1], &x[2], &x[3]) == Orientation::Positive
     })
 }
@@ -258,7 +264,7 @@ pub fn smooth_node(cx: &mut Complex, v: u32) -> Option<f64> {
         let mut dir = [0.0; 3];
         for &t in &cx.node_tets[v as usize] {
             let tv = cx.tets[t as usize];
-            let x = tv.map(|i| if i == v { cur } else { cx.nodes[i as usize] });
+            let x = placed(cx, tv, v, &cur);
             let q = shape(&x[0], &x[1], &x[2], &x[3]);
             if q <= best + NEAR_WORST {
                 let g = shape_gradient(cx, tv, v, &cur, scale, q);

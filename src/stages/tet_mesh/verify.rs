@@ -51,10 +51,13 @@ fn keyed(f: [u32; 3]) -> ([u32; 3], bool) {
 /// buckets by smallest node (a counting sort), then each short bucket sorted.
 fn sorted_faces(tets: &[[u32; 4]], n_nodes: usize) -> Vec<Face> {
     let mut start = vec![0u32; n_nodes + 1];
+    // A face's bucket is its smallest node: a tet's smallest node has three of its faces, the
+    // next one the fourth.
     for t in tets {
-        for f in outward_faces(*t) {
-            start[keyed(f).0[0] as usize + 1] += 1;
-        }
+        let mut s = *t;
+        s.sort_unstable();
+        start[s[0] as usize + 1] += 3;
+        start[s[1] as usize + 1] += 1;
     }
     for i in 0..n_nodes {
         start[i + 1] += start[i];
@@ -114,8 +117,6 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     if out.tets.is_empty() {
         return Err(TetMeshError::new(name, "the mesh has no tetrahedra", None));
     }
-    // Every tet's outward faces, sorted by their sorted nodes: a face's tets form a run, and the
-    // runs are read once alongside the sorted input triangles (a sort and a linear scan).
     for (ti, t) in out.tets.iter().enumerate() {
         if let Some(&v) = t.iter().find(|&&v| v as usize >= nodes.len()) {
             return Err(TetMeshError::new(
@@ -133,6 +134,8 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
             ));
         }
     }
+    // Every tet's outward faces, sorted by their sorted nodes: a face's tets form a run, and the
+    // runs are read once alongside the sorted input triangles (a bucket sort and a linear scan).
     let faces = sorted_faces(&out.tets, nodes.len());
     // The boundary and embedded triangles sorted the same way, walked alongside the faces.
     let sorted_input = |tris: &[[u32; 3]]| {

@@ -1,7 +1,8 @@
-//! Insertion order: points sorted along a Hilbert curve, so consecutive insertions are close and
-//! each walk is short; for the first triangulation, in rounds of growing size (a biased
-//! randomized insertion order whose "random" rounds come from a hash of the point's index, so the
-//! order, and the mesh, are the same on every run).
+//! Insertion order and memory layout: points sorted along a Hilbert curve, so consecutive
+//! insertions are close and each walk is short; for the first triangulation, in rounds of growing
+//! size (a biased randomized insertion order whose "random" rounds come from a hash of the point's
+//! index, so the order, and the mesh, are the same on every run); and the refined mesh laid out
+//! along the curve (`spatial_layout`).
 
 type P = [f64; 3];
 

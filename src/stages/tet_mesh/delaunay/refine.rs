@@ -3,7 +3,7 @@
 //! or, when the tet stands on a boundary face and its circumcenter lies beyond that face, the
 //! ideal apex over the face (the point an advancing front would place). The round's points are
 //! inserted in Hilbert order, except those whose tet an earlier insertion of the round destroyed:
-//! that point was nearly always refused as too close (six in seven at a million tets), after a
+//! that point was nearly always refused as too close (six in seven in a 640k-tet region), after a
 //! walk and a cavity; the new tets propose again in the next round if they are still too large.
 //! A point is kept only if no vertex of its cavity is closer than
 //! `MIN_SPACING` sizes and it stands at least `MIN_HEIGHT` sizes off every boundary face of its
