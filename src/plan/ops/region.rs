@@ -45,7 +45,9 @@ impl Operation for TetMeshOp {
         // 7: floating-point location walks; flips and contractions up to 0.8 in thin layers.
         // 8: refinement drops points whose tet is gone; tets and nodes laid out along a Hilbert
         //    curve (16 bits per axis) before optimization.
-        8
+        // 9: the optimizer flips before it relaxes (no relaxation or smoothing before the
+        //    rounds); refinement proposals made as tets are created; size cells by product.
+        9
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

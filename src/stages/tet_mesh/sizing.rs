@@ -20,6 +20,8 @@ const MAX_CELLS: usize = 2_000_000;
 pub struct Background {
     origin: P,
     cell: f64,
+    /// `1 / cell`: cells are found by a product, not a division (a third of every size query).
+    per_cell: f64,
     dims: [usize; 3],
     h: Vec<f64>,
 }
@@ -83,6 +85,7 @@ impl Background {
         let mut bg = Background {
             origin: lo,
             cell,
+            per_cell: 1.0 / cell,
             dims,
             h: vec![f64::INFINITY; n],
         };
@@ -152,12 +155,9 @@ impl Background {
     fn cell_of(&self, p: &P) -> [usize; 3] {
         let mut c = [0usize; 3];
         for k in 0..3 {
-            let v = ((p[k] - self.origin[k]) / self.cell).floor();
-            c[k] = if v.is_nan() || v < 0.0 {
-                0
-            } else {
-                (v as usize).min(self.dims[k] - 1)
-            };
+            // `as` truncates towards zero and sends negatives and NaN to 0: the floor, clamped.
+            let v = (p[k] - self.origin[k]) * self.per_cell;
+            c[k] = (v as usize).min(self.dims[k] - 1);
         }
         c
     }

@@ -22,7 +22,7 @@ impl Tri {
         let mut t = start;
         // The vertex of `t` whose opposite face leads to the next tet round the edge.
         let others = |t: u32| -> [u32; 2] {
-            let tv = self.tets[t as usize];
+            let tv = self.t[t as usize].v;
             let mut o = [NONE; 2];
             let mut k = 0;
             for &v in &tv {
@@ -35,14 +35,14 @@ impl Tri {
         };
         let [mut r, _] = others(t);
         loop {
-            let tv = self.tets[t as usize];
+            let tv = self.t[t as usize].v;
             let [x, y] = others(t);
             let s = if x == r { y } else { x };
             tets.push(t);
             ring.push(s);
             // Cross the face opposite `r` (it holds p, q and s).
             let i = tv.iter().position(|&v| v == r)?;
-            let a = self.adj[t as usize][i];
+            let a = self.t[t as usize].adj[i];
             if a == NONE || tets.len() > MAX_RING {
                 return None;
             }
@@ -60,13 +60,13 @@ impl Tri {
         let mut outer: Vec<([u32; 3], u32, bool)> = Vec::new();
         for &t in old {
             for i in 0..4 {
-                let a = self.adj[t as usize][i];
+                let a = self.t[t as usize].adj[i];
                 if a != NONE && old.contains(&(a >> 2)) {
                     continue;
                 }
                 let mut k = self.face(t, i);
                 k.sort_unstable();
-                outer.push((k, a, self.cons[t as usize] & (1 << i) != 0));
+                outer.push((k, a, self.t[t as usize].cons & (1 << i) != 0));
             }
         }
         for &t in old {
@@ -82,16 +82,16 @@ impl Tri {
                 let me = 4 * id + i as u32;
                 if let Some(&(_, a, con)) = outer.iter().find(|o| o.0 == k) {
                     if a != NONE {
-                        self.adj[id as usize][i] = a;
-                        self.adj[(a >> 2) as usize][(a & 3) as usize] = me;
+                        self.t[id as usize].adj[i] = a;
+                        self.t[(a >> 2) as usize].adj[(a & 3) as usize] = me;
                     }
                     if con {
-                        self.cons[id as usize] |= 1 << i;
+                        self.t[id as usize].cons |= 1 << i;
                     }
                 } else if let Some(pos) = inner.iter().position(|o| o.0 == k) {
                     let (_, o) = inner.swap_remove(pos);
-                    self.adj[id as usize][i] = o;
-                    self.adj[(o >> 2) as usize][(o & 3) as usize] = me;
+                    self.t[id as usize].adj[i] = o;
+                    self.t[(o >> 2) as usize].adj[(o & 3) as usize] = me;
                 } else {
                     inner.push((k, me));
                 }

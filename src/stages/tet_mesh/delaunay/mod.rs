@@ -46,7 +46,7 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
     nodes.drain(n..n + 4);
     let mut tets: Vec<[u32; 4]> = tri
         .live_tets()
-        .map(|t| tri.tets[t as usize].map(map))
+        .map(|t| tri.t[t as usize].v.map(map))
         .collect();
     drop(tri);
     order::spatial_layout(&mut nodes, &mut tets, n);

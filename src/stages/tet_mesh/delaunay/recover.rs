@@ -165,11 +165,11 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     }
 
     // Remove every tet that may meet a missing triangle.
-    let mut side = vec![Side::Unknown; tri.tets.len()];
+    let mut side = vec![Side::Unknown; tri.t.len()];
     if !missing.is_empty() {
         // Per missing triangle, every tet meeting it, reached through tets meeting it (whether
         // or not an earlier triangle already took them).
-        let mut seen = vec![u32::MAX; tri.tets.len()];
+        let mut seen = vec![u32::MAX; tri.t.len()];
         let mut stack = Vec::new();
         for (round, &k) in missing.iter().enumerate() {
             let round = round as u32;
@@ -190,7 +190,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
             }
             while let Some(t) = stack.pop() {
                 for i in 0..4 {
-                    let a = tri.adj[t as usize][i];
+                    let a = tri.t[t as usize].adj[i];
                     if a != NONE {
                         visit(a >> 2, &mut stack, &mut side);
                     }
@@ -213,7 +213,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         }
     }
     for t in tri.live_tets() {
-        if tri.tets[t as usize].iter().any(|&v| v >= n32) {
+        if tri.t[t as usize].v.iter().any(|&v| v >= n32) {
             seed(&mut side, t, Side::Out, &tri, name)?;
         }
     }
@@ -224,10 +224,10 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     while let Some(t) = stack.pop() {
         let s = side[t as usize];
         for i in 0..4 {
-            if tri.cons[t as usize] & (1 << i) != 0 {
+            if tri.t[t as usize].cons & (1 << i) != 0 {
                 continue;
             }
-            let a = tri.adj[t as usize][i];
+            let a = tri.t[t as usize].adj[i];
             if a == NONE {
                 continue;
             }
@@ -280,7 +280,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
             }
             for [u, v] in pinched {
                 for t in star(&tri, u, vtet[u as usize]) {
-                    if side[t as usize] == Side::In && tri.tets[t as usize].contains(&v) {
+                    if side[t as usize] == Side::In && tri.t[t as usize].v.contains(&v) {
                         side[t as usize] = Side::Hole;
                     }
                 }
@@ -306,7 +306,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
             continue;
         }
         for i in 0..4 {
-            let a = tri.adj[t as usize][i];
+            let a = tri.t[t as usize].adj[i];
             if a != NONE && side[(a >> 2) as usize] == Side::In {
                 surface.insert(sorted(tri.face(t, i)), a);
             }
@@ -336,7 +336,7 @@ fn seed(side: &mut [Side], t: u32, s: Side, tri: &Tri, name: &str) -> Result<(),
             return Err(TetMeshError::new(
                 name,
                 "a tet lies on both sides of the boundary",
-                Some(tri.pts[tri.tets[t as usize][0] as usize]),
+                Some(tri.pts[tri.t[t as usize].v[0] as usize]),
             ));
         }
         _ => {}
@@ -360,8 +360,8 @@ fn hole_surface(
             continue;
         }
         for i in 0..4 {
-            let a = tri.adj[t as usize][i];
-            if a == NONE || tri.cons[t as usize] & (1 << i) != 0 {
+            let a = tri.t[t as usize].adj[i];
+            if a == NONE || tri.t[t as usize].cons & (1 << i) != 0 {
                 continue;
             }
             if side[(a >> 2) as usize] == Side::In {
@@ -429,7 +429,7 @@ fn find_holders(tri: &Tri, cons_index: &FaceMap<usize>, n: usize) -> Vec<Holders
 fn vertex_tets(tri: &Tri) -> Vec<u32> {
     let mut vtet = vec![NONE; tri.pts.len()];
     for t in tri.live_tets() {
-        for &v in &tri.tets[t as usize] {
+        for &v in &tri.t[t as usize].v {
             vtet[v as usize] = t;
         }
     }
@@ -474,14 +474,14 @@ fn flip_diagonals(
                 // A tet holding the wrong diagonal wz, found round w.
                 let Some(start) = star(tri, w, vtet[w as usize])
                     .into_iter()
-                    .find(|&s| tri.tets[s as usize].contains(&z))
+                    .find(|&s| tri.t[s as usize].v.contains(&z))
                 else {
                     continue;
                 };
                 if let Some(new) = tri.flip44(w, z, start, u, v) {
                     flips += 1;
                     for &n in &new {
-                        for &x in &tri.tets[n as usize] {
+                        for &x in &tri.t[n as usize].v {
                             vtet[x as usize] = n;
                         }
                     }
@@ -499,11 +499,11 @@ fn star(tri: &Tri, v: u32, start: u32) -> Vec<u32> {
     while k < out.len() {
         let t = out[k];
         k += 1;
-        for (i, &w) in tri.tets[t as usize].iter().enumerate() {
+        for (i, &w) in tri.t[t as usize].v.iter().enumerate() {
             if w == v {
                 continue;
             }
-            let a = tri.adj[t as usize][i];
+            let a = tri.t[t as usize].adj[i];
             if a != NONE && !out.contains(&(a >> 2)) {
                 out.push(a >> 2);
             }
@@ -517,7 +517,7 @@ fn star(tri: &Tri, v: u32, start: u32) -> Vec<u32> {
 /// faces that triangulate the same piece of plane differently (coplanar boundary points, as on
 /// a box side), the tets on both sides of that plane are taken.
 fn meets(tri: &Tri, t: u32, f: [u32; 3]) -> bool {
-    let tv = tri.tets[t as usize];
+    let tv = tri.t[t as usize].v;
     let p = |v: u32| &tri.pts[v as usize];
     let o = |a: u32, b: u32, c: u32, d: u32| orient3d(p(a), p(b), p(c), p(d)).sign();
     // The triangle's plane: the tet strictly on one side.

@@ -8,8 +8,9 @@
 //! A point is kept only if no vertex of its cavity is closer than
 //! `MIN_SPACING` sizes and it stands at least `MIN_HEIGHT` sizes off every boundary face of its
 //! cavity, so the spacing follows the size field and no flat tet is made against the boundary.
-//! Only the tets a round created are examined in the next one. Deterministic: one thread, sorted
-//! work lists.
+//! Only the tets a round created are examined in the next one; they propose as they are created,
+//! while their corners are in cache, and proposals of tets destroyed since are dropped before the
+//! round's sort. Deterministic: one thread, sorted work lists.
 
 use crate::geom::predicates::{cross, dot, sub};
 
@@ -27,37 +28,33 @@ const MIN_HEIGHT: f64 = 0.35;
 /// Height of the ideal apex over a boundary face, in mean edge lengths (regular tet).
 const APEX_HEIGHT: f64 = 0.816;
 
+/// A proposed point, the slot of the tet that proposed it and that tet's [`fingerprint`].
+type Cand = (P, u32, u32);
+
 /// Refine in place.
 pub fn refine(tri: &mut Tri, bg: &Background) {
-    let mut work: Vec<u32> = tri.live_tets().collect();
-    tri.created.clear();
-    tri.record = true;
-    let mut cands: Vec<(P, u32, u32)> = Vec::new();
+    let mut cands: Vec<Cand> = Vec::new();
+    for t in 0..tri.t.len() as u32 {
+        if tri.alive(t) {
+            propose(tri, t, bg, &mut cands);
+        }
+    }
+    let mut next: Vec<Cand> = Vec::new();
     let mut ids: Vec<u32> = Vec::new();
     let mut cpts: Vec<P> = Vec::new();
-    while !work.is_empty() {
-        cands.clear();
-        for &t in &work {
-            if !tri.alive(t) {
-                continue;
-            }
-            if let Some(p) = proposal(tri, t, bg) {
-                cands.push((p, t, fingerprint(tri.tets[t as usize])));
-            }
-        }
-        if cands.is_empty() {
-            break;
-        }
+    tri.record = true;
+    while !cands.is_empty() {
+        cands.retain(|&(_, t, was)| tri.alive(t) && fingerprint(tri.t[t as usize].v) == was);
         cpts.clear();
         cpts.extend(cands.iter().map(|c| c.0));
         ids.clear();
         ids.extend(0..cands.len() as u32);
         hilbert_sort(&mut ids, &cpts);
-        tri.created.clear();
+        next.clear();
         let mut round = 0;
         for &k in &ids {
             let (p, from, was) = cands[k as usize];
-            if fingerprint(tri.tets[from as usize]) != was {
+            if !tri.alive(from) || fingerprint(tri.t[from as usize].v) != was {
                 continue;
             }
             let h = bg.size_at(&p);
@@ -65,18 +62,31 @@ pub fn refine(tri: &mut Tri, bg: &Background) {
                 min_dist: MIN_SPACING * h,
                 min_height: MIN_HEIGHT * h,
             };
+            tri.created.clear();
             if tri.insert(p, from, &lim).is_ok() {
                 round += 1;
+                // The new tets propose now, while their corners are in cache; a proposal whose
+                // tet an insertion destroys before the next round is dropped then.
+                for k in 0..tri.created.len() {
+                    let t = tri.created[k];
+                    propose(tri, t, bg, &mut next);
+                }
             }
         }
         if round == 0 {
             break;
         }
-        work = std::mem::take(&mut tri.created);
-        work.sort_unstable();
-        work.dedup();
+        std::mem::swap(&mut cands, &mut next);
     }
+    tri.created.clear();
     tri.record = false;
+}
+
+/// Push the point tet `t` proposes, if it proposes one.
+fn propose(tri: &Tri, t: u32, bg: &Background, out: &mut Vec<Cand>) {
+    if let Some(p) = proposal(tri, t, bg) {
+        out.push((p, t, fingerprint(tri.t[t as usize].v)));
+    }
 }
 
 /// A digest of a tet's vertices: when the slot of a proposing tet no longer holds the same tet,
@@ -88,7 +98,7 @@ fn fingerprint(tv: [u32; 4]) -> u32 {
 
 /// The point tet `t` proposes, if it is too large.
 fn proposal(tri: &Tri, t: u32, bg: &Background) -> Option<P> {
-    let tv = tri.tets[t as usize];
+    let tv = tri.t[t as usize].v;
     let [a, b, c, d] = tv.map(|v| tri.pts[v as usize]);
     let (cc, r) = circumcenter(&a, &b, &c, &d)?;
     let g = [0, 1, 2].map(|k| 0.25 * (a[k] + b[k] + c[k] + d[k]));
@@ -98,7 +108,8 @@ fn proposal(tri: &Tri, t: u32, bg: &Background) -> Option<P> {
     }
     // Against a boundary face the circumcenter may lie outside: take the ideal apex instead.
     for (i, f) in FACE.iter().enumerate() {
-        let on_boundary = tri.adj[t as usize][i] == NONE || tri.cons[t as usize] & (1 << i) != 0;
+        let on_boundary =
+            tri.t[t as usize].adj[i] == NONE || tri.t[t as usize].cons & (1 << i) != 0;
         if !on_boundary {
             continue;
         }

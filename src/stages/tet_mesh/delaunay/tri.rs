@@ -41,16 +41,35 @@ pub enum Reject {
     TooClose,
 }
 
+/// One tet slot. Everything a cavity's flood reads of a neighbour sits in one record (40
+/// bytes), so visiting a tet costs one cache miss instead of one per array: the flood was bound
+/// by those misses.
+#[derive(Clone, Copy)]
+pub struct Rec {
+    /// Vertices, positively oriented; `[NONE; 4]` for a free slot.
+    pub v: [u32; 4],
+    /// `adj[i] = 4 u + j`: face `i` of this tet is face `j` of `u`; `NONE` on the hull.
+    pub adj: [u32; 4],
+    /// The last flood's stamp (see [`Tri::next_stamp`]).
+    mark: u32,
+    /// Bit `i`: face `i` is a constraint (cavities never cross it).
+    pub cons: u8,
+}
+
+impl Rec {
+    const FREE: Rec = Rec {
+        v: [NONE; 4],
+        adj: [NONE; 4],
+        mark: 0,
+        cons: 0,
+    };
+}
+
 pub struct Tri {
     pub pts: Vec<P>,
-    /// Vertices of each tet, positively oriented; `[NONE; 4]` for a free slot.
-    pub tets: Vec<[u32; 4]>,
-    /// `adj[t][i] = 4 u + j`: face `i` of `t` is face `j` of `u`; `NONE` on the hull.
-    pub adj: Vec<[u32; 4]>,
-    /// Bit `i`: face `i` is a constraint (cavities never cross it).
-    pub cons: Vec<u8>,
+    /// The tet slots.
+    pub t: Vec<Rec>,
     free: Vec<u32>,
-    mark: Vec<u32>,
     stamp: u32,
     /// A live tet near the last insertion: where walks start by default.
     pub hint: u32,
@@ -73,11 +92,11 @@ impl Tri {
     pub fn new(pts: Vec<P>, super_tet: [u32; 4]) -> Self {
         Tri {
             pts,
-            tets: vec![super_tet],
-            adj: vec![[NONE; 4]],
-            cons: vec![0],
+            t: vec![Rec {
+                v: super_tet,
+                ..Rec::FREE
+            }],
             free: Vec::new(),
-            mark: vec![0],
             stamp: 0,
             hint: 0,
             walk_turn: 0,
@@ -94,21 +113,18 @@ impl Tri {
 
     /// Room for `n` more tets without reallocating.
     pub fn reserve(&mut self, n: usize) {
-        self.tets.reserve(n);
-        self.adj.reserve(n);
-        self.cons.reserve(n);
-        self.mark.reserve(n);
+        self.t.reserve(n);
     }
 
     #[inline]
     pub fn alive(&self, t: u32) -> bool {
-        self.tets[t as usize][0] != NONE
+        self.t[t as usize].v[0] != NONE
     }
 
     /// The outward face `i` of tet `t` as vertex ids.
     #[inline]
     pub fn face(&self, t: u32, i: usize) -> [u32; 3] {
-        let tv = self.tets[t as usize];
+        let tv = self.t[t as usize].v;
         let f = FACE[i];
         [tv[f[0]], tv[f[1]], tv[f[2]]]
     }
@@ -116,14 +132,14 @@ impl Tri {
     /// Remove tet `t`: its neighbours see the hull there.
     pub fn kill(&mut self, t: u32) {
         for i in 0..4 {
-            let n = self.adj[t as usize][i];
+            let n = self.t[t as usize].adj[i];
             if n != NONE {
-                self.adj[(n >> 2) as usize][(n & 3) as usize] = NONE;
+                self.t[(n >> 2) as usize].adj[(n & 3) as usize] = NONE;
             }
         }
-        self.tets[t as usize] = [NONE; 4];
-        self.adj[t as usize] = [NONE; 4];
-        self.cons[t as usize] = 0;
+        self.t[t as usize].v = [NONE; 4];
+        self.t[t as usize].adj = [NONE; 4];
+        self.t[t as usize].cons = 0;
         self.free.push(t);
     }
 
@@ -132,16 +148,14 @@ impl Tri {
         let id = match self.free.pop() {
             Some(id) => id,
             None => {
-                self.tets.push([NONE; 4]);
-                self.adj.push([NONE; 4]);
-                self.cons.push(0);
-                self.mark.push(0);
-                (self.tets.len() - 1) as u32
+                self.t.push(Rec::FREE);
+                (self.t.len() - 1) as u32
             }
         };
-        self.tets[id as usize] = tv;
-        self.adj[id as usize] = [NONE; 4];
-        self.cons[id as usize] = 0;
+        let r = &mut self.t[id as usize];
+        r.v = tv;
+        r.adj = [NONE; 4];
+        r.cons = 0;
         id
     }
 
@@ -161,14 +175,14 @@ impl Tri {
                 let mut key = self.face(id, i);
                 key.sort_unstable();
                 if constraints.contains(&key) {
-                    self.cons[id as usize] |= 1 << i;
+                    self.t[id as usize].cons |= 1 << i;
                 }
                 let me = 4 * id + i as u32;
                 let other = open.remove(&key).or_else(|| surface.get(&key).copied());
                 match other {
                     Some(o) => {
-                        self.adj[id as usize][i] = o;
-                        self.adj[(o >> 2) as usize][(o & 3) as usize] = me;
+                        self.t[id as usize].adj[i] = o;
+                        self.t[(o >> 2) as usize].adj[(o & 3) as usize] = me;
                     }
                     None => {
                         open.insert(key, me);
@@ -181,22 +195,22 @@ impl Tri {
 
     /// Mark face `i` of `t` (and its twin) as a constraint.
     pub fn constrain(&mut self, t: u32, i: usize) {
-        self.cons[t as usize] |= 1 << i;
-        let n = self.adj[t as usize][i];
+        self.t[t as usize].cons |= 1 << i;
+        let n = self.t[t as usize].adj[i];
         if n != NONE {
-            self.cons[(n >> 2) as usize] |= 1 << (n & 3);
+            self.t[(n >> 2) as usize].cons |= 1 << (n & 3);
         }
     }
 
     pub fn live_tets(&self) -> impl Iterator<Item = u32> + '_ {
-        (0..self.tets.len() as u32).filter(move |&t| self.alive(t))
+        (0..self.t.len() as u32).filter(move |&t| self.alive(t))
     }
 
     /// A fresh even stamp `s`: a flood marks the tets it takes `s` and those it refused `s + 1`.
     fn next_stamp(&mut self) -> u32 {
         self.stamp = self.stamp.wrapping_add(2);
         if self.stamp < 2 {
-            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.t.iter_mut().for_each(|r| r.mark = 0);
             self.stamp = 2;
         }
         self.stamp
@@ -213,7 +227,7 @@ impl Tri {
         };
         let mut came = 4;
         for _ in 0..FLOAT_WALK {
-            let tv = self.tets[t as usize];
+            let tv = self.t[t as usize].v;
             self.walk_turn = self.walk_turn.wrapping_add(1);
             let next = (0..4).map(|jj| (jj + self.walk_turn) & 3).find(|&i| {
                 let f = FACE[i];
@@ -226,16 +240,16 @@ impl Tri {
                     )
             });
             let Some(i) = next else { break };
-            let n = self.adj[t as usize][i];
+            let n = self.t[t as usize].adj[i];
             if n == NONE {
                 break;
             }
             t = n >> 2;
             came = (n & 3) as usize;
         }
-        let cap = 64 + 4 * self.tets.len();
+        let cap = 64 + 4 * self.t.len();
         for _ in 0..cap {
-            let tv = self.tets[t as usize];
+            let tv = self.t[t as usize].v;
             self.walk_turn = self.walk_turn.wrapping_add(1);
             let mut next = None;
             for jj in 0..4 {
@@ -254,7 +268,7 @@ impl Tri {
             match next {
                 None => return Ok(t),
                 Some(i) => {
-                    let n = self.adj[t as usize][i];
+                    let n = self.t[t as usize].adj[i];
                     if n == NONE {
                         return Err(Reject::Outside);
                     }
@@ -265,7 +279,7 @@ impl Tri {
         // A walk that cycles (possible once constraints break the Delaunay property): scan.
         self.live_tets()
             .find(|&t| {
-                let tv = self.tets[t as usize];
+                let tv = self.t[t as usize].v;
                 FACE.iter().all(|f| {
                     orient3d(
                         &self.pts[tv[f[0]] as usize],
@@ -279,7 +293,7 @@ impl Tri {
     }
 
     fn any_live(&self) -> Option<u32> {
-        if self.hint != NONE && (self.hint as usize) < self.tets.len() && self.alive(self.hint) {
+        if self.hint != NONE && (self.hint as usize) < self.t.len() && self.alive(self.hint) {
             return Some(self.hint);
         }
         self.live_tets().next()
@@ -305,7 +319,7 @@ impl Tri {
     /// Locate `p`, build and check its cavity (nothing changes yet).
     fn prepare(&mut self, p: &P, start: u32, lim: &Limits) -> Result<(), Reject> {
         let root = self.locate(p, start)?;
-        let rv = self.tets[root as usize];
+        let rv = self.t[root as usize].v;
         if rv.iter().any(|&v| self.pts[v as usize] == *p) {
             return Err(Reject::Duplicate);
         }
@@ -328,27 +342,27 @@ impl Tri {
         let s = self.next_stamp();
         self.cavity.clear();
         self.stack.clear();
-        self.mark[root as usize] = s;
+        self.t[root as usize].mark = s;
         self.cavity.push(root);
         self.stack.push(root);
         while let Some(t) = self.stack.pop() {
             for i in 0..4 {
-                let n = self.adj[t as usize][i];
-                if self.cons[t as usize] & (1 << i) != 0 || n == NONE {
+                let n = self.t[t as usize].adj[i];
+                if self.t[t as usize].cons & (1 << i) != 0 || n == NONE {
                     continue;
                 }
                 let u = n >> 2;
-                let m = self.mark[u as usize];
+                let m = self.t[u as usize].mark;
                 // A tet refused once is refused again (the test depends on it alone): not retried.
                 if m == s || m == s + 1 {
                     continue;
                 }
                 if take(self, u, m)? {
-                    self.mark[u as usize] = s;
+                    self.t[u as usize].mark = s;
                     self.cavity.push(u);
                     self.stack.push(u);
                 } else {
-                    self.mark[u as usize] = s + 1;
+                    self.t[u as usize].mark = s + 1;
                 }
             }
         }
@@ -359,7 +373,7 @@ impl Tri {
     /// constraint or the hull; `TooClose` as soon as one has a vertex nearer than `min_d2`.
     fn grow_cavity(&mut self, root: u32, p: &P, min_d2: f64) -> Result<(), Reject> {
         self.flood(root, |tri, u, _| {
-            let [a, b, c, d] = tri.tets[u as usize].map(|v| &tri.pts[v as usize]);
+            let [a, b, c, d] = tri.t[u as usize].v.map(|v| &tri.pts[v as usize]);
             if insphere(a, b, c, d, p) != Orientation::Positive {
                 return Ok(false);
             }
@@ -376,8 +390,8 @@ impl Tri {
         self.bnd.clear();
         for &t in &self.cavity {
             for i in 0..4 {
-                let n = self.adj[t as usize][i];
-                if n == NONE || self.mark[(n >> 2) as usize] != s {
+                let n = self.t[t as usize].adj[i];
+                if n == NONE || self.t[(n >> 2) as usize].mark != s {
                     self.bnd.push((t, i as u8));
                 }
             }
@@ -400,13 +414,13 @@ impl Tri {
             // face's edge): the side `p` cannot see leaves the cavity.
             let s = self.stamp;
             for &t in &self.cavity {
-                let c = self.cons[t as usize];
+                let c = self.t[t as usize].cons;
                 if c == 0 {
                     continue;
                 }
                 for i in 0..4 {
-                    let n = self.adj[t as usize][i];
-                    if c & (1 << i) == 0 || n == NONE || self.mark[(n >> 2) as usize] != s {
+                    let n = self.t[t as usize].adj[i];
+                    if c & (1 << i) == 0 || n == NONE || self.t[(n >> 2) as usize].mark != s {
                         continue;
                     }
                     let f = self.face(t, i);
@@ -426,7 +440,7 @@ impl Tri {
             }
             // Drop the offending tets, then keep what stays connected to the root.
             for &t in &bad {
-                self.mark[t as usize] = 0;
+                self.t[t as usize].mark = 0;
             }
             let kept = self.stamp;
             self.flood(root, |_, _, m| Ok(m == kept))?;
@@ -437,8 +451,8 @@ impl Tri {
     fn check_limits(&self, p: &P, lim: &Limits) -> Result<(), Reject> {
         if lim.min_height > 0.0 {
             for &(t, i) in &self.bnd {
-                let hull = self.adj[t as usize][i as usize] == NONE;
-                if !hull && self.cons[t as usize] & (1 << i) == 0 {
+                let hull = self.t[t as usize].adj[i as usize] == NONE;
+                if !hull && self.t[t as usize].cons & (1 << i) == 0 {
                     continue;
                 }
                 let f = self.face(t, i as usize);
@@ -458,25 +472,25 @@ impl Tri {
         recs.clear();
         for &(t, i) in &self.bnd {
             let f = self.face(t, i as usize);
-            let outer = self.adj[t as usize][i as usize];
-            let con = self.cons[t as usize] & (1 << i) != 0;
+            let outer = self.t[t as usize].adj[i as usize];
+            let con = self.t[t as usize].cons & (1 << i) != 0;
             recs.push(([f[0], f[2], f[1], v], outer, con));
         }
         for k in 0..self.cavity.len() {
             let t = self.cavity[k];
-            self.tets[t as usize] = [NONE; 4];
+            self.t[t as usize].v = [NONE; 4];
             self.free.push(t);
         }
         self.keys.clear();
         let mut last = self.hint;
         for &(tv, outer, con) in &recs {
             let id = self.alloc(tv);
-            self.adj[id as usize][3] = outer;
+            self.t[id as usize].adj[3] = outer;
             if con {
-                self.cons[id as usize] = 1 << 3;
+                self.t[id as usize].cons = 1 << 3;
             }
             if outer != NONE {
-                self.adj[(outer >> 2) as usize][(outer & 3) as usize] = 4 * id + 3;
+                self.t[(outer >> 2) as usize].adj[(outer & 3) as usize] = 4 * id + 3;
             }
             // Faces 0, 1, 2 contain `v` and the base edge without vertex 0, 1, 2 respectively.
             for k in 0..3usize {
@@ -513,8 +527,8 @@ impl Tri {
                     break;
                 }
                 if k == key {
-                    self.adj[(face >> 2) as usize][(face & 3) as usize] = other;
-                    self.adj[(other >> 2) as usize][(other & 3) as usize] = face;
+                    self.t[(face >> 2) as usize].adj[(face & 3) as usize] = other;
+                    self.t[(other >> 2) as usize].adj[(other & 3) as usize] = face;
                     break;
                 }
                 slot = (slot + 1) & mask;
