@@ -10,11 +10,16 @@
 //! exact positivity is the whole validity test.
 
 use std::collections::HashSet;
+use std::hash::BuildHasherDefault;
 
 use crate::geom::predicates::{Orientation, orient3d};
 
+use super::front::WordHasher;
 use super::quality::{shape, shape_and_mean_ratio};
 use super::verify::outward_faces;
+
+/// Sets of sorted node tuples, hashed word by word (the optimizer asks them at every flip).
+type WordSet<K> = HashSet<K, BuildHasherDefault<WordHasher>>;
 
 pub type P = [f64; 3];
 
@@ -33,8 +38,8 @@ pub struct Complex {
     /// moves or a neighbour of it moves: a tet's [`Complex::stamp_of`] changes whenever anything
     /// a local operation on it could depend on changes, so failed attempts are not repeated.
     stamp: Vec<u64>,
-    protected_faces: HashSet<[u32; 3]>,
-    protected_edges: HashSet<[u32; 2]>,
+    protected_faces: WordSet<[u32; 3]>,
+    protected_edges: WordSet<[u32; 2]>,
 }
 
 #[inline]
@@ -56,14 +61,26 @@ impl Complex {
         n_fixed: usize,
         protected: impl Iterator<Item = [u32; 3]>,
     ) -> Self {
-        let mut node_tets = vec![Vec::new(); nodes.len()];
+        // Each list sized to its node's degree (and a little room for flips) before it is
+        // filled, instead of growing by doubling.
+        let mut degree = vec![0u32; nodes.len()];
+        for t in &tets {
+            for &v in t {
+                degree[v as usize] += 1;
+            }
+        }
+        let mut node_tets: Vec<Vec<u32>> = degree
+            .iter()
+            .map(|&d| Vec::with_capacity(d as usize + 4))
+            .collect();
+        drop(degree);
         for (i, t) in tets.iter().enumerate() {
             for &v in t {
                 node_tets[v as usize].push(i as u32);
             }
         }
-        let mut protected_faces = HashSet::new();
-        let mut protected_edges = HashSet::new();
+        let mut protected_faces = WordSet::default();
+        let mut protected_edges = WordSet::default();
         for f in protected {
             protected_faces.insert(sorted3(f));
             for k in 0..3 {
