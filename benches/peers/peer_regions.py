@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Write each fault block of the L2/L3 peer model as a closed boundary (.off) plus its embedded
+"""Write each fault block of the L1/L2/L3 peer model as a closed boundary (.off) plus its embedded
 dangling-fault triangles (.embedded.off), from the surface meshes that bench_peers.py keeps in
 its work directory (_work/surf_<level>.npz: points P, per-region faces F_<region> and embedded
 faces E_<region>). The tet meshers then run on exactly the triangles Gmsh made.
@@ -26,7 +26,7 @@ def write_off(path, points, faces):
 def main():
     src, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
-    for level in ("L2", "L3"):
+    for level in ("L1", "L2", "L3"):
         path = os.path.join(src, "_work", "surf_%s.npz" % level)
         if not os.path.exists(path):
             print("no %s: skipped" % path)

@@ -46,7 +46,8 @@ impl Operation for TetMeshOp {
         // 8: refinement drops points whose tet is gone; tets and nodes laid out along a Hilbert
         //    curve (16 bits per axis) before optimization.
         // 9: the optimizer flips before it relaxes (no relaxation or smoothing before the
-        //    rounds); refinement proposals made as tets are created; size cells by product.
+        //    rounds) except in thin layers; layers without free nodes close with 3-2 and 4-4
+        //    flips for the average; refinement proposals made as tets are created.
         9
     }
     fn params(&self) -> Params {

@@ -140,8 +140,9 @@ impl Complex {
         shape(&a, &b, &c, &d)
     }
 
+    /// Shape and mean ratio of `t`.
     #[inline]
-    fn measures(&self, t: [u32; 4]) -> (f64, f64) {
+    pub fn measures(&self, t: [u32; 4]) -> (f64, f64) {
         let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
         shape_and_mean_ratio(&a, &b, &c, &d)
     }

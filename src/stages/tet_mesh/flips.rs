@@ -13,6 +13,8 @@ use super::complex::Complex;
 const GAIN: f64 = 1e-6;
 /// Rings larger than this are not tried (quality of such rings rarely improves by removal).
 const MAX_RING: usize = 8;
+/// For the average, only the 3-2 and 4-4 flips (the ring's triangulations are then 1 and 2).
+const MEAN_MAX_RING: usize = 4;
 
 /// Try to improve the tet in slot `t` by a flip of one of its faces or edges. Returns true when
 /// a flip was made (the slot may then hold another tet).
@@ -79,30 +81,77 @@ pub fn flip23(cx: &mut Complex, t: u32, f: [u32; 3]) -> bool {
 
 /// Remove the edge `ab` when the best triangulation of its ring beats the tets around it.
 pub fn remove_edge(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch) -> bool {
+    remove_edge_for(cx, a, b, s, Goal::Worst)
+}
+
+/// What the re-triangulation of an edge's ring must raise.
+#[derive(Clone, Copy)]
+enum Goal {
+    /// The worst shape of the tets (max-min).
+    Worst,
+    /// `Σ (mean ratio − level)` over the tets (so the region's average, `level`, rises when the
+    /// sum does), with no new tet's shape below both the worst of the old ones and `floor`.
+    Mean { level: f64, floor: f64 },
+}
+
+/// [`remove_edge`] for `goal`: Klincsek's dynamic programming over the ring polygon, with the
+/// triangles' values combined by `min` (worst) or `+` (mean).
+fn remove_edge_for(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch, goal: Goal) -> bool {
     if cx.edge_protected(a, b) {
         return false;
     }
-    if !cx.edge_ring(a, b, &mut s.ring, &mut s.ring_tets) {
+    let max_ring = match goal {
+        Goal::Worst => MAX_RING,
+        Goal::Mean { .. } => MEAN_MAX_RING,
+    };
+    // The ring's size first, without building it: most edges' rings are too large for the mean.
+    let around = cx.node_tets[a as usize]
+        .iter()
+        .filter(|&&t| cx.tets[t as usize].contains(&b))
+        .count();
+    if around > max_ring || !cx.edge_ring(a, b, &mut s.ring, &mut s.ring_tets) {
         return false;
     }
     let n = s.ring.len();
-    if n > MAX_RING {
-        return false;
-    }
-    let old = s
+    let worst = s
         .ring_tets
         .iter()
         .map(|&t| cx.shape[t as usize])
         .fold(f64::INFINITY, f64::min);
-    // best[i*n+j]: best worst-quality of a triangulation of the sub-polygon r_i..r_j.
+    let (old, identity) = match goal {
+        Goal::Worst => (worst, f64::INFINITY),
+        Goal::Mean { level, .. } => (
+            s.ring_tets
+                .iter()
+                .map(|&t| cx.mean_ratio[t as usize] - level)
+                .sum(),
+            0.0,
+        ),
+    };
+    let combine = |x: f64, y: f64| match goal {
+        Goal::Worst => x.min(y),
+        Goal::Mean { .. } => x + y,
+    };
+    // best[i*n+j]: the best value of a triangulation of the sub-polygon r_i..r_j.
     s.best.clear();
-    s.best.resize(n * n, f64::INFINITY);
+    s.best.resize(n * n, identity);
     s.split.clear();
     s.split.resize(n * n, usize::MAX);
     let ring = &s.ring;
     let tri_q = |i: usize, k: usize, j: usize| -> f64 {
         let (ri, rk, rj) = (ring[i], ring[k], ring[j]);
-        cx.quality([ri, rk, rj, b]).min(cx.quality([ri, rj, rk, a]))
+        let (x, y) = ([ri, rk, rj, b], [ri, rj, rk, a]);
+        match goal {
+            Goal::Worst => cx.quality(x).min(cx.quality(y)),
+            Goal::Mean { level, floor } => {
+                let ((qx, mx), (qy, my)) = (cx.measures(x), cx.measures(y));
+                if qx.min(qy) < worst.min(floor) {
+                    f64::NEG_INFINITY
+                } else {
+                    mx + my - 2.0 * level
+                }
+            }
+        }
     };
     for len in 2..n {
         for i in 0..n - len {
@@ -110,7 +159,10 @@ pub fn remove_edge(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch) -> bool {
             let mut bq = f64::NEG_INFINITY;
             let mut bk = usize::MAX;
             for k in i + 1..j {
-                let q = s.best[i * n + k].min(s.best[k * n + j]).min(tri_q(i, k, j));
+                let q = combine(
+                    combine(s.best[i * n + k], s.best[k * n + j]),
+                    tri_q(i, k, j),
+                );
                 if q > bq {
                     bq = q;
                     bk = k;
@@ -157,6 +209,29 @@ pub fn remove_edge(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch) -> bool {
     true
 }
 
+/// One pass, in slot order over the tets below the region's average mean ratio (`level`, held
+/// fixed through the pass), of 3-2 and 4-4 flips of their edges that raise that average, with
+/// new tets above `floor` or the worst they replace. In a layer whose nodes are all on its
+/// boundary the connectivity is the only freedom left, and max-min flips stop where the worst
+/// tet can rise no more. Each flip raises `Σ mean ratio − level · count` by at least `GAIN`, so
+/// passes end. Returns the number made.
+pub fn mean_flip_pass(cx: &mut Complex, level: f64, floor: f64, s: &mut Scratch) -> usize {
+    let mut made = 0;
+    for t in 0..cx.tets.len() as u32 {
+        if !cx.alive[t as usize] || cx.mean_ratio[t as usize] >= level {
+            continue;
+        }
+        let tv = cx.tets[t as usize];
+        for e in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            if remove_edge_for(cx, tv[e.0], tv[e.1], s, Goal::Mean { level, floor }) {
+                made += 1;
+                break;
+            }
+        }
+    }
+    made
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,6 +273,41 @@ mod tests {
         let mut cx = Complex::new(nodes, tets, 0, [[0, 1, 2]].into_iter());
         assert!(!flip23(&mut cx, 0, [0, 1, 2]));
         assert!(!improve_tet(&mut cx, 0, &mut Scratch::default()));
+    }
+
+    /// Three fair tets around an edge whose 3-2 flip gives two flatter tets worth less in total: a flip
+    /// for the average takes it only where one tet fewer is worth that (the region's average
+    /// above the loss), and never when a new tet falls below both the old worst and the floor.
+    #[test]
+    fn a_flip_for_the_average_is_made_only_when_it_raises_the_average_above_the_floor() {
+        let nodes = vec![
+            [0.5, 0.3, 0.2],
+            [0.5, 0.3, -0.2],
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 0.9, 0.0],
+        ];
+        let tets = vec![[1, 0, 2, 3], [1, 0, 3, 4], [1, 0, 4, 2]];
+        let build = || Complex::new(nodes.clone(), tets.clone(), 0, std::iter::empty());
+        let cx = build();
+        let three: f64 = (0..3).map(|t| cx.mean_ratio[t]).sum();
+        let worst_three = (0..3).map(|t| cx.shape[t]).fold(f64::INFINITY, f64::min);
+        let (q1, m1) = cx.measures([2, 3, 4, 0]);
+        let (q2, m2) = cx.measures([2, 4, 3, 1]);
+        let loss = three - (m1 + m2);
+        assert!(loss > 0.3 && loss < 0.9, "{loss}");
+        assert!(q1.min(q2) < worst_three, "{q1} {q2} {worst_three}");
+        let mut s = Scratch::default();
+        // Worth one tet at the level 0.95: made, two tets left.
+        let mut cx = build();
+        assert_eq!(mean_flip_pass(&mut cx, 0.95, 0.0, &mut s), 1);
+        assert_eq!(cx.into_parts().1.len(), 2);
+        // Not at the level 0.25 (below the loss) ...
+        let mut cx = build();
+        assert_eq!(mean_flip_pass(&mut cx, 0.25, 0.0, &mut s), 0);
+        // ... nor under a floor above the new worst.
+        let mut cx = build();
+        assert_eq!(mean_flip_pass(&mut cx, 0.95, q1.min(q2) + 0.01, &mut s), 0);
     }
 
     /// Three tets around an edge that passes close to a ring edge (so one of them is flat): the

@@ -24,7 +24,7 @@ mod collapse;
 use std::collections::BTreeMap;
 
 use super::complex::Complex;
-use super::flips::{Scratch, improve_tet};
+use super::flips::{Scratch, improve_tet, mean_flip_pass};
 use super::slivers::insert_node_for;
 use super::smooth::{relax_node, smooth_node};
 use collapse::collapse_for;
@@ -49,6 +49,13 @@ const INSERT_BELOW: f64 = 0.35;
 const SMOOTH_BELOW: f64 = 0.3;
 /// Laplacian relaxation may lower a ball's worst quality for a better mean while it stays above.
 const RELAX_KEEP: f64 = 0.5;
+/// A layer whose free nodes are fewer than this share of its nodes is made by its boundary
+/// alone: only the connectivity can still raise its average, and its optimization closes with
+/// passes of 3-2 and 4-4 flips for the average (`flips::mean_flip_pass`; new tets stay above
+/// `RELAX_KEEP` or the worst they replace). On the peer model's L1 reservoir (no free node) the
+/// average rose from 0.6677 to 0.6684 in one pass; the second found a handful more.
+const MEAN_FLIP_FREE_SHARE: f64 = 0.01;
+const MEAN_FLIP_PASSES: usize = 1;
 /// Laplacian relaxation passes after the rounds.
 const RELAX_PASSES: usize = 1;
 
@@ -103,6 +110,14 @@ pub fn optimize(
     relax_pass(&mut cx);
     smooth_pass(&mut cx, SMOOTH_BELOW, &mut memo);
     flip_pass(&mut cx, &mut scratch, &mut memo, flip_below);
+    if free < MEAN_FLIP_FREE_SHARE * cx.nodes.len() as f64 {
+        let level = average_mean_ratio(&cx);
+        for _ in 0..MEAN_FLIP_PASSES {
+            if mean_flip_pass(&mut cx, level, RELAX_KEEP, &mut scratch) == 0 {
+                break;
+            }
+        }
+    }
     cx.into_parts()
 }
 
@@ -151,6 +166,16 @@ fn flip_pass(cx: &mut Complex, scratch: &mut Scratch, memo: &mut Memo, below: f6
         }
     }
     flipped
+}
+
+/// The average mean ratio of the live tets.
+fn average_mean_ratio(cx: &Complex) -> f64 {
+    let (mut n, mut sum) = (0usize, 0.0);
+    for (m, _) in cx.mean_ratio.iter().zip(&cx.alive).filter(|(_, a)| **a) {
+        n += 1;
+        sum += m;
+    }
+    if n == 0 { 0.0 } else { sum / n as f64 }
 }
 
 /// Live tets below `below`, worst first (ties by slot).
