@@ -47,7 +47,8 @@ impl Operation for TetMeshOp {
         //    curve (16 bits per axis) before optimization.
         // 9: the optimizer flips before it relaxes (no relaxation or smoothing before the
         //    rounds) except in thin layers; layers without free nodes close with 3-2 and 4-4
-        //    flips for the average; refinement proposals made as tets are created.
+        //    flips for the average; a bad tet's edges removed longest first; refinement
+        //    proposals made as tets are created.
         9
     }
     fn params(&self) -> Params {
