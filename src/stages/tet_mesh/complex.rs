@@ -15,7 +15,7 @@ use std::hash::BuildHasherDefault;
 use crate::geom::predicates::{Orientation, orient3d};
 
 use super::front::WordHasher;
-use super::quality::{shape, shape_and_mean_ratio};
+use super::quality::{shape, shape_above, shape_and_mean_ratio};
 use super::verify::outward_faces;
 
 /// Sets of sorted node tuples, hashed word by word (the optimizer asks them at every flip).
@@ -138,6 +138,14 @@ impl Complex {
     pub fn quality(&self, t: [u32; 4]) -> f64 {
         let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
         shape(&a, &b, &c, &d)
+    }
+
+    /// [`Complex::quality`] when the mean ratio of `t` exceeds `floor`, else `-∞`
+    /// (`quality::shape_above`).
+    #[inline]
+    pub fn quality_above(&self, t: [u32; 4], floor: f64) -> f64 {
+        let [a, b, c, d] = t.map(|i| self.nodes[i as usize]);
+        shape_above(&a, &b, &c, &d, floor)
     }
 
     /// Shape and mean ratio of `t`.

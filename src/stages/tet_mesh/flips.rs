@@ -151,7 +151,13 @@ fn remove_edge_for(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch, goal: Goal
         let (ri, rk, rj) = (ring[i], ring[k], ring[j]);
         let (x, y) = ([ri, rk, rj, b], [ri, rj, rk, a]);
         match goal {
-            Goal::Worst => cx.quality(x).min(cx.quality(y)),
+            // A triangle whose tets are not above the old worst cannot be in a triangulation
+            // that beats it: it is valued -∞ without its sines (same result, the thin layers'
+            // flips were most of their time).
+            Goal::Worst => match cx.quality_above(x, old + GAIN) {
+                f64::NEG_INFINITY => f64::NEG_INFINITY,
+                qx => qx.min(cx.quality_above(y, old + GAIN)),
+            },
             Goal::Mean { level, floor } => {
                 let ((qx, mx), (qy, my)) = (cx.measures(x), cx.measures(y));
                 if qx.min(qy) < worst.min(floor) {

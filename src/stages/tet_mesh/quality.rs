@@ -110,9 +110,20 @@ const SINE_NEVER_BINDS_CUBED: f64 = 0.343;
 /// tet is "good" only when both of Table 2's measures are (1 ≈ regular; ≤ 0 flat or inverted).
 #[inline]
 pub fn shape(a: &P, b: &P, c: &P, d: &P) -> f64 {
+    shape_above(a, b, c, d, f64::NEG_INFINITY)
+}
+
+/// [`shape`] when the mean ratio exceeds `floor`; otherwise `-∞` without computing the sines
+/// or any root (the shape is at most the mean ratio, so it is at most `floor` too). For searches
+/// that only need the tets better than a bar.
+#[inline]
+pub fn shape_above(a: &P, b: &P, c: &P, d: &P, floor: f64) -> f64 {
     // The mean ratio's cube decides which measure binds, so the root is taken only when the
     // mean ratio is the result (same value as `mean_ratio(..).min(..)`, to a few ulps).
     let q3 = mean_ratio_cubed(a, b, c, d);
+    if q3 <= floor * floor * floor {
+        return f64::NEG_INFINITY;
+    }
     if q3 <= 0.0 {
         return if q3 < 0.0 { -cbrt(-q3) } else { 0.0 };
     }
@@ -194,6 +205,32 @@ mod tests {
         let q = mean_ratio(&a, &b, &c, &d).abs();
         assert!((q - 1.0).abs() < 1e-12, "{q}");
         assert!((min_dihedral_deg(&a, &b, &c, &d) - 70.528779).abs() < 1e-4);
+    }
+
+    #[test]
+    fn the_shape_above_a_floor_is_the_shape_or_minus_infinity_when_the_mean_ratio_is_below() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut r = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..20_000 {
+            let p: [P; 4] = std::array::from_fn(|_| [r(), r(), r() * 0.3]);
+            let floor = r() - 0.1;
+            let (sh, mr) = (
+                shape(&p[0], &p[1], &p[2], &p[3]),
+                mean_ratio(&p[0], &p[1], &p[2], &p[3]),
+            );
+            let got = shape_above(&p[0], &p[1], &p[2], &p[3], floor);
+            if mr > floor * (1.0 + 1e-12) + 1e-12 {
+                assert_eq!(got, sh, "{p:?} floor {floor}");
+            } else if got != sh {
+                assert_eq!(got, f64::NEG_INFINITY);
+                assert!(sh <= floor + 1e-12, "{sh} > {floor}");
+            }
+        }
     }
 
     #[test]
