@@ -149,20 +149,8 @@ pub fn tri_tri_improper(t: [u32; 3], u: [u32; 3], pts: &[P]) -> bool {
         &pts[t[1] as usize],
         &pts[t[2] as usize],
     ];
-    let ou = [0, 1, 2].map(|i| on_plane_of(t, tp, u[i], pts));
+    let ou = [0, 1, 2].map(|i| orient3d(tp[0], tp[1], tp[2], &pts[u[i] as usize]));
     tri_tri_improper_with(t, u, ou, pts)
-}
-
-/// `orient3d(p0, p1, p2, v)` for the triangle `t` with corners `p`: zero without arithmetic when
-/// `v` is a corner of `t`. Neighbouring triangles share corners, and the exact predicate proves
-/// such a zero only at its slowest stage (most of the input check's time on flat surfaces).
-#[inline]
-fn on_plane_of(t: [u32; 3], p: [&P; 3], v: u32, pts: &[P]) -> Orientation {
-    if t.contains(&v) {
-        Orientation::Zero
-    } else {
-        orient3d(p[0], p[1], p[2], &pts[v as usize])
-    }
 }
 
 /// `tri_tri_improper` when the caller already knows `ou`, the exact orientations
@@ -182,7 +170,7 @@ pub fn tri_tri_improper_with(t: [u32; 3], u: [u32; 3], ou: [Orientation; 3], pts
     if separated(&ou, &u, &shared_of) {
         return false;
     }
-    let ot = [0, 1, 2].map(|i| on_plane_of(u, up, t[i], pts));
+    let ot = [0, 1, 2].map(|i| orient3d(up[0], up[1], up[2], &pts[t[i] as usize]));
     if separated(&ot, &t, &shared_of) {
         return false;
     }

@@ -26,13 +26,14 @@ pub fn improve_tet(cx: &mut Complex, t: u32, scratch: &mut Scratch) -> bool {
     // Longest edges first: a sliver's two long opposite edges are the ones whose removal frees
     // it, so fewer ring triangulations are computed in vain (a 6 % faster 640k-tet region, and
     // a slightly better one). The sort is stable: ties keep the fixed order.
-    let mut edges = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
-    let len2 = |e: &(usize, usize)| {
+    let edges = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+    let len2 = edges.map(|e| {
         let (p, q) = (cx.nodes[tv[e.0] as usize], cx.nodes[tv[e.1] as usize]);
         (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()
-    };
-    edges.sort_by(|x, y| len2(y).total_cmp(&len2(x)));
-    for e in edges {
+    });
+    let mut order = [0, 1, 2, 3, 4, 5];
+    order.sort_by(|&x, &y| len2[y].total_cmp(&len2[x]));
+    for e in order.map(|k| edges[k]) {
         if remove_edge(cx, tv[e.0], tv[e.1], scratch) {
             return true;
         }
@@ -109,19 +110,20 @@ fn remove_edge_for(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch, goal: Goal
     if cx.edge_protected(a, b) {
         return false;
     }
-    let max_ring = match goal {
-        Goal::Worst => MAX_RING,
-        Goal::Mean { .. } => MEAN_MAX_RING,
-    };
-    // The ring's size first, without building it: most edges' rings are too large for the mean.
-    let around = cx.node_tets[a as usize]
-        .iter()
-        .filter(|&&t| cx.tets[t as usize].contains(&b))
-        .count();
-    if around > max_ring || !cx.edge_ring(a, b, &mut s.ring, &mut s.ring_tets) {
+    // For the mean, the ring's size first, without building it: most rings are too large.
+    let too_large = matches!(goal, Goal::Mean { .. })
+        && cx.node_tets[a as usize]
+            .iter()
+            .filter(|&&t| cx.tets[t as usize].contains(&b))
+            .count()
+            > MEAN_MAX_RING;
+    if too_large || !cx.edge_ring(a, b, &mut s.ring, &mut s.ring_tets) {
         return false;
     }
     let n = s.ring.len();
+    if n > MAX_RING {
+        return false;
+    }
     let worst = s
         .ring_tets
         .iter()

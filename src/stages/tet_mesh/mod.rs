@@ -27,8 +27,8 @@
 //! never a result.
 //!
 //! Submodules: `exact` (intersection predicates, with exact shortcuts for repeated and
-//! axis-coplanar points), `quality` (measures), `check` (input validation, with `box_pairs` its broad phase), `delaunay` (kernel,
-//! insertion order, recovery, refinement), `front` (front faces, their spatial grid, and grids of
+//! axis-coplanar points), `quality` (measures), `check` (input validation, with `box_pairs` its
+//! broad phase), `delaunay` (kernel, insertion order, recovery, refinement), `front` (front faces, their spatial grid, and grids of
 //! front nodes and of all nodes), `advance` (the front loop and back-tracking), `sides` (exact
 //! sides of nearby front nodes against a candidate's planes), `optimize` (the optimization
 //! driver) with `complex`, `smooth`, `flips` and `slivers`, `verify` (exact output check).

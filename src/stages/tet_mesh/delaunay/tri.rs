@@ -363,9 +363,9 @@ impl Tri {
                     }
                 }
             }
-            for i in 0..4 {
-                let n = self.t[t as usize].adj[i];
-                if self.t[t as usize].cons & (1 << i) != 0 || n == NONE {
+            let cons = self.t[t as usize].cons;
+            for (i, &n) in adj.iter().enumerate() {
+                if cons & (1 << i) != 0 || n == NONE {
                     continue;
                 }
                 let u = n >> 2;
