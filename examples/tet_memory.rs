@@ -87,7 +87,7 @@ fn main() {
     let tets = out.tets.len();
     let extra = peak.saturating_sub(before) * 1024;
     println!(
-        "{boundary}: {tets} tets in {secs:.2} s ({:.0} tets/s, {method:?}{}), peak {} MB over {} MB before: {:.0} B/tet{}; MR avg {:.4} min {:.3}, min dihedral {:.1}",
+        "{boundary}: {tets} tets in {secs:.3} s ({:.0} tets/s, {method:?}{}), peak {} MB over {} MB before: {:.0} B/tet{}; MR avg {:.4} min {:.3}, min dihedral {:.1}",
         tets as f64 / secs,
         out.stats
             .fallback

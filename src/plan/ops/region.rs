@@ -49,7 +49,8 @@ impl Operation for TetMeshOp {
         //    rounds) except in thin layers; layers without free nodes close with 3-2 and 4-4
         //    flips for the average; a bad tet's edges removed longest first; refinement
         //    proposals made as tets are created.
-        9
+        // 10: cavities grow breadth first (their tets, hence slots, come in another order).
+        10
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

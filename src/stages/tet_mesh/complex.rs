@@ -21,6 +21,9 @@ use super::verify::outward_faces;
 /// Sets of sorted node tuples, hashed word by word (the optimizer asks them at every flip).
 type WordSet<K> = HashSet<K, BuildHasherDefault<WordHasher>>;
 
+/// The most tets [`Complex::edge_ring`] gathers round one edge.
+pub const RING_CAP: usize = 16;
+
 pub type P = [f64; 3];
 
 pub struct Complex {
@@ -268,11 +271,13 @@ impl Complex {
 
     /// Tets around the edge `ab` as a closed ring `r_0..r_{n-1}` such that every
     /// `[a, b, r_i, r_{i+1}]` is a (positive) tet of the complex. None when the ring is open (a
-    /// boundary edge) or not a single cycle.
+    /// boundary edge), not a single cycle, or of more than [`RING_CAP`] tets (no caller takes
+    /// rings that large: the pairs are gathered on the stack, with no allocation per edge).
     pub fn edge_ring(&self, a: u32, b: u32, ring: &mut Vec<u32>, ring_tets: &mut Vec<u32>) -> bool {
         ring.clear();
         ring_tets.clear();
-        let mut pairs: Vec<(u32, u32, u32)> = Vec::new();
+        let mut buf = [(0u32, 0u32, 0u32); RING_CAP];
+        let mut n = 0;
         for &t in &self.node_tets[a as usize] {
             let tv = self.tets[t as usize];
             if !tv.contains(&b) {
@@ -281,9 +286,13 @@ impl Complex {
             let Some((c, d)) = ordered_rest(tv, a, b) else {
                 return false;
             };
-            pairs.push((c, d, t));
+            if n == RING_CAP {
+                return false;
+            }
+            buf[n] = (c, d, t);
+            n += 1;
         }
-        let n = pairs.len();
+        let pairs = &buf[..n];
         if n < 3 {
             return false;
         }

@@ -74,9 +74,10 @@ pub fn flip23(cx: &mut Complex, t: u32, f: [u32; 3]) -> bool {
     let old = cx.shape[t as usize].min(cx.shape[u as usize]);
     let [a, b, c] = f;
     let new = [[e, d, a, b], [e, d, b, c], [e, d, c, a]];
+    // Below the old worst a new tet is -∞ without its sines: the flip fails either way.
     let q = new
         .iter()
-        .map(|&n| cx.quality(n))
+        .map(|&n| cx.quality_above(n, old + GAIN))
         .fold(f64::INFINITY, f64::min);
     if q <= old + GAIN || !new.iter().all(|&n| cx.positive(n)) {
         return false;
@@ -176,10 +177,18 @@ fn remove_edge_for(cx: &mut Complex, a: u32, b: u32, s: &mut Scratch, goal: Goal
             let mut bq = f64::NEG_INFINITY;
             let mut bk = usize::MAX;
             for k in i + 1..j {
-                let q = combine(
-                    combine(s.best[i * n + k], s.best[k * n + j]),
-                    tri_q(i, k, j),
-                );
+                // The sides' value bounds the whole (`min`, or `+` with a -∞): a split that
+                // cannot beat the best so far is not valued (nearly all, in a ring that fails).
+                let sides = combine(s.best[i * n + k], s.best[k * n + j]);
+                let bound = match goal {
+                    Goal::Worst => sides,
+                    Goal::Mean { .. } if sides == f64::NEG_INFINITY => sides,
+                    Goal::Mean { .. } => f64::INFINITY,
+                };
+                if bound <= bq {
+                    continue;
+                }
+                let q = combine(sides, tri_q(i, k, j));
                 if q > bq {
                     bq = q;
                     bk = k;

@@ -21,10 +21,12 @@
 
 mod collapse;
 
-use std::collections::BTreeMap;
+use std::collections::HashMap;
+use std::hash::BuildHasherDefault;
 
 use super::complex::Complex;
 use super::flips::{Scratch, improve_tet, mean_flip_pass};
+use super::front::WordHasher;
 use super::slivers::insert_node_for;
 use super::smooth::{relax_node, smooth_node};
 use collapse::collapse_for;
@@ -118,13 +120,16 @@ pub fn optimize(
 
 /// What was tried and failed, keyed by the sorted tet (or node) with the stamp it had then: an
 /// attempt is repeated only once something near it changed, so every pass works on a short list.
-/// Ordered maps, looked up only: no iteration order reaches the result.
+/// Hash maps with a fixed hasher, looked up only, never iterated: no order reaches the result
+/// (ordered maps were a third of a thin layer's flip passes, which look up every tet).
 #[derive(Default)]
 struct Memo {
-    flips: BTreeMap<[u32; 4], u64>,
-    inserts: BTreeMap<[u32; 4], u64>,
-    smooth: BTreeMap<u32, u64>,
+    flips: WordMap<[u32; 4], u64>,
+    inserts: WordMap<[u32; 4], u64>,
+    smooth: WordMap<u32, u64>,
 }
+
+type WordMap<K, V> = HashMap<K, V, BuildHasherDefault<WordHasher>>;
 
 impl Memo {
     fn flip_failed(&self, cx: &Complex, t: [u32; 4]) -> bool {

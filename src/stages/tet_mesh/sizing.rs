@@ -109,43 +109,56 @@ impl Background {
     }
 
     fn propagate(&mut self, rate: f64, goal: f64) {
-        let mut heap: BinaryHeap<Reverse<(u64, usize)>> = BinaryHeap::new();
-        for (i, &h) in self.h.iter().enumerate() {
-            if h.is_finite() {
-                heap.push(Reverse((h.to_bits(), i)));
+        // Heapified at once; the pop order is that of the unique keys (size, cell), however
+        // the heap was built.
+        let mut heap: BinaryHeap<Reverse<(u64, usize)>> = self
+            .h
+            .iter()
+            .enumerate()
+            .filter(|(_, h)| h.is_finite())
+            .map(|(i, h)| Reverse((h.to_bits(), i)))
+            .collect::<Vec<_>>()
+            .into();
+        let [nx, ny, nz] = self.dims;
+        // The 26 neighbours: offsets per axis and the growth over each step.
+        let mut steps: Vec<([i64; 3], f64)> = Vec::with_capacity(26);
+        for dx in -1i64..=1 {
+            for dy in -1i64..=1 {
+                for dz in -1i64..=1 {
+                    if (dx, dy, dz) != (0, 0, 0) {
+                        let d = ((dx * dx + dy * dy + dz * dz) as f64).sqrt() * self.cell;
+                        steps.push(([dx, dy, dz], rate * d));
+                    }
+                }
             }
         }
-        let [nx, ny, nz] = self.dims;
+        let (sy, sz) = (nx as i64, (nx * ny) as i64);
         while let Some(Reverse((hb, i))) = heap.pop() {
             let h = f64::from_bits(hb);
             if h > self.h[i] {
                 continue;
             }
             let (x, y, z) = (i % nx, (i / nx) % ny, i / (nx * ny));
-            for dx in -1i64..=1 {
-                for dy in -1i64..=1 {
-                    for dz in -1i64..=1 {
-                        if dx == 0 && dy == 0 && dz == 0 {
-                            continue;
-                        }
-                        let (xx, yy, zz) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
-                        if xx < 0
-                            || yy < 0
-                            || zz < 0
-                            || xx >= nx as i64
-                            || yy >= ny as i64
-                            || zz >= nz as i64
-                        {
-                            continue;
-                        }
-                        let j = xx as usize + nx * (yy as usize + ny * zz as usize);
-                        let d = ((dx * dx + dy * dy + dz * dz) as f64).sqrt() * self.cell;
-                        let nh = (h + rate * d).min(goal.max(h));
-                        if nh < self.h[j] {
-                            self.h[j] = nh;
-                            heap.push(Reverse((nh.to_bits(), j)));
-                        }
+            let inner = x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz;
+            let cap = goal.max(h);
+            for &([dx, dy, dz], grow) in &steps {
+                if !inner {
+                    let (xx, yy, zz) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
+                    if xx < 0
+                        || yy < 0
+                        || zz < 0
+                        || xx >= nx as i64
+                        || yy >= ny as i64
+                        || zz >= nz as i64
+                    {
+                        continue;
                     }
+                }
+                let j = (i as i64 + dx + sy * dy + sz * dz) as usize;
+                let nh = (h + grow).min(cap);
+                if nh < self.h[j] {
+                    self.h[j] = nh;
+                    heap.push(Reverse((nh.to_bits(), j)));
                 }
             }
         }

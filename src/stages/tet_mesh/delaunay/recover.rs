@@ -144,11 +144,11 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     for (k, (t, _)) in all.iter().enumerate() {
         cons_index.insert(sorted(*t), k);
     }
-    let mut holders = find_holders(&tri, &cons_index, all.len());
+    let mut holders = find_holders(&tri, &cons_index, all.len(), n);
     let mut missing: Vec<usize> = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
     let mut vtet = vertex_tets(&tri);
     if !missing.is_empty() && flip_diagonals(&mut tri, &all, &missing, &mut vtet) > 0 {
-        holders = find_holders(&tri, &cons_index, all.len());
+        holders = find_holders(&tri, &cons_index, all.len(), n);
         missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
     }
     if missing.len() > MAX_MISSING && missing.len() * MAX_MISSING_SHARE > all.len() {
@@ -413,12 +413,28 @@ fn pinched_edges(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
 }
 
 /// Per constraint (index into the list `cons_index` maps to): the (tet, face) pairs holding it.
-fn find_holders(tri: &Tri, cons_index: &FaceMap<usize>, n: usize) -> Vec<Holders> {
+///
+/// Each face is looked up once, from its tet of smaller slot, which notes both sides (in slot
+/// order, as a scan of every tet's faces would); faces on an enclosing corner (ids from
+/// `n_input` on) are no constraint and are not looked up.
+fn find_holders(tri: &Tri, cons_index: &FaceMap<usize>, n: usize, n_input: usize) -> Vec<Holders> {
     let mut holders = vec![Holders([NONE; 2]); n];
     for t in tri.live_tets() {
+        let rec = &tri.t[t as usize];
         for i in 0..4 {
-            if let Some(&k) = cons_index.get(&sorted(tri.face(t, i))) {
+            let other = rec.adj[i];
+            if other != NONE && other >> 2 < t {
+                continue;
+            }
+            let f = tri.face(t, i);
+            if f.iter().any(|&v| v as usize >= n_input) {
+                continue;
+            }
+            if let Some(&k) = cons_index.get(&sorted(f)) {
                 holders[k].push(t, i);
+                if other != NONE {
+                    holders[k].push(other >> 2, (other & 3) as usize);
+                }
             }
         }
     }

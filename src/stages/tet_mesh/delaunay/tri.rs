@@ -75,7 +75,8 @@ pub struct Tri {
     pub hint: u32,
     walk_turn: usize,
     cavity: Vec<u32>,
-    stack: Vec<u32>,
+    /// A flood level's neighbours, as `4 u + j`.
+    across: Vec<u32>,
     bnd: Vec<(u32, u8)>,
     keys: Vec<(u64, u32)>,
     /// Scratch hash table pairing `keys`.
@@ -101,7 +102,7 @@ impl Tri {
             hint: 0,
             walk_turn: 0,
             cavity: Vec::new(),
-            stack: Vec::new(),
+            across: Vec::new(),
             bnd: Vec::new(),
             keys: Vec::new(),
             table: Vec::new(),
@@ -334,6 +335,12 @@ impl Tri {
 
     /// A new cavity grown from `root` across faces that are neither constraints nor hull, taking
     /// each neighbour `u` that `take(self, u, mark_of_u)` accepts (asked once per tet and flood).
+    ///
+    /// The cavity grows level by level (breadth first): all the records of a level's neighbours
+    /// are requested, then the point each of them adds to the face it shares (its apex), then
+    /// they are tested. A cavity of 20-30 tets is three or four levels deep, so its cache misses
+    /// come in a few batches that overlap, instead of two waits (record, then apex) per tet: the
+    /// floods were bound by those waits.
     fn flood(
         &mut self,
         root: u32,
@@ -341,34 +348,30 @@ impl Tri {
     ) -> Result<(), Reject> {
         let s = self.next_stamp();
         self.cavity.clear();
-        self.stack.clear();
         self.t[root as usize].mark = s;
         self.cavity.push(root);
-        self.stack.push(root);
-        while let Some(t) = self.stack.pop() {
-            // The four neighbours' records, then their corners, are requested before any is
-            // tested: their cache misses overlap instead of following one another.
-            let adj = self.t[t as usize].adj;
-            for n in adj {
-                if n != NONE {
-                    prefetch(&self.t[(n >> 2) as usize]);
-                }
-            }
-            for n in adj {
-                if n != NONE {
-                    for v in self.t[(n >> 2) as usize].v {
-                        if let Some(p) = self.pts.get(v as usize) {
-                            prefetch(p);
-                        }
+        let mut level = 0;
+        while level < self.cavity.len() {
+            let end = self.cavity.len();
+            // The neighbours across the level's open faces, as `4 u + j` (face j of u).
+            self.across.clear();
+            for k in level..end {
+                let r = &self.t[self.cavity[k] as usize];
+                for (i, &n) in r.adj.iter().enumerate() {
+                    if r.cons & (1 << i) == 0 && n != NONE {
+                        prefetch(&self.t[(n >> 2) as usize]);
+                        self.across.push(n);
                     }
                 }
             }
-            let cons = self.t[t as usize].cons;
-            for (i, &n) in adj.iter().enumerate() {
-                if cons & (1 << i) != 0 || n == NONE {
-                    continue;
+            for &n in &self.across {
+                let apex = self.t[(n >> 2) as usize].v[(n & 3) as usize];
+                if let Some(p) = self.pts.get(apex as usize) {
+                    prefetch(p);
                 }
-                let u = n >> 2;
+            }
+            for k in 0..self.across.len() {
+                let u = self.across[k] >> 2;
                 let m = self.t[u as usize].mark;
                 // A tet refused once is refused again (the test depends on it alone): not retried.
                 if m == s || m == s + 1 {
@@ -377,11 +380,11 @@ impl Tri {
                 if take(self, u, m)? {
                     self.t[u as usize].mark = s;
                     self.cavity.push(u);
-                    self.stack.push(u);
                 } else {
                     self.t[u as usize].mark = s + 1;
                 }
             }
+            level = end;
         }
         Ok(())
     }
