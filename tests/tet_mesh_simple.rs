@@ -369,3 +369,40 @@ fn verify_rejects_an_inverted_tet() {
     let e = verify(&input, &out).unwrap_err();
     assert!(e.to_string().contains("inverted"), "{e}");
 }
+
+#[test]
+fn verify_rejects_a_tet_listed_twice_as_an_overlap() {
+    let input = region("cube", &[[0, 0, 0]], 2, 1.0, [0.0; 3]);
+    let mut out = mesh(&input);
+    // The copy of a tet far from the first node's bucket, so the overlap is found mid-scan.
+    let t = out.tets[out.tets.len() / 2];
+    out.tets.push(t);
+    let e = verify(&input, &out).unwrap_err();
+    assert!(
+        e.to_string().contains("overlap") || e.to_string().contains("boundary triangle"),
+        "{e}"
+    );
+}
+
+#[test]
+fn verify_reports_where_a_removed_boundary_tet_leaves_a_hole() {
+    let input = region("cube", &[[0, 0, 0]], 1, 1.0, [0.0; 3]);
+    let mut out = mesh(&input);
+    // Drop a tet holding a boundary face: its inner faces open onto nothing and its boundary
+    // triangle is covered by no tet; whichever comes first in the scan is reported, with a place.
+    let i = out
+        .tets
+        .iter()
+        .position(|t| {
+            input
+                .boundary
+                .iter()
+                .any(|b| b.iter().all(|v| t.contains(v)))
+        })
+        .expect("a tet on the boundary");
+    out.tets.remove(i);
+    let e = verify(&input, &out).unwrap_err();
+    let m = e.to_string();
+    assert!(m.contains("boundary triangle") || m.contains("hole"), "{e}");
+    assert!(e.at.is_some(), "{e}");
+}

@@ -47,44 +47,57 @@ fn keyed(f: [u32; 3]) -> ([u32; 3], bool) {
     }
 }
 
-/// The outward faces of every tet, sorted (by their sorted nodes, orientation, tet): placed in
-/// buckets by smallest node (a counting sort), then each short bucket sorted.
-fn sorted_faces(tets: &[[u32; 4]], n_nodes: usize) -> Vec<Face> {
-    let mut start = vec![0u32; n_nodes + 1];
-    // A face's bucket is its smallest node: a tet's smallest node has three of its faces, the
-    // next one the fourth.
-    for t in tets {
+/// Every tet's outward faces in sorted order (by their sorted nodes, orientation, tet), one run of
+/// equal nodes at a time, to `visit`; the first error stops the scan. A face's bucket is its
+/// smallest node: each tet is listed in the buckets of its two smallest nodes (three faces have
+/// the smallest, the fourth the next one), and the faces are made and sorted one bucket at a
+/// time. That is 8 bytes per tet at once instead of a sorted list of all faces (80): the list
+/// was the peak of small regions.
+fn for_each_face_run<E>(
+    tets: &[[u32; 4]],
+    n_nodes: usize,
+    mut visit: impl FnMut(&[Face]) -> Result<(), E>,
+) -> Result<(), E> {
+    let two_smallest = |t: &[u32; 4]| {
         let mut s = *t;
         s.sort_unstable();
-        start[s[0] as usize + 1] += 3;
-        start[s[1] as usize + 1] += 1;
+        [s[0] as usize, s[1] as usize]
+    };
+    let mut start = vec![0u32; n_nodes + 1];
+    for t in tets {
+        for v in two_smallest(t) {
+            start[v + 1] += 1;
+        }
     }
     for i in 0..n_nodes {
         start[i + 1] += start[i];
     }
-    let blank = Face {
-        key: [0; 3],
-        odd: false,
-        tet: 0,
-    };
-    let mut faces = vec![blank; tets.len() * 4];
+    let mut members = vec![0u32; start[n_nodes] as usize];
     let mut next = start.clone();
     for (ti, t) in tets.iter().enumerate() {
-        for f in outward_faces(*t) {
-            let (key, odd) = keyed(f);
-            let slot = &mut next[key[0] as usize];
-            faces[*slot as usize] = Face {
-                key,
-                odd,
-                tet: ti as u32,
-            };
-            *slot += 1;
+        for v in two_smallest(t) {
+            members[next[v] as usize] = ti as u32;
+            next[v] += 1;
         }
     }
-    for w in start.windows(2) {
-        faces[w[0] as usize..w[1] as usize].sort_unstable();
+    drop(next);
+    let mut bucket: Vec<Face> = Vec::new();
+    for (v, w) in start.windows(2).enumerate() {
+        bucket.clear();
+        for &ti in &members[w[0] as usize..w[1] as usize] {
+            for f in outward_faces(tets[ti as usize]) {
+                let (key, odd) = keyed(f);
+                if key[0] as usize == v {
+                    bucket.push(Face { key, odd, tet: ti });
+                }
+            }
+        }
+        bucket.sort_unstable();
+        for run in bucket.chunk_by(|a, b| a.key == b.key) {
+            visit(run)?;
+        }
     }
-    faces
+    Ok(())
 }
 
 /// Every tet positive (exact), each boundary triangle the outward face of exactly one tet and of
@@ -135,8 +148,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
         }
     }
     // Every tet's outward faces, sorted by their sorted nodes: a face's tets form a run, and the
-    // runs are read once alongside the sorted input triangles (a bucket sort and a linear scan).
-    let faces = sorted_faces(&out.tets, nodes.len());
+    // runs are read once alongside the sorted input triangles (bucket by bucket, a linear scan).
     // The boundary and embedded triangles sorted the same way, walked alongside the faces.
     let sorted_input = |tris: &[[u32; 3]]| {
         let mut v: Vec<([u32; 3], usize)> = tris
@@ -170,7 +182,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
         )
     };
     let (mut ib, mut ie) = (0, 0);
-    for run in faces.chunk_by(|a, b| a.key == b.key) {
+    for_each_face_run(&out.tets, nodes.len(), |run| {
         let f = run[0];
         if ib < bnd.len() && bnd[ib].0 < f.key {
             return Err(boundary_error(bnd[ib].1, 0, 0));
@@ -191,7 +203,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
                 return Err(boundary_error(i, got, rev));
             }
             ib += 1;
-            continue;
+            return Ok(());
         }
         if ie < emb.len() && emb[ie].0 == f.key {
             let i = emb[ie].1;
@@ -200,7 +212,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
                 return Err(embedded_error(i, got, rev));
             }
             ie += 1;
-            continue;
+            return Ok(());
         }
         // Every other face: exactly one tet on each side. (`of`: the face as its tet orients it,
         // for the messages.)
@@ -234,7 +246,8 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
                 Some(nodes[of[0] as usize]),
             ));
         }
-    }
+        Ok(())
+    })?;
     if ib < bnd.len() {
         return Err(boundary_error(bnd[ib].1, 0, 0));
     }
