@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use georecipe::stages::tet_mesh::{
-    RegionInput, SizeField, TetMeshOptions, TetMeshOutput, check_input, mesh_region, verify,
+    Method, RegionInput, SizeField, TetMeshOptions, TetMeshOutput, check_input, mesh_region, verify,
 };
 
 /// Boundary of a set of unit voxels, each voxel face split into `n`×`n` quads of two triangles,
@@ -314,6 +314,59 @@ fn two_overlapping_shells_are_rejected_naming_both_triangles() {
     let msg = e.to_string();
     assert!(msg.contains("self-intersection"), "{msg}");
     assert_eq!(msg.matches("triangle").count(), 2, "{msg}");
+}
+
+#[test]
+fn both_methods_reject_overlapping_shells_as_a_self_intersection_naming_both_triangles() {
+    // The Delaunay path tests intersections only when a triangle is not one of its faces: here
+    // the shells cross, so some are not, and the full test must run and name the pair.
+    let (mut b, mut tris) = voxels(&[[0, 0, 0]], 1, 1.0, [0.0; 3]);
+    let (b2, tris2) = voxels(&[[0, 0, 0]], 1, 1.0, [0.5, 0.25, 0.25]);
+    let base = b.verts.len() as u32;
+    b.verts.extend(b2.verts);
+    tris.extend(tris2.iter().map(|t| t.map(|v| v + base)));
+    let input = RegionInput {
+        name: "overlap".into(),
+        vertices: b.verts,
+        boundary: tris,
+        embedded: vec![],
+    };
+    for method in [Method::Delaunay, Method::Front] {
+        let opts = TetMeshOptions {
+            method,
+            ..TetMeshOptions::default()
+        };
+        let e = mesh_region(&input, &SizeField::default(), &opts).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains("self-intersection"), "{method:?}: {msg}");
+        assert_eq!(msg.matches("triangle").count(), 2, "{method:?}: {msg}");
+        assert!(e.at.is_some(), "{method:?}: {msg}");
+    }
+}
+
+#[test]
+fn two_shells_touching_at_a_point_through_distinct_vertices_are_a_self_intersection() {
+    // Closed and outward, but two vertices share the coordinates (1, 1, 1): no Delaunay
+    // tetrahedralization takes both, and the full check names the triangles that touch there.
+    let (mut b, mut tris) = voxels(&[[0, 0, 0]], 1, 1.0, [0.0; 3]);
+    let (b2, tris2) = voxels(&[[0, 0, 0]], 1, 1.0, [1.0, 1.0, 1.0]);
+    let base = b.verts.len() as u32;
+    b.verts.extend(b2.verts);
+    tris.extend(tris2.iter().map(|t| t.map(|v| v + base)));
+    let input = RegionInput {
+        name: "touch".into(),
+        vertices: b.verts,
+        boundary: tris,
+        embedded: vec![],
+    };
+    let e = mesh_region(&input, &SizeField::default(), &TetMeshOptions::default()).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains("self-intersection"), "{msg}");
+    assert_eq!(
+        e.at.map(|p| p.iter().all(|c| (0.0..=2.0).contains(c))),
+        Some(true),
+        "{msg}"
+    );
 }
 
 #[test]

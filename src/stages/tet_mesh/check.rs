@@ -1,7 +1,9 @@
 //! Input validation for one region, before any tetrahedron is built: the mesher relies on a
 //! closed, consistently and outward oriented, non-self-intersecting boundary, so each violation
 //! is reported with the triangle(s) or edge and coordinates instead of surfacing later as a stuck
-//! front. Intersections are decided with the exact tests of `exact`.
+//! front. Intersections are decided with the exact tests of `exact`. The Delaunay path runs the
+//! pairwise intersection test only when some triangle is not a face of the boundary's Delaunay
+//! tetrahedralization (`check_shape`): on the peer model it was a fifth of a thin layer's time.
 
 use super::box_pairs::for_each_overlapping_pair;
 use super::exact::{tri_tri_improper, triangle_is_degenerate};
@@ -13,6 +15,15 @@ type P = [f64; 3];
 /// (consistent, enclosing a positive volume), non-degenerate triangles, and that no two triangles
 /// (boundary or embedded) intersect other than in shared vertices/edges (exact).
 pub fn check_input(input: &RegionInput) -> Result<(), TetMeshError> {
+    check_shape(input)?;
+    check_intersections(input)
+}
+
+/// [`check_input`] without the intersection test: what the Delaunay path checks first. It needs
+/// the intersection test only when a triangle is not a face of the boundary's Delaunay
+/// tetrahedralization: the faces of a valid tetrahedralization meet only in shared vertices and
+/// edges, so triangles that are all faces cannot cross, touch improperly or overlap.
+pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
     let name = &input.name;
     let err = |m: String, at: Option<P>| Err(TetMeshError::new(name, m, at));
     let n = input.vertices.len();
@@ -78,6 +89,25 @@ pub fn check_input(input: &RegionInput) -> Result<(), TetMeshError> {
             None,
         );
     }
+    Ok(())
+}
+
+/// No two triangles (boundary or embedded) meet other than in shared vertices and edges.
+pub(crate) fn check_intersections(input: &RegionInput) -> Result<(), TetMeshError> {
+    let all: Vec<[u32; 3]> = input
+        .boundary
+        .iter()
+        .chain(&input.embedded)
+        .copied()
+        .collect();
+    let nb = input.boundary.len();
+    let named = |k: usize| {
+        if k < nb {
+            ("boundary", k)
+        } else {
+            ("embedded", k - nb)
+        }
+    };
     check_self_intersection(input, &all, named)
 }
 

@@ -206,12 +206,17 @@ pub fn mesh_region(
     size: &SizeField,
     opts: &TetMeshOptions,
 ) -> Result<TetMeshOutput, TetMeshError> {
-    check_input(input)?;
     let mut fallback = None;
     let (mut mesh, figures) = match opts.method {
-        Method::Delaunay => match delaunay::mesh(input, size) {
+        Method::Delaunay => match check::check_shape(input)
+            .and_then(|()| delaunay::mesh(input, size))
+        {
             Ok(done) => done,
             Err(why) => {
+                // The Delaunay path tests intersections only where a triangle is not one of its
+                // faces: a shape error, or an input it could not take, is checked in full (and
+                // the front, which relies on it, gets a checked input).
+                check_input(input)?;
                 // The front meshes the region; if it fails too, its error says why both did.
                 let m = advance::advance_front(input, size).map_err(|mut e| {
                     e.message = format!("{} (after Delaunay gave way: {})", e.message, why.message);
@@ -221,7 +226,10 @@ pub fn mesh_region(
                 (m, delaunay::Figures::default())
             }
         },
-        Method::Front => (advance::advance_front(input, size)?, Default::default()),
+        Method::Front => {
+            check_input(input)?;
+            (advance::advance_front(input, size)?, Default::default())
+        }
     };
     if opts.optimize {
         let protected = input.boundary.iter().chain(&input.embedded).copied();

@@ -14,7 +14,7 @@ use std::collections::{HashMap, HashSet};
 use crate::geom::predicates::Orientation;
 
 use super::super::advance::advance_front;
-use super::super::check::check_input;
+use super::super::check::{check_input, check_intersections};
 use super::super::exact::orient3d;
 use super::super::front::FaceMap;
 use super::super::{RegionInput, SizeField, TetMeshError};
@@ -150,6 +150,12 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     if !missing.is_empty() && flip_diagonals(&mut tri, &all, &missing, &mut vtet) > 0 {
         holders = find_holders(&tri, &cons_index, all.len(), n);
         missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
+    }
+    // Triangles that are all faces of the tetrahedralization cannot meet improperly (see
+    // `check::check_shape`); otherwise the input is checked in full before any recovery, so an
+    // intersection is reported as such.
+    if !missing.is_empty() {
+        check_intersections(input)?;
     }
     if missing.len() > MAX_MISSING && missing.len() * MAX_MISSING_SHARE > all.len() {
         let at = tri.pts[all[missing[0]].0[0] as usize];
