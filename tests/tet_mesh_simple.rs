@@ -297,19 +297,25 @@ fn a_boundary_with_a_missing_triangle_is_rejected_naming_the_open_edge() {
     assert!(e.at.is_some());
 }
 
-#[test]
-fn two_overlapping_shells_are_rejected_naming_both_triangles() {
+/// Two unit cube shells, the second moved by `offset`, as one region (distinct vertices even
+/// where they coincide).
+fn two_unit_cubes(name: &str, offset: [f64; 3]) -> RegionInput {
     let (mut b, mut tris) = voxels(&[[0, 0, 0]], 1, 1.0, [0.0; 3]);
-    let (b2, tris2) = voxels(&[[0, 0, 0]], 1, 1.0, [0.5, 0.25, 0.25]);
+    let (b2, tris2) = voxels(&[[0, 0, 0]], 1, 1.0, offset);
     let base = b.verts.len() as u32;
     b.verts.extend(b2.verts);
     tris.extend(tris2.iter().map(|t| t.map(|v| v + base)));
-    let input = RegionInput {
-        name: "overlap".into(),
+    RegionInput {
+        name: name.into(),
         vertices: b.verts,
         boundary: tris,
         embedded: vec![],
-    };
+    }
+}
+
+#[test]
+fn two_overlapping_shells_are_rejected_naming_both_triangles() {
+    let input = two_unit_cubes("overlap", [0.5, 0.25, 0.25]);
     let e = check_input(&input).unwrap_err();
     let msg = e.to_string();
     assert!(msg.contains("self-intersection"), "{msg}");
@@ -320,17 +326,7 @@ fn two_overlapping_shells_are_rejected_naming_both_triangles() {
 fn both_methods_reject_overlapping_shells_as_a_self_intersection_naming_both_triangles() {
     // The Delaunay path tests intersections only when a triangle is not one of its faces: here
     // the shells cross, so some are not, and the full test must run and name the pair.
-    let (mut b, mut tris) = voxels(&[[0, 0, 0]], 1, 1.0, [0.0; 3]);
-    let (b2, tris2) = voxels(&[[0, 0, 0]], 1, 1.0, [0.5, 0.25, 0.25]);
-    let base = b.verts.len() as u32;
-    b.verts.extend(b2.verts);
-    tris.extend(tris2.iter().map(|t| t.map(|v| v + base)));
-    let input = RegionInput {
-        name: "overlap".into(),
-        vertices: b.verts,
-        boundary: tris,
-        embedded: vec![],
-    };
+    let input = two_unit_cubes("overlap", [0.5, 0.25, 0.25]);
     for method in [Method::Delaunay, Method::Front] {
         let opts = TetMeshOptions {
             method,
@@ -348,17 +344,7 @@ fn both_methods_reject_overlapping_shells_as_a_self_intersection_naming_both_tri
 fn two_shells_touching_at_a_point_through_distinct_vertices_are_a_self_intersection() {
     // Closed and outward, but two vertices share the coordinates (1, 1, 1): no Delaunay
     // tetrahedralization takes both, and the full check names the triangles that touch there.
-    let (mut b, mut tris) = voxels(&[[0, 0, 0]], 1, 1.0, [0.0; 3]);
-    let (b2, tris2) = voxels(&[[0, 0, 0]], 1, 1.0, [1.0, 1.0, 1.0]);
-    let base = b.verts.len() as u32;
-    b.verts.extend(b2.verts);
-    tris.extend(tris2.iter().map(|t| t.map(|v| v + base)));
-    let input = RegionInput {
-        name: "touch".into(),
-        vertices: b.verts,
-        boundary: tris,
-        embedded: vec![],
-    };
+    let input = two_unit_cubes("touch", [1.0, 1.0, 1.0]);
     let e = mesh_region(&input, &SizeField::default(), &TetMeshOptions::default()).unwrap_err();
     let msg = e.to_string();
     assert!(msg.contains("self-intersection"), "{msg}");

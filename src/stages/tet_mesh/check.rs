@@ -41,20 +41,7 @@ pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
     if input.boundary.is_empty() {
         return err("the boundary has no triangles".into(), None);
     }
-    let all: Vec<[u32; 3]> = input
-        .boundary
-        .iter()
-        .chain(&input.embedded)
-        .copied()
-        .collect();
-    let nb = input.boundary.len();
-    let named = |k: usize| {
-        if k < nb {
-            ("boundary", k)
-        } else {
-            ("embedded", k - nb)
-        }
-    };
+    let (all, named) = all_triangles(input);
     for (k, &t) in all.iter().enumerate() {
         let (kind, i) = named(k);
         if let Some(&v) = t.iter().find(|&&v| v as usize >= n) {
@@ -94,21 +81,33 @@ pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
 
 /// No two triangles (boundary or embedded) meet other than in shared vertices and edges.
 pub(crate) fn check_intersections(input: &RegionInput) -> Result<(), TetMeshError> {
-    let all: Vec<[u32; 3]> = input
+    let (all, named) = all_triangles(input);
+    check_self_intersection(input, &all, named)
+}
+
+/// The boundary triangles then the embedded ones, and the kind and index of the `k`-th of them
+/// (for messages).
+fn all_triangles(
+    input: &RegionInput,
+) -> (
+    Vec<[u32; 3]>,
+    impl Fn(usize) -> (&'static str, usize) + use<>,
+) {
+    let all = input
         .boundary
         .iter()
         .chain(&input.embedded)
         .copied()
         .collect();
     let nb = input.boundary.len();
-    let named = |k: usize| {
+    let named = move |k: usize| {
         if k < nb {
             ("boundary", k)
         } else {
             ("embedded", k - nb)
         }
     };
-    check_self_intersection(input, &all, named)
+    (all, named)
 }
 
 /// Every boundary triangle once, and every directed edge matched by exactly one opposite edge.
