@@ -356,6 +356,28 @@ fn two_shells_touching_at_a_point_through_distinct_vertices_are_a_self_intersect
 }
 
 #[test]
+fn an_embedded_triangle_through_the_boundary_is_a_self_intersection_for_both_methods() {
+    // One corner outside the unit cube: the triangle crosses the side x = 1, so it cannot be a
+    // face of the boundary's tetrahedralization and the Delaunay path must run the full check.
+    let mut input = region("poke", &[[0, 0, 0]], 2, 1.0, [0.0; 3]);
+    let base = input.vertices.len() as u32;
+    input
+        .vertices
+        .extend([[0.4, 0.4, 0.4], [1.3, 0.45, 0.5], [0.45, 0.6, 0.55]]);
+    input.embedded.push([base, base + 1, base + 2]);
+    for method in [Method::Delaunay, Method::Front] {
+        let opts = TetMeshOptions {
+            method,
+            ..TetMeshOptions::default()
+        };
+        let e = mesh_region(&input, &SizeField::default(), &opts).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains("self-intersection"), "{method:?}: {msg}");
+        assert!(msg.contains("embedded triangle 0"), "{method:?}: {msg}");
+    }
+}
+
+#[test]
 fn an_inward_oriented_boundary_is_rejected() {
     let mut input = region("inverted", &[[0, 0, 0]], 1, 1.0, [0.0; 3]);
     for t in &mut input.boundary {
