@@ -199,8 +199,9 @@ impl fmt::Display for TetMeshError {
 
 impl std::error::Error for TetMeshError {}
 
-/// Mesh one region: check the input, advance the front, optimize, compute statistics and verify
-/// exactly. Never returns a mesh that fails `verify`.
+/// Mesh one region: check the input, mesh it (Delaunay with local recovery, the front as its
+/// fallback, or the front alone), optimize, compute statistics and verify exactly. Never returns a
+/// mesh that fails `verify`.
 pub fn mesh_region(
     input: &RegionInput,
     size: &SizeField,
