@@ -5,7 +5,8 @@
 use std::collections::BTreeMap;
 
 use georecipe::stages::tet_mesh::{
-    Method, RegionInput, SizeField, TetMeshOptions, TetMeshOutput, check_input, mesh_region, verify,
+    Method, RegionInput, SizeField, TetMeshError, TetMeshOptions, TetMeshOutput, check_input,
+    mesh_region, verify,
 };
 
 /// Boundary of a set of unit voxels, each voxel face split into `n`×`n` quads of two triangles,
@@ -297,6 +298,18 @@ fn a_boundary_with_a_missing_triangle_is_rejected_naming_the_open_edge() {
     assert!(e.at.is_some());
 }
 
+/// The error each method gives on `input` (which must fail).
+fn errors_of_both_methods(input: &RegionInput) -> [(Method, TetMeshError); 2] {
+    [Method::Delaunay, Method::Front].map(|method| {
+        let opts = TetMeshOptions {
+            method,
+            ..TetMeshOptions::default()
+        };
+        let e = mesh_region(input, &SizeField::default(), &opts);
+        (method, e.expect_err("the input is invalid"))
+    })
+}
+
 /// Two unit cube shells, the second moved by `offset`, as one region (distinct vertices even
 /// where they coincide).
 fn two_unit_cubes(name: &str, offset: [f64; 3]) -> RegionInput {
@@ -327,12 +340,7 @@ fn both_methods_reject_overlapping_shells_as_a_self_intersection_naming_both_tri
     // The Delaunay path tests intersections only when a triangle is not one of its faces: here
     // the shells cross, so some are not, and the full test must run and name the pair.
     let input = two_unit_cubes("overlap", [0.5, 0.25, 0.25]);
-    for method in [Method::Delaunay, Method::Front] {
-        let opts = TetMeshOptions {
-            method,
-            ..TetMeshOptions::default()
-        };
-        let e = mesh_region(&input, &SizeField::default(), &opts).unwrap_err();
+    for (method, e) in errors_of_both_methods(&input) {
         let msg = e.to_string();
         assert!(msg.contains("self-intersection"), "{method:?}: {msg}");
         assert_eq!(msg.matches("triangle").count(), 2, "{method:?}: {msg}");
@@ -365,12 +373,7 @@ fn an_embedded_triangle_through_the_boundary_is_a_self_intersection_for_both_met
         .vertices
         .extend([[0.4, 0.4, 0.4], [1.3, 0.45, 0.5], [0.45, 0.6, 0.55]]);
     input.embedded.push([base, base + 1, base + 2]);
-    for method in [Method::Delaunay, Method::Front] {
-        let opts = TetMeshOptions {
-            method,
-            ..TetMeshOptions::default()
-        };
-        let e = mesh_region(&input, &SizeField::default(), &opts).unwrap_err();
+    for (method, e) in errors_of_both_methods(&input) {
         let msg = e.to_string();
         assert!(msg.contains("self-intersection"), "{method:?}: {msg}");
         assert!(msg.contains("embedded triangle 0"), "{method:?}: {msg}");

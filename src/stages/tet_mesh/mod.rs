@@ -209,24 +209,26 @@ pub fn mesh_region(
 ) -> Result<TetMeshOutput, TetMeshError> {
     let mut fallback = None;
     let (mut mesh, figures) = match opts.method {
-        Method::Delaunay => match check::check_shape(input)
-            .and_then(|()| delaunay::mesh(input, size))
-        {
-            Ok(done) => done,
-            Err(why) => {
-                // The Delaunay path tests intersections only where a triangle is not one of its
-                // faces: a shape error, or an input it could not take, is checked in full (and
-                // the front, which relies on it, gets a checked input).
-                check_input(input)?;
-                // The front meshes the region; if it fails too, its error says why both did.
-                let m = advance::advance_front(input, size).map_err(|mut e| {
-                    e.message = format!("{} (after Delaunay gave way: {})", e.message, why.message);
-                    e
-                })?;
-                fallback = Some(why.to_string());
-                (m, delaunay::Figures::default())
+        Method::Delaunay => {
+            check::check_shape(input)?;
+            match delaunay::mesh(input, size) {
+                Ok(done) => done,
+                Err(why) => {
+                    // The Delaunay path tests intersections only where a triangle is not one
+                    // of its faces: an input it could not take is tested in full before the
+                    // front, which relies on it, meshes it.
+                    check::check_intersections(input)?;
+                    // The front meshes the region; if it fails too, its error says why both did.
+                    let m = advance::advance_front(input, size).map_err(|mut e| {
+                        e.message =
+                            format!("{} (after Delaunay gave way: {})", e.message, why.message);
+                        e
+                    })?;
+                    fallback = Some(why.to_string());
+                    (m, delaunay::Figures::default())
+                }
             }
-        },
+        }
         Method::Front => {
             check_input(input)?;
             (advance::advance_front(input, size)?, Default::default())
