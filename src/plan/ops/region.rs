@@ -50,7 +50,9 @@ impl Operation for TetMeshOp {
         //    flips for the average; a bad tet's edges removed longest first; refinement
         //    proposals made as tets are created.
         // 10: cavities grow breadth first (their tets, hence slots, come in another order).
-        10
+        // 11: the size field by two raster sweeps; the layout sorts the nodes and buckets the
+        //     tets by their highest node.
+        11
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -114,15 +114,19 @@ impl Complex {
     }
 
     /// The live tets, in slot order.
+    #[cfg(test)]
     pub fn into_parts(self) -> (Vec<P>, Vec<[u32; 4]>) {
-        let tets = self
-            .tets
-            .iter()
-            .zip(&self.alive)
-            .filter(|(_, a)| **a)
-            .map(|(t, _)| *t)
-            .collect();
-        (self.nodes, tets)
+        let (nodes, tets, _) = self.into_measured_parts();
+        (nodes, tets)
+    }
+
+    /// The live tets in slot order and their mean ratios (kept current, so the statistics need
+    /// not measure every tet again).
+    pub fn into_measured_parts(self) -> (Vec<P>, Vec<[u32; 4]>, Vec<f64>) {
+        let live = || (0..self.tets.len()).filter(|&i| self.alive[i]);
+        let tets = live().map(|i| self.tets[i]).collect();
+        let mean_ratio = live().map(|i| self.mean_ratio[i]).collect();
+        (self.nodes, tets, mean_ratio)
     }
 
     #[inline]

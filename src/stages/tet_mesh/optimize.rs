@@ -61,13 +61,13 @@ const MEAN_FLIP_FREE_SHARE: f64 = 0.01;
 const RELAX_PASSES: usize = 1;
 
 /// Optimize in place. `protected` lists every boundary and embedded triangle; nodes below
-/// `n_fixed` never move.
+/// `n_fixed` never move. Returns the nodes, the tets and each tet's mean ratio.
 pub fn optimize(
     nodes: Vec<P>,
     tets: Vec<[u32; 4]>,
     n_fixed: usize,
     protected: impl Iterator<Item = [u32; 3]>,
-) -> (Vec<P>, Vec<[u32; 4]>) {
+) -> (Vec<P>, Vec<[u32; 4]>, Vec<f64>) {
     let mut cx = Complex::new(nodes, tets, n_fixed, protected);
     let free = (cx.nodes.len() - n_fixed) as f64;
     let thin = free < THIN_FREE_SHARE * cx.nodes.len() as f64;
@@ -115,7 +115,7 @@ pub fn optimize(
         let level = average_mean_ratio(&cx);
         mean_flip_pass(&mut cx, level, RELAX_KEEP, &mut scratch);
     }
-    cx.into_parts()
+    cx.into_measured_parts()
 }
 
 /// What was tried and failed, keyed by the sorted tet (or node) with the stamp it had then: an
@@ -180,12 +180,17 @@ fn average_mean_ratio(cx: &Complex) -> f64 {
 
 /// Live tets below `below`, worst first (ties by slot).
 fn bad_tets(cx: &Complex, below: f64) -> Vec<(f64, u32)> {
-    let mut v: Vec<(f64, u32)> = (0..cx.tets.len())
-        .filter(|&i| cx.alive[i])
-        .map(|i| (cx.shape[i], i as u32))
-        .filter(|(q, _)| *q < below)
-        .collect();
-    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    // Counted first and sorted in place: in a thin layer most tets are below, and a list grown
+    // by doubling plus a stable sort's buffer were the optimizer's largest temporaries. The
+    // slot breaks ties, so the unstable sort's order is the same on every run.
+    let bad = |i: &usize| cx.alive[*i] && cx.shape[*i] < below;
+    let mut v = Vec::with_capacity((0..cx.tets.len()).filter(bad).count());
+    v.extend(
+        (0..cx.tets.len())
+            .filter(bad)
+            .map(|i| (cx.shape[i], i as u32)),
+    );
+    v.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     v
 }
 
@@ -289,7 +294,7 @@ mod tests {
         };
         verify(&input, &before).expect("the raw mesh is valid");
         let protected = input.boundary.iter().chain(&input.embedded).copied();
-        let (nodes, tets) = optimize(raw.nodes, raw.tets, n_in, protected);
+        let (nodes, tets, _) = optimize(raw.nodes, raw.tets, n_in, protected);
         let after = TetMeshOutput {
             nodes,
             tets,

@@ -164,6 +164,17 @@ fn len2(v: &P) -> f64 {
 
 /// The smallest of the six dihedral angles of `abcd`, in degrees.
 pub fn min_dihedral_deg(a: &P, b: &P, c: &P, d: &P) -> f64 {
+    dihedral_deg(largest_dihedral_cosine(a, b, c, d))
+}
+
+/// The angle whose cosine is `cos`, in degrees (at most 180).
+pub fn dihedral_deg(cos: f64) -> f64 {
+    cos.acos().to_degrees().min(180.0)
+}
+
+/// The cosine of the smallest dihedral angle of `abcd` (the angle falls as its cosine rises):
+/// the smallest angle of many tets is the arc cosine of their largest, taken once.
+pub fn largest_dihedral_cosine(a: &P, b: &P, c: &P, d: &P) -> f64 {
     // Outward-ish face normals (unnormalised): opposite d, c, b, a.
     let p = [a, b, c, d];
     let faces = [[0usize, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
@@ -177,19 +188,19 @@ pub fn min_dihedral_deg(a: &P, b: &P, c: &P, d: &P) -> f64 {
         }
         let l = len2(&v).sqrt();
         n[i] = if l > 0.0 {
-            [v[0] / l, v[1] / l, v[2] / l]
+            let inv = 1.0 / l;
+            [v[0] * inv, v[1] * inv, v[2] * inv]
         } else {
             [0.0; 3]
         };
     }
-    // The angle falls as its cosine rises: one arc cosine, of the largest cosine.
     let mut max_cos = f64::NEG_INFINITY;
     for i in 0..4 {
         for j in i + 1..4 {
             max_cos = max_cos.max((-dot(&n[i], &n[j])).clamp(-1.0, 1.0));
         }
     }
-    max_cos.acos().to_degrees().min(180.0)
+    max_cos
 }
 
 #[cfg(test)]

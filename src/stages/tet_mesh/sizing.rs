@@ -1,14 +1,11 @@
 //! Background size field of a region (the seed's background octree, here a uniform grid): each
 //! cell starts at the mean edge length of the boundary/embedded triangles crossing it and the
-//! sizes are propagated inwards growing linearly at rate `growth - 1` per unit distance (a
-//! multi-source Dijkstra over the 26-neighbourhood, deterministic), capped by the interior target
-//! and by the largest boundary cell — so no interior element is larger than the largest boundary
+//! sizes are propagated inwards growing linearly at rate `growth - 1` per unit distance (along
+//! shortest paths through the 26-neighbourhood, found by two raster sweeps), capped by the
+//! interior target and by the largest boundary cell — so no interior element is larger than the largest boundary
 //! one and neighbouring cells differ smoothly (at most the growth rate, finer than 2:1 balance).
 //! The advancing front reads its target size here rather than from the front's own faces, so
 //! sizes cannot drift down as the front advances.
-
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 use super::SizeField;
 
@@ -108,24 +105,33 @@ impl Background {
         bg
     }
 
+    /// The field the seeds grow into: at each cell the least, over the seeded cells `s`, of
+    /// `h_s + rate * d(s, cell)` capped at `max(goal, h_s)`, where `d` is the shortest path
+    /// through the 26-neighbourhood (steps of 1, √2 and √3 cells). A seed at or above `goal`
+    /// stays flat, so its term is the constant `h_s`; one below grows to `goal`. So the field is
+    /// the least of one constant and a distance transform of the seeds below `goal`, which two
+    /// raster sweeps compute exactly: a shortest path's steps all point into one octant, so
+    /// it can take its steps that go forward in raster order first and the others after, through
+    /// cells between its ends (inside the grid). The sweeps replace a Dijkstra whose heap was 3 %
+    /// of a million-tet region's time.
     fn propagate(&mut self, rate: f64, goal: f64) {
-        // Heapified at once; the pop order is that of the unique keys (size, cell), however
-        // the heap was built.
-        let mut heap: BinaryHeap<Reverse<(u64, usize)>> = self
-            .h
-            .iter()
-            .enumerate()
-            .filter(|(_, h)| h.is_finite())
-            .map(|(i, h)| Reverse((h.to_bits(), i)))
-            .collect::<Vec<_>>()
-            .into();
+        let mut flat = f64::INFINITY;
+        for h in &mut self.h {
+            if *h >= goal && h.is_finite() {
+                flat = flat.min(*h);
+                *h = f64::INFINITY;
+            } else if *h < goal {
+                flat = flat.min(goal);
+            }
+        }
         let [nx, ny, nz] = self.dims;
-        // The 26 neighbours: offsets per axis and the growth over each step.
-        let mut steps: Vec<([i64; 3], f64)> = Vec::with_capacity(26);
-        for dx in -1i64..=1 {
+        // The 13 neighbours that come before a cell in raster order (x fastest), with the growth
+        // over each step; the sweep back uses the opposite 13.
+        let mut steps: Vec<([i64; 3], f64)> = Vec::with_capacity(13);
+        for dz in -1i64..=1 {
             for dy in -1i64..=1 {
-                for dz in -1i64..=1 {
-                    if (dx, dy, dz) != (0, 0, 0) {
+                for dx in -1i64..=1 {
+                    if (dz, dy, dx) < (0, 0, 0) {
                         let d = ((dx * dx + dy * dy + dz * dz) as f64).sqrt() * self.cell;
                         steps.push(([dx, dy, dz], rate * d));
                     }
@@ -133,34 +139,34 @@ impl Background {
             }
         }
         let (sy, sz) = (nx as i64, (nx * ny) as i64);
-        while let Some(Reverse((hb, i))) = heap.pop() {
-            let h = f64::from_bits(hb);
-            if h > self.h[i] {
-                continue;
-            }
-            let (x, y, z) = (i % nx, (i / nx) % ny, i / (nx * ny));
-            let inner = x > 0 && y > 0 && z > 0 && x + 1 < nx && y + 1 < ny && z + 1 < nz;
-            let cap = goal.max(h);
-            for &([dx, dy, dz], grow) in &steps {
-                if !inner {
-                    let (xx, yy, zz) = (x as i64 + dx, y as i64 + dy, z as i64 + dz);
-                    if xx < 0
-                        || yy < 0
-                        || zz < 0
-                        || xx >= nx as i64
-                        || yy >= ny as i64
-                        || zz >= nz as i64
-                    {
-                        continue;
-                    }
+        let dims = [nx as i64, ny as i64, nz as i64];
+        let sweep = |h: &mut [f64], i: usize, sign: i64| {
+            let c = [
+                (i % nx) as i64,
+                ((i / nx) % ny) as i64,
+                (i / (nx * ny)) as i64,
+            ];
+            let inner = (0..3).all(|k| c[k] > 0 && c[k] + 1 < dims[k]);
+            let mut v = h[i];
+            for &(d, grow) in &steps {
+                let d = d.map(|x| x * sign);
+                if !inner && (0..3).any(|k| c[k] + d[k] < 0 || c[k] + d[k] >= dims[k]) {
+                    continue;
                 }
-                let j = (i as i64 + dx + sy * dy + sz * dz) as usize;
-                let nh = (h + grow).min(cap);
-                if nh < self.h[j] {
-                    self.h[j] = nh;
-                    heap.push(Reverse((nh.to_bits(), j)));
-                }
+                let j = (i as i64 + d[0] + sy * d[1] + sz * d[2]) as usize;
+                v = v.min(h[j] + grow);
             }
+            h[i] = v;
+        };
+        let n = self.h.len();
+        for i in 0..n {
+            sweep(&mut self.h, i, 1);
+        }
+        for i in (0..n).rev() {
+            sweep(&mut self.h, i, -1);
+        }
+        for h in &mut self.h {
+            *h = h.min(flat);
         }
     }
 
@@ -210,6 +216,86 @@ fn bbox(t: &[u32; 3], pts: &[P]) -> (P, P) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The field by Dijkstra's algorithm from every seed, each path capped as `propagate` says.
+    fn dijkstra_field(
+        seeds: &[f64],
+        dims: [usize; 3],
+        cell: f64,
+        rate: f64,
+        goal: f64,
+    ) -> Vec<f64> {
+        let mut h = seeds.to_vec();
+        let mut done = vec![false; h.len()];
+        let [nx, ny, nz] = dims;
+        loop {
+            // The smallest open cell (a linear scan: the grids here are small).
+            let Some(i) = (0..h.len())
+                .filter(|&i| !done[i] && h[i].is_finite())
+                .min_by(|&a, &b| h[a].total_cmp(&h[b]))
+            else {
+                return h;
+            };
+            done[i] = true;
+            let c = [i % nx, (i / nx) % ny, i / (nx * ny)].map(|x| x as i64);
+            for dz in -1i64..=1 {
+                for dy in -1i64..=1 {
+                    for dx in -1i64..=1 {
+                        let d = [c[0] + dx, c[1] + dy, c[2] + dz];
+                        if d.iter()
+                            .zip([nx, ny, nz])
+                            .any(|(&x, n)| x < 0 || x >= n as i64)
+                        {
+                            continue;
+                        }
+                        let j = d[0] as usize + nx * (d[1] as usize + ny * d[2] as usize);
+                        let step = ((dx * dx + dy * dy + dz * dz) as f64).sqrt() * cell;
+                        let nh = (h[i] + rate * step).min(goal.max(h[i]));
+                        if nh < h[j] {
+                            h[j] = nh;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_two_sweeps_give_the_shortest_path_field_of_the_26_neighbourhood() {
+        // Seeds below and above the goal, scattered by a fixed generator over odd-shaped grids.
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for dims in [[7, 5, 4], [1, 9, 3], [6, 1, 1], [4, 4, 4]] {
+            let n = dims[0] * dims[1] * dims[2];
+            for _ in 0..20 {
+                let mut seeds = vec![f64::INFINITY; n];
+                for _ in 0..1 + next() % 4 {
+                    seeds[(next() % n as u64) as usize] = 0.5 + (next() % 1000) as f64 / 250.0;
+                }
+                let (cell, rate, goal) = (0.7, 0.3, 2.5);
+                let mut bg = Background {
+                    origin: [0.0; 3],
+                    cell,
+                    per_cell: 1.0 / cell,
+                    dims,
+                    h: seeds.clone(),
+                };
+                bg.propagate(rate, goal);
+                let want = dijkstra_field(&seeds, dims, cell, rate, goal);
+                for (i, (got, want)) in bg.h.iter().zip(&want).enumerate() {
+                    assert!(
+                        (got - want).abs() <= 1e-12 * want,
+                        "cell {i} of {dims:?}: {got} against {want}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn sizes_grow_away_from_small_boundary_triangles_up_to_the_cap() {

@@ -81,15 +81,27 @@ fn for_each_face_run<E>(
         }
     }
     drop(next);
+    // Which of `outward_faces` is opposite each corner.
+    const OPPOSITE: [usize; 4] = [2, 3, 1, 0];
     let mut bucket: Vec<Face> = Vec::new();
     for (v, w) in start.windows(2).enumerate() {
         bucket.clear();
         for &ti in &members[w[0] as usize..w[1] as usize] {
-            for f in outward_faces(tets[ti as usize]) {
+            let t = tets[ti as usize];
+            let faces = outward_faces(t);
+            let low = (1..4).fold(0, |m, i| if t[i] < t[m] { i } else { m });
+            let mut push = |f: [u32; 3]| {
                 let (key, odd) = keyed(f);
-                if key[0] as usize == v {
-                    bucket.push(Face { key, odd, tet: ti });
-                }
+                bucket.push(Face { key, odd, tet: ti });
+            };
+            if t[low] as usize == v {
+                // The three faces through the smallest node.
+                (0..4)
+                    .filter(|&k| k != OPPOSITE[low])
+                    .for_each(|k| push(faces[k]));
+            } else {
+                // The face without it, whose smallest node is the tet's second smallest.
+                push(faces[OPPOSITE[low]]);
             }
         }
         bucket.sort_unstable();
@@ -130,6 +142,10 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     if out.tets.is_empty() {
         return Err(TetMeshError::new(name, "the mesh has no tetrahedra", None));
     }
+    // One pass over the tets for their orientation and their total volume (taken about a point
+    // of the input, so that the products stay small at UTM coordinates).
+    let o = reference_point(&input.vertices);
+    let mut total = 0.0;
     for (ti, t) in out.tets.iter().enumerate() {
         if let Some(&v) = t.iter().find(|&&v| v as usize >= nodes.len()) {
             return Err(TetMeshError::new(
@@ -146,6 +162,8 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
                 Some(a),
             ));
         }
+        let [a, b, c, d] = [a, b, c, d].map(|p| [p[0] - o[0], p[1] - o[1], p[2] - o[2]]);
+        total += signed_volume(&a, &b, &c, &d);
     }
     // Every tet's outward faces, sorted by their sorted nodes: a face's tets form a run, and the
     // runs are read once alongside the sorted input triangles (bucket by bucket, a linear scan).
@@ -254,14 +272,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     if ie < emb.len() {
         return Err(embedded_error(emb[ie].1, 0, 0));
     }
-    let o = reference_point(&input.vertices);
     let expect = enclosed_volume(&input.vertices, &input.boundary);
-    let mut total = 0.0;
-    for t in &out.tets {
-        let [a, b, c, d] = t.map(|i| nodes[i as usize]);
-        let [a, b, c, d] = [a, b, c, d].map(|p| [p[0] - o[0], p[1] - o[1], p[2] - o[2]]);
-        total += signed_volume(&a, &b, &c, &d);
-    }
     // Written so that a NaN volume fails too.
     let balanced = (total - expect).abs() <= 1e-9 * expect.abs();
     if !balanced {

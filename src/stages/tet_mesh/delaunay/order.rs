@@ -204,47 +204,43 @@ fn radix_pass(
     std::mem::swap(v, tmp);
 }
 
-/// Lay a mesh out in memory along a Hilbert curve: tets sorted by their centroids, then the
-/// nodes from `n_fixed` on renumbered in the order the sorted tets first use them (nodes below
-/// `n_fixed` keep their ids). Tets and nodes near in space are then near in memory, which the
-/// optimizer's passes over nodes and balls need: a refined triangulation leaves its tets wherever
-/// slots were free.
+/// Lay a mesh out in memory along a Hilbert curve: the nodes from `n_fixed` on renumbered in
+/// Hilbert order (nodes below `n_fixed` keep their ids), then the tets grouped by their highest
+/// node (a counting sort, stable). Tets and nodes near in space are then near in memory, which
+/// the optimizer's passes over nodes and balls need: a refined triangulation leaves its tets
+/// wherever slots were free. Sorting the nodes, a sixth as many as the tets, and bucketing the
+/// tets costs a third of sorting the tets by their centroids (4 % of a level's time), for the
+/// same optimizer time.
 pub fn spatial_layout(nodes: &mut Vec<P>, tets: &mut Vec<[u32; 4]>, n_fixed: usize) {
-    let mut ids: Vec<u32> = (0..tets.len() as u32).collect();
-    hilbert_sort_by(&mut ids, |t| {
-        let [a, b, c, d] = tets[t as usize].map(|v| nodes[v as usize]);
-        [0, 1, 2].map(|k| 0.25 * (a[k] + b[k] + c[k] + d[k]))
-    });
-    let sorted: Vec<[u32; 4]> = ids.iter().map(|&i| tets[i as usize]).collect();
-    drop(ids);
-    *tets = sorted;
-    let mut map: Vec<u32> = (0..nodes.len() as u32).collect();
-    let mut next = n_fixed as u32;
-    let mut seen = vec![false; nodes.len()];
-    for t in tets.iter() {
-        for &v in t {
-            if v as usize >= n_fixed && !seen[v as usize] {
-                seen[v as usize] = true;
-                map[v as usize] = next;
-                next += 1;
-            }
-        }
+    let n = nodes.len();
+    let mut free: Vec<u32> = (n_fixed as u32..n as u32).collect();
+    hilbert_sort(&mut free, nodes);
+    let mut map: Vec<u32> = (0..n as u32).collect();
+    for (k, &v) in free.iter().enumerate() {
+        map[v as usize] = (n_fixed + k) as u32;
     }
-    // Nodes no tet uses keep their relative order after the used ones.
-    for v in n_fixed..nodes.len() {
-        if !seen[v] {
-            map[v] = next;
-            next += 1;
-        }
-    }
-    let mut moved = vec![[0.0; 3]; nodes.len()];
+    let mut moved = vec![[0.0; 3]; n];
     for (v, p) in nodes.iter().enumerate() {
         moved[map[v] as usize] = *p;
     }
     *nodes = moved;
+    drop(free);
+    let mut start = vec![0u32; n + 1];
     for t in tets.iter_mut() {
         *t = t.map(|v| map[v as usize]);
+        start[*t.iter().max().unwrap_or(&0) as usize + 1] += 1;
     }
+    drop(map);
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut sorted = vec![[0u32; 4]; tets.len()];
+    for t in tets.iter() {
+        let top = *t.iter().max().unwrap_or(&0) as usize;
+        sorted[start[top] as usize] = *t;
+        start[top] += 1;
+    }
+    *tets = sorted;
 }
 
 fn mix(mut z: u64) -> u64 {

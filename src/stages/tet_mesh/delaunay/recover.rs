@@ -118,9 +118,10 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         }
     }
     let ids: Vec<u32> = (0..n as u32).filter(|&v| used[v as usize]).collect();
-    // A Delaunay tetrahedralization has about 6.5 tets per point, and the enclosing tet adds
-    // about two per hull face (so no reallocation doubles the arrays at their peak).
-    tri.reserve(7 * ids.len() + 2 * input.boundary.len() + 64);
+    // A Delaunay tetrahedralization of boundary points (the enclosing tet's included) has 7 to
+    // 7.7 tets per point on our regions, thin layers the most: room for 8, so that no
+    // reallocation doubles the array at its peak, and no more (it is most of a thin region's).
+    tri.reserve(8 * ids.len() + 64);
     for v in brio(&ids, &input.vertices) {
         let p = input.vertices[v as usize];
         tri.insert_vertex(v, NONE, &Limits::default())
@@ -134,7 +135,10 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
 
     // Which constraint triangles are faces.
     // Looked up once per tet face, never iterated: the front's fast word hash.
-    let mut cons_index: FaceMap<usize> = FaceMap::default();
+    let mut cons_index: FaceMap<u32> = FaceMap::with_capacity_and_hasher(
+        input.boundary.len() + input.embedded.len(),
+        Default::default(),
+    );
     let all: Vec<([u32; 3], bool)> = input
         .boundary
         .iter()
@@ -142,7 +146,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         .chain(input.embedded.iter().map(|&t| (t, true)))
         .collect();
     for (k, (t, _)) in all.iter().enumerate() {
-        cons_index.insert(sorted(*t), k);
+        cons_index.insert(sorted(*t), k as u32);
     }
     let mut holders = find_holders(&tri, &cons_index, all.len(), n);
     let mut missing: Vec<usize> = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
@@ -423,7 +427,7 @@ fn pinched_edges(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
 /// Each face is looked up once, from its tet of smaller slot, which notes both sides (in slot
 /// order, as a scan of every tet's faces would); faces on an enclosing corner (ids from
 /// `n_input` on) are no constraint and are not looked up.
-fn find_holders(tri: &Tri, cons_index: &FaceMap<usize>, n: usize, n_input: usize) -> Vec<Holders> {
+fn find_holders(tri: &Tri, cons_index: &FaceMap<u32>, n: usize, n_input: usize) -> Vec<Holders> {
     let mut holders = vec![Holders([NONE; 2]); n];
     for t in tri.live_tets() {
         let rec = &tri.t[t as usize];
@@ -437,9 +441,9 @@ fn find_holders(tri: &Tri, cons_index: &FaceMap<usize>, n: usize, n_input: usize
                 continue;
             }
             if let Some(&k) = cons_index.get(&sorted(f)) {
-                holders[k].push(t, i);
+                holders[k as usize].push(t, i);
                 if other != NONE {
-                    holders[k].push(other >> 2, (other & 3) as usize);
+                    holders[k as usize].push(other >> 2, (other & 3) as usize);
                 }
             }
         }
@@ -467,22 +471,25 @@ fn flip_diagonals(
     missing: &[usize],
     vtet: &mut [u32],
 ) -> usize {
-    let mut by_edge: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
+    // (edge, triangle) pairs sorted by edge: the triangles on an edge are one run (12 bytes a
+    // pair, where a map of lists costs several times that at the recovery's memory peak).
+    let mut by_edge: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * all.len());
     for (k, (t, _)) in all.iter().enumerate() {
         for e in 0..3 {
             let (u, v) = (t[e], t[(e + 1) % 3]);
-            by_edge.entry([u.min(v), u.max(v)]).or_default().push(k);
+            by_edge.push(([u.min(v), u.max(v)], k as u32));
         }
     }
+    by_edge.sort_unstable();
     let mut flips = 0;
     for &k in missing {
         let t = all[k].0;
         for e in 0..3 {
             let (u, v, w) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
-            let Some(next) = by_edge.get(&[u.min(v), u.max(v)]) else {
-                continue;
-            };
-            for &k2 in next {
+            let key = [u.min(v), u.max(v)];
+            let first = by_edge.partition_point(|&(e, _)| e < key);
+            for &(_, k2) in by_edge[first..].iter().take_while(|&&(e, _)| e == key) {
+                let k2 = k2 as usize;
                 if k2 == k {
                     continue;
                 }
