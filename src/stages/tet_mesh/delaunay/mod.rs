@@ -17,8 +17,8 @@ use super::sizing::Background;
 use super::{RegionInput, SizeField, TetMeshError};
 
 /// Cells of the background size field. The field grows smoothly (at most the growth rate per
-/// unit length), so a coarser grid than the front's loses nothing, and its set-up (a Dijkstra
-/// over the cells) was 8 % of a million-tet region at the front's two million cells.
+/// unit length), so a coarser grid than the front's loses nothing, and its set-up (then a
+/// Dijkstra over the cells) was 8 % of a million-tet region at the front's two million cells.
 const SIZE_CELLS: usize = 250_000;
 /// Fewer cells for small regions: about four per boundary triangle (a thin layer with few tets
 /// per boundary triangle would otherwise spend more on the grid than on its tets).
