@@ -181,8 +181,8 @@ fn average_mean_ratio(cx: &Complex) -> f64 {
 /// Live tets below `below`, worst first (ties by slot).
 fn bad_tets(cx: &Complex, below: f64) -> Vec<(f64, u32)> {
     // Counted first and sorted in place: in a thin layer most tets are below, and a list grown
-    // by doubling plus a stable sort's buffer were the optimizer's largest temporaries. The
-    // slot breaks ties, so the unstable sort's order is the same on every run.
+    // by doubling plus a stable sort's buffer were among the largest blocks at its memory peak.
+    // The slot breaks ties, so the unstable sort's order is the same on every run.
     let bad = |i: &usize| cx.alive[*i] && cx.shape[*i] < below;
     let mut v = Vec::with_capacity((0..cx.tets.len()).filter(bad).count());
     v.extend(

@@ -417,4 +417,47 @@ mod tests {
         o.sort_unstable();
         assert_eq!(o, ids);
     }
+
+    #[test]
+    fn the_layout_keeps_fixed_nodes_and_every_tet_and_groups_tets_by_their_highest_node() {
+        // A 4x4x4 lattice, the first 10 nodes fixed; "tets" of four scattered nodes each.
+        let pts: Vec<P> = (0..64)
+            .map(|i| {
+                [
+                    (i % 4) as f64,
+                    (i / 4 % 4) as f64,
+                    (i / 16) as f64 + 0.1 * i as f64,
+                ]
+            })
+            .collect();
+        let tets: Vec<[u32; 4]> = (0..100u32)
+            .map(|k| {
+                [
+                    k % 64,
+                    (k * 7 + 3) % 64,
+                    (k * 13 + 5) % 64,
+                    (k * 29 + 11) % 64,
+                ]
+            })
+            .filter(|t| (0..4).all(|i| (i + 1..4).all(|j| t[i] != t[j])))
+            .collect();
+        let (mut nodes, mut laid) = (pts.clone(), tets.clone());
+        spatial_layout(&mut nodes, &mut laid, 10);
+        assert_eq!(nodes[..10], pts[..10], "fixed nodes keep their ids");
+        let mut moved: Vec<P> = nodes.clone();
+        let mut original: Vec<P> = pts.clone();
+        let by_coords = |a: &P, b: &P| a.partial_cmp(b).unwrap();
+        moved.sort_by(by_coords);
+        original.sort_by(by_coords);
+        assert_eq!(moved, original, "the nodes are a permutation");
+        // The same tets, as point quadruples in the same vertex order.
+        let as_points = |ns: &[P], ts: &[[u32; 4]]| {
+            let mut v: Vec<[P; 4]> = ts.iter().map(|t| t.map(|i| ns[i as usize])).collect();
+            v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+            v
+        };
+        assert_eq!(as_points(&nodes, &laid), as_points(&pts, &tets));
+        let tops: Vec<u32> = laid.iter().map(|t| *t.iter().max().unwrap()).collect();
+        assert!(tops.windows(2).all(|w| w[0] <= w[1]), "{tops:?}");
+    }
 }
