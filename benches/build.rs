@@ -3,7 +3,7 @@
 //! one curve rule changed.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use georecipe::engine::{self, BuildOptions};
+use engine::{self, BuildOptions};
 use georecipe::{plan, recipe};
 use std::path::Path;
 

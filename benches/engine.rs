@@ -2,7 +2,7 @@
 //! warm build (everything is verified from the cache) of a layered 500-node graph.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use georecipe::engine::*;
+use engine::*;
 use std::sync::Arc;
 
 struct Sum(i64);

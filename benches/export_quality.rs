@@ -1,12 +1,11 @@
 //! Throughput of the exporters, the quality tables and the msh reader on a ~127k-tet layered box.
 
-#[path = "../tests/export_support/mod.rs"]
-mod export_support;
+use test_support::export_support;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use georecipe::mesh::read::read_volume_msh;
-use georecipe::stages::export::{Format, export};
-use georecipe::stages::quality::{table1, table2};
+use export::quality::{table1, table2};
+use export::{Format, export};
+use geom::mesh::read::read_volume_msh;
 use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {

@@ -4,10 +4,10 @@
 //! Run: `cargo bench --bench import`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use georecipe::geom::Tolerances;
-use georecipe::stages::import::{ImportOptions, import_surface, parse_gocad};
-use georecipe::stages::topology::SurfaceTopology;
-use georecipe::stages::validate::validate;
+use geom::Tolerances;
+use gocad::import::{ImportOptions, import_surface, parse_gocad};
+use gocad::validate::validate;
+use model::topology::SurfaceTopology;
 use std::fmt::Write;
 use std::hint::black_box;
 use std::time::Instant;

@@ -1,10 +1,10 @@
-//! Benchmark of `stages::intersect`: two generated surfaces of ~1 million triangles each
+//! Benchmark of `model::intersect`: two generated surfaces of ~1 million triangles each
 //! (707 × 707 grids at UTM coordinates), a wavy horizon and a tilted fault crossing it.
 //! Target: under 1.5 s per intersection.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use georecipe::geom::TriMesh;
-use georecipe::stages::intersect::{SurfaceRef, intersect};
+use geom::TriMesh;
+use model::intersect::{SurfaceRef, intersect};
 use std::hint::black_box;
 
 fn grid(n: usize, f: impl Fn(usize, usize) -> [f64; 3]) -> TriMesh {
@@ -100,11 +100,7 @@ fn bench(c: &mut Criterion) {
     });
     g.bench_function("split_1M_triangle_horizon_along_the_fault_curve", |b| {
         b.iter(|| {
-            georecipe::stages::intersect::split::split(
-                black_box(&h),
-                &x,
-                georecipe::stages::intersect::split::Side::B,
-            )
+            model::intersect::split::split(black_box(&h), &x, model::intersect::split::Side::B)
         })
     });
     let (h1, h2) = crossing_horizons();

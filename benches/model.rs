@@ -1,4 +1,4 @@
-//! Model benchmark (issue 4): the seed's didactic example (two horizons 35 m apart, a
+//! Model benchmark: the seed's didactic example (two horizons 35 m apart, a
 //! through-going fault and a dangling fault, in a 5000 × 5000 × 2500 m box) at about 100 000
 //! triangles per surface, built without import: every pair the shipped recipe intersects, then
 //! `split_model`, `patches`, `inside_box` and `find_regions_with`, the sequence of the `model`
@@ -9,17 +9,15 @@
 //!
 //! Run: `cargo bench --bench model`.
 
-#[allow(dead_code)]
-#[path = "../examples/make_didactic.rs"]
-mod make_didactic;
+use test_support::didactic as make_didactic;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use georecipe::geom::{BBox, TriMesh};
-use georecipe::stages::import::{ImportOptions, import_surface};
-use georecipe::stages::intersect::split::{SplitSurface, split_model};
-use georecipe::stages::intersect::{Intersection, SurfaceRef, box_sides, intersect};
-use georecipe::stages::patches::{inside_box, patches};
-use georecipe::stages::regions::{PatchIn, RegionModel, RegionOptions, find_regions_with};
+use geom::{BBox, TriMesh};
+use gocad::import::{ImportOptions, import_surface};
+use model::intersect::split::{SplitSurface, split_model};
+use model::intersect::{Intersection, SurfaceRef, box_sides, intersect};
+use model::patches::{inside_box, patches};
+use model::regions::{PatchIn, RegionModel, RegionOptions, find_regions_with};
 use std::hint::black_box;
 use std::time::Instant;
 

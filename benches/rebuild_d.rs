@@ -1,5 +1,5 @@
 //! Full build versus a one-curve rebuild of the seed's refinement (d) (`recipes/refinements/
-//! d.toml`, ~500k tets), single job. The target (issue 7): the rebuild costs no more than the
+//! d.toml`, ~500k tets), single job. The target: the rebuild costs no more than the
 //! affected share of the full build plus a small constant, where the affected share is what the
 //! nodes that re-run took in the full build. The edited curve is the top west edge of the box,
 //! `box.xmin/box.zmax`: it bounds two box patches and one region (overburden_W).
@@ -8,7 +8,7 @@
 //! each giving the curve a new size), not criterion's ten samples. Run with
 //! `cargo bench --bench rebuild_d`.
 
-use georecipe::engine::{self, BuildOptions, BuildReport, NodeState};
+use engine::{self, BuildOptions, BuildReport, NodeState};
 use georecipe::{plan, recipe};
 use std::collections::BTreeMap;
 use std::path::Path;

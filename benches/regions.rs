@@ -4,9 +4,9 @@
 //! Run: `cargo bench --bench regions` (skipped with a note when ../shared is absent).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use georecipe::geom::TriMesh;
-use georecipe::stages::import::{ImportOptions, import_surfaces};
-use georecipe::stages::regions::{Dangling, PatchIn, RegionOptions, find_regions_with};
+use geom::TriMesh;
+use gocad::import::{ImportOptions, import_surfaces};
+use model::regions::{Dangling, PatchIn, RegionOptions, find_regions_with};
 use std::collections::{BTreeMap, BTreeSet};
 use std::hint::black_box;
 

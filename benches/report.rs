@@ -1,11 +1,10 @@
 //! Rendering report.html and report.json of a ~1M-tet structured mesh (the pictures, histograms
 //! and the seed's tables included).
 
-#[path = "../tests/report_support/grid.rs"]
-mod grid;
+use test_support::grid;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use georecipe::stages::report::{ReportInput, render_both};
+use georecipe::report::{ReportInput, render_both};
 use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {

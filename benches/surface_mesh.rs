@@ -4,12 +4,11 @@
 //! same horizon with a 25 m border graded into a 200 m interior (the reservoir horizons of the
 //! seed's refinement (d)).
 
-#[path = "../tests/surface_mesh_common/mod.rs"]
-mod surface_mesh_common;
+use test_support::surface_mesh_common;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use georecipe::stages::surface_mesh::quality::stats;
-use georecipe::stages::surface_mesh::{PatchInput, SurfaceSize, mesh_patch};
+use surface_mesh::quality::stats;
+use surface_mesh::{PatchInput, SurfaceSize, mesh_patch};
 use surface_mesh_common::{Grid, UTM, uniform, wavy};
 
 fn input(size: f64) -> PatchInput {
@@ -31,7 +30,7 @@ fn input(size: f64) -> PatchInput {
 }
 
 /// VRTX/PVRTX and TRGL lines of a one-TFACE TSurf (bench fixture reader).
-fn read_tsurf(text: &str) -> georecipe::geom::TriMesh {
+fn read_tsurf(text: &str) -> geom::TriMesh {
     let mut ids = std::collections::BTreeMap::new();
     let mut vs = Vec::new();
     let mut ts = Vec::new();
@@ -58,7 +57,7 @@ fn read_tsurf(text: &str) -> georecipe::geom::TriMesh {
             _ => {}
         }
     }
-    georecipe::geom::TriMesh::new(vs, ts)
+    geom::TriMesh::new(vs, ts)
 }
 
 fn bench(c: &mut Criterion) {
@@ -100,8 +99,7 @@ fn bench(c: &mut Criterion) {
         let h1 = read_tsurf(&text);
         for size in [200.0, 100.0, 50.0, 25.0] {
             let t0 = std::time::Instant::now();
-            let m =
-                georecipe::stages::surface_mesh::retriangulate(&h1, size).expect("retriangulates");
+            let m = surface_mesh::retriangulate(&h1, size).expect("retriangulates");
             let secs = t0.elapsed().as_secs_f64();
             let q = stats(&m.vertices, &m.triangles);
             eprintln!(

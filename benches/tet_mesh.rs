@@ -19,11 +19,10 @@
 use std::collections::BTreeMap;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use georecipe::stages::tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
+use tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
 
-#[path = "../tests/peer_support/region.rs"]
-mod peer_support;
 use peer_support::{peer_dir, peer_region};
+use test_support::peer_support;
 
 const REGIONS: [&str; 6] = [
     "overburden_E",

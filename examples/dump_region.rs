@@ -9,9 +9,9 @@
 //! The build runs with a cache in `OUT_DIR/cache` (the tet meshing nodes may fail: only the model
 //! and the surface meshes are needed).
 
-use georecipe::engine::{self, BuildOptions};
+use engine::{self, BuildOptions};
 use georecipe::plan::ops::{ModelData, PatchMesh};
-use georecipe::stages::model::region_input;
+use model::region_input;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 

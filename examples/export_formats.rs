@@ -2,8 +2,8 @@
 //! into a directory, so two builds of the writers can be compared byte for byte on a big mesh:
 //! `cargo run --release --example export_formats -- in.msh out_dir`.
 
-use georecipe::mesh::read::read_volume_msh;
-use georecipe::stages::export::{Format, export};
+use export::{Format, export};
+use geom::mesh::read::read_volume_msh;
 
 fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().collect();

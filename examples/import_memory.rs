@@ -4,8 +4,9 @@
 //!
 //! Usage: `cargo run --release --example import_memory -- FILE.ts` (Linux: reads /proc/self/status)
 
-use georecipe::geom::Tolerances;
-use georecipe::stages::{import, topology, validate};
+use geom::Tolerances;
+use gocad::{import, validate};
+use model::topology;
 
 fn peak_kib() -> u64 {
     let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();

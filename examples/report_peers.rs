@@ -5,10 +5,9 @@
 //! cargo run --release --example report_peers -- OUT_DIR [REGION ...]
 //! ```
 
-#[path = "../tests/report_support/peers.rs"]
-mod peers;
+use test_support::peers;
 
-use georecipe::stages::report::{ReportInput, render_both};
+use georecipe::report::{ReportInput, render_both};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -13,14 +13,14 @@
 //! `SQ_REPEAT=N` times each patch N times and keeps the fastest; `SQ_DUMP=DIR` writes each patch
 //! (see `dump`).
 
-use georecipe::engine::store::{Load, Store};
-use georecipe::engine::{Artifact, LockFile};
+use engine::store::{Load, Store};
+use engine::{Artifact, LockFile};
 use georecipe::plan::ops::{CurveNodes, PatchPiece};
-use georecipe::stages::model::patch_input;
-use georecipe::stages::surface_mesh::quality::{QualityStats, c_ratio, stats};
-use georecipe::stages::surface_mesh::{SurfaceSize, mesh_patch_with};
+use model::patch_input;
 use std::collections::BTreeMap;
 use std::path::Path;
+use surface_mesh::quality::{QualityStats, c_ratio, stats};
+use surface_mesh::{SurfaceSize, mesh_patch_with};
 
 /// Nodes and triangles gathered from several patches.
 type Soup = (Vec<[f64; 3]>, Vec<[u32; 3]>);
@@ -209,7 +209,7 @@ struct Head<'a> {
 fn dump(
     dir: &str,
     head: &Head,
-    input: &georecipe::stages::surface_mesh::PatchInput,
+    input: &surface_mesh::PatchInput,
     nodes: &[[f64; 3]],
     tris: &[[u32; 3]],
 ) -> Result<(), String> {

@@ -1,6 +1,6 @@
 //! Peak memory and speed of the tetrahedral mesher alone, on one closed boundary (.off) and an
-//! optional file of embedded triangles (.off, vertices matched by exact coordinates): what issue 6
-//! bounds (at most 300 bytes per tet at peak). Embedded vertices inside the region are added.
+//! optional file of embedded triangles (.off, vertices matched by exact coordinates): the bar is
+//! at most 300 bytes per tet at peak. Embedded vertices inside the region are added.
 //! Two figures, both over what was held before `mesh_region` (reading the input does not count):
 //! - the peak resident set (Linux `clear_refs` resets it just before), which includes memory the
 //!   allocator keeps after a free. A 48-triangle cube is meshed first, so that the mesher's code
@@ -17,8 +17,8 @@ use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::time::Instant;
 
-use georecipe::mesh::read::read_by_extension;
-use georecipe::stages::tet_mesh::{Method, RegionInput, SizeField, TetMeshOptions, mesh_region};
+use geom::mesh::read::read_by_extension;
+use tet_mesh::{Method, RegionInput, SizeField, TetMeshOptions, mesh_region};
 
 /// Counts the live heap bytes and their peak: the mesher's own data at its largest, without what the
 /// allocator keeps resident after a free or page rounding (which the resident-set figure includes).
@@ -109,7 +109,7 @@ fn grid_cube(n: u32) -> RegionInput {
     }
 }
 
-fn read(path: &str) -> georecipe::mesh::read::BoundaryMesh {
+fn read(path: &str) -> geom::mesh::read::BoundaryMesh {
     let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     read_by_extension(path, &bytes).unwrap_or_else(|e| panic!("{e}"))
 }

@@ -3,8 +3,8 @@
 use super::cache::{cache_dir, last_graph_path, last_report_path, lock_path, recipe_dir};
 use super::render::Renderer;
 use super::{BuildArgs, Failure, load};
-use crate::engine::{self, BuildOptions, BuildReport, LockFile, NodeState};
 use crate::plan;
+use engine::{self, BuildOptions, BuildReport, LockFile, NodeState};
 use std::path::Path;
 
 /// One build of `args.recipe`. Returns the report when the build succeeded.

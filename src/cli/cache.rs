@@ -2,7 +2,7 @@
 //! (`explain`, `graph`, `clean`, `gc`).
 
 use super::{CacheArgs, Failure};
-use crate::engine::{self, LockFile};
+use engine::{self, LockFile};
 use std::path::{Path, PathBuf};
 
 /// `--cache-dir`, else `RECIPE_CACHE_DIR` (clap reads it), else `.recipe/` beside the recipe.

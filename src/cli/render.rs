@@ -1,6 +1,6 @@
 //! Cargo-style status lines and progress bars for build events.
 
-use crate::engine::{Event, NodeReport, NodeState};
+use engine::{Event, NodeReport, NodeState};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::collections::BTreeMap;
 use std::io::IsTerminal;

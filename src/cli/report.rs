@@ -1,17 +1,17 @@
 //! `report.html` and `report.json`: gathered after each build from the build report (what ran
 //! and why) and the artifacts of `model`, the imports, the per-entity nodes and `mesh`, rendered
-//! by `stages::report`, and written atomically beside the outputs. They are not build outputs in
+//! by `crate::report`, and written atomically beside the outputs. They are not build outputs in
 //! the lock file: they say what re-ran, which differs from build to build by design.
 
 use super::Failure;
 use super::build::write_atomic;
-use crate::engine::BuildReport;
-use crate::mesh::VolumeMesh;
 use crate::plan::ops::{ModelData, SurfaceData};
 use crate::recipe::Recipe;
-use crate::stages::report::{
+use crate::report::{
     CurveSummary, ReportInput, StepSummary, SurfaceSummary, model_summaries, render_both,
 };
+use engine::BuildReport;
+use geom::mesh::VolumeMesh;
 use std::path::{Path, PathBuf};
 
 fn count(report: &BuildReport, node: &str, key: &str) -> usize {

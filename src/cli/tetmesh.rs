@@ -3,14 +3,14 @@
 
 use super::Failure;
 use super::build::write_atomic;
-use crate::mesh::read::{BoundaryMesh, read_by_extension};
-use crate::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
-use crate::stages::export::{Format, export};
-use crate::stages::quality;
-use crate::stages::regions;
-use crate::stages::tet_mesh::{Method, RegionInput, SizeField, TetMeshOptions, mesh_region};
+use export::quality;
+use export::{Format, export};
+use geom::mesh::read::{BoundaryMesh, read_by_extension};
+use geom::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
+use model::regions;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use tet_mesh::{Method, RegionInput, SizeField, TetMeshOptions, mesh_region};
 
 #[derive(clap::Args, Debug)]
 pub struct TetmeshArgs {
@@ -119,7 +119,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     let mut embedded = pool.triangles(&b, |t| a.embedded_tags.contains(&t));
     if let Some(e) = &a.embed {
         let diag = {
-            let b = crate::geom::BBox::from_points(pool.vertices.iter());
+            let b = geom::BBox::from_points(pool.vertices.iter());
             let e = b.extent();
             (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
         };
@@ -140,7 +140,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     let shell = regions::PatchIn {
         name: "boundary".into(),
         surface: "boundary".into(),
-        mesh: crate::geom::TriMesh::new(pool.vertices.clone(), boundary.clone()),
+        mesh: geom::TriMesh::new(pool.vertices.clone(), boundary.clone()),
     };
     let model = regions::find_regions(&[shell], &[]).map_err(|e| {
         Failure(format!(

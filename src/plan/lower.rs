@@ -1,9 +1,9 @@
 //! Lowering: recipe → static build graph (plus the expander that adds the per-curve nodes).
 
 use super::ops::*;
-use crate::engine::{BuildGraph, GraphError, NodeId};
 use crate::recipe::{self, Recipe};
-use crate::stages::discretize::{Grading, Subdivision};
+use engine::{BuildGraph, GraphError, NodeId};
+use model::discretize::{Grading, Subdivision};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -134,14 +134,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .map(|(n, r)| (n.clone(), r.point))
                 .collect(),
             tolerances: recipe.tolerances.clone(),
-            trims: recipe
-                .trims
-                .iter()
-                .map(|t| {
-                    let at = format!("{}:{}:{}", recipe.path.display(), t.span.line, t.span.col);
-                    (t.clone(), at)
-                })
-                .collect(),
+            trims: trims(recipe),
         };
         let model = g.add_op("model", Arc::new(op), &inputs)?;
         g.set_expander(
@@ -191,4 +184,27 @@ pub fn curve_subdivision(recipe: &Recipe, name: &str) -> (String, Subdivision) {
             },
         ),
     }
+}
+
+/// The recipe's `[[trim]]`s as the trims stage takes them (each selector resolved to the surfaces
+/// it selects), each with its recipe location `file:line:col`.
+fn trims(recipe: &Recipe) -> Vec<(model::trims::TrimSpec, String)> {
+    let names = recipe.surface_names();
+    recipe
+        .trims
+        .iter()
+        .map(|t| {
+            let spec = model::trims::TrimSpec {
+                selector: t.surface.pattern.clone(),
+                surfaces: names
+                    .iter()
+                    .filter(|n| t.surface.matches(n))
+                    .cloned()
+                    .collect(),
+                action: t.action.clone(),
+            };
+            let at = format!("{}:{}:{}", recipe.path.display(), t.span.line, t.span.col);
+            (spec, at)
+        })
+        .collect()
 }

@@ -43,8 +43,8 @@ pub use files::{check_files, check_files_with_listing};
 pub use selector::{CurveSelector, SurfaceSelector, glob_match};
 pub use spec::*;
 
-use crate::geom::Tolerances;
 use diagnostic::{SourceText, suggest};
+use geom::Tolerances;
 use reader::Ctx;
 use sections::Names;
 

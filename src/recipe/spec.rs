@@ -12,7 +12,7 @@ use std::path::PathBuf;
 
 use serde::Serialize;
 
-pub use crate::mesh::SurfaceKind;
+pub use geom::mesh::SurfaceKind;
 
 use super::diagnostic::Span;
 use super::selector::{CurveSelector, SurfaceSelector};
@@ -22,7 +22,7 @@ pub const BOX_SIDES: [&str; 6] = [
     "box.xmin", "box.xmax", "box.ymin", "box.ymax", "box.zmin", "box.zmax",
 ];
 
-pub use crate::geom::Units;
+pub use geom::Units;
 
 /// `[model]`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -108,26 +108,7 @@ pub struct BoxSpec {
     pub span: Span,
 }
 
-/// Which side of a surface to keep.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
-pub enum Side {
-    /// Larger z (towards the surface's upward side).
-    Above,
-    Below,
-}
-
-/// What a `[[trim]]` does to the patches of the selected surfaces.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub enum TrimAction {
-    /// Keep the patches on `side` of surface `of`; discard the others.
-    Keep { side: Side, of: String },
-    /// Discard the patch containing this point (on the support, up to the support tolerance).
-    DiscardContaining([f64; 3]),
-    /// Discard the patch nearest to this point.
-    DiscardNearest([f64; 3]),
-    /// Discard every patch whose area is below this value (> 0, model units squared).
-    DiscardAreaBelow(f64),
-}
+pub use model::trims::{Side, TrimAction};
 
 /// One `[[trim]]`, applied in recipe order after splitting (outside the box is always discarded).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -139,8 +120,8 @@ pub struct TrimSpec {
     pub span: Span,
 }
 
-pub use crate::stages::discretize::{Grading, Subdivision};
-pub use crate::stages::tet_mesh::Method as TetMethod;
+pub use model::discretize::{Grading, Subdivision};
+pub use tet_mesh::Method as TetMethod;
 
 /// One `[mesh.curves]` entry.
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -3,18 +3,18 @@
 //! per-curve 1D discretization. The expander attached to `curves` creates the per-curve nodes
 //! and the export node once the curves are known.
 //!
-//! Until splitting and trimming land (issue 4), the model's curves are the intersection curves
-//! of the recipe's pairs and the free borders of every imported surface, before trimming.
+//! A recipe with neither a box nor `[model] sealed = true` has no closed model: its curves are
+//! the intersection curves of the recipe's pairs and the free borders of every imported surface.
 
 use super::{ExportOp, SurfaceData};
-use crate::engine::{
-    Artifact, Expander, Expansion, NodeId, OpError, Operation, Output, Params, RunContext,
-};
-use crate::geom::Tolerances;
 use crate::plan::lower::curve_subdivision;
 use crate::recipe::{self, Recipe};
-use crate::stages::discretize::{Grading, Subdivision, discretize};
-use crate::stages::{intersect, topology};
+use engine::{
+    Artifact, Expander, Expansion, NodeId, OpError, Operation, Output, Params, RunContext,
+};
+use geom::Tolerances;
+use model::discretize::{Grading, Subdivision, discretize};
+use model::{intersect, topology};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -337,6 +337,6 @@ pub(super) fn existing_nodes(x: &Expansion, names: &[String]) -> Result<Vec<Node
         .collect()
 }
 
-pub(super) fn graph_error(e: crate::engine::GraphError) -> OpError {
+pub(super) fn graph_error(e: engine::GraphError) -> OpError {
     OpError::from(e.to_string())
 }

@@ -8,13 +8,13 @@
 use super::curves::{add_curve_nodes, existing_nodes, graph_error};
 use super::patch::patch_curves;
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp};
-use crate::engine::{Artifact, Expander, Expansion, NodeId, OpError};
-use crate::mesh::RegionGroup;
 use crate::recipe::{self, Recipe};
-use crate::stages::regions::FaceUse;
-use crate::stages::surface_mesh::SurfaceSize;
-use crate::stages::tet_mesh::{Method, SizeField};
+use engine::{Artifact, Expander, Expansion, NodeId, OpError};
+use geom::mesh::RegionGroup;
+use model::regions::FaceUse;
 use std::sync::Arc;
+use surface_mesh::SurfaceSize;
+use tet_mesh::{Method, SizeField};
 
 pub struct ModelExpander {
     pub recipe: Arc<Recipe>,

@@ -8,12 +8,12 @@
 //! memory beside its encoding; the decoded mesh is dropped after its last file.
 
 use super::{CurveNodes, SurfaceData};
-use crate::engine::artifact::FileSetEncoder;
-use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use crate::mesh::VolumeMesh;
-use crate::stages::export::curves::write_curves_vtu;
-use crate::stages::export::{Format, export, file_names};
-use crate::stages::quality;
+use engine::artifact::FileSetEncoder;
+use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use export::curves::write_curves_vtu;
+use export::quality;
+use export::{Format, export, file_names};
+use geom::mesh::VolumeMesh;
 use std::collections::BTreeMap;
 
 pub struct ExportOp {

@@ -2,10 +2,10 @@
 //! and the exact intersection of two surfaces.
 
 use super::SurfaceData;
-use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use crate::geom::BBox;
-use crate::mesh::SurfaceKind;
-use crate::stages::intersect;
+use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use geom::BBox;
+use geom::mesh::SurfaceKind;
+use model::intersect;
 
 /// How the box is given: explicitly, or as the extent of some surfaces plus a margin.
 #[derive(Clone, Debug, PartialEq)]
@@ -126,7 +126,7 @@ impl Operation for BoxSideOp {
 }
 
 /// `intersect:<a>×<b>`: the intersection curves of two surfaces (inputs: the two surfaces, in
-/// name order). Output: `stages::intersect::Intersection`.
+/// name order). Output: `model::intersect::Intersection`.
 pub struct IntersectOp {
     pub a: String,
     pub b: String,

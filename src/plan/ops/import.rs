@@ -1,10 +1,10 @@
 //! `import:<surface>`: reads one gOcad file's bytes into a validated, optionally repaired surface.
 
 use super::SurfaceData;
-use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use crate::geom::Tolerances;
-use crate::mesh::SurfaceKind;
-use crate::stages::{import, validate};
+use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use geom::Tolerances;
+use geom::mesh::SurfaceKind;
+use gocad::{import, validate};
 
 /// What to do when validation finds problems (the recipe's `on_invalid`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -22,8 +22,8 @@ pub use model::{ModelData, ModelOp, ModelPatch};
 pub use patch::{PatchExtractOp, PatchMesh, PatchPiece, SurfaceMeshOp};
 pub use region::{AssembleOp, RegionMesh, TetMeshOp};
 
-use crate::geom::TriMesh;
-use crate::mesh::SurfaceKind;
+use geom::TriMesh;
+use geom::mesh::SurfaceKind;
 use serde::{Deserialize, Serialize};
 
 /// A surface as the geometric stages see it: an imported surface (after validation and repair)

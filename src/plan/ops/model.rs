@@ -1,19 +1,18 @@
 //! `model`: the topological model. Every surface (imports and box sides) is split along all its
 //! intersection curves, cut into patches, the patches outside the box are trimmed away, and the
 //! regions are found by face-uses, faults being the surfaces allowed to dangle; then the model's
-//! vertices, named curves and patch boundaries are derived (`stages::model`). Inputs: the box
+//! vertices, named curves and patch boundaries are derived (the `model` crate). Inputs: the box
 //! (when `has_box`; a sealed model may have none), then the surfaces (`n_surfaces`, in name order), then the intersections. The expander attached
 //! to this node (`plan::ops::expand`) adds the per-curve, per-patch and per-region nodes.
 
 use super::SurfaceData;
-use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use crate::geom::{BBox, Tolerances, TriMesh};
-use crate::mesh::SurfaceKind;
-use crate::recipe::TrimSpec;
-use crate::stages::intersect::{Intersection, split};
-use crate::stages::model::{ModelTopology, build_topology};
-use crate::stages::trims::{TrimPatch, apply_trims, describe};
-use crate::stages::{patches, regions};
+use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use geom::mesh::SurfaceKind;
+use geom::{BBox, Tolerances, TriMesh};
+use model::intersect::{Intersection, split};
+use model::trims::{TrimPatch, TrimSpec, apply_trims, describe};
+use model::{ModelTopology, build_topology};
+use model::{patches, regions};
 use serde::{Deserialize, Serialize};
 
 /// One patch of the model, with its support triangulation.

@@ -3,12 +3,12 @@
 //! surface mesh from the discretizations of its curves.
 
 use super::{CurveNodes, ModelData};
-use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use crate::geom::{Tolerances, TriMesh};
-use crate::mesh::SurfaceKind;
-use crate::stages::model::{PatchBoundary, patch_input};
-use crate::stages::surface_mesh::{SurfaceSize, mesh_patch_with};
+use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use geom::mesh::SurfaceKind;
+use geom::{Tolerances, TriMesh};
+use model::{PatchBoundary, patch_input};
 use serde::{Deserialize, Serialize};
+use surface_mesh::{SurfaceSize, mesh_patch_with};
 
 /// The output of `patch:<p>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

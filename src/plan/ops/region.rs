@@ -3,13 +3,13 @@
 //! welded from all regions with every patch's triangles in its surface's group.
 
 use super::PatchMesh;
-use crate::engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use crate::mesh::{RegionGroup, VolumeMesh};
-use crate::stages::model::{VolumeAssembly, assemble_volume, region_input};
-use crate::stages::regions::{FaceUse, Side};
-use crate::stages::tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region};
+use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use geom::mesh::{RegionGroup, VolumeMesh};
+use model::regions::{FaceUse, Side};
+use model::{VolumeAssembly, assemble_volume, region_input};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region};
 
 /// The output of `tet_mesh:<r>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

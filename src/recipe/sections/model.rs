@@ -1,12 +1,12 @@
-//! `[model]` (name, units and whether the surfaces are sealed) and `[tolerances]` (the fields of `crate::geom::Tolerances`).
+//! `[model]` (name, units and whether the surfaces are sealed) and `[tolerances]` (the fields of `geom::Tolerances`).
 //! Decides that the model name is a portable file-name stem and that every tolerance is in its
 //! documented range.
 
 use toml::de::DeTable;
 
-use crate::geom::Tolerances;
 use crate::recipe::reader::{self as rd, Ctx, Value};
 use crate::recipe::spec::{ModelSpec, Units};
+use geom::Tolerances;
 
 const MODEL_KEYS: &[&str] = &["name", "units", "sealed"];
 

@@ -106,8 +106,8 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
 /// export stage names its files.
 fn same_file(a: Format, b: Format) -> bool {
     let names = |f: Format| {
-        crate::stages::export::Format::from_name(f.as_str())
-            .map(|e| crate::stages::export::file_names("m", e))
+        export::Format::from_name(f.as_str())
+            .map(|e| export::file_names("m", e))
             .unwrap_or_default()
     };
     let b = names(b);

@@ -8,11 +8,11 @@ use std::path::{Path, PathBuf};
 
 use toml::de::DeValue;
 
-use crate::mesh::SurfaceKind;
 use crate::recipe::diagnostic::did_you_mean;
 use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
 use crate::recipe::selector::valid_name_char;
 use crate::recipe::spec::{ImportFormat, OnInvalid, SurfaceSpec};
+use geom::mesh::SurfaceKind;
 
 const KEYS: &[&str] = &[
     "file",

@@ -1,0 +1,197 @@
+//! `build`: run a `BuildGraph` against a cache directory and produce a `BuildReport`.
+//!
+//! The entry point takes the cache lock (telling the caller when it has to wait), loads the
+//! previous manifest for explanations, runs the coordinator with `jobs` worker threads, writes
+//! the next manifest, and orders the report topologically with ties broken by name, so the
+//! report, outputs and lock file are identical for any number of jobs.
+
+use crate::artifact::Hash;
+use crate::dirlock::DirLock;
+use crate::error::EngineError;
+use crate::executor::Coordinator;
+use crate::graph::{BuildGraph, Work};
+use crate::manifest::Manifest;
+use crate::store::Store;
+use crate::worker::{Done, Job, panic_text, run_job};
+use std::collections::{BTreeMap, BTreeSet};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::sync::mpsc;
+use std::time::Instant;
+
+pub use crate::reason::RebuildReason;
+pub use crate::report::{BuildReport, NodeReport, NodeState};
+
+#[derive(Debug, Clone)]
+pub struct BuildOptions {
+    pub cache_dir: PathBuf,
+    /// Where emitted files are written (relative paths from `FileSet`s are joined to it).
+    pub output_dir: PathBuf,
+    /// Worker threads; 0 means one per available core.
+    pub jobs: usize,
+    /// Keep building independent nodes after a failure (otherwise stop dispatching).
+    pub keep_going: bool,
+}
+
+impl BuildOptions {
+    pub fn new(cache_dir: impl Into<PathBuf>, output_dir: impl Into<PathBuf>) -> Self {
+        BuildOptions {
+            cache_dir: cache_dir.into(),
+            output_dir: output_dir.into(),
+            jobs: 1,
+            keep_going: true,
+        }
+    }
+}
+
+/// Status for the CLI to render (Cargo-style lines, progress bars). Events from worker threads
+/// arrive in timing order; only the final `BuildReport` is thread-count independent (a skipped
+/// node's `Finished` reason may name fewer failed inputs than its final report does).
+#[allow(clippy::large_enum_variant)] // `Finished` carries the report by value, as the CLI wants it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    /// Another build holds the cache lock; this one waits for it.
+    WaitingForLock {
+        path: PathBuf,
+    },
+    /// A node started running (not emitted for cache hits).
+    Started {
+        name: String,
+        kind: String,
+    },
+    Progress {
+        name: String,
+        done: u64,
+        total: u64,
+    },
+    Finished(NodeReport),
+    /// A cache entry for this node was unreadable or did not match its hash; it is rebuilt.
+    CacheCorrupt {
+        name: String,
+        detail: String,
+    },
+    /// Node `by`'s expander added `added` nodes.
+    Expanded {
+        by: String,
+        added: usize,
+    },
+}
+
+/// Build every node of `graph` (and every node its expanders add).
+pub fn build(
+    graph: BuildGraph,
+    opts: &BuildOptions,
+    on_event: &(dyn Fn(&Event) + Sync),
+) -> Result<BuildReport, EngineError> {
+    let mut graph = graph;
+    let t0 = Instant::now();
+    let _lock = DirLock::acquire(&opts.cache_dir, |p| {
+        on_event(&Event::WaitingForLock {
+            path: p.to_path_buf(),
+        })
+    })?;
+    let store = Store::open(&opts.cache_dir)?;
+    let prev = Manifest::load(&opts.cache_dir).unwrap_or_default();
+    let jobs = if opts.jobs == 0 {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    } else {
+        opts.jobs
+    };
+
+    let mut co = Coordinator::new(&prev, opts.keep_going);
+    co.add_nodes(&graph, 0..graph.len(), on_event);
+    let (job_tx, job_rx) = mpsc::channel::<Job>();
+    let job_rx = Mutex::new(job_rx);
+    let (done_tx, done_rx) = mpsc::channel::<Done>();
+    std::thread::scope(|s| {
+        for _ in 0..jobs {
+            let done_tx = done_tx.clone();
+            let (job_rx, store) = (&job_rx, &store);
+            s.spawn(move || {
+                loop {
+                    let job = match job_rx.lock() {
+                        Ok(rx) => match rx.recv() {
+                            Ok(j) => j,
+                            Err(_) => break,
+                        },
+                        Err(_) => break,
+                    };
+                    let id = job.id;
+                    let done = catch_unwind(AssertUnwindSafe(|| {
+                        run_job(job, store, &opts.output_dir, on_event)
+                    }))
+                    .unwrap_or_else(|p| {
+                        Done::failed(
+                            id,
+                            format!("engine worker panicked: {}", panic_text(p.as_ref())),
+                        )
+                    });
+                    if done_tx.send(done).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(done_tx);
+        co.drive(&mut graph, jobs, &job_tx, &done_rx, on_event);
+        drop(job_tx);
+    });
+
+    co.manifest(&graph)
+        .save(&opts.cache_dir)
+        .map_err(|e| EngineError::io(opts.cache_dir.join("manifest.bin"), e))?;
+    let output_files = co.output_files.clone();
+    let results = co.into_results(&graph);
+
+    // Topological order, ties broken by name (Kahn with a name-ordered ready set).
+    let n = graph.len();
+    let mut indegree: Vec<usize> = graph
+        .nodes
+        .iter()
+        .map(|d| d.inputs.iter().map(|i| i.0).collect::<BTreeSet<_>>().len())
+        .collect();
+    let mut ready: BTreeSet<(String, usize)> = (0..n)
+        .filter(|&i| indegree[i] == 0)
+        .map(|i| (graph.nodes[i].name.clone(), i))
+        .collect();
+    let mut order = Vec::with_capacity(n);
+    while let Some((_, i)) = ready.pop_first() {
+        order.push(i);
+        for d in graph.dependents(crate::graph::NodeId(i)) {
+            indegree[d.0] = indegree[d.0].saturating_sub(1);
+            if indegree[d.0] == 0 {
+                ready.insert((graph.nodes[d.0].name.clone(), d.0));
+            }
+        }
+    }
+    let mut results: Vec<_> = results.into_iter().map(Some).collect();
+    let mut nodes = Vec::with_capacity(n);
+    let mut artifacts = BTreeMap::new();
+    for i in order {
+        if let Some((Some(report), artifact)) = results.get_mut(i).and_then(Option::take) {
+            // A file-emitting node's bytes are on disk by now: not kept (they are the largest
+            // artifact of a build, and the caller's report phase would otherwise hold them).
+            let emits = matches!(&graph.nodes[i].work, Work::Op(op) if op.emits_files());
+            if let Some(a) = artifact.filter(|_| !emits) {
+                artifacts.insert(report.name.clone(), a);
+            }
+            nodes.push(report);
+        }
+    }
+    let ok = nodes.iter().all(|r| r.state.is_ok());
+    Ok(BuildReport {
+        nodes,
+        output_files,
+        ok,
+        duration_ms: t0.elapsed().as_secs_f64() * 1000.0,
+        artifacts,
+    })
+}
+
+/// Hash of a file's content as the engine keys it (for callers comparing files with a lock).
+pub fn file_hash(bytes: &[u8]) -> Hash {
+    Hash::of(bytes)
+}

@@ -1,0 +1,98 @@
+//! Cache maintenance: `gc` keeps only the entries a lock file references (node keys and output
+//! objects) and removes everything else, including stray temporary files; `clean` removes the
+//! whole cache directory. Both take the directory lock so they never race a build.
+
+use crate::artifact::Hash;
+use crate::dirlock::DirLock;
+use crate::error::EngineError;
+use crate::lockfile::{LockFile, LockedNode};
+use crate::manifest::Manifest;
+use std::collections::BTreeSet;
+use std::path::Path;
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct GcStats {
+    pub kept: usize,
+    pub removed: usize,
+    pub bytes_freed: u64,
+}
+
+fn lock_now(cache_dir: &Path) -> Result<DirLock, EngineError> {
+    DirLock::try_acquire(cache_dir)?.ok_or_else(|| EngineError::Locked {
+        path: cache_dir.to_path_buf(),
+    })
+}
+
+/// Remove every object and action not referenced by `keep`.
+pub fn gc(cache_dir: &Path, keep: &LockFile) -> Result<GcStats, EngineError> {
+    let _lock = lock_now(cache_dir)?;
+    let objects: BTreeSet<Hash> = keep.nodes.values().map(|n| n.output).collect();
+    let actions: BTreeSet<Hash> = keep.nodes.values().map(|n| n.key).collect();
+    let mut stats = GcStats::default();
+    sweep(&cache_dir.join("objects"), &objects, &mut stats)?;
+    sweep(&cache_dir.join("actions"), &actions, &mut stats)?;
+    Ok(stats)
+}
+
+fn sweep(dir: &Path, keep: &BTreeSet<Hash>, stats: &mut GcStats) -> Result<(), EngineError> {
+    let entries = match std::fs::read_dir(dir) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(EngineError::io(dir, e)),
+    };
+    let mut paths = Vec::new();
+    for entry in entries {
+        let entry = entry.map_err(|e| EngineError::io(dir, e))?;
+        paths.push(entry.path());
+    }
+    paths.sort();
+    for path in paths {
+        let referenced = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| Hash::from_hex(n).ok())
+            .is_some_and(|h| keep.contains(&h));
+        if referenced {
+            stats.kept += 1;
+            continue;
+        }
+        let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        std::fs::remove_file(&path).map_err(|e| EngineError::io(&path, e))?;
+        stats.removed += 1;
+        stats.bytes_freed += size;
+    }
+    Ok(())
+}
+
+/// What the last build in `cache_dir` referenced, as a lock file (for `gc` without a lock file).
+pub fn last_build(cache_dir: &Path) -> Option<LockFile> {
+    let m = Manifest::load(cache_dir)?;
+    let nodes = m
+        .nodes
+        .into_iter()
+        .map(|(n, e)| {
+            (
+                n,
+                LockedNode {
+                    key: e.key,
+                    output: e.output,
+                },
+            )
+        })
+        .collect();
+    Some(LockFile {
+        nodes,
+        outputs: Default::default(),
+    })
+}
+
+/// Remove the cache directory entirely (nothing to do when it does not exist).
+pub fn clean(cache_dir: &Path) -> Result<(), EngineError> {
+    if !cache_dir.exists() {
+        return Ok(());
+    }
+    let lock = lock_now(cache_dir)?;
+    let r = std::fs::remove_dir_all(cache_dir).map_err(|e| EngineError::io(cache_dir, e));
+    drop(lock);
+    r
+}

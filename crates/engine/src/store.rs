@@ -1,0 +1,203 @@
+//! The on-disk, content-addressed cache.
+//!
+//! Layout: `<cache>/objects/<hash>` holds artifact bytes, named by their blake3; `<cache>/actions/<key>`
+//! holds a small record (output hash, counts, notes) prefixed by the blake3 of its payload. Every
+//! read re-hashes what it read, so a truncated, altered or half-written entry is reported as
+//! corrupt and never used; every write goes to a temporary file in the same directory and is
+//! renamed into place, so readers see either the old entry or the whole new one.
+
+use crate::artifact::{Artifact, Hash};
+use crate::error::EngineError;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::io::{ErrorKind, Write};
+use std::path::{Path, PathBuf};
+
+/// What a cache read found.
+#[derive(Debug)]
+pub enum Load<T> {
+    Hit(T),
+    Missing,
+    /// The entry exists but cannot be trusted; the text says why.
+    Corrupt(String),
+}
+
+/// The cached record of one action (node key).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ActionRecord {
+    pub output: Hash,
+    pub counts: BTreeMap<String, u64>,
+    pub notes: Vec<String>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct ActionFile {
+    key: Hash,
+    record: ActionRecord,
+}
+
+/// A handle on a cache directory.
+#[derive(Debug, Clone)]
+pub struct Store {
+    root: PathBuf,
+}
+
+impl Store {
+    /// Open (creating if needed) the cache at `root`.
+    pub fn open(root: &Path) -> Result<Store, EngineError> {
+        for sub in ["objects", "actions"] {
+            let d = root.join(sub);
+            std::fs::create_dir_all(&d).map_err(|e| EngineError::io(&d, e))?;
+        }
+        Ok(Store {
+            root: root.to_path_buf(),
+        })
+    }
+
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+
+    pub fn object_path(&self, h: Hash) -> PathBuf {
+        self.root.join("objects").join(h.to_hex())
+    }
+
+    pub fn action_path(&self, key: Hash) -> PathBuf {
+        self.root.join("actions").join(key.to_hex())
+    }
+
+    /// Read and verify the object named `h`.
+    pub fn load_object(&self, h: Hash) -> Load<Artifact> {
+        let path = self.object_path(h);
+        match std::fs::read(&path) {
+            Ok(bytes) => {
+                let a = Artifact::from_bytes(bytes);
+                if a.hash() == h {
+                    Load::Hit(a)
+                } else {
+                    Load::Corrupt(format!(
+                        "object {} has hash mismatch ({} bytes hash to {})",
+                        h.short(),
+                        a.len(),
+                        a.hash().short()
+                    ))
+                }
+            }
+            Err(e) if e.kind() == ErrorKind::NotFound => Load::Missing,
+            Err(e) => Load::Corrupt(format!("object {} unreadable: {e}", h.short())),
+        }
+    }
+
+    pub fn put_object(&self, a: &Artifact) -> std::io::Result<()> {
+        write_atomic(&self.object_path(a.hash()), a.bytes(), false)
+    }
+
+    /// Read and verify the action record for `key`.
+    pub fn load_action(&self, key: Hash) -> Load<ActionRecord> {
+        let path = self.action_path(key);
+        let bytes = match std::fs::read(&path) {
+            Ok(b) => b,
+            Err(e) if e.kind() == ErrorKind::NotFound => return Load::Missing,
+            Err(e) => return Load::Corrupt(format!("action {} unreadable: {e}", key.short())),
+        };
+        let Some((sum, payload)) = bytes.split_first_chunk::<32>() else {
+            return Load::Corrupt(format!(
+                "action {} truncated ({} bytes)",
+                key.short(),
+                bytes.len()
+            ));
+        };
+        if Hash::of(payload).0 != *sum {
+            return Load::Corrupt(format!("action {} has hash mismatch", key.short()));
+        }
+        match postcard::from_bytes::<ActionFile>(payload) {
+            Ok(f) if f.key == key => Load::Hit(f.record),
+            Ok(f) => Load::Corrupt(format!(
+                "action {} records key {}",
+                key.short(),
+                f.key.short()
+            )),
+            Err(e) => Load::Corrupt(format!("action {} undecodable: {e}", key.short())),
+        }
+    }
+
+    pub fn put_action(&self, key: Hash, record: &ActionRecord) -> std::io::Result<()> {
+        let payload = postcard::to_stdvec(&ActionFile {
+            key,
+            record: record.clone(),
+        })
+        .map_err(|e| std::io::Error::other(e.to_string()))?;
+        let mut bytes = Hash::of(&payload).0.to_vec();
+        bytes.extend_from_slice(&payload);
+        write_atomic(&self.action_path(key), &bytes, false)
+    }
+}
+
+/// Write `bytes` to `path` through a temporary file in the same directory and a rename.
+/// `durable` also flushes the data to disk before the rename (used for user-visible outputs).
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&dir)?;
+    let mut b = tempfile::Builder::new();
+    b.prefix(".tmp-");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        b.permissions(std::fs::Permissions::from_mode(0o644));
+    }
+    let mut tmp = b.tempfile_in(&dir)?;
+    tmp.write_all(bytes)?;
+    if durable {
+        tmp.as_file().sync_data()?;
+    }
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_truncated_object_or_action_reads_as_corrupt() {
+        let dir = tempfile::tempdir().unwrap();
+        let s = Store::open(dir.path()).unwrap();
+        let a = Artifact::from_bytes(b"hello world".to_vec());
+        s.put_object(&a).unwrap();
+        let key = Hash::of(b"key");
+        let rec = ActionRecord {
+            output: a.hash(),
+            counts: BTreeMap::new(),
+            notes: vec![],
+        };
+        s.put_action(key, &rec).unwrap();
+        assert!(matches!(s.load_object(a.hash()), Load::Hit(_)));
+        assert!(matches!(s.load_action(key), Load::Hit(r) if r == rec));
+        std::fs::write(s.object_path(a.hash()), b"hello").unwrap();
+        std::fs::write(s.action_path(key), b"short").unwrap();
+        assert!(matches!(s.load_object(a.hash()), Load::Corrupt(_)));
+        assert!(matches!(s.load_action(key), Load::Corrupt(_)));
+        assert!(matches!(s.load_object(Hash::of(b"nothing")), Load::Missing));
+    }
+
+    #[test]
+    fn an_action_copied_under_another_key_is_corrupt() {
+        let dir = tempfile::tempdir().unwrap();
+        let s = Store::open(dir.path()).unwrap();
+        let rec = ActionRecord {
+            output: Hash::of(b"o"),
+            counts: BTreeMap::new(),
+            notes: vec![],
+        };
+        s.put_action(Hash::of(b"k1"), &rec).unwrap();
+        std::fs::copy(
+            s.action_path(Hash::of(b"k1")),
+            s.action_path(Hash::of(b"k2")),
+        )
+        .unwrap();
+        assert!(matches!(s.load_action(Hash::of(b"k2")), Load::Corrupt(_)));
+    }
+}

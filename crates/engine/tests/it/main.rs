@@ -1,0 +1,7 @@
+//! The integration tests of this crate, one module per subject, in one binary (one link per
+//! change instead of one per file).
+
+mod engine_build;
+mod engine_cache;
+mod engine_parallel;
+mod engine_support;

@@ -1,0 +1,39 @@
+//! MEDIT `.mesh` writer (INRIA ASCII format, read by mmg, FreeFem and meshio): `Vertices` with
+//! reference 0, `Tetrahedra` with reference = region index + 1, `Triangles` with reference =
+//! surface group index + 1. Indices are 1-based. MEDIT has no names: the references are the
+//! same ids as the msh physical tags, so the names can be looked up there or in the report.
+
+use geom::mesh::VolumeMesh;
+use std::fmt::Write as _;
+
+pub(super) fn write(mesh: &VolumeMesh) -> Vec<u8> {
+    let mut s = String::new();
+    s.push_str("MeshVersionFormatted 2\n\nDimension 3\n\n");
+    let _ = writeln!(s, "Vertices\n{}", mesh.nodes.len());
+    for p in &mesh.nodes {
+        let _ = writeln!(s, "{} {} {} 0", p[0], p[1], p[2]);
+    }
+    if !mesh.triangles.is_empty() {
+        let _ = writeln!(s, "\nTriangles\n{}", mesh.triangles.len());
+        for (t, g) in mesh.triangles.iter().zip(&mesh.triangle_group) {
+            let _ = writeln!(s, "{} {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1, g + 1);
+        }
+    }
+    if !mesh.tets.is_empty() {
+        let _ = writeln!(s, "\nTetrahedra\n{}", mesh.tets.len());
+        for (t, r) in mesh.tets.iter().zip(&mesh.tet_region) {
+            let _ = writeln!(
+                s,
+                "{} {} {} {} {}",
+                t[0] + 1,
+                t[1] + 1,
+                t[2] + 1,
+                t[3] + 1,
+                r + 1
+            );
+        }
+    }
+    s.push_str("\nEnd\n");
+    s.shrink_to_fit();
+    s.into_bytes()
+}

@@ -1,0 +1,56 @@
+//! TetGen `.node` / `.ele` / `.face` writer (TetGen's file formats, 1-based indices): nodes
+//! without attributes or markers; tets with one attribute, the region id (region index + 1, as
+//! TetGen's `-A` region attributes); faces with a boundary marker = surface group index + 1.
+//! Files are named `<model>.1.node` etc. (by `super::file_names`), as TetGen names the first
+//! refinement's output.
+
+use geom::mesh::VolumeMesh;
+use std::fmt::Write as _;
+
+/// The `.node`, `.ele` and `.face` texts, in that order (named by `super::file_names`).
+pub(super) fn write(mesh: &VolumeMesh, model: &str) -> [Vec<u8>; 3] {
+    let mut node = String::new();
+    let _ = writeln!(node, "# {model}: node x y z\n{} 3 0 0", mesh.nodes.len());
+    for (i, p) in mesh.nodes.iter().enumerate() {
+        let _ = writeln!(node, "{} {} {} {}", i + 1, p[0], p[1], p[2]);
+    }
+    let mut ele = String::new();
+    let _ = writeln!(
+        ele,
+        "# {model}: tet n1 n2 n3 n4 region\n{} 4 1",
+        mesh.tets.len()
+    );
+    for (i, (t, r)) in mesh.tets.iter().zip(&mesh.tet_region).enumerate() {
+        let _ = writeln!(
+            ele,
+            "{} {} {} {} {} {}",
+            i + 1,
+            t[0] + 1,
+            t[1] + 1,
+            t[2] + 1,
+            t[3] + 1,
+            r + 1
+        );
+    }
+    let mut face = String::new();
+    let _ = writeln!(
+        face,
+        "# {model}: face n1 n2 n3 surface\n{} 1",
+        mesh.triangles.len()
+    );
+    for (i, (t, g)) in mesh.triangles.iter().zip(&mesh.triangle_group).enumerate() {
+        let _ = writeln!(
+            face,
+            "{} {} {} {} {}",
+            i + 1,
+            t[0] + 1,
+            t[1] + 1,
+            t[2] + 1,
+            g + 1
+        );
+    }
+    [node, ele, face].map(|mut text| {
+        text.shrink_to_fit();
+        text.into_bytes()
+    })
+}

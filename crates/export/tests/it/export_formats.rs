@@ -1,0 +1,334 @@
+//! Exports read back by the real readers (meshio, gmsh) and judged by check_mesh.py.
+
+use test_support::export_support;
+
+use export::{Format, export};
+use export_support::*;
+
+fn counts(mesh: &geom::mesh::VolumeMesh) -> (usize, usize, usize) {
+    (mesh.nodes.len(), mesh.tets.len(), mesh.triangles.len())
+}
+
+#[test]
+fn the_test_mesh_has_the_expected_groups() {
+    let m = layered_box(6, 6);
+    let (nn, nt, _) = counts(&m);
+    assert_eq!(nn, 7 * 7 * 7);
+    assert_eq!(nt, 6 * 6 * 6 * 6);
+    for g in 0..m.surface_groups.len() as u32 {
+        assert!(
+            m.triangle_group.contains(&g),
+            "group {} is empty",
+            m.surface_groups[g as usize].name
+        );
+    }
+}
+
+const MESHIO_COUNTS: &str = r#"
+import sys, meshio, numpy as np
+m = meshio.read(sys.argv[1], file_format=sys.argv[2] if len(sys.argv) > 2 else None)
+tet = sum(len(b.data) for b in m.cells if b.type == "tetra")
+tri = sum(len(b.data) for b in m.cells if b.type == "triangle")
+keys = [k for k in ("gmsh:physical", "medit:ref", "region") if k in m.cell_data]
+tags = set()
+if keys:
+    for b, d in zip(m.cells, m.cell_data[keys[0]]):
+        if b.type == "tetra":
+            tags |= set(int(x) for x in np.unique(d))
+print("COUNTS", len(m.points), tet, tri, ",".join(str(t) for t in sorted(tags)))
+print("FIELD", ";".join(sorted(m.field_data.keys())))
+print("CELLS", ";".join(sorted(m.cell_data.keys())))
+"#;
+
+#[test]
+fn every_format_reads_back_in_meshio_with_its_counts_and_region_tags() {
+    if !python_has("meshio") {
+        return;
+    }
+    let mesh = layered_box(6, 6);
+    let (nn, nt, nf) = counts(&mesh);
+    let dir = tempfile::tempdir().unwrap();
+    for (format, main, region_tags, with_tris) in [
+        (Format::Msh, "layered.msh", "1,2,3", true),
+        (Format::MshBinary, "layered.msh", "1,2,3", true),
+        (Format::Vtu, "layered.vtu", "0,1,2", true),
+        (Format::VtuBinary, "layered.vtu", "0,1,2", true),
+        (Format::Medit, "layered.mesh", "1,2,3", true),
+        (Format::TetGen, "layered.1.node", "", false),
+    ] {
+        let files = export(&mesh, "layered", format).unwrap();
+        write_all(dir.path(), &files);
+        let path = dir.path().join(main);
+        let out = python(MESHIO_COUNTS, &[path.to_str().unwrap()]);
+        let line = |key: &str| {
+            out.lines()
+                .find_map(|l| l.strip_prefix(key))
+                .unwrap_or("")
+                .to_string()
+        };
+        let first = line("COUNTS ");
+        let want_tris = if with_tris { nf } else { 0 };
+        let want = format!("{nn} {nt} {want_tris} {region_tags}");
+        assert_eq!(first.trim_end(), want.trim_end(), "{format:?}: {out}");
+        if format == Format::Vtu || format == Format::VtuBinary {
+            let field = line("FIELD ");
+            assert!(
+                field.contains("region:reservoir") && field.contains("surface:F2_dangling"),
+                "{field}"
+            );
+            let cells = line("CELLS ");
+            for k in ["material", "density", "porosity", "surface"] {
+                assert!(cells.contains(k), "vtu cell data lacks {k}: {cells}");
+            }
+        }
+        if format == Format::Msh || format == Format::MshBinary {
+            let field = line("FIELD ");
+            assert!(
+                field.contains("H1 top") && field.contains("overburden"),
+                "{field}"
+            );
+            let cells = line("CELLS ");
+            assert!(
+                cells.contains("material") && cells.contains("porosity"),
+                "{cells}"
+            );
+        }
+    }
+}
+
+#[test]
+fn tetgen_faces_and_region_attributes_are_what_we_wrote() {
+    let mesh = layered_box(4, 3);
+    let files = export(&mesh, "m", Format::TetGen).unwrap();
+    let names: Vec<&str> = files.iter().map(|f| f.0.as_str()).collect();
+    assert_eq!(names, ["m.1.node", "m.1.ele", "m.1.face"]);
+    let ele = String::from_utf8(files[1].1.clone()).unwrap();
+    let rows: Vec<&str> = ele.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(rows[0], format!("{} 4 1", mesh.tets.len()));
+    let last = rows.last().unwrap().split_whitespace().collect::<Vec<_>>();
+    assert_eq!(last.len(), 6);
+    assert_eq!(
+        last[5],
+        (mesh.tet_region[mesh.tets.len() - 1] + 1).to_string()
+    );
+    let face = String::from_utf8(files[2].1.clone()).unwrap();
+    let fault = face
+        .lines()
+        .filter(|l| l.split_whitespace().nth(4) == Some("9"))
+        .count();
+    assert_eq!(
+        fault,
+        mesh.triangle_group.iter().filter(|&&g| g == 8).count()
+    );
+    assert!(fault > 0);
+}
+
+const GMSH_GROUPS: &str = r#"
+import sys, gmsh
+gmsh.initialize()
+gmsh.option.setNumber("General.Terminal", 0)
+gmsh.open(sys.argv[1])
+for dim, tag in sorted(gmsh.model.getPhysicalGroups()):
+    ents = gmsh.model.getEntitiesForPhysicalGroup(dim, tag)
+    n = 0
+    for e in ents:
+        types, tags, nodes = gmsh.model.mesh.getElements(dim, e)
+        n += sum(len(t) for t in tags)
+    print(dim, tag, gmsh.model.getPhysicalName(dim, tag), n, sep="|")
+gmsh.finalize()
+"#;
+
+#[test]
+fn gmsh_opens_both_msh_encodings_with_named_physical_groups_of_the_right_dimension() {
+    if !python_has("gmsh") {
+        return;
+    }
+    let mesh = layered_box(6, 6);
+    let dir = tempfile::tempdir().unwrap();
+    let mut want = Vec::new();
+    for (g, s) in mesh.surface_groups.iter().enumerate() {
+        let n = mesh
+            .triangle_group
+            .iter()
+            .filter(|&&x| x == g as u32)
+            .count();
+        want.push(format!("2|{}|{}|{n}", g + 1, s.name));
+    }
+    for (r, s) in mesh.regions.iter().enumerate() {
+        let n = mesh.tet_region.iter().filter(|&&x| x == r as u32).count();
+        want.push(format!("3|{}|{}|{n}", r + 1, s.name));
+    }
+    for format in [Format::Msh, Format::MshBinary] {
+        let files = export(&mesh, format.name(), format).unwrap();
+        let paths = write_all(dir.path(), &files);
+        let out = python(GMSH_GROUPS, &[paths[0].to_str().unwrap()]);
+        let got: Vec<&str> = out.lines().collect();
+        assert_eq!(got, want, "{format:?}");
+    }
+}
+
+#[test]
+fn check_mesh_passes_on_msh_binary_msh_vtu_and_medit_with_utm_offsets() {
+    if !python_has("meshio, numpy") {
+        return;
+    }
+    let Some(tool) = checker() else { return };
+    let mesh = layered_box(6, 6);
+    let dir = tempfile::tempdir().unwrap();
+    for format in [
+        Format::Msh,
+        Format::MshBinary,
+        Format::Vtu,
+        Format::VtuBinary,
+        Format::Medit,
+    ] {
+        let files = export(&mesh, "checked", format).unwrap();
+        let paths = write_all(dir.path(), &files);
+        let (ok, out) = run_checker(&tool, &paths[0], 3, None);
+        assert!(ok, "{format:?} failed check_mesh.py:\n{out}");
+        assert!(
+            out.contains(&format!("\"surface_triangles\": {}", mesh.triangles.len())),
+            "{format:?}: {out}"
+        );
+    }
+}
+
+#[test]
+fn check_mesh_fails_when_a_fault_triangle_is_not_a_tet_face() {
+    if !python_has("meshio, numpy") {
+        return;
+    }
+    let Some(tool) = checker() else { return };
+    let mut mesh = layered_box(4, 3);
+    // Break one fault triangle: it no longer matches a tet face (the checker must notice).
+    let i = mesh.triangle_group.iter().position(|&g| g == 8).unwrap();
+    mesh.triangles[i][2] = 0; // the corner (xmin, ymin, zmin), far from the fault
+    let dir = tempfile::tempdir().unwrap();
+    let paths = write_all(dir.path(), &export(&mesh, "broken", Format::Msh).unwrap());
+    let (ok, out) = run_checker(&tool, &paths[0], 3, None);
+    assert!(!ok, "the checker accepted a broken fault:\n{out}");
+}
+
+#[test]
+fn the_same_mesh_gives_the_same_bytes_every_time() {
+    let a = layered_box(4, 3);
+    let b = layered_box(4, 3);
+    for f in export::Format::ALL {
+        assert_eq!(
+            export(&a, "d", f).unwrap(),
+            export(&b, "d", f).unwrap(),
+            "{f:?}"
+        );
+    }
+    let msh = export(&a, "d", Format::Msh).unwrap();
+    let text = String::from_utf8(msh[0].1.clone()).unwrap();
+    assert!(
+        text.starts_with("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n12\n"),
+        "{}",
+        &text[..80]
+    );
+    assert!(text.contains("3 2 \"reservoir\"\n") && text.contains("2 9 \"F2_dangling\"\n"));
+}
+
+const MESHIO_INP: &str = r#"
+import sys, meshio
+m = meshio.read(sys.argv[1])
+tet = sum(len(b.data) for b in m.cells if b.type == "tetra")
+print("COUNTS", len(m.points), tet)
+print("SETS", ";".join(sorted(m.cell_sets.keys())))
+print("NSETS", ";".join(sorted(m.point_sets.keys())))
+"#;
+
+#[test]
+fn abaqus_inp_reads_in_meshio_with_region_sets_and_surface_node_sets() {
+    if !python_has("meshio") {
+        return;
+    }
+    let mesh = layered_box(6, 6);
+    let dir = tempfile::tempdir().unwrap();
+    let paths = write_all(dir.path(), &export(&mesh, "abq", Format::Inp).unwrap());
+    let out = python(MESHIO_INP, &[paths[0].to_str().unwrap()]);
+    let line = |key: &str| {
+        out.lines()
+            .find_map(|l| l.strip_prefix(key))
+            .unwrap_or("")
+            .to_string()
+    };
+    assert_eq!(
+        line("COUNTS "),
+        format!("{} {}", mesh.nodes.len(), mesh.tets.len()),
+        "{out}"
+    );
+    let sets = line("SETS ").to_ascii_lowercase();
+    for r in ["underburden", "reservoir", "overburden", "f2_dangling_s"] {
+        assert!(sets.contains(r), "no element set {r}: {out}");
+    }
+    assert!(
+        line("NSETS ").to_ascii_lowercase().contains("h1_top"),
+        "{out}"
+    );
+}
+
+#[test]
+fn abaqus_surfaces_name_the_tet_faces_that_are_our_triangles() {
+    let mesh = layered_box(4, 3);
+    let text = String::from_utf8(export(&mesh, "abq", Format::Inp).unwrap().remove(0).1).unwrap();
+    // Parse elements and the F2_dangling surface's element sets back.
+    let mut elems: std::collections::BTreeMap<usize, [u32; 4]> = Default::default();
+    let mut sets: std::collections::BTreeMap<String, Vec<usize>> = Default::default();
+    let mut mode = String::new();
+    for l in text.lines() {
+        if l.starts_with("**") {
+            continue;
+        }
+        if l.starts_with('*') {
+            mode = l.to_string();
+            continue;
+        }
+        let v: Vec<&str> = l
+            .split(',')
+            .map(str::trim)
+            .filter(|t| !t.is_empty())
+            .collect();
+        if mode.starts_with("*Element,") {
+            let n: Vec<u32> = v[1..]
+                .iter()
+                .map(|t| t.parse::<u32>().unwrap() - 1)
+                .collect();
+            elems.insert(v[0].parse().unwrap(), [n[0], n[1], n[2], n[3]]);
+        } else if let Some(name) = mode.strip_prefix("*Elset, elset=F2_dangling_") {
+            sets.entry(name.to_string())
+                .or_default()
+                .extend(v.iter().map(|t| t.parse::<usize>().unwrap()));
+        }
+    }
+    let local = |s: &str| match s {
+        "S1" => [0, 1, 2],
+        "S2" => [0, 3, 1],
+        "S3" => [1, 3, 2],
+        _ => [2, 3, 0],
+    };
+    let mut faces: Vec<[u32; 3]> = Vec::new();
+    for (side, es) in &sets {
+        for e in es {
+            let mut f = local(side).map(|k| elems[e][k]);
+            f.sort();
+            faces.push(f);
+        }
+    }
+    faces.sort();
+    let mut want: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .zip(&mesh.triangle_group)
+        .filter(|(_, g)| **g == 8)
+        .map(|(t, _)| {
+            let mut t = *t;
+            t.sort();
+            t
+        })
+        .collect();
+    want.sort();
+    assert!(!want.is_empty());
+    assert_eq!(faces, want);
+}

@@ -1,0 +1,8 @@
+//! The integration tests of this crate, one module per subject, in one binary (one link per
+//! change instead of one per file).
+
+mod export_bytes;
+mod export_formats;
+mod quality_tables;
+mod read_malformed;
+mod read_volume_roundtrip;

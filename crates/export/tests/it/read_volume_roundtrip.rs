@@ -1,0 +1,93 @@
+//! Our msh 4.1 output (ASCII and binary) reads back into the same VolumeMesh.
+
+use test_support::export_support;
+
+use export::{Format, export};
+use export_support::layered_box;
+use geom::mesh::read::{read_msh, read_volume_msh};
+use geom::mesh::{SurfaceKind, VolumeMesh};
+
+fn without_kinds(mut m: VolumeMesh) -> VolumeMesh {
+    for g in &mut m.surface_groups {
+        g.kind = SurfaceKind::Other;
+    }
+    m
+}
+
+#[test]
+fn msh_ascii_and_binary_round_trip_nodes_elements_groups_and_attributes() {
+    let mesh = layered_box(6, 6);
+    for format in [Format::Msh, Format::MshBinary] {
+        let files = export(&mesh, "rt", format).unwrap();
+        let back = read_volume_msh(&files[0].1, "rt.msh").unwrap();
+        // Coordinates round-trip bit for bit in both encodings (shortest round-trip printing).
+        assert_eq!(back.nodes, mesh.nodes, "{format:?}");
+        // Elements come back grouped by region / group; compare as sorted sets with their tags.
+        let mut a: Vec<_> = mesh.tets.iter().zip(&mesh.tet_region).collect();
+        let mut b: Vec<_> = back.tets.iter().zip(&back.tet_region).collect();
+        a.sort();
+        b.sort();
+        assert_eq!(a, b, "{format:?}");
+        let mut a: Vec<_> = mesh.triangles.iter().zip(&mesh.triangle_group).collect();
+        let mut b: Vec<_> = back.triangles.iter().zip(&back.triangle_group).collect();
+        a.sort();
+        b.sort();
+        assert_eq!(a, b, "{format:?}");
+        assert_eq!(
+            back.regions, mesh.regions,
+            "{format:?}: names, material ids and properties"
+        );
+        assert_eq!(
+            back.surface_groups, mesh.surface_groups,
+            "{format:?}: names and kinds"
+        );
+    }
+}
+
+#[test]
+fn a_foreign_msh_without_kinds_reads_its_surfaces_as_other() {
+    let mesh = layered_box(4, 3);
+    let text = String::from_utf8(export(&mesh, "f", Format::Msh).unwrap().remove(0).1).unwrap();
+    let (a, rest) = text.split_once("$GeorecipeSurfaceKinds").unwrap();
+    let (_, b) = rest.split_once("$EndGeorecipeSurfaceKinds\n").unwrap();
+    let back = read_volume_msh(format!("{a}{b}").as_bytes(), "f.msh").unwrap();
+    assert_eq!(back.surface_groups, without_kinds(mesh).surface_groups);
+}
+
+#[test]
+fn the_boundary_reader_sees_our_surface_groups_as_named_entities() {
+    let mesh = layered_box(4, 3);
+    let files = export(&mesh, "b", Format::MshBinary).unwrap();
+    let b = read_msh(&files[0].1, "b.msh").unwrap();
+    assert_eq!(b.triangles.len(), mesh.triangles.len());
+    assert_eq!(b.tag_names.get(&9).map(String::as_str), Some("F2_dangling"));
+    assert_eq!(b.tag_names.get(&7).map(String::as_str), Some("H2 base"));
+}
+
+#[test]
+fn a_binary_msh_cut_anywhere_is_an_error_naming_the_file() {
+    let mesh = layered_box(4, 3);
+    let bytes = &export(&mesh, "c", Format::MshBinary).unwrap()[0].1;
+    // Cuts inside the node and element data (the trailing element data is optional).
+    let end_elements = bytes
+        .windows(12)
+        .position(|w| w == b"$EndElements")
+        .unwrap();
+    for k in 1..60 {
+        let cut = end_elements * k / 60;
+        let e = read_volume_msh(&bytes[..cut], "c.msh").unwrap_err();
+        assert_eq!(e.file, "c.msh");
+    }
+}
+
+#[test]
+fn a_binary_node_reference_out_of_range_is_refused() {
+    let mesh = layered_box(4, 3);
+    let mut bytes = export(&mesh, "c", Format::MshBinary).unwrap().remove(0).1;
+    // The first tet's first node tag sits after the element header and block header.
+    let start = bytes.windows(10).position(|w| w == b"$Elements\n").unwrap() + 10;
+    let first_node = start + 4 * 8 + 3 * 4 + 8 + 8;
+    bytes[first_node..first_node + 8].copy_from_slice(&123_456_789u64.to_le_bytes());
+    let e = read_volume_msh(&bytes, "c.msh").unwrap_err();
+    assert!(e.message.contains("node 123456789"), "{e}");
+}

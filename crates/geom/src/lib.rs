@@ -1,0 +1,20 @@
+//! Exact geometry shared by every stage: predicates (the only place orientation and
+//! inside/outside decisions are taken), the one `Tolerances` struct, bounding boxes and
+//! triangle meshes with f64 coordinates as read (never rescaled), and the FE mesh types the
+//! meshing stages exchange (`mesh`, with readers for the formats meshes come in).
+
+pub mod bbox;
+pub mod mesh;
+pub mod predicates;
+pub mod tolerances;
+pub mod trimesh;
+pub mod units;
+
+pub use bbox::BBox;
+pub use predicates::{Orientation, insphere, orient2d, orient3d};
+pub use tolerances::Tolerances;
+pub use trimesh::TriMesh;
+pub use units::Units;
+
+/// A point in model coordinates (metres, or the recipe's units), as read from the input.
+pub type Point3 = [f64; 3];

@@ -1,0 +1,7 @@
+//! The integration tests of this crate, one module per subject, in one binary (one link per
+//! change instead of one per file).
+
+mod import_fuzz;
+mod import_quirks;
+mod import_real_files;
+mod validate_cases;

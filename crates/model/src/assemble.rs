@@ -1,0 +1,194 @@
+//! FE assembly along the model's topology: the surface mesher's input for a patch (its loops and
+//! constraints made of the curves' FE nodes), the tet mesher's input for a region (its patches'
+//! FE triangles, oriented outward, dangling ones embedded) and the final volume mesh (the
+//! regions' tets welded into one node set, with every patch triangle tagged by its surface).
+//!
+//! Nodes are joined by exact coordinates only: every shared node comes bit for bit from the same
+//! discretized curve or the same patch mesh, so equal coordinates mean the same node and nothing
+//! is ever merged by distance.
+
+use super::{ModelError, PatchBoundary, point_key};
+use crate::regions::{FaceUse, Side};
+use geom::TriMesh;
+use geom::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
+use std::collections::HashMap;
+use surface_mesh::PatchInput;
+use tet_mesh::RegionInput;
+
+/// The surface mesher's input for a patch. `curve_nodes(c)` gives the FE nodes of curve `c` (in
+/// the curve's direction; a closed curve repeats its first node at the end).
+pub fn patch_input<'a>(
+    name: &str,
+    support: &TriMesh,
+    boundary: &PatchBoundary,
+    curve_nodes: &dyn Fn(u32) -> Option<&'a [[f64; 3]]>,
+) -> Result<PatchInput, ModelError> {
+    let get = |c: u32| {
+        curve_nodes(c).ok_or_else(|| {
+            ModelError::new(
+                format!("patch `{name}`: the nodes of curve {c} are missing"),
+                None,
+            )
+        })
+    };
+    let mut loops = Vec::with_capacity(boundary.loops.len());
+    for lp in &boundary.loops {
+        let mut nodes: Vec<[f64; 3]> = Vec::new();
+        for u in lp {
+            let c = get(u.curve)?;
+            let mut seq: Vec<[f64; 3]> = c.to_vec();
+            if u.reversed {
+                seq.reverse();
+            }
+            if let Some(last) = nodes.last() {
+                if point_key(last) != point_key(&seq[0]) {
+                    return Err(ModelError::new(
+                        format!("patch `{name}`: its boundary curves do not join"),
+                        Some(*last),
+                    ));
+                }
+                nodes.extend_from_slice(&seq[1..]);
+            } else {
+                nodes.extend(seq);
+            }
+        }
+        match (nodes.first(), nodes.last()) {
+            (Some(a), Some(b)) if nodes.len() > 1 && point_key(a) == point_key(b) => {
+                nodes.pop();
+            }
+            (_, last) => {
+                return Err(ModelError::new(
+                    format!("patch `{name}`: a boundary loop does not close"),
+                    last.copied(),
+                ));
+            }
+        }
+        loops.push(nodes);
+    }
+    let constraints = boundary
+        .constraints
+        .iter()
+        .map(|&c| get(c).map(<[[f64; 3]]>::to_vec))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(PatchInput {
+        name: name.to_string(),
+        support: support.clone(),
+        loops,
+        constraints,
+    })
+}
+
+/// Welds points by exact coordinates, in order of first appearance.
+#[derive(Default)]
+struct Welder {
+    ids: HashMap<[u64; 3], u32>,
+    points: Vec<[f64; 3]>,
+}
+
+impl Welder {
+    fn id(&mut self, p: &[f64; 3]) -> u32 {
+        let next = self.points.len() as u32;
+        let id = *self.ids.entry(point_key(p)).or_insert(next);
+        if id == next {
+            self.points.push(*p);
+        }
+        id
+    }
+}
+
+/// The tet mesher's input for region `name`, bounded by the face-uses `sides` (sorted; a
+/// dangling patch appears with both sides). `patch_mesh(p)` gives patch `p`'s FE triangulation,
+/// oriented like its support (right-hand normal towards its `Front` side).
+pub fn region_input<'a>(
+    name: &str,
+    sides: &[FaceUse],
+    patch_mesh: &dyn Fn(u32) -> Option<&'a TriMesh>,
+) -> Result<RegionInput, ModelError> {
+    let mut w = Welder::default();
+    let mut boundary = Vec::new();
+    let mut embedded = Vec::new();
+    let mut i = 0;
+    while i < sides.len() {
+        let p = sides[i].patch;
+        let both = sides.get(i + 1).is_some_and(|s| s.patch == p);
+        let mesh = patch_mesh(p).ok_or_else(|| {
+            ModelError::new(
+                format!("region `{name}`: the mesh of patch {p} is missing"),
+                None,
+            )
+        })?;
+        for t in &mesh.triangles {
+            let tri = t.map(|v| w.id(&mesh.vertices[v as usize]));
+            if both {
+                embedded.push(tri);
+            } else if sides[i].side == Side::Front {
+                // The region lies on the front side: the outward normal is the opposite one.
+                boundary.push([tri[0], tri[2], tri[1]]);
+            } else {
+                boundary.push(tri);
+            }
+        }
+        i += if both { 2 } else { 1 };
+    }
+    Ok(RegionInput {
+        name: name.to_string(),
+        vertices: w.points,
+        boundary,
+        embedded,
+    })
+}
+
+/// One region's part of the final mesh: its group (name and attributes), nodes and positive tets.
+pub type RegionPart<'a> = (RegionGroup, &'a [[f64; 3]], &'a [[u32; 4]]);
+
+/// The pieces of the final mesh, in model order.
+pub struct VolumeAssembly<'a> {
+    pub regions: Vec<RegionPart<'a>>,
+    /// Per patch: the surface it belongs to, that surface's kind, and its FE triangles.
+    pub patches: Vec<(&'a str, SurfaceKind, &'a TriMesh)>,
+}
+
+/// Welds the regions' tets into one [`VolumeMesh`]; every patch triangle joins the 2D group of
+/// its surface (groups in name order).
+pub fn assemble_volume(parts: &VolumeAssembly) -> Result<VolumeMesh, ModelError> {
+    let mut w = Welder::default();
+    let mut out = VolumeMesh::default();
+    for (r, (group, nodes, tets)) in parts.regions.iter().enumerate() {
+        let map: Vec<u32> = nodes.iter().map(|p| w.id(p)).collect();
+        for t in tets.iter() {
+            out.tets.push(t.map(|v| map[v as usize]));
+            out.tet_region.push(r as u32);
+        }
+        out.regions.push(group.clone());
+    }
+    let mut names: Vec<(&str, SurfaceKind)> =
+        parts.patches.iter().map(|(s, k, _)| (*s, *k)).collect();
+    names.sort();
+    names.dedup_by(|a, b| a.0 == b.0);
+    out.surface_groups = names
+        .iter()
+        .map(|(s, k)| SurfaceGroup {
+            name: s.to_string(),
+            kind: *k,
+        })
+        .collect();
+    let n_volume_nodes = w.points.len();
+    for (surface, _, mesh) in &parts.patches {
+        let g = names.partition_point(|(s, _)| s < surface) as u32;
+        for t in &mesh.triangles {
+            let tri = t.map(|v| w.id(&mesh.vertices[v as usize]));
+            out.triangles.push(tri);
+            out.triangle_group.push(g);
+        }
+    }
+    if w.points.len() != n_volume_nodes {
+        let at = w.points[n_volume_nodes];
+        return Err(ModelError::new(
+            "a surface node is not a node of any tetrahedron (a patch bounds no meshed region)",
+            Some(at),
+        ));
+    }
+    out.nodes = w.points;
+    out.check_indices().map_err(|e| ModelError::new(e, None))?;
+    Ok(out)
+}

@@ -1,0 +1,221 @@
+//! Patches: the pieces of a split surface between its intersection curves.
+//!
+//! It decides which triangles of a [`SplitSurface`] form one patch (connected across edges that
+//! are not curve edges), the canonical order of the patches (so names `S#1`, `S#2`... do not
+//! depend on input order or thread count), and whether a patch lies inside the model's box.
+//! Each patch carries its own compact mesh whose coordinates are copied bit for bit, so patches
+//! of different surfaces meeting along a curve share identical vertices there.
+
+use crate::intersect::split::SplitSurface;
+use geom::{BBox, TriMesh};
+use std::cmp::Ordering;
+
+/// One patch of a surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    /// Stable name `surface#k` (1-based, in canonical order).
+    pub name: String,
+    /// The triangles of the split surface's mesh in this patch, ascending.
+    pub triangles: Vec<u32>,
+    /// The patch alone: its vertices (in order of first use by `triangles`), coordinates
+    /// bit-identical to the split surface's, and its triangles in the same orientation.
+    pub mesh: TriMesh,
+}
+
+fn lex(a: &[f64; 3], b: &[f64; 3]) -> Ordering {
+    (0..3)
+        .map(|k| a[k].total_cmp(&b[k]))
+        .find(|o| o.is_ne())
+        .unwrap_or(Ordering::Equal)
+}
+
+/// The patches of `split` (surface `surface`): connected components of its triangles, where two
+/// triangles connect through a shared edge that is not a curve edge. Ordered by their smallest
+/// vertex (lexicographic, total f64 order), ties broken by the sorted list of their vertices.
+pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
+    let m = &split.mesh;
+    let n = m.triangles.len();
+    let nv = m.vertices.len() as u32;
+    // Union-find over triangles, with path halving (iterative).
+    let mut up: Vec<usize> = (0..n).collect();
+    fn root(up: &mut [usize], mut i: usize) -> usize {
+        while up[i] != i {
+            up[i] = up[up[i]];
+            i = up[i];
+        }
+        i
+    }
+    // Every (edge, triangle) use, sorted by edge: the triangles around one edge are adjacent.
+    let mut uses: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * n);
+    for (t, tri) in m.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v >= nv) {
+            continue;
+        }
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if a != b {
+                uses.push(([a.min(b), a.max(b)], t as u32));
+            }
+        }
+    }
+    // A counting sort on the first vertex, then each (small) bucket: the order of a full sort.
+    let mut start = vec![0usize; nv as usize + 1];
+    for u in &uses {
+        start[u.0[0] as usize + 1] += 1;
+    }
+    for i in 0..nv as usize {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut sorted = vec![([0u32; 2], 0u32); uses.len()];
+    for u in &uses {
+        sorted[fill[u.0[0] as usize]] = *u;
+        fill[u.0[0] as usize] += 1;
+    }
+    for w in start.windows(2) {
+        sorted[w[0]..w[1]].sort_unstable();
+    }
+    let uses = sorted;
+    for run in uses.chunk_by(|x, y| x.0 == y.0) {
+        if split.curve_edges.binary_search(&run[0].0).is_ok() {
+            continue;
+        }
+        for w in run.windows(2) {
+            let (ra, rb) = (
+                root(&mut up, w[0].1 as usize),
+                root(&mut up, w[1].1 as usize),
+            );
+            if ra != rb {
+                up[ra.max(rb)] = ra.min(rb);
+            }
+        }
+    }
+    // Components by root, in order of their first (smallest) triangle.
+    let mut comp_of: Vec<u32> = vec![u32::MAX; n];
+    let mut comps: Vec<Vec<u32>> = Vec::new();
+    for t in 0..n {
+        if m.triangles[t].iter().any(|&v| v >= nv) {
+            continue;
+        }
+        let r = root(&mut up, t);
+        if comp_of[r] == u32::MAX {
+            comp_of[r] = comps.len() as u32;
+            comps.push(Vec::new());
+        }
+        comps[comp_of[r] as usize].push(t as u32);
+    }
+    // Local vertex numbers, reset after each patch (u32::MAX = not yet used by this patch).
+    let mut local: Vec<u32> = vec![u32::MAX; nv as usize];
+    let mut out: Vec<(Vec<[f64; 3]>, Patch)> = comps
+        .into_iter()
+        .map(|triangles| {
+            let mut used: Vec<u32> = Vec::new();
+            let mut vertices = Vec::new();
+            let mut tris = Vec::with_capacity(triangles.len());
+            for &t in &triangles {
+                let tri = m.triangles[t as usize];
+                tris.push(tri.map(|v| {
+                    let slot = &mut local[v as usize];
+                    if *slot == u32::MAX {
+                        *slot = vertices.len() as u32;
+                        vertices.push(m.vertices[v as usize]);
+                        used.push(v);
+                    }
+                    *slot
+                }));
+            }
+            for v in used {
+                local[v as usize] = u32::MAX;
+            }
+            let mut key = vertices.clone();
+            key.sort_unstable_by(lex);
+            let patch = Patch {
+                name: String::new(),
+                triangles,
+                mesh: TriMesh::new(vertices, tris),
+            };
+            (key, patch)
+        })
+        .collect();
+    out.sort_by(|a, b| {
+        a.0.iter()
+            .zip(&b.0)
+            .map(|(x, y)| lex(x, y))
+            .find(|o| o.is_ne())
+            .unwrap_or_else(|| a.0.len().cmp(&b.0.len()))
+            .then_with(|| a.1.triangles.cmp(&b.1.triangles))
+    });
+    out.into_iter()
+        .enumerate()
+        .map(|(k, (_, mut p))| {
+            p.name = format!("{surface}#{}", k + 1);
+            p
+        })
+        .collect()
+}
+
+/// Whether every vertex of `patch` lies within the closed box (exact coordinate comparisons).
+/// A patch outside the box has a vertex strictly outside it; NaN coordinates are outside.
+pub fn inside_box(patch: &Patch, bbox: &BBox) -> bool {
+    patch
+        .mesh
+        .vertices
+        .iter()
+        .all(|p| (0..3).all(|k| bbox.min[k] <= p[k] && p[k] <= bbox.max[k]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeMap;
+
+    fn square_split(curve: bool) -> SplitSurface {
+        // Two triangles sharing edge 0-2; with `curve`, that edge is a curve edge.
+        let mesh = TriMesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        SplitSurface {
+            mesh,
+            parent: vec![0, 1],
+            vertex_of: BTreeMap::new(),
+            vertex_of_each: Vec::new(),
+            crossings: Vec::new(),
+            curve_edges: if curve { vec![[0, 2]] } else { Vec::new() },
+        }
+    }
+
+    #[test]
+    fn a_curve_edge_separates_two_patches_and_a_plain_edge_does_not() {
+        let two = patches("s", &square_split(true));
+        assert_eq!(two.len(), 2);
+        assert_eq!(two[0].name, "s#1");
+        // Both contain vertex 0 (smallest); tie broken by the next vertex: (0,1,0) < (1,0,0).
+        assert_eq!(two[0].triangles, vec![1]);
+        assert_eq!(two[1].triangles, vec![0]);
+        assert_eq!(two[0].mesh.vertices.len(), 3);
+        let one = patches("s", &square_split(false));
+        assert_eq!(one.len(), 1);
+        assert_eq!(one[0].mesh.triangles.len(), 2);
+    }
+
+    #[test]
+    fn a_patch_with_one_vertex_beyond_the_box_is_outside() {
+        let p = &patches("s", &square_split(false))[0];
+        let inside = BBox {
+            min: [0.0, 0.0, 0.0],
+            max: [1.0, 1.0, 0.0],
+        };
+        assert!(inside_box(p, &inside));
+        let smaller = BBox {
+            min: [0.0, 0.0, 0.0],
+            max: [1.0, 0.999_999_999_999, 0.0],
+        };
+        assert!(!inside_box(p, &smaller));
+    }
+}

@@ -1,0 +1,435 @@
+//! Flattening of a support triangulation to a 2D parameter plane, so that the patch can be
+//! meshed in 2D with exact predicates and mapped back onto the support through the support's own
+//! triangles (every mesh node then lies on the support by construction).
+//!
+//! Decisions and why:
+//! - First choice: orthogonal projection onto the plane normal to the area-weighted mean normal.
+//!   It is accepted only if every support triangle is strictly counter-clockwise in the plane
+//!   (exact `orient2d` on the projected coordinates) and the projected support border has no
+//!   crossing (exact segment tests): a locally injective, orientation-preserving map of a
+//!   disk-with-holes whose border stays simple is injective. This keeps the geometry nearly
+//!   isometric for horizons and steep faults alike (the plane follows the surface, not z).
+//! - Otherwise (recumbent folds, caps down to their equator...): a Tutte embedding with positive
+//!   symmetric weights (inverse edge lengths). The longest border loop is pinned to a circle by
+//!   arc length (same perimeter as in 3D, so sizes keep their scale); every other border loop is
+//!   closed by a virtual cone vertex. Tutte's theorem makes this a bijection for a disk; the
+//!   solution is still checked triangle by triangle with `orient2d`, and a failure is an error.
+//! - The linear system is solved by Jacobi-preconditioned conjugate gradients (iterative, no
+//!   recursion, deterministic summation order).
+
+use super::segments::first_crossing;
+use geom::predicates::{cross, dot, sub};
+use geom::{Orientation, TriMesh, orient2d};
+use std::collections::BTreeMap;
+
+/// A flattening: one 2D point per support vertex (unused vertices get the origin).
+pub struct Param {
+    pub uv: Vec<[f64; 2]>,
+    /// "plane" or "tutte": for reports.
+    pub method: &'static str,
+}
+
+/// Why a support could not be flattened, with the 3D place.
+pub struct ParamError {
+    pub message: String,
+    pub at: Option<[f64; 3]>,
+}
+
+fn err(message: String, at: Option<[f64; 3]>) -> ParamError {
+    ParamError { message, at }
+}
+
+/// The directed border half-edges of the support, chained into loops, and manifold checks.
+pub fn border_loops(s: &TriMesh) -> Result<Vec<Vec<u32>>, ParamError> {
+    let nv = s.vertices.len();
+    let mut directed: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+    for (t, tri) in s.triangles.iter().enumerate() {
+        for &v in tri {
+            if v as usize >= nv {
+                return Err(err(
+                    format!("support triangle {t} refers to missing vertex {v}"),
+                    None,
+                ));
+            }
+        }
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            return Err(err(
+                format!("support triangle {t} repeats a vertex"),
+                Some(s.vertices[tri[0] as usize]),
+            ));
+        }
+        for i in 0..3 {
+            let e = (tri[i], tri[(i + 1) % 3]);
+            if directed.insert(e, t as u32).is_some() {
+                return Err(err(
+                    format!(
+                        "support edge {}-{} is used twice in the same direction (non-manifold or inconsistently oriented support)",
+                        e.0, e.1
+                    ),
+                    Some(s.vertices[e.0 as usize]),
+                ));
+            }
+        }
+    }
+    let mut nextv: BTreeMap<u32, u32> = BTreeMap::new();
+    for &(a, b) in directed.keys() {
+        if !directed.contains_key(&(b, a)) && nextv.insert(a, b).is_some() {
+            return Err(err(
+                format!("support vertex {a} is pinched (two border loops touch there)"),
+                Some(s.vertices[a as usize]),
+            ));
+        }
+    }
+    let mut loops = Vec::new();
+    let mut used: BTreeMap<u32, bool> = BTreeMap::new();
+    for &start in nextv.keys() {
+        if used.contains_key(&start) {
+            continue;
+        }
+        let mut lp = vec![start];
+        used.insert(start, true);
+        let mut v = start;
+        loop {
+            let Some(&w) = nextv.get(&v) else {
+                return Err(err(
+                    "open support border".into(),
+                    Some(s.vertices[v as usize]),
+                ));
+            };
+            if w == start {
+                break;
+            }
+            if used.insert(w, true).is_some() {
+                return Err(err(
+                    "support border does not close into loops".into(),
+                    Some(s.vertices[w as usize]),
+                ));
+            }
+            lp.push(w);
+            v = w;
+        }
+        loops.push(lp);
+    }
+    Ok(loops)
+}
+
+/// Flattens the support (see the module doc for the choice).
+pub fn flatten(s: &TriMesh) -> Result<Param, ParamError> {
+    if s.triangles.is_empty() {
+        return Err(err("the support has no triangles".into(), None));
+    }
+    for (i, v) in s.vertices.iter().enumerate() {
+        if v.iter().any(|c| !c.is_finite()) {
+            return Err(err(format!("support vertex {i} is not finite"), None));
+        }
+    }
+    let loops = border_loops(s)?;
+    if loops.is_empty() {
+        return Err(err(
+            "the support is closed (no border): it must come split into disk-like patches".into(),
+            s.vertices.first().copied(),
+        ));
+    }
+    check_connected(s)?;
+    if let Some(uv) = plane_projection(s, &loops) {
+        return Ok(Param {
+            uv,
+            method: "plane",
+        });
+    }
+    let uv = tutte(s, &loops)?;
+    Ok(Param {
+        uv,
+        method: "tutte",
+    })
+}
+
+fn check_connected(s: &TriMesh) -> Result<(), ParamError> {
+    let nv = s.vertices.len();
+    let mut parent: Vec<u32> = (0..nv as u32).collect();
+    fn find(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            let g = p[p[x as usize] as usize];
+            p[x as usize] = g;
+            x = g;
+        }
+        x
+    }
+    for t in &s.triangles {
+        for i in 0..3 {
+            let a = find(&mut parent, t[i]);
+            let b = find(&mut parent, t[(i + 1) % 3]);
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    let r0 = find(&mut parent, s.triangles[0][0]);
+    for t in &s.triangles {
+        if find(&mut parent, t[0]) != r0 {
+            return Err(err(
+                "the support has several disconnected pieces".into(),
+                Some(s.vertices[t[0] as usize]),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// An orthonormal basis (e1, e2) of the plane normal to `n`, with e1 × e2 = n / |n|.
+pub fn plane_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let l = dot(&n, &n).sqrt();
+    let n = [n[0] / l, n[1] / l, n[2] / l];
+    let a = if n[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let e1 = cross(&a, &n);
+    let l1 = dot(&e1, &e1).sqrt();
+    let e1 = [e1[0] / l1, e1[1] / l1, e1[2] / l1];
+    let e2 = cross(&n, &e1);
+    (e1, e2)
+}
+
+fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
+    let mut n = [0.0; 3];
+    for t in 0..s.triangles.len() {
+        let [a, b, c] = s.corners(t);
+        let c = cross(&sub(b, a), &sub(c, a));
+        n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+    }
+    if !(dot(&n, &n) > 0.0) {
+        return None;
+    }
+    let (e1, e2) = plane_basis(n);
+    let o = centre(s);
+    let uv: Vec<[f64; 2]> = s
+        .vertices
+        .iter()
+        .map(|p| {
+            let d = sub(p, &o);
+            [dot(&d, &e1), dot(&d, &e2)]
+        })
+        .collect();
+    if !all_positive(s, &uv) {
+        return None;
+    }
+    let segs: Vec<([f64; 2], [f64; 2])> = loops
+        .iter()
+        .flat_map(|l| (0..l.len()).map(move |i| (l[i], l[(i + 1) % l.len()])))
+        .map(|(a, b)| (uv[a as usize], uv[b as usize]))
+        .collect();
+    if first_crossing(&segs).is_some() {
+        return None;
+    }
+    Some(uv)
+}
+
+pub fn centre(s: &TriMesh) -> [f64; 3] {
+    let b = s.bbox();
+    [
+        0.5 * (b.min[0] + b.max[0]),
+        0.5 * (b.min[1] + b.max[1]),
+        0.5 * (b.min[2] + b.max[2]),
+    ]
+}
+
+/// Whether every support triangle is strictly counter-clockwise in `uv` (exact).
+pub fn all_positive(s: &TriMesh, uv: &[[f64; 2]]) -> bool {
+    first_non_positive(s, uv).is_none()
+}
+
+pub fn first_non_positive(s: &TriMesh, uv: &[[f64; 2]]) -> Option<usize> {
+    s.triangles.iter().position(|t| {
+        orient2d(&uv[t[0] as usize], &uv[t[1] as usize], &uv[t[2] as usize])
+            != Orientation::Positive
+    })
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    let d = sub(a, b);
+    dot(&d, &d).sqrt()
+}
+
+fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
+    let nv = s.vertices.len();
+    // Outer loop: the longest one.
+    let lens: Vec<f64> = loops
+        .iter()
+        .map(|l| {
+            (0..l.len())
+                .map(|i| {
+                    dist(
+                        &s.vertices[l[i] as usize],
+                        &s.vertices[l[(i + 1) % l.len()] as usize],
+                    )
+                })
+                .sum()
+        })
+        .collect();
+    let mut outer = 0;
+    for (i, &l) in lens.iter().enumerate() {
+        if l > lens[outer] {
+            outer = i;
+        }
+    }
+    let total = lens[outer];
+    if !(total > 0.0) {
+        return Err(err("the support border has zero length".into(), None));
+    }
+    let radius = total / (2.0 * std::f64::consts::PI);
+    // Unknowns: support vertices not on the outer loop, plus one cone vertex per other loop.
+    let ncone = loops.len() - 1;
+    let n = nv + ncone;
+    let mut pinned = vec![false; n];
+    let mut uv = vec![[0.0f64; 2]; n];
+    {
+        let l = &loops[outer];
+        let mut acc = 0.0;
+        for i in 0..l.len() {
+            let ang = 2.0 * std::f64::consts::PI * acc / total;
+            uv[l[i] as usize] = [radius * ang.cos(), radius * ang.sin()];
+            pinned[l[i] as usize] = true;
+            acc += dist(
+                &s.vertices[l[i] as usize],
+                &s.vertices[l[(i + 1) % l.len()] as usize],
+            );
+        }
+    }
+    // Symmetric weights, accumulated per undirected edge (deterministic order).
+    let mut edges: BTreeMap<(u32, u32), f64> = BTreeMap::new();
+    let mut used = vec![false; nv];
+    for t in &s.triangles {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            used[a as usize] = true;
+            let key = (a.min(b), a.max(b));
+            let d = dist(&s.vertices[a as usize], &s.vertices[b as usize]);
+            edges.insert(key, 1.0 / d.max(f64::MIN_POSITIVE.sqrt()));
+        }
+    }
+    let mut c = 0;
+    for (li, l) in loops.iter().enumerate() {
+        if li == outer {
+            continue;
+        }
+        let cone = (nv + c) as u32;
+        c += 1;
+        let w = 1.0 / (lens[li] / l.len() as f64).max(f64::MIN_POSITIVE.sqrt());
+        for &v in l {
+            edges.insert((v, cone), w);
+        }
+    }
+    for (v, u) in used.iter().enumerate() {
+        if !u {
+            pinned[v] = true;
+        }
+    }
+    // CSR adjacency.
+    let mut deg = vec![0usize; n + 1];
+    for &(a, b) in edges.keys() {
+        deg[a as usize + 1] += 1;
+        deg[b as usize + 1] += 1;
+    }
+    for i in 0..n {
+        deg[i + 1] += deg[i];
+    }
+    let mut fill = deg.clone();
+    let mut col = vec![0u32; deg[n]];
+    let mut val = vec![0.0; deg[n]];
+    for (&(a, b), &w) in &edges {
+        col[fill[a as usize]] = b;
+        val[fill[a as usize]] = w;
+        fill[a as usize] += 1;
+        col[fill[b as usize]] = a;
+        val[fill[b as usize]] = w;
+        fill[b as usize] += 1;
+    }
+    let diag: Vec<f64> = (0..n)
+        .map(|i| val[deg[i]..deg[i + 1]].iter().sum())
+        .collect();
+    for k in 0..2 {
+        // A x = b on free vertices: A = D - W restricted, b = W * pinned values.
+        let mut b = vec![0.0; n];
+        for i in 0..n {
+            if pinned[i] {
+                continue;
+            }
+            for e in deg[i]..deg[i + 1] {
+                let j = col[e] as usize;
+                if pinned[j] {
+                    b[i] += val[e] * uv[j][k];
+                }
+            }
+        }
+        let apply = |x: &[f64], y: &mut [f64]| {
+            for i in 0..n {
+                if pinned[i] {
+                    y[i] = 0.0;
+                    continue;
+                }
+                let mut s = diag[i] * x[i];
+                for e in deg[i]..deg[i + 1] {
+                    let j = col[e] as usize;
+                    if !pinned[j] {
+                        s -= val[e] * x[j];
+                    }
+                }
+                y[i] = s;
+            }
+        };
+        let mut x = vec![0.0; n];
+        let mut r = b.clone();
+        let mut z: Vec<f64> = (0..n)
+            .map(|i| if pinned[i] { 0.0 } else { r[i] / diag[i] })
+            .collect();
+        let mut p = z.clone();
+        let mut rz: f64 = (0..n).map(|i| r[i] * z[i]).sum();
+        let bnorm = (0..n)
+            .map(|i| b[i] * b[i])
+            .sum::<f64>()
+            .sqrt()
+            .max(f64::MIN_POSITIVE);
+        let mut ap = vec![0.0; n];
+        for _ in 0..(20 * n + 100) {
+            let rn = (0..n).map(|i| r[i] * r[i]).sum::<f64>().sqrt();
+            if rn <= 1e-14 * bnorm {
+                break;
+            }
+            apply(&p, &mut ap);
+            let pap: f64 = (0..n).map(|i| p[i] * ap[i]).sum();
+            if !(pap > 0.0) {
+                break;
+            }
+            let alpha = rz / pap;
+            for i in 0..n {
+                x[i] += alpha * p[i];
+                r[i] -= alpha * ap[i];
+            }
+            for i in 0..n {
+                z[i] = if pinned[i] { 0.0 } else { r[i] / diag[i] };
+            }
+            let rz2: f64 = (0..n).map(|i| r[i] * z[i]).sum();
+            let beta = rz2 / rz;
+            rz = rz2;
+            for i in 0..n {
+                p[i] = z[i] + beta * p[i];
+            }
+        }
+        for i in 0..n {
+            if !pinned[i] {
+                uv[i][k] = x[i];
+            }
+        }
+    }
+    uv.truncate(nv);
+    if let Some(t) = first_non_positive(s, &uv) {
+        let [a, b, c] = s.corners(t);
+        return Err(err(
+            "the support cannot be flattened without folding (a triangle inverts in its Tutte embedding)".into(),
+            Some([(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0]),
+        ));
+    }
+    Ok(uv)
+}

@@ -1,0 +1,278 @@
+//! The validity check every surface mesh passes before it leaves the mesher (and that anyone can
+//! run on a mesh from elsewhere). Exact where it decides:
+//! - the given loop and constraint nodes come first, bit-identical, in the documented order;
+//! - every directed edge is used at most once (manifold, consistently oriented), every vertex
+//!   has a single fan, every node is used;
+//! - the border edges are exactly the given loop edges; every constraint edge is an interior edge;
+//! - every node lies within `tol_rel` × (its mean incident edge length) of the support;
+//! - no fold or overlap: in the support's flattening (an orientation-preserving bijection, see
+//!   `param`), every triangle is strictly counter-clockwise (exact `orient2d`) and the loops do not
+//!   cross (exact). A consistently oriented triangulation whose border is a set of simple,
+//!   non-crossing loops and whose triangles are all positive covers every point of the domain
+//!   exactly once (degree argument), so no triangle overlaps another;
+//! - in 3D, every triangle's normal is within 90° of the support's normal under its centroid.
+
+use super::SurfaceMeshError;
+use super::input::{GivenNodes, given_nodes};
+use super::segments::first_crossing;
+use super::support::Support;
+use super::{PatchInput, SurfaceMeshOutput};
+use geom::predicates::{cross, dot, sub};
+use geom::{Orientation, orient2d};
+use std::collections::{BTreeMap, BTreeSet};
+
+fn fail(input: &PatchInput, message: String, at: Option<[f64; 3]>) -> SurfaceMeshError {
+    SurfaceMeshError {
+        patch: input.name.clone(),
+        message,
+        at,
+    }
+}
+
+fn centroid(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> [f64; 3] {
+    [
+        (a[0] + b[0] + c[0]) / 3.0,
+        (a[1] + b[1] + c[1]) / 3.0,
+        (a[2] + b[2] + c[2]) / 3.0,
+    ]
+}
+
+/// See the module doc.
+pub fn verify_with(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    tol_rel: f64,
+    support: &Support,
+) -> Result<(), SurfaceMeshError> {
+    let given: GivenNodes = given_nodes(input)?;
+    let nn = out.nodes.len();
+    if nn < given.nodes.len() {
+        return Err(fail(
+            input,
+            format!(
+                "the mesh has {nn} nodes, fewer than the {} given",
+                given.nodes.len()
+            ),
+            None,
+        ));
+    }
+    for (i, p) in given.nodes.iter().enumerate() {
+        let q = &out.nodes[i];
+        if p.map(f64::to_bits) != q.map(f64::to_bits) {
+            return Err(fail(
+                input,
+                format!("output node {i} is not the given node bit for bit"),
+                Some(*p),
+            ));
+        }
+    }
+    for (i, p) in out.nodes.iter().enumerate() {
+        if p.iter().any(|c| !c.is_finite()) {
+            return Err(fail(input, format!("node {i} is not finite"), None));
+        }
+    }
+    if out.triangles.is_empty() {
+        return Err(fail(
+            input,
+            "the mesh has no triangles".into(),
+            given.nodes.first().copied(),
+        ));
+    }
+    // Edges.
+    let mut directed: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+    let mut used = vec![false; nn];
+    for (t, tri) in out.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v as usize >= nn) {
+            return Err(fail(
+                input,
+                format!("triangle {t} refers to a missing node"),
+                None,
+            ));
+        }
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            return Err(fail(
+                input,
+                format!("triangle {t} repeats a node"),
+                Some(out.nodes[tri[0] as usize]),
+            ));
+        }
+        for i in 0..3 {
+            used[tri[i] as usize] = true;
+            let e = (tri[i], tri[(i + 1) % 3]);
+            if directed.insert(e, t as u32).is_some() {
+                return Err(fail(
+                    input,
+                    format!(
+                        "edge {}-{} is used twice in the same direction (non-manifold or inconsistent orientation)",
+                        e.0, e.1
+                    ),
+                    Some(out.nodes[e.0 as usize]),
+                ));
+            }
+        }
+    }
+    if let Some(i) = used.iter().position(|u| !u) {
+        return Err(fail(
+            input,
+            format!("node {i} is not used by any triangle"),
+            Some(out.nodes[i]),
+        ));
+    }
+    let loop_edges: BTreeSet<(u32, u32)> = given
+        .loop_segments()
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    for &(a, b) in directed.keys() {
+        if !directed.contains_key(&(b, a)) && !loop_edges.contains(&(a.min(b), a.max(b))) {
+            return Err(fail(
+                input,
+                format!(
+                    "border edge {a}-{b} is not a given loop edge (a hole or a gap in the mesh)"
+                ),
+                Some(out.nodes[a as usize]),
+            ));
+        }
+    }
+    for &(a, b) in &loop_edges {
+        let n = directed.contains_key(&(a, b)) as u32 + directed.contains_key(&(b, a)) as u32;
+        if n != 1 {
+            return Err(fail(
+                input,
+                format!("loop edge {a}-{b} is used by {n} triangles, not exactly 1"),
+                Some(out.nodes[a as usize]),
+            ));
+        }
+    }
+    for (a, b) in given.constraint_segments() {
+        if !(directed.contains_key(&(a, b)) && directed.contains_key(&(b, a))) {
+            return Err(fail(
+                input,
+                format!("constraint edge {a}-{b} is not an interior mesh edge"),
+                Some(out.nodes[a as usize]),
+            ));
+        }
+    }
+    // Vertex fans: the link of each vertex is one path or one cycle.
+    let mut link: Vec<(u32, u32, u32)> = Vec::with_capacity(out.triangles.len() * 3);
+    for tri in &out.triangles {
+        for i in 0..3 {
+            link.push((tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]));
+        }
+    }
+    link.sort_unstable();
+    let mut k = 0;
+    while k < link.len() {
+        let v = link[k].0;
+        let mut e = k;
+        while e < link.len() && link[e].0 == v {
+            e += 1;
+        }
+        let next: BTreeMap<u32, u32> = link[k..e].iter().map(|x| (x.1, x.2)).collect();
+        let targets: BTreeSet<u32> = link[k..e].iter().map(|x| x.2).collect();
+        let starts: Vec<u32> = next
+            .keys()
+            .copied()
+            .filter(|s| !targets.contains(s))
+            .collect();
+        if starts.len() > 1 || next.len() != e - k {
+            return Err(fail(
+                input,
+                format!("node {v} is not manifold (its triangles form several fans)"),
+                Some(out.nodes[v as usize]),
+            ));
+        }
+        let mut cur = starts.first().copied().unwrap_or(link[k].1);
+        let mut count = 0;
+        while let Some(&n) = next.get(&cur) {
+            count += 1;
+            cur = n;
+            if count > e - k || (starts.is_empty() && cur == link[k].1) {
+                break;
+            }
+        }
+        if count != e - k {
+            return Err(fail(
+                input,
+                format!("node {v} is not manifold (its triangles form several fans)"),
+                Some(out.nodes[v as usize]),
+            ));
+        }
+        k = e;
+    }
+    // Distance to the support and parameters.
+    let mut lsum = vec![0.0f64; nn];
+    let mut lcnt = vec![0u32; nn];
+    for &(a, b) in directed.keys() {
+        let d = sub(&out.nodes[a as usize], &out.nodes[b as usize]);
+        let l = dot(&d, &d).sqrt();
+        lsum[a as usize] += l;
+        lcnt[a as usize] += 1;
+        lsum[b as usize] += l;
+        lcnt[b as usize] += 1;
+    }
+    let mut uv = Vec::with_capacity(nn);
+    let mut ntri = Vec::with_capacity(nn);
+    let mut hint = u32::MAX;
+    for (i, p) in out.nodes.iter().enumerate() {
+        let Some(on) = support.project_hinted(hint, p) else {
+            return Err(fail(input, "the support is empty".into(), Some(*p)));
+        };
+        let local = lsum[i] / lcnt[i].max(1) as f64;
+        if on.dist > tol_rel * local {
+            return Err(fail(
+                input,
+                format!(
+                    "node {i} is {:.3e} from the support, more than {tol_rel:e} × its edge length {local:.3e}",
+                    on.dist
+                ),
+                Some(*p),
+            ));
+        }
+        uv.push(on.uv);
+        ntri.push(on.tri);
+        hint = on.tri;
+    }
+    let segs: Vec<([f64; 2], [f64; 2])> = given
+        .loop_segments()
+        .chain(given.constraint_segments())
+        .map(|(a, b)| (uv[a as usize], uv[b as usize]))
+        .collect();
+    if let Some((i, _)) = first_crossing(&segs) {
+        let (a, _) = given
+            .loop_segments()
+            .chain(given.constraint_segments())
+            .nth(i)
+            .unwrap_or((0, 0));
+        return Err(fail(
+            input,
+            "the loops or constraints cross each other".into(),
+            Some(out.nodes[a as usize]),
+        ));
+    }
+    for (t, tri) in out.triangles.iter().enumerate() {
+        let [a, b, c] = tri.map(|v| v as usize);
+        let g = centroid(&out.nodes[a], &out.nodes[b], &out.nodes[c]);
+        if orient2d(&uv[a], &uv[b], &uv[c]) != Orientation::Positive {
+            return Err(fail(
+                input,
+                format!("triangle {t} is inverted or overlaps its neighbours on the support"),
+                Some(g),
+            ));
+        }
+        let n = cross(
+            &sub(&out.nodes[b], &out.nodes[a]),
+            &sub(&out.nodes[c], &out.nodes[a]),
+        );
+        let Some(on) = support.project_from(ntri[a], &g) else {
+            continue;
+        };
+        if !(dot(&n, &support.normals[on.tri as usize]) > 0.0) {
+            return Err(fail(
+                input,
+                format!("triangle {t} folds: its normal is more than 90° from the support's"),
+                Some(g),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,300 @@
+//! Surface mesher on curved supports that defeat height-field meshers: the didactic wavy
+//! horizon, a fault dipping 85°, a recumbent (S-shaped, overturned) fold, a hemisphere cap, and a
+//! coarse support of long thin triangles like gOcad exports. All at UTM offsets too.
+
+use surface_mesh_common::*;
+use test_support::surface_mesh_common;
+
+use geom::TriMesh;
+use std::f64::consts::PI;
+use surface_mesh::PatchInput;
+
+fn shift(p: [f64; 3], off: [f64; 3]) -> [f64; 3] {
+    [p[0] + off[0], p[1] + off[1], p[2] + off[2]]
+}
+
+#[test]
+fn the_wavy_didactic_horizon_meshes_on_its_support() {
+    for off in [[0.0; 3], UTM] {
+        let g = Grid {
+            nx: 50,
+            ny: 50,
+            u: (0.0, 4000.0),
+            v: (0.0, 4000.0),
+            f: wavy,
+            offset: off,
+        };
+        let input = PatchInput {
+            name: "wavy horizon".into(),
+            support: g.support(),
+            loops: vec![g.border_loop(40, 40)],
+            constraints: vec![],
+        };
+        let (out, q) = mesh_and_check(&input, &uniform(100.0), 1.03, 1.6);
+        assert!(q.triangles > 3000);
+        // Nodes follow the wave: the support is within 80 m of -1200.
+        assert!(
+            out.nodes
+                .iter()
+                .all(|p| (p[2] + 1200.0).abs() <= 80.0 + 1e-6)
+        );
+    }
+}
+
+#[test]
+fn a_fault_dipping_85_degrees_meshes_like_a_flat_patch() {
+    let dip = 85f64.to_radians();
+    for off in [[0.0; 3], UTM] {
+        // u along strike (y), v down dip.
+        let g = Grid {
+            nx: 6,
+            ny: 4,
+            u: (0.0, 2000.0),
+            v: (0.0, 1500.0),
+            f: move |u, v| [1000.0 + v * dip.cos(), u, -200.0 - v * dip.sin()],
+            offset: off,
+        };
+        let input = PatchInput {
+            name: "steep fault".into(),
+            support: g.support(),
+            loops: vec![g.border_loop(40, 30)],
+            constraints: vec![],
+        };
+        let (_, q) = mesh_and_check(&input, &uniform(50.0), 1.03, 1.5);
+        assert!(q.triangles > 2000);
+    }
+}
+
+/// A recumbent fold in the xz-plane: three horizontal limbs 600 m long stacked 300 m apart,
+/// joined by two hinges of radius 150 m (a Z with round hinges), as a function of u in [0, 5]
+/// (one unit per limb or hinge). The limbs overlap in every direction: no height field anywhere.
+fn z_curve(u: f64) -> [f64; 2] {
+    let (l, r) = (600.0, 150.0);
+    let k = (u.floor() as i64).clamp(0, 4);
+    let t = u - k as f64;
+    match k {
+        0 => [-l + l * t, 0.0],
+        1 => {
+            let a = -PI / 2.0 + PI * t;
+            [r * a.cos(), r + r * a.sin()]
+        }
+        2 => [-l * t, 2.0 * r],
+        3 => {
+            let a = -PI / 2.0 + PI * t;
+            [-l - r * a.cos(), 3.0 * r + r * a.sin()]
+        }
+        _ => [-l + l * t, 4.0 * r],
+    }
+}
+
+#[test]
+fn a_recumbent_fold_that_is_no_height_field_meshes_without_folds() {
+    for off in [[0.0; 3], UTM] {
+        let g = Grid {
+            nx: 100,
+            ny: 8,
+            u: (0.0, 5.0),
+            v: (0.0, 1200.0),
+            f: |u, y| {
+                let c = z_curve(u);
+                [c[0], y, c[1] - 2000.0]
+            },
+            offset: off,
+        };
+        let input = PatchInput {
+            name: "recumbent fold".into(),
+            support: g.support(),
+            loops: vec![g.border_loop(60, 24)],
+            constraints: vec![],
+        };
+        let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.04, 1.6);
+        assert!(q.triangles > 1500);
+        // All three stacked limbs are meshed: nodes above one another at x = -300.
+        let z = |p: &[f64; 3]| p[2] - off[2] + 2000.0;
+        for level in [0.0, 300.0, 600.0] {
+            assert!(
+                out.nodes
+                    .iter()
+                    .any(|p| (p[0] - off[0] + 300.0).abs() < 60.0 && (z(p) - level).abs() < 1.0),
+                "no node on the limb at z = {level}"
+            );
+        }
+    }
+}
+
+/// A disk triangulation mapped onto a sphere cap: ring k has 6k vertices.
+fn cap(rings: usize, radius: f64, max_polar: f64, off: [f64; 3]) -> TriMesh {
+    let mut vs = vec![shift([0.0, 0.0, radius], off)];
+    let mut start = vec![0usize];
+    for k in 1..=rings {
+        start.push(vs.len());
+        let a = max_polar * k as f64 / rings as f64;
+        for j in 0..6 * k {
+            let phi = 2.0 * PI * j as f64 / (6 * k) as f64;
+            vs.push(shift(
+                [
+                    radius * a.sin() * phi.cos(),
+                    radius * a.sin() * phi.sin(),
+                    radius * a.cos(),
+                ],
+                off,
+            ));
+        }
+    }
+    let mut ts = Vec::new();
+    for k in 0..rings {
+        // Merge ring k (n0 vertices) and ring k+1 (n1) by angle.
+        let n0 = if k == 0 { 1 } else { 6 * k };
+        let n1 = 6 * (k + 1);
+        let (s0, s1) = (start[k], start[k + 1]);
+        if k == 0 {
+            for j in 0..n1 {
+                ts.push([0, (s1 + j) as u32, (s1 + (j + 1) % n1) as u32]);
+            }
+            continue;
+        }
+        let (mut i, mut j) = (0usize, 0usize);
+        while i < n0 || j < n1 {
+            let ai = (i as f64) / n0 as f64;
+            let aj = (j as f64) / n1 as f64;
+            let adv_outer = j < n1 && (i >= n0 || aj + 0.5 / n1 as f64 <= ai + 0.5 / n0 as f64);
+            let a = (s0 + i % n0) as u32;
+            let b = (s1 + j % n1) as u32;
+            if adv_outer {
+                let c = (s1 + (j + 1) % n1) as u32;
+                ts.push([a, b, c]);
+                j += 1;
+            } else {
+                let c = (s0 + (i + 1) % n0) as u32;
+                ts.push([a, b, c]);
+                i += 1;
+            }
+        }
+    }
+    TriMesh::new(vs, ts)
+}
+
+#[test]
+fn a_hemisphere_cap_meshes_with_nodes_on_the_sphere_facets() {
+    for off in [[0.0; 3], UTM] {
+        let rings = 12;
+        let support = cap(rings, 1000.0, PI / 2.0, off);
+        // The rim: the outer ring's vertices (on the support's border), every second one.
+        let n = 6 * rings;
+        let first = support.vertices.len() - n;
+        let rim: Vec<[f64; 3]> = (0..n)
+            .step_by(1)
+            .map(|j| support.vertices[first + j])
+            .collect();
+        let input = PatchInput {
+            name: "hemisphere cap".into(),
+            support,
+            loops: vec![rim],
+            constraints: vec![],
+        };
+        let (out, q) = mesh_and_check(&input, &uniform(90.0), 1.06, 1.8);
+        assert!(q.triangles > 300);
+        // All nodes close to the sphere (the support is a faceted sphere).
+        for p in &out.nodes {
+            let r = ((p[0] - off[0]).powi(2) + (p[1] - off[1]).powi(2) + (p[2] - off[2]).powi(2))
+                .sqrt();
+            assert!(r > 960.0 && r < 1000.0 + 1e-6, "r = {r}");
+        }
+    }
+}
+
+#[test]
+fn a_coarse_support_of_long_thin_triangles_is_meshed_finely_on_it() {
+    for off in [[0.0; 3], UTM] {
+        // 2 × 30 cells over 3000 × 3000 m: triangles 1500 m by 100 m.
+        let g = Grid {
+            nx: 2,
+            ny: 30,
+            u: (0.0, 3000.0),
+            v: (0.0, 3000.0),
+            f: wavy,
+            offset: off,
+        };
+        let input = PatchInput {
+            name: "gOcad-like coarse support".into(),
+            support: g.support(),
+            loops: vec![g.border_loop(40, 40)],
+            constraints: vec![],
+        };
+        mesh_and_check(&input, &uniform(75.0), 1.04, 1.6);
+    }
+}
+
+#[test]
+fn the_recumbent_fold_support_needs_and_gets_a_fold_free_tutte_flattening() {
+    use surface_mesh::flattening_method;
+    let fold = Grid {
+        nx: 50,
+        ny: 4,
+        u: (0.0, 5.0),
+        v: (0.0, 1200.0),
+        f: |s, y| {
+            let c = z_curve(s);
+            [c[0], y, c[1]]
+        },
+        offset: UTM,
+    };
+    assert_eq!(flattening_method(&fold.support()).unwrap(), "tutte");
+    let horizon = Grid {
+        nx: 10,
+        ny: 10,
+        u: (0.0, 4000.0),
+        v: (0.0, 4000.0),
+        f: wavy,
+        offset: UTM,
+    };
+    assert_eq!(flattening_method(&horizon.support()).unwrap(), "plane");
+}
+
+#[test]
+fn a_tight_fold_hinge_gets_smaller_triangles_than_the_flat_limbs() {
+    let g = Grid {
+        nx: 100,
+        ny: 8,
+        u: (0.0, 5.0),
+        v: (0.0, 1200.0),
+        f: |u, y| {
+            let c = z_curve(u);
+            [c[0], y, c[1]]
+        },
+        offset: UTM,
+    };
+    // Boundary at ~100 m; target 150 m: the hinges (radius 150 m) ask for ~52 m.
+    let input = PatchInput {
+        name: "fold hinges".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(30, 12)],
+        constraints: vec![],
+    };
+    let size = surface_mesh::SurfaceSize {
+        size: 150.0,
+        min_size: 10.0,
+        max_size: 300.0,
+        growth: 1.2,
+    };
+    let (out, _) = mesh_and_check(&input, &size, 1.08, 2.0);
+    let mean_edge = |pick: &dyn Fn(&[f64; 3]) -> bool| {
+        let (mut s, mut n) = (0.0, 0);
+        for t in &out.triangles {
+            let [a, b, c] = t.map(|v| out.nodes[v as usize]);
+            let g = [
+                (a[0] + b[0] + c[0]) / 3.0 - UTM[0],
+                0.0,
+                (a[2] + b[2] + c[2]) / 3.0,
+            ];
+            if pick(&g) {
+                s += ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+                n += 1;
+            }
+        }
+        s / n.max(1) as f64
+    };
+    let hinge = mean_edge(&|g| g[0] > 100.0); // right hinge, x in (100, 150]
+    let limb = mean_edge(&|g| g[0] < -200.0 && g[0] > -450.0 && (g[2] - 300.0).abs() < 10.0); // middle limb
+    assert!(hinge < 0.75 * limb, "hinge {hinge} limb {limb}");
+}

@@ -1,0 +1,391 @@
+//! Surface mesher on flat and simple patches: a square, a square with a hole, a dangling
+//! constraint, graded boundary nodes, and a self-intersecting loop (an error naming the place).
+
+use surface_mesh_common::*;
+use test_support::surface_mesh_common;
+
+use surface_mesh::{PatchInput, SurfaceSize, mesh_patch};
+
+fn flat(offset: [f64; 3]) -> Grid<impl Fn(f64, f64) -> [f64; 3]> {
+    Grid {
+        nx: 3,
+        ny: 2,
+        u: (0.0, 1000.0),
+        v: (0.0, 1000.0),
+        f: |x, y| [x, y, -500.0],
+        offset,
+    }
+}
+
+#[test]
+fn a_flat_square_with_four_discretized_sides_meshes_into_near_equilateral_triangles() {
+    for off in [[0.0; 3], UTM] {
+        let g = flat(off);
+        let input = PatchInput {
+            name: "flat square".into(),
+            support: g.support(),
+            loops: vec![g.border_loop(20, 20)],
+            constraints: vec![],
+        };
+        let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.06, 1.6);
+        assert!(
+            q.triangles > 600 && q.triangles < 1100,
+            "{} triangles",
+            q.triangles
+        );
+        // Every node on the plane z = -500 exactly (the support is flat).
+        assert!(out.nodes.iter().all(|p| (p[2] + 500.0).abs() < 1e-9));
+    }
+}
+
+#[test]
+fn a_square_with_a_hole_leaves_the_hole_empty() {
+    for off in [[0.0; 3], UTM] {
+        let g = flat(off);
+        let input = PatchInput {
+            name: "square with hole".into(),
+            support: g.support(),
+            loops: vec![g.border_loop(20, 20), g.hole(500.0, 500.0, 200.0, 25)],
+            constraints: vec![],
+        };
+        let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.08, 1.7);
+        // No triangle centroid inside the hole.
+        for t in &out.triangles {
+            let c: Vec<f64> = (0..2)
+                .map(|k| {
+                    t.iter()
+                        .map(|&v| out.nodes[v as usize][k] - off[k])
+                        .sum::<f64>()
+                        / 3.0
+                })
+                .collect();
+            let r = ((c[0] - 500.0).powi(2) + (c[1] - 500.0).powi(2)).sqrt();
+            assert!(r > 190.0, "a triangle sits in the hole at r = {r}");
+        }
+    }
+}
+
+#[test]
+fn a_dangling_constraint_polyline_becomes_interior_edges() {
+    for off in [[0.0; 3], UTM] {
+        let g = flat(off);
+        let trace: Vec<[f64; 3]> = (0..=8)
+            .map(|k| g.at(300.0 + 50.0 * k as f64, 480.0 + 5.0 * k as f64))
+            .collect();
+        let from_border: Vec<[f64; 3]> =
+            vec![g.at(0.0, 250.0), g.at(60.0, 260.0), g.at(120.0, 280.0)];
+        let input = PatchInput {
+            name: "dangling fault trace".into(),
+            support: g.support(),
+            loops: vec![g.border_loop(20, 20)],
+            constraints: vec![trace.clone(), from_border],
+        };
+        let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.08, 1.8);
+        // The border-touching constraint starts on loop node 75 (left side, 250 m up): shared.
+        let loop_nodes = 80;
+        assert_eq!(
+            out.nodes[loop_nodes].map(f64::to_bits),
+            trace[0].map(f64::to_bits)
+        );
+    }
+}
+
+#[test]
+fn graded_boundary_nodes_give_a_graded_valid_mesh() {
+    for off in [[0.0; 3], UTM] {
+        let g = flat(off);
+        // Bottom side graded from 10 m to ~200 m, others uniform 100 m.
+        let mut bottom = vec![0.0];
+        let mut h: f64 = 10.0;
+        while bottom[bottom.len() - 1] + h < 1000.0 - h * 0.5 {
+            let x = bottom[bottom.len() - 1] + h;
+            bottom.push(x);
+            h = (h * 1.25).min(200.0);
+        }
+        let mut l: Vec<[f64; 3]> = bottom.iter().map(|&x| g.at(x, 0.0)).collect();
+        for k in 0..10 {
+            l.push(g.at(1000.0, 100.0 * k as f64));
+        }
+        for k in 0..10 {
+            l.push(g.at(1000.0 - 100.0 * k as f64, 1000.0));
+        }
+        // Left side graded the same way towards the fine corner at the origin.
+        for &y in bottom.iter().rev() {
+            if y < 1000.0 && y > 0.0 {
+                l.push(g.at(0.0, y));
+            }
+        }
+        l.insert(l.len() - (bottom.len() - 1), g.at(0.0, 1000.0));
+        let input = PatchInput {
+            name: "graded boundary".into(),
+            support: g.support(),
+            loops: vec![l],
+            constraints: vec![],
+        };
+        let size = SurfaceSize {
+            size: 100.0,
+            min_size: 5.0,
+            max_size: 200.0,
+            growth: 1.25,
+        };
+        let (out, _) = mesh_and_check(&input, &size, 1.12, 2.2);
+        // Small triangles near the fine corner, large ones far from it.
+        let edge = |t: &[u32; 3]| {
+            let a = out.nodes[t[0] as usize];
+            let b = out.nodes[t[1] as usize];
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+        };
+        let near = out
+            .triangles
+            .iter()
+            .filter(|t| {
+                out.nodes[t[0] as usize][0] - off[0] < 30.0
+                    && out.nodes[t[0] as usize][1] - off[1] < 30.0
+            })
+            .map(edge)
+            .fold(0.0, f64::max);
+        let far = out
+            .triangles
+            .iter()
+            .filter(|t| out.nodes[t[0] as usize][1] - off[1] > 800.0)
+            .map(edge)
+            .fold(0.0, f64::max);
+        assert!(near < 40.0 && far > 70.0, "near {near} far {far}");
+    }
+}
+
+#[test]
+fn a_self_intersecting_loop_is_an_error_naming_the_patch_and_the_place() {
+    for off in [[0.0; 3], UTM] {
+        let g = flat(off);
+        let bow = vec![
+            g.at(100.0, 100.0),
+            g.at(900.0, 900.0),
+            g.at(900.0, 100.0),
+            g.at(100.0, 900.0),
+        ];
+        let input = PatchInput {
+            name: "bow tie".into(),
+            support: g.support(),
+            loops: vec![bow],
+            constraints: vec![],
+        };
+        let e = mesh_patch(&input, &uniform(50.0)).unwrap_err();
+        let at = e.at.expect("a place");
+        assert!(
+            (at[0] - off[0] - 500.0).abs() < 1e-6 && (at[1] - off[1] - 500.0).abs() < 1e-6,
+            "{e}"
+        );
+        let msg = e.to_string();
+        assert!(
+            msg.contains("bow tie") && msg.contains("intersect"),
+            "{msg}"
+        );
+    }
+}
+
+#[test]
+fn a_loop_node_off_the_support_is_an_error_with_its_place() {
+    let g = flat([0.0; 3]);
+    let mut l = g.border_loop(10, 10);
+    l[3][2] += 1.0;
+    let input = PatchInput {
+        name: "lifted node".into(),
+        support: g.support(),
+        loops: vec![l.clone()],
+        constraints: vec![],
+    };
+    let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
+    assert_eq!(e.at, Some(l[3]), "{e}");
+    assert!(e.to_string().contains("off the support"));
+}
+
+#[test]
+fn meshing_twice_gives_the_same_mesh_bit_for_bit() {
+    let g = flat(UTM);
+    let trace: Vec<[f64; 3]> = (0..=4)
+        .map(|k| g.at(300.0 + 50.0 * k as f64, 480.0))
+        .collect();
+    let input = PatchInput {
+        name: "twice".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(17, 23), g.hole(700.0, 300.0, 100.0, 13)],
+        constraints: vec![trace],
+    };
+    let a = mesh_patch(&input, &uniform(45.0)).unwrap();
+    let b = mesh_patch(&input, &uniform(45.0)).unwrap();
+    assert_eq!(a, b);
+}
+
+#[test]
+fn a_constraint_that_leaves_the_patch_is_an_error_with_a_place() {
+    let g = flat([0.0; 3]);
+    let input = PatchInput {
+        name: "escaping trace".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(10, 10)],
+        // From inside the square through its top side towards a point outside (still on the
+        // support, which extends nowhere beyond: the end is off the support).
+        constraints: vec![vec![g.at(500.0, 900.0), [550.0, 1100.0, -500.0]]],
+    };
+    let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
+    assert!(
+        e.at.is_some() && e.to_string().contains("escaping trace"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_constraint_crossing_the_boundary_on_the_support_is_an_intersection_error() {
+    let g = Grid {
+        nx: 4,
+        ny: 4,
+        u: (-500.0, 1500.0),
+        v: (-500.0, 1500.0),
+        f: |x, y| [x, y, -500.0],
+        offset: [0.0; 3],
+    };
+    let square: Vec<[f64; 3]> = flat([0.0; 3]).border_loop(10, 10);
+    let input = PatchInput {
+        name: "crossing trace".into(),
+        support: g.support(),
+        loops: vec![square],
+        constraints: vec![vec![g.at(500.0, 850.0), g.at(530.0, 1150.0)]],
+    };
+    let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
+    let at = e.at.expect("a place");
+    assert!(
+        (at[1] - 1000.0).abs() < 1e-6 && (at[0] - 515.0).abs() < 1e-6,
+        "{e}"
+    );
+    assert!(
+        e.to_string().contains("crossing trace") && e.to_string().contains("intersect"),
+        "{e}"
+    );
+}
+
+#[test]
+fn invalid_sizes_are_refused_with_the_values() {
+    let g = flat([0.0; 3]);
+    let input = PatchInput {
+        name: "sizes".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(4, 4)],
+        constraints: vec![],
+    };
+    let e = mesh_patch(
+        &input,
+        &SurfaceSize {
+            size: -1.0,
+            min_size: 0.0,
+            max_size: 10.0,
+            growth: 1.2,
+        },
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("size -1"), "{e}");
+    let e = mesh_patch(
+        &input,
+        &SurfaceSize {
+            size: 10.0,
+            min_size: 0.0,
+            max_size: 10.0,
+            growth: 0.5,
+        },
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("growth 0.5"), "{e}");
+}
+
+#[test]
+fn a_clockwise_outer_loop_still_gives_triangles_oriented_like_the_support() {
+    let g = flat(UTM);
+    let mut l = g.border_loop(12, 12);
+    l.reverse();
+    let input = PatchInput {
+        name: "clockwise".into(),
+        support: g.support(),
+        loops: vec![l],
+        constraints: vec![],
+    };
+    let (out, _) = mesh_and_check(&input, &uniform(80.0), 1.06, 1.6);
+    // The support faces +z: every triangle's normal must too.
+    for t in &out.triangles {
+        let [a, b, c] = t.map(|v| out.nodes[v as usize]);
+        let nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        assert!(nz > 0.0);
+    }
+}
+
+#[test]
+fn a_closed_support_is_refused_because_it_must_come_split_into_patches() {
+    use geom::TriMesh;
+    let v = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let tet = TriMesh::new(v.clone(), vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]);
+    let input = PatchInput {
+        name: "lens".into(),
+        support: tet,
+        loops: vec![vec![v[0], v[1], v[2]]],
+        constraints: vec![],
+    };
+    let e = mesh_patch(&input, &uniform(0.1)).unwrap_err();
+    assert!(
+        e.to_string().contains("lens") && e.to_string().contains("closed"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_flattening() {
+    use surface_mesh::flattening_method;
+    // A 2 × 2 grid over [0, 1000]², with a T-junction at the middle of the interior edge
+    // (500, 0)-(500, 500) closed by a needle triangle of zero area, as repairs of gOcad exports do.
+    for off in [[0.0; 3], UTM] {
+        let p = |x: f64, y: f64| [x + off[0], y + off[1], -500.0];
+        let mut vs = Vec::new();
+        for j in 0..3 {
+            for i in 0..3 {
+                vs.push(p(500.0 * i as f64, 500.0 * j as f64));
+            }
+        }
+        vs.push(p(500.0, 250.0)); // m = 9, on the edge 1-4
+        let mut ts = vec![];
+        for j in 0..2u32 {
+            for i in 0..2u32 {
+                let (a, b, c, d) = (j * 3 + i, j * 3 + i + 1, j * 3 + i + 4, j * 3 + i + 3);
+                ts.push([a, b, c]);
+                ts.push([a, c, d]);
+            }
+        }
+        // Triangle [0, 1, 4] is split at m into [0, 1, 9] and [0, 9, 4]; its neighbour across
+        // 1-4 stays whole, so the T-junction is closed by the needle [1, 4, 9].
+        ts[0] = [0, 1, 9];
+        ts.push([0, 9, 4]);
+        ts.push([1, 4, 9]);
+        let support = geom::TriMesh::new(vs, ts);
+        assert_eq!(flattening_method(&support).unwrap(), "tutte");
+        let border: Vec<[f64; 3]> = (0..40)
+            .map(|k| {
+                let s = 1000.0 * (k % 10) as f64 / 10.0;
+                match k / 10 {
+                    0 => p(s, 0.0),
+                    1 => p(1000.0, s),
+                    2 => p(1000.0 - s, 1000.0),
+                    _ => p(0.0, 1000.0 - s),
+                }
+            })
+            .collect();
+        let input = PatchInput {
+            name: "needle support".into(),
+            support,
+            loops: vec![border],
+            constraints: vec![],
+        };
+        mesh_and_check(&input, &uniform(100.0), 1.06, 1.6);
+    }
+}

@@ -1,0 +1,13 @@
+//! Fixtures and helpers shared by the crates' integration tests, benches and examples. A test
+//! that needs `../shared` (the public data, the peers' meshes, `check_mesh.py`) asks
+//! [`paths::shared`], which prints a note and returns `None` when it is absent, so the test skips.
+
+#![allow(dead_code)]
+
+pub mod didactic;
+pub mod export_support;
+pub mod grid;
+pub mod paths;
+pub mod peer_support;
+pub mod peers;
+pub mod surface_mesh_common;

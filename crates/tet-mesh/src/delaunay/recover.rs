@@ -1,0 +1,634 @@
+//! From boundary points to a conforming mesh of the region: the Delaunay tetrahedralization of
+//! the boundary and embedded vertices, then boundary recovery without a single node on a boundary
+//! face. Most boundary triangles of a good surface mesh are Delaunay faces already. Each missing
+//! one is recovered locally: every tet that may meet its interior (exact, conservative tests) is
+//! removed, and the part of those holes inside the region (bounded by the missing triangles, the
+//! boundary triangles inside the holes and the faces towards the kept inner tets) is meshed by the
+//! advancing front, which never inserts a node on a face. Kept tets are classified inside or
+//! outside by flooding from the boundary triangles' oriented sides, never across a boundary face.
+//! Any inconsistency is an error, and the caller falls back to the advancing front on the whole
+//! region.
+
+use std::collections::{HashMap, HashSet};
+
+use geom::predicates::Orientation;
+
+use super::super::advance::advance_front;
+use super::super::check::{check_input, check_intersections};
+use super::super::exact::orient3d;
+use super::super::front::FaceMap;
+use super::super::{RegionInput, SizeField, TetMeshError};
+use super::flip::coplanar;
+use super::order::brio;
+use super::tri::{FACE, Limits, NONE, P, Tri};
+
+/// Boundary-conforming mesh of a region: `tri` holds only inner tets, the boundary faces on its
+/// hull and the embedded faces as constraints; `pts[n_input..n_input + 4]` are the unused corners
+/// of the enclosing tet.
+pub struct Conforming {
+    pub tri: Tri,
+    pub n_input: usize,
+    /// Boundary triangles that were not Delaunay faces and went through a hole.
+    pub missing: usize,
+}
+
+/// Recovery gives up when more than `MAX_MISSING` constraint triangles, and more than one in
+/// `MAX_MISSING_SHARE`, are missing. Surface meshes from Gmsh and from our mesher miss none or a
+/// handful; a structured grid on a box side (cospherical squares) misses about half, and the holes
+/// then span the region: the front meshes it directly and faster.
+const MAX_MISSING: usize = 500;
+const MAX_MISSING_SHARE: usize = 50;
+/// Rounds of hole growth before recovery gives up.
+const MAX_GROWTH: usize = 8;
+
+/// The (tet, face) pairs that hold a constraint triangle, `4 t + i` each: at most two.
+#[derive(Clone, Copy)]
+struct Holders([u32; 2]);
+
+impl Holders {
+    fn push(&mut self, t: u32, i: usize) {
+        let slot = if self.0[0] == NONE { 0 } else { 1 };
+        self.0[slot] = 4 * t + i as u32;
+    }
+
+    fn is_empty(&self) -> bool {
+        self.0[0] == NONE
+    }
+
+    fn iter(&self) -> impl Iterator<Item = (u32, usize)> {
+        self.0
+            .into_iter()
+            .filter(|&x| x != NONE)
+            .map(|x| (x >> 2, (x & 3) as usize))
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Side {
+    Unknown,
+    In,
+    Out,
+    Hole,
+}
+
+fn sorted(f: [u32; 3]) -> [u32; 3] {
+    let mut k = f;
+    k.sort_unstable();
+    k
+}
+
+/// Same cyclic orientation.
+fn same_turn(f: [u32; 3], g: [u32; 3]) -> bool {
+    f == g || f == [g[1], g[2], g[0]] || f == [g[2], g[0], g[1]]
+}
+
+pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, TetMeshError> {
+    let name = input.name.as_str();
+    let err = |m: String, at: Option<P>| TetMeshError::new(name, m, at);
+    let n = input.vertices.len();
+    let mut pts = input.vertices.clone();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &pts {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+    let ext = (0..3)
+        .map(|k| hi[k] - lo[k])
+        .fold(0.0f64, f64::max)
+        .max(1.0);
+    let s = 1.0e3 * ext;
+    for d in [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]] {
+        pts.push([c[0] + s * d[0], c[1] + s * d[1], c[2] + s * d[2]]);
+    }
+    let n32 = n as u32;
+    let mut st = [n32, n32 + 1, n32 + 2, n32 + 3];
+    if orient3d(&pts[n], &pts[n + 1], &pts[n + 2], &pts[n + 3]) != Orientation::Positive {
+        st.swap(0, 1);
+    }
+    let mut tri = Tri::new(pts, st);
+
+    let mut used = vec![false; n];
+    for t in input.boundary.iter().chain(&input.embedded) {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let ids: Vec<u32> = (0..n as u32).filter(|&v| used[v as usize]).collect();
+    // A Delaunay tetrahedralization of boundary points (the enclosing tet's included) has 7 to
+    // 7.7 tets per point on our regions, thin layers the most: room for 8, so that no
+    // reallocation doubles the array at its peak, and no more (it is most of a thin region's).
+    tri.reserve(8 * ids.len() + 64);
+    for v in brio(&ids, &input.vertices) {
+        let p = input.vertices[v as usize];
+        tri.insert_vertex(v, NONE, &Limits::default())
+            .map_err(|r| {
+                err(
+                    format!("boundary vertex {v} could not be inserted ({r:?})"),
+                    Some(p),
+                )
+            })?;
+    }
+
+    // Which constraint triangles are faces.
+    // Looked up once per tet face, never iterated: the front's fast word hash.
+    let mut cons_index: FaceMap<u32> = FaceMap::with_capacity_and_hasher(
+        input.boundary.len() + input.embedded.len(),
+        Default::default(),
+    );
+    let all: Vec<([u32; 3], bool)> = input
+        .boundary
+        .iter()
+        .map(|&t| (t, false))
+        .chain(input.embedded.iter().map(|&t| (t, true)))
+        .collect();
+    for (k, (t, _)) in all.iter().enumerate() {
+        cons_index.insert(sorted(*t), k as u32);
+    }
+    let mut holders = find_holders(&tri, &cons_index, all.len(), n);
+    let mut missing: Vec<usize> = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
+    let mut vtet = vertex_tets(&tri);
+    if !missing.is_empty() && flip_diagonals(&mut tri, &all, &missing, &mut vtet) > 0 {
+        holders = find_holders(&tri, &cons_index, all.len(), n);
+        missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
+    }
+    // Triangles that are all faces of the tetrahedralization cannot meet improperly (see
+    // `check::check_shape`); otherwise the input is checked in full before any recovery, so an
+    // intersection is reported as such.
+    if !missing.is_empty() {
+        check_intersections(input)?;
+    }
+    if missing.len() > MAX_MISSING && missing.len() * MAX_MISSING_SHARE > all.len() {
+        let at = tri.pts[all[missing[0]].0[0] as usize];
+        return Err(err(
+            format!(
+                "{} of the {} boundary and embedded triangles are not Delaunay faces (a structured, \
+                 cospherical boundary?): too many to recover locally",
+                missing.len(),
+                all.len()
+            ),
+            Some(at),
+        ));
+    }
+
+    // Remove every tet that may meet a missing triangle.
+    let mut side = vec![Side::Unknown; tri.t.len()];
+    if !missing.is_empty() {
+        // Per missing triangle, every tet meeting it, reached through tets meeting it (whether
+        // or not an earlier triangle already took them).
+        let mut seen = vec![u32::MAX; tri.t.len()];
+        let mut stack = Vec::new();
+        for (round, &k) in missing.iter().enumerate() {
+            let round = round as u32;
+            let f = all[k].0;
+            let mut visit = |t: u32, stack: &mut Vec<u32>, side: &mut [Side]| {
+                if seen[t as usize] != round {
+                    seen[t as usize] = round;
+                    if meets(&tri, t, f) {
+                        side[t as usize] = Side::Hole;
+                        stack.push(t);
+                    }
+                }
+            };
+            for &v in &f {
+                for t in star(&tri, v, vtet[v as usize]) {
+                    visit(t, &mut stack, &mut side);
+                }
+            }
+            while let Some(t) = stack.pop() {
+                for i in 0..4 {
+                    let a = tri.t[t as usize].adj[i];
+                    if a != NONE {
+                        visit(a >> 2, &mut stack, &mut side);
+                    }
+                }
+            }
+        }
+    }
+
+    // Flood the kept tets from the constraint sides and the enclosing tet's corners.
+    for (k, hs) in holders.iter().enumerate() {
+        for (t, i) in hs.iter() {
+            tri.constrain(t, i);
+            let (f, embedded) = all[k];
+            let s = if embedded || same_turn(tri.face(t, i), f) {
+                Side::In
+            } else {
+                Side::Out
+            };
+            seed(&mut side, t, s, &tri, name)?;
+        }
+    }
+    for t in tri.live_tets() {
+        if tri.t[t as usize].v.iter().any(|&v| v >= n32) {
+            seed(&mut side, t, Side::Out, &tri, name)?;
+        }
+    }
+    let mut stack: Vec<u32> = tri
+        .live_tets()
+        .filter(|&t| matches!(side[t as usize], Side::In | Side::Out))
+        .collect();
+    while let Some(t) = stack.pop() {
+        let s = side[t as usize];
+        for i in 0..4 {
+            if tri.t[t as usize].cons & (1 << i) != 0 {
+                continue;
+            }
+            let a = tri.t[t as usize].adj[i];
+            if a == NONE {
+                continue;
+            }
+            let u = (a >> 2) as usize;
+            match side[u] {
+                Side::Unknown => {
+                    side[u] = s;
+                    stack.push(u as u32);
+                }
+                Side::Hole => {}
+                o if o != s => {
+                    let f = tri.face(t, i);
+                    return Err(err(
+                        "inside and outside meet across a face that is not on the boundary".into(),
+                        Some(tri.pts[f[0] as usize]),
+                    ));
+                }
+                _ => {}
+            }
+        }
+    }
+    // Tets no flood reached are walled in by holes (e.g. behind box sides whose cospherical
+    // squares the tetrahedralization split the other way): they join the holes, whose inner part
+    // the front meshes whatever side they were on.
+    for (t, s) in side.iter_mut().enumerate() {
+        if *s == Side::Unknown && tri.alive(t as u32) {
+            *s = Side::Hole;
+        }
+    }
+
+    // The holes' inner part, meshed by the front.
+    let mut extra: Vec<[u32; 4]> = Vec::new();
+    if side.contains(&Side::Hole) {
+        // Where the hole's inner part pinches along an edge (hole and kept tets alternate round
+        // it), the kept tets round that edge join the hole, until its surface is a manifold.
+        let mut grown = 0;
+        let (sub_b, sub_e) = loop {
+            let (sub_b, sub_e) = hole_surface(&tri, &side, &all, &holders);
+            let pinched = pinched_edges(&sub_b);
+            if pinched.is_empty() {
+                break (sub_b, sub_e);
+            }
+            grown += 1;
+            if grown > MAX_GROWTH {
+                let [u, _] = pinched[0];
+                return Err(err(
+                    "a recovery hole stays pinched along an edge".into(),
+                    Some(tri.pts[u as usize]),
+                ));
+            }
+            for [u, v] in pinched {
+                for t in star(&tri, u, vtet[u as usize]) {
+                    if side[t as usize] == Side::In && tri.t[t as usize].v.contains(&v) {
+                        side[t as usize] = Side::Hole;
+                    }
+                }
+            }
+        };
+        let (sub, back) = compact_input(name, &tri.pts, &sub_b, &sub_e);
+        check_input(&sub)
+            .map_err(|e| err(format!("a recovery hole is not valid: {}", e.message), e.at))?;
+        let raw = advance_front(&sub, size)?;
+        let mut map = back;
+        for p in &raw.nodes[sub.vertices.len()..] {
+            map.push(tri.pts.len() as u32);
+            tri.pts.push(*p);
+        }
+        extra.extend(raw.tets.iter().map(|t| t.map(|v| map[v as usize])));
+    }
+    // Keep the inner tets in place: the faces the holes share with them are noted, every other
+    // tet goes, and the front's tets are linked in (no rebuild of the whole adjacency).
+    let mut surface: HashMap<[u32; 3], u32> = HashMap::new();
+    let live: Vec<u32> = tri.live_tets().collect();
+    for &t in &live {
+        if side[t as usize] != Side::Hole {
+            continue;
+        }
+        for i in 0..4 {
+            let a = tri.t[t as usize].adj[i];
+            if a != NONE && side[(a >> 2) as usize] == Side::In {
+                surface.insert(sorted(tri.face(t, i)), a);
+            }
+        }
+    }
+    drop((vtet, holders, cons_index));
+    for &t in &live {
+        if side[t as usize] != Side::In {
+            tri.kill(t);
+        }
+    }
+    drop(side);
+    let embedded: HashSet<[u32; 3]> = input.embedded.iter().map(|&t| sorted(t)).collect();
+    tri.link_in(&extra, &surface, &embedded);
+    Ok(Conforming {
+        tri,
+        n_input: n,
+        missing: missing.len(),
+    })
+}
+
+fn seed(side: &mut [Side], t: u32, s: Side, tri: &Tri, name: &str) -> Result<(), TetMeshError> {
+    match side[t as usize] {
+        Side::Unknown => side[t as usize] = s,
+        Side::Hole => {}
+        o if o != s => {
+            return Err(TetMeshError::new(
+                name,
+                "a tet lies on both sides of the boundary",
+                Some(tri.pts[tri.t[t as usize].v[0] as usize]),
+            ));
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// The inner part of the holes: the faces from hole tets to kept inner tets, the boundary
+/// triangles inside or on the holes, and the embedded triangles inside them (those with a hole on
+/// one side only bound it).
+fn hole_surface(
+    tri: &Tri,
+    side: &[Side],
+    all: &[([u32; 3], bool)],
+    holders: &[Holders],
+) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+    let mut sub_b: Vec<[u32; 3]> = Vec::new();
+    let mut sub_e: Vec<[u32; 3]> = Vec::new();
+    for t in tri.live_tets() {
+        if side[t as usize] != Side::Hole {
+            continue;
+        }
+        for i in 0..4 {
+            let a = tri.t[t as usize].adj[i];
+            if a == NONE || tri.t[t as usize].cons & (1 << i) != 0 {
+                continue;
+            }
+            if side[(a >> 2) as usize] == Side::In {
+                sub_b.push(tri.face(t, i));
+            }
+        }
+    }
+    for (k, &(f, embedded)) in all.iter().enumerate() {
+        let hs = &holders[k];
+        if hs.is_empty() {
+            if embedded {
+                sub_e.push(f);
+            } else {
+                sub_b.push(f);
+            }
+            continue;
+        }
+        let in_hole: Vec<(u32, usize)> = hs
+            .iter()
+            .filter(|(t, _)| side[*t as usize] == Side::Hole)
+            .collect();
+        if embedded {
+            match in_hole.len() {
+                2 => sub_e.push(f),
+                1 => sub_b.push(tri.face(in_hole[0].0, in_hole[0].1)),
+                _ => {}
+            }
+        } else if in_hole.iter().any(|&(t, i)| same_turn(tri.face(t, i), f)) {
+            sub_b.push(f);
+        }
+    }
+    (sub_b, sub_e)
+}
+
+/// Edges that two faces of `tris` traverse in the same direction.
+fn pinched_edges(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
+    let mut directed: Vec<[u32; 2]> = tris
+        .iter()
+        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+        .collect();
+    directed.sort_unstable();
+    let mut out: Vec<[u32; 2]> = directed
+        .windows(2)
+        .filter(|w| w[0] == w[1])
+        .map(|w| w[0])
+        .collect();
+    out.dedup();
+    out
+}
+
+/// Per constraint (index into the list `cons_index` maps to): the (tet, face) pairs holding it.
+///
+/// Each face is looked up once, from its tet of smaller slot, which notes both sides (in slot
+/// order, as a scan of every tet's faces would); faces on an enclosing corner (ids from
+/// `n_input` on) are no constraint and are not looked up.
+fn find_holders(tri: &Tri, cons_index: &FaceMap<u32>, n: usize, n_input: usize) -> Vec<Holders> {
+    let mut holders = vec![Holders([NONE; 2]); n];
+    for t in tri.live_tets() {
+        let rec = &tri.t[t as usize];
+        for i in 0..4 {
+            let other = rec.adj[i];
+            if other != NONE && other >> 2 < t {
+                continue;
+            }
+            let f = tri.face(t, i);
+            if f.iter().any(|&v| v as usize >= n_input) {
+                continue;
+            }
+            if let Some(&k) = cons_index.get(&sorted(f)) {
+                holders[k as usize].push(t, i);
+                if other != NONE {
+                    holders[k as usize].push(other >> 2, (other & 3) as usize);
+                }
+            }
+        }
+    }
+    holders
+}
+
+/// One tet of each vertex (`NONE` for vertices in no tet).
+fn vertex_tets(tri: &Tri) -> Vec<u32> {
+    let mut vtet = vec![NONE; tri.pts.len()];
+    for t in tri.live_tets() {
+        for &v in &tri.t[t as usize].v {
+            vtet[v as usize] = t;
+        }
+    }
+    vtet
+}
+
+/// For each missing constraint triangle that forms a coplanar quad with a neighbouring
+/// constraint triangle, flip the tetrahedralization's other diagonal of that quad to theirs
+/// (`flip`). Returns the number of flips; `vtet` is kept current.
+fn flip_diagonals(
+    tri: &mut Tri,
+    all: &[([u32; 3], bool)],
+    missing: &[usize],
+    vtet: &mut [u32],
+) -> usize {
+    // (edge, triangle) pairs sorted by edge: the triangles on an edge are one run (12 bytes a
+    // pair, where a map of lists costs several times that at the recovery's memory peak).
+    let mut by_edge: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * all.len());
+    for (k, (t, _)) in all.iter().enumerate() {
+        for e in 0..3 {
+            let (u, v) = (t[e], t[(e + 1) % 3]);
+            by_edge.push(([u.min(v), u.max(v)], k as u32));
+        }
+    }
+    by_edge.sort_unstable();
+    let mut flips = 0;
+    for &k in missing {
+        let t = all[k].0;
+        for e in 0..3 {
+            let (u, v, w) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
+            let key = [u.min(v), u.max(v)];
+            let first = by_edge.partition_point(|&(e, _)| e < key);
+            for &(_, k2) in by_edge[first..].iter().take_while(|&&(e, _)| e == key) {
+                let k2 = k2 as usize;
+                if k2 == k {
+                    continue;
+                }
+                let t2 = all[k2].0;
+                let Some(&z) = t2.iter().find(|&&x| x != u && x != v) else {
+                    continue;
+                };
+                if !coplanar(tri, [u, v, w, z]) || vtet[w as usize] == NONE {
+                    continue;
+                }
+                // A tet holding the wrong diagonal wz, found round w.
+                let Some(start) = star(tri, w, vtet[w as usize])
+                    .into_iter()
+                    .find(|&s| tri.t[s as usize].v.contains(&z))
+                else {
+                    continue;
+                };
+                if let Some(new) = tri.flip44(w, z, start, u, v) {
+                    flips += 1;
+                    for &n in &new {
+                        for &x in &tri.t[n as usize].v {
+                            vtet[x as usize] = n;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    flips
+}
+
+/// Tets around vertex `v`, starting from one of them.
+fn star(tri: &Tri, v: u32, start: u32) -> Vec<u32> {
+    let mut out = vec![start];
+    let mut k = 0;
+    while k < out.len() {
+        let t = out[k];
+        k += 1;
+        for (i, &w) in tri.t[t as usize].v.iter().enumerate() {
+            if w == v {
+                continue;
+            }
+            let a = tri.t[t as usize].adj[i];
+            if a != NONE && !out.contains(&(a >> 2)) {
+                out.push(a >> 2);
+            }
+        }
+    }
+    out
+}
+
+/// Whether the closed tet `t` may meet the open triangle `f` (conservative: `false` only when a
+/// plane separates them, decided exactly). Closed, so that where `f` lies in the plane of tet
+/// faces that triangulate the same piece of plane differently (coplanar boundary points, as on
+/// a box side), the tets on both sides of that plane are taken.
+fn meets(tri: &Tri, t: u32, f: [u32; 3]) -> bool {
+    let tv = tri.t[t as usize].v;
+    let p = |v: u32| &tri.pts[v as usize];
+    let o = |a: u32, b: u32, c: u32, d: u32| orient3d(p(a), p(b), p(c), p(d)).sign();
+    // The triangle's plane: the tet strictly on one side.
+    let s: Vec<i32> = tv.iter().map(|&w| o(f[0], f[1], f[2], w)).collect();
+    if s.iter().all(|&x| x > 0) || s.iter().all(|&x| x < 0) {
+        return false;
+    }
+    // A tet face's plane: the open triangle strictly outside.
+    for fi in FACE {
+        let g = [tv[fi[0]], tv[fi[1]], tv[fi[2]]];
+        let sf: Vec<i32> = f.iter().map(|&x| o(g[0], g[1], g[2], x)).collect();
+        if sf.iter().all(|&x| x >= 0) && sf.iter().any(|&x| x > 0) {
+            return false;
+        }
+    }
+    // Planes through an edge of the triangle and a tet vertex: the open triangle strictly on its
+    // third vertex's side, the tet on the other closed side.
+    for e in 0..3 {
+        let (a, b, c) = (f[e], f[(e + 1) % 3], f[(e + 2) % 3]);
+        for &w in &tv {
+            if w == a || w == b {
+                continue;
+            }
+            let sc = o(a, b, w, c);
+            if sc != 0 && tv.iter().all(|&x| o(a, b, w, x) * sc <= 0) {
+                return false;
+            }
+        }
+    }
+    // Planes through an edge of the tet and a triangle vertex: the rest of the tet strictly on
+    // one side, the open triangle strictly on the other.
+    for i in 0..4 {
+        for j in i + 1..4 {
+            let (a, b) = (tv[i], tv[j]);
+            let rest: Vec<u32> = (0..4)
+                .filter(|&k| k != i && k != j)
+                .map(|k| tv[k])
+                .collect();
+            for &x in &f {
+                if x == a || x == b {
+                    continue;
+                }
+                let s0 = o(a, b, x, rest[0]);
+                let s1 = o(a, b, x, rest[1]);
+                if s0 == 0 || s0 != s1 {
+                    continue;
+                }
+                let sy: Vec<i32> = f.iter().map(|&y| o(a, b, x, y) * s0).collect();
+                if sy.iter().all(|&y| y <= 0) && sy.iter().any(|&y| y < 0) {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// The sub-problem over only the vertices it uses; `back[local] = global`.
+fn compact_input(
+    name: &str,
+    pts: &[P],
+    boundary: &[[u32; 3]],
+    embedded: &[[u32; 3]],
+) -> (RegionInput, Vec<u32>) {
+    let mut local: HashMap<u32, u32> = HashMap::new();
+    let mut back: Vec<u32> = Vec::new();
+    let mut map = |v: u32| {
+        *local.entry(v).or_insert_with(|| {
+            back.push(v);
+            (back.len() - 1) as u32
+        })
+    };
+    let b: Vec<[u32; 3]> = boundary.iter().map(|t| t.map(&mut map)).collect();
+    let e: Vec<[u32; 3]> = embedded.iter().map(|t| t.map(&mut map)).collect();
+    let vertices = back.iter().map(|&v| pts[v as usize]).collect();
+    (
+        RegionInput {
+            name: name.to_string(),
+            vertices,
+            boundary: b,
+            embedded: e,
+        },
+        back,
+    )
+}

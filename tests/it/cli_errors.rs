@@ -1,0 +1,102 @@
+//! Bad input to the command line: every error names the place and exits non-zero, never a panic.
+
+use crate::common_cli;
+use common_cli::*;
+
+fn fails_with(s: &Scratch, args: &[&str], needles: &[&str]) {
+    let out = s.recipe_cmd(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "exit code for {args:?}: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "`{n}` not in:\n{err}");
+    }
+}
+
+#[test]
+fn a_misspelt_key_names_the_line_and_suggests_the_key() {
+    let s = Scratch::didactic();
+    s.edit("size = 200.0", "szie = 200.0");
+    fails_with(
+        &s,
+        &["build", "didactic.toml"],
+        &["didactic.toml:", "szie", "size"],
+    );
+    fails_with(&s, &["check", "didactic.toml"], &["didactic.toml:", "szie"]);
+}
+
+#[test]
+fn a_missing_imported_file_is_named_with_the_recipe_line() {
+    let s = Scratch::didactic();
+    std::fs::remove_file(s.path("data/didactic/F2_dangling.ts")).unwrap();
+    fails_with(
+        &s,
+        &["build", "didactic.toml"],
+        &["didactic.toml:", "F2_dangling.ts"],
+    );
+}
+
+#[test]
+fn a_curve_rule_that_matches_no_curve_of_the_model_fails_the_build_with_its_selector() {
+    let s = Scratch::didactic();
+    s.edit(
+        "\"H1/F1\" = { size = 100.0 }",
+        "\"H1/H2\" = { size = 100.0 }",
+    );
+    fails_with(&s, &["build", "didactic.toml"], &["H1/H2"]);
+}
+
+#[test]
+fn a_corrupt_surface_file_fails_its_import_with_file_and_line_and_other_nodes_still_run() {
+    let s = Scratch::didactic();
+    let f = s.path("data/didactic/F2_dangling.ts");
+    let text = std::fs::read_to_string(&f)
+        .unwrap()
+        .replacen("TRGL 1 ", "TRGL 99999 ", 1);
+    std::fs::write(&f, text).unwrap();
+    let (ok, r, err) = s.build(&[]);
+    assert!(!ok);
+    assert!(err.contains("F2_dangling.ts:"), "{err}");
+    assert!(nodes_in_state(&r, "failed").contains(&"import:F2".to_string()));
+    assert!(
+        nodes_in_state(&r, "ran").contains(&"import:H1".to_string()),
+        "independent nodes keep going"
+    );
+}
+
+#[test]
+fn check_accepts_the_shipped_recipe() {
+    let s = Scratch::didactic();
+    let out = s.recipe_cmd(&["check", "didactic.toml"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn a_missing_recipe_is_an_error_not_a_panic() {
+    let s = Scratch::didactic();
+    fails_with(&s, &["build", "nope.toml"], &["nope.toml"]);
+}
+
+#[test]
+fn a_trim_that_discards_nothing_fails_the_model_and_points_at_its_recipe_line() {
+    let s = Scratch::didactic();
+    s.edit(
+        "[mesh]\n",
+        "[[trim]]\nsurface = \"F1\"\ndiscard = { area_below = 0.001 }\n\n[mesh]\n",
+    );
+    let (ok, r, err) = s.build(&[]);
+    assert!(!ok);
+    assert!(
+        nodes_in_state(&r, "failed").contains(&"model".to_string()),
+        "{err}"
+    );
+    assert!(
+        err.contains("didactic.toml:"),
+        "the trim's line is named: {err}"
+    );
+    assert!(err.contains("F1"), "{err}");
+}

@@ -1,0 +1,78 @@
+//! A recipe over real public gOcad files (SCEC Community Fault Model) builds: imports with their
+//! quirks repaired and reported, an exact intersection of two real faults, curves discretized.
+
+use crate::common_cli;
+use common_cli::*;
+use std::path::Path;
+
+#[test]
+fn a_recipe_over_real_cfm_faults_builds_and_reports_what_it_repaired() {
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/gocad/SCECcode__CFM");
+    if !shared.is_dir() {
+        eprintln!("skipping: ../shared is absent");
+        return;
+    }
+    let s = Scratch::didactic();
+    let d = shared.display();
+    let recipe = format!(
+        r#"
+[model]
+name = "bigbend"
+
+[surfaces]
+garlock = {{ file = "{d}/CFM5.3_4/ts/1000m/GRFS-GRFZ-WEST-Garlock_fault-CFM5_1000m.ts", kind = "fault" }}
+pleito = {{ file = "{d}/CFM5.3_4/ts/1000m/GVFA-PLFZ-MULT-Pleito_fault-CFM2_1000m.ts", kind = "fault" }}
+bigbear = {{ file = "{d}/CFM5_release_2017/obj/CFM5_all/ETRA-BBFS-1992-Big_Bear_rupture_fault-nw.ts", kind = "fault" }}
+whitewolf = {{ file = "{d}/CFM5_release_2017/obj/CFM5_all/GVFA-WWFZ-MULT-White_Wolf_fault-original.ts", kind = "fault" }}
+
+[intersect]
+pairs = [["garlock", "pleito"]]
+
+[mesh]
+size = 2000.0
+
+[mesh.curves]
+"garlock/pleito" = {{ size = 500.0 }}
+
+[output]
+dir = "out/bigbend"
+"#
+    );
+    std::fs::write(s.path("bigbend.toml"), recipe).unwrap();
+    let out = s.recipe_cmd(&["build", "--json", "bigbend.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let node = |name: &str| {
+        r["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|n| n["name"] == name)
+            .cloned()
+            .unwrap_or_else(|| panic!("no node {name}"))
+    };
+    assert_eq!(node("import:garlock")["counts"]["triangles"], 3262);
+    assert!(
+        node("import:bigbear")["counts"]["findings"]
+            .as_u64()
+            .unwrap()
+            > 0,
+        "Big Bear's zero-area triangles are found"
+    );
+    assert!(
+        err.contains("bigbear"),
+        "the repaired findings are printed: {err}"
+    );
+    assert!(
+        node("intersect:garlock/pleito")["counts"]["curves"]
+            .as_u64()
+            .unwrap()
+            >= 1
+    );
+    assert!(all_nodes(&r).contains(&"discretize:garlock/pleito".to_string()));
+    let validation: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(s.path("out/bigbend/validation.json")).unwrap())
+            .unwrap();
+    assert!(validation.get("bigbear").is_some());
+}

@@ -1,0 +1,24 @@
+//! The integration tests of this crate, one module per subject, in one binary (one link per
+//! change instead of one per file).
+
+mod cli_build;
+mod cli_cache;
+mod cli_errors;
+mod cli_incremental;
+mod cli_mesh;
+mod cli_real_data;
+mod cli_ringmesh;
+mod cli_tetmesh;
+mod cli_watch;
+mod common_cli;
+mod export_op_files;
+mod recipe_errors;
+mod recipe_fuzz;
+mod recipe_roundtrip;
+mod recipe_samples;
+mod recipe_sealed;
+mod recipe_selectors;
+mod report_documents;
+mod report_peers;
+mod report_size;
+mod tet_mesh_thin_layers;
