@@ -1,9 +1,14 @@
 //! `build`: run a `BuildGraph` against a cache directory and produce a `BuildReport`.
 //!
 //! The entry point takes the cache lock (telling the caller when it has to wait), loads the
-//! previous manifest for explanations, runs the coordinator with `jobs` worker threads, writes
+//! previous manifest for explanations, runs the coordinator over a pool of `jobs` threads, writes
 //! the next manifest, and orders the report topologically with ties broken by name, so the
 //! report, outputs and lock file are identical for any number of jobs.
+//!
+//! One pool bounds all the work: every node runs as a task of a rayon pool of `jobs` threads
+//! built for this build, and a stage's own parallel loops (rayon, inside a node) run in that same
+//! pool, so `-j 1` computes on one thread and `-j N` never runs more than N at once. The
+//! coordinator (dispatch, expansion, bookkeeping) waits on the calling thread.
 
 use crate::artifact::Hash;
 use crate::dirlock::DirLock;
@@ -16,7 +21,6 @@ use crate::worker::{Done, Job, panic_text, run_job};
 use std::collections::{BTreeMap, BTreeSet};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
-use std::sync::Mutex;
 use std::sync::mpsc;
 use std::time::Instant;
 
@@ -103,41 +107,35 @@ pub fn build(
 
     let mut co = Coordinator::new(&prev, opts.keep_going);
     co.add_nodes(&graph, 0..graph.len(), on_event);
-    let (job_tx, job_rx) = mpsc::channel::<Job>();
-    let job_rx = Mutex::new(job_rx);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .thread_name(|i| format!("recipe-job-{i}"))
+        .build()
+        .map_err(|e| EngineError::Threads {
+            jobs,
+            message: e.to_string(),
+        })?;
     let (done_tx, done_rx) = mpsc::channel::<Done>();
-    std::thread::scope(|s| {
-        for _ in 0..jobs {
+    pool.in_place_scope(|s| {
+        let (store, output_dir) = (&store, &opts.output_dir);
+        let dispatch = |job: Job| {
             let done_tx = done_tx.clone();
-            let (job_rx, store) = (&job_rx, &store);
-            s.spawn(move || {
-                loop {
-                    let job = match job_rx.lock() {
-                        Ok(rx) => match rx.recv() {
-                            Ok(j) => j,
-                            Err(_) => break,
-                        },
-                        Err(_) => break,
-                    };
-                    let id = job.id;
-                    let done = catch_unwind(AssertUnwindSafe(|| {
-                        run_job(job, store, &opts.output_dir, on_event)
-                    }))
-                    .unwrap_or_else(|p| {
-                        Done::failed(
-                            id,
-                            format!("engine worker panicked: {}", panic_text(p.as_ref())),
-                        )
-                    });
-                    if done_tx.send(done).is_err() {
-                        break;
-                    }
-                }
+            s.spawn(move |_| {
+                let id = job.id;
+                let done = catch_unwind(AssertUnwindSafe(|| {
+                    run_job(job, store, output_dir, on_event)
+                }))
+                .unwrap_or_else(|p| {
+                    Done::failed(
+                        id,
+                        format!("engine worker panicked: {}", panic_text(p.as_ref())),
+                    )
+                });
+                // The coordinator only stops listening once nothing is in flight.
+                let _ = done_tx.send(done);
             });
-        }
-        drop(done_tx);
-        co.drive(&mut graph, jobs, &job_tx, &done_rx, on_event);
-        drop(job_tx);
+        };
+        co.drive(&mut graph, jobs, &dispatch, &done_rx, on_event);
     });
 
     co.manifest(&graph)

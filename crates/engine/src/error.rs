@@ -15,6 +15,8 @@ pub enum EngineError {
     Locked { path: PathBuf },
     #[error("cache `{}`: {message}", path.display())]
     Invalid { path: PathBuf, message: String },
+    #[error("cannot start {jobs} worker threads: {message}")]
+    Threads { jobs: usize, message: String },
 }
 
 impl EngineError {

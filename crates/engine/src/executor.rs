@@ -19,7 +19,7 @@ use crate::report::{NodeReport, NodeState};
 use crate::worker::{Done, Job, JobWork, panic_text};
 use std::collections::{BTreeMap, BTreeSet};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::mpsc::{Receiver, Sender};
+use std::sync::mpsc::Receiver;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Phase {
@@ -147,7 +147,7 @@ impl<'a> Coordinator<'a> {
         &mut self,
         graph: &mut BuildGraph,
         jobs: usize,
-        tx: &Sender<Job>,
+        dispatch: &dyn Fn(Job),
         rx: &Receiver<Done>,
         on_event: &(dyn Fn(&Event) + Sync),
     ) {
@@ -182,10 +182,7 @@ impl<'a> Coordinator<'a> {
                             }
                             self.inflight_keys.insert(key, Vec::new());
                         }
-                        if tx.send(job).is_err() {
-                            self.fail_now(graph, id, "no worker available".into(), on_event);
-                            continue;
-                        }
+                        dispatch(job);
                         in_flight += 1;
                     }
                     Err(e) => self.fail_now(graph, id, e, on_event),

@@ -5,3 +5,4 @@ mod engine_build;
 mod engine_cache;
 mod engine_parallel;
 mod engine_support;
+mod engine_threads;
