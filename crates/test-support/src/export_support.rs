@@ -19,7 +19,7 @@ pub fn box_bounds() -> [f64; 6] {
     [OX, OY, -2500.0, OX + 5000.0, OY + 5000.0, 0.0]
 }
 
-/// A box [0,5000]² × [-2500,0] (shifted by OX, OY) cut into `n × n × nz` cubes, each into 6 Kuhn
+/// A box `[0,5000]² × [-2500,0]` (shifted by OX, OY) cut into `n × n × nz` cubes, each into 6 Kuhn
 /// tets around its (0,0,0)–(1,1,1) diagonal (the same diagonal everywhere, so the mesh is
 /// conforming). Three regions by z-layer (`nz` divisible by 3), surface groups: the six box sides,
 /// two horizons (layer interfaces) and a dangling fault: the interior faces on the plane
@@ -185,7 +185,7 @@ pub fn python_has(modules: &str) -> bool {
     ok
 }
 
-/// Runs a Python snippet with `args` (sys.argv[1:]); returns stdout, panicking with stderr on failure.
+/// Runs a Python snippet with `args` (`sys.argv[1:]`); returns stdout, panicking with stderr on failure.
 pub fn python(script: &str, args: &[&str]) -> String {
     let out = Command::new("python3")
         .arg("-c")

@@ -9,7 +9,7 @@ use surface_mesh::{PatchInput, SurfaceMeshOutput, SurfaceSize, mesh_patch, verif
 
 pub const UTM: [f64; 3] = [5.0e5, 7.0e6, 0.0];
 
-/// A support sampled from `f` on an (nx × ny)-cell grid of [u0,u1] × [v0,v1], triangles
+/// A support sampled from `f` on an (nx × ny)-cell grid of `[u0,u1] × [v0,v1]`, triangles
 /// counter-clockwise in (u, v).
 pub struct Grid<F: Fn(f64, f64) -> [f64; 3]> {
     pub nx: usize,

@@ -12,7 +12,7 @@
 //!
 //! Where a fault ends on another fault inside a third surface's face (a T-junction), the end of
 //! the first curve lies on the second curve; rounded coordinates cannot show it, so it is decided
-//! from provenance ([`symbolic`]: the ending fault's border edge lies in the other fault's plane,
+//! from provenance (`symbolic`: the ending fault's border edge lies in the other fault's plane,
 //! exact `orient3d` on input coordinates) and the point is built the same way on all three
 //! surfaces (that border edge meeting the third surface's plane).
 //!
@@ -20,7 +20,7 @@
 //! crossings with other intersections' chords, T-junctions, points exactly on it (exact
 //! `orient2d`), and, for a chord running along an edge of the triangle, the border points of that
 //! edge between its ends. Each original triangle is then re-triangulated on its own as a
-//! constrained triangulation ([`triangulate`]) of its boundary polygon (corners plus the curve
+//! constrained triangulation (`triangulate`) of its boundary polygon (corners plus the curve
 //! points on its edges, shared with the neighbours, so the result stays conforming), its inner
 //! curve points and its chord pieces: chains from border to border, dangling ends, branches,
 //! closed loops and whole curves inside one face all go through the same steps. Every decision is

@@ -9,7 +9,7 @@
 //! What each action decides, and how:
 //!
 //! * `keep = { below = "S" }` / `{ above = "S" }`: "above" means larger z. Every vertex of the
-//!   patch is located against the split mesh of `S` by an exact vertical cast ([`side`]);
+//!   patch is located against the split mesh of `S` by an exact vertical cast (`side`);
 //!   vertices that are vertices of `S` (the curve points where the patch meets `S`, shared bit
 //!   for bit by splitting) or lie on it say nothing, nor do vertices whose vertical misses `S` or
 //!   crosses a fold of it an even number of times. The remaining vertices must all agree: a
