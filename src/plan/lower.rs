@@ -116,12 +116,13 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     // The topological model needs something that closes the regions: the box, or surfaces that
     // are sealed already (`[model] sealed = true`, e.g. a gOcad Model3d).
     if box_node.is_some() || recipe.model.sealed {
-        let mut inputs: Vec<NodeId> = box_node.into_iter().collect();
-        inputs.extend(surface_nodes.values().copied());
-        inputs.extend(intersections.iter().copied());
+        let (inputs, groups) = Wiring::new()
+            .group("box", box_node)
+            .group("surfaces", surface_nodes.values().copied())
+            .group("intersections", intersections.iter().copied())
+            .finish();
         let op = ModelOp {
-            has_box: box_node.is_some(),
-            n_surfaces: surface_nodes.len(),
+            inputs: groups,
             faults: recipe
                 .surfaces
                 .values()
@@ -149,12 +150,14 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
 
     // Without a box or sealed surfaces there is no closed model: the curves of the imports and intersections are
     // discretized and exported, nothing is meshed.
-    let mut curve_inputs = import_ids.clone();
-    curve_inputs.extend(intersections);
+    let (curve_inputs, groups) = Wiring::new()
+        .group("surfaces", import_ids)
+        .group("intersections", intersections)
+        .finish();
     let curves = g.add_op(
         "curves",
         Arc::new(CurvesOp {
-            n_surfaces: import_ids.len(),
+            inputs: groups,
             tolerances: recipe.tolerances.clone(),
         }),
         &curve_inputs,

@@ -11,7 +11,7 @@ use export::curves::write_curves_vtu;
 use export::quality;
 use export::{Format, export};
 use export_support::layered_box;
-use georecipe::plan::ops::{CurveNodes, ExportOp};
+use georecipe::plan::ops::{CurveNodes, ExportOp, Groups, Wiring};
 
 struct Quiet;
 impl RunContext for Quiet {
@@ -25,6 +25,16 @@ fn curve(name: &str, nodes: Vec<[f64; 3]>) -> CurveNodes {
     }
 }
 
+/// An export wired with no imports, `n_curves` curves and the mesh (ids do not matter here).
+fn groups(n_curves: usize) -> Groups {
+    Wiring::new()
+        .group("imports", [])
+        .group("curves", vec![(); n_curves])
+        .group("mesh", [()])
+        .finish()
+        .1
+}
+
 fn run(formats: &[&str], model: &str) -> (Artifact, FileSet) {
     let mesh = layered_box(6, 6);
     let curves = vec![
@@ -34,9 +44,7 @@ fn run(formats: &[&str], model: &str) -> (Artifact, FileSet) {
     let op = ExportOp {
         model: model.into(),
         formats: formats.iter().map(|s| s.to_string()).collect(),
-        n_imports: 0,
-        n_curves: curves.len(),
-        with_mesh: true,
+        inputs: groups(curves.len()),
     };
     let mut inputs: Vec<Artifact> = curves
         .iter()
@@ -93,9 +101,7 @@ fn an_unknown_format_is_refused_by_name() {
     let op = ExportOp {
         model: "m".into(),
         formats: vec!["msh".into(), "stl".into()],
-        n_imports: 0,
-        n_curves: 0,
-        with_mesh: true,
+        inputs: groups(0),
     };
     let e = op
         .run(&Quiet, &[Artifact::encode(&mesh).unwrap()])

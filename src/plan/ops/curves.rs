@@ -6,7 +6,7 @@
 //! A recipe with neither a box nor `[model] sealed = true` has no closed model: its curves are
 //! the intersection curves of the recipe's pairs and the free borders of every imported surface.
 
-use super::{ExportOp, SurfaceData};
+use super::{ExportOp, Groups, SurfaceData, Wiring};
 use crate::plan::lower::curve_subdivision;
 use crate::recipe::{self, Recipe};
 use engine::{
@@ -35,9 +35,10 @@ pub struct CurveSet {
     pub curves: Vec<ModelCurve>,
 }
 
-/// `curves`: inputs are the imported surfaces (`n_surfaces` of them) then the intersections.
+/// `curves`: the free borders of the imported surfaces and the intersection curves.
 pub struct CurvesOp {
-    pub n_surfaces: usize,
+    /// `surfaces` (the imports) and `intersections`.
+    pub inputs: Groups,
     pub tolerances: Tolerances,
 }
 
@@ -57,11 +58,8 @@ impl Operation for CurvesOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        if inputs.len() < self.n_surfaces {
-            return Err("curves needs its surfaces".into());
-        }
         let mut curves = Vec::new();
-        for a in &inputs[..self.n_surfaces] {
+        for a in self.inputs.get("surfaces", inputs)? {
             let s: SurfaceData = a.decode()?;
             let topo = topology::SurfaceTopology::build(&s.mesh, &s.bstones, &self.tolerances);
             let mut borders: Vec<(Vec<[f64; 3]>, bool)> = topo
@@ -86,7 +84,7 @@ impl Operation for CurvesOp {
                 });
             }
         }
-        for a in &inputs[self.n_surfaces..] {
+        for a in self.inputs.get("intersections", inputs)? {
             let x: intersect::Intersection = a.decode()?;
             let many = x.curves.len() > 1;
             for (k, c) in x.curves.iter().enumerate() {
@@ -265,9 +263,10 @@ impl Expander for DiscretizeExpander {
             return Err(recipe::render(&unmatched).into());
         }
         let curves_node = x.node("curves").ok_or("no `curves` node")?;
-        let mut export_inputs = existing_nodes(x, &self.import_nodes)?;
+        let imports = existing_nodes(x, &self.import_nodes)?;
+        let mut discretized = Vec::with_capacity(set.curves.len());
         for c in &set.curves {
-            export_inputs.push(add_curve_nodes(
+            discretized.push(add_curve_nodes(
                 x,
                 &self.recipe,
                 &c.name,
@@ -275,6 +274,10 @@ impl Expander for DiscretizeExpander {
                 false,
             )?);
         }
+        let (export_inputs, groups) = Wiring::new()
+            .group("imports", imports)
+            .group("curves", discretized)
+            .finish();
         let export = ExportOp {
             model: self.recipe.model.name.clone(),
             formats: self
@@ -284,9 +287,7 @@ impl Expander for DiscretizeExpander {
                 .iter()
                 .map(|f| f.as_str().to_string())
                 .collect(),
-            n_imports: self.import_nodes.len(),
-            n_curves: set.curves.len(),
-            with_mesh: false,
+            inputs: groups,
         };
         x.add_op("export", Arc::new(export), &export_inputs)
             .map_err(graph_error)?;

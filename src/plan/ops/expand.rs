@@ -7,7 +7,7 @@
 
 use super::curves::{add_curve_nodes, existing_nodes, graph_error};
 use super::patch::patch_curves;
-use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp};
+use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
 use engine::{Artifact, Expander, Expansion, NodeId, OpError};
 use geom::mesh::RegionGroup;
@@ -80,13 +80,11 @@ impl Expander for ModelExpander {
             return Err(recipe::render(&unmatched).into());
         }
         let model_node = x.node("model").ok_or("no `model` node")?;
-        let mut export_inputs: Vec<NodeId> = existing_nodes(x, &self.import_nodes)?;
+        let imports: Vec<NodeId> = existing_nodes(x, &self.import_nodes)?;
         let mut discretized = Vec::with_capacity(topo.curves.len());
         for c in &topo.curves {
             discretized.push(add_curve_nodes(x, &self.recipe, &c.name, model_node, true)?);
         }
-        let n_curves = discretized.len();
-        export_inputs.extend(discretized.iter().copied());
 
         let mut meshed = Vec::with_capacity(model.patches.len());
         for (p, boundary) in model.patches.iter().zip(&topo.patches) {
@@ -161,16 +159,22 @@ impl Expander for ModelExpander {
                 properties: spec.map(|s| s.properties.clone()).unwrap_or_default(),
             });
         }
-        let mut mesh_inputs = region_nodes;
-        mesh_inputs.extend(meshed.iter().copied());
+        let (mesh_inputs, inputs) = Wiring::new()
+            .group("regions", region_nodes)
+            .group("patches", meshed)
+            .finish();
+        let assemble = AssembleOp {
+            regions: groups,
+            inputs,
+        };
         let mesh = x
-            .add_op(
-                "mesh",
-                Arc::new(AssembleOp { regions: groups }),
-                &mesh_inputs,
-            )
+            .add_op("mesh", Arc::new(assemble), &mesh_inputs)
             .map_err(graph_error)?;
-        export_inputs.push(mesh);
+        let (export_inputs, inputs) = Wiring::new()
+            .group("imports", imports)
+            .group("curves", discretized)
+            .group("mesh", [mesh])
+            .finish();
 
         let export = ExportOp {
             model: self.recipe.model.name.clone(),
@@ -181,9 +185,7 @@ impl Expander for ModelExpander {
                 .iter()
                 .map(|f| f.as_str().to_string())
                 .collect(),
-            n_imports: self.import_nodes.len(),
-            n_curves,
-            with_mesh: true,
+            inputs,
         };
         x.add_op("export", Arc::new(export), &export_inputs)
             .map_err(graph_error)?;

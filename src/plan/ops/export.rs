@@ -7,7 +7,7 @@
 //! come (`FileSetEncoder`: the bytes of the `FileSet` encoding), so the whole set never sits in
 //! memory beside its encoding; the decoded mesh is dropped after its last file.
 
-use super::{CurveNodes, SurfaceData};
+use super::{CurveNodes, Groups, SurfaceData};
 use engine::artifact::FileSetEncoder;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use export::curves::write_curves_vtu;
@@ -19,10 +19,8 @@ use std::collections::BTreeMap;
 pub struct ExportOp {
     pub model: String,
     pub formats: Vec<String>,
-    pub n_imports: usize,
-    pub n_curves: usize,
-    /// Whether the last input is the `mesh` node.
-    pub with_mesh: bool,
+    /// `imports` (validation reports), `curves` (their FE nodes) and, for a meshed model, `mesh`.
+    pub inputs: Groups,
 }
 
 impl Operation for ExportOp {
@@ -43,19 +41,14 @@ impl Operation for ExportOp {
         true
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        if inputs.len() != self.n_imports + self.n_curves + usize::from(self.with_mesh) {
-            return Err("export needs the import, curve and mesh nodes".into());
-        }
         let mut reports = serde_json::Map::new();
-        for a in &inputs[..self.n_imports] {
-            let s: SurfaceData = a.decode()?;
+        for s in self.inputs.decode::<SurfaceData>("imports", inputs)? {
             let v: serde_json::Value =
                 serde_json::from_str(&s.report_json).unwrap_or(serde_json::Value::Null);
             reports.insert(s.name, v);
         }
         let mut curves = Vec::new();
-        for a in &inputs[self.n_imports..self.n_imports + self.n_curves] {
-            let c: CurveNodes = a.decode()?;
+        for c in self.inputs.decode::<CurveNodes>("curves", inputs)? {
             curves.push((c.name, c.nodes));
         }
         let nodes: usize = curves.iter().map(|(_, n)| n.len()).sum();
@@ -66,7 +59,7 @@ impl Operation for ExportOp {
         plan.insert(format!("{}.curves.vtu", self.model), Source::Curves);
         let mut mesh = None;
         let mut quality = None;
-        if self.with_mesh {
+        if let Some(m) = self.inputs.get("mesh", inputs)?.first() {
             for f in &self.formats {
                 let format = Format::from_name(f)
                     .ok_or_else(|| OpError::from(format!("unknown output format `{f}`")))?;
@@ -76,7 +69,7 @@ impl Operation for ExportOp {
             }
             plan.insert(format!("{}.quality.txt", self.model), Source::QualityTxt);
             plan.insert(format!("{}.quality.json", self.model), Source::QualityJson);
-            let m: VolumeMesh = inputs[inputs.len() - 1].decode()?;
+            let m: VolumeMesh = m.decode()?;
             quality = Some(quality::report(&m));
             mesh = Some(m);
         }

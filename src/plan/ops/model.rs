@@ -5,7 +5,7 @@
 //! (when `has_box`; a sealed model may have none), then the surfaces (`n_surfaces`, in name order), then the intersections. The expander attached
 //! to this node (`plan::ops::expand`) adds the per-curve, per-patch and per-region nodes.
 
-use super::SurfaceData;
+use super::{Groups, SurfaceData};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::SurfaceKind;
 use geom::{BBox, Tolerances, TriMesh};
@@ -35,11 +35,10 @@ pub struct ModelData {
 }
 
 pub struct ModelOp {
-    /// Whether the first input is the box. Without one (a sealed model, `[model] sealed = true`)
-    /// the bounding box of all surfaces stands in for it: it sets the trims' tolerance and, as it
-    /// contains every patch, discards none as outside.
-    pub has_box: bool,
-    pub n_surfaces: usize,
+    /// `box` (one node; none for a sealed model, `[model] sealed = true`, where the bounding box
+    /// of all surfaces stands in for it: it sets the trims' tolerance and, as it contains every
+    /// patch, discards none as outside), `surfaces` and `intersections`.
+    pub inputs: Groups,
     /// Surfaces that may end inside the model (the recipe's faults).
     pub faults: Vec<String>,
     /// Region names by point, from the recipe's `[regions]`.
@@ -59,7 +58,7 @@ impl Operation for ModelOp {
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
-        p.set("box", self.has_box).expect("bool");
+        p.set("box", self.inputs.len("box") == 1).expect("bool");
         for (k, v) in self.tolerances.fields() {
             p.set(&format!("tolerances.{k}"), v)
                 .expect("validated finite");
@@ -80,23 +79,9 @@ impl Operation for ModelOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let (bbox, rest) = if self.has_box {
-            let (bbox, rest) = inputs.split_first().ok_or("model needs the box")?;
-            (Some(bbox.decode::<BBox>()?), rest)
-        } else {
-            (None, inputs)
-        };
-        if rest.len() < self.n_surfaces {
-            return Err("model needs its surfaces".into());
-        }
-        let surfaces: Vec<SurfaceData> = rest[..self.n_surfaces]
-            .iter()
-            .map(|a| a.decode())
-            .collect::<Result<_, _>>()?;
-        let intersections: Vec<Intersection> = rest[self.n_surfaces..]
-            .iter()
-            .map(|a| a.decode())
-            .collect::<Result<_, _>>()?;
+        let bbox: Option<BBox> = self.inputs.decode("box", inputs)?.pop();
+        let surfaces: Vec<SurfaceData> = self.inputs.decode("surfaces", inputs)?;
+        let intersections: Vec<Intersection> = self.inputs.decode("intersections", inputs)?;
         let bbox = match bbox {
             Some(b) => b,
             None => surfaces_bbox(&surfaces)?,

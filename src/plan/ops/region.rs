@@ -2,7 +2,7 @@
 //! that bound it (sides known from the model, carried as parameters), and the final volume mesh
 //! welded from all regions with every patch's triangles in its surface's group.
 
-use super::PatchMesh;
+use super::{Groups, PatchMesh};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::{RegionGroup, VolumeMesh};
 use model::regions::{FaceUse, Side};
@@ -113,11 +113,13 @@ impl Operation for TetMeshOp {
     }
 }
 
-/// `mesh`: inputs are every `tet_mesh:<r>` (in model order, matching `regions`), then every
-/// `surface_mesh:<p>` (in model order).
+/// `mesh`: the regions' tets welded with the patches' triangles.
 pub struct AssembleOp {
     /// Each region's group: name and the recipe's attributes.
     pub regions: Vec<RegionGroup>,
+    /// `regions` (every `tet_mesh:<r>`, in the order of `regions`) and `patches` (every
+    /// `surface_mesh:<p>`, in model order).
+    pub inputs: Groups,
 }
 
 impl Operation for AssembleOp {
@@ -143,18 +145,11 @@ impl Operation for AssembleOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let n = self.regions.len();
-        if inputs.len() < n {
-            return Err("mesh needs its regions".into());
+        let regions: Vec<RegionMesh> = self.inputs.decode("regions", inputs)?;
+        if regions.len() != self.regions.len() {
+            return Err("mesh needs one tet mesh per region".into());
         }
-        let regions: Vec<RegionMesh> = inputs[..n]
-            .iter()
-            .map(|a| a.decode())
-            .collect::<Result<_, _>>()?;
-        let patches: Vec<PatchMesh> = inputs[n..]
-            .iter()
-            .map(|a| a.decode())
-            .collect::<Result<_, _>>()?;
+        let patches: Vec<PatchMesh> = self.inputs.decode("patches", inputs)?;
         let parts = VolumeAssembly {
             regions: self
                 .regions
