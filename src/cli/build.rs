@@ -92,7 +92,20 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         }
     } else {
         let text = new_lock.to_text();
-        if std::fs::read_to_string(&lock_file).ok().as_deref() != Some(text.as_str()) {
+        let old_text = std::fs::read_to_string(&lock_file).ok();
+        // A lock is never rewritten over an output that changed without its version.
+        if let Some(old) = old_text.as_deref().and_then(|t| LockFile::parse(t).ok()) {
+            let stale = old.unversioned_changes(&new_lock);
+            if !stale.is_empty() {
+                let mut msg = format!("error: not updating {}:", lock_file.display());
+                for d in &stale {
+                    msg.push_str("\n  ");
+                    msg.push_str(d);
+                }
+                return Err(Failure(msg));
+            }
+        }
+        if old_text.as_deref() != Some(text.as_str()) {
             write_atomic(&lock_file, text.as_bytes())?;
         }
     }

@@ -138,6 +138,36 @@ fn a_locked_build_fails_with_a_readable_diff_when_a_size_changes() {
 }
 
 #[test]
+fn a_lock_is_not_rewritten_over_an_output_that_changed_without_a_version_bump() {
+    let s = Scratch::didactic_built();
+    // As if `discretize:F2#1` had recorded another output under the key it has now: what the
+    // lock would show after the operation's code changed and its version did not.
+    let lock = s.path("didactic.toml.lock");
+    let text = std::fs::read_to_string(&lock).unwrap();
+    let at = text
+        .find("[nodes.\"discretize:F2#1\"]")
+        .expect("the node is locked");
+    let out = at + text[at..].find("output = \"").unwrap() + "output = \"".len();
+    let mut edited = text.clone();
+    edited.replace_range(out..out + 64, &"0".repeat(64));
+    std::fs::write(&lock, &edited).unwrap();
+    let fresh = s.path("fresh-cache");
+    let (ok, _, err) = s.build(&["--cache-dir", fresh.to_str().unwrap()]);
+    assert!(!ok, "the build refuses to update the lock");
+    assert!(
+        err.contains("discretize:F2#1") && err.contains("version bump"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&lock).unwrap(),
+        edited,
+        "the lock is untouched"
+    );
+    let (ok, _, err) = s.build(&["--locked", "--cache-dir", fresh.to_str().unwrap()]);
+    assert!(!ok && err.contains("version bump"), "{err}");
+}
+
+#[test]
 fn corrupt_or_truncated_cache_entries_are_detected_and_repaired() {
     let s = Scratch::didactic_built();
     let (ok, first, _) = s.build(&[]);

@@ -82,13 +82,37 @@ impl LockFile {
         })
     }
 
+    /// The nodes whose output changed under the same key, each as a sentence. A key covers the
+    /// operation's kind, version, parameters and inputs, so the same key with another output
+    /// means the operation's code changed without its version: every cache that holds the old
+    /// entry would go on serving it. Empty when the versions tell the truth.
+    pub fn unversioned_changes(&self, new: &LockFile) -> Vec<String> {
+        self.nodes
+            .iter()
+            .filter_map(|(name, a)| {
+                let b = new.nodes.get(name)?;
+                (a.key == b.key && a.output != b.output).then(|| {
+                    format!(
+                        "node `{name}`: output {}… → {}… under the same key {}…: its operation's \
+                         output changed without a version bump; bump the operation's `version()` \
+                         and build again to regenerate the lock",
+                        a.output.short(),
+                        b.output.short(),
+                        a.key.short()
+                    )
+                })
+            })
+            .collect()
+    }
+
     /// Human-readable differences from `self` (the recorded lock) to `new`; empty when equal.
     pub fn diff(&self, new: &LockFile) -> Vec<String> {
-        let mut out = Vec::new();
+        let mut out = self.unversioned_changes(new);
         let names: std::collections::BTreeSet<&String> =
             self.nodes.keys().chain(new.nodes.keys()).collect();
         for name in names {
             match (self.nodes.get(name), new.nodes.get(name)) {
+                (Some(a), Some(b)) if a.key == b.key && a.output != b.output => {}
                 (Some(a), Some(b)) if a.output != b.output => out.push(format!(
                     "node `{name}`: output {}… → {}…",
                     a.output.short(),

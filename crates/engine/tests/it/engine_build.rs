@@ -544,3 +544,42 @@ fn nodes_sharing_a_key_are_computed_once_and_share_their_state() {
         assert_eq!(runs.total(), 1);
     }
 }
+
+/// A graph `const(5) → add`, where `add` runs `f` under `version`.
+fn changed_add(version: u32, f: fn(&Params, &[i64]) -> Result<i64, String>) -> BuildGraph {
+    let runs = Runs::default();
+    let mut g = BuildGraph::new();
+    let c = g.add_op("c", konst(5, &runs), &[]).unwrap();
+    let op = Toy {
+        kind: "add",
+        version,
+        params: Params::new(),
+        f,
+        runs,
+    };
+    g.add_op("sum", std::sync::Arc::new(op), &[c]).unwrap();
+    g
+}
+
+#[test]
+fn an_output_that_changes_under_the_same_key_is_named_as_a_missing_version_bump() {
+    let build = |g: BuildGraph| {
+        let dir = tempfile::tempdir().unwrap();
+        LockFile::from_report(&run(g, &opts(dir.path(), 1)))
+    };
+    let old = build(changed_add(1, |_, v| Ok(v[0] + 1)));
+    // The same version with other code: the same key, another output.
+    let forgot = build(changed_add(1, |_, v| Ok(v[0] + 2)));
+    let stale = old.unversioned_changes(&forgot);
+    assert_eq!(stale.len(), 1, "{stale:?}");
+    assert!(stale[0].starts_with("node `sum`") && stale[0].contains("version bump"));
+    assert!(old.diff(&forgot).iter().any(|l| l.contains("version bump")));
+    // With the version bumped, the key changes too: an ordinary difference.
+    let bumped = build(changed_add(2, |_, v| Ok(v[0] + 2)));
+    assert!(old.unversioned_changes(&bumped).is_empty());
+    assert!(
+        old.diff(&bumped)
+            .iter()
+            .any(|l| l.starts_with("node `sum`: output"))
+    );
+}
