@@ -130,30 +130,10 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     Ok(report)
 }
 
-/// Writes a file atomically: a temporary file in the same directory, then a rename.
+/// Writes a file atomically and durably (`engine::write_atomic`), naming the file on failure.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    use std::io::Write;
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)
-        .map_err(|e| Failure(format!("error: cannot create {}: {e}", dir.display())))?;
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .map_err(|e| Failure(format!("error: cannot write in {}: {e}", dir.display())))?;
-    tmp.write_all(bytes)
-        .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
-    #[cfg(unix)]
-    {
-        // Readable like any other output (a temporary file starts private).
-        use std::os::unix::fs::PermissionsExt;
-        let _ = tmp
-            .as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644));
-    }
-    tmp.persist(path)
-        .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))?;
-    Ok(())
+    engine::write_atomic(path, bytes, true)
+        .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))
 }
 
 /// Prints the validation report of every imported surface that had findings (the full report

@@ -85,8 +85,11 @@ pub fn graph(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
 
 pub fn clean(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let dir = cache_dir(recipe, args);
-    engine::clean(&dir)?;
-    println!("removed {}", dir.display());
+    if engine::clean(&dir)? {
+        println!("removed {}", dir.display());
+    } else {
+        println!("nothing to remove: {} does not exist", dir.display());
+    }
     Ok(())
 }
 

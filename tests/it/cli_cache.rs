@@ -121,3 +121,58 @@ fn the_json_report_carries_every_node_with_key_output_and_counts() {
     assert_eq!(import["counts"]["triangles"], 3120);
     assert_eq!(import["counts"]["findings"], 0);
 }
+
+/// Every file under the scratch folder, with its bytes.
+fn snapshot(s: &Scratch) -> std::collections::BTreeMap<String, Vec<u8>> {
+    read_tree(s.dir.path())
+}
+
+#[test]
+fn clean_pointed_at_the_recipes_folder_deletes_nothing_and_says_why() {
+    let s = Scratch::didactic();
+    let before = snapshot(&s);
+    for args in [
+        &["clean", "didactic.toml", "--cache-dir", "."][..],
+        &["clean", "didactic.toml", "--cache-dir", "data"][..],
+        &["gc", "didactic.toml", "--cache-dir", "."][..],
+    ] {
+        let out = s.recipe_cmd(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains("is not a recipe cache"), "{args:?}: {err}");
+        assert_eq!(snapshot(&s), before, "{args:?} touched the folder");
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .args(["clean", "didactic.toml"])
+        .current_dir(s.dir.path())
+        .env("RECIPE_CACHE_DIR", s.dir.path())
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert_eq!(
+        snapshot(&s),
+        before,
+        "RECIPE_CACHE_DIR pointing at the folder"
+    );
+}
+
+#[test]
+fn a_build_refuses_a_cache_dir_that_holds_the_users_files() {
+    let s = Scratch::didactic();
+    let before = snapshot(&s);
+    let out = s.recipe_cmd(&["build", "--cache-dir", ".", "didactic.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("`didactic.toml`") && err.contains("not a recipe cache"),
+        "{err}"
+    );
+    assert_eq!(snapshot(&s), before);
+}
+
+#[test]
+fn clean_says_when_there_was_nothing_to_remove() {
+    let s = Scratch::didactic();
+    let out = stdout_of(&s, &["clean", "didactic.toml"]);
+    assert!(out.contains("nothing to remove"), "{out}");
+}

@@ -90,6 +90,7 @@ pub fn build(
 ) -> Result<BuildReport, EngineError> {
     let mut graph = graph;
     let t0 = Instant::now();
+    crate::marker::claim(&opts.cache_dir)?;
     let _lock = DirLock::acquire(&opts.cache_dir, |p| {
         on_event(&Event::WaitingForLock {
             path: p.to_path_buf(),

@@ -15,6 +15,12 @@ pub enum EngineError {
     Locked { path: PathBuf },
     #[error("cache `{}`: {message}", path.display())]
     Invalid { path: PathBuf, message: String },
+    #[error(
+        "`{}` is not a recipe cache ({found}): nothing in it was touched; point --cache-dir at a \
+         new or empty directory, or at a cache that `recipe build` made",
+        path.display()
+    )]
+    NotACache { path: PathBuf, found: String },
     #[error("cannot start {jobs} worker threads: {message}")]
     Threads { jobs: usize, message: String },
 }

@@ -1,12 +1,14 @@
 //! Cache maintenance: `gc` keeps only the entries a lock file references (node keys and output
 //! objects) and removes everything else, including stray temporary files; `clean` removes the
-//! whole cache directory. Both take the directory lock so they never race a build.
+//! whole cache directory. Both touch only a directory marked as a cache (`marker`), and take the
+//! directory lock so they never race a build.
 
 use crate::artifact::Hash;
 use crate::dirlock::DirLock;
 use crate::error::EngineError;
 use crate::lockfile::{LockFile, LockedNode};
 use crate::manifest::Manifest;
+use crate::marker;
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -23,8 +25,13 @@ fn lock_now(cache_dir: &Path) -> Result<DirLock, EngineError> {
     })
 }
 
-/// Remove every object and action not referenced by `keep`.
+/// Remove every object and action not referenced by `keep` (nothing to do when the cache does
+/// not exist; an error, touching nothing, when the directory is not a cache).
 pub fn gc(cache_dir: &Path, keep: &LockFile) -> Result<GcStats, EngineError> {
+    if !cache_dir.exists() {
+        return Ok(GcStats::default());
+    }
+    marker::require(cache_dir)?;
     let _lock = lock_now(cache_dir)?;
     let objects: BTreeSet<Hash> = keep.nodes.values().map(|n| n.output).collect();
     let actions: BTreeSet<Hash> = keep.nodes.values().map(|n| n.key).collect();
@@ -86,13 +93,15 @@ pub fn last_build(cache_dir: &Path) -> Option<LockFile> {
     })
 }
 
-/// Remove the cache directory entirely (nothing to do when it does not exist).
-pub fn clean(cache_dir: &Path) -> Result<(), EngineError> {
+/// Remove the cache directory entirely; `false` when it did not exist. A directory that is not
+/// marked as a cache is an error and is not touched (not even by the lock file).
+pub fn clean(cache_dir: &Path) -> Result<bool, EngineError> {
     if !cache_dir.exists() {
-        return Ok(());
+        return Ok(false);
     }
+    marker::require(cache_dir)?;
     let lock = lock_now(cache_dir)?;
     let r = std::fs::remove_dir_all(cache_dir).map_err(|e| EngineError::io(cache_dir, e));
     drop(lock);
-    r
+    r.map(|()| true)
 }

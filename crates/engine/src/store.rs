@@ -135,7 +135,8 @@ impl Store {
 
 /// Write `bytes` to `path` through a temporary file in the same directory and a rename.
 /// `durable` also flushes the data to disk before the rename (used for user-visible outputs).
-pub(crate) fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result<()> {
+/// The temporary's name starts with `.tmp-`.
+pub fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),

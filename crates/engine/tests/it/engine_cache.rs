@@ -152,6 +152,7 @@ fn clean_removes_the_cache_and_the_next_build_runs_everything() {
 fn gc_and_clean_refuse_a_cache_in_use() {
     let dir = tempfile::tempdir().unwrap();
     let cache = dir.path().join("cache");
+    engine::marker::claim(&cache).unwrap();
     let _held = engine::dirlock::DirLock::try_acquire(&cache)
         .unwrap()
         .unwrap();
