@@ -30,6 +30,20 @@ fn polyline_length(p: &[[f64; 3]]) -> f64 {
         .sum()
 }
 
+/// The artifact of node `name` decoded as `T`: `None` when the build has none (the node failed or
+/// the recipe has no such node), an error naming the node when it does not decode (the report
+/// would otherwise quietly leave a section out).
+fn decoded<T: serde::de::DeserializeOwned>(
+    report: &BuildReport,
+    name: &str,
+) -> Result<Option<T>, Failure> {
+    report
+        .artifact(name)
+        .map(|a| a.decode::<T>())
+        .transpose()
+        .map_err(|e| Failure(format!("error: report: the output of node `{name}`: {e}")))
+}
+
 /// Writes `report.html` and `report.json` into `output_dir`; returns their paths.
 pub fn write_report(
     recipe: &Recipe,
@@ -37,16 +51,16 @@ pub fn write_report(
     report: &BuildReport,
     output_dir: &Path,
 ) -> Result<Vec<PathBuf>, Failure> {
-    let mesh: VolumeMesh = report
-        .artifact("mesh")
-        .and_then(|a| a.decode().ok())
-        .unwrap_or_default();
-    let model: Option<ModelData> = report.artifact("model").and_then(|a| a.decode().ok());
-    let mut surfaces: Vec<SurfaceSummary> = report
-        .nodes
-        .iter()
-        .filter(|n| n.kind == "import" || n.kind == "box_side")
-        .filter_map(|n| report.artifact(&n.name)?.decode::<SurfaceData>().ok())
+    let mesh: VolumeMesh = decoded(report, "mesh")?.unwrap_or_default();
+    let model: Option<ModelData> = decoded(report, "model")?;
+    let mut imported = Vec::new();
+    for n in &report.nodes {
+        if n.kind == "import" || n.kind == "box_side" {
+            imported.extend(decoded::<SurfaceData>(report, &n.name)?);
+        }
+    }
+    let mut surfaces: Vec<SurfaceSummary> = imported
+        .into_iter()
         .map(|s| SurfaceSummary {
             name: s.name,
             kind: s.kind,
