@@ -259,6 +259,19 @@ impl Format {
             .find(|(_, f)| *f == self)
             .map_or("msh", |(s, _)| s)
     }
+
+    /// The file a format writes, up to the model name: the two encodings of msh, and of VTU,
+    /// write the same file, so a recipe can ask for only one of each (the plan's tests check
+    /// this against the file names the export stage gives).
+    pub fn file_family(self) -> &'static str {
+        match self {
+            Format::Msh | Format::MshBinary => "msh",
+            Format::Vtu | Format::VtuBinary => "vtu",
+            Format::Tetgen => "tetgen",
+            Format::Medit => "medit",
+            Format::Inp => "inp",
+        }
+    }
 }
 
 /// `[output]`.

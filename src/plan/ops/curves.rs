@@ -285,7 +285,7 @@ impl Expander for DiscretizeExpander {
                 .output
                 .formats
                 .iter()
-                .map(|f| f.as_str().to_string())
+                .map(|&f| crate::plan::output_format(f))
                 .collect(),
             inputs: groups,
         };

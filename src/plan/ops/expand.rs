@@ -183,7 +183,7 @@ impl Expander for ModelExpander {
                 .output
                 .formats
                 .iter()
-                .map(|f| f.as_str().to_string())
+                .map(|&f| crate::plan::output_format(f))
                 .collect(),
             inputs,
         };

@@ -18,7 +18,8 @@ use std::collections::BTreeMap;
 
 pub struct ExportOp {
     pub model: String,
-    pub formats: Vec<String>,
+    /// The formats to write, in recipe order (their names enter the key).
+    pub formats: Vec<Format>,
     /// `imports` (validation reports), `curves` (their FE nodes) and, for a meshed model, `mesh`.
     pub inputs: Groups,
 }
@@ -33,8 +34,8 @@ impl Operation for ExportOp {
     fn params(&self) -> Params {
         let mut p = Params::new();
         p.set("model.name", self.model.as_str()).expect("string");
-        p.set("output.formats", self.formats.clone())
-            .expect("strings");
+        let names: Vec<String> = self.formats.iter().map(|f| f.name().to_string()).collect();
+        p.set("output.formats", names).expect("strings");
         p
     }
     fn emits_files(&self) -> bool {
@@ -60,9 +61,7 @@ impl Operation for ExportOp {
         let mut mesh = None;
         let mut quality = None;
         if let Some(m) = self.inputs.get("mesh", inputs)?.first() {
-            for f in &self.formats {
-                let format = Format::from_name(f)
-                    .ok_or_else(|| OpError::from(format!("unknown output format `{f}`")))?;
+            for &format in &self.formats {
                 for name in file_names(&self.model, format) {
                     plan.insert(name, Source::Mesh(format));
                 }

@@ -102,14 +102,7 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
     ok.then_some(out)
 }
 
-/// Whether two formats write a file of the same name (the two encodings of msh or of VTU), as the
-/// export stage names its files.
+/// Whether two formats write a file of the same name (the two encodings of msh or of VTU).
 fn same_file(a: Format, b: Format) -> bool {
-    let names = |f: Format| {
-        export::Format::from_name(f.as_str())
-            .map(|e| export::file_names("m", e))
-            .unwrap_or_default()
-    };
-    let b = names(b);
-    names(a).iter().any(|n| b.contains(n))
+    a.file_family() == b.file_family()
 }
