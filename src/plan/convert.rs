@@ -2,6 +2,52 @@
 //! here is exhaustive, so a value added on one side fails to compile until the other knows it.
 
 use crate::recipe;
+use model::discretize::{Grading, Subdivision};
+use model::trims;
+
+/// The discretization stage's subdivision for a `[mesh.curves]` rule.
+pub fn subdivision(s: &recipe::Subdivision) -> Subdivision {
+    match *s {
+        recipe::Subdivision::Count(n) => Subdivision::Count(n),
+        recipe::Subdivision::Size {
+            size,
+            ratio,
+            grading,
+        } => Subdivision::Size {
+            size,
+            ratio,
+            grading: match grading {
+                recipe::Grading::Geometric => Grading::Geometric,
+                recipe::Grading::Bump => Grading::Bump,
+            },
+        },
+    }
+}
+
+/// The tet mesher's method for a recipe's `tet_method`.
+pub fn tet_method(m: recipe::TetMethod) -> tet_mesh::Method {
+    match m {
+        recipe::TetMethod::Delaunay => tet_mesh::Method::Delaunay,
+        recipe::TetMethod::Front => tet_mesh::Method::Front,
+    }
+}
+
+/// The trims stage's action for a `[[trim]]`.
+pub fn trim_action(a: &recipe::TrimAction) -> trims::TrimAction {
+    let side = |s: recipe::Side| match s {
+        recipe::Side::Above => trims::Side::Above,
+        recipe::Side::Below => trims::Side::Below,
+    };
+    match a {
+        recipe::TrimAction::Keep { side: s, of } => trims::TrimAction::Keep {
+            side: side(*s),
+            of: of.clone(),
+        },
+        recipe::TrimAction::DiscardContaining(p) => trims::TrimAction::DiscardContaining(*p),
+        recipe::TrimAction::DiscardNearest(p) => trims::TrimAction::DiscardNearest(*p),
+        recipe::TrimAction::DiscardAreaBelow(a) => trims::TrimAction::DiscardAreaBelow(*a),
+    }
+}
 
 /// The export stage's format for a recipe's `output.formats` entry.
 pub fn output_format(f: recipe::Format) -> export::Format {
@@ -25,6 +71,17 @@ mod tests {
         for (spelling, f) in recipe::Format::ALL {
             assert_eq!(output_format(f).name(), spelling);
         }
+    }
+
+    #[test]
+    fn every_recipe_tet_method_keeps_its_spelling_as_the_meshers_name() {
+        for (spelling, m) in recipe::TetMethod::NAMES {
+            assert_eq!(tet_method(m).name(), spelling);
+        }
+        assert_eq!(
+            tet_method(recipe::TetMethod::default()),
+            tet_mesh::Method::default()
+        );
     }
 
     #[test]

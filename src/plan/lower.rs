@@ -175,7 +175,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
 pub fn curve_subdivision(recipe: &Recipe, name: &str) -> (String, Subdivision) {
     match recipe.mesh.curve_rule(name) {
         Some(r) => {
-            let sub = r.subdivision.clone();
+            let sub = super::subdivision(&r.subdivision);
             (format!("mesh.curves.\"{}\"", r.selector.text), sub)
         }
         None => (
@@ -204,7 +204,7 @@ fn trims(recipe: &Recipe) -> Vec<(model::trims::TrimSpec, String)> {
                     .filter(|n| t.surface.matches(n))
                     .cloned()
                     .collect(),
-                action: t.action.clone(),
+                action: super::trim_action(&t.action),
             };
             let at = format!("{}:{}:{}", recipe.path.display(), t.span.line, t.span.col);
             (spec, at)

@@ -21,5 +21,5 @@ mod convert;
 mod lower;
 pub mod ops;
 
-pub use convert::output_format;
+pub use convert::{output_format, subdivision, tet_method, trim_action};
 pub use lower::{PlanError, curve_subdivision, lower};

@@ -108,7 +108,26 @@ pub struct BoxSpec {
     pub span: Span,
 }
 
-pub use model::trims::{Side, TrimAction};
+/// Which side of a surface a `keep` trim keeps.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum Side {
+    /// Larger z (towards the surface's upward side).
+    Above,
+    Below,
+}
+
+/// What a `[[trim]]` does to the patches of the selected surfaces.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum TrimAction {
+    /// `keep = { above|below = of }`: keep the patches on `side` of surface `of`.
+    Keep { side: Side, of: String },
+    /// `discard = { containing = p }`.
+    DiscardContaining([f64; 3]),
+    /// `discard = { nearest = p }`.
+    DiscardNearest([f64; 3]),
+    /// `discard = { area_below = a }` (> 0, model units squared).
+    DiscardAreaBelow(f64),
+}
 
 /// One `[[trim]]`, applied in recipe order after splitting (outside the box is always discarded).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -120,8 +139,46 @@ pub struct TrimSpec {
     pub span: Span,
 }
 
-pub use model::discretize::{Grading, Subdivision};
-pub use tet_mesh::Method as TetMethod;
+/// How a `[mesh.curves]` rule subdivides a curve.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum Subdivision {
+    /// `count`: this many equal segments (at least 1).
+    Count(u32),
+    /// `size` (first segment), `ratio` between consecutive segments, `grading`.
+    Size {
+        size: f64,
+        ratio: f64,
+        grading: Grading,
+    },
+}
+
+/// `grading` of a `[mesh.curves]` rule.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum Grading {
+    /// Sizes grow from the curve's start to its end.
+    Geometric,
+    /// Sizes grow from both ends towards the middle.
+    Bump,
+}
+
+/// `tet_method`: how regions are filled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TetMethod {
+    /// Delaunay with local boundary recovery (the default).
+    #[default]
+    Delaunay,
+    /// The advancing front.
+    Front,
+}
+
+impl TetMethod {
+    /// Every method with its recipe spelling.
+    pub const NAMES: [(&'static str, TetMethod); 2] = [
+        ("delaunay", TetMethod::Delaunay),
+        ("front", TetMethod::Front),
+    ];
+}
 
 /// One `[mesh.curves]` entry.
 #[derive(Clone, Debug, PartialEq, Serialize)]

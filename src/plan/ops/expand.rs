@@ -54,7 +54,7 @@ impl ModelExpander {
                     max_size: r.max_size,
                     growth: r.growth,
                 },
-                r.tet_method,
+                crate::plan::tet_method(r.tet_method),
             ),
             None => (
                 "mesh".to_string(),
@@ -64,7 +64,7 @@ impl ModelExpander {
                     max_size: m.max_size,
                     growth: m.growth,
                 },
-                m.tet_method,
+                crate::plan::tet_method(m.tet_method),
             ),
         }
     }
