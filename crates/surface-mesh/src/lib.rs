@@ -46,7 +46,7 @@ mod verify;
 use cdt::{CONSTRAINT, Cdt, CdtError, LOOP, NONE};
 use geom::predicates::{dot, sub};
 use geom::{Tolerances, TriMesh};
-use input::given_nodes;
+use input::{GivenNodes, given_nodes};
 use size::SizeField;
 use support::Support;
 
@@ -143,11 +143,43 @@ pub fn mesh_patch_with(
     size: &SurfaceSize,
     tolerances: &Tolerances,
 ) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
-    let fail = |message: String, at: Option<[f64; 3]>| SurfaceMeshError {
+    check_sizes(input, size)?;
+    let given = given_nodes(input)?;
+    let support = Support::new(&input.support)
+        .map_err(|e| fail(input, format!("support: {}", e.message), e.at))?;
+    let tol = tolerances.support_distance_rel;
+    if !(tol > 0.0 && tol.is_finite()) {
+        return Err(fail(
+            input,
+            format!("invalid tolerance support_distance_rel = {tol} (need a positive number)"),
+            None,
+        ));
+    }
+    let hloc = given_sizes(input, &given)?;
+    let uv = flatten_given(input, &given, &support, tol, &hloc)?;
+    let segs: Vec<(u32, u32)> = given
+        .loop_segments()
+        .chain(given.constraint_segments())
+        .collect();
+    check_given_crossings(input, &given, &support, &uv, &segs)?;
+    let (mut cdt, mut p3) = triangulate_given(input, &given, &uv, &segs)?;
+    refine_and_smooth(input, size, &given, &hloc, &support, &mut cdt, &mut p3)?;
+    let out = output(input, &given, &cdt, &p3)?;
+    verify::verify_with(input, &out, tol, &support)?;
+    Ok(out)
+}
+
+/// The error for `input` with `message`, located at `at`.
+fn fail(input: &PatchInput, message: String, at: Option<[f64; 3]>) -> SurfaceMeshError {
+    SurfaceMeshError {
         patch: input.name.clone(),
         message,
         at,
-    };
+    }
+}
+
+/// Whether the requested sizes are usable: size > 0, 0 <= min <= max, max > 0, finite growth >= 1.
+fn check_sizes(input: &PatchInput, size: &SurfaceSize) -> Result<(), SurfaceMeshError> {
     let SurfaceSize {
         size: target,
         min_size,
@@ -163,24 +195,18 @@ pub fn mesh_patch_with(
         && growth.is_finite();
     if !sizes_ok {
         return Err(fail(
+            input,
             format!(
                 "invalid sizes: size {target}, min {min_size}, max {max_size}, growth {growth} (need size > 0, 0 <= min <= max, growth >= 1)"
             ),
             None,
         ));
     }
-    let given = given_nodes(input)?;
-    let support =
-        Support::new(&input.support).map_err(|e| fail(format!("support: {}", e.message), e.at))?;
-    let tol = tolerances.support_distance_rel;
-    if !(tol > 0.0 && tol.is_finite()) {
-        return Err(fail(
-            format!("invalid tolerance support_distance_rel = {tol} (need a positive number)"),
-            None,
-        ));
-    }
+    Ok(())
+}
 
-    // Local sizes of the given nodes (mean adjacent given segment length).
+/// Local sizes of the given nodes (mean adjacent given segment length); no segment may be empty.
+fn given_sizes(input: &PatchInput, given: &GivenNodes) -> Result<Vec<f64>, SurfaceMeshError> {
     let ng = given.nodes.len();
     let mut hsum = vec![0.0f64; ng];
     let mut hcnt = vec![0u32; ng];
@@ -188,6 +214,7 @@ pub fn mesh_patch_with(
         let l = dist(&given.nodes[a as usize], &given.nodes[b as usize]);
         if !(l > 0.0) {
             return Err(fail(
+                input,
                 "zero-length segment".into(),
                 Some(given.nodes[a as usize]),
             ));
@@ -197,16 +224,26 @@ pub fn mesh_patch_with(
             hcnt[v as usize] += 1;
         }
     }
-    let hloc: Vec<f64> = (0..ng).map(|i| hsum[i] / hcnt[i].max(1) as f64).collect();
+    Ok((0..ng).map(|i| hsum[i] / hcnt[i].max(1) as f64).collect())
+}
 
-    // Map the given nodes into the plane.
-    let mut uv = Vec::with_capacity(ng);
+/// Maps the given nodes into the plane: each must lie within `tol` × its local size of the
+/// support.
+fn flatten_given(
+    input: &PatchInput,
+    given: &GivenNodes,
+    support: &Support,
+    tol: f64,
+    hloc: &[f64],
+) -> Result<Vec<[f64; 2]>, SurfaceMeshError> {
+    let mut uv = Vec::with_capacity(given.nodes.len());
     for (i, p) in given.nodes.iter().enumerate() {
         let on = support
             .project(p)
-            .ok_or_else(|| fail("empty support".into(), Some(*p)))?;
+            .ok_or_else(|| fail(input, "empty support".into(), Some(*p)))?;
         if on.dist > tol * hloc[i] {
             return Err(fail(
+                input,
                 format!(
                     "a given node is {:.3e} off the support (allowed {:.3e})",
                     on.dist,
@@ -217,10 +254,18 @@ pub fn mesh_patch_with(
         }
         uv.push(on.uv);
     }
-    let segs: Vec<(u32, u32)> = given
-        .loop_segments()
-        .chain(given.constraint_segments())
-        .collect();
+    Ok(uv)
+}
+
+/// Whether the given segments stay apart in the plane (exact); the error is located at the
+/// first crossing, mapped back onto the support.
+fn check_given_crossings(
+    input: &PatchInput,
+    given: &GivenNodes,
+    support: &Support,
+    uv: &[[f64; 2]],
+    segs: &[(u32, u32)],
+) -> Result<(), SurfaceMeshError> {
     let segs2: Vec<([f64; 2], [f64; 2])> = segs
         .iter()
         .map(|&(a, b)| (uv[a as usize], uv[b as usize]))
@@ -230,15 +275,25 @@ pub fn mesh_patch_with(
             .and_then(|x| support.to_3d(&x).map(|r| r.1))
             .unwrap_or(given.nodes[segs[i].0 as usize]);
         return Err(fail(
+            input,
             "the boundary loops or constraints intersect themselves or each other".into(),
             Some(at),
         ));
     }
+    Ok(())
+}
 
-    // Constrained Delaunay triangulation of the given nodes.
+/// Constrained Delaunay triangulation of the given nodes and segments, inside labelled; returns
+/// it with its vertices in 3D (the super triangle's three first, as zeros).
+fn triangulate_given(
+    input: &PatchInput,
+    given: &GivenNodes,
+    uv: &[[f64; 2]],
+    segs: &[(u32, u32)],
+) -> Result<(Cdt, Vec<[f64; 3]>), SurfaceMeshError> {
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
-    for p in &uv {
+    for p in uv {
         for k in 0..2 {
             lo[k] = lo[k].min(p[k]);
             hi[k] = hi[k].max(p[k]);
@@ -254,12 +309,14 @@ pub fn mesh_patch_with(
             }
             Err(CdtError::Duplicate(_)) => {
                 return Err(fail(
+                    input,
                     "two given nodes land on the same point of the support".into(),
                     Some(given.nodes[i]),
                 ));
             }
             Err(_) => {
                 return Err(fail(
+                    input,
                     "a given node could not be placed".into(),
                     Some(given.nodes[i]),
                 ));
@@ -276,18 +333,30 @@ pub fn mesh_patch_with(
                 _ => None,
             };
             fail(
+                input,
                 "a boundary or constraint segment touches another node or segment".into(),
                 at.or(Some(given.nodes[a as usize])),
             )
         })?;
     }
     cdt.label_inside();
-    // Constraint edges must run inside the patch.
+    check_inside(input, given, &cdt, &p3)?;
+    Ok((cdt, p3))
+}
+
+/// Whether the constraint edges run inside the patch and the loops enclose some area.
+fn check_inside(
+    input: &PatchInput,
+    given: &GivenNodes,
+    cdt: &Cdt,
+    p3: &[[f64; 3]],
+) -> Result<(), SurfaceMeshError> {
     for t in cdt.live_triangles() {
         for i in 0..3 {
             if cdt.fix[t as usize][i] == CONSTRAINT && !cdt.inside[t as usize] {
                 let v = cdt.tri[t as usize][cdt::next(i)];
                 return Err(fail(
+                    input,
                     "a constraint runs outside the patch".into(),
                     p3.get(v as usize).copied(),
                 ));
@@ -296,12 +365,31 @@ pub fn mesh_patch_with(
     }
     if !cdt.live_triangles().any(|t| cdt.inside[t as usize]) {
         return Err(fail(
+            input,
             "the loops enclose no area".into(),
             given.nodes.first().copied(),
         ));
     }
+    Ok(())
+}
 
-    // Sizes and refinement.
+/// Sizes and refinement: inserts points up to the size field (bounded by a point budget from
+/// the area and the smallest size), then flips and smooths.
+fn refine_and_smooth(
+    input: &PatchInput,
+    size: &SurfaceSize,
+    given: &GivenNodes,
+    hloc: &[f64],
+    support: &Support,
+    cdt: &mut Cdt,
+    p3: &mut Vec<[f64; 3]>,
+) -> Result<(), SurfaceMeshError> {
+    let SurfaceSize {
+        size: target,
+        min_size,
+        max_size,
+        growth,
+    } = *size;
     let snodes: Vec<([f64; 3], f64)> = given
         .nodes
         .iter()
@@ -337,39 +425,48 @@ pub fn mesh_patch_with(
         .max(f64::MIN_POSITIVE);
     let max_points = (8.0 * area / (hfloor * hfloor)).min(5.0e7) as usize + 10_000;
     let stri = {
-        let mut r = refine::Refiner::new(&mut cdt, &mut p3, &support, &field);
+        let mut r = refine::Refiner::new(cdt, p3, support, &field);
         r.run(max_points)
-            .map_err(|m| fail(m, given.nodes.first().copied()))?;
+            .map_err(|m| fail(input, m, given.nodes.first().copied()))?;
         std::mem::take(&mut r.stri)
     };
-    {
-        let first_free = (3 + ng) as u32;
-        let mut s = smooth::Smoother {
-            cdt: &mut cdt,
-            p3: &mut p3,
-            support: &support,
-            first_free,
-            stri,
-        };
-        s.run(SMOOTH_ROUNDS);
-    }
+    let first_free = (3 + given.nodes.len()) as u32;
+    let mut s = smooth::Smoother {
+        cdt,
+        p3,
+        support,
+        first_free,
+        stri,
+    };
+    s.run(SMOOTH_ROUNDS);
+    Ok(())
+}
 
-    // Output: the CDT's vertices minus the super triangle, inside triangles in slot order.
+/// Output: the CDT's vertices minus the super triangle, inside triangles in slot order, unused
+/// generated nodes dropped.
+fn output(
+    input: &PatchInput,
+    given: &GivenNodes,
+    cdt: &Cdt,
+    p3: &[[f64; 3]],
+) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
     let nodes: Vec<[f64; 3]> = p3[3..].to_vec();
     let mut triangles: Vec<[u32; 3]> = Vec::new();
     for t in cdt.live_triangles().filter(|&t| cdt.inside[t as usize]) {
         let v = cdt.tri[t as usize];
         if v.iter().any(|&x| x < 3) {
             return Err(fail(
+                input,
                 "the loops are not closed around the patch".into(),
                 given.nodes.first().copied(),
             ));
         }
         triangles.push(v.map(|x| x - 3));
     }
-    let out = compact(SurfaceMeshOutput { nodes, triangles }, ng);
-    verify::verify_with(input, &out, tol, &support)?;
-    Ok(out)
+    Ok(compact(
+        SurfaceMeshOutput { nodes, triangles },
+        given.nodes.len(),
+    ))
 }
 
 /// Drops generated nodes that no triangle uses (points inserted then cut off by nothing should

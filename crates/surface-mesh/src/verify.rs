@@ -45,6 +45,21 @@ pub fn verify_with(
     support: &Support,
 ) -> Result<(), SurfaceMeshError> {
     let given: GivenNodes = given_nodes(input)?;
+    check_nodes(input, out, &given)?;
+    let directed = directed_edges(input, out)?;
+    check_border(input, out, &given, &directed)?;
+    check_fans(input, out)?;
+    let (uv, ntri) = flatten_nodes(input, out, tol_rel, support, &directed)?;
+    check_crossings(input, out, &given, &uv)?;
+    check_triangles(input, out, support, &uv, &ntri)
+}
+
+/// Whether the given nodes come first bit for bit, every node is finite, and there are triangles.
+fn check_nodes(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    given: &GivenNodes,
+) -> Result<(), SurfaceMeshError> {
     let nn = out.nodes.len();
     if nn < given.nodes.len() {
         return Err(fail(
@@ -78,7 +93,16 @@ pub fn verify_with(
             given.nodes.first().copied(),
         ));
     }
-    // Edges.
+    Ok(())
+}
+
+/// The directed edges (each to its triangle): whether triangles are well formed, no directed
+/// edge is used twice, and every node is used.
+fn directed_edges(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+) -> Result<BTreeMap<(u32, u32), u32>, SurfaceMeshError> {
+    let nn = out.nodes.len();
     let mut directed: BTreeMap<(u32, u32), u32> = BTreeMap::new();
     let mut used = vec![false; nn];
     for (t, tri) in out.triangles.iter().enumerate() {
@@ -118,6 +142,17 @@ pub fn verify_with(
             Some(out.nodes[i]),
         ));
     }
+    Ok(directed)
+}
+
+/// Whether the border edges are exactly the given loop edges, each used once, and every
+/// constraint edge is interior.
+fn check_border(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    given: &GivenNodes,
+    directed: &BTreeMap<(u32, u32), u32>,
+) -> Result<(), SurfaceMeshError> {
     let loop_edges: BTreeSet<(u32, u32)> = given
         .loop_segments()
         .map(|(a, b)| (a.min(b), a.max(b)))
@@ -152,7 +187,11 @@ pub fn verify_with(
             ));
         }
     }
-    // Vertex fans: the link of each vertex is one path or one cycle.
+    Ok(())
+}
+
+/// Vertex fans: whether the link of each vertex is one path or one cycle.
+fn check_fans(input: &PatchInput, out: &SurfaceMeshOutput) -> Result<(), SurfaceMeshError> {
     let mut link: Vec<(u32, u32, u32)> = Vec::with_capacity(out.triangles.len() * 3);
     for tri in &out.triangles {
         for i in 0..3 {
@@ -167,30 +206,7 @@ pub fn verify_with(
         while e < link.len() && link[e].0 == v {
             e += 1;
         }
-        let next: BTreeMap<u32, u32> = link[k..e].iter().map(|x| (x.1, x.2)).collect();
-        let targets: BTreeSet<u32> = link[k..e].iter().map(|x| x.2).collect();
-        let starts: Vec<u32> = next
-            .keys()
-            .copied()
-            .filter(|s| !targets.contains(s))
-            .collect();
-        if starts.len() > 1 || next.len() != e - k {
-            return Err(fail(
-                input,
-                format!("node {v} is not manifold (its triangles form several fans)"),
-                Some(out.nodes[v as usize]),
-            ));
-        }
-        let mut cur = starts.first().copied().unwrap_or(link[k].1);
-        let mut count = 0;
-        while let Some(&n) = next.get(&cur) {
-            count += 1;
-            cur = n;
-            if count > e - k || (starts.is_empty() && cur == link[k].1) {
-                break;
-            }
-        }
-        if count != e - k {
+        if !is_single_fan(&link[k..e]) {
             return Err(fail(
                 input,
                 format!("node {v} is not manifold (its triangles form several fans)"),
@@ -199,7 +215,43 @@ pub fn verify_with(
         }
         k = e;
     }
-    // Distance to the support and parameters.
+    Ok(())
+}
+
+/// Whether one vertex's corners `(vertex, next, previous)`, sorted, chain into one path or cycle.
+fn is_single_fan(link: &[(u32, u32, u32)]) -> bool {
+    let next: BTreeMap<u32, u32> = link.iter().map(|x| (x.1, x.2)).collect();
+    let targets: BTreeSet<u32> = link.iter().map(|x| x.2).collect();
+    let starts: Vec<u32> = next
+        .keys()
+        .copied()
+        .filter(|s| !targets.contains(s))
+        .collect();
+    if starts.len() > 1 || next.len() != link.len() {
+        return false;
+    }
+    let mut cur = starts.first().copied().unwrap_or(link[0].1);
+    let mut count = 0;
+    while let Some(&n) = next.get(&cur) {
+        count += 1;
+        cur = n;
+        if count > link.len() || (starts.is_empty() && cur == link[0].1) {
+            break;
+        }
+    }
+    count == link.len()
+}
+
+/// Distance to the support and parameters: whether every node lies within `tol_rel` × its mean
+/// edge length of the support; returns each node's flattening and support triangle.
+fn flatten_nodes(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    tol_rel: f64,
+    support: &Support,
+    directed: &BTreeMap<(u32, u32), u32>,
+) -> Result<(Vec<[f64; 2]>, Vec<u32>), SurfaceMeshError> {
+    let nn = out.nodes.len();
     let mut lsum = vec![0.0f64; nn];
     let mut lcnt = vec![0u32; nn];
     for &(a, b) in directed.keys() {
@@ -232,6 +284,16 @@ pub fn verify_with(
         ntri.push(on.tri);
         hint = on.tri;
     }
+    Ok((uv, ntri))
+}
+
+/// Whether the loops and constraints stay apart in the flattening (exact).
+fn check_crossings(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    given: &GivenNodes,
+    uv: &[[f64; 2]],
+) -> Result<(), SurfaceMeshError> {
     let segs: Vec<([f64; 2], [f64; 2])> = given
         .loop_segments()
         .chain(given.constraint_segments())
@@ -249,6 +311,18 @@ pub fn verify_with(
             Some(out.nodes[a as usize]),
         ));
     }
+    Ok(())
+}
+
+/// Whether every triangle is strictly counter-clockwise in the flattening and, in 3D, within 90°
+/// of the support's normal under its centroid.
+fn check_triangles(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    support: &Support,
+    uv: &[[f64; 2]],
+    ntri: &[u32],
+) -> Result<(), SurfaceMeshError> {
     for (t, tri) in out.triangles.iter().enumerate() {
         let [a, b, c] = tri.map(|v| v as usize);
         let g = centroid(&out.nodes[a], &out.nodes[b], &out.nodes[c]);
