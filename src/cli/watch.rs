@@ -2,15 +2,16 @@
 //!
 //! Decisions: parent directories are watched (non-recursively), so editors that save by writing a
 //! temporary file and renaming it over the original are seen; only events that name the recipe or
-//! an imported file count, so the build's own cache, lock file and outputs never trigger a
-//! rebuild; a burst of events is debounced until 150 ms pass quietly, then files are re-hashed by
-//! the build itself (content keys: a touch without a change re-runs nothing); an invalid recipe
-//! prints its errors and waits for the next save; a change that arrives during a build is queued
-//! in the channel and starts the next build as soon as this one ends.
+//! an imported file count, and never mere accesses (the build's own reads of those files would
+//! otherwise wake it forever); a burst of events is debounced until 150 ms pass quietly; then the
+//! watched files are hashed and a build starts only when some content differs from what the last
+//! build was given, so a touch, a save without a change or a read never rebuilds and an idle
+//! watcher rests. An invalid recipe prints its errors once and waits for a change; a change that
+//! arrives during a build is queued in the channel and starts the next build when this one ends.
 
 use super::{BuildArgs, Failure, build, load};
-use notify::{RecursiveMode, Watcher};
-use std::collections::BTreeSet;
+use notify::{EventKind, RecursiveMode, Watcher};
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
@@ -45,6 +46,7 @@ pub fn run(args: &BuildArgs) -> Result<(), Failure> {
         }
         watched_dirs = dirs;
 
+        let built = contents(&files);
         if let Err(Failure(msg)) = build::run(&args) {
             eprintln!("{msg}");
         }
@@ -56,8 +58,17 @@ pub fn run(args: &BuildArgs) -> Result<(), Failure> {
             "    Watching {} files for changes (Ctrl-C to stop)",
             files.len()
         );
-        wait_for_change(&rx, &files)?;
+        wait_for_change(&rx, &files, &built)?;
     }
+}
+
+/// Each watched file's content hash (`None` when it cannot be read: a change all the same when
+/// it comes back).
+fn contents(files: &BTreeSet<PathBuf>) -> BTreeMap<PathBuf, Option<blake3::Hash>> {
+    files
+        .iter()
+        .map(|f| (f.clone(), std::fs::read(f).ok().map(|b| blake3::hash(&b))))
+        .collect()
 }
 
 /// The recipe and, when it loads, every file it imports (absolute paths).
@@ -73,23 +84,29 @@ fn watch_set(recipe: &Path) -> BTreeSet<PathBuf> {
     files
 }
 
-/// Blocks until an event names one of `files`, then until the burst is over.
+/// Blocks until a burst of events that may change one of `files` is over and some file's content
+/// differs from `built`.
 fn wait_for_change(
     rx: &mpsc::Receiver<notify::Result<notify::Event>>,
     files: &BTreeSet<PathBuf>,
+    built: &BTreeMap<PathBuf, Option<blake3::Hash>>,
 ) -> Result<(), Failure> {
     let relevant = |ev: &notify::Result<notify::Event>| match ev {
-        Ok(e) => e.paths.iter().any(|p| files.contains(p)),
+        Ok(e) => {
+            !matches!(e.kind, EventKind::Access(_)) && e.paths.iter().any(|p| files.contains(p))
+        }
         Err(_) => false,
     };
     loop {
         let ev = rx
             .recv()
             .map_err(|_| Failure("error: the file watcher stopped".into()))?;
-        if relevant(&ev) {
-            break;
+        if !relevant(&ev) {
+            continue;
+        }
+        while rx.recv_timeout(QUIET_PERIOD).is_ok() {}
+        if contents(files) != *built {
+            return Ok(());
         }
     }
-    while rx.recv_timeout(QUIET_PERIOD).is_ok() {}
-    Ok(())
 }
