@@ -9,18 +9,20 @@
 //! Any inconsistency is an error, and the caller falls back to the advancing front on the whole
 //! region.
 
-use std::collections::{HashMap, HashSet};
+mod holes;
+
+use std::collections::HashSet;
 
 use geom::predicates::Orientation;
 
-use super::super::advance::advance_front;
-use super::super::check::{check_input, check_intersections};
+use super::super::check::check_intersections;
 use super::super::exact::orient3d;
 use super::super::front::FaceMap;
 use super::super::{RegionInput, SizeField, TetMeshError};
 use super::flip::coplanar;
 use super::order::brio;
-use super::tri::{FACE, Limits, NONE, P, Tri};
+use super::tri::{FACE, Limits, NONE, Tri};
+use holes::{flood, hole_tets, hole_walls, mesh_holes, seed_sides, unpinched_hole_surface};
 
 /// Boundary-conforming mesh of a region: `tri` holds only inner tets, the boundary faces on its
 /// hull and the embedded faces as constraints; `pts[n_input..n_input + 4]` are the unused corners
@@ -84,7 +86,56 @@ fn same_turn(f: [u32; 3], g: [u32; 3]) -> bool {
 
 pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, TetMeshError> {
     let name = input.name.as_str();
-    let err = |m: String, at: Option<P>| TetMeshError::new(name, m, at);
+    let n = input.vertices.len();
+    let mut tri = enclosing_tet(input);
+    insert_boundary_vertices(&mut tri, input)?;
+
+    // Which constraint triangles are faces.
+    let (all, cons_index) = constraints(input);
+    let mut holders = find_holders(&tri, &cons_index, all.len(), n);
+    let mut missing: Vec<usize> = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
+    let mut vtet = vertex_tets(&tri);
+    if !missing.is_empty() && flip_diagonals(&mut tri, &all, &missing, &mut vtet) > 0 {
+        holders = find_holders(&tri, &cons_index, all.len(), n);
+        missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
+    }
+    check_missing(input, &tri, &all, &missing)?;
+
+    // Remove every tet that may meet a missing triangle.
+    let mut side = hole_tets(&tri, &all, &missing, &vtet);
+    // Flood the kept tets from the constraint sides and the enclosing tet's corners.
+    seed_sides(&mut tri, &mut side, &all, &holders, n, name)?;
+    flood(&tri, &mut side, name)?;
+
+    // The holes' inner part, meshed by the front.
+    let extra: Vec<[u32; 4]> = if side.contains(&Side::Hole) {
+        let (sub_b, sub_e) = unpinched_hole_surface(&tri, &mut side, &all, &holders, &vtet, name)?;
+        mesh_holes(&mut tri, &sub_b, &sub_e, name, size)?
+    } else {
+        Vec::new()
+    };
+    // Keep the inner tets in place: the faces the holes share with them are noted, every other
+    // tet goes, and the front's tets are linked in (no rebuild of the whole adjacency).
+    let live: Vec<u32> = tri.live_tets().collect();
+    let surface = hole_walls(&tri, &side, &live);
+    drop((vtet, holders, cons_index));
+    for &t in &live {
+        if side[t as usize] != Side::In {
+            tri.kill(t);
+        }
+    }
+    drop(side);
+    let embedded: HashSet<[u32; 3]> = input.embedded.iter().map(|&t| sorted(t)).collect();
+    tri.link_in(&extra, &surface, &embedded);
+    Ok(Conforming {
+        tri,
+        n_input: n,
+        missing: missing.len(),
+    })
+}
+
+/// A tetrahedralization of only the enclosing tet, far around the input's bounding box.
+fn enclosing_tet(input: &RegionInput) -> Tri {
     let n = input.vertices.len();
     let mut pts = input.vertices.clone();
     let mut lo = [f64::INFINITY; 3];
@@ -109,8 +160,12 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     if orient3d(&pts[n], &pts[n + 1], &pts[n + 2], &pts[n + 3]) != Orientation::Positive {
         st.swap(0, 1);
     }
-    let mut tri = Tri::new(pts, st);
+    Tri::new(pts, st)
+}
 
+/// Inserts the boundary and embedded vertices (in `brio` order); one that fails is the error.
+fn insert_boundary_vertices(tri: &mut Tri, input: &RegionInput) -> Result<(), TetMeshError> {
+    let n = input.vertices.len();
     let mut used = vec![false; n];
     for t in input.boundary.iter().chain(&input.embedded) {
         for &v in t {
@@ -126,14 +181,18 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         let p = input.vertices[v as usize];
         tri.insert_vertex(v, NONE, &Limits::default())
             .map_err(|r| {
-                err(
+                TetMeshError::new(
+                    &input.name,
                     format!("boundary vertex {v} could not be inserted ({r:?})"),
                     Some(p),
                 )
             })?;
     }
+    Ok(())
+}
 
-    // Which constraint triangles are faces.
+/// The constraint triangles (boundary, then embedded flagged `true`) and their index.
+fn constraints(input: &RegionInput) -> (Vec<([u32; 3], bool)>, FaceMap<u32>) {
     // Looked up once per tet face, never iterated: the front's fast word hash.
     let mut cons_index: FaceMap<u32> = FaceMap::with_capacity_and_hasher(
         input.boundary.len() + input.embedded.len(),
@@ -148,13 +207,16 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     for (k, (t, _)) in all.iter().enumerate() {
         cons_index.insert(sorted(*t), k as u32);
     }
-    let mut holders = find_holders(&tri, &cons_index, all.len(), n);
-    let mut missing: Vec<usize> = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
-    let mut vtet = vertex_tets(&tri);
-    if !missing.is_empty() && flip_diagonals(&mut tri, &all, &missing, &mut vtet) > 0 {
-        holders = find_holders(&tri, &cons_index, all.len(), n);
-        missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
-    }
+    (all, cons_index)
+}
+
+/// Whether recovery may go on with the missing triangles (input checked, not too many).
+fn check_missing(
+    input: &RegionInput,
+    tri: &Tri,
+    all: &[([u32; 3], bool)],
+    missing: &[usize],
+) -> Result<(), TetMeshError> {
     // Triangles that are all faces of the tetrahedralization cannot meet improperly (see
     // `check::check_shape`); otherwise the input is checked in full before any recovery, so an
     // intersection is reported as such.
@@ -163,7 +225,8 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     }
     if missing.len() > MAX_MISSING && missing.len() * MAX_MISSING_SHARE > all.len() {
         let at = tri.pts[all[missing[0]].0[0] as usize];
-        return Err(err(
+        return Err(TetMeshError::new(
+            &input.name,
             format!(
                 "{} of the {} boundary and embedded triangles are not Delaunay faces (a structured, \
                  cospherical boundary?): too many to recover locally",
@@ -173,253 +236,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
             Some(at),
         ));
     }
-
-    // Remove every tet that may meet a missing triangle.
-    let mut side = vec![Side::Unknown; tri.t.len()];
-    if !missing.is_empty() {
-        // Per missing triangle, every tet meeting it, reached through tets meeting it (whether
-        // or not an earlier triangle already took them).
-        let mut seen = vec![u32::MAX; tri.t.len()];
-        let mut stack = Vec::new();
-        for (round, &k) in missing.iter().enumerate() {
-            let round = round as u32;
-            let f = all[k].0;
-            let mut visit = |t: u32, stack: &mut Vec<u32>, side: &mut [Side]| {
-                if seen[t as usize] != round {
-                    seen[t as usize] = round;
-                    if meets(&tri, t, f) {
-                        side[t as usize] = Side::Hole;
-                        stack.push(t);
-                    }
-                }
-            };
-            for &v in &f {
-                for t in star(&tri, v, vtet[v as usize]) {
-                    visit(t, &mut stack, &mut side);
-                }
-            }
-            while let Some(t) = stack.pop() {
-                for i in 0..4 {
-                    let a = tri.t[t as usize].adj[i];
-                    if a != NONE {
-                        visit(a >> 2, &mut stack, &mut side);
-                    }
-                }
-            }
-        }
-    }
-
-    // Flood the kept tets from the constraint sides and the enclosing tet's corners.
-    for (k, hs) in holders.iter().enumerate() {
-        for (t, i) in hs.iter() {
-            tri.constrain(t, i);
-            let (f, embedded) = all[k];
-            let s = if embedded || same_turn(tri.face(t, i), f) {
-                Side::In
-            } else {
-                Side::Out
-            };
-            seed(&mut side, t, s, &tri, name)?;
-        }
-    }
-    for t in tri.live_tets() {
-        if tri.t[t as usize].v.iter().any(|&v| v >= n32) {
-            seed(&mut side, t, Side::Out, &tri, name)?;
-        }
-    }
-    let mut stack: Vec<u32> = tri
-        .live_tets()
-        .filter(|&t| matches!(side[t as usize], Side::In | Side::Out))
-        .collect();
-    while let Some(t) = stack.pop() {
-        let s = side[t as usize];
-        for i in 0..4 {
-            if tri.t[t as usize].cons & (1 << i) != 0 {
-                continue;
-            }
-            let a = tri.t[t as usize].adj[i];
-            if a == NONE {
-                continue;
-            }
-            let u = (a >> 2) as usize;
-            match side[u] {
-                Side::Unknown => {
-                    side[u] = s;
-                    stack.push(u as u32);
-                }
-                Side::Hole => {}
-                o if o != s => {
-                    let f = tri.face(t, i);
-                    return Err(err(
-                        "inside and outside meet across a face that is not on the boundary".into(),
-                        Some(tri.pts[f[0] as usize]),
-                    ));
-                }
-                _ => {}
-            }
-        }
-    }
-    // Tets no flood reached are walled in by holes (e.g. behind box sides whose cospherical
-    // squares the tetrahedralization split the other way): they join the holes, whose inner part
-    // the front meshes whatever side they were on.
-    for (t, s) in side.iter_mut().enumerate() {
-        if *s == Side::Unknown && tri.alive(t as u32) {
-            *s = Side::Hole;
-        }
-    }
-
-    // The holes' inner part, meshed by the front.
-    let mut extra: Vec<[u32; 4]> = Vec::new();
-    if side.contains(&Side::Hole) {
-        // Where the hole's inner part pinches along an edge (hole and kept tets alternate round
-        // it), the kept tets round that edge join the hole, until its surface is a manifold.
-        let mut grown = 0;
-        let (sub_b, sub_e) = loop {
-            let (sub_b, sub_e) = hole_surface(&tri, &side, &all, &holders);
-            let pinched = pinched_edges(&sub_b);
-            if pinched.is_empty() {
-                break (sub_b, sub_e);
-            }
-            grown += 1;
-            if grown > MAX_GROWTH {
-                let [u, _] = pinched[0];
-                return Err(err(
-                    "a recovery hole stays pinched along an edge".into(),
-                    Some(tri.pts[u as usize]),
-                ));
-            }
-            for [u, v] in pinched {
-                for t in star(&tri, u, vtet[u as usize]) {
-                    if side[t as usize] == Side::In && tri.t[t as usize].v.contains(&v) {
-                        side[t as usize] = Side::Hole;
-                    }
-                }
-            }
-        };
-        let (sub, back) = compact_input(name, &tri.pts, &sub_b, &sub_e);
-        check_input(&sub)
-            .map_err(|e| err(format!("a recovery hole is not valid: {}", e.message), e.at))?;
-        let raw = advance_front(&sub, size)?;
-        let mut map = back;
-        for p in &raw.nodes[sub.vertices.len()..] {
-            map.push(tri.pts.len() as u32);
-            tri.pts.push(*p);
-        }
-        extra.extend(raw.tets.iter().map(|t| t.map(|v| map[v as usize])));
-    }
-    // Keep the inner tets in place: the faces the holes share with them are noted, every other
-    // tet goes, and the front's tets are linked in (no rebuild of the whole adjacency).
-    let mut surface: HashMap<[u32; 3], u32> = HashMap::new();
-    let live: Vec<u32> = tri.live_tets().collect();
-    for &t in &live {
-        if side[t as usize] != Side::Hole {
-            continue;
-        }
-        for i in 0..4 {
-            let a = tri.t[t as usize].adj[i];
-            if a != NONE && side[(a >> 2) as usize] == Side::In {
-                surface.insert(sorted(tri.face(t, i)), a);
-            }
-        }
-    }
-    drop((vtet, holders, cons_index));
-    for &t in &live {
-        if side[t as usize] != Side::In {
-            tri.kill(t);
-        }
-    }
-    drop(side);
-    let embedded: HashSet<[u32; 3]> = input.embedded.iter().map(|&t| sorted(t)).collect();
-    tri.link_in(&extra, &surface, &embedded);
-    Ok(Conforming {
-        tri,
-        n_input: n,
-        missing: missing.len(),
-    })
-}
-
-fn seed(side: &mut [Side], t: u32, s: Side, tri: &Tri, name: &str) -> Result<(), TetMeshError> {
-    match side[t as usize] {
-        Side::Unknown => side[t as usize] = s,
-        Side::Hole => {}
-        o if o != s => {
-            return Err(TetMeshError::new(
-                name,
-                "a tet lies on both sides of the boundary",
-                Some(tri.pts[tri.t[t as usize].v[0] as usize]),
-            ));
-        }
-        _ => {}
-    }
     Ok(())
-}
-
-/// The inner part of the holes: the faces from hole tets to kept inner tets, the boundary
-/// triangles inside or on the holes, and the embedded triangles inside them (those with a hole on
-/// one side only bound it).
-fn hole_surface(
-    tri: &Tri,
-    side: &[Side],
-    all: &[([u32; 3], bool)],
-    holders: &[Holders],
-) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
-    let mut sub_b: Vec<[u32; 3]> = Vec::new();
-    let mut sub_e: Vec<[u32; 3]> = Vec::new();
-    for t in tri.live_tets() {
-        if side[t as usize] != Side::Hole {
-            continue;
-        }
-        for i in 0..4 {
-            let a = tri.t[t as usize].adj[i];
-            if a == NONE || tri.t[t as usize].cons & (1 << i) != 0 {
-                continue;
-            }
-            if side[(a >> 2) as usize] == Side::In {
-                sub_b.push(tri.face(t, i));
-            }
-        }
-    }
-    for (k, &(f, embedded)) in all.iter().enumerate() {
-        let hs = &holders[k];
-        if hs.is_empty() {
-            if embedded {
-                sub_e.push(f);
-            } else {
-                sub_b.push(f);
-            }
-            continue;
-        }
-        let in_hole: Vec<(u32, usize)> = hs
-            .iter()
-            .filter(|(t, _)| side[*t as usize] == Side::Hole)
-            .collect();
-        if embedded {
-            match in_hole.len() {
-                2 => sub_e.push(f),
-                1 => sub_b.push(tri.face(in_hole[0].0, in_hole[0].1)),
-                _ => {}
-            }
-        } else if in_hole.iter().any(|&(t, i)| same_turn(tri.face(t, i), f)) {
-            sub_b.push(f);
-        }
-    }
-    (sub_b, sub_e)
-}
-
-/// Edges that two faces of `tris` traverse in the same direction.
-fn pinched_edges(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
-    let mut directed: Vec<[u32; 2]> = tris
-        .iter()
-        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
-        .collect();
-    directed.sort_unstable();
-    let mut out: Vec<[u32; 2]> = directed
-        .windows(2)
-        .filter(|w| w[0] == w[1])
-        .map(|w| w[0])
-        .collect();
-    out.dedup();
-    out
 }
 
 /// Per constraint (index into the list `cons_index` maps to): the (tet, face) pairs holding it.
@@ -602,33 +419,4 @@ fn meets(tri: &Tri, t: u32, f: [u32; 3]) -> bool {
         }
     }
     true
-}
-
-/// The sub-problem over only the vertices it uses; `back[local] = global`.
-fn compact_input(
-    name: &str,
-    pts: &[P],
-    boundary: &[[u32; 3]],
-    embedded: &[[u32; 3]],
-) -> (RegionInput, Vec<u32>) {
-    let mut local: HashMap<u32, u32> = HashMap::new();
-    let mut back: Vec<u32> = Vec::new();
-    let mut map = |v: u32| {
-        *local.entry(v).or_insert_with(|| {
-            back.push(v);
-            (back.len() - 1) as u32
-        })
-    };
-    let b: Vec<[u32; 3]> = boundary.iter().map(|t| t.map(&mut map)).collect();
-    let e: Vec<[u32; 3]> = embedded.iter().map(|t| t.map(&mut map)).collect();
-    let vertices = back.iter().map(|&v| pts[v as usize]).collect();
-    (
-        RegionInput {
-            name: name.to_string(),
-            vertices,
-            boundary: b,
-            embedded: e,
-        },
-        back,
-    )
 }

@@ -1,0 +1,330 @@
+//! The recovery holes: which tets may meet a missing constraint triangle, which side of the
+//! boundary each kept tet lies on (flooded from the constraint triangles' oriented sides, never
+//! across a constrained face), and the holes' inner part, grown until its surface is a manifold
+//! and meshed by the advancing front.
+
+use std::collections::HashMap;
+
+use super::super::super::advance::advance_front;
+use super::super::super::check::check_input;
+use super::super::super::{RegionInput, SizeField, TetMeshError};
+use super::super::tri::{NONE, P, Tri};
+use super::{Holders, MAX_GROWTH, Side, meets, same_turn, sorted, star};
+
+/// The holes' inner surface: its boundary triangles, and the embedded triangles inside it.
+type HoleSurface = (Vec<[u32; 3]>, Vec<[u32; 3]>);
+
+/// Each tet's starting side: a hole where it may meet a missing triangle, else unknown.
+pub(super) fn hole_tets(
+    tri: &Tri,
+    all: &[([u32; 3], bool)],
+    missing: &[usize],
+    vtet: &[u32],
+) -> Vec<Side> {
+    let mut side = vec![Side::Unknown; tri.t.len()];
+    if !missing.is_empty() {
+        // Per missing triangle, every tet meeting it, reached through tets meeting it (whether
+        // or not an earlier triangle already took them).
+        let mut seen = vec![u32::MAX; tri.t.len()];
+        let mut stack = Vec::new();
+        for (round, &k) in missing.iter().enumerate() {
+            let round = round as u32;
+            let f = all[k].0;
+            let mut visit = |t: u32, stack: &mut Vec<u32>, side: &mut [Side]| {
+                if seen[t as usize] != round {
+                    seen[t as usize] = round;
+                    if meets(tri, t, f) {
+                        side[t as usize] = Side::Hole;
+                        stack.push(t);
+                    }
+                }
+            };
+            for &v in &f {
+                for t in star(tri, v, vtet[v as usize]) {
+                    visit(t, &mut stack, &mut side);
+                }
+            }
+            while let Some(t) = stack.pop() {
+                for i in 0..4 {
+                    let a = tri.t[t as usize].adj[i];
+                    if a != NONE {
+                        visit(a >> 2, &mut stack, &mut side);
+                    }
+                }
+            }
+        }
+    }
+    side
+}
+
+/// Constrains the faces holding constraint triangles and seeds the flood's sides from them.
+pub(super) fn seed_sides(
+    tri: &mut Tri,
+    side: &mut [Side],
+    all: &[([u32; 3], bool)],
+    holders: &[Holders],
+    n: usize,
+    name: &str,
+) -> Result<(), TetMeshError> {
+    for (k, hs) in holders.iter().enumerate() {
+        for (t, i) in hs.iter() {
+            tri.constrain(t, i);
+            let (f, embedded) = all[k];
+            let s = if embedded || same_turn(tri.face(t, i), f) {
+                Side::In
+            } else {
+                Side::Out
+            };
+            seed(side, t, s, tri, name)?;
+        }
+    }
+    let n32 = n as u32;
+    for t in tri.live_tets() {
+        if tri.t[t as usize].v.iter().any(|&v| v >= n32) {
+            seed(side, t, Side::Out, tri, name)?;
+        }
+    }
+    Ok(())
+}
+
+/// Floods the sides across unconstrained faces; tets no flood reaches join the holes.
+pub(super) fn flood(tri: &Tri, side: &mut [Side], name: &str) -> Result<(), TetMeshError> {
+    let mut stack: Vec<u32> = tri
+        .live_tets()
+        .filter(|&t| matches!(side[t as usize], Side::In | Side::Out))
+        .collect();
+    while let Some(t) = stack.pop() {
+        let s = side[t as usize];
+        for i in 0..4 {
+            if tri.t[t as usize].cons & (1 << i) != 0 {
+                continue;
+            }
+            let a = tri.t[t as usize].adj[i];
+            if a == NONE {
+                continue;
+            }
+            let u = (a >> 2) as usize;
+            match side[u] {
+                Side::Unknown => {
+                    side[u] = s;
+                    stack.push(u as u32);
+                }
+                Side::Hole => {}
+                o if o != s => {
+                    let f = tri.face(t, i);
+                    return Err(TetMeshError::new(
+                        name,
+                        "inside and outside meet across a face that is not on the boundary",
+                        Some(tri.pts[f[0] as usize]),
+                    ));
+                }
+                _ => {}
+            }
+        }
+    }
+    // Tets no flood reached are walled in by holes (e.g. behind box sides whose cospherical
+    // squares the tetrahedralization split the other way): they join the holes, whose inner part
+    // the front meshes whatever side they were on.
+    for (t, s) in side.iter_mut().enumerate() {
+        if *s == Side::Unknown && tri.alive(t as u32) {
+            *s = Side::Hole;
+        }
+    }
+    Ok(())
+}
+
+/// The holes' inner surface, once the holes have grown round every edge where it pinched.
+pub(super) fn unpinched_hole_surface(
+    tri: &Tri,
+    side: &mut [Side],
+    all: &[([u32; 3], bool)],
+    holders: &[Holders],
+    vtet: &[u32],
+    name: &str,
+) -> Result<HoleSurface, TetMeshError> {
+    // Where the hole's inner part pinches along an edge (hole and kept tets alternate round
+    // it), the kept tets round that edge join the hole, until its surface is a manifold.
+    let mut grown = 0;
+    loop {
+        let (sub_b, sub_e) = hole_surface(tri, side, all, holders);
+        let pinched = pinched_edges(&sub_b);
+        if pinched.is_empty() {
+            return Ok((sub_b, sub_e));
+        }
+        grown += 1;
+        if grown > MAX_GROWTH {
+            let [u, _] = pinched[0];
+            return Err(TetMeshError::new(
+                name,
+                "a recovery hole stays pinched along an edge",
+                Some(tri.pts[u as usize]),
+            ));
+        }
+        for [u, v] in pinched {
+            for t in star(tri, u, vtet[u as usize]) {
+                if side[t as usize] == Side::In && tri.t[t as usize].v.contains(&v) {
+                    side[t as usize] = Side::Hole;
+                }
+            }
+        }
+    }
+}
+
+/// The front's tets filling the holes, in `tri`'s numbering (its new nodes appended).
+pub(super) fn mesh_holes(
+    tri: &mut Tri,
+    sub_b: &[[u32; 3]],
+    sub_e: &[[u32; 3]],
+    name: &str,
+    size: &SizeField,
+) -> Result<Vec<[u32; 4]>, TetMeshError> {
+    let (sub, back) = compact_input(name, &tri.pts, sub_b, sub_e);
+    check_input(&sub).map_err(|e| {
+        TetMeshError::new(
+            name,
+            format!("a recovery hole is not valid: {}", e.message),
+            e.at,
+        )
+    })?;
+    let raw = advance_front(&sub, size)?;
+    let mut map = back;
+    for p in &raw.nodes[sub.vertices.len()..] {
+        map.push(tri.pts.len() as u32);
+        tri.pts.push(*p);
+    }
+    Ok(raw
+        .tets
+        .iter()
+        .map(|t| t.map(|v| map[v as usize]))
+        .collect())
+}
+
+/// The faces holes share with inner tets (by sorted vertices), each with the inner tet's side.
+pub(super) fn hole_walls(tri: &Tri, side: &[Side], live: &[u32]) -> HashMap<[u32; 3], u32> {
+    let mut surface: HashMap<[u32; 3], u32> = HashMap::new();
+    for &t in live {
+        if side[t as usize] != Side::Hole {
+            continue;
+        }
+        for i in 0..4 {
+            let a = tri.t[t as usize].adj[i];
+            if a != NONE && side[(a >> 2) as usize] == Side::In {
+                surface.insert(sorted(tri.face(t, i)), a);
+            }
+        }
+    }
+    surface
+}
+
+fn seed(side: &mut [Side], t: u32, s: Side, tri: &Tri, name: &str) -> Result<(), TetMeshError> {
+    match side[t as usize] {
+        Side::Unknown => side[t as usize] = s,
+        Side::Hole => {}
+        o if o != s => {
+            return Err(TetMeshError::new(
+                name,
+                "a tet lies on both sides of the boundary",
+                Some(tri.pts[tri.t[t as usize].v[0] as usize]),
+            ));
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// The inner part of the holes: the faces from hole tets to kept inner tets, the boundary
+/// triangles inside or on the holes, and the embedded triangles inside them (those with a hole on
+/// one side only bound it).
+fn hole_surface(
+    tri: &Tri,
+    side: &[Side],
+    all: &[([u32; 3], bool)],
+    holders: &[Holders],
+) -> HoleSurface {
+    let mut sub_b: Vec<[u32; 3]> = Vec::new();
+    let mut sub_e: Vec<[u32; 3]> = Vec::new();
+    for t in tri.live_tets() {
+        if side[t as usize] != Side::Hole {
+            continue;
+        }
+        for i in 0..4 {
+            let a = tri.t[t as usize].adj[i];
+            if a == NONE || tri.t[t as usize].cons & (1 << i) != 0 {
+                continue;
+            }
+            if side[(a >> 2) as usize] == Side::In {
+                sub_b.push(tri.face(t, i));
+            }
+        }
+    }
+    for (k, &(f, embedded)) in all.iter().enumerate() {
+        let hs = &holders[k];
+        if hs.is_empty() {
+            if embedded {
+                sub_e.push(f);
+            } else {
+                sub_b.push(f);
+            }
+            continue;
+        }
+        let in_hole: Vec<(u32, usize)> = hs
+            .iter()
+            .filter(|(t, _)| side[*t as usize] == Side::Hole)
+            .collect();
+        if embedded {
+            match in_hole.len() {
+                2 => sub_e.push(f),
+                1 => sub_b.push(tri.face(in_hole[0].0, in_hole[0].1)),
+                _ => {}
+            }
+        } else if in_hole.iter().any(|&(t, i)| same_turn(tri.face(t, i), f)) {
+            sub_b.push(f);
+        }
+    }
+    (sub_b, sub_e)
+}
+
+/// Edges that two faces of `tris` traverse in the same direction.
+fn pinched_edges(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
+    let mut directed: Vec<[u32; 2]> = tris
+        .iter()
+        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+        .collect();
+    directed.sort_unstable();
+    let mut out: Vec<[u32; 2]> = directed
+        .windows(2)
+        .filter(|w| w[0] == w[1])
+        .map(|w| w[0])
+        .collect();
+    out.dedup();
+    out
+}
+
+/// The sub-problem over only the vertices it uses; `back[local] = global`.
+fn compact_input(
+    name: &str,
+    pts: &[P],
+    boundary: &[[u32; 3]],
+    embedded: &[[u32; 3]],
+) -> (RegionInput, Vec<u32>) {
+    let mut local: HashMap<u32, u32> = HashMap::new();
+    let mut back: Vec<u32> = Vec::new();
+    let mut map = |v: u32| {
+        *local.entry(v).or_insert_with(|| {
+            back.push(v);
+            (back.len() - 1) as u32
+        })
+    };
+    let b: Vec<[u32; 3]> = boundary.iter().map(|t| t.map(&mut map)).collect();
+    let e: Vec<[u32; 3]> = embedded.iter().map(|t| t.map(&mut map)).collect();
+    let vertices = back.iter().map(|&v| pts[v as usize]).collect();
+    (
+        RegionInput {
+            name: name.to_string(),
+            vertices,
+            boundary: b,
+            embedded: e,
+        },
+        back,
+    )
+}
