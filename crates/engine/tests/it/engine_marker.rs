@@ -87,9 +87,9 @@ fn a_cache_a_build_made_is_marked_cleaned_once_then_reported_absent() {
     let o = opts(dir.path(), 1);
     assert!(run(one_node(), &o).ok);
     assert!(is_cache(&o.cache_dir));
-    assert_eq!(clean(&o.cache_dir).unwrap(), true);
+    assert!(clean(&o.cache_dir).unwrap());
     assert!(!o.cache_dir.exists());
-    assert_eq!(clean(&o.cache_dir).unwrap(), false);
+    assert!(!clean(&o.cache_dir).unwrap());
     // gc of a missing cache does nothing and creates nothing.
     assert_eq!(
         gc(&o.cache_dir, &LockFile::default()).unwrap(),
@@ -107,5 +107,5 @@ fn a_cache_made_before_the_marker_is_adopted_by_its_next_build() {
     assert!(clean(&o.cache_dir).is_err(), "unmarked: not cleaned");
     assert!(run(one_node(), &o).ok, "its entries are all a cache's own");
     assert!(is_cache(&o.cache_dir));
-    assert_eq!(clean(&o.cache_dir).unwrap(), true);
+    assert!(clean(&o.cache_dir).unwrap());
 }
