@@ -173,6 +173,12 @@ pub fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
 pub fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
+/// Euclidean distance (the squares summed in axis order, as every stage measures it).
+#[inline]
+pub fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    let d = sub(a, b);
+    dot(&d, &d).sqrt()
+}
 #[inline]
 pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     [

@@ -11,6 +11,7 @@
 //!   length is then rescaled so the segments add up to the curve length exactly.
 //! - A curve's direction is its canonical direction in the model, so "from the start" is stable.
 
+use geom::predicates::dist;
 use serde::{Deserialize, Serialize};
 
 /// How the recipe asks one curve to be subdivided.
@@ -169,10 +170,6 @@ fn geometric(length: f64, size: f64, ratio: f64) -> Result<Vec<f64>, DiscretizeE
         }
     }
     Ok(v)
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 #[cfg(test)]

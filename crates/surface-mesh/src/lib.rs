@@ -44,7 +44,7 @@ mod support;
 mod verify;
 
 use cdt::{CONSTRAINT, Cdt, CdtError, LOOP, NONE};
-use geom::predicates::{dot, sub};
+use geom::predicates::dist;
 use geom::{Tolerances, TriMesh};
 use input::{GivenNodes, given_nodes};
 use size::SizeField;
@@ -121,11 +121,6 @@ pub const MAX_SURFACE_GROWTH: f64 = 1.15;
 
 /// Smoothing/flip rounds after refinement.
 const SMOOTH_ROUNDS: usize = 4;
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    let d = sub(a, b);
-    dot(&d, &d).sqrt()
-}
 
 /// Meshes one patch (see the module doc) with the default `Tolerances`. The result has passed
 /// `verify`.

@@ -18,7 +18,7 @@
 //!   recursion, deterministic summation order).
 
 use super::segments::first_crossing;
-use geom::predicates::{cross, dot, sub};
+use geom::predicates::{cross, dist, dot, sub};
 use geom::{Orientation, TriMesh, orient2d};
 use std::collections::BTreeMap;
 
@@ -245,11 +245,6 @@ pub fn first_non_positive(s: &TriMesh, uv: &[[f64; 2]]) -> Option<usize> {
         orient2d(&uv[t[0] as usize], &uv[t[1] as usize], &uv[t[2] as usize])
             != Orientation::Positive
     })
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    let d = sub(a, b);
-    dot(&d, &d).sqrt()
 }
 
 fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {

@@ -20,7 +20,7 @@
 //! nodes within that bound's reach are visited; no query is made when none could matter.
 
 use geom::TriMesh;
-use geom::predicates::{dot, sub};
+use geom::predicates::{dist, dot, sub};
 use rstar::RTree;
 use rstar::primitives::GeomWithData;
 use std::collections::BTreeMap;
@@ -218,9 +218,6 @@ impl SizeField {
     }
 }
 
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
 #[cfg(test)]
 mod tests {
     use super::*;

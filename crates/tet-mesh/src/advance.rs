@@ -16,7 +16,7 @@
 
 use std::collections::HashMap;
 
-use geom::predicates::Orientation;
+use geom::predicates::{Orientation, dist};
 
 use super::exact::{orient3d, tri_tri_improper_with};
 use super::front::{FaceMap, Front, bbox_of};
@@ -241,11 +241,6 @@ pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, T
 fn mean_edge(t: &[u32; 3], pts: &[P]) -> f64 {
     let [a, b, c] = t.map(|i| pts[i as usize]);
     (dist(&a, &b) + dist(&b, &c) + dist(&c, &a)) / 3.0
-}
-
-#[inline]
-fn dist(a: &P, b: &P) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 #[inline]

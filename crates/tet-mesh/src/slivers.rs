@@ -9,7 +9,7 @@
 //! faces. The new node is then smoothed, and the whole change is undone unless the worst quality
 //! of the new tets beats that of the cavity.
 
-use geom::predicates::{Orientation, orient3d};
+use geom::predicates::{Orientation, dist, orient3d};
 
 use super::complex::{Complex, P, sorted3};
 use super::quality::shape;
@@ -126,11 +126,6 @@ fn push_inside(cx: &Complex, f: [u32; 3], p: P, offset: f64) -> Option<P> {
     let out = (p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1] + (p[2] - a[2]) * n[2];
     let q = [0, 1, 2].map(|m| p[m] - n[m] * (out + offset));
     q.iter().all(|x| x.is_finite()).then_some(q)
-}
-
-#[inline]
-fn dist(a: &P, b: &P) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// The tet `t` and its neighbours across unprotected faces.

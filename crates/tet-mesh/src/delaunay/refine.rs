@@ -12,7 +12,7 @@
 //! while their corners are in cache, and proposals of tets destroyed since are dropped before the
 //! round's sort. Deterministic: one thread, sorted work lists.
 
-use geom::predicates::{cross, dot, sub};
+use geom::predicates::{cross, dist, dot, sub};
 
 use super::super::sizing::Background;
 use super::order::hilbert_sort;
@@ -122,10 +122,6 @@ fn proposal(tri: &Tri, t: u32, bg: &Background) -> Option<P> {
         }
     }
     Some(cc)
-}
-
-fn dist(a: &P, b: &P) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// Unit normal of `xyz` (pointing out of the tet for an outward face).
