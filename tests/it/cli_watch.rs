@@ -137,7 +137,10 @@ fn an_idle_watcher_builds_once_and_then_rests() {
     w.until("Watching");
     w.idle(6);
     assert_eq!(w.count("Finished"), 1, "{:#?}", w.seen);
-    assert!(w.child.try_wait().unwrap().is_none(), "it did not build again");
+    assert!(
+        w.child.try_wait().unwrap().is_none(),
+        "it did not build again"
+    );
 }
 
 #[test]
