@@ -278,17 +278,7 @@ impl Expander for DiscretizeExpander {
             .group("imports", imports)
             .group("curves", discretized)
             .finish();
-        let export = ExportOp {
-            model: self.recipe.model.name.clone(),
-            formats: self
-                .recipe
-                .output
-                .formats
-                .iter()
-                .map(|&f| crate::plan::output_format(f))
-                .collect(),
-            inputs: groups,
-        };
+        let export = ExportOp::new(&self.recipe, groups);
         x.add_op("export", Arc::new(export), &export_inputs)
             .map_err(graph_error)?;
         Ok(())

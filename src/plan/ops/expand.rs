@@ -176,17 +176,7 @@ impl Expander for ModelExpander {
             .group("mesh", [mesh])
             .finish();
 
-        let export = ExportOp {
-            model: self.recipe.model.name.clone(),
-            formats: self
-                .recipe
-                .output
-                .formats
-                .iter()
-                .map(|&f| crate::plan::output_format(f))
-                .collect(),
-            inputs,
-        };
+        let export = ExportOp::new(&self.recipe, inputs);
         x.add_op("export", Arc::new(export), &export_inputs)
             .map_err(graph_error)?;
         Ok(())

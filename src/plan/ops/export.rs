@@ -8,6 +8,7 @@
 //! memory beside its encoding; the decoded mesh is dropped after its last file.
 
 use super::{CurveNodes, Groups, SurfaceData};
+use crate::recipe::Recipe;
 use engine::artifact::FileSetEncoder;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use export::curves::write_curves_vtu;
@@ -22,6 +23,22 @@ pub struct ExportOp {
     pub formats: Vec<Format>,
     /// `imports` (validation reports), `curves` (their FE nodes) and, for a meshed model, `mesh`.
     pub inputs: Groups,
+}
+
+impl ExportOp {
+    /// The export of `recipe`'s model in its `output.formats`, wired as `inputs` says.
+    pub fn new(recipe: &Recipe, inputs: Groups) -> ExportOp {
+        ExportOp {
+            model: recipe.model.name.clone(),
+            formats: recipe
+                .output
+                .formats
+                .iter()
+                .map(|&f| crate::plan::output_format(f))
+                .collect(),
+            inputs,
+        }
+    }
 }
 
 impl Operation for ExportOp {
