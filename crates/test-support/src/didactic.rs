@@ -14,13 +14,13 @@
 
 use std::fmt::Write as _;
 
-const ORIGIN_X: f64 = 500_000.0;
-const ORIGIN_Y: f64 = 7_000_000.0;
+pub(crate) const ORIGIN_X: f64 = 500_000.0;
+pub(crate) const ORIGIN_Y: f64 = 7_000_000.0;
 
 /// A small deterministic generator (SplitMix64): no unseeded randomness anywhere.
-struct Rng(u64);
+pub(crate) struct Rng(pub(crate) u64);
 impl Rng {
-    fn next_u64(&mut self) -> u64 {
+    pub(crate) fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -28,7 +28,7 @@ impl Rng {
         z ^ (z >> 31)
     }
     /// Uniform in [-1, 1).
-    fn unit(&mut self) -> f64 {
+    pub(crate) fn unit(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 }
@@ -38,7 +38,7 @@ fn z_top(x: f64, y: f64) -> f64 {
 }
 
 /// Grid coordinates from `a` to `b` with spacings that vary smoothly between `h` and `1.6 h`.
-fn graded_axis(a: f64, b: f64, h: f64, phase: f64) -> Vec<f64> {
+pub(crate) fn graded_axis(a: f64, b: f64, h: f64, phase: f64) -> Vec<f64> {
     let mut v = vec![a];
     let mut x = a;
     while x < b {
@@ -54,14 +54,14 @@ fn graded_axis(a: f64, b: f64, h: f64, phase: f64) -> Vec<f64> {
 }
 
 /// A surface given by a parametric map over a jittered, graded (u, v) grid.
-struct Surface {
-    vertices: Vec<[f64; 3]>,
-    triangles: Vec<[usize; 3]>,
+pub(crate) struct Surface {
+    pub(crate) vertices: Vec<[f64; 3]>,
+    pub(crate) triangles: Vec<[usize; 3]>,
     /// Corners of the parameter rectangle (vertex indices), written as BSTONEs.
-    corners: Vec<usize>,
+    pub(crate) corners: Vec<usize>,
 }
 
-fn grid_surface(
+pub(crate) fn grid_surface(
     us: &[f64],
     vs: &[f64],
     map: impl Fn(f64, f64) -> [f64; 3],
@@ -107,13 +107,13 @@ fn grid_surface(
     }
 }
 
-struct Style {
-    depth_positive: bool,
-    crlf: bool,
-    property: Option<&'static str>,
+pub(crate) struct Style {
+    pub(crate) depth_positive: bool,
+    pub(crate) crlf: bool,
+    pub(crate) property: Option<&'static str>,
 }
 
-fn write_tsurf(name: &str, s: &Surface, style: &Style) -> String {
+pub(crate) fn write_tsurf(name: &str, s: &Surface, style: &Style) -> String {
     let mut o = String::new();
     let nl = if style.crlf { "\r\n" } else { "\n" };
     let line = |o: &mut String, text: &str| {

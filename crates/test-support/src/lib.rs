@@ -6,6 +6,7 @@
 
 pub mod didactic;
 pub mod export_support;
+pub mod geology;
 pub mod grid;
 pub mod paths;
 pub mod peer_support;

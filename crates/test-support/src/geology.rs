@@ -1,0 +1,290 @@
+//! A corpus of geological situations, each a recipe and the gOcad TSurf files it imports, made
+//! the way real exports look: irregular jittered triangulations at UTM coordinates, some written
+//! with `ZPOSITIVE Depth` or CRLF, every surface reaching past the box so that the box cuts it.
+//! Each case knows how many regions its model has, so a test can build it and check the mesh.
+//!
+//! The box is [0, 4000]² × [-2000, 0] m before the UTM shift of `didactic`. A fault plane with
+//! strike along y is `x = x0 + (z - z0) / tan(dip)`: its height over a column grows with x, so the
+//! side of smaller x is above it (the hanging wall) and the other below it (the footwall).
+
+use crate::didactic::write_tsurf;
+use crate::didactic::{ORIGIN_X, ORIGIN_Y, Rng, Style, Surface, graded_axis, grid_surface};
+
+/// One situation: the recipe text, its files (name, TSurf text) and the regions it must mesh to.
+pub struct Case {
+    pub name: &'static str,
+    pub recipe: String,
+    pub files: Vec<(String, String)>,
+    pub regions: usize,
+    /// The smallest dihedral angle (degrees) every region must reach: 8, or less where the
+    /// boundary itself forces thinner tets (a wedge pinching out at a small angle).
+    pub min_dihedral: f64,
+}
+
+impl Case {
+    /// Writes the recipe (as `<name>.toml`) and its files into `dir`; returns the recipe path.
+    pub fn write(&self, dir: &std::path::Path) -> std::path::PathBuf {
+        std::fs::create_dir_all(dir.join("data")).expect("a data folder");
+        for (file, text) in &self.files {
+            std::fs::write(dir.join("data").join(file), text).expect("write a surface");
+        }
+        let path = dir.join(format!("{}.toml", self.name));
+        std::fs::write(&path, &self.recipe).expect("write the recipe");
+        path
+    }
+}
+
+/// Every case of the corpus.
+pub fn cases() -> Vec<Case> {
+    vec![
+        fault_with_throw("normal_fault", -150.0),
+        fault_with_throw("reverse_fault", 150.0),
+        fault_stopping_in_a_layer(),
+        erosional_unconformity(),
+        x_fault_junction(),
+        y_fault_junction(),
+    ]
+}
+
+/// The extent surfaces are made over (past the box on every side).
+const LO: f64 = -300.0;
+const HI: f64 = 4300.0;
+
+/// A horizon `z = z0 + amp sin(x / 700 + phase) cos(y / 900)` over the plan of the box.
+fn horizon(z0: f64, amp: f64, phase: f64, rng: &mut Rng) -> Surface {
+    let us = graded_axis(LO, HI, 160.0, phase);
+    let vs = graded_axis(LO, HI, 170.0, phase + 1.0);
+    grid_surface(
+        &us,
+        &vs,
+        |x, y| {
+            [
+                x,
+                y,
+                z0 + amp * (x / 700.0 + phase).sin() * (y / 900.0).cos(),
+            ]
+        },
+        rng,
+    )
+}
+
+/// A plane fault striking along y through `x = x0` at `z = z0`, dipping `dip` degrees, over the
+/// box's height and plan (or over `y` in `ys` and `z` in `zs` when it is smaller).
+fn fault_y(x0: f64, z0: f64, dip: f64, ys: (f64, f64), zs: (f64, f64), rng: &mut Rng) -> Surface {
+    let cot = 1.0 / dip.to_radians().tan();
+    let us = graded_axis(ys.0, ys.1, 170.0, 0.3);
+    let vs = graded_axis(zs.0, zs.1, 150.0, 0.7);
+    grid_surface(&us, &vs, |y, z| [x0 + (z - z0) * cot, y, z], rng)
+}
+
+/// As [`fault_y`], striking along x through `y = y0`.
+fn fault_x(y0: f64, z0: f64, dip: f64, rng: &mut Rng) -> Surface {
+    let cot = 1.0 / dip.to_radians().tan();
+    let us = graded_axis(LO, HI, 170.0, 1.3);
+    let vs = graded_axis(-2300.0, 300.0, 150.0, 0.2);
+    grid_surface(&us, &vs, |x, z| [x, y0 + (z - z0) * cot, z], rng)
+}
+
+const PLAIN: Style = Style {
+    depth_positive: false,
+    crlf: false,
+    property: None,
+};
+const DEPTH: Style = Style {
+    depth_positive: true,
+    crlf: false,
+    property: None,
+};
+const DEPTH_CRLF: Style = Style {
+    depth_positive: true,
+    crlf: true,
+    property: None,
+};
+
+/// A recipe under construction: surfaces, trims and the rest of its text.
+struct Recipe {
+    name: &'static str,
+    surfaces: Vec<(String, &'static str)>,
+    files: Vec<(String, String)>,
+    trims: Vec<String>,
+}
+
+impl Recipe {
+    fn new(name: &'static str) -> Recipe {
+        Recipe {
+            name,
+            surfaces: Vec::new(),
+            files: Vec::new(),
+            trims: Vec::new(),
+        }
+    }
+
+    fn surface(&mut self, name: &str, kind: &'static str, s: &Surface, style: &Style) {
+        let file = format!("{name}.ts");
+        self.files.push((file, write_tsurf(name, s, style)));
+        self.surfaces.push((name.to_string(), kind));
+    }
+
+    /// `[[trim]] surface = s, keep = { side = of }`.
+    fn keep(&mut self, s: &str, side: &str, of: &str) {
+        self.trims.push(format!(
+            "[[trim]]\nsurface = \"{s}\"\nkeep = {{ {side} = \"{of}\" }}\n"
+        ));
+    }
+
+    /// The case, with the surfaces of `all` (and the box) intersected pairwise.
+    fn case(self, all: &[&str], regions: usize) -> Case {
+        let mut t = format!("[model]\nname = \"{}\"\n\n[surfaces]\n", self.name);
+        for (s, kind) in &self.surfaces {
+            t.push_str(&format!(
+                "{s} = {{ file = \"data/{s}.ts\", kind = \"{kind}\" }}\n"
+            ));
+        }
+        t.push_str(&format!(
+            "\n[box]\nmin = [{}, {}, -2000.0]\nmax = [{}, {}, 0.0]\n",
+            ORIGIN_X,
+            ORIGIN_Y,
+            ORIGIN_X + 4000.0,
+            ORIGIN_Y + 4000.0
+        ));
+        let all: Vec<String> = all.iter().map(|s| format!("\"{s}\"")).collect();
+        t.push_str(&format!("\n[intersect]\nall = [{}]\n\n", all.join(", ")));
+        for tr in &self.trims {
+            t.push_str(tr);
+            t.push('\n');
+        }
+        t.push_str("[mesh]\nsize = 250.0\n\n[output]\ndir = \"out\"\nformats = [\"msh\"]\n");
+        Case {
+            name: self.name,
+            recipe: t,
+            files: self.files,
+            regions,
+            min_dihedral: 8.0,
+        }
+    }
+}
+
+/// A through-going fault dipping 60° with two horizons offset by `throw` across it (negative:
+/// the hanging wall went down, a normal fault). Each horizon is one surface per fault block,
+/// reaching past the fault and trimmed at it.
+fn fault_with_throw(name: &'static str, throw: f64) -> Case {
+    let mut rng = Rng(0x6661_756c_7420_3031 ^ throw.to_bits());
+    let mut r = Recipe::new(name);
+    let f = fault_y(2000.0, -1000.0, 60.0, (LO, HI), (-2300.0, 300.0), &mut rng);
+    r.surface("F", "fault", &f, &PLAIN);
+    for (h, z) in [("H1", -700.0), ("H2", -1150.0)] {
+        let hw = horizon(z + throw, 25.0, 0.4, &mut rng);
+        let fw = horizon(z, 25.0, 0.4, &mut rng);
+        r.surface(&format!("{h}_hw"), "horizon", &hw, &DEPTH);
+        r.surface(&format!("{h}_fw"), "horizon", &fw, &PLAIN);
+        r.keep(&format!("{h}_hw"), "above", "F");
+        r.keep(&format!("{h}_fw"), "below", "F");
+    }
+    r.case(&["box", "F", "H1_hw", "H1_fw", "H2_hw", "H2_fw"], 6)
+}
+
+/// A small fault that dies out inside the middle of three layers, crossing nothing.
+fn fault_stopping_in_a_layer() -> Case {
+    let mut rng = Rng(0x7374_6f70_7320_7368);
+    let mut r = Recipe::new("fault_stops_in_a_layer");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-600.0, 30.0, 0.1, &mut rng),
+        &DEPTH_CRLF,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1400.0, 30.0, 0.9, &mut rng),
+        &PLAIN,
+    );
+    let f = fault_y(
+        2000.0,
+        -1000.0,
+        70.0,
+        (1200.0, 2800.0),
+        (-1200.0, -800.0),
+        &mut rng,
+    );
+    r.surface("F", "fault", &f, &PLAIN);
+    r.case(&["box", "H1", "H2"], 3)
+}
+
+/// An erosional surface U cutting down to the east through horizon H1 (which is kept only below
+/// U), above an untouched H2: above U, the wedge between U and H1, the layer between H1 (or U)
+/// and H2, and below H2. U dips at atan(0.15) = 8.5°, so the wedge pinches out at about that
+/// angle and its tip bounds the tets there: the bar is 6° (reached: 6.7°), not 8°.
+fn erosional_unconformity() -> Case {
+    let mut rng = Rng(0x756e_636f_6e66_6f72);
+    let mut r = Recipe::new("erosional_unconformity");
+    let us = graded_axis(LO, HI, 160.0, 0.5);
+    let vs = graded_axis(LO, HI, 170.0, 1.5);
+    let u = grid_surface(
+        &us,
+        &vs,
+        |x, y| [x, y, -700.0 - 0.15 * x + 20.0 * (y / 800.0).sin()],
+        &mut rng,
+    );
+    r.surface("U", "horizon", &u, &DEPTH);
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-1000.0, 20.0, 0.2, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1600.0, 20.0, 1.2, &mut rng),
+        &PLAIN,
+    );
+    r.keep("H1", "below", "U");
+    Case {
+        min_dihedral: 6.0,
+        ..r.case(&["box", "U", "H1", "H2"], 4)
+    }
+}
+
+/// Two through-going faults crossing in an X (strikes along y and along x), one horizon.
+fn x_fault_junction() -> Case {
+    let mut rng = Rng(0x785f_6a75_6e63_7469);
+    let mut r = Recipe::new("x_fault_junction");
+    let f1 = fault_y(2000.0, -1000.0, 70.0, (LO, HI), (-2300.0, 300.0), &mut rng);
+    r.surface("F1", "fault", &f1, &PLAIN);
+    r.surface(
+        "F2",
+        "fault",
+        &fault_x(2000.0, -1000.0, 75.0, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-1000.0, 30.0, 0.6, &mut rng),
+        &DEPTH,
+    );
+    r.case(&["box", "F1", "F2", "H"], 8)
+}
+
+/// A fault F2 that ends on a through-going fault F1 (kept on F1's east side only), one horizon.
+fn y_fault_junction() -> Case {
+    let mut rng = Rng(0x795f_6a75_6e63_7469);
+    let mut r = Recipe::new("y_fault_junction");
+    let f1 = fault_y(2000.0, -1000.0, 70.0, (LO, HI), (-2300.0, 300.0), &mut rng);
+    r.surface("F1", "fault", &f1, &PLAIN);
+    r.surface(
+        "F2",
+        "fault",
+        &fault_x(2000.0, -1000.0, 75.0, &mut rng),
+        &DEPTH,
+    );
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-1000.0, 30.0, 0.6, &mut rng),
+        &PLAIN,
+    );
+    r.keep("F2", "below", "F1");
+    r.case(&["box", "F1", "F2", "H"], 6)
+}

@@ -1,0 +1,15 @@
+//! Writes the corpus of geological situations (`test_support::geology`: faults with throw, a
+//! fault dying out in a layer, an erosional unconformity, X and Y fault junctions), one folder
+//! per case holding its recipe and TSurf files, to try or to show: `cargo run --example
+//! geology_corpus -- /tmp/corpus`, then `recipe build /tmp/corpus/<case>/<case>.toml`.
+
+fn main() {
+    let out = std::env::args()
+        .nth(1)
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| "corpus".into());
+    for case in test_support::geology::cases() {
+        let path = case.write(&out.join(case.name));
+        println!("wrote {} ({} regions)", path.display(), case.regions);
+    }
+}

@@ -1,0 +1,118 @@
+//! The corpus of geological situations (`test_support::geology`) built through a recipe: each
+//! case meshes into its regions, every region's worst tet is within the quality bars (normalised
+//! mean ratio at least 0.2, dihedral angles at least the case's bar: 8° unless its boundary
+//! pinches out at a smaller angle), and, when the independent checker is
+//! available, the msh passes `check_mesh.py` with that region count.
+
+use crate::common_cli::checker;
+use std::process::Command;
+use test_support::geology::{Case, cases};
+
+/// Builds `case` in a scratch folder and checks its model, mesh and quality.
+fn builds_and_meshes(case: &Case) {
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let recipe = case.write(dir.path());
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(dir.path())
+        .args(["build", "--json", "--quiet"])
+        .arg(&recipe)
+        .output()
+        .expect("the recipe binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "{}: {err}\n{}",
+        case.name,
+        case.recipe
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let model = report["nodes"]
+        .as_array()
+        .and_then(|n| n.iter().find(|n| n["name"] == "model"))
+        .expect("a model node");
+    assert_eq!(
+        model["counts"]["regions"].as_u64(),
+        Some(case.regions as u64),
+        "{}: {model}",
+        case.name
+    );
+    let quality = dir.path().join(format!("out/{}.quality.json", case.name));
+    let q: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&quality).expect("the quality tables")).unwrap();
+    for r in q["table2"].as_array().expect("table 2") {
+        let (mr, dihedral) = (
+            r["min"].as_f64().unwrap(),
+            r["min_dihedral_deg"].as_f64().unwrap(),
+        );
+        assert!(
+            mr >= 0.2 && dihedral >= case.min_dihedral,
+            "{}: {r}",
+            case.name
+        );
+    }
+    let Some(check) = checker() else { return };
+    let msh = dir.path().join(format!("out/{}.msh", case.name));
+    let out = Command::new("python3")
+        .arg(&check)
+        .arg(&msh)
+        .args(["--regions", &case.regions.to_string()])
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && text.contains("\"fail\": []"),
+        "{}: {text}",
+        case.name
+    );
+}
+
+fn case(name: &str) -> Case {
+    cases()
+        .into_iter()
+        .find(|c| c.name == name)
+        .unwrap_or_else(|| panic!("no case `{name}`"))
+}
+
+#[test]
+fn a_normal_fault_with_throw_and_trimmed_horizons_meshes_into_six_regions() {
+    builds_and_meshes(&case("normal_fault"));
+}
+
+#[test]
+fn a_reverse_fault_with_throw_and_trimmed_horizons_meshes_into_six_regions() {
+    builds_and_meshes(&case("reverse_fault"));
+}
+
+#[test]
+fn a_fault_dying_out_inside_a_layer_is_embedded_in_its_region() {
+    builds_and_meshes(&case("fault_stops_in_a_layer"));
+}
+
+#[test]
+fn an_erosional_unconformity_truncating_a_horizon_meshes_into_four_regions() {
+    builds_and_meshes(&case("erosional_unconformity"));
+}
+
+#[test]
+fn two_faults_crossing_in_an_x_cut_a_horizon_into_eight_regions() {
+    builds_and_meshes(&case("x_fault_junction"));
+}
+
+#[test]
+fn a_fault_ending_on_another_in_a_y_meshes_into_six_regions() {
+    builds_and_meshes(&case("y_fault_junction"));
+}
+
+#[test]
+fn every_case_of_the_corpus_has_a_test() {
+    let tested = [
+        "normal_fault",
+        "reverse_fault",
+        "fault_stops_in_a_layer",
+        "erosional_unconformity",
+        "x_fault_junction",
+        "y_fault_junction",
+    ];
+    let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
+    assert_eq!(names, tested);
+}
