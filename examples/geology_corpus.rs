@@ -1,6 +1,7 @@
 //! Writes the corpus of geological situations (`test_support::geology`: faults with throw, a
 //! fault dying out in a layer, an erosional unconformity, X and Y fault junctions), one folder
-//! per case holding its recipe and TSurf files, to try or to show: `cargo run --example
+//! per case holding its recipe and TSurf files, and under `known_gaps/` the situations that do
+//! not mesh yet (a recumbent fold), to try or to show: `cargo run --example
 //! geology_corpus -- /tmp/corpus`, then `recipe build /tmp/corpus/<case>/<case>.toml`.
 
 fn main() {
@@ -11,5 +12,9 @@ fn main() {
     for case in test_support::geology::cases() {
         let path = case.write(&out.join(case.name));
         println!("wrote {} ({} regions)", path.display(), case.regions);
+    }
+    for case in test_support::geology::known_gaps() {
+        let path = case.write(&out.join("known_gaps").join(case.name));
+        println!("wrote {} (does not mesh yet)", path.display());
     }
 }
