@@ -1,7 +1,7 @@
 //! Writes the corpus of geological situations (`test_support::geology`: faults with throw, a
-//! fault dying out in a layer, an erosional unconformity, X and Y fault junctions), one folder
-//! per case holding its recipe and TSurf files, and under `known_gaps/` the situations that do
-//! not mesh yet (a recumbent fold), to try or to show: `cargo run --example
+//! fault dying out in a layer, an erosional unconformity, X and Y fault junctions, a recumbent
+//! fold), one folder per case holding its recipe and TSurf files, and under `known_gaps/` any
+//! situation that does not mesh yet, to try or to show: `cargo run --example
 //! geology_corpus -- /tmp/corpus`, then `recipe build /tmp/corpus/<case>/<case>.toml`.
 
 fn main() {

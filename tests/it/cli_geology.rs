@@ -104,6 +104,11 @@ fn a_fault_ending_on_another_in_a_y_meshes_into_six_regions() {
 }
 
 #[test]
+fn a_recumbent_fold_with_an_overturned_limb_cuts_the_box_into_two_regions() {
+    builds_and_meshes(&case("recumbent_fold"));
+}
+
+#[test]
 fn every_case_of_the_corpus_has_a_test() {
     let tested = [
         "normal_fault",
@@ -112,6 +117,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "erosional_unconformity",
         "x_fault_junction",
         "y_fault_junction",
+        "recumbent_fold",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);

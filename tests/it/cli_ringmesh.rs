@@ -179,6 +179,18 @@ fn the_layer_cake_model_a1_meshes_into_its_four_regions_without_a_box() {
     sealed_model_meshes_into_its_regions("modelA1.ml");
 }
 
-// Not tested here: modelA2 and modelA4 build their model (regions as
-// in their REGION records) but the tet mesher runs for many minutes on them; modelA5 and
-// CloudSpin_fixed fail in the surface mesher (folded triangles; loops that touch).
+#[test]
+fn the_split_cube_whose_box_tsurf_wraps_around_its_edges_meshes_into_two_regions() {
+    // The box is one TFACE folded around the cube's edges: cut at those creases, each face is a
+    // patch of its own that flattens without folding.
+    sealed_model_meshes_into_its_regions("split_cube.ml");
+}
+
+#[test]
+fn model_a2_with_its_folded_box_and_faults_meshes_into_its_twelve_regions() {
+    sealed_model_meshes_into_its_regions("modelA2.ml");
+}
+
+// Not tested here: modelA4 builds its model but the tet mesher runs for minutes on some
+// regions; modelA5 has one horizon patch whose surface mesh folds, and CloudSpin_fixed patches
+// whose boundary loops touch.

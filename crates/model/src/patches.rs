@@ -1,12 +1,21 @@
 //! Patches: the pieces of a split surface between its intersection curves.
 //!
 //! It decides which triangles of a [`SplitSurface`] form one patch (connected across edges that
-//! are not curve edges), the canonical order of the patches (so names `S#1`, `S#2`... do not
-//! depend on input order or thread count), and whether a patch lies inside the model's box.
+//! are neither curve edges nor creases), the canonical order of the patches (so names `S#1`,
+//! `S#2`... do not depend on input order or thread count), and whether a patch lies inside the
+//! model's box.
+//!
+//! A crease is an edge between two triangles of the imported surface that bend by more than
+//! `Tolerances::kink_angle_deg` (a box TSurf wrapping around the box's edges in one TFACE, a
+//! fold's tight hinge): cutting there gives patches that each flatten without folding, and the
+//! crease becomes a curve the meshes share, so the feature is kept. The bend is measured on the
+//! original triangles each split triangle lies in (never on the slivers splitting makes), and is
+//! a measure, like the kink angle of a border, not an orientation decision.
 //! Each patch carries its own compact mesh whose coordinates are copied bit for bit, so patches
 //! of different surfaces meeting along a curve share identical vertices there.
 
 use crate::intersect::split::SplitSurface;
+use geom::predicates::{cross, dot, sub};
 use geom::{BBox, TriMesh};
 use std::cmp::Ordering;
 
@@ -29,10 +38,54 @@ fn lex(a: &[f64; 3], b: &[f64; 3]) -> Ordering {
         .unwrap_or(Ordering::Equal)
 }
 
-/// The patches of `split` (surface `surface`): connected components of its triangles, where two
-/// triangles connect through a shared edge that is not a curve edge. Ordered by their smallest
-/// vertex (lexicographic, total f64 order), ties broken by the sorted list of their vertices.
+/// The patches of `split` (surface `surface`) without cutting at creases: see
+/// [`patches_at_creases`].
 pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
+    components(surface, split, |_| false)
+}
+
+/// The patches of `split` (surface `surface`, split from `original`): connected components of
+/// its triangles, where two triangles connect through a shared edge that is not a curve edge and
+/// whose original triangles bend by at most `kink_deg`. Ordered by their smallest vertex
+/// (lexicographic, total f64 order), ties broken by the sorted list of their vertices.
+pub fn patches_at_creases(
+    surface: &str,
+    split: &SplitSurface,
+    original: &TriMesh,
+    kink_deg: f64,
+) -> Vec<Patch> {
+    let normals: Vec<[f64; 3]> = original
+        .triangles
+        .iter()
+        .map(|t| {
+            let p = |k: usize| original.vertices.get(t[k] as usize).copied();
+            match (p(0), p(1), p(2)) {
+                (Some(a), Some(b), Some(c)) => cross(&sub(&b, &a), &sub(&c, &a)),
+                _ => [0.0; 3],
+            }
+        })
+        .collect();
+    let cos_max = kink_deg.to_radians().cos();
+    components(surface, split, |(t, u)| {
+        let (a, b) = (split.parent[t as usize], split.parent[u as usize]);
+        if a == b {
+            return false;
+        }
+        let (Some(n), Some(m)) = (normals.get(a as usize), normals.get(b as usize)) else {
+            return false;
+        };
+        let len = (dot(n, n) * dot(m, m)).sqrt();
+        len > 0.0 && dot(n, m) < cos_max * len
+    })
+}
+
+/// The components of `split`'s triangles across edges that are not curve edges and on which
+/// `crease` (given the two triangles of a manifold edge) is false.
+fn components(
+    surface: &str,
+    split: &SplitSurface,
+    crease: impl Fn((u32, u32)) -> bool,
+) -> Vec<Patch> {
     let m = &split.mesh;
     let n = m.triangles.len();
     let nv = m.vertices.len() as u32;
@@ -78,6 +131,11 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
     let uses = sorted;
     for run in uses.chunk_by(|x, y| x.0 == y.0) {
         if split.curve_edges.binary_search(&run[0].0).is_ok() {
+            continue;
+        }
+        if let [x, y] = run
+            && crease((x.1, y.1))
+        {
             continue;
         }
         for w in run.windows(2) {
@@ -188,6 +246,54 @@ mod tests {
             crossings: Vec::new(),
             curve_edges: if curve { vec![[0, 2]] } else { Vec::new() },
         }
+    }
+
+    /// Two triangles sharing edge 0-2, the second bent about it by `deg` degrees out of the
+    /// plane, as one unsplit surface (each triangle its own parent), or with the first triangle
+    /// split into two slivers along a line through vertex 0 (both children of one parent).
+    fn bent(deg: f64, sliver: bool) -> (SplitSurface, TriMesh) {
+        let (s, c) = deg.to_radians().sin_cos();
+        // Vertex 3 rotates about the diagonal (0,0,0)-(1,1,0) by `deg`.
+        let d = [0.5 - 0.5 * c, 0.5 + 0.5 * c, s / std::f64::consts::SQRT_2];
+        let vertices = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], d];
+        let original = TriMesh::new(vertices.clone(), vec![[0, 1, 2], [0, 2, 3]]);
+        let mut split = SplitSurface {
+            mesh: original.clone(),
+            parent: vec![0, 1],
+            vertex_of: BTreeMap::new(),
+            vertex_of_each: Vec::new(),
+            crossings: Vec::new(),
+            curve_edges: Vec::new(),
+        };
+        if sliver {
+            // Triangle 0 cut by the line from vertex 0 to a point on edge 1-2 very close to 2.
+            let mut v = vertices;
+            v.push([1.0, 1.0 - 1e-9, 0.0]);
+            split.mesh = TriMesh::new(v, vec![[0, 1, 4], [0, 4, 2], [0, 2, 3]]);
+            split.parent = vec![0, 0, 1];
+        }
+        (split, original)
+    }
+
+    #[test]
+    fn a_bend_sharper_than_the_kink_angle_is_a_crease_between_two_patches() {
+        for (deg, patches_wanted) in [(10.0, 1), (29.0, 1), (31.0, 2), (90.0, 2), (150.0, 2)] {
+            let (split, original) = bent(deg, false);
+            let ps = patches_at_creases("s", &split, &original, 30.0);
+            assert_eq!(ps.len(), patches_wanted, "bent by {deg} degrees");
+            assert_eq!(patches("s", &split).len(), 1, "without creases");
+        }
+    }
+
+    #[test]
+    fn slivers_that_splitting_makes_inside_one_triangle_never_make_a_crease() {
+        // The sliver's own normal is ill-conditioned; its parent's is not.
+        let (split, original) = bent(10.0, true);
+        assert_eq!(patches_at_creases("s", &split, &original, 30.0).len(), 1);
+        let (split, original) = bent(60.0, true);
+        let ps = patches_at_creases("s", &split, &original, 30.0);
+        assert_eq!(ps.len(), 2);
+        assert_eq!(ps.iter().map(|p| p.triangles.len()).sum::<usize>(), 3);
     }
 
     #[test]

@@ -54,7 +54,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        5
+        6
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -96,7 +96,8 @@ impl Operation for ModelOp {
             .iter()
             .enumerate()
             .flat_map(|(i, sp)| {
-                patches::patches(&surfaces[i].name, sp)
+                let s = &surfaces[i];
+                patches::patches_at_creases(&s.name, sp, &s.mesh, self.tolerances.kink_angle_deg)
                     .into_iter()
                     .map(move |p| (i, p))
             })
