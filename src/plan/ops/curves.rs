@@ -195,6 +195,9 @@ pub struct DiscretizeOp {
     /// Recipe path of the rule that applies (`mesh.curves."F1/H1"` or `mesh.size`).
     pub rule_path: String,
     pub rule: Subdivision,
+    /// The fewest segments the curve may have (1: no constraint): a patch loop of two curves
+    /// needs two on each, a loop of one closed curve three, so that every loop has three nodes.
+    pub min_segments: u32,
 }
 
 impl Operation for DiscretizeOp {
@@ -229,6 +232,10 @@ impl Operation for DiscretizeOp {
                     .expect("string");
             }
         }
+        if self.min_segments > 1 {
+            // Derived from the model's loops, not written in the recipe.
+            p.set("model.min_segments", self.min_segments).expect("int");
+        }
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -236,8 +243,12 @@ impl Operation for DiscretizeOp {
             .first()
             .ok_or("discretize needs its curve")?
             .decode()?;
-        let nodes = discretize(&c.polyline, &self.rule)
-            .map_err(|e| OpError::from(format!("curve `{}`: {e}", self.name)))?;
+        let fail = |e| OpError::from(format!("curve `{}`: {e}", self.name));
+        let mut nodes = discretize(&c.polyline, &self.rule).map_err(fail)?;
+        if nodes.len() < self.min_segments as usize + 1 {
+            nodes =
+                discretize(&c.polyline, &Subdivision::Count(self.min_segments)).map_err(fail)?;
+        }
         let n = nodes.len() as u64;
         Ok(Output::new(Artifact::encode(&CurveNodes {
             name: self.name.clone(),
@@ -272,6 +283,7 @@ impl Expander for DiscretizeExpander {
                 &c.name,
                 curves_node,
                 false,
+                1,
             )?);
         }
         let (export_inputs, groups) = Wiring::new()
@@ -286,13 +298,15 @@ impl Expander for DiscretizeExpander {
 }
 
 /// Adds `curve:<name>` (extracted from `source`: the model, or the curve set) and
-/// `discretize:<name>` under the recipe's rule for that curve; returns the discretize node.
+/// `discretize:<name>` under the recipe's rule for that curve, with at least `min_segments`
+/// segments; returns the discretize node.
 pub(super) fn add_curve_nodes(
     x: &mut Expansion,
     recipe: &Recipe,
     name: &str,
     source: NodeId,
     from_model: bool,
+    min_segments: u32,
 ) -> Result<NodeId, OpError> {
     let extract = x
         .add_op(
@@ -311,6 +325,7 @@ pub(super) fn add_curve_nodes(
             name: name.to_string(),
             rule_path,
             rule,
+            min_segments,
         }),
         &[extract],
     )
@@ -330,4 +345,65 @@ pub(super) fn existing_nodes(x: &Expansion, names: &[String]) -> Result<Vec<Node
 
 pub(super) fn graph_error(e: engine::GraphError) -> OpError {
     OpError::from(e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct Quiet;
+    impl RunContext for Quiet {
+        fn progress(&self, _: u64, _: u64) {}
+    }
+
+    /// The nodes of a 100 m straight curve discretized at 250 m with at least `min` segments.
+    fn nodes(min: u32) -> Vec<[f64; 3]> {
+        let op = DiscretizeOp {
+            name: "c".into(),
+            rule_path: "mesh.size".into(),
+            rule: Subdivision::Size {
+                size: 250.0,
+                ratio: 1.0,
+                grading: Grading::Geometric,
+            },
+            min_segments: min,
+        };
+        let curve = ModelCurve {
+            name: "c".into(),
+            surfaces: vec!["s".into()],
+            polyline: vec![[0.0, 0.0, 0.0], [100.0, 0.0, 0.0]],
+            closed: false,
+        };
+        let out = op
+            .run(&Quiet, &[Artifact::encode(&curve).unwrap()])
+            .unwrap();
+        out.artifact.decode::<CurveNodes>().unwrap().nodes
+    }
+
+    #[test]
+    fn a_curve_shorter_than_its_size_gets_the_segments_its_loops_need() {
+        assert_eq!(nodes(1).len(), 2, "one segment by size alone");
+        assert_eq!(nodes(2).len(), 3);
+        assert_eq!(
+            nodes(3),
+            vec![
+                [0.0; 3],
+                [100.0 / 3.0, 0.0, 0.0],
+                [200.0 / 3.0, 0.0, 0.0],
+                [100.0, 0.0, 0.0]
+            ]
+        );
+    }
+
+    #[test]
+    fn a_minimum_enters_the_key_only_where_it_binds() {
+        let op = |min_segments| DiscretizeOp {
+            name: "c".into(),
+            rule_path: "mesh.size".into(),
+            rule: Subdivision::Count(4),
+            min_segments,
+        };
+        assert!(op(1).params().get("model.min_segments").is_none());
+        assert!(op(2).params().get("model.min_segments").is_some());
+    }
 }
