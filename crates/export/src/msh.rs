@@ -15,6 +15,7 @@
 
 use super::{bbox_of, property_names, split_by};
 use geom::mesh::{SurfaceKind, VolumeMesh};
+use std::collections::BTreeMap;
 use std::io::Write as _;
 
 /// One value of a record: printed space-separated in ASCII, packed little-endian in binary.
@@ -108,8 +109,32 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         binary,
         buf: Vec::new(),
     };
+    mesh_format(&mut o);
+    physical_names(&mut o, mesh);
+    surface_kinds(&mut o, mesh);
+    let tris_by_group = split_by(&mesh.triangle_group, mesh.surface_groups.len());
+    let tets_by_region = split_by(&mesh.tet_region, mesh.regions.len());
+    entities(&mut o, mesh, &tris_by_group, &tets_by_region);
+    nodes(&mut o, mesh);
+    let total = elements(&mut o, mesh, &tris_by_group, &tets_by_region);
+    // Attributes as element data, in element-tag order: the order the elements were written
+    // in (tets by region, then triangles by group), so the tags are 1, 2, ... again.
+    if total > 0 && !mesh.regions.is_empty() {
+        let order = Order {
+            tets: &tets_by_region,
+            tris: &tris_by_group,
+            total: total as usize,
+        };
+        attributes(&mut o, mesh, &order);
+    }
+    o.buf.shrink_to_fit();
+    o.buf
+}
+
+/// `$MeshFormat`: version 4.1, ASCII or binary, 8-byte `size_t` (binary adds the endianness int).
+fn mesh_format(o: &mut Out) {
     o.text("$MeshFormat\n");
-    if binary {
+    if o.binary {
         o.text("4.1 1 8\n");
         o.buf.extend_from_slice(&1i32.to_le_bytes());
         o.text("\n");
@@ -117,8 +142,10 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         o.text("4.1 0 8\n");
     }
     o.text("$EndMeshFormat\n");
+}
 
-    // Physical names (always ASCII).
+/// `$PhysicalNames` (always ASCII): surface groups as 2D physicals, then regions as 3D ones.
+fn physical_names(o: &mut Out, mesh: &VolumeMesh) {
     o.text("$PhysicalNames\n");
     o.text(&format!(
         "{}\n",
@@ -131,8 +158,11 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         o.text(&format!("3 {} {}\n", tag(r), quoted(&rg.name)));
     }
     o.text("$EndPhysicalNames\n");
-    // What each 2D group is, geologically (a section Gmsh and meshio skip, as the format allows;
-    // our reader uses it to restore the surface kinds).
+}
+
+/// `$GeorecipeSurfaceKinds`: what each 2D group is, geologically (a section Gmsh and meshio skip,
+/// as the format allows; our reader uses it to restore the surface kinds).
+fn surface_kinds(o: &mut Out, mesh: &VolumeMesh) {
     o.text(&format!(
         "$GeorecipeSurfaceKinds\n{}\n",
         mesh.surface_groups.len()
@@ -141,11 +171,16 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         o.text(&format!("2 {} {}\n", tag(g), kind_name(sg.kind)));
     }
     o.text("$EndGeorecipeSurfaceKinds\n");
+}
 
-    let tris_by_group = split_by(&mesh.triangle_group, mesh.surface_groups.len());
-    let tets_by_region = split_by(&mesh.tet_region, mesh.regions.len());
-
-    // Entities.
+/// `$Entities`: one surface per group, then one volume per region, each with its bounding box
+/// and its one physical tag.
+fn entities(
+    o: &mut Out,
+    mesh: &VolumeMesh,
+    tris_by_group: &[Vec<usize>],
+    tets_by_region: &[Vec<usize>],
+) {
     o.text("$Entities\n");
     o.rec(&[
         F::S(0),
@@ -170,23 +205,21 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
     };
     for (g, sel) in tris_by_group.iter().enumerate() {
         entity(
-            &mut o,
+            o,
             g,
             bbox_of(mesh, sel.iter().map(|&t| &mesh.triangles[t][..])),
         );
     }
     for (r, sel) in tets_by_region.iter().enumerate() {
-        entity(
-            &mut o,
-            r,
-            bbox_of(mesh, sel.iter().map(|&t| &mesh.tets[t][..])),
-        );
+        entity(o, r, bbox_of(mesh, sel.iter().map(|&t| &mesh.tets[t][..])));
     }
     o.end("Entities");
+}
 
-    // Nodes: each on the entity of lowest dimension that holds it (the first surface group
-    // among its triangles, else the region of its first tet; unused nodes on the first entity),
-    // one block per entity, surfaces then volumes. Tags stay node index + 1 (sparse per block).
+/// The entity each node is classified on, as (dimension, index) → its nodes in index order: the
+/// entity of lowest dimension that holds it (the first surface group among its triangles, else
+/// the region of its first tet; unused nodes on the first entity).
+fn node_blocks(mesh: &VolumeMesh) -> BTreeMap<(i32, usize), Vec<usize>> {
     let n = mesh.nodes.len();
     let mut home: Vec<Option<(i32, usize)>> = vec![None; n];
     for (t, tri) in mesh.triangles.iter().enumerate() {
@@ -214,12 +247,19 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
     } else {
         None
     };
-    let mut blocks: std::collections::BTreeMap<(i32, usize), Vec<usize>> = Default::default();
+    let mut blocks: BTreeMap<(i32, usize), Vec<usize>> = Default::default();
     for (v, h) in home.iter().enumerate() {
         if let Some(key) = h.or(fallback) {
             blocks.entry(key).or_default().push(v);
         }
     }
+    blocks
+}
+
+/// `$Nodes`: one block per entity, surfaces then volumes. Tags stay node index + 1 (sparse per
+/// block).
+fn nodes(o: &mut Out, mesh: &VolumeMesh) {
+    let blocks = node_blocks(mesh);
     let written: usize = blocks.values().map(Vec::len).sum();
     o.text("$Nodes\n");
     let (lo, hi) = (
@@ -243,8 +283,16 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         }
     }
     o.end("Nodes");
+}
 
-    // Elements: tets per region, then triangles per group; tags 1.. in that order.
+/// `$Elements`: tets per region, then triangles per group; tags 1.. in that order. Returns the
+/// number of elements.
+fn elements(
+    o: &mut Out,
+    mesh: &VolumeMesh,
+    tris_by_group: &[Vec<usize>],
+    tets_by_region: &[Vec<usize>],
+) -> u64 {
     let blocks = tets_by_region.iter().filter(|s| !s.is_empty()).count()
         + tris_by_group.iter().filter(|s| !s.is_empty()).count();
     let total = (mesh.tets.len() + mesh.triangles.len()) as u64;
@@ -292,31 +340,25 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
         }
     }
     o.end("Elements");
+    total
+}
 
-    // Attributes as element data, in element-tag order: the order the elements were written
-    // in (tets by region, then triangles by group), so the tags are 1, 2, ... again.
-    if total > 0 && !mesh.regions.is_empty() {
-        let order = Order {
-            tets: &tets_by_region,
-            tris: &tris_by_group,
-            total: total as usize,
+/// `$ElementData` views: "material" (-1 where none and on triangles), then one per region
+/// property (NaN where undefined).
+fn attributes(o: &mut Out, mesh: &VolumeMesh, order: &Order) {
+    let region_of = |t: usize| &mesh.regions[mesh.tet_region[t] as usize];
+    let material = |t: Option<usize>| {
+        t.and_then(|t| region_of(t).material)
+            .map_or(-1.0, |m| m as f64)
+    };
+    element_data(o, "material", order, material);
+    for name in property_names(mesh) {
+        let value = |t: Option<usize>| {
+            t.and_then(|t| region_of(t).properties.get(&name).copied())
+                .unwrap_or(f64::NAN)
         };
-        let region_of = |t: usize| &mesh.regions[mesh.tet_region[t] as usize];
-        let material = |t: Option<usize>| {
-            t.and_then(|t| region_of(t).material)
-                .map_or(-1.0, |m| m as f64)
-        };
-        element_data(&mut o, "material", &order, material);
-        for name in property_names(mesh) {
-            let value = |t: Option<usize>| {
-                t.and_then(|t| region_of(t).properties.get(&name).copied())
-                    .unwrap_or(f64::NAN)
-            };
-            element_data(&mut o, &name, &order, value);
-        }
+        element_data(o, &name, order, value);
     }
-    o.buf.shrink_to_fit();
-    o.buf
 }
 
 /// The elements in tag order: `Some(tet)` for each tet by region, then `None` per triangle.

@@ -61,8 +61,53 @@ fn turn_deg(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> Option<f64> {
 /// Builds the model's vertices, named curves and patch boundaries from conforming patches.
 pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopology, ModelError> {
     let (points, ids) = weld(patches);
-    // Every triangle edge, with its patch and whether the triangle runs it from low to high id.
-    let mut edges: Vec<(u32, u32, u32, bool)> = Vec::new();
+    let edges = triangle_edges(patches, &ids)?;
+    let (sig_list, curve_edges, borders) = classify_edges(&edges);
+    let graph = CurveGraph::new(&points, &curve_edges);
+    let nv = points.len();
+    let vertex_flags: Vec<bool> = (0..nv as u32).map(|v| graph.is_vertex(v, tol)).collect();
+    let chains = graph.chains(&vertex_flags);
+    let (curves, curve_sig, chain_to_curve) = name_curves(patches, &points, &sig_list, &chains);
+
+    // Each curve edge's curve, and whether the curve runs it from low to high id.
+    let mut edge_curve = vec![(u32::MAX, false); curve_edges.len()];
+    for (ci, (vs, es, _, _)) in chains.iter().enumerate() {
+        for (k, &e) in es.iter().enumerate() {
+            edge_curve[e as usize] = (chain_to_curve[ci], vs[k] < vs[k + 1]);
+        }
+    }
+    let patch_bounds = patch_boundaries(
+        patches,
+        &curves,
+        &borders,
+        &edge_curve,
+        &curve_sig,
+        &sig_list,
+    )?;
+    let vertices: Vec<[f64; 3]> = (0..nv)
+        .filter(|&v| vertex_flags[v])
+        .map(|v| points[v])
+        .collect();
+    Ok(ModelTopology {
+        vertices,
+        curves,
+        patches: patch_bounds,
+    })
+}
+
+/// A chain of curve edges: vertex ids, edge ids, signature, closed.
+type Chain = (Vec<u32>, Vec<u32>, u32, bool);
+
+/// A triangle edge: low id, high id, patch, whether the triangle runs it from low to high id.
+type TriEdge = (u32, u32, u32, bool);
+
+/// A patch's border half-edge: patch, curve edge, whether it runs low→high.
+type Border = (u32, u32, bool);
+
+/// Every triangle edge, with its patch and whether the triangle runs it from low to high id;
+/// sorted. Rejects triangles that index past their patch's vertices.
+fn triangle_edges(patches: &[PatchIn], ids: &[Vec<u32>]) -> Result<Vec<TriEdge>, ModelError> {
+    let mut edges: Vec<TriEdge> = Vec::new();
     for (p, patch) in patches.iter().enumerate() {
         for t in &patch.mesh.triangles {
             let g = t.map(|v| ids[p].get(v as usize).copied().unwrap_or(u32::MAX));
@@ -81,10 +126,16 @@ pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopo
         }
     }
     edges.sort_unstable();
+    Ok(edges)
+}
+
+/// Which edges are curve edges (patch borders or shared by several patches), their signatures
+/// (indexed by first appearance), and each patch's border half-edges as
+/// (patch, curve edge, runs low→high).
+fn classify_edges(edges: &[TriEdge]) -> (Vec<Signature>, Vec<CurveEdge>, Vec<Border>) {
     let mut sigs: BTreeMap<Signature, u32> = BTreeMap::new();
     let mut curve_edges: Vec<CurveEdge> = Vec::new();
-    // Border half-edges of each patch: (patch, curve edge, runs low→high).
-    let mut borders: Vec<(u32, u32, bool)> = Vec::new();
+    let mut borders: Vec<Border> = Vec::new();
     let mut i = 0;
     while i < edges.len() {
         let (a, b) = (edges[i].0, edges[i].1);
@@ -114,71 +165,98 @@ pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopo
         }
         i = j;
     }
-    let sig_list: Vec<Signature> = {
-        let mut v = vec![Vec::new(); sigs.len()];
-        for (s, i) in sigs {
-            v[i as usize] = s;
-        }
-        v
-    };
+    let mut sig_list = vec![Vec::new(); sigs.len()];
+    for (s, i) in sigs {
+        sig_list[i as usize] = s;
+    }
+    (sig_list, curve_edges, borders)
+}
 
-    // Vertex → incident curve edges (compressed rows).
-    let nv = points.len();
-    let mut start = vec![0u32; nv + 1];
-    for e in &curve_edges {
-        start[e.a as usize + 1] += 1;
-        start[e.b as usize + 1] += 1;
-    }
-    for k in 0..nv {
-        start[k + 1] += start[k];
-    }
-    let mut fill = start.clone();
-    let mut inc = vec![0u32; start[nv] as usize];
-    for (k, e) in curve_edges.iter().enumerate() {
-        for v in [e.a, e.b] {
-            inc[fill[v as usize] as usize] = k as u32;
-            fill[v as usize] += 1;
+/// The curve edges around each welded vertex (compressed rows).
+struct CurveGraph<'a> {
+    points: &'a [[f64; 3]],
+    curve_edges: &'a [CurveEdge],
+    start: Vec<u32>,
+    inc: Vec<u32>,
+}
+
+impl<'a> CurveGraph<'a> {
+    /// Lists every vertex's incident curve edges, in edge order.
+    fn new(points: &'a [[f64; 3]], curve_edges: &'a [CurveEdge]) -> Self {
+        let nv = points.len();
+        let mut start = vec![0u32; nv + 1];
+        for e in curve_edges {
+            start[e.a as usize + 1] += 1;
+            start[e.b as usize + 1] += 1;
+        }
+        for k in 0..nv {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut inc = vec![0u32; start[nv] as usize];
+        for (k, e) in curve_edges.iter().enumerate() {
+            for v in [e.a, e.b] {
+                inc[fill[v as usize] as usize] = k as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        CurveGraph {
+            points,
+            curve_edges,
+            start,
+            inc,
         }
     }
-    let incident = |v: u32| &inc[start[v as usize] as usize..start[v as usize + 1] as usize];
-    let other = |e: u32, v: u32| {
-        let ce = &curve_edges[e as usize];
+
+    fn incident(&self, v: u32) -> &[u32] {
+        &self.inc[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
+    }
+
+    fn other(&self, e: u32, v: u32) -> u32 {
+        let ce = &self.curve_edges[e as usize];
         if ce.a == v { ce.b } else { ce.a }
-    };
-    let is_vertex = |v: u32| {
-        let es = incident(v);
+    }
+
+    /// Whether `v` is a topological vertex: a curve end, a junction, a change of signature, or a
+    /// kink sharper than the kink angle.
+    fn is_vertex(&self, v: u32, tol: &Tolerances) -> bool {
+        let es = self.incident(v);
         if es.len() != 2 {
             return !es.is_empty();
         }
-        if curve_edges[es[0] as usize].sig != curve_edges[es[1] as usize].sig {
+        if self.curve_edges[es[0] as usize].sig != self.curve_edges[es[1] as usize].sig {
             return true;
         }
-        let (a, c) = (other(es[0], v), other(es[1], v));
+        let (a, c) = (self.other(es[0], v), self.other(es[1], v));
         turn_deg(
-            &points[a as usize],
-            &points[v as usize],
-            &points[c as usize],
+            &self.points[a as usize],
+            &self.points[v as usize],
+            &self.points[c as usize],
         )
         .is_some_and(|d| d > tol.kink_angle_deg)
-    };
-    let vertex_flags: Vec<bool> = (0..nv as u32).map(is_vertex).collect();
+    }
 
-    // Chains of curve edges: (vertex ids, edge ids, signature).
-    let mut visited = vec![false; curve_edges.len()];
-    let mut chains: Vec<(Vec<u32>, Vec<u32>, u32, bool)> = Vec::new();
-    let walk = |v0: u32, e0: u32, visited: &mut Vec<bool>| {
+    /// Follows curve edges from `v0` along `e0` until a topological vertex, back to `v0`, or an
+    /// already visited edge.
+    fn walk(
+        &self,
+        vertex_flags: &[bool],
+        v0: u32,
+        e0: u32,
+        visited: &mut [bool],
+    ) -> (Vec<u32>, Vec<u32>) {
         let mut vs = vec![v0];
         let mut es = Vec::new();
         let (mut v, mut e) = (v0, e0);
         loop {
             visited[e as usize] = true;
             es.push(e);
-            let w = other(e, v);
+            let w = self.other(e, v);
             vs.push(w);
             if vertex_flags[w as usize] || w == v0 {
                 break;
             }
-            match incident(w).iter().copied().find(|&f| f != e) {
+            match self.incident(w).iter().copied().find(|&f| f != e) {
                 Some(f) if !visited[f as usize] => {
                     v = w;
                     e = f;
@@ -187,34 +265,50 @@ pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopo
             }
         }
         (vs, es)
-    };
-    for v in 0..nv as u32 {
-        if !vertex_flags[v as usize] {
-            continue;
-        }
-        for &e in incident(v) {
-            if !visited[e as usize] {
-                let (vs, es) = walk(v, e, &mut visited);
-                let sig = curve_edges[e as usize].sig;
-                chains.push((vs, es, sig, false));
-            }
-        }
-    }
-    // What is left are closed loops through no topological vertex.
-    for e in 0..curve_edges.len() as u32 {
-        if visited[e as usize] {
-            continue;
-        }
-        let v0 = curve_edges[e as usize].a;
-        let (vs, es) = walk(v0, e, &mut visited);
-        let sig = curve_edges[e as usize].sig;
-        chains.push((vs, es, sig, true));
-    }
-    for (vs, es, _, closed) in &mut chains {
-        canonical_direction(vs, es, *closed);
     }
 
-    // Names: surface set, then rank by the canonical polyline (ids are in coordinate order).
+    /// Cuts the curve edges into chains between topological vertices, then closed loops through
+    /// none, each in canonical direction.
+    fn chains(&self, vertex_flags: &[bool]) -> Vec<Chain> {
+        let mut visited = vec![false; self.curve_edges.len()];
+        let mut chains: Vec<Chain> = Vec::new();
+        for v in 0..self.points.len() as u32 {
+            if !vertex_flags[v as usize] {
+                continue;
+            }
+            for &e in self.incident(v) {
+                if !visited[e as usize] {
+                    let (vs, es) = self.walk(vertex_flags, v, e, &mut visited);
+                    let sig = self.curve_edges[e as usize].sig;
+                    chains.push((vs, es, sig, false));
+                }
+            }
+        }
+        // What is left are closed loops through no topological vertex.
+        for e in 0..self.curve_edges.len() as u32 {
+            if visited[e as usize] {
+                continue;
+            }
+            let v0 = self.curve_edges[e as usize].a;
+            let (vs, es) = self.walk(vertex_flags, v0, e, &mut visited);
+            let sig = self.curve_edges[e as usize].sig;
+            chains.push((vs, es, sig, true));
+        }
+        for (vs, es, _, closed) in &mut chains {
+            canonical_direction(vs, es, *closed);
+        }
+        chains
+    }
+}
+
+/// Names the chains: by surface set, then rank by the canonical polyline (ids are in coordinate
+/// order). Returns the curves, each curve's signature, and each chain's curve.
+fn name_curves(
+    patches: &[PatchIn],
+    points: &[[f64; 3]],
+    sig_list: &[Signature],
+    chains: &[Chain],
+) -> (Vec<Curve>, Vec<u32>, Vec<u32>) {
     let surfaces_of = |sig: u32| {
         let mut s: Vec<String> = sig_list[sig as usize]
             .iter()
@@ -262,31 +356,7 @@ pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopo
         }
         g = h;
     }
-
-    // Each curve edge's curve, and whether the curve runs it from low to high id.
-    let mut edge_curve = vec![(u32::MAX, false); curve_edges.len()];
-    for (ci, (vs, es, _, _)) in chains.iter().enumerate() {
-        for (k, &e) in es.iter().enumerate() {
-            edge_curve[e as usize] = (chain_to_curve[ci], vs[k] < vs[k + 1]);
-        }
-    }
-    let patch_bounds = patch_boundaries(
-        patches,
-        &curves,
-        &borders,
-        &edge_curve,
-        &curve_sig,
-        &sig_list,
-    )?;
-    let vertices: Vec<[f64; 3]> = (0..nv)
-        .filter(|&v| vertex_flags[v])
-        .map(|v| points[v])
-        .collect();
-    Ok(ModelTopology {
-        vertices,
-        curves,
-        patches: patch_bounds,
-    })
+    (curves, curve_sig, chain_to_curve)
 }
 
 /// Open chains run from their smaller end (ties: smaller second point); closed loops start at

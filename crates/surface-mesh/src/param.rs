@@ -250,7 +250,52 @@ pub fn first_non_positive(s: &TriMesh, uv: &[[f64; 2]]) -> Option<usize> {
 fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
     let nv = s.vertices.len();
     // Outer loop: the longest one.
-    let lens: Vec<f64> = loops
+    let lens = loop_lengths(s, loops);
+    let mut outer = 0;
+    for (i, &l) in lens.iter().enumerate() {
+        if l > lens[outer] {
+            outer = i;
+        }
+    }
+    let total = lens[outer];
+    if !(total > 0.0) {
+        return Err(err("the support border has zero length".into(), None));
+    }
+    // Unknowns: support vertices not on the outer loop, plus one cone vertex per other loop.
+    let ncone = loops.len() - 1;
+    let n = nv + ncone;
+    let mut pinned = vec![false; n];
+    let mut uv = vec![[0.0f64; 2]; n];
+    pin_outer(s, &loops[outer], total, &mut uv, &mut pinned);
+    let (edges, used) = weights(s, loops, outer, &lens);
+    for (v, u) in used.iter().enumerate() {
+        if !u {
+            pinned[v] = true;
+        }
+    }
+    let lap = Laplacian::new(&edges, n);
+    for k in 0..2 {
+        let x = lap.solve(&pinned, &uv, k);
+        for i in 0..n {
+            if !pinned[i] {
+                uv[i][k] = x[i];
+            }
+        }
+    }
+    uv.truncate(nv);
+    if let Some(t) = first_non_positive(s, &uv) {
+        let [a, b, c] = s.corners(t);
+        return Err(err(
+            "the support cannot be flattened without folding (a triangle inverts in its Tutte embedding)".into(),
+            Some([(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0]),
+        ));
+    }
+    Ok(uv)
+}
+
+/// The 3D length of each border loop.
+fn loop_lengths(s: &TriMesh, loops: &[Vec<u32>]) -> Vec<f64> {
+    loops
         .iter()
         .map(|l| {
             (0..l.len())
@@ -262,37 +307,33 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
                 })
                 .sum()
         })
-        .collect();
-    let mut outer = 0;
-    for (i, &l) in lens.iter().enumerate() {
-        if l > lens[outer] {
-            outer = i;
-        }
-    }
-    let total = lens[outer];
-    if !(total > 0.0) {
-        return Err(err("the support border has zero length".into(), None));
-    }
+        .collect()
+}
+
+/// Pins the outer loop to a circle of perimeter `total`, by arc length from its first vertex.
+fn pin_outer(s: &TriMesh, l: &[u32], total: f64, uv: &mut [[f64; 2]], pinned: &mut [bool]) {
     let radius = total / (2.0 * std::f64::consts::PI);
-    // Unknowns: support vertices not on the outer loop, plus one cone vertex per other loop.
-    let ncone = loops.len() - 1;
-    let n = nv + ncone;
-    let mut pinned = vec![false; n];
-    let mut uv = vec![[0.0f64; 2]; n];
-    {
-        let l = &loops[outer];
-        let mut acc = 0.0;
-        for i in 0..l.len() {
-            let ang = 2.0 * std::f64::consts::PI * acc / total;
-            uv[l[i] as usize] = [radius * ang.cos(), radius * ang.sin()];
-            pinned[l[i] as usize] = true;
-            acc += dist(
-                &s.vertices[l[i] as usize],
-                &s.vertices[l[(i + 1) % l.len()] as usize],
-            );
-        }
+    let mut acc = 0.0;
+    for i in 0..l.len() {
+        let ang = 2.0 * std::f64::consts::PI * acc / total;
+        uv[l[i] as usize] = [radius * ang.cos(), radius * ang.sin()];
+        pinned[l[i] as usize] = true;
+        acc += dist(
+            &s.vertices[l[i] as usize],
+            &s.vertices[l[(i + 1) % l.len()] as usize],
+        );
     }
-    // Symmetric weights, accumulated per undirected edge (deterministic order).
+}
+
+/// Symmetric weights per undirected edge (inverse lengths; each inner loop's vertices tied to
+/// its cone vertex by the inverse mean edge length), and which support vertices triangles use.
+fn weights(
+    s: &TriMesh,
+    loops: &[Vec<u32>],
+    outer: usize,
+    lens: &[f64],
+) -> (BTreeMap<(u32, u32), f64>, Vec<bool>) {
+    let nv = s.vertices.len();
     let mut edges: BTreeMap<(u32, u32), f64> = BTreeMap::new();
     let mut used = vec![false; nv];
     for t in &s.triangles {
@@ -316,38 +357,57 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
             edges.insert((v, cone), w);
         }
     }
-    for (v, u) in used.iter().enumerate() {
-        if !u {
-            pinned[v] = true;
+    (edges, used)
+}
+
+/// The weighted graph Laplacian in CSR form (rows in vertex order, entries in edge-key order).
+struct Laplacian {
+    n: usize,
+    deg: Vec<usize>,
+    col: Vec<u32>,
+    val: Vec<f64>,
+    diag: Vec<f64>,
+}
+
+impl Laplacian {
+    /// Builds the adjacency of `n` vertices from the weighted edges.
+    fn new(edges: &BTreeMap<(u32, u32), f64>, n: usize) -> Self {
+        let mut deg = vec![0usize; n + 1];
+        for &(a, b) in edges.keys() {
+            deg[a as usize + 1] += 1;
+            deg[b as usize + 1] += 1;
+        }
+        for i in 0..n {
+            deg[i + 1] += deg[i];
+        }
+        let mut fill = deg.clone();
+        let mut col = vec![0u32; deg[n]];
+        let mut val = vec![0.0; deg[n]];
+        for (&(a, b), &w) in edges {
+            col[fill[a as usize]] = b;
+            val[fill[a as usize]] = w;
+            fill[a as usize] += 1;
+            col[fill[b as usize]] = a;
+            val[fill[b as usize]] = w;
+            fill[b as usize] += 1;
+        }
+        let diag: Vec<f64> = (0..n)
+            .map(|i| val[deg[i]..deg[i + 1]].iter().sum())
+            .collect();
+        Laplacian {
+            n,
+            deg,
+            col,
+            val,
+            diag,
         }
     }
-    // CSR adjacency.
-    let mut deg = vec![0usize; n + 1];
-    for &(a, b) in edges.keys() {
-        deg[a as usize + 1] += 1;
-        deg[b as usize + 1] += 1;
-    }
-    for i in 0..n {
-        deg[i + 1] += deg[i];
-    }
-    let mut fill = deg.clone();
-    let mut col = vec![0u32; deg[n]];
-    let mut val = vec![0.0; deg[n]];
-    for (&(a, b), &w) in &edges {
-        col[fill[a as usize]] = b;
-        val[fill[a as usize]] = w;
-        fill[a as usize] += 1;
-        col[fill[b as usize]] = a;
-        val[fill[b as usize]] = w;
-        fill[b as usize] += 1;
-    }
-    let diag: Vec<f64> = (0..n)
-        .map(|i| val[deg[i]..deg[i + 1]].iter().sum())
-        .collect();
-    for k in 0..2 {
-        // A x = b on free vertices: A = D - W restricted, b = W * pinned values.
-        let mut b = vec![0.0; n];
-        for i in 0..n {
+
+    /// The right-hand side for coordinate `k`: b = W * pinned values, on free vertices.
+    fn rhs(&self, pinned: &[bool], uv: &[[f64; 2]], k: usize) -> Vec<f64> {
+        let (deg, col, val) = (&self.deg, &self.col, &self.val);
+        let mut b = vec![0.0; self.n];
+        for i in 0..self.n {
             if pinned[i] {
                 continue;
             }
@@ -358,22 +418,33 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
                 }
             }
         }
-        let apply = |x: &[f64], y: &mut [f64]| {
-            for i in 0..n {
-                if pinned[i] {
-                    y[i] = 0.0;
-                    continue;
-                }
-                let mut s = diag[i] * x[i];
-                for e in deg[i]..deg[i + 1] {
-                    let j = col[e] as usize;
-                    if !pinned[j] {
-                        s -= val[e] * x[j];
-                    }
-                }
-                y[i] = s;
+        b
+    }
+
+    /// y = A x with A = D - W restricted to free vertices (0 on pinned ones).
+    fn apply(&self, pinned: &[bool], x: &[f64], y: &mut [f64]) {
+        let (deg, col, val, diag) = (&self.deg, &self.col, &self.val, &self.diag);
+        for i in 0..self.n {
+            if pinned[i] {
+                y[i] = 0.0;
+                continue;
             }
-        };
+            let mut s = diag[i] * x[i];
+            for e in deg[i]..deg[i + 1] {
+                let j = col[e] as usize;
+                if !pinned[j] {
+                    s -= val[e] * x[j];
+                }
+            }
+            y[i] = s;
+        }
+    }
+
+    /// Solves A x = b for coordinate `k` on the free vertices by Jacobi-preconditioned conjugate
+    /// gradients (fixed iteration cap, stops on a small residual or a non-positive curvature).
+    fn solve(&self, pinned: &[bool], uv: &[[f64; 2]], k: usize) -> Vec<f64> {
+        let (n, diag) = (self.n, &self.diag);
+        let b = self.rhs(pinned, uv, k);
         let mut x = vec![0.0; n];
         let mut r = b.clone();
         let mut z: Vec<f64> = (0..n)
@@ -392,7 +463,7 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
             if rn <= 1e-14 * bnorm {
                 break;
             }
-            apply(&p, &mut ap);
+            self.apply(pinned, &p, &mut ap);
             let pap: f64 = (0..n).map(|i| p[i] * ap[i]).sum();
             if !(pap > 0.0) {
                 break;
@@ -412,19 +483,6 @@ fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
                 p[i] = z[i] + beta * p[i];
             }
         }
-        for i in 0..n {
-            if !pinned[i] {
-                uv[i][k] = x[i];
-            }
-        }
+        x
     }
-    uv.truncate(nv);
-    if let Some(t) = first_non_positive(s, &uv) {
-        let [a, b, c] = s.corners(t);
-        return Err(err(
-            "the support cannot be flattened without folding (a triangle inverts in its Tutte embedding)".into(),
-            Some([(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0]),
-        ));
-    }
-    Ok(uv)
 }
