@@ -9,18 +9,18 @@ use gocad::import::{ImportOptions, import_surfaces};
 use model::regions::{Dangling, PatchIn, RegionOptions, find_regions_with};
 use std::collections::{BTreeMap, BTreeSet};
 use std::hint::black_box;
+use test_support::paths;
 
 fn model_a4() -> Option<(Vec<PatchIn>, BTreeSet<String>)> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data/modelA4.ml"
-    );
-    let bytes = std::fs::read(path).ok()?;
+    let path = paths::shared("data/gocad/ringmesh__RINGMesh/tests/data/modelA4.ml")?;
+    let bytes = std::fs::read(&path).expect("read modelA4.ml");
     let opts = ImportOptions {
         skip_other_types: true,
         ..Default::default()
     };
-    let surfaces = import_surfaces(&bytes, "modelA4.ml", &opts).ok()?;
+    let surfaces = import_surfaces(&bytes, "modelA4.ml", &opts)
+        .map_err(|e| eprintln!("skipping: modelA4.ml does not import: {e}"))
+        .ok()?;
     let mut patches = Vec::new();
     let mut faults = BTreeSet::new();
     for s in &surfaces {
@@ -56,7 +56,6 @@ fn model_a4() -> Option<(Vec<PatchIn>, BTreeSet<String>)> {
 
 fn regions(c: &mut Criterion) {
     let Some((patches, faults)) = model_a4() else {
-        eprintln!("skipping: ../shared is absent");
         return;
     };
     let opts = RegionOptions {

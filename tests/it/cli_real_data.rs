@@ -3,15 +3,13 @@
 
 use crate::common_cli;
 use common_cli::*;
-use std::path::Path;
+use test_support::paths;
 
 #[test]
 fn a_recipe_over_real_cfm_faults_builds_and_reports_what_it_repaired() {
-    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/gocad/SCECcode__CFM");
-    if !shared.is_dir() {
-        eprintln!("skipping: ../shared is absent");
+    let Some(shared) = paths::shared("data/gocad/SCECcode__CFM") else {
         return;
-    }
+    };
     let s = Scratch::didactic();
     let d = shared.display();
     let recipe = format!(

@@ -15,18 +15,10 @@ use gocad::import::{ImportOptions, import_surfaces, parse_gocad};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::Command;
+use test_support::paths;
 
 fn data_dir() -> Option<PathBuf> {
-    let p = PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data"
-    ));
-    if p.is_dir() {
-        Some(p)
-    } else {
-        eprintln!("skipping: ../shared is absent");
-        None
-    }
+    paths::shared("data/gocad/ringmesh__RINGMesh/tests/data")
 }
 
 /// A recipe surface name for a TSurf name: characters a recipe name may not hold become `_`,

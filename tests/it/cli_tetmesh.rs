@@ -1,36 +1,20 @@
 //! `recipe tetmesh` on boundaries that no one here wrote (meshed by Gmsh), checked by the
 //! independent checker `../shared/tools/check_mesh.py`.
 
+use crate::common_cli::checker;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use test_support::paths;
 
-fn shared() -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared");
-    if p.join("data/peer-boundaries").is_dir() {
-        Some(p)
-    } else {
-        eprintln!("skipping: ../shared is absent");
-        None
-    }
-}
-
-fn has_checker() -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", "import numpy, meshio"])
-        .status()
-        .map(|s| s.success())
-        .unwrap_or(false);
-    if !ok {
-        eprintln!("skipping the independent check: python3 with numpy and meshio is absent");
-    }
-    ok
+/// The Gmsh-meshed peer boundaries, or `None` (with a note) when ../shared lacks them.
+fn peer_dir() -> Option<PathBuf> {
+    paths::shared("data/peer-boundaries")
 }
 
 fn mesh_region(region: &str, embed_entity: Option<&str>) {
-    let Some(shared) = shared() else { return };
+    let Some(pb) = peer_dir() else { return };
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join(format!("{region}.msh"));
-    let pb = shared.join("data/peer-boundaries");
     let mut args: Vec<String> = vec![
         "tetmesh".into(),
         pb.join(format!("region_L1_{region}.off"))
@@ -56,9 +40,9 @@ fn mesh_region(region: &str, embed_entity: Option<&str>) {
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{err}");
     assert!(out.is_file());
-    if has_checker() {
+    if let Some(tool) = checker() {
         let check = Command::new("python3")
-            .arg(shared.join("tools/check_mesh.py"))
+            .arg(tool)
             .arg(&out)
             .args(["--regions", "1"])
             .output()
@@ -83,10 +67,8 @@ fn the_peer_meshed_reservoir_east_block_with_its_dangling_fault_meshes_and_passe
 
 #[test]
 fn a_boundary_given_inward_oriented_is_turned_around_exactly_and_meshes_the_same() {
-    let Some(shared) = shared() else { return };
-    let src =
-        std::fs::read_to_string(shared.join("data/peer-boundaries/region_L1_reservoir_W.off"))
-            .unwrap();
+    let Some(pb) = peer_dir() else { return };
+    let src = std::fs::read_to_string(pb.join("region_L1_reservoir_W.off")).unwrap();
     let lines: Vec<&str> = src.lines().collect();
     let counts: Vec<usize> = lines[1]
         .split_whitespace()
@@ -125,7 +107,7 @@ fn a_boundary_given_inward_oriented_is_turned_around_exactly_and_meshes_the_same
             .to_string()
     };
     let a = tets(
-        &shared.join("data/peer-boundaries/region_L1_reservoir_W.off"),
+        &pb.join("region_L1_reservoir_W.off"),
         &dir.path().join("a.msh"),
     );
     let b = tets(&input, &dir.path().join("b.msh"));

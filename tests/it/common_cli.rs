@@ -131,11 +131,7 @@ pub fn read_tree(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
 /// `../shared/tools/check_mesh.py` when it and python3 with numpy and meshio are present; else
 /// prints why the independent check is skipped.
 pub fn checker() -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/tools/check_mesh.py");
-    if !p.is_file() {
-        eprintln!("skipping the independent check: ../shared is absent");
-        return None;
-    }
+    let p = test_support::paths::shared("tools/check_mesh.py")?;
     let ok = Command::new("python3")
         .args(["-c", "import numpy, meshio"])
         .status()

@@ -2,6 +2,7 @@
 //! commented reference recipe, and the documented defaults and precedence rules.
 
 use std::path::{Path, PathBuf};
+use test_support::paths;
 
 use georecipe::recipe::{
     BoxExtent, Format, Grading, ImportFormat, OnInvalid, Recipe, Side, Subdivision, SurfaceKind,
@@ -240,14 +241,12 @@ fn region_sizes_default_to_the_global_bounds_clamped_around_the_region_size() {
 
 #[test]
 fn the_real_recipes_of_the_shared_data_parse_if_present() {
-    let shared = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared");
-    if !Path::new(shared).exists() {
-        eprintln!("skipping: ../shared is absent");
+    let Some(design) = paths::shared("DESIGN.md") else {
         return;
-    }
+    };
     // The DESIGN.md sample, verbatim, puts `intersect` under `[box]` (TOML scoping): the error
     // must explain the trap rather than say only "unknown key".
-    let design = std::fs::read_to_string(format!("{shared}/DESIGN.md")).unwrap_or_default();
+    let design = std::fs::read_to_string(design).unwrap_or_default();
     let Some(sample) = design
         .split("```toml\n")
         .nth(1)

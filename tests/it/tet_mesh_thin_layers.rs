@@ -2,31 +2,13 @@
 //! model cut it. Each case must mesh (the exact `verify` inside the mesher passes) and, when the
 //! independent checker is available, pass `check_mesh.py` too.
 
-use std::path::{Path, PathBuf};
+use crate::common_cli::checker;
+use std::path::PathBuf;
 use std::process::Command;
+use test_support::paths;
 
 fn case_dir(case: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/tet_mesh/thin_layers")
-        .join(case)
-}
-
-fn checker() -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/tools/check_mesh.py");
-    if !p.is_file() {
-        eprintln!("skipping the independent check: ../shared is absent");
-        return None;
-    }
-    let ok = Command::new("python3")
-        .args(["-c", "import numpy, meshio"])
-        .status()
-        .map(|s| s.success())
-        .unwrap_or(false);
-    if !ok {
-        eprintln!("skipping the independent check: python3 with numpy and meshio is absent");
-        return None;
-    }
-    Some(p)
+    paths::data("tet_mesh/thin_layers").join(case)
 }
 
 fn mesh_case(case: &str, region: &str, embedded: bool) {

@@ -8,8 +8,6 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-pub const SHARED: &str = concat!(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."), "/../shared");
-
 /// UTM-like offsets applied to x and y.
 pub const OX: f64 = 5.0e5;
 pub const OY: f64 = 7.0e6;

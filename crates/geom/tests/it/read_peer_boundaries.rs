@@ -5,17 +5,10 @@ use geom::mesh::read::{BoundaryMesh, read_by_extension, read_msh, read_obj, read
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-const SHARED: &str = concat!(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."), "/../shared");
+use test_support::paths;
 
 fn peer_dir() -> Option<PathBuf> {
-    let p = Path::new(SHARED).join("data/peer-boundaries");
-    if p.exists() {
-        Some(p)
-    } else {
-        eprintln!("skipping: ../shared is absent");
-        None
-    }
+    paths::shared("data/peer-boundaries")
 }
 
 /// Every undirected edge of a closed surface is used exactly twice.

@@ -8,7 +8,7 @@ use gocad::import::{ImportOptions, import_surfaces, parse_gocad};
 use gocad::validate::{repair, validate};
 use model::topology::SurfaceTopology;
 use proptest::prelude::*;
-use std::path::PathBuf;
+use test_support::paths;
 
 const SEEDS: &[&str] = &[
     "SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/ETRA-BBFS-1992-Big_Bear_rupture_fault-nw.ts",
@@ -23,16 +23,16 @@ const SEEDS: &[&str] = &[
 const FALLBACK: &str = "GOCAD TSurf 1\nHEADER {\nname: t\n}\nGOCAD_ORIGINAL_COORDINATE_SYSTEM\nAXIS_UNIT \"km\" \"km\" \"m\"\nZPOSITIVE Depth\nEND_ORIGINAL_COORDINATE_SYSTEM\nPROPERTIES a\nTFACE\nPVRTX 1 0 0 0 1\nPVRTX 2 1 0 0 2\nPVRTX 3 0 1 0 3\nATOM 4 2\nTRGL 1 2 3\nTFACE\nVRTX 5 1 1 0\nTRGL 4 5 3\nBSTONE 1\nBORDER 6 1 2\nEND\n";
 
 fn seeds() -> Vec<Vec<u8>> {
-    let root = PathBuf::from(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared/data/gocad"
-    ));
-    let mut v: Vec<Vec<u8>> = SEEDS
-        .iter()
-        .filter_map(|p| std::fs::read(root.join(p)).ok())
-        .collect();
+    let mut v: Vec<Vec<u8>> = paths::shared("data/gocad")
+        .map(|root| {
+            SEEDS
+                .iter()
+                .filter_map(|p| std::fs::read(root.join(p)).ok())
+                .collect()
+        })
+        .unwrap_or_default();
     if v.is_empty() {
-        eprintln!("note: ../shared is absent; fuzzing the built-in sample only");
+        eprintln!("note: no real seed file; fuzzing the built-in sample only");
     }
     v.push(FALLBACK.as_bytes().to_vec());
     v
@@ -154,10 +154,7 @@ proptest! {
 
 #[test]
 fn every_kept_fuzz_case_fails_or_imports_without_panicking() {
-    let dir = PathBuf::from(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/tests/data/gocad/fuzz"
-    ));
+    let dir = paths::data("gocad/fuzz");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .map(|d| d.flatten().map(|e| e.path()).collect())
         .unwrap_or_default();

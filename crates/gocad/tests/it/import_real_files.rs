@@ -6,13 +6,10 @@ use gocad::import::{ImportOptions, import_surfaces, parse_gocad};
 use gocad::validate::validate;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use test_support::paths;
 
-fn shared() -> Option<PathBuf> {
-    let p = PathBuf::from(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared/data/gocad"
-    ));
-    if p.is_dir() { Some(p) } else { None }
+fn gocad_dir() -> Option<PathBuf> {
+    paths::shared("data/gocad")
 }
 
 fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
@@ -470,8 +467,7 @@ const EXPECTED: &[(&str, &str)] = &[
 
 #[test]
 fn every_shared_gocad_file_imports_or_fails_exactly_as_pinned() {
-    let Some(root) = shared() else {
-        eprintln!("skipping: ../shared is absent");
+    let Some(root) = gocad_dir() else {
         return;
     };
     let mut files = Vec::new();

@@ -7,19 +7,10 @@ use geom::TriMesh;
 use intersect_support::both;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use test_support::paths;
 
 fn cfm_dir() -> Option<PathBuf> {
-    let d = Path::new(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared"
-    ))
-    .join("data/gocad/SCECcode__CFM/CFM5.3_4/ts/1000m");
-    if d.is_dir() {
-        Some(d)
-    } else {
-        eprintln!("skipping: ../shared is absent");
-        None
-    }
+    paths::shared("data/gocad/SCECcode__CFM/CFM5.3_4/ts/1000m")
 }
 
 fn bad<T>(path: &Path, n: usize, line: &str) -> T {

@@ -17,13 +17,10 @@ use model::regions::{
 };
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
+use test_support::paths;
 
 fn data_dir() -> Option<PathBuf> {
-    let p = PathBuf::from(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data"
-    ));
-    if p.is_dir() { Some(p) } else { None }
+    paths::shared("data/gocad/ringmesh__RINGMesh/tests/data")
 }
 
 struct Loaded {
@@ -149,10 +146,7 @@ fn compare(l: &Loaded, m: &RegionModel, signed: bool) -> Vec<String> {
 }
 
 fn run(file: &str, dangling: Dangling) -> Option<(Loaded, Result<RegionModel, RegionError>)> {
-    let Some(l) = load(file) else {
-        eprintln!("skipping: ../shared is absent");
-        return None;
-    };
+    let l = load(file)?;
     let r = find_regions_with(&l.patches, &[], &RegionOptions { dangling });
     Some((l, r))
 }
@@ -163,7 +157,6 @@ fn faults_only(file: &str) -> Option<Dangling> {
 
 fn assert_matches(file: &str, signed: bool) {
     let Some(d) = faults_only(file) else {
-        eprintln!("skipping: ../shared is absent");
         return;
     };
     let (l, r) = run(file, d).expect("loaded");
@@ -213,7 +206,6 @@ fn cloudspin_fixed_has_the_seven_regions_of_its_records() {
 #[test]
 fn non_split_cube_has_a_misoriented_box_and_once_repaired_a_horizon_that_stops_short() {
     let Some(mut l) = load("non_split_cube.ml") else {
-        eprintln!("skipping: ../shared is absent");
         return;
     };
     // As written, the box's two bottom triangles (depth 1, z = -1 here) face the other way.

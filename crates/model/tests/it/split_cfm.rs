@@ -11,6 +11,7 @@ use intersect_support::{assert_sound, both};
 use model::intersect::split::split_model;
 use model::intersect::{Intersection, box_sides};
 use std::path::{Path, PathBuf};
+use test_support::paths;
 
 /// The faults: all of the 1000 m sample except the 1857 rupture, which overlaps the Mojave
 /// segment of the San Andreas (a coplanar contact, refused by `intersect`).
@@ -26,17 +27,7 @@ const FAULTS: [&str; 8] = [
 ];
 
 fn cfm_dir() -> Option<PathBuf> {
-    let d = Path::new(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared"
-    ))
-    .join("data/gocad/SCECcode__CFM/CFM5.3_4/ts/1000m");
-    if d.is_dir() {
-        Some(d)
-    } else {
-        eprintln!("skipping: ../shared is absent");
-        None
-    }
+    paths::shared("data/gocad/SCECcode__CFM/CFM5.3_4/ts/1000m")
 }
 
 fn load(dir: &Path, stem: &str) -> TriMesh {

@@ -12,18 +12,10 @@ use intersect_support::assert_sound;
 use model::intersect::split::split_model;
 use model::intersect::{Intersection, SurfaceRef, intersect};
 use std::path::PathBuf;
+use test_support::paths;
 
 fn data_dir() -> Option<PathBuf> {
-    let p = PathBuf::from(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data"
-    ));
-    if p.is_dir() {
-        Some(p)
-    } else {
-        eprintln!("skipping: ../shared is absent");
-        None
-    }
+    paths::shared("data/gocad/ringmesh__RINGMesh/tests/data")
 }
 
 fn sealed_model_splits_into_itself(file: &str) {

@@ -4,7 +4,7 @@
 use geom::{Tolerances, TriMesh};
 use gocad::import::{ImportOptions, import_surface};
 use model::topology::SurfaceTopology;
-use std::path::PathBuf;
+use test_support::paths;
 
 /// An n x n cell grid on [0, n]^2 (z = 0), cells listed row by row, minus the `holes` cells.
 fn grid(n: u32, holes: &[(u32, u32)]) -> TriMesh {
@@ -192,14 +192,10 @@ fn a_bowtie_vertex_where_two_loops_touch_is_a_corner_and_both_loops_close() {
 
 #[test]
 fn the_split_cube_box_has_two_tface_patches_when_built_with_parts() {
-    let path = PathBuf::from(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared/data/gocad/ringmesh__RINGMesh/tests/data/split_cube.ml"
-    ));
-    let Ok(bytes) = std::fs::read(&path) else {
-        eprintln!("skipping: ../shared is absent");
+    let Some(path) = paths::shared("data/gocad/ringmesh__RINGMesh/tests/data/split_cube.ml") else {
         return;
     };
+    let bytes = std::fs::read(&path).expect("read");
     let opts = ImportOptions {
         object: Some("box".into()),
         skip_other_types: true,
@@ -217,11 +213,8 @@ fn the_split_cube_box_has_two_tface_patches_when_built_with_parts() {
 }
 
 fn shared_surface(path: &str, object: Option<&str>) -> Option<gocad::import::ImportedSurface> {
-    let root = PathBuf::from(concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared/data/gocad"
-    ));
-    let bytes = std::fs::read(root.join(path)).ok()?;
+    let file = paths::shared(&format!("data/gocad/{path}"))?;
+    let bytes = std::fs::read(file).expect("read");
     let opts = ImportOptions {
         object: object.map(str::to_string),
         skip_other_types: true,
@@ -236,7 +229,6 @@ fn a_closed_kimberlite_body_is_one_patch_without_boundary() {
         "simpeg-research__Astic-2020-JointInversion/Geology_Surfaces/PK2.ts",
         None,
     ) else {
-        eprintln!("skipping: ../shared is absent");
         return;
     };
     let topo = SurfaceTopology::build(&s.mesh, &s.bstones, &tol());
@@ -255,7 +247,6 @@ fn a_real_fault_has_one_outer_loop_split_at_its_bstones() {
     let path =
         "SCECcode__CFM/CFM5_release_2017/obj/CFM5_all/GVFA-WWFZ-EAST-Scodie_Lineament-CFM1.ts";
     let Some(s) = shared_surface(path, None) else {
-        eprintln!("skipping: ../shared is absent");
         return;
     };
     let topo = SurfaceTopology::build(&s.mesh, &s.bstones, &tol());

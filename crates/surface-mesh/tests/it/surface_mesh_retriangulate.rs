@@ -5,6 +5,7 @@
 use geom::TriMesh;
 use surface_mesh::quality::stats;
 use surface_mesh::retriangulate;
+use test_support::paths;
 
 /// A minimal TSurf reader for these fixtures (VRTX/PVRTX and TRGL), welding vertices with
 /// bit-identical coordinates (the repair the import stage does on seams).
@@ -102,12 +103,9 @@ fn check(old: &TriMesh, new: &TriMesh, size: f64, max_mean: f64) {
 
 #[test]
 fn the_shipped_didactic_horizon_is_retriangulated_at_100_m_keeping_its_border_and_area() {
-    let path = concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/recipes/data/didactic/H1_top_reservoir.ts"
-    );
-    let Ok(text) = std::fs::read_to_string(path) else {
-        eprintln!("skipping: {path} is absent");
+    let path = paths::repo().join("recipes/data/didactic/H1_top_reservoir.ts");
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        eprintln!("skipping: {} is absent", path.display());
         return;
     };
     let old = read_tsurf(&text);
@@ -125,17 +123,11 @@ fn the_shipped_didactic_horizon_is_retriangulated_at_100_m_keeping_its_border_an
 }
 
 fn cfm(name: &str) -> Option<TriMesh> {
-    let path = format!(
-        "{}/../shared/data/gocad/SCECcode__CFM/CFM5.3_4/ts/1000m/{name}",
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../..")
-    );
-    match std::fs::read_to_string(&path) {
-        Ok(t) => Some(read_tsurf(&t)),
-        Err(_) => {
-            eprintln!("skipping: ../shared is absent");
-            None
-        }
-    }
+    let path = paths::shared(&format!(
+        "data/gocad/SCECcode__CFM/CFM5.3_4/ts/1000m/{name}"
+    ))?;
+    let text = std::fs::read_to_string(&path).expect("read");
+    Some(read_tsurf(&text))
 }
 
 #[test]

@@ -2,6 +2,7 @@
 //! on a boundary face, embedded faces kept through refinement, the same result both ways round,
 //! and agreement with the advancing front on what the mesh must be.
 
+use test_support::paths;
 use tet_mesh::{
     Method, RegionInput, SizeField, TetMeshOptions, TetMeshOutput, mesh_region, verify,
 };
@@ -262,15 +263,12 @@ fn the_worst_tets_of_a_thin_layer_meshed_by_gmsh_are_raised_by_flips_up_to_0_8()
     // Gmsh's L1 boundary of the peer model's 35 m reservoir (west block) at 100 m sizes: almost
     // every node is on the boundary. With flips only below 0.5, as in thick regions, its worst
     // tet had a mean ratio of 0.375; flips and contractions up to 0.8 raise it to 0.43.
-    let path = concat!(
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../.."),
-        "/../shared/data/peer-boundaries/region_L1_reservoir_W.off"
-    );
-    let Ok(bytes) = std::fs::read(path) else {
-        eprintln!("skipping: ../shared is absent");
+    let Some(path) = paths::shared("data/peer-boundaries/region_L1_reservoir_W.off") else {
         return;
     };
-    let b = geom::mesh::read::read_by_extension(path, &bytes).expect("reads");
+    let bytes = std::fs::read(&path).expect("read");
+    let b =
+        geom::mesh::read::read_by_extension(&path.display().to_string(), &bytes).expect("reads");
     let mut input = RegionInput {
         name: "L1 reservoir_W".into(),
         vertices: b.vertices,
