@@ -253,45 +253,27 @@ fn erosional_unconformity() -> Case {
     }
 }
 
-/// Two through-going faults crossing in an X (strikes along y and along x), one horizon.
-fn x_fault_junction() -> Case {
-    let mut rng = Rng(0x785f_6a75_6e63_7469);
-    let mut r = Recipe::new("x_fault_junction");
+/// Two faults crossing (F1 striking along y, F2 along x) and one horizon H, with F2 and H
+/// written in the given styles.
+fn two_faults(name: &'static str, seed: u64, f2: &Style, h: &Style) -> Recipe {
+    let mut rng = Rng(seed);
+    let mut r = Recipe::new(name);
     let f1 = fault_y(2000.0, -1000.0, 70.0, (LO, HI), (-2300.0, 300.0), &mut rng);
     r.surface("F1", "fault", &f1, &PLAIN);
-    r.surface(
-        "F2",
-        "fault",
-        &fault_x(2000.0, -1000.0, 75.0, &mut rng),
-        &PLAIN,
-    );
-    r.surface(
-        "H",
-        "horizon",
-        &horizon(-1000.0, 30.0, 0.6, &mut rng),
-        &DEPTH,
-    );
+    r.surface("F2", "fault", &fault_x(2000.0, -1000.0, 75.0, &mut rng), f2);
+    r.surface("H", "horizon", &horizon(-1000.0, 30.0, 0.6, &mut rng), h);
+    r
+}
+
+/// Two through-going faults crossing in an X (strikes along y and along x), one horizon.
+fn x_fault_junction() -> Case {
+    let r = two_faults("x_fault_junction", 0x785f_6a75_6e63_7469, &PLAIN, &DEPTH);
     r.case(&["box", "F1", "F2", "H"], 8)
 }
 
 /// A fault F2 that ends on a through-going fault F1 (kept on F1's east side only), one horizon.
 fn y_fault_junction() -> Case {
-    let mut rng = Rng(0x795f_6a75_6e63_7469);
-    let mut r = Recipe::new("y_fault_junction");
-    let f1 = fault_y(2000.0, -1000.0, 70.0, (LO, HI), (-2300.0, 300.0), &mut rng);
-    r.surface("F1", "fault", &f1, &PLAIN);
-    r.surface(
-        "F2",
-        "fault",
-        &fault_x(2000.0, -1000.0, 75.0, &mut rng),
-        &DEPTH,
-    );
-    r.surface(
-        "H",
-        "horizon",
-        &horizon(-1000.0, 30.0, 0.6, &mut rng),
-        &PLAIN,
-    );
+    let mut r = two_faults("y_fault_junction", 0x795f_6a75_6e63_7469, &DEPTH, &PLAIN);
     r.keep("F2", "below", "F1");
     r.case(&["box", "F1", "F2", "H"], 6)
 }
