@@ -1,4 +1,4 @@
-//! Shared helpers for the command-line integration tests (included with `mod common_cli;`).
+//! Shared helpers for the command-line integration tests (`crate::common_cli`).
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
