@@ -289,6 +289,7 @@ impl Expander for DiscretizeExpander {
         let (export_inputs, groups) = Wiring::new()
             .group("imports", imports)
             .group("curves", discretized)
+            .group("mesh", [])
             .finish();
         let export = ExportOp::new(&self.recipe, groups);
         x.add_op("export", Arc::new(export), &export_inputs)

@@ -21,7 +21,8 @@ pub struct ExportOp {
     pub model: String,
     /// The formats to write, in recipe order (their names enter the key).
     pub formats: Vec<Format>,
-    /// `imports` (validation reports), `curves` (their FE nodes) and, for a meshed model, `mesh`.
+    /// `imports` (validation reports), `curves` (their FE nodes) and `mesh` (the volume mesh, or
+    /// empty for a model that is not meshed).
     pub inputs: Groups,
 }
 

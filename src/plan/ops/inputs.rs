@@ -55,7 +55,8 @@ impl Groups {
         self.0.iter().find(|(n, _)| *n == name).map_or(0, |g| g.1)
     }
 
-    /// The inputs of group `name`; an error when `inputs` is not what the node was wired with.
+    /// The inputs of group `name`; an error when `inputs` is not what the node was wired with or
+    /// the node has no group of that name (a group may be wired empty, never left out).
     pub fn get<'a>(&self, name: &str, inputs: &'a [Artifact]) -> Result<&'a [Artifact], OpError> {
         let total: usize = self.0.iter().map(|g| g.1).sum();
         if inputs.len() != total {
@@ -73,7 +74,7 @@ impl Groups {
             }
             at += k;
         }
-        Ok(&[])
+        Err(format!("no input group `{name}` (wired: {})", self.describe()).into())
     }
 
     /// Every input of group `name`, decoded.
@@ -122,5 +123,7 @@ mod tests {
             .finish();
         let e = groups.get("mesh", &[art(0)]).unwrap_err();
         assert!(e.to_string().contains("1 surfaces, 1 mesh"), "{e}");
+        let e = groups.get("meshes", &[art(0), art(1)]).unwrap_err();
+        assert!(e.to_string().contains("no input group `meshes`"), "{e}");
     }
 }
