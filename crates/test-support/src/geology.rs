@@ -221,7 +221,8 @@ fn fault_stopping_in_a_layer() -> Case {
 /// An erosional surface U cutting down to the east through horizon H1 (which is kept only below
 /// U), above an untouched H2: above U, the wedge between U and H1, the layer between H1 (or U)
 /// and H2, and below H2. U dips at atan(0.15) = 8.5°, so the wedge pinches out at about that
-/// angle and its tip bounds the tets there: the bar is 6° (reached: 6.7°), not 8°.
+/// angle, which caps the dihedrals at its tip near 8.5°, just above 8°. The mesher reaches 6.7°
+/// there today, short of what the boundary allows; the bar is 6° until that gap is closed.
 fn erosional_unconformity() -> Case {
     let mut rng = Rng(0x756e_636f_6e66_6f72);
     let mut r = Recipe::new("erosional_unconformity");
@@ -310,8 +311,8 @@ fn z_fold(s: f64) -> (f64, f64) {
 
 /// A horizon folded into a recumbent (overturned) Z fold, cutting the box in two. Its hinges
 /// (radius 200 m, triangles of about 120 m) bend by more than the kink angle from triangle to
-/// triangle, so they are cut into narrow strips between creases; the tets along them reach
-/// 6.4°, so the bar is 6° here, short of 8°.
+/// triangle, so they are cut into narrow strips between creases. The worst tet reaches 6.45°
+/// (where it lies is not yet known); the bar is 6° until the gap to 8° is closed.
 fn recumbent_fold() -> Case {
     let mut rng = Rng(0x7265_6375_6d62_656e);
     let mut r = Recipe::new("recumbent_fold");
