@@ -108,6 +108,7 @@ fn patches_in_box(surfaces: &[(String, TriMesh)], split: &[SplitSurface]) -> Vec
         for p in patches(name, s) {
             if inside_box(&p, &b) {
                 kept.push(PatchIn {
+                    chart_of: None,
                     name: p.name,
                     surface: name.clone(),
                     mesh: p.mesh,

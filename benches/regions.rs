@@ -45,6 +45,7 @@ fn model_a4() -> Option<(Vec<PatchIn>, BTreeSet<String>)> {
                 }
             }
             patches.push(PatchIn {
+                chart_of: None,
                 name: format!("{}/{}", s.name, part.name),
                 surface: s.name.clone(),
                 mesh: TriMesh::new(vertices, triangles),

@@ -138,6 +138,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     // Orientation: the caller's triangles may point inwards. Region finding decides exactly
     // which side of the shell is enclosed; the triangles must face away from it.
     let shell = regions::PatchIn {
+        chart_of: None,
         name: "boundary".into(),
         surface: "boundary".into(),
         mesh: geom::TriMesh::new(pool.vertices.clone(), boundary.clone()),

@@ -13,6 +13,11 @@ pub struct Tolerances {
     /// Boundary vertices where the polyline turns by more than this angle (degrees) become
     /// topological vertices (corners) that split boundary loops into curves. Default 30°.
     pub kink_angle_deg: f64,
+    /// A patch whose triangles face more than this angle (degrees) away from their mean
+    /// direction (a tube, a closed body, a cup, a salt wall) is cut into charts, each facing
+    /// within this angle of one axis direction, so that every piece flattens onto a plane
+    /// without folding. Default 60°.
+    pub chart_angle_deg: f64,
     /// Vertices of one surface closer than this distance (model units) are reported as
     /// coincident duplicates by validation and merged by repair. 0.0 (the default) means
     /// bit-identical coordinates only.
@@ -26,6 +31,7 @@ impl Default for Tolerances {
     fn default() -> Self {
         Tolerances {
             kink_angle_deg: 30.0,
+            chart_angle_deg: 60.0,
             merge_distance: 0.0,
             support_distance_rel: 1e-6,
         }
@@ -34,9 +40,10 @@ impl Default for Tolerances {
 
 impl Tolerances {
     /// The fields as (name, value) pairs in a fixed order, for cache keys and reports.
-    pub fn fields(&self) -> [(&'static str, f64); 3] {
+    pub fn fields(&self) -> [(&'static str, f64); 4] {
         [
             ("kink_angle_deg", self.kink_angle_deg),
+            ("chart_angle_deg", self.chart_angle_deg),
             ("merge_distance", self.merge_distance),
             ("support_distance_rel", self.support_distance_rel),
         ]

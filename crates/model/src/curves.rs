@@ -63,7 +63,8 @@ pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopo
     let (points, ids) = weld(patches);
     let edges = triangle_edges(patches, &ids)?;
     let (sig_list, curve_edges, borders) = classify_edges(&edges);
-    let graph = CurveGraph::new(&points, &curve_edges);
+    let seams = seam_signatures(patches, &sig_list);
+    let graph = CurveGraph::new(&points, &curve_edges, &seams);
     let nv = points.len();
     let vertex_flags: Vec<bool> = (0..nv as u32).map(|v| graph.is_vertex(v, tol)).collect();
     let chains = graph.chains(&vertex_flags);
@@ -93,6 +94,20 @@ pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopo
         curves,
         patches: patch_bounds,
     })
+}
+
+/// Per signature, whether it is a seam: two or more charts of one patch, each with one triangle
+/// along the edge (the charts' own border there).
+fn seam_signatures(patches: &[PatchIn], sig_list: &[Signature]) -> Vec<bool> {
+    sig_list
+        .iter()
+        .map(|sig| {
+            let of = |p: u32| patches[p as usize].chart_of.as_deref();
+            sig.len() >= 2
+                && of(sig[0].0).is_some()
+                && sig.iter().all(|&(p, n)| n == 1 && of(p) == of(sig[0].0))
+        })
+        .collect()
 }
 
 /// A chain of curve edges: vertex ids, edge ids, signature, closed.
@@ -176,13 +191,15 @@ fn classify_edges(edges: &[TriEdge]) -> (Vec<Signature>, Vec<CurveEdge>, Vec<Bor
 struct CurveGraph<'a> {
     points: &'a [[f64; 3]],
     curve_edges: &'a [CurveEdge],
+    /// Per signature, whether its curves are seams (never cut at kinks).
+    seams: &'a [bool],
     start: Vec<u32>,
     inc: Vec<u32>,
 }
 
 impl<'a> CurveGraph<'a> {
     /// Lists every vertex's incident curve edges, in edge order.
-    fn new(points: &'a [[f64; 3]], curve_edges: &'a [CurveEdge]) -> Self {
+    fn new(points: &'a [[f64; 3]], curve_edges: &'a [CurveEdge], seams: &'a [bool]) -> Self {
         let nv = points.len();
         let mut start = vec![0u32; nv + 1];
         for e in curve_edges {
@@ -203,6 +220,7 @@ impl<'a> CurveGraph<'a> {
         CurveGraph {
             points,
             curve_edges,
+            seams,
             start,
             inc,
         }
@@ -218,14 +236,18 @@ impl<'a> CurveGraph<'a> {
     }
 
     /// Whether `v` is a topological vertex: a curve end, a junction, a change of signature, or a
-    /// kink sharper than the kink angle.
+    /// kink sharper than the kink angle (except on a seam between charts).
     fn is_vertex(&self, v: u32, tol: &Tolerances) -> bool {
         let es = self.incident(v);
         if es.len() != 2 {
             return !es.is_empty();
         }
-        if self.curve_edges[es[0] as usize].sig != self.curve_edges[es[1] as usize].sig {
+        let sig = self.curve_edges[es[0] as usize].sig;
+        if self.curve_edges[es[1] as usize].sig != sig {
             return true;
+        }
+        if self.seams[sig as usize] {
+            return false;
         }
         let (a, c) = (self.other(es[0], v), self.other(es[1], v));
         turn_deg(

@@ -29,6 +29,7 @@
 //! never by hash order. No recursion.
 
 mod assemble;
+pub mod charts;
 mod curves;
 pub mod discretize;
 pub mod intersect;

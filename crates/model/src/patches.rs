@@ -162,9 +162,19 @@ fn components(
         }
         comps[comp_of[r] as usize].push(t as u32);
     }
+    let mut out = extract(m, comps);
+    for (k, p) in out.iter_mut().enumerate() {
+        p.name = format!("{surface}#{}", k + 1);
+    }
+    out
+}
+
+/// The patches (unnamed) made of each group of `m`'s triangles, each with its own compact mesh,
+/// in canonical order: by their sorted vertex coordinates, then by their triangles.
+fn extract(m: &TriMesh, groups: Vec<Vec<u32>>) -> Vec<Patch> {
     // Local vertex numbers, reset after each patch (u32::MAX = not yet used by this patch).
-    let mut local: Vec<u32> = vec![u32::MAX; nv as usize];
-    let mut out: Vec<(Vec<[f64; 3]>, Patch)> = comps
+    let mut local: Vec<u32> = vec![u32::MAX; m.vertices.len()];
+    let mut out: Vec<(Vec<[f64; 3]>, Patch)> = groups
         .into_iter()
         .map(|triangles| {
             let mut used: Vec<u32> = Vec::new();
@@ -203,13 +213,92 @@ fn components(
             .unwrap_or_else(|| a.0.len().cmp(&b.0.len()))
             .then_with(|| a.1.triangles.cmp(&b.1.triangles))
     });
-    out.into_iter()
-        .enumerate()
-        .map(|(k, (_, mut p))| {
-            p.name = format!("{surface}#{}", k + 1);
-            p
-        })
-        .collect()
+    out.into_iter().map(|(_, p)| p).collect()
+}
+
+/// Cuts the patches of one surface into charts where they do not flatten ([`crate::charts`]),
+/// labelling the imported surface's triangles once, on the first patch that needs it.
+pub struct Charting<'a> {
+    original: &'a TriMesh,
+    normals: Vec<[f64; 3]>,
+    labels: Option<Vec<u32>>,
+    max_deg: f64,
+}
+
+impl<'a> Charting<'a> {
+    /// For the patches split from `original`, with `Tolerances::chart_angle_deg` = `max_deg`.
+    pub fn new(original: &'a TriMesh, max_deg: f64) -> Self {
+        let normals = (0..original.triangles.len())
+            .map(|t| unit_normal(original, t))
+            .collect();
+        Charting {
+            original,
+            normals,
+            labels: None,
+            max_deg,
+        }
+    }
+
+    /// `patch` of `split` cut into charts, named `<patch>.1`, `<patch>.2`... in canonical order,
+    /// or the patch itself, unchanged, when it flattens whole. A chart is a connected piece of
+    /// the patch whose triangles lie in original triangles of one chart of the surface.
+    pub fn cut(&mut self, patch: Patch, split: &SplitSurface) -> Vec<Patch> {
+        let parent = |t: u32| split.parent.get(t as usize).copied().unwrap_or(u32::MAX);
+        let normals: Vec<[f64; 3]> = patch
+            .triangles
+            .iter()
+            .map(|&t| {
+                self.normals
+                    .get(parent(t) as usize)
+                    .copied()
+                    .unwrap_or([0.0; 3])
+            })
+            .collect();
+        if !crate::charts::needs_charts(&patch.mesh, &normals, self.max_deg) {
+            return vec![patch];
+        }
+        let labels = self.labels.get_or_insert_with(|| {
+            crate::charts::chart_labels(self.original, &self.normals, self.max_deg)
+        });
+        let label = |t: u32| {
+            let p = parent(patch.triangles[t as usize]);
+            labels.get(p as usize).copied().unwrap_or(u32::MAX)
+        };
+        let mut groups = crate::charts::connected_groups(&patch.mesh, label);
+        let mut group = vec![0u32; patch.triangles.len()];
+        for (g, ts) in groups.iter().enumerate() {
+            for &t in ts {
+                group[t as usize] = g as u32;
+            }
+        }
+        crate::charts::unpinch(&patch.mesh, &mut group);
+        groups = crate::charts::connected_groups(&patch.mesh, |t| group[t as usize]);
+        if groups.len() < 2 {
+            return vec![patch];
+        }
+        let mut out = extract(&patch.mesh, groups);
+        for (k, p) in out.iter_mut().enumerate() {
+            p.name = format!("{}.{}", patch.name, k + 1);
+            for t in &mut p.triangles {
+                *t = patch.triangles[*t as usize];
+            }
+        }
+        out
+    }
+}
+
+/// The unit normal of `mesh`'s triangle `t` (zero when it has none or does not exist).
+fn unit_normal(mesh: &TriMesh, t: usize) -> [f64; 3] {
+    let Some(tri) = mesh.triangles.get(t) else {
+        return [0.0; 3];
+    };
+    let p = |k: usize| mesh.vertices.get(tri[k] as usize).copied();
+    let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) else {
+        return [0.0; 3];
+    };
+    let n = cross(&sub(&b, &a), &sub(&c, &a));
+    let l = dot(&n, &n).sqrt();
+    if l > 0.0 { n.map(|x| x / l) } else { [0.0; 3] }
 }
 
 /// Whether every vertex of `patch` lies within the closed box (exact coordinate comparisons).

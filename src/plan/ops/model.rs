@@ -54,7 +54,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        6
+        7
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -126,25 +126,32 @@ impl Operation for ModelOp {
                 OpError::from(format!("{place}{e}"))
             })?;
         let trimmed = outcome.discarded.len() as u64;
-        let kept: Vec<ModelPatch> = all
-            .into_iter()
-            .zip(&outcome.keep)
-            .filter(|(_, keep)| **keep)
-            .map(|((i, p), _)| ModelPatch {
-                name: p.name,
-                surface: surfaces[i].name.clone(),
-                kind: surfaces[i].kind,
-                mesh: p.mesh,
-            })
-            .collect();
-        let input: Vec<regions::PatchIn> = kept
+        let chart_deg = self.tolerances.chart_angle_deg;
+        let mut charting: Vec<patches::Charting> = surfaces
             .iter()
-            .map(|p| regions::PatchIn {
-                name: p.name.clone(),
-                surface: p.surface.clone(),
-                mesh: p.mesh.clone(),
-            })
+            .map(|s| patches::Charting::new(&s.mesh, chart_deg))
             .collect();
+        let mut kept: Vec<ModelPatch> = Vec::new();
+        let mut input: Vec<regions::PatchIn> = Vec::new();
+        for ((i, p), _) in all.into_iter().zip(&outcome.keep).filter(|(_, k)| **k) {
+            let whole = p.name.clone();
+            let charts = charting[i].cut(p, &split[i]);
+            let cut = charts.len() > 1;
+            for c in charts {
+                input.push(regions::PatchIn {
+                    name: c.name.clone(),
+                    surface: surfaces[i].name.clone(),
+                    mesh: c.mesh.clone(),
+                    chart_of: cut.then(|| whole.clone()),
+                });
+                kept.push(ModelPatch {
+                    name: c.name,
+                    surface: surfaces[i].name.clone(),
+                    kind: surfaces[i].kind,
+                    mesh: c.mesh,
+                });
+            }
+        }
         let opts = regions::RegionOptions::with_faults(self.faults.iter().cloned());
         let model = regions::find_regions_with(&input, &self.names, &opts)
             .map_err(|e| OpError::from(e.to_string()))?;

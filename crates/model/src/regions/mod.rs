@@ -37,6 +37,10 @@ pub struct PatchIn {
     /// Name of the surface the patch belongs to (used in messages and generated region names).
     pub surface: String,
     pub mesh: geom::TriMesh,
+    /// For a chart (a piece of a patch cut so that it flattens), the name of that patch: the
+    /// curves between charts of one patch are seams, not features.
+    #[serde(default)]
+    pub chart_of: Option<String>,
 }
 
 /// A side of a patch.

@@ -84,6 +84,7 @@ fn model_patches(with_fault: bool) -> Vec<PatchIn> {
         for p in patches(name, s) {
             if inside_box(&p, &bbox()) {
                 kept.push(PatchIn {
+                    chart_of: None,
                     name: p.name,
                     surface: name.clone(),
                     mesh: p.mesh,

@@ -49,6 +49,7 @@ fn rect(
         }
     }
     PatchIn {
+        chart_of: None,
         name: name.to_string(),
         surface: surface.to_string(),
         mesh: TriMesh::new(vertices, triangles),
@@ -128,6 +129,7 @@ fn octahedron(name: &str, c: [f64; 3], r: f64) -> PatchIn {
         [0, 3, 5],
     ];
     PatchIn {
+        chart_of: None,
         name: name.to_string(),
         surface: name.to_string(),
         mesh: TriMesh::new(v, t),
@@ -711,6 +713,7 @@ fn filtered(p: &PatchIn, name: &str, keep: impl Fn([f64; 3]) -> bool) -> PatchIn
         })
         .collect();
     PatchIn {
+        chart_of: None,
         name: name.to_string(),
         surface: p.surface.clone(),
         mesh: TriMesh::new(m.vertices.clone(), triangles),

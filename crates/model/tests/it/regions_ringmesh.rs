@@ -72,6 +72,7 @@ fn load(file: &str) -> Option<Loaded> {
                 out.faults.insert(s.name.clone());
             }
             out.patches.push(PatchIn {
+                chart_of: None,
                 name: format!("{}/{}", s.name, part.name),
                 surface: s.name.clone(),
                 mesh: TriMesh::new(vertices, triangles),

@@ -125,6 +125,7 @@ fn the_didactic_model_splits_into_patches_bounding_six_regions() {
         assert!(!ps.is_empty(), "{name} has patches");
         for p in ps.into_iter().filter(|p| inside_box(p, &b)) {
             kept.push(PatchIn {
+                chart_of: None,
                 name: p.name,
                 surface: name.clone(),
                 mesh: p.mesh,
