@@ -15,12 +15,14 @@
 //! element of the target size adds an up-only node with h = CURVE_ANGLE / κ (κ: the largest
 //! normal turn per unit length across the vertex's edges, from the dihedral angles of the support
 //! facets). So hinges of tight folds get smaller elements that follow them, as in the seed's
-//! octree refinement for curvature.
+//! octree refinement for curvature. The width a bend is spread over is at least half the reach of
+//! the edge's neighbours, so the small pieces a curve cuts from the facets it crosses do not pass
+//! for tight hinges.
 //! The minimum over nodes is found with an R-tree: the nearest node bounds the answer, so only
 //! nodes within that bound's reach are visited; no query is made when none could matter.
 
 use geom::TriMesh;
-use geom::predicates::{dist, dot, sub};
+use geom::predicates::{cross, dist, dot, sub};
 use rstar::RTree;
 use rstar::primitives::GeomWithData;
 use std::collections::BTreeMap;
@@ -47,9 +49,34 @@ pub fn curvature_nodes(support: &TriMesh, normals: &[[f64; 3]], size: f64) -> Ve
         }
     }
     // The normal turns by the dihedral angle over about the mean of the two facets' widths
-    // across the edge (their heights over it: long thin facets stay meaningful).
+    // across the edge (their heights over it: long thin facets stay meaningful), and over no
+    // less than half the reach of the edge's ends' neighbours across it: a curve cuts small
+    // pieces from the facets it crosses, and a bend between two such pieces is the bend of the
+    // whole facets around them, not a tight hinge (on a faceted tube it would ask for metre
+    // elements).
     let height =
         |t: u32, elen: f64| geom::trimesh::triangle_area(support.corners(t as usize)) * 2.0 / elen;
+    let mut ring: Vec<Vec<u32>> = vec![Vec::new(); support.vertices.len()];
+    for tri in &support.triangles {
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            ring[a as usize].push(b);
+            ring[b as usize].push(a);
+        }
+    }
+    let reach = |a: u32, b: u32| {
+        let pa = &support.vertices[a as usize];
+        let e = sub(&support.vertices[b as usize], pa);
+        let elen = dot(&e, &e).sqrt();
+        ring[a as usize]
+            .iter()
+            .chain(&ring[b as usize])
+            .map(|&w| {
+                let c = cross(&sub(&support.vertices[w as usize], pa), &e);
+                dot(&c, &c).sqrt() / elen
+            })
+            .fold(0.0, f64::max)
+    };
     let origin = support.vertices.first().copied().unwrap_or([0.0; 3]);
     // (a, b, edge length, dihedral angle, single-edge estimate of h) of every bent interior edge.
     let mut bent = Vec::new();
@@ -68,7 +95,7 @@ pub fn curvature_nodes(support: &TriMesh, normals: &[[f64; 3]], size: f64) -> Ve
         if !(elen > 0.0) || !(angle > 0.0) {
             continue;
         }
-        let len = (height(t, elen) + height(u, elen)) / 2.0;
+        let len = ((height(t, elen) + height(u, elen)) / 2.0).max(0.5 * reach(a, b));
         bent.push((a, b, elen, angle, CURVE_ANGLE * len / angle));
     }
     let mid = |a: u32, b: u32| {

@@ -112,7 +112,7 @@ impl Operation for SurfaceMeshOp {
         "surface_mesh"
     }
     fn version(&self) -> u32 {
-        2
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
