@@ -118,7 +118,19 @@ fn every_case_of_the_corpus_has_a_test() {
         "x_fault_junction",
         "y_fault_junction",
         "recumbent_fold",
+        "vertical_tube",
+        "salt_stock",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
+}
+
+#[test]
+fn a_vertical_tube_through_a_horizon_meshes_into_four_regions() {
+    builds_and_meshes(&case("vertical_tube"));
+}
+
+#[test]
+fn a_salt_stock_piercing_two_horizons_meshes_into_four_regions() {
+    builds_and_meshes(&case("salt_stock"));
 }

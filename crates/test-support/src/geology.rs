@@ -44,13 +44,17 @@ pub fn cases() -> Vec<Case> {
         x_fault_junction(),
         y_fault_junction(),
         recumbent_fold(),
+        vertical_tube(),
+        salt_stock(),
     ]
 }
 
 /// Situations the pipeline cannot mesh yet, kept so that they can be reproduced and moved into
-/// [`cases`] once they mesh (none at present).
+/// [`cases`] once they mesh: the lens's host region (a box with the lens as an inner shell)
+/// stalls the tet mesher's front; the closed diapir's bottom cap gives a chart whose discretized
+/// seams cross in its plane.
 pub fn known_gaps() -> Vec<Case> {
-    Vec::new()
+    vec![lens(), closed_salt_diapir()]
 }
 
 /// The extent surfaces are made over (past the box on every side).
@@ -332,4 +336,187 @@ fn recumbent_fold() -> Case {
         min_dihedral: 6.0,
         ..r.case(&["box", "H"], 2)
     }
+}
+
+/// A surface of revolution about the vertical line through `(cx, cy)`, stretched by `(sx, sy)`
+/// in plan: `profile(t)` gives the radius and height for `t` in [0, 1] over `nt` rings of `na`
+/// points. An end whose radius is zero is closed by one pole vertex; any other end is a border.
+/// Triangles face outwards (away from the axis) when z decreases with `t`. Ring heights and
+/// angles are jittered like the grids, and the quad diagonals are chosen by the seeded generator.
+fn revolution(
+    (cx, cy): (f64, f64),
+    (sx, sy): (f64, f64),
+    profile: impl Fn(f64) -> (f64, f64),
+    (nt, na): (usize, usize),
+    rng: &mut Rng,
+) -> Surface {
+    use std::f64::consts::TAU;
+    let point = |t: f64, a: f64| {
+        let (r, z) = profile(t);
+        [cx + sx * r * a.cos(), cy + sy * r * a.sin(), z]
+    };
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    let ring = |t: f64, jitter: bool, vertices: &mut Vec<[f64; 3]>, rng: &mut Rng| {
+        let first = vertices.len();
+        if profile(t).0.abs() < 1e-9 {
+            vertices.push(point(t, 0.0));
+            return (first, 1);
+        }
+        let shift = if jitter { 0.5 * rng.unit() } else { 0.0 };
+        for k in 0..na {
+            let tj = if jitter {
+                t + 0.2 * rng.unit() / nt as f64
+            } else {
+                t
+            };
+            let a = (k as f64 + shift + 0.2 * rng.unit()) * TAU / na as f64;
+            vertices.push(point(tj, a));
+        }
+        (first, na)
+    };
+    let mut rings = Vec::with_capacity(nt + 1);
+    for i in 0..=nt {
+        let t = i as f64 / nt as f64;
+        rings.push(ring(t, i > 0 && i < nt, &mut vertices, rng));
+    }
+    for w in rings.windows(2) {
+        let ((a, na_a), (b, na_b)) = (w[0], w[1]);
+        for k in 0..na {
+            let (a0, a1) = (a + k % na_a, a + (k + 1) % na_a);
+            let (b0, b1) = (b + k % na_b, b + (k + 1) % na_b);
+            if na_a == 1 {
+                triangles.push([a0, b0, b1]);
+            } else if na_b == 1 {
+                triangles.push([a0, b0, a1]);
+            } else if rng.next_u64() & 1 == 0 {
+                triangles.push([a0, b0, b1]);
+                triangles.push([a0, b1, a1]);
+            } else {
+                triangles.push([a0, b0, a1]);
+                triangles.push([a1, b0, b1]);
+            }
+        }
+    }
+    Surface {
+        vertices,
+        triangles,
+        corners: Vec::new(),
+    }
+}
+
+/// A closed lens of sand (an ellipsoid 1800 x 1200 x 300 m) inside the middle of three layers,
+/// touching nothing: its own region, and an inner shell of its host.
+fn lens() -> Case {
+    use std::f64::consts::PI;
+    let mut rng = Rng(0x6c65_6e73_2020_2020);
+    let mut r = Recipe::new("lens");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-600.0, 30.0, 0.1, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1400.0, 30.0, 0.9, &mut rng),
+        &DEPTH,
+    );
+    let l = revolution(
+        (2100.0, 1900.0),
+        (900.0, 600.0),
+        |t| ((PI * t).sin(), -1000.0 + 150.0 * (PI * t).cos()),
+        (14, 40),
+        &mut rng,
+    );
+    r.surface("L", "other", &l, &PLAIN);
+    r.case(&["box", "H1", "H2"], 4)
+}
+
+/// A vertical tube (a cylinder of radius 400 m, a well's damaged zone or a volcanic pipe) through
+/// the box and one horizon: inside and outside the tube, above and below the horizon.
+fn vertical_tube() -> Case {
+    let mut rng = Rng(0x7475_6265_2020_2020);
+    let mut r = Recipe::new("vertical_tube");
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-1000.0, 30.0, 0.3, &mut rng),
+        &PLAIN,
+    );
+    let t = revolution(
+        (2000.0, 2000.0),
+        (400.0, 400.0),
+        |t| (1.0, 300.0 - 2600.0 * t),
+        (18, 24),
+        &mut rng,
+    );
+    r.surface("T", "other", &t, &DEPTH);
+    r.case(&["box", "H", "T"], 4)
+}
+
+/// The profile of a salt body: a round cap of radius 700 m at `top`, vertical walls below it
+/// down to `bottom`, closed there by a second cap when `closed` (`top - bottom` must exceed the
+/// caps' height).
+fn salt_profile(t: f64, top: f64, bottom: f64, closed: bool) -> (f64, f64) {
+    use std::f64::consts::FRAC_PI_2;
+    let r = 700.0;
+    let cap = FRAC_PI_2 * r;
+    let wall = top - bottom - if closed { 2.0 * r } else { r };
+    let total = cap + wall + if closed { cap } else { 0.0 };
+    let d = t * total;
+    if d <= cap {
+        let a = d / r;
+        return (a.sin(), top - r + r * a.cos());
+    }
+    if d <= cap + wall {
+        return (1.0, top - r - (d - cap));
+    }
+    let a = (d - cap - wall) / r;
+    (a.cos(), top - r - wall - r * a.sin())
+}
+
+/// Two horizons pierced by a salt stock of `salt`'s shape, each horizon's disk inside the salt
+/// discarded (the nearest patch to the stock's axis on it).
+fn salt_case(name: &'static str, seed: u64, top: f64, bottom: f64, closed: bool) -> Case {
+    let mut rng = Rng(seed);
+    let mut r = Recipe::new(name);
+    let (cx, cy) = (2000.0, 2100.0);
+    for (h, z, style) in [("H1", -900.0, &PLAIN), ("H2", -1400.0, &DEPTH)] {
+        r.surface(h, "horizon", &horizon(z, 30.0, 0.5, &mut rng), style);
+        r.trims.push(format!(
+            "[[trim]]\nsurface = \"{h}\"\ndiscard = {{ nearest = [{}, {}, {z}] }}\n",
+            ORIGIN_X + cx,
+            ORIGIN_Y + cy
+        ));
+    }
+    let s = revolution(
+        (cx, cy),
+        (1.0, 1.0),
+        |t| {
+            let (rr, z) = salt_profile(t, top, bottom, closed);
+            (700.0 * rr, z)
+        },
+        (30, 36),
+        &mut rng,
+    );
+    r.surface("SALT", "other", &s, &PLAIN);
+    r.case(&["box", "H1", "H2", "SALT"], 4)
+}
+
+/// A salt stock rising from below the box through two horizons to a round top at -500 m.
+fn salt_stock() -> Case {
+    salt_case("salt_stock", 0x7361_6c74_2073_746b, -500.0, -2300.0, false)
+}
+
+/// A closed salt diapir from -1900 m to -300 m, inside the box, piercing both horizons.
+fn closed_salt_diapir() -> Case {
+    salt_case(
+        "closed_salt_diapir",
+        0x7361_6c74_2064_6970,
+        -300.0,
+        -1900.0,
+        true,
+    )
 }
