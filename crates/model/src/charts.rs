@@ -227,8 +227,8 @@ fn area(mesh: &TriMesh, t: usize) -> f64 {
 /// The axis a unit normal faces most (the lowest on ties; axis 0 for a zero normal).
 fn nearest_axis(n: &[f64; 3]) -> usize {
     let mut best = 0;
-    for a in 1..6 {
-        if dot(n, &AXES[a]) > dot(n, &AXES[best]) {
+    for (a, axis) in AXES.iter().enumerate().skip(1) {
+        if dot(n, axis) > dot(n, &AXES[best]) {
             best = a;
         }
     }
