@@ -44,7 +44,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         {
             obj.insert("model".to_string(), model.summary());
         }
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&json).unwrap_or_default()
         );
@@ -113,10 +113,10 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     if !args.quiet
         && let Ok(text) = std::fs::read_to_string(&tables)
     {
-        eprintln!("\n{text}");
+        errln!("\n{text}");
     }
     if !args.quiet || !args.watch {
-        eprintln!(
+        errln!(
             "{:>12} {} in {:.2}s: {summary}; outputs in {}",
             "Finished",
             recipe.model.name,
@@ -124,7 +124,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
             output_dir.display()
         );
         if let Some(html) = written.first() {
-            eprintln!("{:>12} {}", "Report", html.display());
+            errln!("{:>12} {}", "Report", html.display());
         }
     }
     Ok(report)
@@ -151,12 +151,14 @@ fn print_findings(report: &BuildReport) {
             continue;
         };
         if n.state == NodeState::Ran {
-            eprintln!(
+            errln!(
                 "{:>12} surface `{}`: {} validation findings (repaired)",
-                "Warning", data.name, data.findings
+                "Warning",
+                data.name,
+                data.findings
             );
             for line in data.report_text.lines().take(20) {
-                eprintln!("             {line}");
+                errln!("             {line}");
             }
         }
     }

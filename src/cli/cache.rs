@@ -72,23 +72,23 @@ pub fn explain(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
             n["state"].as_str().unwrap_or(""),
             n["reason"].as_str().unwrap_or(""),
         );
-        println!("{name:<width$}  {state:<8} {reason}");
+        outln!("{name:<width$}  {state:<8} {reason}");
     }
     Ok(())
 }
 
 /// `recipe graph`: the last build's DAG in DOT, expanded part included, with node states.
 pub fn graph(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
-    print!("{}", read_last(recipe, args, last_graph_path)?);
+    out!("{}", read_last(recipe, args, last_graph_path)?);
     Ok(())
 }
 
 pub fn clean(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let dir = cache_dir(recipe, args);
     if engine::clean(&dir)? {
-        println!("removed {}", dir.display());
+        outln!("removed {}", dir.display());
     } else {
-        println!("nothing to remove: {} does not exist", dir.display());
+        outln!("nothing to remove: {} does not exist", dir.display());
     }
     Ok(())
 }
@@ -105,9 +105,11 @@ pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
         keep.outputs.extend(last.outputs);
     }
     let stats = engine::gc(&dir, &keep)?;
-    println!(
+    outln!(
         "kept {} cache entries, removed {} ({} bytes freed)",
-        stats.kept, stats.removed, stats.bytes_freed
+        stats.kept,
+        stats.removed,
+        stats.bytes_freed
     );
     Ok(())
 }

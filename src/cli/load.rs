@@ -34,7 +34,7 @@ fn render(diags: &[recipe::Diagnostic]) -> Failure {
 /// `recipe check`.
 pub fn check(path: &Path) -> Result<(), Failure> {
     let r = load(path)?;
-    println!(
+    outln!(
         "{}: ok ({} surfaces, {} intersection pairs, {} curve rules)",
         path.display(),
         r.surfaces.len(),

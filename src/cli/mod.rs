@@ -2,11 +2,42 @@
 //! the filesystem. `watch.rs` is the only user of `notify`.
 //!
 //! Exit codes: 0 success; 1 the recipe is invalid, a node failed, or `--locked` found a
-//! difference; 2 a usage error (from clap).
+//! difference; 2 a usage error (from clap); 141 standard output was closed by its reader.
+
+/// `println!` that ends the calling function with its [`Failure`] when standard output cannot
+/// be written (see `output`).
+macro_rules! outln {
+    ($($t:tt)*) => {
+        $crate::cli::output::out(&format!("{}\n", format_args!($($t)*)))?
+    };
+}
+
+/// `print!` that ends the calling function with its [`Failure`] when standard output cannot be
+/// written (see `output`).
+macro_rules! out {
+    ($($t:tt)*) => {
+        $crate::cli::output::out(&format!($($t)*))?
+    };
+}
+
+/// `eprintln!` that never panics (see `output`).
+macro_rules! errln {
+    ($($t:tt)*) => {
+        $crate::cli::output::err(&format!("{}\n", format_args!($($t)*)))
+    };
+}
+
+/// `eprint!` that never panics (see `output`).
+macro_rules! err {
+    ($($t:tt)*) => {
+        $crate::cli::output::err(&format!($($t)*))
+    };
+}
 
 mod build;
 mod cache;
 mod load;
+mod output;
 mod render;
 mod report;
 mod tetmesh;
@@ -117,9 +148,10 @@ pub fn main() -> i32 {
     };
     match result {
         Ok(()) => 0,
+        Err(_) if output::broken_pipe() => output::BROKEN_PIPE_STATUS,
         Err(Failure(msg)) => {
             if !msg.is_empty() {
-                eprintln!("{msg}");
+                errln!("{msg}");
             }
             1
         }

@@ -30,7 +30,7 @@ impl Renderer {
             Some(m) => {
                 let _ = m.println(s);
             }
-            None => eprintln!("{s}"),
+            None => errln!("{s}"),
         }
     }
 

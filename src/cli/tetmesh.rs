@@ -243,9 +243,9 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         export(&mesh, &stem, format).map_err(|e| Failure(format!("error: export: {e}")))?
     {
         write_atomic(&dir.join(&file), &bytes)?;
-        eprintln!("       Wrote {}", dir.join(&file).display());
+        errln!("       Wrote {}", dir.join(&file).display());
     }
-    eprintln!(
+    errln!(
         "    Finished {}: {} tets, {} nodes in {:.2}s ({:.0} tets/s; {how})",
         name,
         mesh.tets.len(),
@@ -253,7 +253,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         secs,
         mesh.tets.len() as f64 / secs.max(1e-9)
     );
-    eprint!("{}", quality::render_table2(&quality::table2(&mesh)));
+    err!("{}", quality::render_table2(&quality::table2(&mesh)));
     Ok(())
 }
 

@@ -38,7 +38,7 @@ pub fn run(args: &BuildArgs) -> Result<(), Failure> {
             .collect();
         for d in dirs.difference(&watched_dirs) {
             if let Err(e) = watcher.watch(d, RecursiveMode::NonRecursive) {
-                eprintln!("     Warning cannot watch {}: {e}", d.display());
+                errln!("     Warning cannot watch {}: {e}", d.display());
             }
         }
         for d in watched_dirs.difference(&dirs) {
@@ -48,13 +48,13 @@ pub fn run(args: &BuildArgs) -> Result<(), Failure> {
 
         let built = contents(&files);
         if let Err(Failure(msg)) = build::run(&args) {
-            eprintln!("{msg}");
+            errln!("{msg}");
         }
         builds += 1;
         if args.max_builds.is_some_and(|m| builds >= m) {
             return Ok(());
         }
-        eprintln!(
+        errln!(
             "    Watching {} files for changes (Ctrl-C to stop)",
             files.len()
         );

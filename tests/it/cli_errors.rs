@@ -100,3 +100,52 @@ fn a_trim_that_discards_nothing_fails_the_model_and_points_at_its_recipe_line() 
     );
     assert!(err.contains("F1"), "{err}");
 }
+
+/// Runs `recipe args` in `s` with standard output given as `stdout`; returns the exit code and
+/// standard error.
+fn run_with_stdout(
+    s: &Scratch,
+    args: &[&str],
+    stdout: std::process::Stdio,
+) -> (Option<i32>, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(s.path("."))
+        .args(args)
+        .stdout(stdout)
+        .output()
+        .expect("the recipe binary runs");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_reader_that_closed_standard_output_ends_the_command_quietly() {
+    let s = Scratch::didactic_built();
+    for args in [
+        &["explain", "didactic.toml"][..],
+        &["graph", "didactic.toml"][..],
+    ] {
+        // The read end is closed before the command writes anything.
+        let (reader, writer) = std::io::pipe().expect("a pipe");
+        drop(reader);
+        let (code, err) = run_with_stdout(&s, args, writer.into());
+        assert_eq!(code, Some(141), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(err.is_empty(), "{args:?} says nothing: {err}");
+    }
+}
+
+#[test]
+fn a_full_standard_output_is_an_error_message_not_a_panic() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        eprintln!("note: no /dev/full here; skipped");
+        return;
+    };
+    let s = Scratch::didactic_built();
+    let (code, err) = run_with_stdout(&s, &["explain", "didactic.toml"], full.into());
+    assert_eq!(code, Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(err.contains("cannot write to standard output"), "{err}");
+}
