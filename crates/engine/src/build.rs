@@ -97,6 +97,7 @@ pub fn build(
         })
     })?;
     let store = Store::open(&opts.cache_dir)?;
+    store.sweep_temporaries()?;
     let prev = Manifest::load(&opts.cache_dir).unwrap_or_default();
     let jobs = if opts.jobs == 0 {
         std::thread::available_parallelism()

@@ -54,6 +54,29 @@ impl Store {
         })
     }
 
+    /// Removes the temporaries of atomic writes (`.tmp-*`) left in `objects/` and `actions/` by
+    /// a process killed mid-write; returns how many. Only the engine writes there, and only
+    /// under the cache lock, so with the lock held every such file is debris (`gc` removes them
+    /// too, as unreferenced entries). The cache root is not swept: the command line writes its
+    /// last report there after the lock is released.
+    pub fn sweep_temporaries(&self) -> Result<usize, EngineError> {
+        let mut removed = 0;
+        for sub in ["objects", "actions"] {
+            let d = self.root.join(sub);
+            let entries = std::fs::read_dir(&d).map_err(|e| EngineError::io(&d, e))?;
+            for entry in entries {
+                let entry = entry.map_err(|e| EngineError::io(&d, e))?;
+                let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+                if is_file && entry.file_name().to_string_lossy().starts_with(TEMP_PREFIX) {
+                    let path = entry.path();
+                    std::fs::remove_file(&path).map_err(|e| EngineError::io(&path, e))?;
+                    removed += 1;
+                }
+            }
+        }
+        Ok(removed)
+    }
+
     pub fn root(&self) -> &Path {
         &self.root
     }
@@ -133,9 +156,12 @@ impl Store {
     }
 }
 
+/// The prefix of every temporary file of an atomic write.
+pub const TEMP_PREFIX: &str = ".tmp-";
+
 /// Write `bytes` to `path` through a temporary file in the same directory and a rename.
 /// `durable` also flushes the data to disk before the rename (used for user-visible outputs).
-/// The temporary's name starts with `.tmp-`.
+/// The temporary's name starts with [`TEMP_PREFIX`].
 pub fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -143,7 +169,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result
     };
     std::fs::create_dir_all(&dir)?;
     let mut b = tempfile::Builder::new();
-    b.prefix(".tmp-");
+    b.prefix(TEMP_PREFIX);
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;

@@ -274,3 +274,19 @@ fn a_damaged_manifest_only_costs_explanations_never_results() {
     let r2 = run(chain(5, &runs), &o);
     assert_eq!(r2.node("a").unwrap().reason.to_string(), "value: 1 → 5");
 }
+
+#[test]
+fn a_build_removes_the_temporaries_a_killed_write_left_in_the_cache() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 1);
+    let runs = Runs::default();
+    run(chain(1, &runs), &o);
+    let before = entries(&o.cache_dir);
+    for sub in ["objects", "actions"] {
+        std::fs::write(o.cache_dir.join(sub).join(".tmp-killed"), b"half a write").unwrap();
+    }
+    runs.reset();
+    run(chain(1, &runs), &o);
+    assert_eq!(entries(&o.cache_dir), before, "debris gone, entries kept");
+    assert_eq!(runs.total(), 0, "nothing re-ran");
+}
