@@ -17,6 +17,11 @@
 //!   angle of that axis) so seams do not zigzag, and each connected piece of one label that
 //!   faces within the chart angle of a neighbouring piece's axis is merged into it, smallest
 //!   first, so that noise in the normals leaves no islands.
+//! - Labels are computed once on the whole imported surface, not per patch: where a curve
+//!   crosses a seam, the charts of the patches on both sides then end at the same point of it
+//!   (per patch, seam ends a metre apart made metre-long curve pieces and elements).
+//! - A chart never touches itself at a vertex only (`unpinch` gives the smaller fans there to a
+//!   neighbouring chart): its boundary loops must not touch.
 //! - Seams run along support edges: no point is constructed, and the triangles are the patch's
 //!   own. Seam curves are not features, so the topology does not end curves at their kinks.
 //! - Normals are those of the original (imported) triangles each split triangle lies in, as for
