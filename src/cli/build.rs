@@ -73,8 +73,9 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let lock_file = lock_path(&args.recipe);
     let new_lock = LockFile::from_report(&report);
     if args.locked {
-        let text = std::fs::read_to_string(&lock_file).map_err(|_| {
-            Failure(format!("error: --locked, but there is no lock file {}: build once without --locked and commit it", lock_file.display()))
+        let text = std::fs::read_to_string(&lock_file).map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => Failure(format!("error: --locked, but there is no lock file {}: build once without --locked and commit it", lock_file.display())),
+            _ => Failure(format!("error: --locked, but the lock file {} cannot be read: {e}", lock_file.display())),
         })?;
         let old = LockFile::parse(&text)
             .map_err(|e| Failure(format!("error: {}: {e}", lock_file.display())))?;

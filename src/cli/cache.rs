@@ -45,12 +45,16 @@ fn read_last(
     path: fn(&Path) -> PathBuf,
 ) -> Result<String, Failure> {
     let p = path(&cache_dir(recipe, args));
-    std::fs::read_to_string(&p).map_err(|_| {
-        Failure(format!(
+    std::fs::read_to_string(&p).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => Failure(format!(
             "error: no build recorded in {} yet: run `recipe build {}` first",
             p.display(),
             recipe.display()
-        ))
+        )),
+        _ => Failure(format!(
+            "error: cannot read the last build's record {}: {e}",
+            p.display()
+        )),
     })
 }
 
@@ -95,6 +99,10 @@ pub fn clean(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
 
 pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let dir = cache_dir(recipe, args);
+    if !dir.exists() {
+        outln!("nothing to collect: {} does not exist", dir.display());
+        return Ok(());
+    }
     let mut keep = LockFile::default();
     if let Ok(text) = std::fs::read_to_string(lock_path(recipe)) {
         keep = LockFile::parse(&text)

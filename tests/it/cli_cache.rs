@@ -176,3 +176,37 @@ fn clean_says_when_there_was_nothing_to_remove() {
     let out = stdout_of(&s, &["clean", "didactic.toml"]);
     assert!(out.contains("nothing to remove"), "{out}");
 }
+
+#[test]
+fn gc_on_a_missing_cache_says_so_and_creates_nothing() {
+    let s = Scratch::didactic();
+    let out = stdout_of(&s, &["gc", "didactic.toml"]);
+    assert!(out.contains("nothing to collect"), "{out}");
+    assert!(!s.path(".recipe").exists(), "gc created the cache");
+}
+
+#[test]
+fn an_unreadable_last_build_record_is_not_reported_as_missing() {
+    let s = Scratch::didactic_built();
+    let record = s.path(".recipe/last-report.json");
+    std::fs::remove_file(&record).unwrap();
+    std::fs::create_dir(&record).unwrap();
+    let out = s.recipe_cmd(&["explain", "didactic.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot read the last build's record"), "{err}");
+    assert!(!err.contains("no build recorded"), "{err}");
+}
+
+#[test]
+fn an_unreadable_lock_file_is_not_reported_as_missing() {
+    let s = Scratch::didactic_built();
+    let lock = s.path("didactic.toml.lock");
+    std::fs::remove_file(&lock).unwrap();
+    std::fs::create_dir(&lock).unwrap();
+    let out = s.recipe_cmd(&["build", "--locked", "--quiet", "didactic.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("cannot be read"), "{err}");
+    assert!(!err.contains("there is no lock file"), "{err}");
+}
