@@ -77,17 +77,6 @@ pub fn chart_labels(mesh: &TriMesh, normals: &[[f64; 3]], max_deg: f64) -> Vec<u
     (0..n as u32).map(|t| pieces.root(t)).collect()
 }
 
-/// The charts of a piece of surface: groups of its triangles (ascending indices, groups ordered
-/// by their first triangle); one group when it needs no cut ([`needs_charts`]).
-pub fn charts(mesh: &TriMesh, normals: &[[f64; 3]], max_deg: f64) -> Vec<Vec<u32>> {
-    let n = mesh.triangles.len() as u32;
-    if !needs_charts(mesh, normals, max_deg) {
-        return vec![(0..n).collect()];
-    }
-    let labels = chart_labels(mesh, normals, max_deg);
-    connected_groups(mesh, |t| labels[t as usize])
-}
-
 /// The connected groups of `mesh`'s triangles (across manifold edges) with equal `label`,
 /// ascending within, ordered by their first triangle.
 pub fn connected_groups(mesh: &TriMesh, label: impl Fn(u32) -> u32) -> Vec<Vec<u32>> {
@@ -376,6 +365,7 @@ impl Pieces {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::patches::unit_normals;
 
     /// A closed octahedron-like sphere: a UV sphere of `rings` × `segs` with two poles.
     fn sphere(rings: usize, segs: usize) -> TriMesh {
@@ -405,15 +395,13 @@ mod tests {
         TriMesh::new(v, t)
     }
 
-    fn unit_normals(m: &TriMesh) -> Vec<[f64; 3]> {
-        (0..m.triangles.len())
-            .map(|t| {
-                let [a, b, c] = m.corners(t);
-                let n = cross(&sub(b, a), &sub(c, a));
-                let l = dot(&n, &n).sqrt();
-                n.map(|x| x / l)
-            })
-            .collect()
+    /// The charts of a whole surface as the model cuts a patch: one group when it needs none.
+    fn charts(mesh: &TriMesh, normals: &[[f64; 3]], max_deg: f64) -> Vec<Vec<u32>> {
+        if !needs_charts(mesh, normals, max_deg) {
+            return vec![(0..mesh.triangles.len() as u32).collect()];
+        }
+        let labels = chart_labels(mesh, normals, max_deg);
+        connected_groups(mesh, |t| labels[t as usize])
     }
 
     /// Every chart's triangles face within `deg` of the chart's mean normal.

@@ -44,27 +44,17 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
     components(surface, split, |_| false)
 }
 
-/// The patches of `split` (surface `surface`, split from `original`): connected components of
-/// its triangles, where two triangles connect through a shared edge that is not a curve edge and
-/// whose original triangles bend by at most `kink_deg`. Ordered by their smallest vertex
-/// (lexicographic, total f64 order), ties broken by the sorted list of their vertices.
+/// The patches of `split` (surface `surface`, split from an original surface whose triangles'
+/// unit normals are `normals`, see [`unit_normals`]): connected components of its triangles,
+/// where two triangles connect through a shared edge that is not a curve edge and whose original
+/// triangles bend by at most `kink_deg`. Ordered by their smallest vertex (lexicographic, total
+/// f64 order), ties broken by the sorted list of their vertices.
 pub fn patches_at_creases(
     surface: &str,
     split: &SplitSurface,
-    original: &TriMesh,
+    normals: &[[f64; 3]],
     kink_deg: f64,
 ) -> Vec<Patch> {
-    let normals: Vec<[f64; 3]> = original
-        .triangles
-        .iter()
-        .map(|t| {
-            let p = |k: usize| original.vertices.get(t[k] as usize).copied();
-            match (p(0), p(1), p(2)) {
-                (Some(a), Some(b), Some(c)) => cross(&sub(&b, &a), &sub(&c, &a)),
-                _ => [0.0; 3],
-            }
-        })
-        .collect();
     let cos_max = kink_deg.to_radians().cos();
     components(surface, split, |(t, u)| {
         let (a, b) = (split.parent[t as usize], split.parent[u as usize]);
@@ -74,8 +64,7 @@ pub fn patches_at_creases(
         let (Some(n), Some(m)) = (normals.get(a as usize), normals.get(b as usize)) else {
             return false;
         };
-        let len = (dot(n, n) * dot(m, m)).sqrt();
-        len > 0.0 && dot(n, m) < cos_max * len
+        *n != [0.0; 3] && *m != [0.0; 3] && dot(n, m) < cos_max
     })
 }
 
@@ -220,17 +209,15 @@ fn extract(m: &TriMesh, groups: Vec<Vec<u32>>) -> Vec<Patch> {
 /// labelling the imported surface's triangles once, on the first patch that needs it.
 pub struct Charting<'a> {
     original: &'a TriMesh,
-    normals: Vec<[f64; 3]>,
+    normals: &'a [[f64; 3]],
     labels: Option<Vec<u32>>,
     max_deg: f64,
 }
 
 impl<'a> Charting<'a> {
-    /// For the patches split from `original`, with `Tolerances::chart_angle_deg` = `max_deg`.
-    pub fn new(original: &'a TriMesh, max_deg: f64) -> Self {
-        let normals = (0..original.triangles.len())
-            .map(|t| unit_normal(original, t))
-            .collect();
+    /// For the patches split from `original`, whose triangles' unit normals are `normals`
+    /// ([`unit_normals`]), with `Tolerances::chart_angle_deg` = `max_deg`.
+    pub fn new(original: &'a TriMesh, normals: &'a [[f64; 3]], max_deg: f64) -> Self {
         Charting {
             original,
             normals,
@@ -258,7 +245,7 @@ impl<'a> Charting<'a> {
             return vec![patch];
         }
         let labels = self.labels.get_or_insert_with(|| {
-            crate::charts::chart_labels(self.original, &self.normals, self.max_deg)
+            crate::charts::chart_labels(self.original, self.normals, self.max_deg)
         });
         let label = |t: u32| {
             let p = parent(patch.triangles[t as usize]);
@@ -285,6 +272,14 @@ impl<'a> Charting<'a> {
         }
         out
     }
+}
+
+/// The unit normal of every triangle of `mesh` (zero where a triangle has none): computed once
+/// per imported surface, for creases and charts alike.
+pub fn unit_normals(mesh: &TriMesh) -> Vec<[f64; 3]> {
+    (0..mesh.triangles.len())
+        .map(|t| unit_normal(mesh, t))
+        .collect()
 }
 
 /// The unit normal of `mesh`'s triangle `t` (zero when it has none or does not exist).
@@ -368,7 +363,7 @@ mod tests {
     fn a_bend_sharper_than_the_kink_angle_is_a_crease_between_two_patches() {
         for (deg, patches_wanted) in [(10.0, 1), (29.0, 1), (31.0, 2), (90.0, 2), (150.0, 2)] {
             let (split, original) = bent(deg, false);
-            let ps = patches_at_creases("s", &split, &original, 30.0);
+            let ps = patches_at_creases("s", &split, &unit_normals(&original), 30.0);
             assert_eq!(ps.len(), patches_wanted, "bent by {deg} degrees");
             assert_eq!(patches("s", &split).len(), 1, "without creases");
         }
@@ -378,9 +373,12 @@ mod tests {
     fn slivers_that_splitting_makes_inside_one_triangle_never_make_a_crease() {
         // The sliver's own normal is ill-conditioned; its parent's is not.
         let (split, original) = bent(10.0, true);
-        assert_eq!(patches_at_creases("s", &split, &original, 30.0).len(), 1);
+        assert_eq!(
+            patches_at_creases("s", &split, &unit_normals(&original), 30.0).len(),
+            1
+        );
         let (split, original) = bent(60.0, true);
-        let ps = patches_at_creases("s", &split, &original, 30.0);
+        let ps = patches_at_creases("s", &split, &unit_normals(&original), 30.0);
         assert_eq!(ps.len(), 2);
         assert_eq!(ps.iter().map(|p| p.triangles.len()).sum::<usize>(), 3);
     }

@@ -54,7 +54,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        7
+        8
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -92,14 +92,23 @@ impl Operation for ModelOp {
             .collect();
         let split =
             split::split_model(&named, &intersections).map_err(|e| OpError::from(e.to_string()))?;
+        let normals: Vec<Vec<[f64; 3]>> = surfaces
+            .iter()
+            .map(|s| patches::unit_normals(&s.mesh))
+            .collect();
         let all: Vec<(usize, patches::Patch)> = split
             .iter()
             .enumerate()
             .flat_map(|(i, sp)| {
                 let s = &surfaces[i];
-                patches::patches_at_creases(&s.name, sp, &s.mesh, self.tolerances.kink_angle_deg)
-                    .into_iter()
-                    .map(move |p| (i, p))
+                patches::patches_at_creases(
+                    &s.name,
+                    sp,
+                    &normals[i],
+                    self.tolerances.kink_angle_deg,
+                )
+                .into_iter()
+                .map(move |p| (i, p))
             })
             .collect();
         let trim_in: Vec<TrimPatch> = all
@@ -129,7 +138,8 @@ impl Operation for ModelOp {
         let chart_deg = self.tolerances.chart_angle_deg;
         let mut charting: Vec<patches::Charting> = surfaces
             .iter()
-            .map(|s| patches::Charting::new(&s.mesh, chart_deg))
+            .zip(&normals)
+            .map(|(s, n)| patches::Charting::new(&s.mesh, n, chart_deg))
             .collect();
         let mut kept: Vec<ModelPatch> = Vec::new();
         let mut input: Vec<regions::PatchIn> = Vec::new();
