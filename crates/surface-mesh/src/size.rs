@@ -64,6 +64,10 @@ pub fn curvature_nodes(support: &TriMesh, normals: &[[f64; 3]], size: f64) -> Ve
             ring[b as usize].push(a);
         }
     }
+    for r in &mut ring {
+        r.sort_unstable();
+        r.dedup();
+    }
     let reach = |a: u32, b: u32| {
         let pa = &support.vertices[a as usize];
         let e = sub(&support.vertices[b as usize], pa);
