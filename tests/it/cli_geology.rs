@@ -1,7 +1,7 @@
 //! The corpus of geological situations (`test_support::geology`) built through a recipe: each
 //! case meshes into its regions, every region's worst tet is within the quality bars (normalised
-//! mean ratio at least 0.2, dihedral angles at least the case's bar: 8°, or 6° for the two
-//! cases whose gap to 8° is still open), and, when the independent checker is
+//! mean ratio at least 0.2, dihedral angles at least the case's bar: 8°, or 6° for the
+//! erosional unconformity, whose gap to 8° is still open), and, when the independent checker is
 //! available, the msh passes `check_mesh.py` with that region count.
 
 use crate::common_cli::checker;
