@@ -5,9 +5,12 @@
 //! Decisions and why:
 //! - First choice: orthogonal projection onto the plane normal to the area-weighted mean normal.
 //!   It is accepted only if every support triangle is strictly counter-clockwise in the plane
-//!   (exact `orient2d` on the projected coordinates) and the projected support border has no
-//!   crossing (exact segment tests): a locally injective, orientation-preserving map of a
-//!   disk-with-holes whose border stays simple is injective. This keeps the geometry nearly
+//!   (exact `orient2d` on the projected coordinates), the projected support border has no
+//!   crossing (exact segment tests) and exactly one border loop runs counter-clockwise (the outer
+//!   one; exact, at each loop's lowest vertex): a locally injective, orientation-preserving map of
+//!   a disk-with-holes whose border stays simple and whose holes keep their orientation is
+//!   injective. (A hole whose image turns the wrong way is a fold the triangles alone do not
+//!   show: a sliver standing up in a dome flattens to a hole that overlaps its neighbours.) This keeps the geometry nearly
 //!   isometric for horizons and steep faults alike (the plane follows the surface, not z).
 //! - Otherwise (recumbent folds, caps down to their equator...): a Tutte embedding with positive
 //!   symmetric weights (inverse edge lengths). The longest border loop is pinned to a circle by
@@ -223,7 +226,29 @@ fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
     if first_crossing(&segs).is_some() {
         return None;
     }
+    let outer = loops
+        .iter()
+        .filter(|l| counter_clockwise(l, &uv) == Some(true));
+    if outer.count() != 1 {
+        return None;
+    }
     Some(uv)
+}
+
+/// The orientation of a simple polygon (exact): at its lowest-leftmost vertex the polygon turns
+/// the way it runs. `None` when the turn there is degenerate.
+fn counter_clockwise(polygon: &[u32], uv: &[[f64; 2]]) -> Option<bool> {
+    let n = polygon.len();
+    let at = |i: usize| uv[polygon[i % n] as usize];
+    let low = (0..n).min_by(|&i, &j| {
+        let (p, q) = (at(i), at(j));
+        p[1].total_cmp(&q[1]).then(p[0].total_cmp(&q[0]))
+    })?;
+    match orient2d(&at(low + n - 1), &at(low), &at(low + 1)) {
+        Orientation::Positive => Some(true),
+        Orientation::Negative => Some(false),
+        _ => None,
+    }
 }
 
 pub fn centre(s: &TriMesh) -> [f64; 3] {

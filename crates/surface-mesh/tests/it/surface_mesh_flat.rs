@@ -389,3 +389,66 @@ fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_fla
         mesh_and_check(&input, &uniform(100.0), 1.06, 1.6);
     }
 }
+
+#[test]
+fn a_hole_whose_rim_overhangs_its_neighbour_is_not_flattened_by_projection() {
+    use surface_mesh::flattening_method;
+    // A 1000 m square with a sliver hole P1 P2 P3: the part left of the hole reaches P2, 100 m up
+    // and 50 m right of the line P1 P3 that bounds the part on the right, so the left part
+    // overhangs the right one. Projected on the plane, every triangle keeps its orientation and
+    // the border does not cross, but the hole turns the wrong way: the two parts overlap there.
+    for off in [[0.0; 3], UTM] {
+        let p = |x: f64, y: f64, z: f64| [x + off[0], y + off[1], z - 500.0];
+        let vs = vec![
+            p(0.0, 0.0, 0.0),       // 0 A
+            p(1000.0, 0.0, 0.0),    // 1 B
+            p(1000.0, 1000.0, 0.0), // 2 C
+            p(0.0, 1000.0, 0.0),    // 3 D
+            p(500.0, 0.0, 0.0),     // 4 E
+            p(500.0, 1000.0, 0.0),  // 5 F
+            p(500.0, 200.0, 0.0),   // 6 P1
+            p(550.0, 500.0, 100.0), // 7 P2
+            p(500.0, 800.0, 0.0),   // 8 P3
+        ];
+        let ts = vec![
+            [0, 4, 6],
+            [0, 6, 7],
+            [0, 7, 3],
+            [3, 7, 8],
+            [3, 8, 5],
+            [4, 1, 6],
+            [1, 2, 6],
+            [6, 2, 8],
+            [8, 2, 5],
+        ];
+        let support = geom::TriMesh::new(vs.clone(), ts);
+        assert_eq!(flattening_method(&support).unwrap(), "tutte");
+        let border: Vec<[f64; 3]> = (0..40)
+            .map(|k| {
+                let s = 1000.0 * (k % 10) as f64 / 10.0;
+                match k / 10 {
+                    0 => p(s, 0.0, 0.0),
+                    1 => p(1000.0, s, 0.0),
+                    2 => p(1000.0 - s, 1000.0, 0.0),
+                    _ => p(0.0, 1000.0 - s, 0.0),
+                }
+            })
+            .collect();
+        let input = PatchInput {
+            name: "overhanging hole".into(),
+            support,
+            loops: vec![border, vec![vs[6], vs[7], vs[8]]],
+            constraints: vec![],
+        };
+        let (out, _) = mesh_and_check(&input, &uniform(100.0), 1.2, 3.0);
+        // The sliver stays a hole: the mesh uses P1 P2 and P2 P3 on the left, P3 P1 on the right.
+        let at = |q: [f64; 3]| out.nodes.iter().position(|n| *n == q).unwrap() as u32;
+        let (p1, p2, p3) = (at(vs[6]), at(vs[7]), at(vs[8]));
+        let has = |a: u32, b: u32| {
+            out.triangles
+                .iter()
+                .any(|t| (0..3).any(|i| t[i] == a && t[(i + 1) % 3] == b))
+        };
+        assert!(has(p1, p2) && has(p2, p3) && has(p3, p1), "the hole's rim");
+    }
+}
