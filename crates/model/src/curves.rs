@@ -89,6 +89,11 @@ pub fn build_topology(patches: &[PatchIn], tol: &Tolerances) -> Result<ModelTopo
         .filter(|&v| vertex_flags[v])
         .map(|v| points[v])
         .collect();
+    let mut curves = curves;
+    let room = crate::clearance::clearances(&curves, &patch_bounds, patches);
+    for (c, r) in curves.iter_mut().zip(room) {
+        c.clearance = r;
+    }
     Ok(ModelTopology {
         vertices,
         curves,
@@ -374,6 +379,7 @@ fn name_curves(
                 patches: sig_list[*sig as usize].iter().map(|&(p, _)| p).collect(),
                 points: vs.iter().map(|&v| points[v as usize]).collect(),
                 closed: *closed,
+                clearance: Vec::new(),
             });
         }
         g = h;

@@ -48,9 +48,13 @@ impl std::fmt::Display for DiscretizeError {
 pub const MAX_SEGMENTS: usize = 10_000_000;
 
 /// Subdivides `polyline` (at least 2 points; closed curves repeat the first point at the end).
+/// Under a `Size` rule a segment is then split at polyline vertices while one lies farther from
+/// it than half its `clearance` (per point of `polyline`; empty: no bound), see
+/// [`follow_bends`]; a `Count` is kept exactly as given.
 pub fn discretize(
     polyline: &[[f64; 3]],
     rule: &Subdivision,
+    clearance: &[f64],
 ) -> Result<Vec<[f64; 3]>, DiscretizeError> {
     if polyline.len() < 2 {
         return Err(DiscretizeError(format!(
@@ -71,30 +75,134 @@ pub fn discretize(
         )));
     }
     let lengths = segment_lengths(length, rule)?;
-    let mut nodes = Vec::with_capacity(lengths.len() + 1);
-    nodes.push(polyline[0]);
+    let mut stations = Vec::with_capacity(lengths.len() + 1);
+    stations.push(Station::Vertex(0));
     let mut s = 0.0;
-    let mut seg = 0usize;
     for l in &lengths[..lengths.len() - 1] {
         s += l;
-        while seg + 2 < cum.len() && cum[seg + 1] < s {
-            seg += 1;
+        stations.push(Station::Arc(s));
+    }
+    stations.push(Station::Vertex(polyline.len() - 1));
+    let curve = Polyline {
+        points: polyline,
+        cum: &cum,
+    };
+    if matches!(rule, Subdivision::Size { .. }) && clearance.len() == polyline.len() {
+        stations = follow_bends(&curve, &stations, clearance);
+    }
+    Ok(stations.iter().map(|&st| curve.point(st)).collect())
+}
+
+/// A node's place on the polyline: a vertex (copied bit for bit) or an arc length.
+#[derive(Copy, Clone, Debug, PartialEq)]
+enum Station {
+    Vertex(usize),
+    Arc(f64),
+}
+
+/// A polyline with the arc length at each vertex.
+struct Polyline<'a> {
+    points: &'a [[f64; 3]],
+    cum: &'a [f64],
+}
+
+impl Polyline<'_> {
+    fn arc(&self, st: Station) -> f64 {
+        match st {
+            Station::Vertex(i) => self.cum[i],
+            Station::Arc(s) => s,
         }
+    }
+
+    /// The point at `st`, interpolated on the polyline segment holding its arc length.
+    fn point(&self, st: Station) -> [f64; 3] {
+        let s = match st {
+            Station::Vertex(i) => return self.points[i],
+            Station::Arc(s) => s,
+        };
+        let cum = self.cum;
+        let seg = cum[1..cum.len() - 1].partition_point(|&c| c < s);
         let (a, b) = (cum[seg], cum[seg + 1]);
         let t = if b > a {
             ((s - a) / (b - a)).clamp(0.0, 1.0)
         } else {
             0.0
         };
-        let (p, q) = (&polyline[seg], &polyline[seg + 1]);
-        nodes.push([
+        let (p, q) = (&self.points[seg], &self.points[seg + 1]);
+        [
             p[0] + t * (q[0] - p[0]),
             p[1] + t * (q[1] - p[1]),
             p[2] + t * (q[2] - p[2]),
-        ]);
+        ]
     }
-    nodes.push(polyline[polyline.len() - 1]);
-    Ok(nodes)
+}
+
+/// Splits every segment whose polyline strays from it: while a polyline vertex strictly between a
+/// segment's ends lies farther from the segment than half its clearance, the vertex that strays
+/// most beyond that becomes a node. Chords that cut a bend short could otherwise cross the
+/// chords of a neighbouring curve of the same patch, and no surface mesh can then be bounded by
+/// them (the argument is in `clearance`). Every split adds a vertex, so this ends; where no
+/// other curve is near, a segment is never split.
+fn follow_bends(curve: &Polyline<'_>, stations: &[Station], clearance: &[f64]) -> Vec<Station> {
+    let mut out = Vec::with_capacity(stations.len());
+    out.push(stations[0]);
+    for w in stations.windows(2) {
+        split_bends(curve, w[0], w[1], clearance, &mut out);
+    }
+    out
+}
+
+/// Appends the stations after `a` up to and including `b`, splitting at strayed vertices (left
+/// part first; a stack, not recursion, as a long winding curve may split many times).
+fn split_bends(
+    curve: &Polyline<'_>,
+    a: Station,
+    b: Station,
+    clearance: &[f64],
+    out: &mut Vec<Station>,
+) {
+    let mut from = a;
+    let mut pending = vec![b];
+    while let Some(&to) = pending.last() {
+        match most_strayed(curve, from, to, clearance) {
+            Some(i) => pending.push(Station::Vertex(i)),
+            None => {
+                out.push(to);
+                from = to;
+                pending.pop();
+            }
+        }
+    }
+}
+
+/// The polyline vertex strictly between `a` and `b` that lies farthest beyond half its clearance
+/// from the segment `a`–`b`, if any does (the first one on ties).
+fn most_strayed(curve: &Polyline<'_>, a: Station, b: Station, clearance: &[f64]) -> Option<usize> {
+    let (pa, pb) = (curve.point(a), curve.point(b));
+    let (sa, sb) = (curve.arc(a), curve.arc(b));
+    let first = curve.cum.partition_point(|&c| c <= sa);
+    let last = curve.cum.partition_point(|&c| c < sb);
+    (first..last)
+        .map(|i| {
+            let d = point_segment_distance(&curve.points[i], &pa, &pb);
+            (d - 0.5 * clearance[i], i)
+        })
+        .filter(|&(excess, _)| excess > 0.0)
+        .max_by(|x, y| x.0.total_cmp(&y.0).then(y.1.cmp(&x.1)))
+        .map(|(_, i)| i)
+}
+
+/// Distance from `p` to the segment `a`–`b`.
+fn point_segment_distance(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let ap = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+    let len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    let t = if len2 > 0.0 {
+        ((ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    dist(p, &[a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]])
 }
 
 /// The segment lengths for a curve of `length`, adding up to `length`.
@@ -186,7 +294,7 @@ mod tests {
     #[test]
     fn a_count_gives_equal_segments_and_keeps_the_end_vertices_bit_for_bit() {
         let p = vec![[0.1, 0.2, 0.3], [1.0, 0.2, 0.3], [1.0, 3.7, 0.3]];
-        let n = discretize(&p, &Subdivision::Count(7)).unwrap();
+        let n = discretize(&p, &Subdivision::Count(7), &[]).unwrap();
         assert_eq!(n.len(), 8);
         assert_eq!(n[0], p[0]);
         assert_eq!(n[7], p[2]);
@@ -208,7 +316,7 @@ mod tests {
     #[test]
     fn nodes_stay_on_the_polyline_around_a_bend() {
         let p = vec![[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0, 10.0, 0.0]];
-        for q in discretize(&p, &Subdivision::Count(9)).unwrap() {
+        for q in discretize(&p, &Subdivision::Count(9), &[]).unwrap() {
             assert!(q[1] == 0.0 || q[0] == 10.0, "{q:?} is off the polyline");
         }
     }
@@ -262,6 +370,7 @@ mod tests {
                 ratio: 1.0,
                 grading: Grading::Geometric,
             },
+            &[],
         )
         .unwrap();
         assert_eq!(n.len(), 11);
@@ -272,6 +381,7 @@ mod tests {
                 ratio: 1.0,
                 grading: Grading::Geometric,
             },
+            &[],
         )
         .unwrap();
         assert_eq!(n.len(), 11);
@@ -286,6 +396,7 @@ mod tests {
                 ratio: 1.0,
                 grading: Grading::Geometric,
             },
+            &[],
         )
         .unwrap();
         assert_eq!(n, line(50.0));
@@ -293,7 +404,7 @@ mod tests {
 
     #[test]
     fn bad_rules_and_degenerate_curves_are_errors_not_panics() {
-        assert!(discretize(&line(10.0), &Subdivision::Count(0)).is_err());
+        assert!(discretize(&line(10.0), &Subdivision::Count(0), &[]).is_err());
         assert!(
             discretize(
                 &line(10.0),
@@ -301,7 +412,8 @@ mod tests {
                     size: 0.0,
                     ratio: 1.0,
                     grading: Grading::Geometric
-                }
+                },
+                &[],
             )
             .is_err()
         );
@@ -312,7 +424,8 @@ mod tests {
                     size: f64::NAN,
                     ratio: 1.0,
                     grading: Grading::Geometric
-                }
+                },
+                &[],
             )
             .is_err()
         );
@@ -323,12 +436,90 @@ mod tests {
                     size: 1e-3,
                     ratio: 1.0,
                     grading: Grading::Geometric
-                }
+                },
+                &[],
             )
             .is_err()
         );
-        assert!(discretize(&[[0.0; 3]], &Subdivision::Count(2)).is_err());
-        assert!(discretize(&[[1.0; 3], [1.0; 3]], &Subdivision::Count(2)).is_err());
+        assert!(discretize(&[[0.0; 3]], &Subdivision::Count(2), &[]).is_err());
+        assert!(discretize(&[[1.0; 3], [1.0; 3]], &Subdivision::Count(2), &[]).is_err());
+    }
+
+    /// A polyline around three sides of a 100 m square, bent at its two corners.
+    fn three_sides() -> Vec<[f64; 3]> {
+        vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 100.0, 0.0],
+            [100.0, 100.0, 0.0],
+            [100.0, 0.0, 0.0],
+        ]
+    }
+
+    const ONE_SEGMENT: Subdivision = Subdivision::Size {
+        size: 500.0,
+        ratio: 1.0,
+        grading: Grading::Geometric,
+    };
+
+    #[test]
+    fn a_size_rule_keeps_the_corners_a_long_segment_would_cut_near_another_curve() {
+        let n = discretize(&three_sides(), &ONE_SEGMENT, &[20.0; 4]).unwrap();
+        assert_eq!(n, three_sides(), "both corners become nodes, bit for bit");
+    }
+
+    #[test]
+    fn a_curve_with_no_other_curve_near_is_never_split() {
+        let far = [f64::INFINITY; 4];
+        assert_eq!(
+            discretize(&three_sides(), &ONE_SEGMENT, &far)
+                .unwrap()
+                .len(),
+            2
+        );
+    }
+
+    #[test]
+    fn a_count_is_kept_even_across_corners() {
+        let n = discretize(&three_sides(), &Subdivision::Count(1), &[20.0; 4]).unwrap();
+        assert_eq!(n, vec![[0.0; 3], [100.0, 0.0, 0.0]]);
+    }
+
+    #[test]
+    fn a_bend_is_split_only_when_it_strays_beyond_half_the_clearance() {
+        // The middle vertex lies 5 m off the 200 m chord.
+        let p = vec![[0.0; 3], [100.0, 5.0, 0.0], [200.0, 0.0, 0.0]];
+        assert_eq!(discretize(&p, &ONE_SEGMENT, &[20.0; 3]).unwrap().len(), 2);
+        assert_eq!(discretize(&p, &ONE_SEGMENT, &[8.0; 3]).unwrap().len(), 3);
+    }
+
+    #[test]
+    fn every_segment_of_a_winding_curve_keeps_within_half_its_clearance() {
+        // A 40-turn spiral of 4000 vertices discretized far coarser than one turn.
+        let p: Vec<[f64; 3]> = (0..4000)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / 100.0;
+                let r = 100.0 + i as f64;
+                [r * a.cos(), r * a.sin(), 0.1 * i as f64]
+            })
+            .collect();
+        let n = discretize(&p, &ONE_SEGMENT, &vec![50.0; p.len()]).unwrap();
+        // The polyline segment each node lies on, searched forwards (nodes follow the curve).
+        let mut on = vec![0usize];
+        for q in &n[1..n.len() - 1] {
+            let from = *on.last().unwrap();
+            let k = (from..p.len() - 1)
+                .find(|&k| point_segment_distance(q, &p[k], &p[k + 1]) < 1e-9)
+                .expect("every node lies on the polyline");
+            on.push(k);
+        }
+        on.push(p.len() - 2);
+        for (w, k) in n.windows(2).zip(on.windows(2)) {
+            let bound = 25.0 + 1e-9;
+            for v in &p[k[0] + 1..=k[1]] {
+                assert!(point_segment_distance(v, &w[0], &w[1]) <= bound);
+            }
+        }
+        assert!(n.len() > 40 * 4, "{} nodes for 40 turns", n.len());
     }
 
     #[test]
@@ -339,8 +530,8 @@ mod tests {
             grading: Grading::Bump,
         };
         assert_eq!(
-            discretize(&line(333.3), &r).unwrap(),
-            discretize(&line(333.3), &r).unwrap()
+            discretize(&line(333.3), &r, &[]).unwrap(),
+            discretize(&line(333.3), &r, &[]).unwrap()
         );
     }
 }

@@ -1,7 +1,7 @@
 //! From imported surfaces to the model a mesher can take: exact intersection and splitting
 //! (`intersect`), the patches of each split surface (`patches`), which patches the recipe's trims
 //! discard (`trims`), the regions the patches bound (`regions`), the half-edge structure of one
-//! surface (`topology`), curve subdivision (`discretize`), and, at the crate root, the model's
+//! surface (`topology`), curve subdivision (`discretize`) and the room it has (`clearance`), and, at the crate root, the model's
 //! topology and the FE assembly along it.
 //!
 //! The root: the topological model of the conforming, trimmed patches — its vertices and
@@ -30,6 +30,7 @@
 
 mod assemble;
 pub mod charts;
+pub mod clearance;
 mod curves;
 pub mod discretize;
 pub mod intersect;
@@ -55,6 +56,10 @@ pub struct Curve {
     /// The polyline, in canonical direction; a closed curve repeats its first point at the end.
     pub points: Vec<[f64; 3]>,
     pub closed: bool,
+    /// Per point of `points`, how far it is from the other curves of its patches in their planes
+    /// ([`clearance`]): its FE chords keep within half of it.
+    #[serde(default)]
+    pub clearance: Vec<f64>,
 }
 
 /// A curve as it appears in a patch's boundary loop.

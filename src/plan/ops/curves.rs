@@ -27,6 +27,10 @@ pub struct ModelCurve {
     pub surfaces: Vec<String>,
     pub polyline: Vec<[f64; 3]>,
     pub closed: bool,
+    /// Per point of `polyline`, its room in the model (`model::Curve::clearance`); empty for
+    /// curves found without a model.
+    #[serde(default)]
+    pub clearance: Vec<f64>,
 }
 
 /// The output of `curves`: every curve, sorted by name.
@@ -81,6 +85,7 @@ impl Operation for CurvesOp {
                     surfaces: vec![s.name.clone()],
                     polyline,
                     closed,
+                    clearance: Vec::new(),
                 });
             }
         }
@@ -102,6 +107,7 @@ impl Operation for CurvesOp {
                     surfaces: vec![x.a.clone(), x.b.clone()],
                     polyline,
                     closed: c.closed,
+                    clearance: Vec::new(),
                 });
             }
         }
@@ -145,7 +151,7 @@ impl Operation for CurveExtractOp {
         "curve"
     }
     fn version(&self) -> u32 {
-        1
+        2
     }
     fn params(&self) -> Params {
         Params::new()
@@ -166,6 +172,7 @@ impl Operation for CurveExtractOp {
                         surfaces: c.surfaces,
                         polyline: c.points,
                         closed: c.closed,
+                        clearance: c.clearance,
                     })
                     .collect(),
             }
@@ -205,7 +212,7 @@ impl Operation for DiscretizeOp {
         "discretize"
     }
     fn version(&self) -> u32 {
-        1
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -244,10 +251,10 @@ impl Operation for DiscretizeOp {
             .ok_or("discretize needs its curve")?
             .decode()?;
         let fail = |e| OpError::from(format!("curve `{}`: {e}", self.name));
-        let mut nodes = discretize(&c.polyline, &self.rule).map_err(fail)?;
+        let mut nodes = discretize(&c.polyline, &self.rule, &c.clearance).map_err(fail)?;
         if nodes.len() < self.min_segments as usize + 1 {
-            nodes =
-                discretize(&c.polyline, &Subdivision::Count(self.min_segments)).map_err(fail)?;
+            let count = Subdivision::Count(self.min_segments);
+            nodes = discretize(&c.polyline, &count, &c.clearance).map_err(fail)?;
         }
         let n = nodes.len() as u64;
         Ok(Output::new(Artifact::encode(&CurveNodes {
@@ -374,6 +381,7 @@ mod tests {
             surfaces: vec!["s".into()],
             polyline: vec![[0.0, 0.0, 0.0], [100.0, 0.0, 0.0]],
             closed: false,
+            clearance: Vec::new(),
         };
         let out = op
             .run(&Quiet, &[Artifact::encode(&curve).unwrap()])

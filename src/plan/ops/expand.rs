@@ -224,6 +224,7 @@ mod tests {
             patches: vec![0],
             points: vec![[k as f64, 0.0, 0.0], [k as f64 + 1.0, 0.0, 0.0]],
             closed: false,
+            clearance: Vec::new(),
         }
     }
 

@@ -54,7 +54,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        8
+        9
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
