@@ -120,6 +120,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "recumbent_fold",
         "vertical_tube",
         "salt_stock",
+        "closed_salt_diapir",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -133,4 +134,9 @@ fn a_vertical_tube_through_a_horizon_meshes_into_four_regions() {
 #[test]
 fn a_salt_stock_piercing_two_horizons_meshes_into_four_regions() {
     builds_and_meshes(&case("salt_stock"));
+}
+
+#[test]
+fn a_closed_salt_diapir_inside_the_box_meshes_into_four_regions() {
+    builds_and_meshes(&case("closed_salt_diapir"));
 }
