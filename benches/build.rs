@@ -13,6 +13,7 @@ fn build_once(recipe_path: &Path, text: &str, cache: &Path, out: &Path) -> engin
     let opts = BuildOptions {
         cache_dir: cache.to_path_buf(),
         output_dir: out.to_path_buf(),
+        staging_dir: None,
         jobs: 1,
         keep_going: true,
     };

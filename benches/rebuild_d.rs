@@ -20,6 +20,7 @@ fn build(recipe_path: &Path, text: &str, dir: &Path) -> (BuildReport, f64) {
     let opts = BuildOptions {
         cache_dir: dir.join("cache"),
         output_dir: dir.join("out"),
+        staging_dir: None,
         jobs: 1,
         keep_going: false,
     };

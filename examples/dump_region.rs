@@ -41,6 +41,7 @@ fn main() -> Result<(), String> {
     let opts = BuildOptions {
         cache_dir: out.join("cache"),
         output_dir: out.join("outputs"),
+        staging_dir: None,
         jobs: 2,
         keep_going: true,
     };

@@ -2,17 +2,33 @@
 
 use super::cache::{cache_dir, last_graph_path, last_report_path, lock_path, recipe_dir};
 use super::render::Renderer;
+use super::staging::Staging;
 use super::{BuildArgs, Failure, load};
 use crate::plan;
 use engine::{self, BuildOptions, BuildReport, LockFile, NodeState};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// One build of `args.recipe`. Returns the report when the build succeeded.
+///
+/// With `--locked`, the lock file is read first, and the build's output files (the engine's and
+/// the report) go to a staging directory that is published into the output directory only when
+/// the build succeeded and matches the lock: a locked build that fails changes nothing.
 pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let recipe = load::load(&args.recipe)?;
     let graph = plan::lower(&recipe).map_err(|e| Failure(format!("error: {e}")))?;
     let cache = cache_dir(&args.recipe, &args.cache);
     let output_dir = recipe_dir(&args.recipe).join(&recipe.output.dir);
+    let lock_file = lock_path(&args.recipe);
+    let (locked, staging) = if args.locked {
+        (
+            Some(read_lock(&lock_file)?),
+            Some(Staging::beside(&output_dir)?),
+        )
+    } else {
+        (None, None)
+    };
+    // Where this build writes its files: the output directory, or the staging directory.
+    let write_dir = staging.as_ref().map_or(output_dir.as_path(), |s| s.path());
     let jobs = args
         .jobs
         .unwrap_or_else(|| {
@@ -24,6 +40,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let opts = BuildOptions {
         cache_dir: cache.clone(),
         output_dir: output_dir.clone(),
+        staging_dir: staging.as_ref().map(|s| s.path().to_path_buf()),
         jobs,
         keep_going: true,
     };
@@ -61,8 +78,14 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         count(NodeState::Failed),
         count(NodeState::Skipped)
     );
-    // The report is written for failed builds too: it says what failed and what ran.
-    let written = super::report::write_report(&recipe, &args.recipe, &report, &output_dir)?;
+    // The report is written for failed builds too: it says what failed and what ran (under
+    // `--locked` it is staged, and dropped with the staging directory).
+    let written = super::report::write_report(&recipe, &args.recipe, &report, write_dir)?;
+    // Where the report is (or, when staged, will be) in the output directory.
+    let written: Vec<PathBuf> = written
+        .iter()
+        .filter_map(|p| Some(output_dir.join(p.strip_prefix(write_dir).ok()?)))
+        .collect();
     if !report.ok {
         return Err(Failure(format!(
             "error: build of {} failed: {summary}",
@@ -70,15 +93,8 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         )));
     }
 
-    let lock_file = lock_path(&args.recipe);
     let new_lock = LockFile::from_report(&report);
-    if args.locked {
-        let text = std::fs::read_to_string(&lock_file).map_err(|e| match e.kind() {
-            std::io::ErrorKind::NotFound => Failure(format!("error: --locked, but there is no lock file {}: build once without --locked and commit it", lock_file.display())),
-            _ => Failure(format!("error: --locked, but the lock file {} cannot be read: {e}", lock_file.display())),
-        })?;
-        let old = LockFile::parse(&text)
-            .map_err(|e| Failure(format!("error: {}: {e}", lock_file.display())))?;
+    if let Some(old) = &locked {
         let diff = old.diff(&new_lock);
         if !diff.is_empty() {
             let mut msg = format!(
@@ -90,6 +106,9 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
                 msg.push_str(d);
             }
             return Err(Failure(msg));
+        }
+        if let Some(staging) = staging {
+            staging.publish(&output_dir)?;
         }
     } else {
         let text = new_lock.to_text();
@@ -129,6 +148,15 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         }
     }
     Ok(report)
+}
+
+/// The committed lock file, for `--locked`.
+fn read_lock(lock_file: &Path) -> Result<LockFile, Failure> {
+    let text = std::fs::read_to_string(lock_file).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => Failure(format!("error: --locked, but there is no lock file {}: build once without --locked and commit it", lock_file.display())),
+        _ => Failure(format!("error: --locked, but the lock file {} cannot be read: {e}", lock_file.display())),
+    })?;
+    LockFile::parse(&text).map_err(|e| Failure(format!("error: {}: {e}", lock_file.display())))
 }
 
 /// Writes a file atomically and durably (`engine::write_atomic`), naming the file on failure.

@@ -40,6 +40,7 @@ mod load;
 mod output;
 mod render;
 mod report;
+mod staging;
 mod tetmesh;
 mod watch;
 
@@ -73,7 +74,7 @@ pub struct BuildArgs {
     /// Parallel jobs [default: number of cores]
     #[arg(short = 'j', long)]
     pub jobs: Option<usize>,
-    /// Fail if any node key, output hash or output file differs from the lock file; never update it
+    /// Fail if any node key, output hash or output file differs from the lock file; a locked build that fails writes nothing, and none updates the lock file
     #[arg(long)]
     pub locked: bool,
     /// Rebuild on every save of the recipe or an imported file

@@ -137,6 +137,76 @@ fn a_locked_build_fails_with_a_readable_diff_when_a_size_changes() {
     assert!(err.contains("didactic.toml.lock"), "{err}");
 }
 
+/// The names in `out/` (the output directory's parent) that are not `didactic`: a staging
+/// directory left behind would be one.
+fn beside_the_outputs(s: &Scratch) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(s.path("out"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "didactic")
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn a_locked_build_that_changes_the_mesh_leaves_every_output_and_the_lock_untouched() {
+    let s = Scratch::didactic_built();
+    let outputs = read_tree(&s.path("out"));
+    let lock = std::fs::read(s.path("didactic.toml.lock")).unwrap();
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 50.0 }");
+    let (ok, _, err) = s.build(&["--locked"]);
+    assert!(!ok && err.contains("didactic.toml.lock"), "{err}");
+    assert!(
+        read_tree(&s.path("out")) == outputs,
+        "a file in out/ changed, or one was added or removed"
+    );
+    assert_eq!(std::fs::read(s.path("didactic.toml.lock")).unwrap(), lock);
+    assert_eq!(beside_the_outputs(&s), Vec::<String>::new());
+}
+
+#[test]
+fn a_locked_build_that_fails_in_a_node_leaves_every_output_and_the_lock_untouched() {
+    let s = Scratch::didactic_built();
+    let outputs = read_tree(&s.path("out"));
+    let lock = std::fs::read(s.path("didactic.toml.lock")).unwrap();
+    // A trim that discards nothing fails the `model` node.
+    s.edit(
+        "[mesh]\n",
+        "[[trim]]\nsurface = \"F1\"\ndiscard = { area_below = 0.001 }\n\n[mesh]\n",
+    );
+    let (ok, r, err) = s.build(&["--locked"]);
+    assert!(!ok);
+    assert!(
+        nodes_in_state(&r, "failed").contains(&"model".to_string()),
+        "{err}"
+    );
+    assert!(
+        read_tree(&s.path("out")) == outputs,
+        "a file in out/ changed, or one was added or removed"
+    );
+    assert_eq!(std::fs::read(s.path("didactic.toml.lock")).unwrap(), lock);
+    assert_eq!(beside_the_outputs(&s), Vec::<String>::new());
+}
+
+#[test]
+fn a_locked_build_that_matches_publishes_its_outputs_into_a_missing_output_dir() {
+    let s = Scratch::didactic_built();
+    let mut outputs = read_tree(&s.path("out"));
+    std::fs::remove_dir_all(s.path("out")).unwrap();
+    let (ok, _, err) = s.build(&["--locked"]);
+    assert!(ok, "{err}");
+    let mut now = read_tree(&s.path("out"));
+    // The report records how long each step took; it is there, the rest is byte-identical.
+    for t in [&mut outputs, &mut now] {
+        for report in ["didactic/report.html", "didactic/report.json"] {
+            assert!(t.remove(report).is_some(), "{report}");
+        }
+    }
+    assert!(now == outputs, "the published outputs differ");
+    assert_eq!(beside_the_outputs(&s), Vec::<String>::new());
+}
+
 #[test]
 fn a_lock_is_not_rewritten_over_an_output_that_changed_without_a_version_bump() {
     let s = Scratch::didactic_built();

@@ -32,6 +32,10 @@ pub struct BuildOptions {
     pub cache_dir: PathBuf,
     /// Where emitted files are written (relative paths from `FileSet`s are joined to it).
     pub output_dir: PathBuf,
+    /// When set, `output_dir` is only read: an emitted file that differs from its copy there is
+    /// written under this directory instead (same relative path), for the caller to move into
+    /// `output_dir` once it accepts the build, or to discard.
+    pub staging_dir: Option<PathBuf>,
     /// Worker threads; 0 means one per available core.
     pub jobs: usize,
     /// Keep building independent nodes after a failure (otherwise stop dispatching).
@@ -43,6 +47,7 @@ impl BuildOptions {
         BuildOptions {
             cache_dir: cache_dir.into(),
             output_dir: output_dir.into(),
+            staging_dir: None,
             jobs: 1,
             keep_going: true,
         }
@@ -120,12 +125,13 @@ pub fn build(
     let (done_tx, done_rx) = mpsc::channel::<Done>();
     pool.in_place_scope(|s| {
         let (store, output_dir) = (&store, &opts.output_dir);
+        let staging_dir = opts.staging_dir.as_deref();
         let dispatch = |job: Job| {
             let done_tx = done_tx.clone();
             s.spawn(move |_| {
                 let id = job.id;
                 let done = catch_unwind(AssertUnwindSafe(|| {
-                    run_job(job, store, output_dir, on_event)
+                    run_job(job, store, output_dir, staging_dir, on_event)
                 }))
                 .unwrap_or_else(|p| {
                     Done::failed(

@@ -71,8 +71,9 @@ pub trait Operation: Send + Sync {
     fn params(&self) -> Params;
     fn run(&self, ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError>;
     /// When true, the artifact decodes as a `FileSet` that the engine writes (atomically, temp +
-    /// rename) under `BuildOptions::output_dir`, and whose files' hashes enter the report and lock
-    /// file. A cached node re-writes a file that is missing or differs on disk.
+    /// rename) under `BuildOptions::output_dir` (or its `staging_dir`), and whose files' hashes
+    /// enter the report and lock file. A cached node re-writes a file that is missing or differs
+    /// on disk.
     fn emits_files(&self) -> bool {
         false
     }

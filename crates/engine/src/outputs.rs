@@ -4,7 +4,9 @@
 //! no empty or `.` components) before anything is written. A file whose bytes on disk already
 //! equal the emitted bytes is left alone; any other is replaced atomically (temp + rename), so
 //! no reader ever sees a partial output file. "Already equal" is decided from the file's length
-//! and then chunk by chunk, so a big output is never read whole into memory.
+//! and then chunk by chunk, so a big output is never read whole into memory. A build with a
+//! staging directory writes every file that differs there instead, under the same relative path,
+//! and leaves the output directory as it was: the caller publishes or discards the staged files.
 
 use crate::artifact::Hash;
 use crate::store::write_atomic;
@@ -35,9 +37,12 @@ pub(crate) fn resolve(root: &Path, rel: &str) -> Result<PathBuf, String> {
 }
 
 /// Write (or leave in place when identical) every file of `files` (as read in place from a
-/// `FileSet` artifact); returns path -> content hash and the paths that had to be (re)written.
+/// `FileSet` artifact) under `root`, or, with `staging`, write the files that differ from their
+/// copy under `root` under `staging` instead; returns path -> content hash and the paths that
+/// had to be (re)written.
 pub(crate) fn write_fileset(
     root: &Path,
+    staging: Option<&Path>,
     files: &[(&str, &[u8])],
 ) -> Result<(BTreeMap<String, Hash>, Vec<String>), String> {
     let mut hashes = BTreeMap::new();
@@ -45,6 +50,10 @@ pub(crate) fn write_fileset(
     for &(rel, bytes) in files {
         let path = resolve(root, rel)?;
         if !same_on_disk(&path, bytes) {
+            let path = match staging {
+                Some(dir) => resolve(dir, rel)?,
+                None => path,
+            };
             write_atomic(&path, bytes, true)
                 .map_err(|e| format!("cannot write output file {}: {e}", path.display()))?;
             written.push(rel.to_string());
@@ -98,11 +107,11 @@ mod tests {
             .map(|i| (i % 251) as u8)
             .collect();
         let files: Vec<(&str, &[u8])> = vec![("a/big.bin", &big), ("empty", b"")];
-        let (hashes, written) = write_fileset(dir.path(), &files).unwrap();
+        let (hashes, written) = write_fileset(dir.path(), None, &files).unwrap();
         assert_eq!(written, ["a/big.bin", "empty"]);
         assert_eq!(hashes["a/big.bin"], Hash::of(&big));
         assert_eq!(std::fs::read(dir.path().join("a/big.bin")).unwrap(), big);
-        let (_, written) = write_fileset(dir.path(), &files).unwrap();
+        let (_, written) = write_fileset(dir.path(), None, &files).unwrap();
         assert!(written.is_empty(), "{written:?}");
         // One byte changed in the last chunk, then the same length plus one byte.
         let path = dir.path().join("a/big.bin");
@@ -110,7 +119,7 @@ mod tests {
         *other.last_mut().unwrap() ^= 1;
         std::fs::write(&path, &other).unwrap();
         assert!(!same_on_disk(&path, &big));
-        let (_, written) = write_fileset(dir.path(), &files).unwrap();
+        let (_, written) = write_fileset(dir.path(), None, &files).unwrap();
         assert_eq!(written, ["a/big.bin"]);
         assert_eq!(std::fs::read(&path).unwrap(), big);
         other = big.clone();
@@ -120,5 +129,28 @@ mod tests {
         assert!(same_on_disk(&dir.path().join("empty"), b""));
         assert!(!same_on_disk(dir.path(), b""));
         assert!(!same_on_disk(&dir.path().join("missing"), b""));
+    }
+
+    #[test]
+    fn a_staged_write_leaves_the_output_directory_alone_and_stages_only_what_differs() {
+        let out = tempfile::tempdir().unwrap();
+        let stage = tempfile::tempdir().unwrap();
+        std::fs::write(out.path().join("same"), b"kept").unwrap();
+        std::fs::write(out.path().join("old"), b"before").unwrap();
+        let files: Vec<(&str, &[u8])> =
+            vec![("same", b"kept"), ("old", b"after"), ("sub/new", b"new")];
+        let (hashes, written) = write_fileset(out.path(), Some(stage.path()), &files).unwrap();
+        assert_eq!(written, ["old", "sub/new"]);
+        assert_eq!(hashes.len(), 3);
+        assert_eq!(std::fs::read(out.path().join("old")).unwrap(), b"before");
+        assert!(!out.path().join("sub").exists());
+        let mut staged: Vec<String> = Vec::new();
+        for rel in ["same", "old", "sub/new"] {
+            if stage.path().join(rel).is_file() {
+                staged.push(rel.to_string());
+            }
+        }
+        assert_eq!(staged, ["old", "sub/new"]);
+        assert_eq!(std::fs::read(stage.path().join("old")).unwrap(), b"after");
     }
 }

@@ -1,6 +1,6 @@
 //! What a worker thread does with one dispatched node: read a source file, or look the node's
 //! key up in the cache (verifying what it reads) and run the operation on a miss, storing the
-//! result; then write any emitted files. Panics inside an operation become node failures.
+//! result; then write any emitted files (into the staging directory when the build has one). Panics inside an operation become node failures.
 
 use crate::artifact::{Artifact, Hash};
 use crate::build::Event;
@@ -83,6 +83,7 @@ pub(crate) fn run_job(
     job: Job,
     store: &Store,
     output_dir: &Path,
+    staging_dir: Option<&Path>,
     on_event: &(dyn Fn(&Event) + Sync),
 ) -> Done {
     let t0 = Instant::now();
@@ -122,7 +123,7 @@ pub(crate) fn run_job(
                     .artifact
                     .file_entries()
                     .map_err(|e| e.message)
-                    .and_then(|files| write_fileset(output_dir, &files));
+                    .and_then(|files| write_fileset(output_dir, staging_dir, &files));
                 match written {
                     Ok((hashes, written)) => {
                         done.files = hashes;

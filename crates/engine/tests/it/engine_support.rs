@@ -225,6 +225,7 @@ pub fn opts(dir: &Path, jobs: usize) -> BuildOptions {
     BuildOptions {
         cache_dir: dir.join("cache"),
         output_dir: dir.join("work"),
+        staging_dir: None,
         jobs,
         keep_going: true,
     }
