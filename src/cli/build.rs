@@ -78,9 +78,11 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         count(NodeState::Failed),
         count(NodeState::Skipped)
     );
-    // The report is written for failed builds too: it says what failed and what ran (under
-    // `--locked` it is staged, and dropped with the staging directory).
+    // The report and the validation are written for failed builds too: they say what failed,
+    // what ran and what is wrong with the surfaces (under `--locked` they are staged, and
+    // dropped with the staging directory).
     let written = super::report::write_report(&recipe, &args.recipe, &report, write_dir)?;
+    super::report::write_validation(&report, write_dir)?;
     // Where the report is (or, when staged, will be) in the output directory.
     let written: Vec<PathBuf> = written
         .iter()
@@ -165,8 +167,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
         .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))
 }
 
-/// Prints the validation report of every imported surface that had findings (the full report
-/// is also written as `validation.json` beside the outputs).
+/// Prints what validation found on every surface imported in this build that had findings, what
+/// repair removed and what remains, then the report (`validation.json` beside the outputs has
+/// all of it).
 fn print_findings(report: &BuildReport) {
     for n in report
         .nodes
@@ -180,11 +183,12 @@ fn print_findings(report: &BuildReport) {
             continue;
         };
         if n.state == NodeState::Ran {
+            let (found, remaining) = plan::ops::findings_by_kind(&data.report_json, &n.counts);
             errln!(
-                "{:>12} surface `{}`: {} validation findings (repaired)",
+                "{:>12} surface `{}`: {}",
                 "Warning",
                 data.name,
-                data.findings
+                gocad::validate::repair_summary(&found, &remaining)
             );
             for line in data.report_text.lines().take(20) {
                 errln!("             {line}");

@@ -2,15 +2,21 @@
 //! and why) and the artifacts of `model`, the imports, the per-entity nodes and `mesh`, rendered
 //! by `crate::report`, and written atomically beside the outputs. They are not build outputs in
 //! the lock file: they say what re-ran, which differs from build to build by design.
+//!
+//! `validation.json` is written here too, after every build and so also after one that failed
+//! past the imports, when it is needed most: for each surface, what validation found on import,
+//! what repair removed and what remains (from the import nodes' artifacts and counts), or why the
+//! surface was not imported. It is not in the lock file either; the import nodes it is made from
+//! are.
 
 use super::Failure;
 use super::build::write_atomic;
-use crate::plan::ops::{ModelData, SurfaceData};
+use crate::plan::ops::{ModelData, SurfaceData, findings_by_kind};
 use crate::recipe::Recipe;
 use crate::report::{
     CurveSummary, ReportInput, StepSummary, SurfaceSummary, model_summaries, render_both,
 };
-use engine::BuildReport;
+use engine::{BuildReport, NodeState};
 use geom::mesh::VolumeMesh;
 use std::path::{Path, PathBuf};
 
@@ -123,4 +129,62 @@ pub fn write_report(
     write_atomic(&h, html.as_bytes())?;
     write_atomic(&j, json.as_bytes())?;
     Ok(vec![h, j])
+}
+
+/// The validation of every imported surface, by surface name: the report of what was found on
+/// import (`findings`, `counts`), what repair removed (`repaired`) and what remains on the surface
+/// the model gets (`remaining`), all counts by kind, and the same in one line (`summary`); for a
+/// surface whose import failed or was skipped, `error` says why.
+pub fn validation_json(report: &BuildReport) -> Result<String, Failure> {
+    let mut surfaces = std::collections::BTreeMap::new();
+    for n in report.nodes.iter().filter(|n| n.kind == "import") {
+        let name = n
+            .name
+            .strip_prefix("import:")
+            .unwrap_or(&n.name)
+            .to_string();
+        let Some(s) = decoded::<SurfaceData>(report, &n.name)? else {
+            let why = match (&n.error, n.state) {
+                (Some(e), _) => e.clone(),
+                (None, NodeState::Skipped) => format!("not imported: {}", n.reason),
+                (None, state) => format!("not imported ({state})"),
+            };
+            surfaces.insert(name, serde_json::json!({ "error": why }));
+            continue;
+        };
+        let (found, remaining) = findings_by_kind(&s.report_json, &n.counts);
+        let mut v: serde_json::Value =
+            serde_json::from_str(&s.report_json).unwrap_or_else(|_| serde_json::json!({}));
+        let all = |m: &std::collections::BTreeMap<String, u64>| {
+            gocad::validate::FindingKind::ALL
+                .iter()
+                .map(|k| (k.name().to_string(), m.get(k.name()).copied().unwrap_or(0)))
+                .collect::<std::collections::BTreeMap<_, _>>()
+        };
+        if let Some(o) = v.as_object_mut() {
+            o.insert(
+                "summary".into(),
+                gocad::validate::repair_summary(&found, &remaining).into(),
+            );
+            o.insert(
+                "repaired".into(),
+                serde_json::json!(gocad::validate::repaired_counts(&found, &remaining)),
+            );
+            o.insert("remaining".into(), serde_json::json!(all(&remaining)));
+        }
+        surfaces.insert(s.name, v);
+    }
+    serde_json::to_string_pretty(&surfaces)
+        .map_err(|e| Failure(format!("error: validation.json: {e}")))
+}
+
+/// Writes `validation.json` into `output_dir` (left alone when it already holds the same bytes);
+/// returns its path.
+pub fn write_validation(report: &BuildReport, output_dir: &Path) -> Result<PathBuf, Failure> {
+    let path = output_dir.join("validation.json");
+    let text = validation_json(report)?;
+    if std::fs::read(&path).ok().as_deref() != Some(text.as_bytes()) {
+        write_atomic(&path, text.as_bytes())?;
+    }
+    Ok(path)
 }

@@ -44,11 +44,6 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
         let id = g.add_op(&format!("import:{name}"), Arc::new(op), &[file])?;
         surface_nodes.insert(name.clone(), id);
     }
-    let import_names: Vec<String> = recipe
-        .surfaces
-        .keys()
-        .map(|n| format!("import:{n}"))
-        .collect();
     let import_ids: Vec<NodeId> = surface_nodes.values().copied().collect();
 
     let mut box_node = None;
@@ -142,7 +137,6 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             model,
             Arc::new(ModelExpander {
                 recipe: Arc::new(recipe.clone()),
-                import_nodes: import_names,
             }),
         );
         return Ok(g);
@@ -164,7 +158,6 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     )?;
     let expander = DiscretizeExpander {
         recipe: Arc::new(recipe.clone()),
-        import_nodes: import_names,
     };
     g.set_expander(curves, Arc::new(expander));
     Ok(g)

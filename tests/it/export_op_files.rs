@@ -25,10 +25,9 @@ fn curve(name: &str, nodes: Vec<[f64; 3]>) -> CurveNodes {
     }
 }
 
-/// An export wired with no imports, `n_curves` curves and the mesh (ids do not matter here).
+/// An export wired with `n_curves` curves and the mesh (ids do not matter here).
 fn groups(n_curves: usize) -> Groups {
     Wiring::new()
-        .group("imports", [])
         .group("curves", vec![(); n_curves])
         .group("mesh", [()])
         .finish()
@@ -57,7 +56,7 @@ fn run(formats: &[&str], model: &str) -> (Artifact, FileSet) {
     let out = op.run(&Quiet, &inputs).unwrap();
 
     // The same files, assembled whole.
-    let mut set = FileSet::new().with("validation.json", b"{}".to_vec()).with(
+    let mut set = FileSet::new().with(
         &format!("{model}.curves.vtu"),
         write_curves_vtu(
             &curves

@@ -268,8 +268,6 @@ impl Operation for DiscretizeOp {
 /// Attached to `curves`: adds the per-curve nodes and the export node.
 pub struct DiscretizeExpander {
     pub recipe: Arc<Recipe>,
-    /// Names of the import nodes whose validation reports the export writes.
-    pub import_nodes: Vec<String>,
 }
 
 impl Expander for DiscretizeExpander {
@@ -281,7 +279,6 @@ impl Expander for DiscretizeExpander {
             return Err(recipe::render(&unmatched).into());
         }
         let curves_node = x.node("curves").ok_or("no `curves` node")?;
-        let imports = existing_nodes(x, &self.import_nodes)?;
         let mut discretized = Vec::with_capacity(set.curves.len());
         for c in &set.curves {
             discretized.push(add_curve_nodes(
@@ -294,7 +291,6 @@ impl Expander for DiscretizeExpander {
             )?);
         }
         let (export_inputs, groups) = Wiring::new()
-            .group("imports", imports)
             .group("curves", discretized)
             .group("mesh", [])
             .finish();
@@ -338,17 +334,6 @@ pub(super) fn add_curve_nodes(
         &[extract],
     )
     .map_err(graph_error)
-}
-
-/// The ids of nodes that must already be in the graph (e.g. the imports), in order.
-pub(super) fn existing_nodes(x: &Expansion, names: &[String]) -> Result<Vec<NodeId>, OpError> {
-    names
-        .iter()
-        .map(|n| {
-            x.node(n)
-                .ok_or_else(|| OpError::from(format!("no node `{n}`")))
-        })
-        .collect()
 }
 
 pub(super) fn graph_error(e: engine::GraphError) -> OpError {

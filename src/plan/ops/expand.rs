@@ -5,7 +5,7 @@
 //! subdivision therefore re-runs that curve, the patches it bounds, the regions those bound,
 //! `mesh` and `export`, and nothing else.
 
-use super::curves::{add_curve_nodes, existing_nodes, graph_error};
+use super::curves::{add_curve_nodes, graph_error};
 use super::patch::patch_curves;
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
@@ -19,8 +19,6 @@ use tet_mesh::{Method, SizeField};
 
 pub struct ModelExpander {
     pub recipe: Arc<Recipe>,
-    /// Names of the import nodes whose validation reports the export writes.
-    pub import_nodes: Vec<String>,
 }
 
 impl ModelExpander {
@@ -81,7 +79,6 @@ impl Expander for ModelExpander {
             return Err(recipe::render(&unmatched).into());
         }
         let model_node = x.node("model").ok_or("no `model` node")?;
-        let imports: Vec<NodeId> = existing_nodes(x, &self.import_nodes)?;
         let min_segments = min_segments(topo);
         let mut discretized = Vec::with_capacity(topo.curves.len());
         for (c, &min) in topo.curves.iter().zip(&min_segments) {
@@ -180,7 +177,6 @@ impl Expander for ModelExpander {
             .add_op("mesh", Arc::new(assemble), &mesh_inputs)
             .map_err(graph_error)?;
         let (export_inputs, inputs) = Wiring::new()
-            .group("imports", imports)
             .group("curves", discretized)
             .group("mesh", [mesh])
             .finish();

@@ -1,13 +1,14 @@
-//! `export`: writes the build's output files. Inputs: the import nodes (their validation
-//! reports), then every `discretize:<curve>` node, then (when the model has a box) `mesh`.
-//! Output: a `FileSet` the engine writes atomically under the recipe's output directory: the
-//! mesh in every recipe format, the seed's Tables 1 and 2 (`<model>.quality.txt`, `.json`), the
-//! curve discretization (`<model>.curves.vtu`) and the import validation (`validation.json`).
+//! `export`: writes the build's output files. Inputs: every `discretize:<curve>` node, then
+//! (when the model is meshed) `mesh`. Output: a `FileSet` the engine writes atomically under the
+//! recipe's output directory: the mesh in every recipe format, the seed's Tables 1 and 2
+//! (`<model>.quality.txt`, `.json`) and the curve discretization (`<model>.curves.vtu`). The
+//! import validation (`validation.json`) is not here: the command line writes it after every
+//! build from the import nodes, so a build that fails after the imports still has it.
 //! The files are produced one at a time in path order and appended to the artifact as they
 //! come (`FileSetEncoder`: the bytes of the `FileSet` encoding), so the whole set never sits in
 //! memory beside its encoding; the decoded mesh is dropped after its last file.
 
-use super::{CurveNodes, Groups, SurfaceData};
+use super::{CurveNodes, Groups};
 use crate::recipe::Recipe;
 use engine::artifact::FileSetEncoder;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
@@ -21,8 +22,8 @@ pub struct ExportOp {
     pub model: String,
     /// The formats to write, in recipe order (their names enter the key).
     pub formats: Vec<Format>,
-    /// `imports` (validation reports), `curves` (their FE nodes) and `mesh` (the volume mesh, or
-    /// empty for a model that is not meshed).
+    /// `curves` (their FE nodes) and `mesh` (the volume mesh, or empty for a model that is not
+    /// meshed).
     pub inputs: Groups,
 }
 
@@ -47,7 +48,7 @@ impl Operation for ExportOp {
         "export"
     }
     fn version(&self) -> u32 {
-        2
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -60,12 +61,6 @@ impl Operation for ExportOp {
         true
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let mut reports = serde_json::Map::new();
-        for s in self.inputs.decode::<SurfaceData>("imports", inputs)? {
-            let v: serde_json::Value =
-                serde_json::from_str(&s.report_json).unwrap_or(serde_json::Value::Null);
-            reports.insert(s.name, v);
-        }
         let mut curves = Vec::new();
         for c in self.inputs.decode::<CurveNodes>("curves", inputs)? {
             curves.push((c.name, c.nodes));
@@ -74,7 +69,6 @@ impl Operation for ExportOp {
         // Every file's name and source, known before any is written; a later format writing
         // the same name replaces an earlier one.
         let mut plan: BTreeMap<String, Source> = BTreeMap::new();
-        plan.insert("validation.json".to_string(), Source::Validation);
         plan.insert(format!("{}.curves.vtu", self.model), Source::Curves);
         let mut mesh = None;
         let mut quality = None;
@@ -101,12 +95,6 @@ impl Operation for ExportOp {
         let mut pending: BTreeMap<String, Vec<u8>> = BTreeMap::new();
         for (i, (name, source)) in plan.iter().enumerate() {
             let bytes = match source {
-                Source::Validation => {
-                    let reports = std::mem::take(&mut reports);
-                    serde_json::to_string_pretty(&serde_json::Value::Object(reports))
-                        .map_err(|e| OpError::from(e.to_string()))?
-                        .into_bytes()
-                }
                 Source::Curves => write_curves_vtu(&curves),
                 Source::QualityTxt | Source::QualityJson => {
                     let q = quality
@@ -154,7 +142,6 @@ impl Operation for ExportOp {
 
 /// Where one output file comes from.
 enum Source {
-    Validation,
     Curves,
     Mesh(Format),
     QualityTxt,

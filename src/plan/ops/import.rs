@@ -1,10 +1,14 @@
 //! `import:<surface>`: reads one gOcad file's bytes into a validated, optionally repaired surface.
+//! Its artifact carries the validation report of what was found; what repair left (the repaired
+//! surface validated again) is in its counts, `findings_remaining` and one per kind left, so
+//! that what is reported does not change the artifact the later stages' keys are made of.
 
 use super::SurfaceData;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::Tolerances;
 use geom::mesh::SurfaceKind;
 use gocad::{import, validate};
+use std::collections::BTreeMap;
 
 /// What to do when validation finds problems (the recipe's `on_invalid`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -13,6 +17,33 @@ pub enum OnInvalid {
     Repair,
     /// Fail the node with the report.
     Stop,
+}
+
+/// The count of validation findings left after repair, and (suffixed `.<kind>`) of each kind
+/// left: counts of an import that found something.
+pub const FINDINGS_REMAINING: &str = "findings_remaining";
+
+/// What validation found on import of the surface whose node has `counts` and whose report is
+/// `report_json`, and what repair left (from the counts), each by kind name.
+pub fn findings_by_kind(
+    report_json: &str,
+    counts: &BTreeMap<String, u64>,
+) -> (BTreeMap<String, u64>, BTreeMap<String, u64>) {
+    let report: serde_json::Value = serde_json::from_str(report_json).unwrap_or_default();
+    let found = report["counts"]
+        .as_object()
+        .map(|m| {
+            m.iter()
+                .filter_map(|(k, v)| Some((k.clone(), v.as_u64()?)))
+                .collect()
+        })
+        .unwrap_or_default();
+    let prefix = format!("{FINDINGS_REMAINING}.");
+    let remaining = counts
+        .iter()
+        .filter_map(|(k, &n)| Some((k.strip_prefix(&prefix)?.to_string(), n)))
+        .collect();
+    (found, remaining)
 }
 
 pub struct ImportOp {
@@ -33,7 +64,7 @@ impl Operation for ImportOp {
         "import"
     }
     fn version(&self) -> u32 {
-        1
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -74,8 +105,8 @@ impl Operation for ImportOp {
             .map_err(|e| OpError::from(e.to_string()))?;
         let report = validate::validate(&imported, &self.tolerances);
         let findings = report.findings.len() as u64;
-        let (surface, repaired) = if report.is_clean() {
-            (imported, false)
+        let (surface, remaining) = if report.is_clean() {
+            (imported, None)
         } else if self.on_invalid == OnInvalid::Stop {
             return Err(OpError::from(format!(
                 "surface `{}` ({}) is invalid and the recipe says on_invalid = \"stop\":\n{}",
@@ -85,7 +116,9 @@ impl Operation for ImportOp {
             )));
         } else {
             let (fixed, _log) = validate::repair(&imported, &report, &self.tolerances);
-            (fixed, true)
+            // What repair left, found on the surface the later stages get.
+            let remaining = validate::validate(&fixed, &self.tolerances).counts();
+            (fixed, Some(remaining))
         };
         let data = SurfaceData {
             name: self.surface.clone(),
@@ -106,9 +139,15 @@ impl Operation for ImportOp {
             .count("triangles", data.mesh.triangles.len() as u64)
             .count("parts", surface.parts.len() as u64)
             .count("findings", findings);
-        if repaired {
+        let remaining = remaining.unwrap_or_default();
+        if findings > 0 {
+            out = out.count(FINDINGS_REMAINING, remaining.values().sum());
+            for (kind, &n) in remaining.iter().filter(|(_, n)| **n > 0) {
+                out = out.count(&format!("{FINDINGS_REMAINING}.{kind}"), n);
+            }
             out.notes.push(format!(
-                "{findings} validation findings repaired (see validation.json)"
+                "{} (see validation.json)",
+                validate::repair_summary(&report.counts(), &remaining)
             ));
         }
         Ok(out)

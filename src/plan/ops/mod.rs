@@ -18,7 +18,7 @@ pub use curves::{
 pub use expand::ModelExpander;
 pub use export::ExportOp;
 pub use geometry::{BoxOp, BoxSideOp, BoxSpecParams, IntersectOp};
-pub use import::{ImportOp, OnInvalid};
+pub use import::{FINDINGS_REMAINING, ImportOp, OnInvalid, findings_by_kind};
 pub use inputs::{Groups, Wiring};
 pub use model::{ModelData, ModelOp, ModelPatch};
 pub use patch::{PatchExtractOp, PatchMesh, PatchPiece, SurfaceMeshOp};
@@ -39,9 +39,9 @@ pub struct SurfaceData {
     pub triangle_part: Vec<u32>,
     /// Vertices the file marks as corners (BSTONE).
     pub bstones: Vec<u32>,
-    /// The validation report as JSON text (empty for box sides).
+    /// The validation report (what was found on import) as JSON text (empty for box sides).
     pub report_json: String,
-    /// The validation report, readable.
+    /// The validation report, readable (empty when clean).
     pub report_text: String,
     /// Number of validation findings before repair.
     pub findings: u64,

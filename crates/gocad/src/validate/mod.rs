@@ -7,6 +7,10 @@
 //! neighbours disagree on orientation, which edges carry three or more triangles, and which
 //! non-adjacent triangles cross or overlap in one plane (R-tree of boxes + exact tests).
 //! What to do about them is the recipe's choice: [`repair`] fixes what is safe, or the build stops.
+//! Repair removes unreferenced and duplicate vertices, degenerate and duplicate triangles and
+//! inconsistent orientation (except where a piece is not orientable); non-manifold edges,
+//! coplanar overlaps and self-intersections remain. Validating the repaired surface says exactly
+//! what remains, and [`repair_summary`] says it in one line.
 
 mod checks;
 mod intersect;
@@ -17,7 +21,7 @@ mod selfint;
 pub use checks::{canonical_vertices, collinear};
 pub use intersect::Contact;
 pub use repair::{RepairLog, repair};
-pub use report::{Finding, FindingKind, ValidationReport};
+pub use report::{Finding, FindingKind, ValidationReport, repair_summary, repaired_counts};
 
 use crate::import::ImportedSurface;
 use checks::{TriStatus, edge_sides, key_vertices, triangle_status};

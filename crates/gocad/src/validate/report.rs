@@ -44,6 +44,81 @@ impl FindingKind {
             FindingKind::SelfIntersection => "self_intersection",
         }
     }
+
+    /// The kind named `name` (its [`name`](Self::name)).
+    pub fn from_name(name: &str) -> Option<FindingKind> {
+        FindingKind::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// `n` findings of this kind in words: `1 duplicate vertex`, `6 self-intersections`.
+    pub fn count_text(self, n: u64) -> String {
+        let (one, many) = match self {
+            FindingKind::UnreferencedVertex => ("unreferenced vertex", "unreferenced vertices"),
+            FindingKind::DuplicateVertex => ("duplicate vertex", "duplicate vertices"),
+            FindingKind::DegenerateTriangle => ("degenerate triangle", "degenerate triangles"),
+            FindingKind::DuplicateTriangle => ("duplicate triangle", "duplicate triangles"),
+            FindingKind::InconsistentOrientation => (
+                "edge with inconsistent orientation",
+                "edges with inconsistent orientation",
+            ),
+            FindingKind::NonManifoldEdge => ("non-manifold edge", "non-manifold edges"),
+            FindingKind::CoplanarOverlap => ("coplanar overlap", "coplanar overlaps"),
+            FindingKind::SelfIntersection => ("self-intersection", "self-intersections"),
+        };
+        format!("{n} {}", if n == 1 { one } else { many })
+    }
+}
+
+/// Findings that [`repair`](super::repair) removed, by kind name: those `found` on import that
+/// are not `remaining` on the repaired surface (both by kind name, as [`ValidationReport::counts`]).
+pub fn repaired_counts(
+    found: &BTreeMap<String, u64>,
+    remaining: &BTreeMap<String, u64>,
+) -> BTreeMap<String, u64> {
+    FindingKind::ALL
+        .iter()
+        .map(|k| {
+            let f = found.get(k.name()).copied().unwrap_or(0);
+            let r = remaining.get(k.name()).copied().unwrap_or(0);
+            (k.name().to_string(), f.saturating_sub(r))
+        })
+        .collect()
+}
+
+/// One line on what validation found on import and what repair left on the surface (counts by
+/// kind name): `86 validation findings: 80 repaired (78 duplicate vertices, 2 degenerate
+/// triangles), 6 remain (6 self-intersections)`, or `clean`.
+pub fn repair_summary(found: &BTreeMap<String, u64>, remaining: &BTreeMap<String, u64>) -> String {
+    let total: u64 = found.values().sum();
+    let left: u64 = remaining.values().sum();
+    if total == 0 && left == 0 {
+        return "clean".to_string();
+    }
+    let repaired = repaired_counts(found, remaining);
+    let fixed: u64 = repaired.values().sum();
+    let list = |m: &BTreeMap<String, u64>| {
+        FindingKind::ALL
+            .iter()
+            .filter_map(|k| {
+                let n = m.get(k.name()).copied().unwrap_or(0);
+                (n > 0).then(|| k.count_text(n))
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let fixed = match fixed {
+        0 => "none repaired".to_string(),
+        n => format!("{n} repaired ({})", list(&repaired)),
+    };
+    let left = match left {
+        0 => "none remain".to_string(),
+        1 => format!("1 remains ({})", list(remaining)),
+        n => format!("{n} remain ({})", list(remaining)),
+    };
+    format!(
+        "{total} validation finding{}: {fixed}, {left}",
+        if total == 1 { "" } else { "s" }
+    )
 }
 
 /// One defect. `vertices` are mesh indices (with their gOcad ids in `vertex_ids`), `triangles`

@@ -3,7 +3,7 @@
 
 use geom::{Tolerances, TriMesh};
 use gocad::import::{ImportOptions, ImportedSurface, PartInfo, SourceMap, import_surface};
-use gocad::validate::{FindingKind, repair, validate};
+use gocad::validate::{FindingKind, repair, repair_summary, repaired_counts, validate};
 use test_support::paths;
 
 fn surface(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> ImportedSurface {
@@ -274,6 +274,53 @@ fn crossing_triangles_are_a_self_intersection_and_a_lift_of_one_micron_clears_it
     assert_eq!(f[0].triangles, vec![0, 1]);
     assert_eq!(f[0].points.len(), 6);
     assert_eq!(count(&mk(5.000001), FindingKind::SelfIntersection), 0);
+}
+
+#[test]
+fn what_repair_leaves_is_found_again_on_the_repaired_surface_and_said_in_one_line() {
+    // Triangle 0 and triangle 2 share an edge through a duplicate of vertex 1 (6); triangle 1
+    // crosses triangle 0.
+    let v = vec![
+        p(0.0, 0.0, 0.0),
+        p(10.0, 0.0, 0.0),
+        p(0.0, 10.0, 0.0),
+        p(2.0, 2.0, -5.0),
+        p(3.0, 3.0, 5.0),
+        p(2.0, 4.0, 5.0),
+        p(10.0, 0.0, 0.0),
+        p(10.0, 10.0, 0.0),
+    ];
+    let s = surface(v, vec![[0, 1, 2], [3, 4, 5], [2, 6, 7]]);
+    let tol = Tolerances::default();
+    let found = validate(&s, &tol);
+    let (fixed, _) = repair(&s, &found, &tol);
+    let left = validate(&fixed, &tol);
+    assert_eq!(left.findings.len(), 1, "{}", left.render_text());
+    assert_eq!(left.findings[0].kind, FindingKind::SelfIntersection);
+    assert_eq!(
+        left.findings[0].lines,
+        vec![100, 101],
+        "the source lines are kept"
+    );
+    let repaired = repaired_counts(&found.counts(), &left.counts());
+    assert_eq!(repaired["duplicate_vertex"], 1);
+    assert_eq!(repaired.values().sum::<u64>(), 1);
+    assert_eq!(
+        repair_summary(&found.counts(), &left.counts()),
+        "2 validation findings: 1 repaired (1 duplicate vertex), 1 remains (1 self-intersection)"
+    );
+    let none = std::collections::BTreeMap::new();
+    assert_eq!(repair_summary(&none, &none), "clean");
+    let mut only_fixed = found.counts();
+    only_fixed.insert("self_intersection".into(), 0);
+    assert_eq!(
+        repair_summary(&only_fixed, &none),
+        "1 validation finding: 1 repaired (1 duplicate vertex), none remain"
+    );
+    assert_eq!(
+        repair_summary(&left.counts(), &left.counts()),
+        "1 validation finding: none repaired, 1 remains (1 self-intersection)"
+    );
 }
 
 #[test]
