@@ -50,7 +50,7 @@ pub const MAX_SEGMENTS: usize = 10_000_000;
 /// Subdivides `polyline` (at least 2 points; closed curves repeat the first point at the end).
 /// Under a `Size` rule a segment is then split at polyline vertices while one lies farther from
 /// it than half its `clearance` (per point of `polyline`; empty: no bound), see
-/// [`follow_bends`]; a `Count` is kept exactly as given.
+/// `follow_bends`; a `Count` is kept exactly as given.
 pub fn discretize(
     polyline: &[[f64; 3]],
     rule: &Subdivision,
