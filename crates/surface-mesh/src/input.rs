@@ -1,9 +1,11 @@
 //! The given nodes of a patch: loop and constraint nodes numbered once each, in the documented
 //! output order (loop nodes in the order given, loop after loop, then constraint nodes not
-//! already met). A constraint node bit-identical to an earlier node (a dangling trace that starts
-//! on the boundary, two constraints sharing an end) is the same node. Checks the shapes of the
-//! input: finite coordinates, loops of at least 3 distinct nodes, constraints of at least 2, no
-//! node repeated within a loop, no zero-length segment.
+//! already met). A node bit-identical to an earlier node is the same node: a constraint that
+//! starts on the boundary (a dangling trace), two constraints sharing an end, and loops that
+//! touch at a vertex (a patch pinched there, where two faults meet its border at one point or
+//! a hole touches the outer border). Such a pinch node is recorded: its triangles form one fan
+//! per visit. Checks the shapes of the input: finite coordinates, loops of at least 3 distinct
+//! nodes, constraints of at least 2, no zero-length segment.
 
 use super::{PatchInput, SurfaceMeshError};
 use std::collections::BTreeMap;
@@ -12,6 +14,8 @@ pub struct GivenNodes {
     pub nodes: Vec<[f64; 3]>,
     pub loops: Vec<Vec<u32>>,
     pub constraints: Vec<Vec<u32>>,
+    /// Per node, how many times the loops pass through it (0 for constraint nodes).
+    pub loop_visits: Vec<u32>,
 }
 
 impl GivenNodes {
@@ -51,23 +55,37 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
                 l.first().copied(),
             ));
         }
-        let mut ids = Vec::with_capacity(l.len());
+        let mut ids: Vec<u32> = Vec::with_capacity(l.len());
         for (k, p) in l.iter().enumerate() {
             if p.iter().any(|c| !c.is_finite()) {
                 return Err(fail(format!("loop {li} node {k} is not finite"), None));
             }
-            if index.contains_key(&key(p)) {
+            let id = *index.entry(key(p)).or_insert_with(|| {
+                nodes.push(*p);
+                nodes.len() as u32 - 1
+            });
+            let closing = k + 1 == l.len() && ids.first() == Some(&id);
+            if ids.last() == Some(&id) || closing {
                 return Err(fail(
                     format!(
-                        "loop {li} node {k} repeats an earlier loop node (loops touch or the closing node is repeated)"
+                        "loop {li} has a zero-length segment at node {k} (a node repeated next to itself, or the closing node repeated)"
                     ),
                     Some(*p),
                 ));
             }
-            let id = nodes.len() as u32;
-            index.insert(key(p), id);
-            nodes.push(*p);
             ids.push(id);
+        }
+        let mut distinct = ids.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        if distinct.len() < 3 {
+            return Err(fail(
+                format!(
+                    "loop {li} has {} distinct nodes; a loop needs at least 3",
+                    distinct.len()
+                ),
+                l.first().copied(),
+            ));
         }
         loops.push(ids);
     }
@@ -106,9 +124,14 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
         }
         constraints.push(ids);
     }
+    let mut loop_visits = vec![0u32; nodes.len()];
+    for &v in loops.iter().flatten() {
+        loop_visits[v as usize] += 1;
+    }
     Ok(GivenNodes {
         nodes,
         loops,
         constraints,
+        loop_visits,
     })
 }

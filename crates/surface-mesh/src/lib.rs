@@ -60,7 +60,8 @@ pub struct PatchInput {
     pub support: TriMesh,
     /// Closed boundary loops: node coordinates exactly as discretized (first node NOT repeated at
     /// the end). Outer loop and holes in any order and either orientation: inside is decided by
-    /// the parity of loop crossings, exactly.
+    /// the parity of loop crossings, exactly. Loops may touch at a node (the patch is pinched
+    /// there): the node is given once and meshed with one fan per side.
     pub loops: Vec<Vec<[f64; 3]>>,
     /// Internal constraint polylines (open), each node exactly as given; must appear as mesh edges.
     pub constraints: Vec<Vec<[f64; 3]>>,
@@ -80,8 +81,9 @@ pub struct SurfaceSize {
 /// The mesh of one patch.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceMeshOutput {
-    /// The given loop nodes (loop after loop, in order), then the constraint nodes not already
-    /// given (in order), all bit-identical; then the generated interior nodes.
+    /// The given loop nodes (loop after loop, in order, a node where loops touch at its first
+    /// visit only), then the constraint nodes not already given (in order), all bit-identical;
+    /// then the generated interior nodes.
     pub nodes: Vec<[f64; 3]>,
     /// Oriented like the support.
     pub triangles: Vec<[u32; 3]>,

@@ -12,6 +12,10 @@
 //!   injective. (A hole whose image turns the wrong way is a fold the triangles alone do not
 //!   show: a sliver standing up in a dome flattens to a hole that overlaps its neighbours.) This keeps the geometry nearly
 //!   isometric for horizons and steep faults alike (the plane follows the surface, not z).
+//! - The border is traced edge by edge around each vertex's fan, so a support pinched at a
+//!   vertex (two faults meeting its border at one point) has that vertex once per fan in its
+//!   loops; a projection handles it like any border, a Tutte embedding cannot pin it twice and
+//!   refuses it.
 //! - Otherwise (recumbent folds, caps down to their equator...): a Tutte embedding with positive
 //!   symmetric weights (inverse edge lengths). The longest border loop is pinned to a circle by
 //!   arc length (same perimeter as in 3D, so sizes keep their scale); every other border loop is
@@ -74,46 +78,62 @@ pub fn border_loops(s: &TriMesh) -> Result<Vec<Vec<u32>>, ParamError> {
             }
         }
     }
-    let mut nextv: BTreeMap<u32, u32> = BTreeMap::new();
-    for &(a, b) in directed.keys() {
-        if !directed.contains_key(&(b, a)) && nextv.insert(a, b).is_some() {
-            return Err(err(
-                format!("support vertex {a} is pinched (two border loops touch there)"),
-                Some(s.vertices[a as usize]),
-            ));
-        }
-    }
+    // Border half-edges, each chained to the next one around its end vertex's fan, so that a
+    // vertex where the border touches itself (a pinch) is passed once per fan.
+    let border: Vec<(u32, u32)> = directed
+        .keys()
+        .copied()
+        .filter(|&(a, b)| !directed.contains_key(&(b, a)))
+        .collect();
+    let mut used: BTreeMap<(u32, u32), bool> = BTreeMap::new();
     let mut loops = Vec::new();
-    let mut used: BTreeMap<u32, bool> = BTreeMap::new();
-    for &start in nextv.keys() {
-        if used.contains_key(&start) {
+    for &first in &border {
+        if used.contains_key(&first) {
             continue;
         }
-        let mut lp = vec![start];
-        used.insert(start, true);
-        let mut v = start;
+        let mut lp = Vec::new();
+        let mut e = first;
         loop {
-            let Some(&w) = nextv.get(&v) else {
-                return Err(err(
-                    "open support border".into(),
-                    Some(s.vertices[v as usize]),
-                ));
-            };
-            if w == start {
+            used.insert(e, true);
+            lp.push(e.0);
+            let next = next_border_edge(s, &directed, e)?;
+            if next == first {
                 break;
             }
-            if used.insert(w, true).is_some() {
+            if used.contains_key(&next) {
                 return Err(err(
                     "support border does not close into loops".into(),
-                    Some(s.vertices[w as usize]),
+                    Some(s.vertices[next.0 as usize]),
                 ));
             }
-            lp.push(w);
-            v = w;
+            e = next;
         }
         loops.push(lp);
     }
     Ok(loops)
+}
+
+/// The border half-edge that follows `(a, b)`: the first edge out of `b` without a twin, turning
+/// around `b` through the triangles of `(a, b)`'s fan.
+fn next_border_edge(
+    s: &TriMesh,
+    directed: &BTreeMap<(u32, u32), u32>,
+    (a, b): (u32, u32),
+) -> Result<(u32, u32), ParamError> {
+    let mut t = directed[&(a, b)];
+    for _ in 0..=s.triangles.len() {
+        let tri = s.triangles[t as usize];
+        let k = tri.iter().position(|&v| v == b).unwrap_or(0);
+        let c = tri[(k + 1) % 3];
+        match directed.get(&(c, b)) {
+            Some(&u) => t = u,
+            None => return Ok((b, c)),
+        }
+    }
+    Err(err(
+        "support border does not close into loops".into(),
+        Some(s.vertices[b as usize]),
+    ))
 }
 
 /// Flattens the support (see the module doc for the choice).
@@ -274,6 +294,18 @@ pub fn first_non_positive(s: &TriMesh, uv: &[[f64; 2]]) -> Option<usize> {
 
 fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
     let nv = s.vertices.len();
+    // A border vertex met twice (a pinch) cannot be pinned or coned once.
+    let mut met = vec![false; nv];
+    for &v in loops.iter().flatten() {
+        if std::mem::replace(&mut met[v as usize], true) {
+            return Err(err(
+                format!(
+                    "support vertex {v} is pinched (two border loops touch there) and the support does not project onto a plane without folding"
+                ),
+                Some(s.vertices[v as usize]),
+            ));
+        }
+    }
     // Outer loop: the longest one.
     let lens = loop_lengths(s, loops);
     let mut outer = 0;

@@ -2,7 +2,7 @@
 //! run on a mesh from elsewhere). Exact where it decides:
 //! - the given loop and constraint nodes come first, bit-identical, in the documented order;
 //! - every directed edge is used at most once (manifold, consistently oriented), every vertex
-//!   has a single fan, every node is used;
+//!   has a single fan (a node where the loops touch: one open fan per visit), every node is used;
 //! - the border edges are exactly the given loop edges; every constraint edge is an interior edge;
 //! - every node lies within `tol_rel` × (its mean incident edge length) of the support;
 //! - no fold or overlap: in the support's flattening (an orientation-preserving bijection, see
@@ -48,7 +48,7 @@ pub fn verify_with(
     check_nodes(input, out, &given)?;
     let directed = directed_edges(input, out)?;
     check_border(input, out, &given, &directed)?;
-    check_fans(input, out)?;
+    check_fans(input, out, &given.loop_visits)?;
     let (uv, ntri) = flatten_nodes(input, out, tol_rel, support, &directed)?;
     check_crossings(input, out, &given, &uv)?;
     check_triangles(input, out, support, &uv, &ntri)
@@ -190,8 +190,13 @@ fn check_border(
     Ok(())
 }
 
-/// Vertex fans: whether the link of each vertex is one path or one cycle.
-fn check_fans(input: &PatchInput, out: &SurfaceMeshOutput) -> Result<(), SurfaceMeshError> {
+/// Vertex fans: whether the link of each vertex is one path or one cycle, or, at a node the
+/// loops pass `k >= 2` times (a pinch), `k` paths.
+fn check_fans(
+    input: &PatchInput,
+    out: &SurfaceMeshOutput,
+    loop_visits: &[u32],
+) -> Result<(), SurfaceMeshError> {
     let mut link: Vec<(u32, u32, u32)> = Vec::with_capacity(out.triangles.len() * 3);
     for tri in &out.triangles {
         for i in 0..3 {
@@ -206,7 +211,13 @@ fn check_fans(input: &PatchInput, out: &SurfaceMeshOutput) -> Result<(), Surface
         while e < link.len() && link[e].0 == v {
             e += 1;
         }
-        if !is_single_fan(&link[k..e]) {
+        let visits = loop_visits.get(v as usize).copied().unwrap_or(0) as usize;
+        let ok = match fans(&link[k..e]) {
+            Some((paths, cycles)) if visits >= 2 => paths == visits && cycles == 0,
+            Some((paths, cycles)) => paths + cycles == 1,
+            None => false,
+        };
+        if !ok {
             return Err(fail(
                 input,
                 format!("node {v} is not manifold (its triangles form several fans)"),
@@ -218,28 +229,37 @@ fn check_fans(input: &PatchInput, out: &SurfaceMeshOutput) -> Result<(), Surface
     Ok(())
 }
 
-/// Whether one vertex's corners `(vertex, next, previous)`, sorted, chain into one path or cycle.
-fn is_single_fan(link: &[(u32, u32, u32)]) -> bool {
+/// How one vertex's corners `(vertex, next, previous)`, sorted, chain: the number of open fans
+/// (paths) and closed ones (cycles); `None` when two corners leave from, or arrive at, the same
+/// neighbour.
+fn fans(link: &[(u32, u32, u32)]) -> Option<(usize, usize)> {
     let next: BTreeMap<u32, u32> = link.iter().map(|x| (x.1, x.2)).collect();
     let targets: BTreeSet<u32> = link.iter().map(|x| x.2).collect();
-    let starts: Vec<u32> = next
-        .keys()
-        .copied()
-        .filter(|s| !targets.contains(s))
-        .collect();
-    if starts.len() > 1 || next.len() != link.len() {
-        return false;
+    if next.len() != link.len() || targets.len() != link.len() {
+        return None;
     }
-    let mut cur = starts.first().copied().unwrap_or(link[0].1);
-    let mut count = 0;
-    while let Some(&n) = next.get(&cur) {
-        count += 1;
-        cur = n;
-        if count > link.len() || (starts.is_empty() && cur == link[0].1) {
-            break;
+    let mut seen: BTreeSet<u32> = BTreeSet::new();
+    let mut paths = 0;
+    for start in next.keys().copied().filter(|s| !targets.contains(s)) {
+        paths += 1;
+        let mut cur = start;
+        while let Some(&n) = next.get(&cur) {
+            seen.insert(cur);
+            cur = n;
         }
     }
-    count == link.len()
+    let mut cycles = 0;
+    for &start in next.keys() {
+        if seen.contains(&start) {
+            continue;
+        }
+        cycles += 1;
+        let mut cur = start;
+        while seen.insert(cur) {
+            cur = next[&cur];
+        }
+    }
+    Some((paths, cycles))
 }
 
 /// Distance to the support and parameters: whether every node lies within `tol_rel` × its mean

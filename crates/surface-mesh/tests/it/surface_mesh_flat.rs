@@ -452,3 +452,97 @@ fn a_hole_whose_rim_overhangs_its_neighbour_is_not_flattened_by_projection() {
         assert!(has(p1, p2) && has(p2, p3) && has(p3, p1), "the hole's rim");
     }
 }
+
+/// A 1000 m square whose triangular hole P Q R touches the outer border at P = (500, 0): the
+/// loops, and the support cut to the patch, are pinched there.
+fn pinched(off: [f64; 3]) -> (geom::TriMesh, Vec<Vec<[f64; 3]>>) {
+    let p = |x: f64, y: f64| [x + off[0], y + off[1], -500.0];
+    let (a, b, c, d) = (
+        p(0.0, 0.0),
+        p(1000.0, 0.0),
+        p(1000.0, 1000.0),
+        p(0.0, 1000.0),
+    );
+    let (pp, q, r) = (p(500.0, 0.0), p(600.0, 300.0), p(400.0, 300.0));
+    let support = geom::TriMesh::new(
+        vec![a, b, c, d, pp, q, r],
+        vec![
+            [0, 4, 6],
+            [4, 1, 5],
+            [1, 2, 5],
+            [2, 3, 5],
+            [5, 3, 6],
+            [6, 3, 0],
+        ],
+    );
+    let outer: Vec<[f64; 3]> = (0..40)
+        .map(|k| {
+            let s = 1000.0 * (k % 10) as f64 / 10.0;
+            match k / 10 {
+                0 => p(s, 0.0),
+                1 => p(1000.0, s),
+                2 => p(1000.0 - s, 1000.0),
+                _ => p(0.0, 1000.0 - s),
+            }
+        })
+        .collect();
+    let along = |u: &[f64; 3], v: &[f64; 3], t: f64| {
+        [u[0] + t * (v[0] - u[0]), u[1] + t * (v[1] - u[1]), -500.0]
+    };
+    let hole = vec![
+        pp,
+        along(&pp, &q, 1.0 / 3.0),
+        along(&pp, &q, 2.0 / 3.0),
+        q,
+        along(&q, &r, 0.5),
+        r,
+        along(&r, &pp, 1.0 / 3.0),
+        along(&r, &pp, 2.0 / 3.0),
+    ];
+    debug_assert_eq!(outer[5], pp);
+    (support, vec![outer, hole])
+}
+
+#[test]
+fn a_hole_touching_the_outer_border_at_one_node_meshes_with_one_fan_per_side() {
+    for off in [[0.0; 3], UTM] {
+        let (cut, loops) = pinched(off);
+        for support in [cut, flat(off).support()] {
+            let input = PatchInput {
+                name: "pinched".into(),
+                support,
+                loops: loops.clone(),
+                constraints: vec![],
+            };
+            let (out, _) = mesh_and_check(&input, &uniform(100.0), 1.2, 3.0);
+            // The pinch node is given once and its triangles form two fans, none inside the hole.
+            let pinch = loops[1][0];
+            assert_eq!(out.nodes.iter().filter(|n| **n == pinch).count(), 1);
+            let inside_hole = out.triangles.iter().any(|t| {
+                let m = t.iter().fold([0.0; 2], |m, &v| {
+                    let n = out.nodes[v as usize];
+                    [m[0] + n[0] / 3.0, m[1] + n[1] / 3.0]
+                });
+                let (x, y) = (m[0] - off[0], m[1] - off[1]);
+                y > 0.0 && y < 300.0 && (x - 500.0).abs() < y / 3.0
+            });
+            assert!(!inside_hole, "a triangle lies in the hole");
+        }
+    }
+}
+
+#[test]
+fn a_loop_repeating_a_node_next_to_itself_is_an_error_naming_the_node() {
+    let (support, mut loops) = pinched([0.0; 3]);
+    let twice = loops[1][1];
+    loops[1].insert(1, twice);
+    let input = PatchInput {
+        name: "stutter".into(),
+        support,
+        loops,
+        constraints: vec![],
+    };
+    let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
+    assert!(e.to_string().contains("zero-length segment"), "{e}");
+    assert_eq!(e.at, Some(twice));
+}
