@@ -189,7 +189,7 @@ mod tests {
         let (curves, bound, patch) = strip(0.0);
         let c = clearances(&curves, &[bound], &[patch]);
         assert_eq!(c[0][1], 10.0, "the middle of `low` is 10 m from `high`");
-        assert_eq!(c[0][0], 0.0, "its end touches `left`");
+        assert_eq!(c[0][0], 10.0, "`left`, met at its end, does not count; `high` does");
     }
 
     #[test]
