@@ -16,6 +16,7 @@ fn build_once(recipe_path: &Path, text: &str, cache: &Path, out: &Path) -> engin
         staging_dir: None,
         jobs: 1,
         keep_going: true,
+        record: engine::DEFAULT_RECORD.to_string(),
     };
     let report = engine::build(g, &opts, &|_| {}).expect("builds");
     assert!(report.ok);

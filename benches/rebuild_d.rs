@@ -23,6 +23,7 @@ fn build(recipe_path: &Path, text: &str, dir: &Path) -> (BuildReport, f64) {
         staging_dir: None,
         jobs: 1,
         keep_going: false,
+        record: engine::DEFAULT_RECORD.to_string(),
     };
     let t = Instant::now();
     let report = engine::build(g, &opts, &|_| {}).expect("builds");

@@ -44,6 +44,7 @@ fn main() -> Result<(), String> {
         staging_dir: None,
         jobs: 2,
         keep_going: true,
+        record: engine::DEFAULT_RECORD.to_string(),
     };
     let report = engine::build(graph, &opts, &|_| {}).map_err(|e| e.to_string())?;
     let model: ModelData = report

@@ -1,6 +1,9 @@
-//! `recipe build`: load, lower, run the engine, keep the lock file and the last report.
+//! `recipe build`: load, lower, run the engine, keep the lock file and the recipe's record (its
+//! last report and graph, in the cache: see `cache`).
 
-use super::cache::{cache_dir, last_graph_path, last_report_path, lock_path, recipe_dir};
+use super::cache::{
+    RecipeRecord, cache_dir, last_graph_path, last_report_path, lock_path, recipe_dir,
+};
 use super::render::Renderer;
 use super::staging::Staging;
 use super::{BuildArgs, Failure, load};
@@ -17,6 +20,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let recipe = load::load(&args.recipe)?;
     let graph = plan::lower(&recipe).map_err(|e| Failure(format!("error: {e}")))?;
     let cache = cache_dir(&args.recipe, &args.cache);
+    let record = RecipeRecord::of(&args.recipe, &cache);
     let output_dir = recipe_dir(&args.recipe).join(&recipe.output.dir);
     let lock_file = lock_path(&args.recipe);
     let (locked, staging) = if args.locked {
@@ -43,15 +47,19 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         staging_dir: staging.as_ref().map(|s| s.path().to_path_buf()),
         jobs,
         keep_going: true,
+        record: record.name.clone(),
     };
     let renderer = Renderer::new(args.quiet, args.explain);
     let report = engine::build(graph, &opts, &|e| renderer.event(e))?;
 
+    // This recipe's record: where it is (for `gc`), its last report and graph.
+    let record_dir = record.dir(&cache);
+    record.save(&cache)?;
     write_atomic(
-        &last_report_path(&cache),
+        &last_report_path(&record_dir),
         report.to_json().to_string().as_bytes(),
     )?;
-    write_atomic(&last_graph_path(&cache), report.to_dot().as_bytes())?;
+    write_atomic(&last_graph_path(&record_dir), report.to_dot().as_bytes())?;
     if args.json {
         let mut json = report.to_json();
         if let Some(model) = report

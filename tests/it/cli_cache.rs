@@ -188,7 +188,7 @@ fn gc_on_a_missing_cache_says_so_and_creates_nothing() {
 #[test]
 fn an_unreadable_last_build_record_is_not_reported_as_missing() {
     let s = Scratch::didactic_built();
-    let record = s.path(".recipe/last-report.json");
+    let record = s.record_of("didactic.toml").join("last-report.json");
     std::fs::remove_file(&record).unwrap();
     std::fs::create_dir(&record).unwrap();
     let out = s.recipe_cmd(&["explain", "didactic.toml"]);
@@ -209,4 +209,167 @@ fn an_unreadable_lock_file_is_not_reported_as_missing() {
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("cannot be read"), "{err}");
     assert!(!err.contains("there is no lock file"), "{err}");
+}
+
+/// Writes `other.toml` beside the example: the same model with another size for one region
+/// (so the two recipes share every node but that region's, the mesh and the export) and its own
+/// output directory; it shares the example's cache `.recipe/`.
+fn other_recipe(s: &Scratch) {
+    let text = std::fs::read_to_string(s.recipe())
+        .unwrap()
+        .replacen(
+            "[regions]",
+            "[mesh.regions.underburden_W]\nsize = 150.0\n\n[regions]",
+            1,
+        )
+        .replacen("dir = \"out/didactic\"", "dir = \"out/other\"", 1);
+    assert!(
+        text.contains("out/other"),
+        "the example's output directory moved"
+    );
+    std::fs::write(s.path("other.toml"), text).unwrap();
+}
+
+/// The nodes in which the example and `other.toml` differ.
+const DIFFERING: [&str; 3] = ["tet_mesh:underburden_W", "mesh", "export"];
+
+#[test]
+fn gc_after_another_recipe_built_into_the_same_cache_keeps_what_each_recipes_lock_or_last_build_references()
+ {
+    let s = Scratch::didactic_built();
+    other_recipe(&s);
+    let (ok, r, err) = s.build_recipe("other.toml", &[]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&r, "ran");
+    for n in DIFFERING {
+        assert!(ran.contains(&n.to_string()), "`{n}` did not run: {ran:?}");
+    }
+    // The other recipe is kept by its last build alone; the example by its lock and last build.
+    std::fs::remove_file(s.path("other.toml.lock")).unwrap();
+    let out = stdout_of(&s, &["gc", "didactic.toml"]);
+    assert!(out.contains("kept"), "{out}");
+    let (ok, a, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    for n in DIFFERING {
+        assert_eq!(
+            a["nodes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|x| x["name"] == n)
+                .unwrap()["state"],
+            "cached",
+            "`{n}` of the example re-ran after gc"
+        );
+    }
+    assert_eq!(nodes_in_state(&a, "ran"), Vec::<String>::new());
+    let (ok, b, err) = s.build_recipe("other.toml", &[]);
+    assert!(ok, "{err}");
+    assert_eq!(nodes_in_state(&b, "ran"), Vec::<String>::new());
+}
+
+#[test]
+fn explain_after_another_recipe_built_into_the_same_cache_compares_against_the_recipes_own_last_build()
+ {
+    let s = Scratch::didactic_built();
+    other_recipe(&s);
+    assert!(s.build_recipe("other.toml", &[]).0);
+    // The example's last build is still its own (its full first build), not the other's.
+    let text = stdout_of(&s, &["explain", "didactic.toml"]);
+    assert!(!text.contains("150"), "{text}");
+    let line = |text: &str| {
+        text.lines()
+            .find(|l| l.starts_with("tet_mesh:underburden_W "))
+            .unwrap_or_else(|| panic!("the region is listed: {text}"))
+            .to_string()
+    };
+    assert!(line(&text).contains("new node"), "{}", line(&text));
+    // An edit of the example is explained against the example's last build: from the global
+    // size to 140, never from the other recipe's 150.
+    s.edit(
+        "[regions]",
+        "[mesh.regions.underburden_W]\nsize = 140.0\n\n[regions]",
+    );
+    let (ok, _, err) = s.build(&["--explain"]);
+    assert!(ok, "{err}");
+    let built = err
+        .lines()
+        .find(|l| l.contains("tet_mesh:underburden_W"))
+        .unwrap_or_else(|| panic!("the region re-ran: {err}"));
+    for said in [
+        built.to_string(),
+        line(&stdout_of(&s, &["explain", "didactic.toml"])),
+    ] {
+        assert!(
+            said.contains("mesh.regions.underburden_W.size: (none) → 140") && !said.contains("150"),
+            "{said}"
+        );
+    }
+}
+
+/// A recipe importing one small surface `name` (no box: nothing is meshed, the build is quick).
+fn small_recipe(dir: &std::path::Path, name: &str) {
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(
+        dir.join("s.ts"),
+        "GOCAD TSurf 1\nHEADER {\nname:s\n}\nTFACE\nVRTX 1 0 0 0\nVRTX 2 10 0 0\n\
+         VRTX 3 0 10 0\nVRTX 4 10 10 1\nTRGL 1 2 3\nTRGL 2 4 3\nEND\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("r.toml"),
+        format!(
+            "[model]\nname = \"{name}\"\n\n[surfaces]\n{name} = \"s.ts\"\n\n\
+             [mesh]\nsize = 2.0\n\n[output]\ndir = \"out\"\n"
+        ),
+    )
+    .unwrap();
+}
+
+#[test]
+fn recipes_of_one_file_name_in_two_folders_sharing_a_cache_dir_keep_their_own_records_and_gc_forgets_a_deleted_ones()
+ {
+    let s = Scratch::didactic();
+    small_recipe(&s.path("a"), "top");
+    small_recipe(&s.path("b"), "base");
+    let cache = ["--cache-dir", "shared-cache"];
+    for r in ["a/r.toml", "b/r.toml"] {
+        let (ok, _, err) = s.build_recipe(r, &cache);
+        assert!(ok, "{r}: {err}");
+    }
+    let records = std::fs::read_dir(s.path("shared-cache/records"))
+        .unwrap()
+        .count();
+    assert_eq!(records, 2);
+    let a = stdout_of(&s, &["explain", "a/r.toml", "--cache-dir", "shared-cache"]);
+    let b = stdout_of(&s, &["explain", "b/r.toml", "--cache-dir", "shared-cache"]);
+    assert!(
+        a.contains("import:top") && !a.contains("import:base"),
+        "{a}"
+    );
+    assert!(
+        b.contains("import:base") && !b.contains("import:top"),
+        "{b}"
+    );
+    // b's recipe is deleted: the next gc forgets its record and what only it referenced.
+    std::fs::remove_dir_all(s.path("b")).unwrap();
+    let out = stdout_of(&s, &["gc", "a/r.toml", "--cache-dir", "shared-cache"]);
+    assert!(
+        out.contains("forgot the last build of") && out.contains("r.toml"),
+        "{out}"
+    );
+    let removed: u64 = out
+        .split("removed ")
+        .nth(1)
+        .and_then(|t| t.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{out}"));
+    assert!(removed > 0, "{out}");
+    let records = std::fs::read_dir(s.path("shared-cache/records"))
+        .unwrap()
+        .count();
+    assert_eq!(records, 1);
+    let (ok, r, err) = s.build_recipe("a/r.toml", &cache);
+    assert!(ok, "{err}");
+    assert_eq!(nodes_in_state(&r, "ran"), Vec::<String>::new());
 }

@@ -48,6 +48,28 @@ impl Scratch {
         assert!(s.contains(from), "the recipe has no `{from}`");
         std::fs::write(&p, s.replacen(from, to, 1)).unwrap();
     }
+    /// The record of `recipe` (a path relative to the scratch folder) in the default cache
+    /// `.recipe/`: the one whose `recipe` file leads back to it.
+    pub fn record_of(&self, recipe: &str) -> PathBuf {
+        let records = self.path(".recipe/records");
+        let want = format!("../{recipe}");
+        std::fs::read_dir(&records)
+            .unwrap_or_else(|e| panic!("{}: {e}", records.display()))
+            .map(|e| e.unwrap().path())
+            .find(|d| std::fs::read_to_string(d.join("recipe")).is_ok_and(|r| r == want))
+            .unwrap_or_else(|| panic!("no record of {recipe} in {}", records.display()))
+    }
+    /// `recipe build --json ARGS RECIPE` for another recipe in the scratch folder; returns
+    /// (success, report JSON, stderr).
+    pub fn build_recipe(&self, recipe: &str, extra: &[&str]) -> (bool, serde_json::Value, String) {
+        let mut args = vec!["build", "--json"];
+        args.extend_from_slice(extra);
+        args.push(recipe);
+        let out = self.recipe_cmd(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        let json = serde_json::from_slice(&out.stdout).unwrap_or(serde_json::Value::Null);
+        (out.status.success(), json, stderr)
+    }
     pub fn recipe_cmd(&self, args: &[&str]) -> Output {
         Command::new(env!("CARGO_BIN_EXE_recipe"))
             .args(args)
@@ -58,13 +80,7 @@ impl Scratch {
     }
     /// `recipe build --json ARGS didactic.toml`; returns (success, report JSON, stderr).
     pub fn build(&self, extra: &[&str]) -> (bool, serde_json::Value, String) {
-        let mut args = vec!["build", "--json"];
-        args.extend_from_slice(extra);
-        args.push("didactic.toml");
-        let out = self.recipe_cmd(&args);
-        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-        let json = serde_json::from_slice(&out.stdout).unwrap_or(serde_json::Value::Null);
-        (out.status.success(), json, stderr)
+        self.build_recipe("didactic.toml", extra)
     }
 }
 

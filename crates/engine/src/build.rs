@@ -1,8 +1,8 @@
 //! `build`: run a `BuildGraph` against a cache directory and produce a `BuildReport`.
 //!
 //! The entry point takes the cache lock (telling the caller when it has to wait), loads the
-//! previous manifest for explanations, runs the coordinator over a pool of `jobs` threads, writes
-//! the next manifest, and orders the report topologically with ties broken by name, so the
+//! previous manifest of its record for explanations, runs the coordinator over a pool of `jobs`
+//! threads, writes the next manifest into the record, and orders the report topologically with ties broken by name, so the
 //! report, outputs and lock file are identical for any number of jobs.
 //!
 //! One pool bounds all the work: every node runs as a task of a rayon pool of `jobs` threads
@@ -40,6 +40,11 @@ pub struct BuildOptions {
     pub jobs: usize,
     /// Keep building independent nodes after a failure (otherwise stop dispatching).
     pub keep_going: bool,
+    /// The record this build reads its previous manifest from and writes its manifest to
+    /// (`<cache>/records/<record>/`, see `manifest`): one per graph that shares the cache, so
+    /// builds of other graphs never become this one's baseline. A plain path component
+    /// ([`crate::manifest::is_record_name`]); `BuildOptions::new` says `default`.
+    pub record: String,
 }
 
 impl BuildOptions {
@@ -50,9 +55,18 @@ impl BuildOptions {
             staging_dir: None,
             jobs: 1,
             keep_going: true,
+            record: DEFAULT_RECORD.to_string(),
         }
     }
+
+    /// The directory of this build's record in the cache.
+    pub fn record_dir(&self) -> PathBuf {
+        crate::manifest::record_dir(&self.cache_dir, &self.record)
+    }
 }
+
+/// The record of a build that does not name one.
+pub const DEFAULT_RECORD: &str = "default";
 
 /// Status for the CLI to render (Cargo-style lines, progress bars). Events from worker threads
 /// arrive in timing order; only the final `BuildReport` is thread-count independent (a skipped
@@ -95,6 +109,15 @@ pub fn build(
 ) -> Result<BuildReport, EngineError> {
     let mut graph = graph;
     let t0 = Instant::now();
+    if !crate::manifest::is_record_name(&opts.record) {
+        return Err(EngineError::Invalid {
+            path: opts.cache_dir.clone(),
+            message: format!(
+                "`{}` cannot name a build record (letters, digits, `.`, `_`, `-`)",
+                opts.record
+            ),
+        });
+    }
     crate::marker::claim(&opts.cache_dir)?;
     let _lock = DirLock::acquire(&opts.cache_dir, |p| {
         on_event(&Event::WaitingForLock {
@@ -103,7 +126,8 @@ pub fn build(
     })?;
     let store = Store::open(&opts.cache_dir)?;
     store.sweep_temporaries()?;
-    let prev = Manifest::load(&opts.cache_dir).unwrap_or_default();
+    let record_dir = opts.record_dir();
+    let prev = Manifest::load(&record_dir).unwrap_or_default();
     let jobs = if opts.jobs == 0 {
         std::thread::available_parallelism()
             .map(|n| n.get())
@@ -147,8 +171,8 @@ pub fn build(
     });
 
     co.manifest(&graph)
-        .save(&opts.cache_dir)
-        .map_err(|e| EngineError::io(opts.cache_dir.join("manifest.bin"), e))?;
+        .save(&record_dir)
+        .map_err(|e| EngineError::io(crate::manifest::manifest_path(&record_dir), e))?;
     let output_files = co.output_files.clone();
     let results = co.into_results(&graph);
 

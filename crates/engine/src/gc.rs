@@ -1,13 +1,15 @@
-//! Cache maintenance: `gc` keeps only the entries a lock file references (node keys and output
-//! objects) and removes everything else, including stray temporary files; `clean` removes the
-//! whole cache directory. Both touch only a directory marked as a cache (`marker`), and take the
-//! directory lock so they never race a build.
+//! Cache maintenance: `gc` keeps only the entries that the given lock files or the last build of
+//! any record (`manifest`) reference (node keys and output objects) and removes everything else,
+//! including stray temporary files and the root `manifest.bin` that builds wrote before records;
+//! `forget` removes a record, so what only its last build referenced goes at the next `gc`;
+//! `clean` removes the whole cache directory. All touch only a directory marked as a cache
+//! (`marker`), and take the directory lock so they never race a build.
 
 use crate::artifact::Hash;
 use crate::dirlock::DirLock;
 use crate::error::EngineError;
 use crate::lockfile::{LockFile, LockedNode};
-use crate::manifest::Manifest;
+use crate::manifest::{self, Manifest};
 use crate::marker;
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -25,20 +27,56 @@ fn lock_now(cache_dir: &Path) -> Result<DirLock, EngineError> {
     })
 }
 
-/// Remove every object and action not referenced by `keep` (nothing to do when the cache does
-/// not exist; an error, touching nothing, when the directory is not a cache).
-pub fn gc(cache_dir: &Path, keep: &LockFile) -> Result<GcStats, EngineError> {
+/// Remove every object and action referenced neither by a lock file of `keep` nor by the last
+/// build of any record in the cache (nothing to do when the cache does not exist; an error,
+/// touching nothing, when the directory is not a cache). The records' last builds are read under
+/// the cache lock, so a build that finished just before is kept whole.
+pub fn gc(cache_dir: &Path, keep: &[LockFile]) -> Result<GcStats, EngineError> {
     if !cache_dir.exists() {
         return Ok(GcStats::default());
     }
     marker::require(cache_dir)?;
     let _lock = lock_now(cache_dir)?;
-    let objects: BTreeSet<Hash> = keep.nodes.values().map(|n| n.output).collect();
-    let actions: BTreeSet<Hash> = keep.nodes.values().map(|n| n.key).collect();
+    let records = manifest::records(cache_dir).map_err(|e| EngineError::io(cache_dir, e))?;
+    let last: Vec<LockFile> = records
+        .iter()
+        .filter_map(|r| last_build(cache_dir, r))
+        .collect();
+    let nodes = || keep.iter().chain(&last).flat_map(|l| l.nodes.values());
+    let objects: BTreeSet<Hash> = nodes().map(|n| n.output).collect();
+    let actions: BTreeSet<Hash> = nodes().map(|n| n.key).collect();
     let mut stats = GcStats::default();
     sweep(&cache_dir.join("objects"), &objects, &mut stats)?;
     sweep(&cache_dir.join("actions"), &actions, &mut stats)?;
+    // The manifest of the builds before records: no build reads it any more.
+    let legacy = manifest::manifest_path(cache_dir);
+    if let Ok(m) = std::fs::metadata(&legacy) {
+        std::fs::remove_file(&legacy).map_err(|e| EngineError::io(&legacy, e))?;
+        stats.removed += 1;
+        stats.bytes_freed += m.len();
+    }
     Ok(stats)
+}
+
+/// Removes record `name` from the cache (its manifest and whatever its caller kept beside it),
+/// so that the next [`gc`] no longer keeps what only its last build referenced; `false` when
+/// there was no such record. Takes the cache lock; an error, touching nothing, when the directory
+/// is not a cache or the name cannot be a record's.
+pub fn forget(cache_dir: &Path, name: &str) -> Result<bool, EngineError> {
+    if !manifest::is_record_name(name) {
+        return Err(EngineError::Invalid {
+            path: cache_dir.to_path_buf(),
+            message: format!("`{name}` cannot name a build record"),
+        });
+    }
+    let dir = manifest::record_dir(cache_dir, name);
+    if !dir.exists() {
+        return Ok(false);
+    }
+    marker::require(cache_dir)?;
+    let _lock = lock_now(cache_dir)?;
+    std::fs::remove_dir_all(&dir).map_err(|e| EngineError::io(&dir, e))?;
+    Ok(true)
 }
 
 fn sweep(dir: &Path, keep: &BTreeSet<Hash>, stats: &mut GcStats) -> Result<(), EngineError> {
@@ -71,9 +109,10 @@ fn sweep(dir: &Path, keep: &BTreeSet<Hash>, stats: &mut GcStats) -> Result<(), E
     Ok(())
 }
 
-/// What the last build in `cache_dir` referenced, as a lock file (for `gc` without a lock file).
-pub fn last_build(cache_dir: &Path) -> Option<LockFile> {
-    let m = Manifest::load(cache_dir)?;
+/// What the last build of record `record` in `cache_dir` referenced, as a lock file; `None` when
+/// the record has no readable manifest.
+pub fn last_build(cache_dir: &Path, record: &str) -> Option<LockFile> {
+    let m = Manifest::load(&manifest::record_dir(cache_dir, record))?;
     let nodes = m
         .nodes
         .into_iter()

@@ -6,7 +6,8 @@
 //! every read, under a directory lock (`dirlock`). `build` runs ready nodes in parallel,
 //! re-runs only what changed, cuts off dependents when a re-run reproduces the same output,
 //! explains every re-run (`reason`, from the previous `manifest`), and reports every node
-//! (`report`); `lockfile` pins the outputs and `gc` trims the cache.
+//! (`report`); `lockfile` pins the outputs and `gc` trims the cache. Graphs sharing a cache each
+//! name a record (`BuildOptions::record`) that keeps their own previous manifest.
 //!
 //! Typical use by the planner and the CLI:
 //!
@@ -44,9 +45,9 @@ pub mod store;
 mod worker;
 
 pub use artifact::{Artifact, FileSet, Hash};
-pub use build::{BuildOptions, Event, build};
+pub use build::{BuildOptions, DEFAULT_RECORD, Event, build};
 pub use error::EngineError;
-pub use gc::{GcStats, clean, gc};
+pub use gc::{GcStats, clean, forget, gc};
 pub use graph::{BuildGraph, Expander, Expansion, GraphError, NodeId};
 pub use lockfile::{LockFile, LockedNode};
 pub use op::{OpError, Operation, Output, RunContext};

@@ -1,6 +1,13 @@
-//! The previous build's manifest, kept in `<cache>/manifest.bin`, from which rebuild reasons
-//! are explained: per node name, what it was (kind, version, parameters, inputs and their
-//! output hashes, source file) and what it produced (key, output hash).
+//! The previous build's manifest, from which rebuild reasons are explained: per node name, what
+//! it was (kind, version, parameters, inputs and their output hashes, source file) and what it
+//! produced (key, output hash).
+//!
+//! Several graphs (a command line's recipes) may share one cache: each keeps its manifest in a
+//! record of its own, `<cache>/records/<name>/manifest.bin`, named by the caller
+//! (`BuildOptions::record`), so one graph's build never becomes another's baseline and `gc` keeps
+//! what the last build of every record references. The caller may keep files of its own in its
+//! record's directory. A `manifest.bin` at the cache root is what builds wrote before records:
+//! builds ignore it and `gc` removes it.
 //!
 //! It is written atomically at the end of each build with a blake3 checksum in front; an
 //! unreadable or corrupt manifest only costs explanations (every node reads as new), never a
@@ -35,8 +42,48 @@ pub struct Manifest {
     pub nodes: BTreeMap<String, ManifestEntry>,
 }
 
-pub fn manifest_path(cache_dir: &Path) -> PathBuf {
-    cache_dir.join("manifest.bin")
+/// The manifest file in a record's directory (see [`record_dir`]).
+pub fn manifest_path(record_dir: &Path) -> PathBuf {
+    record_dir.join("manifest.bin")
+}
+
+/// The directory holding every record of a cache.
+pub const RECORDS: &str = "records";
+
+/// Whether `name` can name a record: 1 to 128 ASCII letters, digits, `.`, `_` or `-`, not
+/// starting with `.` (one path component, never a temporary's name).
+pub fn is_record_name(name: &str) -> bool {
+    !name.is_empty()
+        && name.len() <= 128
+        && !name.starts_with('.')
+        && name
+            .bytes()
+            .all(|b| b.is_ascii_alphanumeric() || matches!(b, b'.' | b'_' | b'-'))
+}
+
+/// The directory of record `name` in `cache_dir`.
+pub fn record_dir(cache_dir: &Path, name: &str) -> PathBuf {
+    cache_dir.join(RECORDS).join(name)
+}
+
+/// The names of the records in `cache_dir`, sorted (none when it has no `records/`).
+pub fn records(cache_dir: &Path) -> std::io::Result<Vec<String>> {
+    let dir = cache_dir.join(RECORDS);
+    let entries = match std::fs::read_dir(&dir) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(e),
+    };
+    let mut names = Vec::new();
+    for entry in entries {
+        let entry = entry?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if entry.file_type()?.is_dir() && is_record_name(&name) {
+            names.push(name);
+        }
+    }
+    names.sort();
+    Ok(names)
 }
 
 impl Manifest {
@@ -47,9 +94,9 @@ impl Manifest {
         }
     }
 
-    /// The previous manifest, or `None` when absent, unreadable or corrupt.
-    pub fn load(cache_dir: &Path) -> Option<Manifest> {
-        let bytes = std::fs::read(manifest_path(cache_dir)).ok()?;
+    /// The manifest in `record_dir`, or `None` when absent, unreadable or corrupt.
+    pub fn load(record_dir: &Path) -> Option<Manifest> {
+        let bytes = std::fs::read(manifest_path(record_dir)).ok()?;
         let (sum, payload) = bytes.split_first_chunk::<32>()?;
         if Hash::of(payload).0 != *sum {
             return None;
@@ -58,12 +105,13 @@ impl Manifest {
         (m.format == FORMAT).then_some(m)
     }
 
-    pub fn save(&self, cache_dir: &Path) -> std::io::Result<()> {
+    /// Writes the manifest into `record_dir` (created if needed), atomically.
+    pub fn save(&self, record_dir: &Path) -> std::io::Result<()> {
         let payload =
             postcard::to_stdvec(self).map_err(|e| std::io::Error::other(e.to_string()))?;
         let mut bytes = Hash::of(&payload).0.to_vec();
         bytes.extend_from_slice(&payload);
-        write_atomic(&manifest_path(cache_dir), &bytes, false)
+        write_atomic(&manifest_path(record_dir), &bytes, false)
     }
 }
 
@@ -95,5 +143,37 @@ mod tests {
         bytes[last] ^= 1;
         std::fs::write(&p, bytes).unwrap();
         assert_eq!(Manifest::load(dir.path()), None);
+    }
+
+    #[test]
+    fn a_record_name_is_one_plain_path_component() {
+        for ok in ["default", "didactic.toml-0123abcd", "a_b-c.d"] {
+            assert!(is_record_name(ok), "{ok}");
+        }
+        let long = "x".repeat(129);
+        for bad in [
+            "",
+            ".",
+            "..",
+            ".tmp-x",
+            "a/b",
+            "a\\b",
+            "a b",
+            "é",
+            long.as_str(),
+        ] {
+            assert!(!is_record_name(bad), "{bad}");
+        }
+    }
+
+    #[test]
+    fn records_lists_the_record_directories_by_name() {
+        let dir = tempfile::tempdir().unwrap();
+        assert_eq!(records(dir.path()).unwrap(), Vec::<String>::new());
+        Manifest::new().save(&record_dir(dir.path(), "b")).unwrap();
+        Manifest::new().save(&record_dir(dir.path(), "a")).unwrap();
+        std::fs::write(dir.path().join(RECORDS).join("stray"), b"x").unwrap();
+        std::fs::create_dir(dir.path().join(RECORDS).join(".tmp-x")).unwrap();
+        assert_eq!(records(dir.path()).unwrap(), ["a", "b"]);
     }
 }

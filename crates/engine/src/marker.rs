@@ -17,14 +17,17 @@ const TEXT: &str = "Signature: 8a477f597d28d172789f06886806bc55\n\
     # This directory is a georecipe build cache; `recipe clean` may delete it whole.\n\
     # For information about cache directory tags see https://bford.info/cachedir/\n";
 
-/// Entries a cache holds: the engine's and those the command line keeps beside them (the last
-/// build's report and graph), and temporaries of atomic writes.
+/// Entries a cache holds: the engine's (`records` holds each graph's last build, and whatever
+/// the command line keeps beside it), those that builds kept at the root before records
+/// (`manifest.bin`, the command line's `last-report.json` and `last-graph.dot`), and
+/// temporaries of atomic writes.
 fn is_cache_entry(name: &str) -> bool {
     matches!(
         name,
         MARKER
             | "objects"
             | "actions"
+            | "records"
             | "lock"
             | "manifest.bin"
             | "last-report.json"

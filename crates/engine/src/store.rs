@@ -57,8 +57,8 @@ impl Store {
     /// Removes the temporaries of atomic writes (`.tmp-*`) left in `objects/` and `actions/` by
     /// a process killed mid-write; returns how many. Only the engine writes there, and only
     /// under the cache lock, so with the lock held every such file is debris (`gc` removes them
-    /// too, as unreferenced entries). The cache root is not swept: the command line writes its
-    /// last report there after the lock is released.
+    /// too, as unreferenced entries). Neither the cache root nor the records are swept: the
+    /// command line writes its files into its record after the lock is released.
     pub fn sweep_temporaries(&self) -> Result<usize, EngineError> {
         let mut removed = 0;
         for sub in ["objects", "actions"] {

@@ -109,7 +109,7 @@ fn gc_keeps_referenced_entries_and_removes_the_rest() {
     let r = run(chain(4, &runs), &o); // a = 4, s = 6, m = 0, t = 10: objects 1 and 3 stale
     let keep = LockFile::from_report(&r);
     std::fs::write(o.cache_dir.join("objects").join(".tmp-stray"), b"x").unwrap();
-    let stats = gc(&o.cache_dir, &keep).unwrap();
+    let stats = gc(&o.cache_dir, &[keep]).unwrap();
     assert_eq!(
         stats.removed,
         2 + 3 + 1,
@@ -123,7 +123,7 @@ fn gc_keeps_referenced_entries_and_removes_the_rest() {
     let old = run(chain(1, &runs), &o);
     assert_eq!(state(&old, "a"), NodeState::Ran);
     // gc from the last build when no lock file is at hand.
-    let last = engine::gc::last_build(&o.cache_dir).unwrap();
+    let last = engine::gc::last_build(&o.cache_dir, &o.record).unwrap();
     assert_eq!(
         last,
         LockFile {
@@ -131,6 +131,56 @@ fn gc_keeps_referenced_entries_and_removes_the_rest() {
             ..LockFile::from_report(&old)
         }
     );
+}
+
+#[test]
+fn gc_keeps_the_last_build_of_every_record_sharing_the_cache_until_one_is_forgotten() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = opts(dir.path(), 1);
+    let b = BuildOptions {
+        record: "b".into(),
+        ..opts(dir.path(), 1)
+    };
+    let runs = Runs::default();
+    run(chain(1, &runs), &a);
+    run(chain(4, &runs), &b);
+    // What builds kept at the root before records: ignored, and removed by gc.
+    std::fs::write(a.cache_dir.join("manifest.bin"), b"an old manifest").unwrap();
+    gc(&a.cache_dir, &[]).unwrap();
+    assert!(!a.cache_dir.join("manifest.bin").exists());
+    runs.reset();
+    let again_a = run(chain(1, &runs), &a);
+    let again_b = run(chain(4, &runs), &b);
+    assert_eq!(runs.total(), 0, "gc kept both records' last builds");
+    assert!(again_a.nodes.iter().all(|n| n.state == NodeState::Cached));
+    assert!(again_b.nodes.iter().all(|n| n.state == NodeState::Cached));
+    // Each record explains against its own last build, not the other's.
+    let r = run(chain(5, &runs), &a);
+    assert_eq!(r.node("a").unwrap().reason.to_string(), "value: 1 → 5");
+    assert!(forget(&a.cache_dir, "b").unwrap());
+    assert!(!forget(&a.cache_dir, "b").unwrap(), "already forgotten");
+    assert!(forget(&a.cache_dir, "../b").is_err());
+    assert!(gc(&a.cache_dir, &[]).unwrap().removed > 0);
+    runs.reset();
+    let r = run(chain(4, &runs), &b);
+    assert_eq!(
+        state(&r, "a"),
+        NodeState::Ran,
+        "b's entries went with its record"
+    );
+    assert_eq!(r.node("a").unwrap().reason, RebuildReason::NewNode);
+}
+
+#[test]
+fn a_build_refuses_a_record_name_that_is_not_one_path_component() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = BuildOptions {
+        record: "../elsewhere".into(),
+        ..opts(dir.path(), 1)
+    };
+    let e = build(chain(1, &Runs::default()), &o, &quiet).unwrap_err();
+    assert!(e.to_string().contains("../elsewhere"), "{e}");
+    assert!(!o.cache_dir.exists(), "nothing was created");
 }
 
 #[test]
@@ -157,10 +207,7 @@ fn gc_and_clean_refuse_a_cache_in_use() {
         .unwrap()
         .unwrap();
     assert!(matches!(clean(&cache), Err(EngineError::Locked { .. })));
-    assert!(matches!(
-        gc(&cache, &LockFile::default()),
-        Err(EngineError::Locked { .. })
-    ));
+    assert!(matches!(gc(&cache, &[]), Err(EngineError::Locked { .. })));
     assert!(cache.exists());
 }
 
@@ -265,7 +312,7 @@ fn a_damaged_manifest_only_costs_explanations_never_results() {
     let o = opts(dir.path(), 2);
     let runs = Runs::default();
     run(chain(1, &runs), &o);
-    std::fs::write(o.cache_dir.join("manifest.bin"), b"not a manifest").unwrap();
+    std::fs::write(o.record_dir().join("manifest.bin"), b"not a manifest").unwrap();
     runs.reset();
     let r = run(chain(1, &runs), &o);
     assert_eq!(runs.total(), 0);

@@ -228,6 +228,7 @@ pub fn opts(dir: &Path, jobs: usize) -> BuildOptions {
         staging_dir: None,
         jobs,
         keep_going: true,
+        record: DEFAULT_RECORD.to_string(),
     }
 }
 
