@@ -1,15 +1,21 @@
 //! `recipe build`: load, lower, run the engine, keep the lock file and the recipe's record (its
 //! last report and graph, in the cache: see `cache`).
+//!
+//! What it prints on stderr, in cargo's manner: a line per node that ran (`render`), each
+//! failure in full, how many nodes were cached, what validation found on the surfaces imported,
+//! then a short summary (regions, tets and the worst tet's quality, the output files) and the
+//! `Finished` line, timed from the start of the command to the last file written. `-v` adds a
+//! line per cached node and the full Tables 1 and 2; `--quiet` leaves errors and the final line.
 
 use super::cache::{
     RecipeRecord, cache_dir, last_graph_path, last_report_path, lock_path, recipe_dir,
 };
-use super::render::Renderer;
+use super::render::{Renderer, Verbosity};
 use super::staging::Staging;
 use super::{BuildArgs, Failure, load};
 use crate::plan;
 use engine::{self, BuildOptions, BuildReport, LockFile, NodeState};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// One build of `args.recipe`. Returns the report when the build succeeded.
 ///
@@ -17,6 +23,8 @@ use std::path::{Path, PathBuf};
 /// the report) go to a staging directory that is published into the output directory only when
 /// the build succeeded and matches the lock: a locked build that fails changes nothing.
 pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
+    let started = std::time::Instant::now();
+    let verbosity = args.verbosity();
     let recipe = load::load(&args.recipe)?;
     let graph = plan::lower(&recipe).map_err(|e| Failure(format!("error: {e}")))?;
     let cache = cache_dir(&args.recipe, &args.cache);
@@ -49,8 +57,18 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         keep_going: true,
         record: record.name.clone(),
     };
-    let renderer = Renderer::new(args.quiet, args.explain);
+    let renderer = Renderer::new(verbosity, args.explain);
     let report = engine::build(graph, &opts, &|e| renderer.event(e))?;
+    let cached = report.count(NodeState::Cached) + report.count(NodeState::CutOff);
+    if verbosity == Verbosity::Normal && cached > 0 {
+        let cut = report.count(NodeState::CutOff);
+        let cut = if cut > 0 {
+            format!(" ({cut} cut off: their inputs re-ran to the same outputs)")
+        } else {
+            String::new()
+        };
+        errln!("{:>12} {cached} node{}{cut}", "Cached", plural(cached));
+    }
 
     // This recipe's record: where it is (for `gc`), its last report and graph.
     let record_dir = record.dir(&cache);
@@ -74,32 +92,33 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
             serde_json::to_string_pretty(&json).unwrap_or_default()
         );
     }
-    if !args.quiet {
+    if verbosity >= Verbosity::Normal {
         print_findings(&report);
     }
-    let count = |s: NodeState| report.nodes.iter().filter(|n| n.state == s).count();
+    let count = |s: NodeState| report.count(s);
     let summary = format!(
-        "{} ran, {} cached, {} cut off, {} failed, {} skipped",
+        "{} ran, {} cached, {} cut off",
         count(NodeState::Ran),
         count(NodeState::Cached),
         count(NodeState::CutOff),
-        count(NodeState::Failed),
-        count(NodeState::Skipped)
     );
     // The report and the validation are written for failed builds too: they say what failed,
     // what ran and what is wrong with the surfaces (under `--locked` they are staged, and
     // dropped with the staging directory).
     let written = super::report::write_report(&recipe, &args.recipe, &report, write_dir)?;
     super::report::write_validation(&report, write_dir)?;
-    // Where the report is (or, when staged, will be) in the output directory.
-    let written: Vec<PathBuf> = written
+    // The report's files, by their names in the output directory.
+    let written: Vec<String> = written
         .iter()
-        .filter_map(|p| Some(output_dir.join(p.strip_prefix(write_dir).ok()?)))
+        .filter_map(|p| p.strip_prefix(write_dir).ok())
+        .map(|p| p.display().to_string())
         .collect();
     if !report.ok {
         return Err(Failure(format!(
-            "error: build of {} failed: {summary}",
-            args.recipe.display()
+            "error: build of {} failed: {summary}, {} failed, {} skipped",
+            args.recipe.display(),
+            count(NodeState::Failed),
+            count(NodeState::Skipped)
         )));
     }
 
@@ -139,25 +158,67 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
             write_atomic(&lock_file, text.as_bytes())?;
         }
     }
-    let tables = output_dir.join(format!("{}.quality.txt", recipe.model.name));
-    if !args.quiet
-        && let Ok(text) = std::fs::read_to_string(&tables)
-    {
-        errln!("\n{text}");
-    }
-    if !args.quiet || !args.watch {
-        errln!(
-            "{:>12} {} in {:.2}s: {summary}; outputs in {}",
-            "Finished",
-            recipe.model.name,
-            report.duration_ms / 1000.0,
-            output_dir.display()
-        );
-        if let Some(html) = written.first() {
-            errln!("{:>12} {}", "Report", html.display());
+    if verbosity >= Verbosity::Normal {
+        let model = &recipe.model.name;
+        if verbosity == Verbosity::Verbose
+            && let Ok(text) =
+                std::fs::read_to_string(output_dir.join(format!("{model}.quality.txt")))
+        {
+            errln!("\n{text}");
         }
+        let quality = std::fs::read(output_dir.join(format!("{model}.quality.json")))
+            .ok()
+            .and_then(|b| serde_json::from_slice(&b).ok());
+        if let Some(line) = quality.as_ref().and_then(mesh_summary) {
+            errln!("{:>12} {line}", "Mesh");
+        }
+        // Every file the build wrote (or, staged, published) into the output directory.
+        let mut files: Vec<String> = report.output_files.keys().cloned().collect();
+        files.push("validation.json".into());
+        files.extend(written);
+        errln!("{:>12} {}", "Outputs", files.join(", "));
     }
+    errln!(
+        "{:>12} {} in {:.2}s: {summary}; outputs in {}",
+        "Finished",
+        recipe.model.name,
+        started.elapsed().as_secs_f64(),
+        output_dir.display()
+    );
     Ok(report)
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+/// The mesh in one line from the quality tables (`<model>.quality.json`): how many regions and
+/// tets, and the worst tet's quality, its smallest normalised mean ratio and smallest dihedral
+/// angle, each with its region. `None` when nothing was meshed.
+fn mesh_summary(quality: &serde_json::Value) -> Option<String> {
+    let regions: Vec<&serde_json::Value> = quality["table2"]
+        .as_array()?
+        .iter()
+        .filter(|r| r["name"] != "all")
+        .collect();
+    let tets: u64 = regions.iter().filter_map(|r| r["elements"].as_u64()).sum();
+    if tets == 0 {
+        return None;
+    }
+    let worst = |key: &str| {
+        regions
+            .iter()
+            .filter_map(|r| Some((r[key].as_f64()?, r["name"].as_str()?)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+    };
+    let (ratio, ratio_in) = worst("min")?;
+    let (dihedral, dihedral_in) = worst("min_dihedral_deg")?;
+    Some(format!(
+        "{} region{}, {tets} tets; worst tet: mean ratio {ratio:.4} ({ratio_in}), \
+         dihedral {dihedral:.2}° ({dihedral_in})",
+        regions.len(),
+        plural(regions.len())
+    ))
 }
 
 /// The committed lock file, for `--locked`.

@@ -81,8 +81,11 @@ pub struct BuildArgs {
     #[arg(long)]
     pub watch: bool,
     /// Print only errors and the final line
-    #[arg(short, long)]
+    #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,
+    /// Also print every cached node, the expansions and the full quality tables
+    #[arg(short, long)]
+    pub verbose: bool,
     /// Print a machine-readable report of every node on stdout
     #[arg(long)]
     pub json: bool,
@@ -92,6 +95,17 @@ pub struct BuildArgs {
     /// In watch mode, exit after this many builds (for scripts and tests)
     #[arg(long, hide = true)]
     pub max_builds: Option<usize>,
+}
+
+impl BuildArgs {
+    /// How much the build prints.
+    pub fn verbosity(&self) -> render::Verbosity {
+        match (self.quiet, self.verbose) {
+            (true, _) => render::Verbosity::Quiet,
+            (false, true) => render::Verbosity::Verbose,
+            (false, false) => render::Verbosity::Normal,
+        }
+    }
 }
 
 #[derive(Subcommand, Debug)]

@@ -1,4 +1,8 @@
 //! Cargo-style status lines and progress bars for build events.
+//!
+//! What a build says, by verbosity: by default one line per node that ran (with its notes) and
+//! every failure in full, cached nodes only counted (the command line prints the count); `-v`
+//! also a line per cached, cut-off or skipped node and each expansion; `--quiet` only failures.
 
 use engine::{Event, NodeReport, NodeState};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
@@ -6,19 +10,31 @@ use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::sync::Mutex;
 
-/// Renders events on stderr. Only nodes that ran or failed get a line; cached ones are counted.
+/// How much a build prints (`--quiet`, default, `-v`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Verbosity {
+    /// Errors and the final line.
+    Quiet,
+    /// What ran, failures, a short summary and the final line.
+    Normal,
+    /// Every node, the expansions and the full quality tables too.
+    Verbose,
+}
+
+/// Renders events on stderr.
 pub struct Renderer {
-    quiet: bool,
+    verbosity: Verbosity,
     explain: bool,
     bars: Option<MultiProgress>,
     active: Mutex<BTreeMap<String, ProgressBar>>,
 }
 
 impl Renderer {
-    pub fn new(quiet: bool, explain: bool) -> Self {
-        let bars = (!quiet && std::io::stderr().is_terminal()).then(MultiProgress::new);
+    pub fn new(verbosity: Verbosity, explain: bool) -> Self {
+        let bars = (verbosity > Verbosity::Quiet && std::io::stderr().is_terminal())
+            .then(MultiProgress::new);
         Renderer {
-            quiet,
+            verbosity,
             explain,
             bars,
             active: Mutex::new(BTreeMap::new()),
@@ -35,15 +51,16 @@ impl Renderer {
     }
 
     pub fn event(&self, e: &Event) {
+        let normal = self.verbosity >= Verbosity::Normal;
         match e {
-            Event::WaitingForLock { path } => self.line(format!(
+            Event::WaitingForLock { path } if normal => self.line(format!(
                 "    Blocking waiting for another build holding the cache lock at {}",
                 path.display()
             )),
-            Event::CacheCorrupt { name, detail } => self.line(format!(
+            Event::CacheCorrupt { name, detail } if normal => self.line(format!(
                 "     Warning cache entry of `{name}` is corrupt ({detail}): rebuilding it"
             )),
-            Event::Expanded { by, added } if !self.quiet => {
+            Event::Expanded { by, added } if self.verbosity == Verbosity::Verbose => {
                 self.line(format!("    Expanded {by}: {added} nodes"))
             }
             Event::Progress { name, done, total } => self.progress(name, *done, *total),
@@ -78,6 +95,11 @@ impl Renderer {
         {
             b.finish_and_clear();
         }
+        let why = if self.explain {
+            format!(" [{}]", r.reason)
+        } else {
+            String::new()
+        };
         match r.state {
             NodeState::Failed => {
                 self.line(format!(
@@ -86,34 +108,46 @@ impl Renderer {
                     r.error.as_deref().unwrap_or("unknown error")
                 ));
             }
-            NodeState::Ran if !self.quiet => {
-                let counts: Vec<String> =
-                    r.counts.iter().map(|(k, v)| format!("{v} {k}")).collect();
-                let counts = if counts.is_empty() {
-                    String::new()
-                } else {
-                    format!(" ({})", counts.join(", "))
-                };
-                let why = if self.explain {
-                    format!(" [{}]", r.reason)
-                } else {
-                    String::new()
-                };
+            NodeState::Ran if self.verbosity >= Verbosity::Normal => {
                 self.line(format!(
-                    "{:>12} {}{} in {:.2}s{}",
+                    "{:>12} {}{} in {:.2}s{why}",
                     verb(&r.kind),
                     r.name,
-                    counts,
+                    counts(r),
                     r.duration_ms / 1000.0,
-                    why
                 ));
                 for n in &r.notes {
                     self.line(format!("{:>12} {n}", "note"));
                 }
             }
+            NodeState::Cached | NodeState::CutOff if self.verbosity == Verbosity::Verbose => {
+                let cut = if r.state == NodeState::CutOff {
+                    " (cut off: its inputs re-ran to the same outputs)"
+                } else {
+                    ""
+                };
+                self.line(format!(
+                    "{:>12} {}{}{cut}{why}",
+                    "Cached",
+                    r.name,
+                    counts(r)
+                ));
+            }
+            NodeState::Skipped if self.verbosity == Verbosity::Verbose => {
+                self.line(format!("{:>12} {} ({})", "Skipped", r.name, r.reason));
+            }
             _ => {}
         }
     }
+}
+
+/// A node's counts, ` (3 nodes, 4 triangles)`, or nothing.
+fn counts(r: &NodeReport) -> String {
+    if r.counts.is_empty() {
+        return String::new();
+    }
+    let counts: Vec<String> = r.counts.iter().map(|(k, v)| format!("{v} {k}")).collect();
+    format!(" ({})", counts.join(", "))
 }
 
 /// The verb of a Cargo-style line for an operation kind.

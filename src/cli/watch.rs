@@ -54,10 +54,12 @@ pub fn run(args: &BuildArgs) -> Result<(), Failure> {
         if args.max_builds.is_some_and(|m| builds >= m) {
             return Ok(());
         }
-        errln!(
-            "    Watching {} files for changes (Ctrl-C to stop)",
-            files.len()
-        );
+        if !args.quiet {
+            errln!(
+                "    Watching {} files for changes (Ctrl-C to stop)",
+                files.len()
+            );
+        }
         wait_for_change(&rx, &files, &built)?;
     }
 }

@@ -80,9 +80,9 @@ fn the_msh_names_every_region_and_surface_and_the_dangling_fault_has_tets_on_bot
 }
 
 #[test]
-fn the_build_lists_the_model_in_json_and_prints_the_quality_tables() {
+fn the_build_lists_the_model_in_json_and_prints_the_quality_tables_when_verbose() {
     let s = Scratch::didactic_built();
-    let (ok, r, err) = s.build(&[]);
+    let (ok, r, err) = s.build(&["-v"]);
     assert!(ok, "{err}");
     assert!(err.contains("Table 1") && err.contains("Table 2"), "{err}");
     for name in REGIONS {

@@ -7,6 +7,7 @@ mod cli_errors;
 mod cli_geology;
 mod cli_incremental;
 mod cli_mesh;
+mod cli_output;
 mod cli_real_data;
 mod cli_ringmesh;
 mod cli_tetmesh;
