@@ -71,9 +71,9 @@ pub struct SurfaceSpec {
     pub format: ImportFormat,
     /// Default `Other`; never `Box`.
     pub kind: SurfaceKind,
-    /// The TSurf object to take from a multi-object file; `None` = every TSurf object, as parts
-    /// of one surface.
-    pub object: Option<String>,
+    /// The TSurf object to take from a multi-object file, by name (`object = "top"`) or by its
+    /// position in the file counted from 1 (`object = 2`); `None` = the file's only TSurf object.
+    pub object: Option<gocad::import::ObjectRef>,
     /// Re-triangulate the support with this target edge length (> 0); `None` = keep as read.
     pub retriangulate: Option<f64>,
     /// Default `Repair`.

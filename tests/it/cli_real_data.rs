@@ -74,3 +74,48 @@ dir = "out/bigbend"
             .unwrap();
     assert!(validation.get("bigbear").is_some());
 }
+
+#[test]
+fn a_file_whose_tsurf_objects_share_a_name_imports_by_position_and_the_name_says_how() {
+    let Some(file) = paths::shared(
+        "data/gocad/Geode-solutions__OpenGeode-GeosciencesIO/tests/data/surf2d_multi.ts",
+    ) else {
+        return;
+    };
+    let s = Scratch::didactic();
+    let recipe = |object: &str| {
+        format!(
+            "[model]\nname = \"section\"\n\n[surfaces]\n\
+             section = {{ file = \"{}\", object = {object} }}\n\n\
+             [mesh]\nsize = 1.0\n\n[output]\ndir = \"out/section\"\n",
+            file.display()
+        )
+    };
+    // The two objects are both named `section1`: by name the import cannot choose, and says how.
+    std::fs::write(s.path("section.toml"), recipe("\"section1\"")).unwrap();
+    let (ok, r, err) = s.build_recipe("section.toml", &[]);
+    assert!(!ok, "{err}");
+    assert_eq!(nodes_in_state(&r, "failed"), ["import:section"]);
+    for said in [
+        "surf2d_multi.ts:1:",
+        "2 objects are named 'section1'",
+        "#1 'section1' (line 1)",
+        "#2 'section1' (line 134)",
+        "select one by its position in the file, e.g. `object = 1`",
+    ] {
+        assert!(err.contains(said), "`{said}` not in {err}");
+    }
+    // By position, the second object imports (SOURCES.md: 46 triangles in 3 TFACEs).
+    std::fs::write(s.path("section.toml"), recipe("2")).unwrap();
+    let (ok, r, err) = s.build_recipe("section.toml", &[]);
+    assert!(ok, "{err}");
+    let import = r["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["name"] == "import:section")
+        .expect("the import node");
+    assert_eq!(import["state"], "ran");
+    assert_eq!(import["counts"]["triangles"], 46);
+    assert_eq!(import["counts"]["parts"], 3);
+}

@@ -614,3 +614,35 @@ fn two_encodings_of_one_format_are_refused_because_they_write_the_same_file() {
     ));
     assert_eq!(r.output.formats, [Format::VtuBinary, Format::Inp]);
 }
+
+#[test]
+fn an_object_is_a_name_or_a_position_counted_from_one() {
+    let with = |v: &str| {
+        BASE.replace(
+            "f1 = { file = \"data/f1.ts\", kind = \"fault\" }",
+            &format!("f1 = {{ file = \"data/f1.ts\", kind = \"fault\", object = {v} }}"),
+        )
+    };
+    let r = ok(&with("2"));
+    assert_eq!(
+        r.surfaces["f1"].object,
+        Some(gocad::import::ObjectRef::Position(2))
+    );
+    let r = ok(&with("\"f1_a\""));
+    assert_eq!(
+        r.surfaces["f1"].object,
+        Some(gocad::import::ObjectRef::Name("f1_a".into()))
+    );
+    let (d, r) = single_at(&with("0"), "0 }", 0);
+    assert!(d.message.contains("not a position in the file"), "{r}");
+    assert!(
+        d.help.as_deref().is_some_and(|h| h.contains("from 1")),
+        "{r}"
+    );
+    let (d, r) = single_at(&with("1.5"), "1.5", 0);
+    assert!(
+        d.message
+            .contains("an object name (a string) or its position"),
+        "{r}"
+    );
+}

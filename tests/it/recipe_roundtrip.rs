@@ -124,7 +124,10 @@ fn the_reference_recipe_parses_and_sets_every_key() {
     assert_eq!(r.tolerances.support_distance_rel, 1e-6);
     let lens = &r.surfaces["lens"];
     assert_eq!(lens.format, ImportFormat::Model3d);
-    assert_eq!(lens.object.as_deref(), Some("lens_1"));
+    assert_eq!(
+        lens.object,
+        Some(gocad::import::ObjectRef::Name("lens_1".into()))
+    );
     assert!(lens.skip_other_types);
     assert_eq!(r.surfaces["base"].on_invalid, OnInvalid::Stop);
     let actions: Vec<&TrimAction> = r.trims.iter().map(|t| &t.action).collect();

@@ -51,7 +51,7 @@ pub struct ImportOp {
     pub kind: SurfaceKind,
     /// The file as the recipe names it (for messages).
     pub file_label: String,
-    pub object: Option<String>,
+    pub object: Option<import::ObjectRef>,
     pub skip_other_types: bool,
     /// The recipe's units: every file's coordinates are converted from its `AXIS_UNIT` into them.
     pub target_units: import::Units,
@@ -73,8 +73,13 @@ impl Operation for ImportOp {
             .expect("finite");
         p.set(&key("file"), self.file_label.as_str())
             .expect("finite");
-        p.set(&key("object"), self.object.clone().unwrap_or_default())
-            .expect("finite");
+        // A name keys as the string it always did (none as ""), a position as an integer.
+        match &self.object {
+            Some(import::ObjectRef::Position(k)) => p.set(&key("object"), *k),
+            Some(import::ObjectRef::Name(n)) => p.set(&key("object"), n.as_str()),
+            None => p.set(&key("object"), ""),
+        }
+        .expect("finite");
         p.set(&key("skip_other_types"), self.skip_other_types)
             .expect("finite");
         p.set(

@@ -13,6 +13,7 @@ use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
 use crate::recipe::selector::valid_name_char;
 use crate::recipe::spec::{ImportFormat, OnInvalid, SurfaceSpec};
 use geom::mesh::SurfaceKind;
+use gocad::import::ObjectRef;
 
 const KEYS: &[&str] = &[
     "file",
@@ -117,18 +118,7 @@ pub(crate) fn read(
             None => Some(SurfaceKind::Other),
         };
         let object = match st.get("object") {
-            Some(x) => match rd::string(ctx, x, &path_join(&path, "object")) {
-                Some(s) if s.trim().is_empty() => {
-                    ctx.error(
-                        x.span(),
-                        format!("`{}` must not be empty", path_join(&path, "object")),
-                        Some("remove `object` to take every TSurf object of the file".into()),
-                    );
-                    None
-                }
-                Some(s) => Some(Some(s.to_string())),
-                None => None,
-            },
+            Some(x) => object(ctx, x, &path_join(&path, "object")).map(Some),
             None => Some(None),
         };
         let retriangulate = match st.get("retriangulate") {
@@ -168,6 +158,50 @@ pub(crate) fn read(
         }
     }
     out
+}
+
+/// `object`: a TSurf name (a non-empty string) or a position in the file (an integer from 1).
+fn object(ctx: &mut Ctx<'_>, x: &Value<'_>, path: &str) -> Option<ObjectRef> {
+    if let DeValue::Integer(_) = x.get_ref() {
+        let k = rd::int(ctx, x, path)?;
+        return match u32::try_from(k) {
+            Ok(k) if k >= 1 => Some(ObjectRef::Position(k)),
+            _ => {
+                ctx.error(
+                    x.span(),
+                    format!("`{path}` = {k} is not a position in the file"),
+                    Some(
+                        "positions count the file's GOCAD objects from 1: `object = 1` is the \
+                         first"
+                            .into(),
+                    ),
+                );
+                None
+            }
+        };
+    }
+    let s = match x.get_ref() {
+        DeValue::String(s) => s,
+        _ => {
+            let msg = format!(
+                "`{path}` must be an object name (a string) or its position in the file (an \
+                 integer), found {} `{}`",
+                rd::type_name(x.get_ref()),
+                ctx.text(x.span())
+            );
+            ctx.error(x.span(), msg, None);
+            return None;
+        }
+    };
+    if s.trim().is_empty() {
+        ctx.error(
+            x.span(),
+            format!("`{path}` must not be empty"),
+            Some("remove `object` to take the file's only TSurf object".into()),
+        );
+        return None;
+    }
+    Some(ObjectRef::Name(s.to_string()))
 }
 
 /// A spec with every option at its default.

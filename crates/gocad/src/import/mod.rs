@@ -26,11 +26,42 @@ use std::fmt;
 
 pub use geom::Units;
 
+/// Which object of a file to import.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum ObjectRef {
+    /// The object whose HEADER `name` this is; it must be the only object of that name.
+    Name(String),
+    /// The object at this position in the file, counted from 1 over every GOCAD object in file
+    /// order (whatever its type): how a file with two objects of the same name is read.
+    Position(u32),
+}
+
+impl From<&str> for ObjectRef {
+    fn from(name: &str) -> Self {
+        ObjectRef::Name(name.to_string())
+    }
+}
+
+impl From<String> for ObjectRef {
+    fn from(name: String) -> Self {
+        ObjectRef::Name(name)
+    }
+}
+
+impl fmt::Display for ObjectRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ObjectRef::Name(n) => write!(f, "'{n}'"),
+            ObjectRef::Position(k) => write!(f, "#{k}"),
+        }
+    }
+}
+
 /// What the recipe says about one imported surface.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ImportOptions {
-    /// Name of the object to import (HEADER `name`). `None`: the file must hold exactly one surface.
-    pub object: Option<String>,
+    /// The object to import, by name or position. `None`: the file must hold exactly one surface.
+    pub object: Option<ObjectRef>,
     /// Skip objects of other types (PLine, VSet, SGrid...) instead of failing on them.
     pub skip_other_types: bool,
     /// Units of the recipe. `Some(u)`: each axis is scaled from its `AXIS_UNIT` (metres when the

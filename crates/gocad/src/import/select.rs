@@ -3,7 +3,7 @@
 //! matching of Model3d TFACE records to the parts of their TSurf.
 
 use super::parser::{GocadFile, GocadObject, parse_gocad};
-use super::{ImportError, ImportOptions, ImportedSurface, PartInfo, SourceMap, Units};
+use super::{ImportError, ImportOptions, ImportedSurface, ObjectRef, PartInfo, SourceMap, Units};
 use geom::TriMesh;
 
 /// Imports the one surface of a file the options name.
@@ -73,6 +73,26 @@ fn other_type(o: &GocadObject, label: &str) -> ImportError {
     )
 }
 
+/// How an object is listed in messages: `#2 'name' (line 134)`, its position counted from 1.
+fn listed(file: &GocadFile, o: &GocadObject) -> String {
+    let k = file
+        .objects
+        .iter()
+        .position(|x| std::ptr::eq(x, o))
+        .map_or(0, |i| i + 1);
+    format!("#{k} '{}' (line {})", o.name, o.line)
+}
+
+/// The TSurf objects of the file, listed.
+fn surfaces_listed(file: &GocadFile) -> String {
+    file.objects
+        .iter()
+        .filter(|o| o.is_surface())
+        .map(|o| listed(file, o))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// Index of the object the options select.
 fn select(file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<usize, ImportError> {
     let index_of = |o: &GocadObject| {
@@ -81,34 +101,59 @@ fn select(file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<usize, 
             .position(|x| std::ptr::eq(x, o))
             .unwrap_or(0)
     };
-    if let Some(want) = &opts.object {
-        let named: Vec<&GocadObject> = file.objects.iter().filter(|o| &o.name == want).collect();
-        return match named.as_slice() {
-            [one] if one.is_surface() => Ok(index_of(one)),
-            [one] => Err(other_type(one, label)),
-            [] => {
-                let names: Vec<&str> = file
-                    .objects
-                    .iter()
-                    .filter(|o| o.is_surface())
-                    .map(|o| o.name.as_str())
-                    .collect();
-                Err(ImportError::new(
+    match &opts.object {
+        Some(ObjectRef::Position(k)) => {
+            let at = (*k as usize)
+                .checked_sub(1)
+                .and_then(|i| file.objects.get(i));
+            return match at {
+                Some(o) if o.is_surface() => Ok(index_of(o)),
+                Some(o) => Err(other_type(o, label)),
+                None => Err(ImportError::new(
                     label,
                     0,
-                    format!("no object named '{want}'; surfaces here: {names:?}"),
-                ))
-            }
-            [first, ..] => Err(ImportError::new(
-                label,
-                first.line,
-                format!(
-                    "{} objects are named '{want}' (lines {:?})",
-                    named.len(),
-                    named.iter().map(|o| o.line).collect::<Vec<_>>()
-                ),
-            )),
-        };
+                    format!(
+                        "there is no object #{k}: the file holds {} GOCAD object{}, counted \
+                         from 1 (TSurf objects: {})",
+                        file.objects.len(),
+                        if file.objects.len() == 1 { "" } else { "s" },
+                        surfaces_listed(file)
+                    ),
+                )),
+            };
+        }
+        Some(ObjectRef::Name(want)) => {
+            let named: Vec<&GocadObject> =
+                file.objects.iter().filter(|o| &o.name == want).collect();
+            return match named.as_slice() {
+                [one] if one.is_surface() => Ok(index_of(one)),
+                [one] => Err(other_type(one, label)),
+                [] => Err(ImportError::new(
+                    label,
+                    0,
+                    format!(
+                        "no object named '{want}'; TSurf objects here: {}",
+                        surfaces_listed(file)
+                    ),
+                )),
+                [first, ..] => Err(ImportError::new(
+                    label,
+                    first.line,
+                    format!(
+                        "{} objects are named '{want}': {}; the name cannot tell them apart, so \
+                         select one by its position in the file, e.g. `object = {}`",
+                        named.len(),
+                        named
+                            .iter()
+                            .map(|o| listed(file, o))
+                            .collect::<Vec<_>>()
+                            .join(", "),
+                        index_of(first) + 1
+                    ),
+                )),
+            };
+        }
+        None => {}
     }
     if !opts.skip_other_types
         && let Some(o) = file.objects.iter().find(|o| !o.is_surface())
@@ -119,18 +164,33 @@ fn select(file: &GocadFile, label: &str, opts: &ImportOptions) -> Result<usize, 
     match surfaces.as_slice() {
         [one] => Ok(index_of(one)),
         [] => Err(no_surface(file, label)),
-        many => Err(ImportError::new(
-            label,
-            many[1].line,
-            format!(
-                "the file holds {} TSurf objects ({}); name one with `object`",
-                many.len(),
-                many.iter()
-                    .map(|o| format!("'{}' line {}", o.name, o.line))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        )),
+        many => {
+            let mut names: Vec<&str> = many.iter().map(|o| o.name.as_str()).collect();
+            names.sort_unstable();
+            names.dedup();
+            let k = index_of(many[0]) + 1;
+            let how = if names.len() == many.len() {
+                format!(
+                    "name one with `object = \"{}\"`, or select it by its position in the file, \
+                     e.g. `object = {k}`",
+                    many[0].name
+                )
+            } else {
+                format!(
+                    "some share a name, so select one by its position in the file, e.g. \
+                     `object = {k}`"
+                )
+            };
+            Err(ImportError::new(
+                label,
+                many[1].line,
+                format!(
+                    "the file holds {} TSurf objects ({}); {how}",
+                    many.len(),
+                    surfaces_listed(file)
+                ),
+            ))
+        }
     }
 }
 

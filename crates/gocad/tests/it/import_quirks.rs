@@ -9,7 +9,7 @@ fn opts() -> ImportOptions {
 
 fn named(name: &str) -> ImportOptions {
     ImportOptions {
-        object: Some(name.to_string()),
+        object: Some(name.into()),
         ..ImportOptions::default()
     }
 }
@@ -339,4 +339,54 @@ fn model_a4_fault_parts_get_their_model3d_tface_ids_and_types() {
     let raw = gocad::import::parse_gocad(&bytes, "modelA4.ml").unwrap();
     let f1 = raw.objects.iter().find(|o| o.name == "F1fault").unwrap();
     assert_eq!(s.mesh.vertices[0][2], -f1.vertices[0][2]);
+}
+
+fn at(k: u32) -> ImportOptions {
+    ImportOptions {
+        object: Some(gocad::import::ObjectRef::Position(k)),
+        ..opts()
+    }
+}
+
+#[test]
+fn objects_sharing_a_name_are_told_apart_by_their_position_in_the_file() {
+    // An SGrid, then two TSurf objects named `t` (the second moved up by 5).
+    let t = format!(
+        "GOCAD SGrid 1\nHEADER {{\nname: grid\n}}\nEND\n{TRI}{}",
+        TRI.replace("0 1 0\n", "0 1 5\n")
+    );
+    let e = import_surface(t.as_bytes(), "m.ts", &named("t")).unwrap_err();
+    assert_eq!(e.line, 6, "{e}");
+    for said in [
+        "2 objects are named 't'",
+        "#2 't' (line 6)",
+        "#3 't' (line 16)",
+        "`object = 2`",
+    ] {
+        assert!(e.message.contains(said), "`{said}` not in {e}");
+    }
+    let e = import_surface(t.as_bytes(), "m.ts", &opts()).unwrap_err();
+    assert!(e.message.contains("SGrid"), "{e}");
+    let skip = ImportOptions {
+        skip_other_types: true,
+        ..opts()
+    };
+    let e = import_surface(t.as_bytes(), "m.ts", &skip).unwrap_err();
+    assert!(
+        e.message.contains("2 TSurf objects") && e.message.contains("by its position"),
+        "{e}"
+    );
+    let second = import_surface(t.as_bytes(), "m.ts", &at(3)).unwrap();
+    assert_eq!(second.mesh.vertices[2], [0.0, 1.0, 5.0]);
+    let first = import_surface(t.as_bytes(), "m.ts", &at(2)).unwrap();
+    assert_eq!(first.mesh.vertices[2], [0.0, 1.0, 0.0]);
+    let e = import_surface(t.as_bytes(), "m.ts", &at(1)).unwrap_err();
+    assert!(e.message.contains("GOCAD SGrid"), "{e}");
+    for k in [0, 4] {
+        let e = import_surface(t.as_bytes(), "m.ts", &at(k)).unwrap_err();
+        assert!(
+            e.message.contains(&format!("no object #{k}")) && e.message.contains("3 GOCAD objects"),
+            "{e}"
+        );
+    }
 }

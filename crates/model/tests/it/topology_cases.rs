@@ -216,7 +216,7 @@ fn shared_surface(path: &str, object: Option<&str>) -> Option<gocad::import::Imp
     let file = paths::shared(&format!("data/gocad/{path}"))?;
     let bytes = std::fs::read(file).expect("read");
     let opts = ImportOptions {
-        object: object.map(str::to_string),
+        object: object.map(Into::into),
         skip_other_types: true,
         ..Default::default()
     };
