@@ -41,7 +41,7 @@ pub fn clearances(
         .map(|c| vec![f64::INFINITY; c.points.len()])
         .collect();
     for (b, p) in bounds.iter().zip(patches) {
-        let used = patch_curves(b);
+        let used = b.curves();
         if used.len() < 2 {
             continue;
         }
@@ -79,20 +79,6 @@ fn share_an_end(a: &Curve, b: &Curve) -> bool {
     let ends = |c: &Curve| [c.points.first().copied(), c.points.last().copied()];
     let (ea, eb) = (ends(a), ends(b));
     ea.iter().any(|p| p.is_some() && eb.contains(p))
-}
-
-/// The curves a patch's loops and constraints use, ascending, once each.
-fn patch_curves(b: &PatchBoundary) -> Vec<u32> {
-    let mut v: Vec<u32> = b
-        .loops
-        .iter()
-        .flatten()
-        .map(|u| u.curve)
-        .chain(b.constraints.iter().copied())
-        .collect();
-    v.sort_unstable();
-    v.dedup();
-    v
 }
 
 /// Orthogonal projection onto the plane normal to a mesh's area-weighted mean normal.
@@ -189,7 +175,10 @@ mod tests {
         let (curves, bound, patch) = strip(0.0);
         let c = clearances(&curves, &[bound], &[patch]);
         assert_eq!(c[0][1], 10.0, "the middle of `low` is 10 m from `high`");
-        assert_eq!(c[0][0], 10.0, "`left`, met at its end, does not count; `high` does");
+        assert_eq!(
+            c[0][0], 10.0,
+            "`left`, met at its end, does not count; `high` does"
+        );
     }
 
     #[test]

@@ -81,6 +81,22 @@ pub struct PatchBoundary {
     pub constraints: Vec<u32>,
 }
 
+impl PatchBoundary {
+    /// The curves its loops and constraints use, ascending, once each.
+    pub fn curves(&self) -> Vec<u32> {
+        let mut v: Vec<u32> = self
+            .loops
+            .iter()
+            .flatten()
+            .map(|u| u.curve)
+            .chain(self.constraints.iter().copied())
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+}
+
 /// The model's vertices and curves, and every patch's boundary.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ModelTopology {

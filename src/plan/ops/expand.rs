@@ -6,7 +6,6 @@
 //! `mesh` and `export`, and nothing else.
 
 use super::curves::{add_curve_nodes, graph_error};
-use super::patch::patch_curves;
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
 use engine::{Artifact, Expander, Expansion, NodeId, OpError};
@@ -104,11 +103,7 @@ impl Expander for ModelExpander {
                 )
                 .map_err(graph_error)?;
             let mut inputs = vec![piece];
-            inputs.extend(
-                patch_curves(boundary)
-                    .iter()
-                    .map(|&c| discretized[c as usize]),
-            );
+            inputs.extend(boundary.curves().iter().map(|&c| discretized[c as usize]));
             let (size_path, size) = self.surface_size(&p.surface);
             let m = x
                 .add_op(

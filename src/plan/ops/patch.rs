@@ -23,20 +23,6 @@ pub struct PatchPiece {
     pub curves: Vec<String>,
 }
 
-/// The model-order indices of the curves a patch uses (loops and constraints), ascending.
-pub fn patch_curves(b: &PatchBoundary) -> Vec<u32> {
-    let mut v: Vec<u32> = b
-        .loops
-        .iter()
-        .flatten()
-        .map(|u| u.curve)
-        .chain(b.constraints.iter().copied())
-        .collect();
-    v.sort_unstable();
-    v.dedup();
-    v
-}
-
 /// `patch:<p>`: extracts patch `p` (index `index` in the model) from the model.
 pub struct PatchExtractOp {
     pub name: String,
@@ -62,7 +48,7 @@ impl Operation for PatchExtractOp {
             .position(|p| p.name == self.name)
             .ok_or_else(|| OpError::from(format!("the model has no patch `{}`", self.name)))?;
         let mut boundary = model.topology.patches[i].clone();
-        let used = patch_curves(&boundary);
+        let used = boundary.curves();
         let local = |c: u32| used.binary_search(&c).map_or(u32::MAX, |k| k as u32);
         for u in boundary.loops.iter_mut().flatten() {
             u.curve = local(u.curve);
