@@ -369,17 +369,7 @@ fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_fla
         ts.push([1, 4, 9]);
         let support = geom::TriMesh::new(vs, ts);
         assert_eq!(flattening_method(&support).unwrap(), "tutte");
-        let border: Vec<[f64; 3]> = (0..40)
-            .map(|k| {
-                let s = 1000.0 * (k % 10) as f64 / 10.0;
-                match k / 10 {
-                    0 => p(s, 0.0),
-                    1 => p(1000.0, s),
-                    2 => p(1000.0 - s, 1000.0),
-                    _ => p(0.0, 1000.0 - s),
-                }
-            })
-            .collect();
+        let border = square_border(p);
         let input = PatchInput {
             name: "needle support".into(),
             support,
@@ -423,17 +413,7 @@ fn a_hole_whose_rim_overhangs_its_neighbour_is_not_flattened_by_projection() {
         ];
         let support = geom::TriMesh::new(vs.clone(), ts);
         assert_eq!(flattening_method(&support).unwrap(), "tutte");
-        let border: Vec<[f64; 3]> = (0..40)
-            .map(|k| {
-                let s = 1000.0 * (k % 10) as f64 / 10.0;
-                match k / 10 {
-                    0 => p(s, 0.0, 0.0),
-                    1 => p(1000.0, s, 0.0),
-                    2 => p(1000.0 - s, 1000.0, 0.0),
-                    _ => p(0.0, 1000.0 - s, 0.0),
-                }
-            })
-            .collect();
+        let border = square_border(|x, y| p(x, y, 0.0));
         let input = PatchInput {
             name: "overhanging hole".into(),
             support,
@@ -475,17 +455,7 @@ fn pinched(off: [f64; 3]) -> (geom::TriMesh, Vec<Vec<[f64; 3]>>) {
             [6, 3, 0],
         ],
     );
-    let outer: Vec<[f64; 3]> = (0..40)
-        .map(|k| {
-            let s = 1000.0 * (k % 10) as f64 / 10.0;
-            match k / 10 {
-                0 => p(s, 0.0),
-                1 => p(1000.0, s),
-                2 => p(1000.0 - s, 1000.0),
-                _ => p(0.0, 1000.0 - s),
-            }
-        })
-        .collect();
+    let outer = square_border(p);
     let along = |u: &[f64; 3], v: &[f64; 3], t: f64| {
         [u[0] + t * (v[0] - u[0]), u[1] + t * (v[1] - u[1]), -500.0]
     };
@@ -545,4 +515,20 @@ fn a_loop_repeating_a_node_next_to_itself_is_an_error_naming_the_node() {
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert!(e.to_string().contains("zero-length segment"), "{e}");
     assert_eq!(e.at, Some(twice));
+}
+
+/// The border of the square [0, 1000]² through `p`, 100 m segments, counter-clockwise from the
+/// origin.
+fn square_border(p: impl Fn(f64, f64) -> [f64; 3]) -> Vec<[f64; 3]> {
+    (0..40)
+        .map(|k| {
+            let s = 1000.0 * (k % 10) as f64 / 10.0;
+            match k / 10 {
+                0 => p(s, 0.0),
+                1 => p(1000.0, s),
+                2 => p(1000.0 - s, 1000.0),
+                _ => p(0.0, 1000.0 - s),
+            }
+        })
+        .collect()
 }
