@@ -129,6 +129,11 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .iter()
                 .map(|(n, r)| (n.clone(), r.point))
                 .collect(),
+            names_at: recipe
+                .regions
+                .values()
+                .map(|r| format!("{}:{}:{}", recipe.path.display(), r.span.line, r.span.col))
+                .collect(),
             tolerances: recipe.tolerances.clone(),
             trims: trims(recipe),
         };

@@ -154,7 +154,7 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     };
     let pairs = sections::intersect::read(&mut ctx, root.get("intersect"), &names);
     let trims = sections::trim::read(&mut ctx, root.get("trim"), &names);
-    let regions = sections::regions::read(&mut ctx, root.get("regions"));
+    let regions = sections::regions::read(&mut ctx, root.get("regions"), bbox.as_ref());
     let mut region_names: Vec<String> = match root.get("regions").map(|v| v.get_ref()) {
         Some(toml::de::DeValue::Table(t)) => {
             t.iter().map(|(k, _)| k.get_ref().to_string()).collect()

@@ -149,3 +149,54 @@ fn a_full_standard_output_is_an_error_message_not_a_panic() {
     assert!(!err.contains("panicked"), "{err}");
     assert!(err.contains("cannot write to standard output"), "{err}");
 }
+
+#[test]
+fn check_catches_a_region_point_outside_the_box_without_building() {
+    let s = Scratch::didactic();
+    s.edit(
+        "overburden_E = { point = [504000.0, 7001000.0, -600.0]",
+        "overburden_E = { point = [504000.0, 7010000.0, -600.0]",
+    );
+    let needles = [
+        "didactic.toml:34:37",
+        "^^^^^^^^^",
+        "region `overburden_E`: the point [504000, 7010000, -600] is outside the box [500000, 7000000, -2500]..[505000, 7005000, 0]",
+        "y = 7010000 is above the box's `max` y = 7005000",
+        "`[box]` (line 16)",
+        "move the point into its region or widen the box",
+    ];
+    fails_with(&s, &["check", "didactic.toml"], &needles);
+    assert!(
+        !s.path(".recipe").exists(),
+        "check builds nothing and writes no cache"
+    );
+    fails_with(&s, &["build", "didactic.toml"], &needles);
+    assert!(
+        !s.path("out").exists(),
+        "the build stops before any node runs"
+    );
+}
+
+#[test]
+fn a_region_point_on_a_surface_fails_the_model_at_its_regions_line_with_the_fix() {
+    let s = Scratch::didactic();
+    // A vertex of H1, inside the box but on the horizon: strictly inside no region.
+    s.edit(
+        "[output]",
+        "on_h1 = { point = [501068.203, 7001122.535, -1161.209] }\n\n[output]",
+    );
+    let (ok, r, err) = s.build(&[]);
+    assert!(!ok);
+    assert!(
+        nodes_in_state(&r, "failed").contains(&"model".to_string()),
+        "{err}"
+    );
+    for n in [
+        "didactic.toml:40:1: region name `on_h1`",
+        "is strictly inside no region",
+        "it lies on a surface",
+        "move it off the surfaces",
+    ] {
+        assert!(err.contains(n), "`{n}` not in:\n{err}");
+    }
+}

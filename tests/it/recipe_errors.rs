@@ -646,3 +646,32 @@ fn an_object_is_a_name_or_a_position_counted_from_one() {
         "{r}"
     );
 }
+
+#[test]
+fn a_region_point_outside_the_box_names_the_coordinate_the_box_and_the_fix() {
+    let text = format!(
+        "{BASE}[regions]\nres = {{ point = [1.0, 1.0, -1.0] }}\nover = {{ point = [1.0, 12.5, -9.0] }}\n"
+    );
+    let (d, r) = single_at(&text, "12.5", 0);
+    assert!(d.snippet.contains("over = "), "{r}");
+    assert!(
+        d.message.contains(
+            "region `over`: the point [1, 12.5, -9] is outside the box [0, 0, -10]..[10, 10, 0]: y = 12.5 is above the box's `max` y = 10"
+        ),
+        "{r}"
+    );
+    let help = d.help.as_deref().unwrap_or_default();
+    assert!(help.contains("`[box]` (line 9)"), "{r}");
+    assert!(help.contains("y between 0 and 10"), "{r}");
+    assert!(help.contains("move the point"), "{r}");
+}
+
+#[test]
+fn a_region_point_on_a_side_of_the_box_is_in_no_region() {
+    let text = format!("{BASE}[regions]\nres = {{ point = [1.0, 1.0, -10.0] }}\n");
+    let (d, r) = single_at(&text, "-10.0]", 1);
+    assert!(
+        d.message.contains("z = -10 is on the box side `box.zmin`"),
+        "{r}"
+    );
+}

@@ -43,6 +43,9 @@ pub struct ModelOp {
     pub faults: Vec<String>,
     /// Region names by point, from the recipe's `[regions]`.
     pub names: Vec<(String, [f64; 3])>,
+    /// The recipe location (`file:line:col`) of each of `names`, same order, for error
+    /// messages; like the trims' locations, not in the key.
+    pub names_at: Vec<String>,
     pub tolerances: Tolerances,
     /// The recipe's `[[trim]]` entries, in order, each with its recipe location (`file:line:col`)
     /// for error messages.
@@ -86,6 +89,7 @@ impl Operation for ModelOp {
             Some(b) => b,
             None => surfaces_bbox(&surfaces)?,
         };
+        self.check_points(&bbox)?;
         let named: Vec<(&str, &TriMesh)> = surfaces
             .iter()
             .map(|s| (s.name.as_str(), &s.mesh))
@@ -164,7 +168,7 @@ impl Operation for ModelOp {
         }
         let opts = regions::RegionOptions::with_faults(self.faults.iter().cloned());
         let model = regions::find_regions_with(&input, &self.names, &opts)
-            .map_err(|e| OpError::from(e.to_string()))?;
+            .map_err(|e| self.region_error(e))?;
         let topology =
             build_topology(&input, &self.tolerances).map_err(|e| OpError::from(e.to_string()))?;
         let n_curves = topology.curves.len() as u64;
@@ -182,6 +186,64 @@ impl Operation for ModelOp {
         .count("dangling_patches", model.dangling.len() as u64);
         let names: Vec<&str> = model.regions.iter().map(|r| r.name.as_str()).collect();
         Ok(out.note(format!("regions: {}", names.join(", "))))
+    }
+}
+
+impl ModelOp {
+    /// The recipe location of the region named at `p`, with `": "`, or nothing.
+    fn region_place(&self, p: &[f64; 3]) -> String {
+        self.names
+            .iter()
+            .zip(&self.names_at)
+            .find(|((_, q), _)| q == p)
+            .map(|(_, at)| format!("{at}: "))
+            .unwrap_or_default()
+    }
+
+    /// Every region point strictly inside `bbox` (the box when it is given around surfaces, or
+    /// the surfaces' extent of a sealed model, are known only now; an explicit box was checked
+    /// with the recipe). A point outside is in no region.
+    fn check_points(&self, bbox: &BBox) -> Result<(), OpError> {
+        let fmt = |p: &[f64; 3]| format!("[{}, {}, {}]", p[0], p[1], p[2]);
+        for (name, p) in &self.names {
+            let Some(i) = (0..3).find(|&i| !(bbox.min[i] < p[i] && p[i] < bbox.max[i])) else {
+                continue;
+            };
+            let axis = ["x", "y", "z"][i];
+            let box_of = if self.inputs.len("box") == 1 {
+                "the box"
+            } else {
+                "the extent of the surfaces (the sealed model)"
+            };
+            return Err(OpError::from(format!(
+                "{}region `{name}`: the point {} is outside {box_of} {}..{}: {axis} = {} is not \
+                 strictly between {} and {}; help: a region's point must be strictly inside the \
+                 model: check the coordinate for a typo or other units, then move the point into \
+                 its region or widen `[box]`",
+                self.region_place(p),
+                fmt(p),
+                fmt(&bbox.min),
+                fmt(&bbox.max),
+                p[i],
+                bbox.min[i],
+                bbox.max[i],
+            )));
+        }
+        Ok(())
+    }
+
+    /// A region error with the recipe location of the `[regions]` entry it is about, and what
+    /// to do about a point in no region.
+    fn region_error(&self, e: regions::RegionError) -> OpError {
+        let place = e.at.map(|p| self.region_place(&p)).unwrap_or_default();
+        let help = if e.message.contains("strictly inside no region") {
+            "; help: the point is inside the model's extent but in no region: it lies on a surface, or in \
+             a gap the trims opened or a surface does not close; move it off the surfaces, \
+             into the region it names"
+        } else {
+            ""
+        };
+        OpError::from(format!("{place}{e}{help}"))
     }
 }
 

@@ -1,17 +1,23 @@
 //! `[regions]`: optional names and attributes for regions, each picked by a point inside it.
 //! Decides legal names (as for surfaces), that points are finite and distinct, that `material`
-//! is an integer and that `properties` are finite numbers with legal names. Which region
-//! contains the point is decided later, exactly, once the model exists.
+//! is an integer and that `properties` are finite numbers with legal names, and that each point
+//! lies strictly inside an explicit `[box]` (a point outside it, or on one of its sides, is in no
+//! region). Which region contains the point is decided later, exactly, once the model exists.
 
 use std::collections::BTreeMap;
 
 use super::surfaces::check_name;
 use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
-use crate::recipe::spec::RegionSpec;
+use crate::recipe::spec::{BoxExtent, BoxSpec, RegionSpec};
+use toml::de::DeValue;
 
 const KEYS: &[&str] = &["point", "material", "properties"];
 
-pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>) -> BTreeMap<String, RegionSpec> {
+pub(crate) fn read(
+    ctx: &mut Ctx<'_>,
+    v: Option<&Value<'_>>,
+    bbox: Option<&BoxSpec>,
+) -> BTreeMap<String, RegionSpec> {
     let mut out: BTreeMap<String, RegionSpec> = BTreeMap::new();
     let Some(v) = v else { return out };
     let Some(t) = rd::as_table(ctx, v, "regions", None) else {
@@ -50,6 +56,11 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>) -> BTreeMap<String,
         else {
             continue;
         };
+        if let Some(b) = bbox
+            && !inside_box(ctx, name, point, rt.get("point"), b)
+        {
+            continue;
+        }
         if let Some(other) = out.values().find(|r| r.point == point) {
             let msg = format!(
                 "region `{name}` has the same point as region `{}` (line {})",
@@ -74,6 +85,55 @@ pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>) -> BTreeMap<String,
         );
     }
     out
+}
+
+/// Whether `point` lies strictly inside the box when the box is explicit (an `around` box is
+/// known only once the surfaces are read: the `model` step checks it then); reports it if not,
+/// at the offending coordinate.
+fn inside_box(
+    ctx: &mut Ctx<'_>,
+    name: &str,
+    point: [f64; 3],
+    written: Option<&Value<'_>>,
+    b: &BoxSpec,
+) -> bool {
+    let BoxExtent::Explicit { min, max } = &b.extent else {
+        return true;
+    };
+    let Some(i) = (0..3).find(|&i| !(min[i] < point[i] && point[i] < max[i])) else {
+        return true;
+    };
+    let axis = ["x", "y", "z"][i];
+    let at = match written.map(|w| (w.get_ref(), w.span())) {
+        Some((DeValue::Array(a), s)) => a.get(i).map_or(s, |c| c.span()),
+        Some((_, s)) => s,
+        None => 0..0,
+    };
+    let fmt = |p: &[f64; 3]| format!("[{}, {}, {}]", p[0], p[1], p[2]);
+    let (min_s, max_s) = (fmt(min), fmt(max));
+    let c = point[i];
+    let what = if c < min[i] {
+        format!("{axis} = {c} is below the box's `min` {axis} = {}", min[i])
+    } else if c > max[i] {
+        format!("{axis} = {c} is above the box's `max` {axis} = {}", max[i])
+    } else {
+        let side = if c == min[i] { "min" } else { "max" };
+        format!(
+            "{axis} = {c} is on the box side `box.{axis}{side}`, and a point on a surface is in no region"
+        )
+    };
+    let msg = format!(
+        "region `{name}`: the point {} is outside the box {min_s}..{max_s}: {what}",
+        fmt(&point)
+    );
+    let help = format!(
+        "a region's point must be strictly inside `[box]` (line {}), {axis} between {} and {}: \
+         check the coordinate for a typo or other units, then move the point into its region or \
+         widen the box",
+        b.span.line, min[i], max[i]
+    );
+    ctx.error(at, msg, Some(help));
+    false
 }
 
 fn properties(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<BTreeMap<String, f64>> {
