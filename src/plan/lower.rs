@@ -136,6 +136,10 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .collect(),
             tolerances: recipe.tolerances.clone(),
             trims: trims(recipe),
+            box_at: recipe
+                .bbox
+                .as_ref()
+                .map(|b| format!("{}:{}:{}", recipe.path.display(), b.span.line, b.span.col)),
         };
         let model = g.add_op("model", Arc::new(op), &inputs)?;
         g.set_expander(

@@ -50,6 +50,8 @@ pub struct ModelOp {
     /// The recipe's `[[trim]]` entries, in order, each with its recipe location (`file:line:col`)
     /// for error messages.
     pub trims: Vec<(TrimSpec, String)>,
+    /// The recipe location (`file:line:col`) of `[box]`, for error messages (not in the key).
+    pub box_at: Option<String>,
 }
 
 impl Operation for ModelOp {
@@ -57,7 +59,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        9
+        10
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -86,7 +88,10 @@ impl Operation for ModelOp {
         let surfaces: Vec<SurfaceData> = self.inputs.decode("surfaces", inputs)?;
         let intersections: Vec<Intersection> = self.inputs.decode("intersections", inputs)?;
         let bbox = match bbox {
-            Some(b) => b,
+            Some(b) => {
+                self.check_box_meets(&b, &surfaces, &intersections)?;
+                b
+            }
             None => surfaces_bbox(&surfaces)?,
         };
         self.check_points(&bbox)?;
@@ -189,7 +194,96 @@ impl Operation for ModelOp {
     }
 }
 
+/// `[a, b, c]`, each coordinate as the shortest round-trip float.
+fn fmt_point(p: &[f64; 3]) -> String {
+    format!("[{}, {}, {}]", p[0], p[1], p[2])
+}
+
+/// `[min]..[max]`.
+fn fmt_box(b: &BBox) -> String {
+    format!("{}..{}", fmt_point(&b.min), fmt_point(&b.max))
+}
+
 impl ModelOp {
+    /// That the box meets the imported surfaces: some surface's bounding box meets it, and no
+    /// surface named in `[intersect]` lies entirely outside it. Either is a box written in other
+    /// coordinates than the surfaces (units, a local origin, depth), which otherwise fails later
+    /// as curves or regions that are missing, far from the cause.
+    fn check_box_meets(
+        &self,
+        bbox: &BBox,
+        surfaces: &[SurfaceData],
+        intersections: &[Intersection],
+    ) -> Result<(), OpError> {
+        let place = self
+            .box_at
+            .as_ref()
+            .map(|at| format!("{at}: "))
+            .unwrap_or_default();
+        let imported: Vec<(&str, BBox)> = surfaces
+            .iter()
+            .filter(|s| s.kind != SurfaceKind::Box)
+            .map(|s| (s.name.as_str(), BBox::from_points(&s.mesh.vertices)))
+            .filter(|(_, b)| !b.is_empty())
+            .collect();
+        if imported.is_empty() {
+            return Ok(());
+        }
+        if !imported.iter().any(|(_, b)| b.overlaps(bbox)) {
+            let spans: Vec<String> = imported
+                .iter()
+                .map(|(n, b)| format!("`{n}` spans {}", fmt_box(b)))
+                .collect();
+            return Err(OpError::from(format!(
+                "{place}the box {} meets no imported surface: {}; help: the box and the surfaces \
+                 are probably in different coordinates (units, a local origin or UTM, elevation \
+                 or depth): give `[box]` corners that cover the surfaces, or write `around = \
+                 [{}]` with a `margin`",
+                fmt_box(bbox),
+                spans.join(", "),
+                imported
+                    .iter()
+                    .map(|(n, _)| format!("\"{n}\""))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            )));
+        }
+        let mut listed: Vec<&str> = intersections
+            .iter()
+            .flat_map(|x| [x.a.as_str(), x.b.as_str()])
+            .collect();
+        listed.sort_unstable();
+        listed.dedup();
+        for (name, b) in &imported {
+            if !listed.contains(name) || b.overlaps(bbox) {
+                continue;
+            }
+            let axes: Vec<String> = (0..3)
+                .filter(|&i| b.max[i] < bbox.min[i] || b.min[i] > bbox.max[i])
+                .map(|i| {
+                    format!(
+                        "{} {}..{} against the box's {}..{}",
+                        ["x", "y", "z"][i],
+                        b.min[i],
+                        b.max[i],
+                        bbox.min[i],
+                        bbox.max[i]
+                    )
+                })
+                .collect();
+            return Err(OpError::from(format!(
+                "{place}the surface `{name}`, listed in `[intersect]`, lies entirely outside the \
+                 box {}: it spans {} ({}), so it meets nothing and none of it is meshed; help: \
+                 widen `[box]` to cover it, or, if it is not part of this model, remove `{name}` \
+                 from `[intersect]`",
+                fmt_box(bbox),
+                fmt_box(b),
+                axes.join(", "),
+            )));
+        }
+        Ok(())
+    }
+
     /// The recipe location of the region named at `p`, with `": "`, or nothing.
     fn region_place(&self, p: &[f64; 3]) -> String {
         self.names
@@ -204,7 +298,7 @@ impl ModelOp {
     /// the surfaces' extent of a sealed model, are known only now; an explicit box was checked
     /// with the recipe). A point outside is in no region.
     fn check_points(&self, bbox: &BBox) -> Result<(), OpError> {
-        let fmt = |p: &[f64; 3]| format!("[{}, {}, {}]", p[0], p[1], p[2]);
+        let fmt = fmt_point;
         for (name, p) in &self.names {
             let Some(i) = (0..3).find(|&i| !(bbox.min[i] < p[i] && p[i] < bbox.max[i])) else {
                 continue;
