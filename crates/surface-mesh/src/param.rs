@@ -10,8 +10,9 @@
 //!   one; exact, at each loop's lowest vertex): a locally injective, orientation-preserving map of
 //!   a disk-with-holes whose border stays simple and whose holes keep their orientation is
 //!   injective. (A hole whose image turns the wrong way is a fold the triangles alone do not
-//!   show: a sliver standing up in a dome flattens to a hole that overlaps its neighbours.) This keeps the geometry nearly
-//!   isometric for horizons and steep faults alike (the plane follows the surface, not z).
+//!   show: a sliver standing up in a dome flattens to a hole that overlaps its neighbours.) This
+//!   keeps the geometry nearly isometric for horizons and steep faults alike (the plane follows
+//!   the surface, not z).
 //! - The border is traced edge by edge around each vertex's fan, so a support pinched at a
 //!   vertex (two faults meeting its border at one point) has that vertex once per fan in its
 //!   loops; a projection handles it like any border, a Tutte embedding cannot pin it twice and
