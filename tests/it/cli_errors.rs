@@ -177,6 +177,21 @@ fn check_catches_a_region_point_outside_the_box_without_building() {
     );
 }
 
+/// Builds `s`, which must fail in the `model` node with an error holding every one of `needles`;
+/// returns the error output.
+fn model_fails_saying(s: &Scratch, needles: &[&str]) -> String {
+    let (ok, r, err) = s.build(&[]);
+    assert!(!ok);
+    assert!(
+        nodes_in_state(&r, "failed").contains(&"model".to_string()),
+        "{err}"
+    );
+    for n in needles {
+        assert!(err.contains(n), "`{n}` not in:\n{err}");
+    }
+    err
+}
+
 #[test]
 fn a_region_point_on_a_surface_fails_the_model_at_its_regions_line_with_the_fix() {
     let s = Scratch::didactic();
@@ -185,20 +200,15 @@ fn a_region_point_on_a_surface_fails_the_model_at_its_regions_line_with_the_fix(
         "[output]",
         "on_h1 = { point = [501068.203, 7001122.535, -1161.209] }\n\n[output]",
     );
-    let (ok, r, err) = s.build(&[]);
-    assert!(!ok);
-    assert!(
-        nodes_in_state(&r, "failed").contains(&"model".to_string()),
-        "{err}"
+    model_fails_saying(
+        &s,
+        &[
+            "didactic.toml:40:1: region name `on_h1`",
+            "is strictly inside no region",
+            "it lies on a surface",
+            "move it off the surfaces",
+        ],
     );
-    for n in [
-        "didactic.toml:40:1: region name `on_h1`",
-        "is strictly inside no region",
-        "it lies on a surface",
-        "move it off the surfaces",
-    ] {
-        assert!(err.contains(n), "`{n}` not in:\n{err}");
-    }
 }
 
 #[test]
@@ -213,20 +223,15 @@ fn a_box_that_meets_no_surface_fails_the_model_at_the_box_line_naming_each_exten
     let text = std::fs::read_to_string(&p).unwrap();
     let kept: Vec<&str> = text.lines().filter(|l| !l.contains("point =")).collect();
     std::fs::write(&p, kept.join("\n")).unwrap();
-    let (ok, r, err) = s.build(&[]);
-    assert!(!ok);
-    assert!(
-        nodes_in_state(&r, "failed").contains(&"model".to_string()),
-        "{err}"
+    let err = model_fails_saying(
+        &s,
+        &[
+            "didactic.toml:16:1: the box [0, 0, -2500]..[5000, 5000, 0] meets no imported surface",
+            "`F2` spans [502600, 7003125, -1503.109]..[504200, 7003475, -896.891]",
+            "different coordinates",
+            "give `[box]` corners that cover the surfaces, or write `around = [\"F1\", \"F2\", \"H1\", \"H2\"]`",
+        ],
     );
-    for n in [
-        "didactic.toml:16:1: the box [0, 0, -2500]..[5000, 5000, 0] meets no imported surface",
-        "`F2` spans [502600, 7003125, -1503.109]..[504200, 7003475, -896.891]",
-        "different coordinates",
-        "give `[box]` corners that cover the surfaces, or write `around = [\"F1\", \"F2\", \"H1\", \"H2\"]`",
-    ] {
-        assert!(err.contains(n), "`{n}` not in:\n{err}");
-    }
     assert!(!err.contains("matches no curve"), "{err}");
 }
 
@@ -238,18 +243,13 @@ fn an_intersected_surface_outside_the_box_fails_the_model_at_the_box_line_with_t
         "max = [505000.0, 7005000.0, 0.0]",
         "max = [505000.0, 7003000.0, 0.0]",
     );
-    let (ok, r, err) = s.build(&[]);
-    assert!(!ok);
-    assert!(
-        nodes_in_state(&r, "failed").contains(&"model".to_string()),
-        "{err}"
+    let err = model_fails_saying(
+        &s,
+        &[
+            "didactic.toml:16:1: the surface `F2`, listed in `[intersect]`, lies entirely outside the box [500000, 7000000, -2500]..[505000, 7003000, 0]",
+            "(y 7003125..7003475 against the box's 7000000..7003000)",
+            "help: widen `[box]` to cover it, or, if it is not part of this model, remove `F2` from `[intersect]`",
+        ],
     );
-    for n in [
-        "didactic.toml:16:1: the surface `F2`, listed in `[intersect]`, lies entirely outside the box [500000, 7000000, -2500]..[505000, 7003000, 0]",
-        "(y 7003125..7003475 against the box's 7000000..7003000)",
-        "help: widen `[box]` to cover it, or, if it is not part of this model, remove `F2` from `[intersect]`",
-    ] {
-        assert!(err.contains(n), "`{n}` not in:\n{err}");
-    }
     assert!(!err.contains("matches no curve"), "{err}");
 }
