@@ -171,16 +171,8 @@ fn a_locked_build_that_fails_in_a_node_leaves_every_output_and_the_lock_untouche
     let outputs = read_tree(&s.path("out"));
     let lock = std::fs::read(s.path("didactic.toml.lock")).unwrap();
     // A trim that discards nothing fails the `model` node.
-    s.edit(
-        "[mesh]\n",
-        "[[trim]]\nsurface = \"F1\"\ndiscard = { area_below = 0.001 }\n\n[mesh]\n",
-    );
-    let (ok, r, err) = s.build(&["--locked"]);
-    assert!(!ok);
-    assert!(
-        nodes_in_state(&r, "failed").contains(&"model".to_string()),
-        "{err}"
-    );
+    add_a_trim_that_discards_nothing(&s);
+    model_fails_saying(&s, &["--locked"], &[]);
     assert!(
         read_tree(&s.path("out")) == outputs,
         "a file in out/ changed, or one was added or removed"

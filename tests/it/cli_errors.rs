@@ -84,21 +84,9 @@ fn a_missing_recipe_is_an_error_not_a_panic() {
 #[test]
 fn a_trim_that_discards_nothing_fails_the_model_and_points_at_its_recipe_line() {
     let s = Scratch::didactic();
-    s.edit(
-        "[mesh]\n",
-        "[[trim]]\nsurface = \"F1\"\ndiscard = { area_below = 0.001 }\n\n[mesh]\n",
-    );
-    let (ok, r, err) = s.build(&[]);
-    assert!(!ok);
-    assert!(
-        nodes_in_state(&r, "failed").contains(&"model".to_string()),
-        "{err}"
-    );
-    assert!(
-        err.contains("didactic.toml:"),
-        "the trim's line is named: {err}"
-    );
-    assert!(err.contains("F1"), "{err}");
+    add_a_trim_that_discards_nothing(&s);
+    // The trim's line is named, and its surface.
+    model_fails_saying(&s, &[], &["didactic.toml:", "F1"]);
 }
 
 /// Runs `recipe args` in `s` with standard output given as `stdout`; returns the exit code and
@@ -177,21 +165,6 @@ fn check_catches_a_region_point_outside_the_box_without_building() {
     );
 }
 
-/// Builds `s`, which must fail in the `model` node with an error holding every one of `needles`;
-/// returns the error output.
-fn model_fails_saying(s: &Scratch, needles: &[&str]) -> String {
-    let (ok, r, err) = s.build(&[]);
-    assert!(!ok);
-    assert!(
-        nodes_in_state(&r, "failed").contains(&"model".to_string()),
-        "{err}"
-    );
-    for n in needles {
-        assert!(err.contains(n), "`{n}` not in:\n{err}");
-    }
-    err
-}
-
 #[test]
 fn a_region_point_on_a_surface_fails_the_model_at_its_regions_line_with_the_fix() {
     let s = Scratch::didactic();
@@ -202,6 +175,7 @@ fn a_region_point_on_a_surface_fails_the_model_at_its_regions_line_with_the_fix(
     );
     model_fails_saying(
         &s,
+        &[],
         &[
             "didactic.toml:40:1: region name `on_h1`",
             "is strictly inside no region",
@@ -225,6 +199,7 @@ fn a_box_that_meets_no_surface_fails_the_model_at_the_box_line_naming_each_exten
     std::fs::write(&p, kept.join("\n")).unwrap();
     let err = model_fails_saying(
         &s,
+        &[],
         &[
             "didactic.toml:16:1: the box [0, 0, -2500]..[5000, 5000, 0] meets no imported surface",
             "`F2` spans [502600, 7003125, -1503.109]..[504200, 7003475, -896.891]",
@@ -245,6 +220,7 @@ fn an_intersected_surface_outside_the_box_fails_the_model_at_the_box_line_with_t
     );
     let err = model_fails_saying(
         &s,
+        &[],
         &[
             "didactic.toml:16:1: the surface `F2`, listed in `[intersect]`, lies entirely outside the box [500000, 7000000, -2500]..[505000, 7003000, 0]",
             "(y 7003125..7003475 against the box's 7000000..7003000)",

@@ -64,16 +64,8 @@ fn a_self_intersection_that_repair_cannot_remove_is_reported_as_remaining() {
 fn a_build_that_fails_after_the_imports_still_writes_validation_json() {
     let s = Scratch::didactic();
     // A trim that discards nothing fails the `model` node, before anything is exported.
-    s.edit(
-        "[mesh]\n",
-        "[[trim]]\nsurface = \"F1\"\ndiscard = { area_below = 0.001 }\n\n[mesh]\n",
-    );
-    let (ok, r, err) = s.build(&[]);
-    assert!(!ok);
-    assert!(
-        nodes_in_state(&r, "failed").contains(&"model".to_string()),
-        "{err}"
-    );
+    add_a_trim_that_discards_nothing(&s);
+    model_fails_saying(&s, &[], &[]);
     let v = validation(&s, "out/didactic");
     let names: Vec<&String> = v.as_object().unwrap().keys().collect();
     assert_eq!(names, ["F1", "F2", "H1", "H2"]);

@@ -96,6 +96,30 @@ pub fn copy_dir(from: &Path, to: &Path) {
     }
 }
 
+/// Adds to `s`'s recipe a trim that discards nothing: an error of the `model` node, found before
+/// anything is meshed or exported.
+pub fn add_a_trim_that_discards_nothing(s: &Scratch) {
+    s.edit(
+        "[mesh]\n",
+        "[[trim]]\nsurface = \"F1\"\ndiscard = { area_below = 0.001 }\n\n[mesh]\n",
+    );
+}
+
+/// Builds `s` with `extra` arguments; the build must fail in the `model` node with an error
+/// holding every one of `needles`. Returns the error output.
+pub fn model_fails_saying(s: &Scratch, extra: &[&str], needles: &[&str]) -> String {
+    let (ok, r, err) = s.build(extra);
+    assert!(!ok);
+    assert!(
+        nodes_in_state(&r, "failed").contains(&"model".to_string()),
+        "{err}"
+    );
+    for n in needles {
+        assert!(err.contains(n), "`{n}` not in:\n{err}");
+    }
+    err
+}
+
 /// Node names in the report whose state is `state`, sorted.
 pub fn nodes_in_state(report: &serde_json::Value, state: &str) -> Vec<String> {
     let mut v: Vec<String> = report["nodes"]
