@@ -203,6 +203,10 @@ pub struct SurfaceSizeRule {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RegionMeshSpec {
     pub size: f64,
+    /// Whether the entry writes `size` (else `size` is the global one): only a written size
+    /// reaches the surfaces and curves bounding the region.
+    #[serde(skip)]
+    pub size_given: bool,
     pub min_size: f64,
     pub max_size: f64,
     pub growth: f64,

@@ -10,6 +10,7 @@ mod cli_mesh;
 mod cli_output;
 mod cli_real_data;
 mod cli_ringmesh;
+mod cli_sizes;
 mod cli_tetmesh;
 mod cli_validation;
 mod cli_watch;

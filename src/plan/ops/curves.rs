@@ -6,6 +6,7 @@
 //! A recipe with neither a box nor `[model] sealed = true` has no closed model: its curves are
 //! the intersection curves of the recipe's pairs and the free borders of every imported surface.
 
+use super::sizes::SizeChoice;
 use super::{ExportOp, Groups, SurfaceData, Wiring};
 use crate::plan::lower::curve_subdivision;
 use crate::recipe::{self, Recipe};
@@ -288,6 +289,7 @@ impl Expander for DiscretizeExpander {
                 curves_node,
                 false,
                 1,
+                None,
             )?);
         }
         let (export_inputs, groups) = Wiring::new()
@@ -302,8 +304,9 @@ impl Expander for DiscretizeExpander {
 }
 
 /// Adds `curve:<name>` (extracted from `source`: the model, or the curve set) and
-/// `discretize:<name>` under the recipe's rule for that curve, with at least `min_segments`
-/// segments; returns the discretize node.
+/// `discretize:<name>` under the recipe's rule for that curve (without one, at `fallback`'s size
+/// when given, else at the global size), with at least `min_segments` segments; returns the
+/// discretize node.
 pub(super) fn add_curve_nodes(
     x: &mut Expansion,
     recipe: &Recipe,
@@ -311,6 +314,7 @@ pub(super) fn add_curve_nodes(
     source: NodeId,
     from_model: bool,
     min_segments: u32,
+    fallback: Option<&SizeChoice>,
 ) -> Result<NodeId, OpError> {
     let extract = x
         .add_op(
@@ -322,7 +326,17 @@ pub(super) fn add_curve_nodes(
             &[source],
         )
         .map_err(graph_error)?;
-    let (rule_path, rule) = curve_subdivision(recipe, name);
+    let (rule_path, rule) = match fallback {
+        Some(f) if recipe.mesh.curve_rule(name).is_none() && !f.is_global() => (
+            f.path.clone(),
+            Subdivision::Size {
+                size: f.size,
+                ratio: 1.0,
+                grading: Grading::Geometric,
+            },
+        ),
+        _ => curve_subdivision(recipe, name),
+    };
     x.add_op(
         &format!("discretize:{name}"),
         Arc::new(DiscretizeOp {

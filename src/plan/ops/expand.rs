@@ -6,6 +6,7 @@
 //! `mesh` and `export`, and nothing else.
 
 use super::curves::{add_curve_nodes, graph_error};
+use super::sizes::{self, SizeChoice};
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
 use engine::{Artifact, Expander, Expansion, NodeId, OpError};
@@ -21,18 +22,12 @@ pub struct ModelExpander {
 }
 
 impl ModelExpander {
-    fn surface_size(&self, surface: &str) -> (String, SurfaceSize) {
+    fn surface_size(&self, choice: &SizeChoice) -> (String, SurfaceSize) {
         let m = &self.recipe.mesh;
-        let ruled = m.surfaces.iter().any(|r| r.selector.matches(surface));
-        let path = if ruled {
-            format!("mesh.surfaces.\"{surface}\".size")
-        } else {
-            "mesh.size".to_string()
-        };
         (
-            path,
+            format!("{}.size", choice.path),
             SurfaceSize {
-                size: m.surface_size(surface),
+                size: choice.size,
                 min_size: m.min_size,
                 max_size: m.max_size,
                 growth: m.growth,
@@ -79,8 +74,10 @@ impl Expander for ModelExpander {
         }
         let model_node = x.node("model").ok_or("no `model` node")?;
         let min_segments = min_segments(topo);
+        let patch_sizes = sizes::patch_sizes(&self.recipe, &model);
+        let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
         let mut discretized = Vec::with_capacity(topo.curves.len());
-        for (c, &min) in topo.curves.iter().zip(&min_segments) {
+        for ((c, &min), size) in topo.curves.iter().zip(&min_segments).zip(&curve_sizes) {
             discretized.push(add_curve_nodes(
                 x,
                 &self.recipe,
@@ -88,11 +85,12 @@ impl Expander for ModelExpander {
                 model_node,
                 true,
                 min,
+                Some(size),
             )?);
         }
 
         let mut meshed = Vec::with_capacity(model.patches.len());
-        for (p, boundary) in model.patches.iter().zip(&topo.patches) {
+        for ((p, boundary), choice) in model.patches.iter().zip(&topo.patches).zip(&patch_sizes) {
             let piece = x
                 .add_op(
                     &format!("patch:{}", p.name),
@@ -104,7 +102,7 @@ impl Expander for ModelExpander {
                 .map_err(graph_error)?;
             let mut inputs = vec![piece];
             inputs.extend(boundary.curves().iter().map(|&c| discretized[c as usize]));
-            let (size_path, size) = self.surface_size(&p.surface);
+            let (size_path, size) = self.surface_size(choice);
             let m = x
                 .add_op(
                     &format!("surface_mesh:{}", p.name),

@@ -11,6 +11,7 @@ mod inputs;
 mod model;
 mod patch;
 mod region;
+mod sizes;
 
 pub use curves::{
     CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,

@@ -365,6 +365,7 @@ fn region_rules(
                 name.to_string(),
                 RegionMeshSpec {
                     size: s.size,
+                    size_given: rt.get("size").is_some(),
                     min_size: s.min_size,
                     max_size: s.max_size,
                     growth: s.growth,

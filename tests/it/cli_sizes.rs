@@ -1,0 +1,104 @@
+//! Sizes set on a region reach the surfaces and curves that bound it, on the shipped example: a
+//! finer region is refined through its whole volume, a coarser one coarsens only the surfaces it
+//! alone bounds.
+
+use crate::common_cli;
+use common_cli::*;
+
+/// The example's `report.json` after a build of `s`.
+fn report(s: &Scratch) -> serde_json::Value {
+    let text = std::fs::read_to_string(s.path("out/didactic/report.json")).expect("report.json");
+    serde_json::from_str(&text).expect("report.json parses")
+}
+
+fn region_tets(r: &serde_json::Value, name: &str) -> u64 {
+    r["regions"]
+        .as_array()
+        .and_then(|a| a.iter().find(|x| x["name"] == name))
+        .and_then(|x| x["tets"].as_u64())
+        .unwrap_or_else(|| panic!("no region {name} in the report"))
+}
+
+fn patch_triangles(r: &serde_json::Value, name: &str) -> u64 {
+    r["patches"]
+        .as_array()
+        .and_then(|a| a.iter().find(|x| x["name"] == name))
+        .and_then(|x| x["triangles"].as_u64())
+        .unwrap_or_else(|| panic!("no patch {name} in the report"))
+}
+
+/// The patches bounding `region`, from the report.
+fn patches_of(r: &serde_json::Value, region: &str) -> Vec<String> {
+    r["regions"]
+        .as_array()
+        .and_then(|a| a.iter().find(|x| x["name"] == region))
+        .and_then(|x| x["patches"].as_array())
+        .map(|a| {
+            a.iter()
+                .filter_map(|p| p["patch"].as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+fn build_with(s: &Scratch, regions: &str) -> serde_json::Value {
+    s.edit(
+        "[regions]",
+        &format!("[mesh.regions]\n{regions}\n\n[regions]"),
+    );
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    report(s)
+}
+
+#[test]
+fn a_finer_region_size_refines_the_surfaces_that_bound_it_and_so_the_whole_region() {
+    let before = report(&Scratch::didactic_built());
+    let after = build_with(&Scratch::didactic_built(), "reservoir_E = { size = 50.0 }");
+    let (b, a) = (
+        region_tets(&before, "reservoir_E"),
+        region_tets(&after, "reservoir_E"),
+    );
+    assert!(a > 8 * b, "reservoir_E: {b} tets at 200 m, {a} at 50 m");
+    for p in patches_of(&before, "reservoir_E") {
+        let (pb, pa) = (patch_triangles(&before, &p), patch_triangles(&after, &p));
+        assert!(pa >= pb, "{p}: {pb} triangles before, {pa} after");
+    }
+    let h1 = patches_of(&before, "reservoir_E")
+        .into_iter()
+        .find(|p| p.starts_with("H1#"))
+        .expect("reservoir_E is bounded by H1");
+    let (pb, pa) = (patch_triangles(&before, &h1), patch_triangles(&after, &h1));
+    assert!(pa > 8 * pb, "{h1}: {pb} triangles before, {pa} after");
+}
+
+#[test]
+fn a_coarser_region_size_coarsens_only_the_surfaces_no_other_region_shares() {
+    let before = report(&Scratch::didactic_built());
+    let after = build_with(
+        &Scratch::didactic_built(),
+        "underburden_W = { size = 400.0 }",
+    );
+    let own = patches_of(&before, "underburden_W");
+    let floor = own
+        .iter()
+        .find(|p| p.starts_with("box.zmin#"))
+        .expect("underburden_W is bounded by the box's floor");
+    let (fb, fa) = (
+        patch_triangles(&before, floor),
+        patch_triangles(&after, floor),
+    );
+    assert!(
+        2 * fa < fb,
+        "{floor}: {fb} triangles at 200 m, {fa} at 400 m"
+    );
+    let shared = own
+        .iter()
+        .find(|p| p.starts_with("H2#"))
+        .expect("underburden_W is bounded by H2");
+    assert_eq!(
+        patch_triangles(&after, shared),
+        patch_triangles(&before, shared),
+        "{shared} also bounds reservoir_W, at the global size"
+    );
+}
