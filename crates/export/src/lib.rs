@@ -8,9 +8,11 @@
 //! iteration, floats printed with Rust's shortest round-trip formatting.
 
 pub mod curves;
+mod exodus;
 mod inp;
 mod medit;
 mod msh;
+mod netcdf;
 pub mod quality;
 mod tetgen;
 mod vtu;
@@ -35,21 +37,25 @@ pub enum Format {
     Medit,
     /// Abaqus `.inp` (C3D4 elements, region element sets, surface node sets and surfaces).
     Inp,
+    /// Exodus II `.exo` (netCDF 64-bit offset): an element block per region, a side set and a
+    /// node set per surface group, a front and a back side set per fault.
+    Exodus,
 }
 
 impl Format {
     /// Every format, in a fixed order (for help texts and "all").
-    pub const ALL: [Format; 5] = [
+    pub const ALL: [Format; 6] = [
         Format::Msh,
         Format::MshBinary,
         Format::Vtu,
         Format::TetGen,
         Format::Medit,
+        Format::Exodus,
     ];
 
     /// Every format the writers know, including those a recipe cannot name yet (VTU binary,
     /// Abaqus), in a fixed order.
-    pub const EVERY: [Format; 7] = [
+    pub const EVERY: [Format; 8] = [
         Format::Msh,
         Format::MshBinary,
         Format::Vtu,
@@ -57,6 +63,7 @@ impl Format {
         Format::TetGen,
         Format::Medit,
         Format::Inp,
+        Format::Exodus,
     ];
 
     /// Parses a recipe/CLI name (case-insensitive; a few aliases).
@@ -71,6 +78,7 @@ impl Format {
             "tetgen" | "node" | "ele" => Some(Format::TetGen),
             "medit" | "mesh" => Some(Format::Medit),
             "inp" | "abaqus" | "calculix" => Some(Format::Inp),
+            "exodus" | "exo" | "exodusii" | "e" => Some(Format::Exodus),
             _ => None,
         }
     }
@@ -85,6 +93,7 @@ impl Format {
             Format::TetGen => "tetgen",
             Format::Medit => "medit",
             Format::Inp => "inp",
+            Format::Exodus => "exodus",
         }
     }
 }
@@ -115,6 +124,7 @@ pub fn export(
         Format::TetGen => Vec::from(tetgen::write(mesh, model_name)),
         Format::Medit => vec![medit::write(mesh)],
         Format::Inp => vec![inp::write(mesh, model_name)?],
+        Format::Exodus => vec![exodus::write(mesh, model_name)?],
     };
     Ok(file_names(model_name, format)
         .into_iter()
@@ -131,6 +141,7 @@ pub fn file_names(model_name: &str, format: Format) -> Vec<String> {
         Format::TetGen => &["1.node", "1.ele", "1.face"],
         Format::Medit => &["mesh"],
         Format::Inp => &["inp"],
+        Format::Exodus => &["exo"],
     };
     exts.iter().map(|e| format!("{model_name}.{e}")).collect()
 }

@@ -8,6 +8,7 @@ pub mod didactic;
 pub mod export_support;
 pub mod geology;
 pub mod grid;
+pub mod netcdf_reader;
 pub mod paths;
 pub mod peer_support;
 pub mod peers;

@@ -1,0 +1,31 @@
+//! Element numbers: Exodus numbers elements consecutively across the element blocks, in block
+//! order, from 1. Blocks are the regions in region order and a block lists its tets in mesh
+//! order, so tet `t`'s number is its rank in that sequence (the same numbering as the Abaqus
+//! writer). A region without tets has no block.
+
+use crate::split_by;
+use geom::mesh::VolumeMesh;
+
+/// The element blocks and every tet's element number.
+pub(super) struct Numbering {
+    /// Per block: its region index and its tets, in element-number order.
+    pub(super) blocks: Vec<(usize, Vec<usize>)>,
+    /// Per tet: its 1-based element number.
+    pub(super) number: Vec<u32>,
+}
+
+impl Numbering {
+    /// Numbers the tets of `mesh` (whose region tags are in range).
+    pub(super) fn new(mesh: &VolumeMesh) -> Numbering {
+        let blocks: Vec<(usize, Vec<usize>)> = split_by(&mesh.tet_region, mesh.regions.len())
+            .into_iter()
+            .enumerate()
+            .filter(|(_, tets)| !tets.is_empty())
+            .collect();
+        let mut number = vec![0u32; mesh.tets.len()];
+        for (n, &t) in (1u32..).zip(blocks.iter().flat_map(|(_, tets)| tets)) {
+            number[t] = n;
+        }
+        Numbering { blocks, number }
+    }
+}

@@ -1,0 +1,77 @@
+//! The side sets and node sets, one of each per surface group (surface, fault, box side) under
+//! the group's name and id (group index + 1, as in every format), plus two side sets per fault,
+//! `<fault>:front` and `<fault>:back` (the model's names for a surface's sides), with ids after
+//! the groups': the `k`-th fault group (in group order, empty ones counted) has `front` =
+//! groups + 2k + 1 and `back` = groups + 2k + 2.
+//!
+//! A group's side set names each of its triangles once, in triangle order, by the tet face of
+//! the lowest element number: on an interior face (a horizon, a fault) that is the tet of the
+//! region with the lower id, since blocks are numbered in region order. A fault's front set
+//! names its faces from the tets on its front, the back set from those behind it, so a boundary
+//! condition or a slip model can address each side apart. Empty sets are left out (a netCDF
+//! dimension cannot be 0 long and meshio pairs node sets with names by position): their ids are
+//! then unused.
+
+use super::sides::FaceUse;
+use crate::split_by;
+use geom::mesh::{SurfaceKind, VolumeMesh};
+use std::collections::BTreeSet;
+
+/// A named set of (element, side) pairs.
+pub(super) struct SideSet {
+    pub(super) id: usize,
+    pub(super) name: String,
+    pub(super) faces: Vec<FaceUse>,
+}
+
+/// A named set of 1-based node ids, ascending.
+pub(super) struct NodeSet {
+    pub(super) id: usize,
+    pub(super) name: String,
+    pub(super) nodes: Vec<u32>,
+}
+
+/// The side sets of `mesh`, given every triangle's face uses (lowest element first).
+pub(super) fn side_sets(mesh: &VolumeMesh, uses: &[Vec<FaceUse>]) -> Vec<SideSet> {
+    let n = mesh.surface_groups.len();
+    let by_group = split_by(&mesh.triangle_group, n);
+    let pick = |tris: &[usize], f: &dyn Fn(&[FaceUse]) -> Option<FaceUse>| -> Vec<FaceUse> {
+        tris.iter().filter_map(|&t| f(&uses[t])).collect()
+    };
+    let mut sets = Vec::new();
+    for (g, tris) in by_group.iter().enumerate() {
+        let name = mesh.surface_groups[g].name.clone();
+        sets.push((g + 1, name, pick(tris, &|u| u.first().copied())));
+    }
+    let faults = (0..n).filter(|&g| mesh.surface_groups[g].kind == SurfaceKind::Fault);
+    for (k, g) in faults.enumerate() {
+        let name = &mesh.surface_groups[g].name;
+        let tris = &by_group[g];
+        for (j, front) in [(1, true), (2, false)] {
+            let faces = pick(tris, &|u| u.iter().find(|f| f.front == front).copied());
+            let side = if front { "front" } else { "back" };
+            sets.push((n + 2 * k + j, format!("{name}:{side}"), faces));
+        }
+    }
+    sets.into_iter()
+        .filter(|(_, _, faces)| !faces.is_empty())
+        .map(|(id, name, faces)| SideSet { id, name, faces })
+        .collect()
+}
+
+/// The node sets of `mesh`: each group's triangle nodes.
+pub(super) fn node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
+    split_by(&mesh.triangle_group, mesh.surface_groups.len())
+        .iter()
+        .enumerate()
+        .filter(|(_, tris)| !tris.is_empty())
+        .map(|(g, tris)| {
+            let nodes: BTreeSet<u32> = tris.iter().flat_map(|&t| mesh.triangles[t]).collect();
+            NodeSet {
+                id: g + 1,
+                name: mesh.surface_groups[g].name.clone(),
+                nodes: nodes.into_iter().map(|v| v + 1).collect(),
+            }
+        })
+        .collect()
+}
