@@ -59,6 +59,7 @@ pub fn output_format(f: recipe::Format) -> export::Format {
         recipe::Format::Tetgen => export::Format::TetGen,
         recipe::Format::Medit => export::Format::Medit,
         recipe::Format::Inp => export::Format::Inp,
+        recipe::Format::Exodus => export::Format::Exodus,
     }
 }
 
@@ -70,6 +71,13 @@ mod tests {
     fn every_recipe_format_keeps_its_spelling_as_the_export_stages_name() {
         for (spelling, f) in recipe::Format::ALL {
             assert_eq!(output_format(f).name(), spelling);
+        }
+    }
+
+    #[test]
+    fn every_recipe_alias_names_the_same_format_in_the_export_stage() {
+        for (alias, f) in recipe::Format::ALIASES {
+            assert_eq!(export::Format::from_name(alias), Some(output_format(f)));
         }
     }
 

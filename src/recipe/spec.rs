@@ -300,11 +300,13 @@ pub enum Format {
     Medit,
     /// Abaqus `.inp` (C3D4 elements, region element sets, surface node sets and surfaces).
     Inp,
+    /// Exodus II `.exo` (element blocks, side sets, node sets).
+    Exodus,
 }
 
 impl Format {
     /// Every format with its recipe spelling.
-    pub const ALL: [(&'static str, Format); 7] = [
+    pub const ALL: [(&'static str, Format); 8] = [
         ("msh", Format::Msh),
         ("msh-binary", Format::MshBinary),
         ("vtu", Format::Vtu),
@@ -312,6 +314,14 @@ impl Format {
         ("tetgen", Format::Tetgen),
         ("medit", Format::Medit),
         ("inp", Format::Inp),
+        ("exodus", Format::Exodus),
+    ];
+
+    /// Further spellings a recipe may use (the usual names and extensions of Exodus II).
+    pub const ALIASES: [(&'static str, Format); 3] = [
+        ("exo", Format::Exodus),
+        ("exodusii", Format::Exodus),
+        ("e", Format::Exodus),
     ];
 
     pub fn as_str(self) -> &'static str {
@@ -331,6 +341,7 @@ impl Format {
             Format::Tetgen => "tetgen",
             Format::Medit => "medit",
             Format::Inp => "inp",
+            Format::Exodus => "exodus",
         }
     }
 }

@@ -4,6 +4,7 @@
 mod cli_build;
 mod cli_cache;
 mod cli_errors;
+mod cli_exodus;
 mod cli_geology;
 mod cli_incremental;
 mod cli_mesh;

@@ -60,16 +60,17 @@ fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {
             v.span(),
             "`output.formats` is empty".into(),
             Some(
-                "list at least one of `msh`, `msh-binary`, `vtu`, `vtu-binary`, `tetgen`, `medit`, `inp`"
+                "list at least one of `msh`, `msh-binary`, `vtu`, `vtu-binary`, `tetgen`, `medit`, `inp`, `exodus`"
                     .into(),
             ),
         );
         return None;
     }
+    let spellings: Vec<(&str, Format)> = Format::ALL.into_iter().chain(Format::ALIASES).collect();
     let mut out = Vec::new();
     let mut ok = true;
     for (i, e) in list.iter().enumerate() {
-        match rd::choice(ctx, e, &format!("output.formats[{i}]"), &Format::ALL) {
+        match rd::choice(ctx, e, &format!("output.formats[{i}]"), &spellings) {
             Some(f) if out.contains(&f) => {
                 ctx.error(
                     e.span(),
