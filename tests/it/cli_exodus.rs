@@ -27,8 +27,15 @@ fn built() -> (Scratch, VolumeMesh) {
     (s, mesh)
 }
 
-fn exo(s: &Scratch) -> String {
-    s.path("out/didactic/didactic.exo").display().to_string()
+/// The mesh of [`built`] and what `script` prints about its `.exo`; `None` (with a note) when
+/// python3 lacks `modules`.
+fn read_with(modules: &str, script: &str) -> Option<(VolumeMesh, String)> {
+    if !python_has(modules) {
+        return None;
+    }
+    let (s, mesh) = built();
+    let exo = s.path("out/didactic/didactic.exo").display().to_string();
+    Some((mesh, python(script, &[&exo])))
 }
 
 /// `(name, triangles)` per surface group, then the faults' front and back side sets.
@@ -64,11 +71,9 @@ print("MATERIALS", ";".join(str(x) for x in ds["eb_prop2"][:]))
 
 #[test]
 fn netcdf4_reads_the_example_exodus_with_the_meshs_counts_and_names() {
-    if !python_has("netCDF4") {
+    let Some((mesh, out)) = read_with("netCDF4", NETCDF4) else {
         return;
-    }
-    let (s, mesh) = built();
-    let out = python(NETCDF4, &[&exo(&s)]);
+    };
     let sets = side_sets(&mesh);
     let groups: Vec<&str> = mesh
         .surface_groups
@@ -111,11 +116,9 @@ print("POROSITY", ";".join(str(d[0]) for d in m.cell_data["porosity"]))
 
 #[test]
 fn meshio_reads_the_example_exodus_with_its_blocks_node_sets_and_properties() {
-    if !python_has("netCDF4, meshio") {
+    let Some((mesh, out)) = read_with("netCDF4, meshio", MESHIO) else {
         return;
-    }
-    let (s, mesh) = built();
-    let out = python(MESHIO, &[&exo(&s)]);
+    };
     let blocks: Vec<String> = (0..mesh.regions.len() as u32)
         .map(|r| {
             format!(
@@ -178,11 +181,9 @@ for k in m["Node Sets"].keys():
 
 #[test]
 fn vtk_reads_the_example_exodus_with_a_block_per_region_and_every_side_set() {
-    if !python_has("pyvista") {
+    let Some((mesh, out)) = read_with("pyvista", PYVISTA) else {
         return;
-    }
-    let (s, mesh) = built();
-    let out = python(PYVISTA, &[&exo(&s)]);
+    };
     let blocks: Vec<String> = mesh
         .regions
         .iter()

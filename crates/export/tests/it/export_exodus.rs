@@ -63,6 +63,18 @@ fn sorted(mut f: [u32; 3]) -> [u32; 3] {
     f
 }
 
+/// What `script` prints about the `.exo` of `mesh`; `None` (with a note) when python3 lacks
+/// `modules`.
+fn read_with(mesh: &VolumeMesh, modules: &str, script: &str) -> Option<String> {
+    if !python_has(modules) {
+        return None;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let files = export(mesh, "layered", Format::Exodus).unwrap();
+    let paths = write_all(dir.path(), &files);
+    Some(python(script, &[paths[0].to_str().unwrap()]))
+}
+
 fn triangles_of(mesh: &VolumeMesh, g: usize) -> Vec<[u32; 3]> {
     let tris = mesh.triangles.iter().zip(&mesh.triangle_group);
     tris.filter(|(_, x)| **x as usize == g)
@@ -372,16 +384,10 @@ print("MATERIALS", ";".join(str(int(d[0])) for d in m.cell_data["MATERIAL_ID"]))
 
 #[test]
 fn netcdf4_and_meshio_read_the_file_with_its_counts_blocks_and_node_sets() {
-    if !python_has("netCDF4, meshio") {
-        return;
-    }
     let mesh = layered_box(6, 6);
-    let dir = tempfile::tempdir().unwrap();
-    let paths = write_all(
-        dir.path(),
-        &export(&mesh, "layered", Format::Exodus).unwrap(),
-    );
-    let out = python(READERS, &[paths[0].to_str().unwrap()]);
+    let Some(out) = read_with(&mesh, "netCDF4, meshio", READERS) else {
+        return;
+    };
     let (nn, nt) = (mesh.nodes.len(), mesh.tets.len());
     assert!(
         out.contains(&format!("NC NETCDF3_64BIT_OFFSET {nn} {nt} 11\n")),
@@ -423,16 +429,10 @@ for k in sides.keys():
 
 #[test]
 fn vtk_reads_the_blocks_by_region_name_with_their_fields_and_every_side_set() {
-    if !python_has("pyvista") {
-        return;
-    }
     let mesh = layered_box(6, 6);
-    let dir = tempfile::tempdir().unwrap();
-    let paths = write_all(
-        dir.path(),
-        &export(&mesh, "layered", Format::Exodus).unwrap(),
-    );
-    let out = python(VTK, &[paths[0].to_str().unwrap()]);
+    let Some(out) = read_with(&mesh, "pyvista", VTK) else {
+        return;
+    };
     let nt = mesh.tets.len();
     assert!(
         out.contains(&format!("BLOCKS underburden;reservoir;overburden {nt}\n")),
