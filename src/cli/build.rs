@@ -94,6 +94,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     }
     if verbosity >= Verbosity::Normal {
         print_findings(&report);
+        print_thin_regions(&recipe, &report);
     }
     let count = |s: NodeState| report.count(s);
     let summary = format!(
@@ -239,6 +240,26 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
 /// Prints what validation found on every surface imported in this build that had findings, what
 /// repair removed and what remains, then the report (`validation.json` beside the outputs has
 /// all of it).
+/// The sizes' warnings for the regions whose tet mesh ran in this build (a cached region was
+/// warned about when it ran; the report keeps every warning).
+fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
+    let Some(model) = report
+        .artifact("model")
+        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
+    else {
+        return;
+    };
+    for (region, warning) in plan::ops::thin_region_warnings(recipe, &model) {
+        let ran = report
+            .nodes
+            .iter()
+            .any(|n| n.name == format!("tet_mesh:{region}") && n.state == NodeState::Ran);
+        if ran {
+            errln!("{:>12} {warning}", "Warning");
+        }
+    }
+}
+
 fn print_findings(report: &BuildReport) {
     for n in report
         .nodes

@@ -76,6 +76,7 @@ pub fn write_report(
         .collect();
     surfaces.sort_by(|a, b| a.name.cmp(&b.name));
     let (mut curves, mut patches, mut regions) = (Vec::new(), Vec::new(), Vec::new());
+    let mut warnings = Vec::new();
     if let Some(m) = &model {
         curves = m
             .topology
@@ -94,6 +95,10 @@ pub fn write_report(
             .map(|p| (p.name.as_str(), p.surface.as_str()))
             .collect();
         (patches, regions) = model_summaries(&named, &m.regions);
+        warnings = crate::plan::ops::thin_region_warnings(recipe, m)
+            .into_iter()
+            .map(|(_, w)| w)
+            .collect();
         for p in &mut patches {
             p.triangles = count(report, &format!("surface_mesh:{}", p.name), "triangles");
         }
@@ -122,6 +127,7 @@ pub fn write_report(
         regions,
         mesh: &mesh,
         steps,
+        warnings,
     };
     let (html, json) = render_both(&input);
     let h = output_dir.join("report.html");

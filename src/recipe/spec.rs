@@ -207,6 +207,10 @@ pub struct RegionMeshSpec {
     /// reaches the surfaces and curves bounding the region.
     #[serde(skip)]
     pub size_given: bool,
+    /// Elements across the region's thickness (`layers`), as written: the region (and the
+    /// surfaces and curves bounding it) is meshed at most at its thickness over this.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layers: Option<u32>,
     pub min_size: f64,
     pub max_size: f64,
     pub growth: f64,
@@ -230,6 +234,10 @@ pub struct MeshSpec {
     /// How regions are filled with tets: `"delaunay"` (default) or `"front"` (the seed's
     /// advancing front).
     pub tet_method: TetMethod,
+    /// `min_layers`: elements across every region's thickness, where its own `layers` says
+    /// nothing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_layers: Option<u32>,
     /// In recipe order; see [`MeshSpec::curve_rule`] for precedence.
     pub curves: Vec<CurveRule>,
     /// In recipe order; see [`MeshSpec::surface_size`] for precedence.

@@ -90,6 +90,9 @@ pub struct ReportInput<'a> {
     /// The final tet mesh with its tagged triangles and groups.
     pub mesh: &'a VolumeMesh,
     pub steps: Vec<StepSummary>,
+    /// What the build has to say about the recipe's effect (thin regions meshed one element
+    /// across), shown first among the report's warnings.
+    pub warnings: Vec<String>,
 }
 
 /// The empty mesh a default [`ReportInput`] points at.
@@ -117,6 +120,7 @@ impl Default for ReportInput<'_> {
             regions: Vec::new(),
             mesh: &EMPTY_MESH,
             steps: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 }
@@ -163,6 +167,7 @@ impl<'a> ReportInput<'a> {
                 .collect(),
             mesh,
             steps: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 }

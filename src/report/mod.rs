@@ -48,8 +48,8 @@ pub struct Facts {
     pub region_volume: Vec<f64>,
     /// Triangles per mesh surface group (index order).
     pub group_triangles: Vec<usize>,
-    /// Things the reader should know (invalid indices, empty regions, failed steps), in a fixed
-    /// order.
+    /// Things the reader should know (the build's own warnings, invalid indices, empty regions,
+    /// failed steps), in a fixed order.
     pub warnings: Vec<String>,
 }
 
@@ -63,7 +63,7 @@ pub fn facts(input: &ReportInput) -> Facts {
             *c += 1;
         }
     }
-    let mut warnings = Vec::new();
+    let mut warnings = input.warnings.clone();
     if let Err(e) = mesh.check_indices() {
         warnings.push(format!(
             "the mesh is inconsistent ({e}); elements with out-of-range indices are left out"

@@ -64,7 +64,7 @@ fn after_one_edit_the_build_prints_a_line_for_each_node_that_re_ran_and_none_for
     let s = Scratch::didactic_built();
     s.edit(
         "[regions]",
-        "[mesh.regions.underburden_W]\nsize = 150.0\n\n[regions]",
+        "[mesh.regions.underburden_W]\ngrowth = 1.25\n\n[regions]",
     );
     let (lines, r) = build_lines(&s, &[]);
     let ran: BTreeSet<String> = nodes_in_state(&r, "ran").into_iter().collect();

@@ -102,3 +102,42 @@ fn a_coarser_region_size_coarsens_only_the_surfaces_no_other_region_shares() {
         "{shared} also bounds reservoir_W, at the global size"
     );
 }
+
+#[test]
+fn min_layers_refines_the_thin_reservoirs_from_their_measured_thickness_and_nothing_thick() {
+    let s = Scratch::didactic_built();
+    let before = report(&s);
+    s.edit("size = 200.0", "size = 200.0\nmin_layers = 1");
+    let (ok, json, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let after = report(&s);
+    let thickness = |name: &str| {
+        json["model"]["regions"]
+            .as_array()
+            .and_then(|a| a.iter().find(|x| x["name"] == name))
+            .and_then(|x| x["thickness"].as_f64())
+            .unwrap_or_else(|| panic!("no thickness for {name} in --json"))
+    };
+    for r in ["reservoir_W", "reservoir_E"] {
+        let t = thickness(r);
+        assert!((30.0..40.0).contains(&t), "{r} is about 35 m thick: {t}");
+        let (b, a) = (region_tets(&before, r), region_tets(&after, r));
+        assert!(
+            a > 5 * b,
+            "{r}: {b} tets at 200 m, {a} at one layer of {t:.1} m"
+        );
+    }
+    for r in ["overburden_W", "underburden_E"] {
+        assert!(thickness(r) > 1000.0, "{r} is over a kilometre thick");
+    }
+    for p in patches_of(&before, "overburden_W")
+        .iter()
+        .filter(|p| p.starts_with("box.zmax#"))
+    {
+        assert_eq!(
+            patch_triangles(&after, p),
+            patch_triangles(&before, p),
+            "{p} bounds only the thick overburden"
+        );
+    }
+}

@@ -675,3 +675,31 @@ fn a_region_point_on_a_side_of_the_box_is_in_no_region() {
         "{r}"
     );
 }
+
+#[test]
+fn layers_are_read_per_region_and_globally_and_a_count_out_of_range_is_named() {
+    let regions =
+        "[regions]\nres = { point = [1.0, 1.0, -1.0] }\nover = { point = [1.0, 1.0, -9.0] }\n";
+    let r = ok(&format!("{BASE}{regions}"));
+    assert_eq!(r.mesh.min_layers, None);
+    let text = format!(
+        "{}[mesh.regions]\nres = {{ layers = 3 }}\n{regions}",
+        BASE.replace("size = 1.0", "size = 1.0\nmin_layers = 2")
+    );
+    let r = ok(&text);
+    assert_eq!(r.mesh.min_layers, Some(2));
+    assert_eq!(r.mesh.regions["res"].layers, Some(3));
+    assert!(
+        !r.mesh.regions["res"].size_given,
+        "layers alone writes no size"
+    );
+    let text = format!("{BASE}[mesh.regions]\nres = {{ layers = 0 }}\n{regions}");
+    let (d, rendered) = single_at(&text, "0 }", 0);
+    assert!(
+        d.message.contains("`mesh.regions.res.layers` = 0"),
+        "{rendered}"
+    );
+    let text = BASE.replace("size = 1.0", "size = 1.0\nmin_layers = 1000");
+    let (d, rendered) = single_at(&text, "1000", 0);
+    assert!(d.message.contains("between 1 and 100"), "{rendered}");
+}

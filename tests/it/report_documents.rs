@@ -142,6 +142,7 @@ fn input(m: &VolumeMesh) -> ReportInput<'_> {
                 duration_ms: 12.5,
             },
         ],
+        warnings: vec!["region `upper` is about 1.00 thick but meshed at 2.00".into()],
     }
 }
 
@@ -274,6 +275,10 @@ fn the_json_parses_and_counts_what_the_input_has() {
         .collect();
     assert!(warnings.iter().any(|w| w.contains("'empty' has no tets")));
     assert!(warnings.iter().any(|w| w.contains("2 validation findings")));
+    assert!(
+        warnings[0].contains("region `upper` is about 1.00 thick"),
+        "the build's own warnings come first: {warnings:?}"
+    );
 }
 
 #[test]

@@ -36,6 +36,7 @@ pub mod discretize;
 pub mod intersect;
 pub mod patches;
 pub mod regions;
+pub mod thickness;
 pub mod topology;
 pub mod trims;
 

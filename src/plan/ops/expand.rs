@@ -74,7 +74,8 @@ impl Expander for ModelExpander {
         }
         let model_node = x.node("model").ok_or("no `model` node")?;
         let min_segments = min_segments(topo);
-        let patch_sizes = sizes::patch_sizes(&self.recipe, &model);
+        let region_sizes = sizes::region_sizes(&self.recipe, &model);
+        let patch_sizes = sizes::patch_sizes(&self.recipe, &model, &region_sizes);
         let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
         let mut discretized = Vec::with_capacity(topo.curves.len());
         for ((c, &min), size) in topo.curves.iter().zip(&min_segments).zip(&curve_sizes) {
@@ -120,7 +121,7 @@ impl Expander for ModelExpander {
 
         let mut region_nodes = Vec::new();
         let mut groups = Vec::new();
-        for r in &model.regions.regions {
+        for (r, own) in model.regions.regions.iter().zip(&region_sizes) {
             let mut patches: Vec<u32> = r.sides.iter().map(|f| f.patch).collect();
             patches.dedup();
             let sides: Vec<FaceUse> = r
@@ -132,7 +133,8 @@ impl Expander for ModelExpander {
                 })
                 .collect();
             let inputs: Vec<NodeId> = patches.iter().map(|&p| meshed[p as usize]).collect();
-            let (size_path, size, method) = self.region_settings(&r.name);
+            let (size_path, mut size, method) = self.region_settings(&r.name);
+            size.size = own.size;
             let id = x
                 .add_op(
                     &format!("tet_mesh:{}", r.name),

@@ -12,6 +12,7 @@ mod model;
 mod patch;
 mod region;
 mod sizes;
+pub use sizes::thin_region_warnings;
 
 pub use curves::{
     CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,

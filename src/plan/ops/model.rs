@@ -10,6 +10,7 @@ use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::SurfaceKind;
 use geom::{BBox, Tolerances, TriMesh};
 use model::intersect::{Intersection, split};
+use model::thickness::region_thickness;
 use model::trims::{TrimPatch, TrimSpec, apply_trims, describe};
 use model::{ModelTopology, build_topology};
 use model::{patches, regions};
@@ -32,6 +33,9 @@ pub struct ModelData {
     pub regions: regions::RegionModel,
     /// Vertices, curves and patch boundaries (patch indices as in `patches`).
     pub topology: ModelTopology,
+    /// Per region (same order), its thickness (`model::thickness`); 0 where no ray crosses it.
+    #[serde(default)]
+    pub thickness: Vec<f64>,
 }
 
 pub struct ModelOp {
@@ -59,7 +63,7 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        10
+        11
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -176,12 +180,18 @@ impl Operation for ModelOp {
             .map_err(|e| self.region_error(e))?;
         let topology =
             build_topology(&input, &self.tolerances).map_err(|e| OpError::from(e.to_string()))?;
+        let thickness = model
+            .regions
+            .iter()
+            .map(|r| region_thickness(&input, &r.sides).unwrap_or(0.0))
+            .collect();
         let n_curves = topology.curves.len() as u64;
         let n_vertices = topology.vertices.len() as u64;
         let out = Output::new(Artifact::encode(&ModelData {
             patches: kept,
             regions: model.clone(),
             topology,
+            thickness,
         })?)
         .count("vertices", n_vertices)
         .count("curves", n_curves)
@@ -392,9 +402,11 @@ impl ModelData {
             .regions
             .regions
             .iter()
-            .map(|r| {
+            .zip(self.thickness.iter().chain(std::iter::repeat(&0.0)))
+            .map(|(r, t)| {
                 json!({
                     "name": r.name,
+                    "thickness": t,
                     "sides": r.sides.iter().map(|f| format!("{}:{}", patch_name(f.patch), if f.side == regions::Side::Front { "front" } else { "back" })).collect::<Vec<_>>(),
                     "cavities": r.cavities.len(),
                     "interior_point": r.interior_point,

@@ -4,11 +4,15 @@
 //! A size set on a region must reach the surfaces that bound it: without nodes on them at that
 //! spacing, the tet mesher cannot refine the region (its boundary triangles are given). So a
 //! patch takes the finest of the sizes that apply to it, as Gmsh's per-entity sizes do:
-//! - its surface's `[mesh.surfaces]` rule when there is one, and the `[mesh.regions]` size of
-//!   every region on either side whose entry writes one;
-//! - without a surface rule, the size of every region on either side: the size its
-//!   `[mesh.regions]` entry writes, or the global `[mesh] size` (so a coarser region coarsens the
+//! - its surface's `[mesh.surfaces]` rule when there is one, and the size of every region on
+//!   either side that has one of its own (written, or from `layers`);
+//! - without a surface rule, the size of every region on either side, its own or the global
+//!   `[mesh] size` (so a coarser region coarsens the
 //!   surfaces only it bounds, and never a surface it shares with a region at the global size).
+//!
+//! A region's own size is the size its entry writes (else the global one), made finer where
+//! `layers` (or the global `min_layers`) asks for that many elements across it: its thickness
+//! (`model::thickness`, measured on the model) over the count.
 //!
 //! A curve without a `[mesh.curves]` rule takes the finest size of the patches it bounds (its
 //! nodes are their border nodes); a curve rule, written for that curve, always wins. Each choice
@@ -49,15 +53,56 @@ fn finest(choices: impl IntoIterator<Item = SizeChoice>, fallback: SizeChoice) -
         .unwrap_or(fallback)
 }
 
-/// Per patch of `model` (in its order), the size its surface mesh uses.
-pub fn patch_sizes(recipe: &Recipe, model: &ModelData) -> Vec<SizeChoice> {
-    let mut bounded: Vec<Vec<&str>> = vec![Vec::new(); model.patches.len()];
-    for r in &model.regions.regions {
+/// Per region of `model` (in its order), the size inside it: its `[mesh.regions]` size if written,
+/// else the global one; and where `layers` (or the global `min_layers`) asks for that many
+/// elements across, at most the region's thickness over it (never below its `min_size`).
+pub fn region_sizes(recipe: &Recipe, model: &ModelData) -> Vec<SizeChoice> {
+    model
+        .regions
+        .regions
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let thickness = model.thickness.get(i).copied().unwrap_or(0.0);
+            region_size(recipe, &r.name, thickness)
+        })
+        .collect()
+}
+
+fn region_size(recipe: &Recipe, name: &str, thickness: f64) -> SizeChoice {
+    let m = &recipe.mesh;
+    let spec = m.regions.get(name);
+    let base = match spec.filter(|s| s.size_given) {
+        Some(s) => SizeChoice {
+            path: format!("mesh.regions.{name}"),
+            size: s.size,
+        },
+        None => SizeChoice::global(recipe),
+    };
+    let (layers, path) = match spec.and_then(|s| s.layers) {
+        Some(n) => (Some(n), format!("mesh.regions.{name}.layers")),
+        None => (m.min_layers, "mesh.min_layers".to_string()),
+    };
+    let min_size = spec.map_or(m.min_size, |s| s.min_size);
+    match layers {
+        Some(n) if thickness > 0.0 && thickness / f64::from(n) < base.size => SizeChoice {
+            path,
+            size: (thickness / f64::from(n)).max(min_size),
+        },
+        _ => base,
+    }
+}
+
+/// Per patch of `model` (in its order), the size its surface mesh uses; `regions` as
+/// [`region_sizes`] gives them.
+pub fn patch_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]) -> Vec<SizeChoice> {
+    let mut bounded: Vec<Vec<&SizeChoice>> = vec![Vec::new(); model.patches.len()];
+    for (r, choice) in model.regions.regions.iter().zip(regions) {
         for f in &r.sides {
             if let Some(rs) = bounded.get_mut(f.patch as usize)
-                && rs.last() != Some(&r.name.as_str())
+                && !rs.last().is_some_and(|c| std::ptr::eq(*c, choice))
             {
-                rs.push(&r.name);
+                rs.push(choice);
             }
         }
     }
@@ -69,32 +114,17 @@ pub fn patch_sizes(recipe: &Recipe, model: &ModelData) -> Vec<SizeChoice> {
         .collect()
 }
 
-fn patch_size(recipe: &Recipe, surface: &str, regions: &[&str]) -> SizeChoice {
+fn patch_size(recipe: &Recipe, surface: &str, regions: &[&SizeChoice]) -> SizeChoice {
     let m = &recipe.mesh;
-    let region = |r: &str| -> Option<SizeChoice> {
-        m.regions
-            .get(r)
-            .filter(|spec| spec.size_given)
-            .map(|spec| SizeChoice {
-                path: format!("mesh.regions.{r}"),
-                size: spec.size,
-            })
-    };
-    let ruled = m.surfaces.iter().any(|r| r.selector.matches(surface));
-    if ruled {
+    let each = regions.iter().map(|c| (*c).clone());
+    if m.surfaces.iter().any(|r| r.selector.matches(surface)) {
         let own = SizeChoice {
             path: format!("mesh.surfaces.\"{surface}\""),
             size: m.surface_size(surface),
         };
-        let explicit = regions.iter().filter_map(|r| region(r));
-        finest(
-            std::iter::once(own).chain(explicit),
-            SizeChoice::global(recipe),
-        )
+        let set = each.filter(|c| !c.is_global());
+        finest(std::iter::once(own).chain(set), SizeChoice::global(recipe))
     } else {
-        let each = regions
-            .iter()
-            .map(|r| region(r).unwrap_or_else(|| SizeChoice::global(recipe)));
         finest(each, SizeChoice::global(recipe))
     }
 }
@@ -122,4 +152,57 @@ pub fn curve_sizes(
         .into_iter()
         .map(|v| finest(v, SizeChoice::global(recipe)))
         .collect()
+}
+
+/// What the sizes did to thin regions, one sentence each, in region order: a region thinner than
+/// its size with no `layers` asked (its mesh is about one element across), and a `layers` count
+/// that `min_size` kept from being met. `(region, message)`.
+pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, String)> {
+    let m = &recipe.mesh;
+    let mut out = Vec::new();
+    for ((r, own), &t) in model
+        .regions
+        .regions
+        .iter()
+        .zip(region_sizes(recipe, model))
+        .zip(&model.thickness)
+    {
+        let asked = m
+            .regions
+            .get(&r.name)
+            .and_then(|s| s.layers)
+            .or(m.min_layers);
+        let name = &r.name;
+        match asked {
+            None if t > 0.0 && t < own.size => out.push((
+                name.clone(),
+                format!(
+                    "region `{name}` is about {} thick but meshed at {} (`{}.size`): about one \
+                     element across; write `layers = 3` in its `[mesh.regions]` entry (or \
+                     `min_layers = 3` in `[mesh]`) for three",
+                    short(t),
+                    short(own.size),
+                    own.path
+                ),
+            )),
+            Some(n) if t > 0.0 && t / f64::from(n) < own.size => out.push((
+                name.clone(),
+                format!(
+                    "region `{name}` is about {} thick: {n} layers need {} but `min_size` keeps \
+                     it at {}; lower `min_size` to get them",
+                    short(t),
+                    short(t / f64::from(n)),
+                    short(own.size)
+                ),
+            )),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// A length for a message, in model units: three significant digits.
+fn short(x: f64) -> String {
+    let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
+    format!("{x:.digits$}")
 }

@@ -24,12 +24,23 @@ const KEYS: &[&str] = &[
     "max_size",
     "growth",
     "tet_method",
+    "min_layers",
     "curves",
     "surfaces",
     "regions",
 ];
 const CURVE_KEYS: &[&str] = &["count", "size", "ratio", "grading"];
-const REGION_KEYS: &[&str] = &["size", "min_size", "max_size", "growth", "tet_method"];
+const REGION_KEYS: &[&str] = &[
+    "size",
+    "min_size",
+    "max_size",
+    "growth",
+    "tet_method",
+    "layers",
+];
+/// Largest accepted `layers` / `min_layers`: more elements across one layer than this is surely
+/// a typo (and would refine a 35 m layer below a metre).
+const MAX_LAYERS: i64 = 100;
 /// Largest accepted segment count for one curve: beyond this a recipe is surely a typo.
 const MAX_COUNT: i64 = 10_000_000;
 
@@ -153,6 +164,7 @@ pub(crate) fn read(
         .get("surfaces")
         .map(|s| surface_rules(ctx, s, names))
         .unwrap_or_default();
+    let min_layers = layers(ctx, t, "mesh", "min_layers");
     let global = global?;
     let region_sizes = t
         .get("regions")
@@ -164,11 +176,28 @@ pub(crate) fn read(
         max_size: global.max_size,
         growth: global.growth,
         tet_method: global.tet_method,
+        min_layers,
         curves,
         surfaces,
         regions: region_sizes,
         span: ctx.span(v.span()),
     })
+}
+
+/// The element count across a region that `key` of `t` asks for, if written and valid.
+fn layers(ctx: &mut Ctx<'_>, t: &DeTable<'_>, path: &str, key: &str) -> Option<u32> {
+    let v = t.get(key)?;
+    let at = path_join(path, key);
+    let n = rd::int(ctx, v, &at)?;
+    if !(1..=MAX_LAYERS).contains(&n) {
+        ctx.error(
+            v.span(),
+            format!("`{at}` = {n} must be between 1 and {MAX_LAYERS}"),
+            Some("the number of elements across the region's thickness, e.g. `3`".into()),
+        );
+        return None;
+    }
+    u32::try_from(n).ok()
 }
 
 fn curve_rules(ctx: &mut Ctx<'_>, v: &Value<'_>, names: &Names) -> Vec<CurveRule> {
@@ -366,6 +395,7 @@ fn region_rules(
                 RegionMeshSpec {
                     size: s.size,
                     size_given: rt.get("size").is_some(),
+                    layers: layers(ctx, rt, &path, "layers"),
                     min_size: s.min_size,
                     max_size: s.max_size,
                     growth: s.growth,
