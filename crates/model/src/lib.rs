@@ -1,8 +1,9 @@
 //! From imported surfaces to the model a mesher can take: exact intersection and splitting
 //! (`intersect`), the patches of each split surface (`patches`), which patches the recipe's trims
 //! discard (`trims`), the regions the patches bound (`regions`), the half-edge structure of one
-//! surface (`topology`), curve subdivision (`discretize`) and the room it has (`clearance`), and, at the crate root, the model's
-//! topology and the FE assembly along it.
+//! surface (`topology`), curve subdivision (`discretize`) and the room it has (`clearance`), how
+//! thick each region is (`thickness`), and, at the crate root, the model's topology and the FE
+//! assembly along it.
 //!
 //! The root: the topological model of the conforming, trimmed patches — its vertices and
 //! curves, with stable names, and which curves bound (or constrain) which patch.
