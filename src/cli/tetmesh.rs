@@ -182,6 +182,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     let field = SizeField {
         size: a.size.unwrap_or(f64::INFINITY),
         growth: a.growth,
+        refine: Vec::new(),
         ..SizeField::default()
     };
     let opts = TetMeshOptions {

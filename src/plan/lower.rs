@@ -142,6 +142,11 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .map(|b| format!("{}:{}:{}", recipe.path.display(), b.span.line, b.span.col)),
         };
         let model = g.add_op("model", Arc::new(op), &inputs)?;
+        for k in 0..recipe.mesh.refine.len() {
+            if let Some(op) = super::ops::RefineOp::new(recipe, k) {
+                g.add_op(&format!("refine:{}", k + 1), Arc::new(op), &[model])?;
+            }
+        }
         g.set_expander(
             model,
             Arc::new(ModelExpander {

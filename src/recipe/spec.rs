@@ -190,6 +190,28 @@ pub struct CurveRule {
     pub span: Span,
 }
 
+/// One `[[mesh.refine]]` entry: elements of `size` at a feature, growing to `far` over
+/// `distance` (never faster than the mesh's growth allows).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RefineSpec {
+    pub near: RefineTarget,
+    pub size: f64,
+    pub distance: f64,
+    pub far: f64,
+    #[serde(skip)]
+    pub span: Span,
+}
+
+/// What a `[[mesh.refine]]` entry refines near.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub enum RefineTarget {
+    /// Every patch of the surfaces the selector matches.
+    Surface(SurfaceSelector),
+    /// Every curve the selector matches.
+    Curve(CurveSelector),
+    Point([f64; 3]),
+}
+
 /// One `[mesh.surfaces]` entry.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SurfaceSizeRule {
@@ -244,6 +266,9 @@ pub struct MeshSpec {
     pub surfaces: Vec<SurfaceSizeRule>,
     /// Keyed by region name (every key is a `[regions]` name).
     pub regions: BTreeMap<String, RegionMeshSpec>,
+    /// `[[mesh.refine]]`, in recipe order.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub refine: Vec<RefineSpec>,
     #[serde(skip)]
     pub span: Span,
 }

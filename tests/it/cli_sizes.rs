@@ -141,3 +141,78 @@ fn min_layers_refines_the_thin_reservoirs_from_their_measured_thickness_and_noth
         );
     }
 }
+
+#[test]
+fn a_refinement_near_a_fault_refines_it_and_its_surroundings_and_nothing_out_of_reach() {
+    let s = Scratch::didactic_built();
+    let before = report(&s);
+    s.edit(
+        "[mesh.curves]",
+        "[[mesh.refine]]\nsurface = \"F1\"\nsize = 40.0\ndistance = 600.0\n\n[mesh.curves]",
+    );
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let after = report(&s);
+    let triangles = |rep: &serde_json::Value, prefix: &str| -> u64 {
+        rep["patches"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| p["name"].as_str().unwrap().starts_with(prefix))
+            .map(|p| p["triangles"].as_u64().unwrap())
+            .sum()
+    };
+    let (fb, fa) = (triangles(&before, "F1#"), triangles(&after, "F1#"));
+    assert!(fa > 8 * fb, "F1 at 40 m: {fb} triangles before, {fa} after");
+    for region in ["overburden_W", "overburden_E"] {
+        let (b, a) = (region_tets(&before, region), region_tets(&after, region));
+        assert!(a > 3 * b, "{region} beside F1: {b} tets before, {a} after");
+    }
+    // The box's west and east sides are over a kilometre from F1: out of the reach of 40 m
+    // growing at the surfaces' 15 % to the global 200 m.
+    for side in ["box.xmin#", "box.xmax#"] {
+        assert_eq!(triangles(&after, side), triangles(&before, side), "{side}");
+    }
+    let ran = nodes_in_state(&r, "ran");
+    assert!(ran.contains(&"refine:1".to_string()), "{ran:?}");
+    assert!(
+        !ran.iter().any(|n| n == "model" || n.starts_with("import:")),
+        "nothing upstream of the model re-ran: {ran:?}"
+    );
+}
+
+#[test]
+fn editing_a_refinement_reruns_it_and_what_it_reaches_and_a_far_point_touches_nothing_else() {
+    let s = Scratch::didactic_built();
+    s.edit(
+        "[mesh.curves]",
+        "[[mesh.refine]]\npoint = [503000.0, 7002000.0, -400.0]\nsize = 150.0\ndistance = 300.0\n\n[mesh.curves]",
+    );
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&r, "ran");
+    assert!(ran.contains(&"refine:1".to_string()), "{ran:?}");
+    // A point 400 m deep in the eastern overburden, reaching 300-333 m: its region re-meshes,
+    // no surface is within reach, nothing else re-runs.
+    assert!(
+        ran.contains(&"tet_mesh:overburden_E".to_string()),
+        "{ran:?}"
+    );
+    for n in &ran {
+        assert!(
+            !n.starts_with("surface_mesh:")
+                && !n.starts_with("discretize:")
+                && n != "tet_mesh:overburden_W",
+            "`{n}` is out of the point's reach but re-ran"
+        );
+    }
+    s.edit("size = 150.0\ndistance", "size = 170.0\ndistance");
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let again = nodes_in_state(&r, "ran");
+    assert!(again.contains(&"refine:1".to_string()), "{again:?}");
+    assert!(
+        again.iter().all(|n| ran.contains(n)),
+        "a finer reach re-runs only what the first one reached: {again:?} (first: {ran:?})"
+    );
+}

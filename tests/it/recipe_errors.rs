@@ -703,3 +703,28 @@ fn layers_are_read_per_region_and_globally_and_a_count_out_of_range_is_named() {
     let (d, rendered) = single_at(&text, "1000", 0);
     assert!(d.message.contains("between 1 and 100"), "{rendered}");
 }
+
+#[test]
+fn a_refinement_names_exactly_one_feature_and_grows_to_a_larger_size() {
+    let r = ok(&format!(
+        "{BASE}[[mesh.refine]]\nsurface = \"f1\"\nsize = 0.2\ndistance = 2.0\n"
+    ));
+    assert_eq!(r.mesh.refine.len(), 1);
+    assert_eq!(r.mesh.refine[0].far, 1.0, "far defaults to the global size");
+    let text = format!(
+        "{BASE}[[mesh.refine]]\nsurface = \"f1\"\ncurve = \"f1/top\"\nsize = 0.2\ndistance = 2.0\n"
+    );
+    let d = errors(&text);
+    assert!(d[0].message.contains("exactly one feature"), "{}", d[0]);
+    let text = format!("{BASE}[[mesh.refine]]\nsurface = \"f2\"\nsize = 0.2\ndistance = 2.0\n");
+    let d = errors(&text);
+    assert!(
+        d.iter().any(|d| d.to_string().contains("f1")),
+        "suggests f1: {d:?}"
+    );
+    let text = format!(
+        "{BASE}[[mesh.refine]]\npoint = [1.0, 1.0, -1.0]\nsize = 2.0\ndistance = 2.0\nfar = 1.5\n"
+    );
+    let (d, rendered) = single_at(&text, "1.5", 0);
+    assert!(d.message.contains("not larger than"), "{rendered}");
+}

@@ -6,6 +6,7 @@
 pub mod bbox;
 pub mod mesh;
 pub mod predicates;
+pub mod refine;
 pub mod tolerances;
 pub mod trimesh;
 pub mod units;

@@ -44,6 +44,9 @@ impl std::fmt::Display for DiscretizeError {
     }
 }
 
+/// A size field over space: the element size wanted at a point.
+pub type SizeAt<'a> = &'a dyn Fn(&[f64; 3]) -> f64;
+
 /// The most segments one curve may get: a guard against a size that is tiny by mistake.
 pub const MAX_SEGMENTS: usize = 10_000_000;
 
@@ -55,6 +58,20 @@ pub fn discretize(
     polyline: &[[f64; 3]],
     rule: &Subdivision,
     clearance: &[f64],
+) -> Result<Vec<[f64; 3]>, DiscretizeError> {
+    discretize_within(polyline, rule, clearance, None)
+}
+
+/// As [`discretize`], and where `size_at` (a size field over space) asks for shorter segments
+/// than a uniform `Size` rule, segments follow it: the curve gets the whole number of segments
+/// nearest to the integral of `1 / min(size, size_at)` along it, spread so that each holds an
+/// equal share of that integral. Graded sizes (`ratio` other than 1) and counts are kept as
+/// written.
+pub fn discretize_within(
+    polyline: &[[f64; 3]],
+    rule: &Subdivision,
+    clearance: &[f64],
+    size_at: Option<SizeAt<'_>>,
 ) -> Result<Vec<[f64; 3]>, DiscretizeError> {
     if polyline.len() < 2 {
         return Err(DiscretizeError(format!(
@@ -74,7 +91,16 @@ pub fn discretize(
             "the curve has zero or non-finite length ({length})"
         )));
     }
-    let lengths = segment_lengths(length, rule)?;
+    let curve = Polyline {
+        points: polyline,
+        cum: &cum,
+    };
+    let lengths = match (rule, size_at) {
+        (Subdivision::Size { size, ratio, .. }, Some(f)) if *ratio == 1.0 => {
+            field_lengths(&curve, *size, f)?
+        }
+        _ => segment_lengths(length, rule)?,
+    };
     let mut stations = Vec::with_capacity(lengths.len() + 1);
     stations.push(Station::Vertex(0));
     let mut s = 0.0;
@@ -83,14 +109,67 @@ pub fn discretize(
         stations.push(Station::Arc(s));
     }
     stations.push(Station::Vertex(polyline.len() - 1));
-    let curve = Polyline {
-        points: polyline,
-        cum: &cum,
-    };
     if matches!(rule, Subdivision::Size { .. }) && clearance.len() == polyline.len() {
         stations = follow_bends(&curve, &stations, clearance);
     }
     Ok(stations.iter().map(|&st| curve.point(st)).collect())
+}
+
+/// Segment lengths along `curve` for the size `min(size, size_at(x))` (see
+/// [`discretize_within`]). The integral is taken in steps of a quarter of the local size.
+fn field_lengths(
+    curve: &Polyline<'_>,
+    size: f64,
+    size_at: SizeAt<'_>,
+) -> Result<Vec<f64>, DiscretizeError> {
+    let length = curve.cum[curve.cum.len() - 1];
+    let h = |s: f64| size_at(&curve.point(Station::Arc(s))).min(size);
+    // (arc length, integral of 1/h up to it)
+    let mut table = vec![(0.0, 0.0)];
+    let (mut s, mut total) = (0.0, 0.0);
+    while s < length {
+        let here = h(s);
+        if !(here > 0.0 && here.is_finite()) {
+            return Err(DiscretizeError(format!(
+                "the size field is {here} on the curve, at arc length {s}"
+            )));
+        }
+        let ds = (0.25 * here).min(length - s);
+        total += ds / h(s + 0.5 * ds);
+        s += ds;
+        table.push((s, total));
+        if table.len() > 4 * MAX_SEGMENTS {
+            return Err(DiscretizeError(format!(
+                "more than {MAX_SEGMENTS} segments: the size near a feature is too small"
+            )));
+        }
+    }
+    let n = (total.round() as usize).max(1);
+    let mut ends = Vec::with_capacity(n);
+    let mut j = 1;
+    for k in 1..n {
+        let want = total * k as f64 / n as f64;
+        while j + 1 < table.len() && table[j].1 < want {
+            j += 1;
+        }
+        let ((s0, i0), (s1, i1)) = (table[j - 1], table[j]);
+        let t = if i1 > i0 {
+            (want - i0) / (i1 - i0)
+        } else {
+            0.0
+        };
+        ends.push(s0 + t * (s1 - s0));
+    }
+    ends.push(length);
+    let mut prev = 0.0;
+    Ok(ends
+        .into_iter()
+        .map(|e| {
+            let l = e - prev;
+            prev = e;
+            l
+        })
+        .collect())
 }
 
 /// A node's place on the polyline: a vertex (copied bit for bit) or an arc length.
@@ -289,6 +368,35 @@ mod tests {
             [500_000.0, 7_000_000.0, -1200.0],
             [500_000.0 + len, 7_000_000.0, -1200.0],
         ]
+    }
+
+    #[test]
+    fn a_size_field_shortens_segments_near_its_feature_and_leaves_them_far_from_it() {
+        let l = line(1000.0);
+        let rule = Subdivision::Size {
+            size: 100.0,
+            ratio: 1.0,
+            grading: Grading::Geometric,
+        };
+        let field = |x: &[f64; 3]| 10.0 + 0.2 * (x[0] - 500_000.0).abs();
+        let nodes = discretize_within(&l, &rule, &[], Some(&field)).unwrap();
+        assert_eq!(nodes.first(), l.first());
+        assert_eq!(nodes.last(), l.last());
+        let lens: Vec<f64> = nodes.windows(2).map(|w| dist(&w[0], &w[1])).collect();
+        assert!(lens[0] < 15.0, "first segment {}", lens[0]);
+        assert!(
+            lens.windows(2).all(|w| w[1] >= w[0] - 1e-9),
+            "growing: {lens:?}"
+        );
+        assert!((lens[lens.len() - 1] - 100.0).abs() < 15.0, "{lens:?}");
+        let plain = discretize(&l, &rule, &[]).unwrap();
+        assert_eq!(plain.len(), 11);
+        // A field coarser than the rule everywhere changes nothing.
+        let coarse = |_: &[f64; 3]| 1e9;
+        assert_eq!(
+            discretize_within(&l, &rule, &[], Some(&coarse)).unwrap(),
+            plain
+        );
     }
 
     #[test]

@@ -34,6 +34,7 @@ pub mod charts;
 pub mod clearance;
 mod curves;
 pub mod discretize;
+pub mod features;
 pub mod intersect;
 pub mod patches;
 pub mod regions;

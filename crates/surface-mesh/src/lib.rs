@@ -45,6 +45,7 @@ mod verify;
 
 use cdt::{CONSTRAINT, Cdt, CdtError, LOOP, NONE};
 use geom::predicates::dist;
+use geom::refine::Refinement;
 use geom::{Tolerances, TriMesh};
 use input::{GivenNodes, given_nodes};
 use size::SizeField;
@@ -140,6 +141,17 @@ pub fn mesh_patch_with(
     size: &SurfaceSize,
     tolerances: &Tolerances,
 ) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
+    mesh_patch_refined(input, size, tolerances, &[])
+}
+
+/// `mesh_patch_with`, with elements no larger than `refine` asks for near its features (growing
+/// from them no faster than the surface's own growth).
+pub fn mesh_patch_refined(
+    input: &PatchInput,
+    size: &SurfaceSize,
+    tolerances: &Tolerances,
+    refine: &[Refinement],
+) -> Result<SurfaceMeshOutput, SurfaceMeshError> {
     check_sizes(input, size)?;
     let given = given_nodes(input)?;
     let support = Support::new(&input.support)
@@ -160,7 +172,8 @@ pub fn mesh_patch_with(
         .collect();
     check_given_crossings(input, &given, &support, &uv, &segs)?;
     let (mut cdt, mut p3) = triangulate_given(input, &given, &uv, &segs)?;
-    refine_and_smooth(input, size, &given, &hloc, &support, &mut cdt, &mut p3)?;
+    let sizing = Sizing { size, refine };
+    refine_and_smooth(input, &sizing, &given, &hloc, &support, &mut cdt, &mut p3)?;
     let out = output(input, &given, &cdt, &p3)?;
     verify::verify_with(input, &out, tol, &support)?;
     Ok(out)
@@ -372,9 +385,15 @@ fn check_inside(
 
 /// Sizes and refinement: inserts points up to the size field (bounded by a point budget from
 /// the area and the smallest size), then flips and smooths.
+/// The sizes a patch is meshed at: the recipe's, and the refinements near features.
+struct Sizing<'a> {
+    size: &'a SurfaceSize,
+    refine: &'a [Refinement],
+}
+
 fn refine_and_smooth(
     input: &PatchInput,
-    size: &SurfaceSize,
+    sizing: &Sizing<'_>,
     given: &GivenNodes,
     hloc: &[f64],
     support: &Support,
@@ -386,7 +405,7 @@ fn refine_and_smooth(
         min_size,
         max_size,
         growth,
-    } = *size;
+    } = *sizing.size;
     let snodes: Vec<([f64; 3], f64)> = given
         .nodes
         .iter()
@@ -403,7 +422,8 @@ fn refine_and_smooth(
         min_size,
         max_size,
         growth.min(MAX_SURFACE_GROWTH),
-    );
+    )
+    .with_refinements(sizing.refine);
     let area: f64 = cdt
         .live_triangles()
         .filter(|&t| cdt.inside[t as usize])

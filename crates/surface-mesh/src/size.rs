@@ -153,6 +153,8 @@ pub struct SizeField {
     hmin_nodes: f64,
     hmax_nodes: f64,
     hmin_curv: f64,
+    /// Refinements near features: their points, size and slope (no steeper than `slope`).
+    feat: Vec<(Tree, f64, f64)>,
     slope: f64,
     size: f64,
     min_size: f64,
@@ -187,6 +189,17 @@ fn up(tree: &Tree, hmin: f64, slope: f64, q: [f64; 3], cap: f64) -> f64 {
 }
 
 impl SizeField {
+    /// As [`SizeField::new`], also bounded by the sizes `refine` asks for near their features,
+    /// each growing no faster than this field's own slope.
+    pub fn with_refinements(mut self, refine: &[geom::refine::Refinement]) -> SizeField {
+        for r in refine.iter().filter(|r| !r.points.is_empty()) {
+            let nodes: Vec<([f64; 3], f64)> = r.points.iter().map(|p| (*p, r.size)).collect();
+            let slope = r.slope.min(self.slope).max(1e-9);
+            self.feat.push((build(&nodes, self.origin), r.size, slope));
+        }
+        self
+    }
+
     /// `nodes`: (position, local size) of the given boundary and constraint nodes; `curvature`:
     /// up-only nodes from `curvature_nodes`.
     pub fn new(
@@ -206,6 +219,7 @@ impl SizeField {
             hmin_nodes: hmin(nodes),
             hmax_nodes: nodes.iter().map(|n| n.1).fold(0.0, f64::max),
             hmin_curv: hmin(curvature),
+            feat: Vec::new(),
             slope: (growth - 1.0).max(0.0),
             size,
             min_size,
@@ -222,9 +236,12 @@ impl SizeField {
         ];
         let mut h = self.size;
         if self.slope <= 1e-12 {
-            return h
-                .min(self.hmin_nodes)
-                .min(self.hmin_curv)
+            return self
+                .feat
+                .iter()
+                .fold(h.min(self.hmin_nodes).min(self.hmin_curv), |h, f| {
+                    h.min(f.1)
+                })
                 .clamp(self.min_size, self.max_size);
         }
         // down(x) can only raise h above `size` if some node is coarser than `size`, and only
@@ -244,6 +261,11 @@ impl SizeField {
         // Curvature last: a tight hinge needs small elements whatever the boundary says.
         if self.hmin_curv < h {
             h = up(&self.curv, self.hmin_curv, self.slope, q, h);
+        }
+        for (tree, hmin, slope) in &self.feat {
+            if *hmin < h {
+                h = up(tree, *hmin, *slope, q, h);
+            }
         }
         h.clamp(self.min_size, self.max_size)
     }

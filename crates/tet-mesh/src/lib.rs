@@ -74,6 +74,8 @@ pub struct SizeField {
     pub min_size: f64,
     pub max_size: f64,
     pub growth: f64,
+    /// Finer sizes near features (each growing no faster than `growth` allows).
+    pub refine: Vec<geom::refine::Refinement>,
 }
 
 impl Default for SizeField {
@@ -83,6 +85,7 @@ impl Default for SizeField {
             min_size: 0.0,
             max_size: f64::INFINITY,
             growth: 1.2,
+            refine: Vec::new(),
         }
     }
 }

@@ -102,7 +102,30 @@ impl Background {
         }
         let rate = (field.growth - 1.0).clamp(0.0, 1.0);
         bg.propagate(rate, goal);
+        for r in &field.refine {
+            bg.bound_by(r, r.slope.clamp(0.0, rate));
+        }
         bg
+    }
+
+    /// Lowers every cell to the size `r` asks for there: `r.size` at the cells holding its
+    /// points (those inside the grid), growing by `slope` per unit of distance, the same
+    /// distance transform as `propagate`.
+    fn bound_by(&mut self, r: &geom::refine::Refinement, slope: f64) {
+        let mut f = vec![f64::INFINITY; self.h.len()];
+        let inside = |p: &P| {
+            (0..3).all(|k| {
+                p[k] >= self.origin[k] && p[k] <= self.origin[k] + self.dims[k] as f64 * self.cell
+            })
+        };
+        for p in r.points.iter().filter(|p| inside(p)) {
+            let i = self.index(self.cell_of(p));
+            f[i] = f[i].min(r.size);
+        }
+        self.sweeps(&mut f, slope);
+        for (h, g) in self.h.iter_mut().zip(&f) {
+            *h = h.min(*g);
+        }
     }
 
     /// The field the seeds grow into: at each cell the least, over the seeded cells `s`, of
@@ -124,6 +147,17 @@ impl Background {
                 flat = flat.min(goal);
             }
         }
+        let mut h = std::mem::take(&mut self.h);
+        self.sweeps(&mut h, rate);
+        self.h = h;
+        for h in &mut self.h {
+            *h = h.min(flat);
+        }
+    }
+
+    /// Two raster sweeps: each cell of `h` becomes the least over all cells `s` of
+    /// `h_s + rate * d(s, cell)` (see `propagate`).
+    fn sweeps(&self, h: &mut [f64], rate: f64) {
         let [nx, ny, nz] = self.dims;
         // The 13 neighbours that come before a cell in raster order (x fastest), with the growth
         // over each step; the sweep back uses the opposite 13.
@@ -158,15 +192,12 @@ impl Background {
             }
             h[i] = v;
         };
-        let n = self.h.len();
+        let n = h.len();
         for i in 0..n {
-            sweep(&mut self.h, i, 1);
+            sweep(h, i, 1);
         }
         for i in (0..n).rev() {
-            sweep(&mut self.h, i, -1);
-        }
-        for h in &mut self.h {
-            *h = h.min(flat);
+            sweep(h, i, -1);
         }
     }
 
@@ -313,6 +344,7 @@ mod tests {
             min_size: 0.0,
             max_size: f64::INFINITY,
             growth: 1.2,
+            refine: Vec::new(),
         };
         let bg = Background::new(&pts, &tris, &f);
         let near = bg.size_at(&[0.2, 0.2, 0.0]);
@@ -321,6 +353,52 @@ mod tests {
         assert!(
             mid > near && mid <= 4.0 * (1.0 + 2.0 / 3.0) / 3.0 * 3.0,
             "{mid}"
+        );
+    }
+
+    #[test]
+    fn a_refinement_point_lowers_the_sizes_around_it_growing_no_faster_than_the_mesh() {
+        let pts = vec![
+            [0.0, 0.0, 0.0],
+            [40.0, 0.0, 0.0],
+            [0.0, 40.0, 0.0],
+            [40.0, 40.0, 40.0],
+        ];
+        let tris = vec![[0, 1, 2], [1, 3, 2], [0, 3, 1], [0, 2, 3]];
+        let point = geom::refine::Refinement {
+            points: vec![[10.0, 10.0, 10.0]],
+            size: 1.0,
+            slope: 5.0,
+        };
+        let plain = SizeField {
+            size: 30.0,
+            min_size: 0.1,
+            max_size: 100.0,
+            growth: 1.2,
+            refine: Vec::new(),
+        };
+        let refined = SizeField {
+            refine: vec![point],
+            ..plain.clone()
+        };
+        let (a, b) = (
+            Background::new(&pts, &tris, &plain),
+            Background::new(&pts, &tris, &refined),
+        );
+        let at = [10.0, 10.0, 10.0];
+        assert!(
+            b.size_at(&at) < 1.0 + 0.2 * 2.0 * b.cell,
+            "{}",
+            b.size_at(&at)
+        );
+        assert!(a.size_at(&at) > 5.0, "{}", a.size_at(&at));
+        // 8 units away the size grew at most by the mesh's 0.2 per unit (plus a cell), far less
+        // than the 5 per unit the refinement asked for.
+        let off = [18.0, 10.0, 10.0];
+        assert!(
+            b.size_at(&off) <= 1.0 + 0.2 * (8.0 + 2.0 * b.cell),
+            "{}",
+            b.size_at(&off)
         );
     }
 }

@@ -14,7 +14,8 @@ use engine::{
     Artifact, Expander, Expansion, NodeId, OpError, Operation, Output, Params, RunContext,
 };
 use geom::Tolerances;
-use model::discretize::{Grading, Subdivision, discretize};
+use model::discretize::{Grading, SizeAt, Subdivision, discretize, discretize_within};
+use model::features::SizeNear;
 use model::{intersect, topology};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -206,6 +207,10 @@ pub struct DiscretizeOp {
     /// The fewest segments the curve may have (1: no constraint): a patch loop of two curves
     /// needs two on each, a loop of one closed curve three, so that every loop has three nodes.
     pub min_segments: u32,
+    /// How many `refine:<k>` inputs follow the curve (features within reach), and the steepest
+    /// growth of their sizes along it (the surfaces' own).
+    pub refinements: usize,
+    pub max_slope: f64,
 }
 
 impl Operation for DiscretizeOp {
@@ -244,15 +249,24 @@ impl Operation for DiscretizeOp {
             // Derived from the model's loops, not written in the recipe.
             p.set("model.min_segments", self.min_segments).expect("int");
         }
+        if self.refinements > 0 {
+            p.set("mesh.growth.surface_slope", self.max_slope)
+                .expect("validated finite");
+        }
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let (inputs, refine) = super::refine::split_refinements(inputs, self.refinements)?;
         let c: ModelCurve = inputs
             .first()
             .ok_or("discretize needs its curve")?
             .decode()?;
         let fail = |e| OpError::from(format!("curve `{}`: {e}", self.name));
-        let mut nodes = discretize(&c.polyline, &self.rule, &c.clearance).map_err(fail)?;
+        let near = SizeNear::new(&refine, self.max_slope);
+        let field = |x: &[f64; 3]| near.at(x);
+        let size_at: Option<SizeAt<'_>> = (!near.is_empty()).then_some(&field);
+        let mut nodes =
+            discretize_within(&c.polyline, &self.rule, &c.clearance, size_at).map_err(fail)?;
         if nodes.len() < self.min_segments as usize + 1 {
             let count = Subdivision::Count(self.min_segments);
             nodes = discretize(&c.polyline, &count, &c.clearance).map_err(fail)?;
@@ -286,10 +300,9 @@ impl Expander for DiscretizeExpander {
                 x,
                 &self.recipe,
                 &c.name,
-                curves_node,
-                false,
+                (curves_node, false),
                 1,
-                None,
+                CurveSizing::default(),
             )?);
         }
         let (export_inputs, groups) = Wiring::new()
@@ -303,18 +316,27 @@ impl Expander for DiscretizeExpander {
     }
 }
 
+/// How the model sizes one curve beyond the recipe's rule for it: the size its patches give it
+/// when no rule names it (`fallback`), and the `refine:<k>` nodes within its reach with the
+/// steepest growth of their sizes along it. `Default`: neither (curves found without a model).
+#[derive(Default)]
+pub(super) struct CurveSizing<'a> {
+    pub fallback: Option<&'a SizeChoice>,
+    pub refine: Vec<NodeId>,
+    pub max_slope: f64,
+}
+
 /// Adds `curve:<name>` (extracted from `source`: the model, or the curve set) and
-/// `discretize:<name>` under the recipe's rule for that curve (without one, at `fallback`'s size
-/// when given, else at the global size), with at least `min_segments` segments; returns the
-/// discretize node.
+/// `discretize:<name>` under the recipe's rule for that curve (without one, at the fallback's
+/// size when given, else at the global size) and the refinements near it, with at least
+/// `min_segments` segments; returns the discretize node.
 pub(super) fn add_curve_nodes(
     x: &mut Expansion,
     recipe: &Recipe,
     name: &str,
-    source: NodeId,
-    from_model: bool,
+    (source, from_model): (NodeId, bool),
     min_segments: u32,
-    fallback: Option<&SizeChoice>,
+    sizing: CurveSizing<'_>,
 ) -> Result<NodeId, OpError> {
     let extract = x
         .add_op(
@@ -326,7 +348,7 @@ pub(super) fn add_curve_nodes(
             &[source],
         )
         .map_err(graph_error)?;
-    let (rule_path, rule) = match fallback {
+    let (rule_path, rule) = match sizing.fallback {
         Some(f) if recipe.mesh.curve_rule(name).is_none() && !f.is_global() => (
             f.path.clone(),
             Subdivision::Size {
@@ -337,6 +359,8 @@ pub(super) fn add_curve_nodes(
         ),
         _ => curve_subdivision(recipe, name),
     };
+    let mut inputs = vec![extract];
+    inputs.extend(&sizing.refine);
     x.add_op(
         &format!("discretize:{name}"),
         Arc::new(DiscretizeOp {
@@ -344,8 +368,10 @@ pub(super) fn add_curve_nodes(
             rule_path,
             rule,
             min_segments,
+            refinements: sizing.refine.len(),
+            max_slope: sizing.max_slope,
         }),
-        &[extract],
+        &inputs,
     )
     .map_err(graph_error)
 }
@@ -374,6 +400,8 @@ mod tests {
                 grading: Grading::Geometric,
             },
             min_segments: min,
+            refinements: 0,
+            max_slope: 0.15,
         };
         let curve = ModelCurve {
             name: "c".into(),
@@ -410,6 +438,8 @@ mod tests {
             rule_path: "mesh.size".into(),
             rule: Subdivision::Count(4),
             min_segments,
+            refinements: 0,
+            max_slope: 0.15,
         };
         assert!(op(1).params().get("model.min_segments").is_none());
         assert!(op(2).params().get("model.min_segments").is_some());

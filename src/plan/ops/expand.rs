@@ -5,7 +5,8 @@
 //! subdivision therefore re-runs that curve, the patches it bounds, the regions those bound,
 //! `mesh` and `export`, and nothing else.
 
-use super::curves::{add_curve_nodes, graph_error};
+use super::curves::{CurveSizing, add_curve_nodes, graph_error};
+use super::refine;
 use super::sizes::{self, SizeChoice};
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
@@ -14,7 +15,7 @@ use geom::mesh::RegionGroup;
 use model::ModelTopology;
 use model::regions::FaceUse;
 use std::sync::Arc;
-use surface_mesh::SurfaceSize;
+use surface_mesh::{MAX_SURFACE_GROWTH, SurfaceSize};
 use tet_mesh::{Method, SizeField};
 
 pub struct ModelExpander {
@@ -46,6 +47,7 @@ impl ModelExpander {
                     min_size: r.min_size,
                     max_size: r.max_size,
                     growth: r.growth,
+                    refine: Vec::new(),
                 },
                 crate::plan::tet_method(r.tet_method),
             ),
@@ -56,6 +58,7 @@ impl ModelExpander {
                     min_size: m.min_size,
                     max_size: m.max_size,
                     growth: m.growth,
+                    refine: Vec::new(),
                 },
                 crate::plan::tet_method(m.tet_method),
             ),
@@ -77,16 +80,23 @@ impl Expander for ModelExpander {
         let region_sizes = sizes::region_sizes(&self.recipe, &model);
         let patch_sizes = sizes::patch_sizes(&self.recipe, &model, &region_sizes);
         let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
+        let placed = refine::place(&self.recipe, &model, x);
+        let surface_slope = self.recipe.mesh.growth.min(MAX_SURFACE_GROWTH) - 1.0;
         let mut discretized = Vec::with_capacity(topo.curves.len());
         for ((c, &min), size) in topo.curves.iter().zip(&min_segments).zip(&curve_sizes) {
+            let near = refine::bounds_of(&c.points);
+            let sizing = CurveSizing {
+                fallback: Some(size),
+                refine: refine::within_reach(&placed, near, size.size, surface_slope),
+                max_slope: surface_slope,
+            };
             discretized.push(add_curve_nodes(
                 x,
                 &self.recipe,
                 &c.name,
-                model_node,
-                true,
+                (model_node, true),
                 min,
-                Some(size),
+                sizing,
             )?);
         }
 
@@ -103,6 +113,9 @@ impl Expander for ModelExpander {
                 .map_err(graph_error)?;
             let mut inputs = vec![piece];
             inputs.extend(boundary.curves().iter().map(|&c| discretized[c as usize]));
+            let near = refine::bounds_of(&p.mesh.vertices);
+            let features = refine::within_reach(&placed, near, choice.size, surface_slope);
+            inputs.extend(&features);
             let (size_path, size) = self.surface_size(choice);
             let m = x
                 .add_op(
@@ -112,6 +125,7 @@ impl Expander for ModelExpander {
                         size_path,
                         size,
                         tolerances: self.recipe.tolerances.clone(),
+                        refinements: features.len(),
                     }),
                     &inputs,
                 )
@@ -132,9 +146,17 @@ impl Expander for ModelExpander {
                     side: f.side,
                 })
                 .collect();
-            let inputs: Vec<NodeId> = patches.iter().map(|&p| meshed[p as usize]).collect();
+            let mut inputs: Vec<NodeId> = patches.iter().map(|&p| meshed[p as usize]).collect();
             let (size_path, mut size, method) = self.region_settings(&r.name);
             size.size = own.size;
+            let near = refine::bounds_of(
+                patches
+                    .iter()
+                    .flat_map(|&p| &model.patches[p as usize].mesh.vertices),
+            );
+            let features =
+                refine::within_reach(&placed, near, own.size, (size.growth - 1.0).clamp(0.0, 1.0));
+            inputs.extend(&features);
             let id = x
                 .add_op(
                     &format!("tet_mesh:{}", r.name),
@@ -148,6 +170,7 @@ impl Expander for ModelExpander {
                         size_path,
                         size,
                         method,
+                        refinements: features.len(),
                     }),
                     &inputs,
                 )

@@ -10,8 +10,10 @@ mod import;
 mod inputs;
 mod model;
 mod patch;
+mod refine;
 mod region;
 mod sizes;
+pub use refine::RefineOp;
 pub use sizes::thin_region_warnings;
 
 pub use curves::{

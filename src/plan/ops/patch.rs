@@ -8,7 +8,7 @@ use geom::mesh::SurfaceKind;
 use geom::{Tolerances, TriMesh};
 use model::{PatchBoundary, patch_input};
 use serde::{Deserialize, Serialize};
-use surface_mesh::{SurfaceSize, mesh_patch_with};
+use surface_mesh::{SurfaceSize, mesh_patch_refined};
 
 /// The output of `patch:<p>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -91,6 +91,8 @@ pub struct SurfaceMeshOp {
     pub size_path: String,
     pub size: SurfaceSize,
     pub tolerances: Tolerances,
+    /// How many `refine:<k>` inputs follow the curves (features within reach of the patch).
+    pub refinements: usize,
 }
 
 impl Operation for SurfaceMeshOp {
@@ -119,6 +121,7 @@ impl Operation for SurfaceMeshOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let (inputs, refine) = super::refine::split_refinements(inputs, self.refinements)?;
         let (piece, rest) = inputs.split_first().ok_or("surface_mesh needs its patch")?;
         let piece: PatchPiece = piece.decode()?;
         let curves: Vec<CurveNodes> = rest.iter().map(|a| a.decode()).collect::<Result<_, _>>()?;
@@ -134,7 +137,7 @@ impl Operation for SurfaceMeshOp {
         let nodes = |c: u32| curves.get(c as usize).map(|c| c.nodes.as_slice());
         let input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
             .map_err(|e| OpError::from(e.to_string()))?;
-        let out = mesh_patch_with(&input, &self.size, &self.tolerances)
+        let out = mesh_patch_refined(&input, &self.size, &self.tolerances, &refine)
             .map_err(|e| OpError::from(e.to_string()))?;
         let mesh = TriMesh::new(out.nodes, out.triangles);
         let (nn, nt) = (mesh.vertices.len() as u64, mesh.triangles.len() as u64);

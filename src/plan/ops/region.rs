@@ -34,6 +34,8 @@ pub struct TetMeshOp {
     /// `tet_method` at `size_path`; in the key only when it is not the default, so recipes that
     /// do not name it keep their keys.
     pub method: Method,
+    /// How many `refine:<k>` inputs follow the patch meshes (features within reach).
+    pub refinements: usize,
 }
 
 impl Operation for TetMeshOp {
@@ -86,6 +88,7 @@ impl Operation for TetMeshOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let (inputs, refine) = super::refine::split_refinements(inputs, self.refinements)?;
         let meshes: Vec<PatchMesh> = inputs
             .iter()
             .map(|a| a.decode())
@@ -100,8 +103,11 @@ impl Operation for TetMeshOp {
             method: self.method,
             ..TetMeshOptions::default()
         };
-        let out =
-            mesh_region(&input, &self.size, &opts).map_err(|e| OpError::from(e.to_string()))?;
+        let size = SizeField {
+            refine,
+            ..self.size.clone()
+        };
+        let out = mesh_region(&input, &size, &opts).map_err(|e| OpError::from(e.to_string()))?;
         let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
         Ok(Output::new(Artifact::encode(&RegionMesh {
             name: self.name.clone(),

@@ -25,6 +25,7 @@ const KEYS: &[&str] = &[
     "growth",
     "tet_method",
     "min_layers",
+    "refine",
     "curves",
     "surfaces",
     "regions",
@@ -166,6 +167,10 @@ pub(crate) fn read(
         .unwrap_or_default();
     let min_layers = layers(ctx, t, "mesh", "min_layers");
     let global = global?;
+    let refine = t
+        .get("refine")
+        .map(|r| super::refine::read(ctx, r, names, global.size))
+        .unwrap_or_default();
     let region_sizes = t
         .get("regions")
         .map(|r| region_rules(ctx, r, regions, &global))
@@ -180,6 +185,7 @@ pub(crate) fn read(
         curves,
         surfaces,
         regions: region_sizes,
+        refine,
         span: ctx.span(v.span()),
     })
 }

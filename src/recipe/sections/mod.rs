@@ -8,6 +8,7 @@ pub(crate) mod intersect;
 pub(crate) mod mesh;
 pub(crate) mod model;
 pub(crate) mod output;
+pub(crate) mod refine;
 pub(crate) mod regions;
 pub(crate) mod surfaces;
 pub(crate) mod trim;

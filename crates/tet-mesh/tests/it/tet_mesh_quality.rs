@@ -65,6 +65,7 @@ fn build_size() -> SizeField {
         min_size: 2.0,
         max_size: 2000.0,
         growth: 1.3,
+        refine: Vec::new(),
     }
 }
 
