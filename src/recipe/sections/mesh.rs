@@ -13,7 +13,7 @@ use toml::de::DeTable;
 
 use super::Names;
 use crate::recipe::reader::{self as rd, Ctx, Value, name_help, path_join};
-use crate::recipe::selector::{CurveSelector, SurfaceSelector};
+use crate::recipe::selector::SurfaceSelector;
 use crate::recipe::spec::{
     CurveRule, Grading, MeshSpec, RegionMeshSpec, Subdivision, SurfaceSizeRule, TetMethod,
 };
@@ -216,23 +216,7 @@ fn curve_rules(ctx: &mut Ctx<'_>, v: &Value<'_>, names: &Names) -> Vec<CurveRule
     for (k, e) in entries {
         let text: &str = k.get_ref();
         let path = path_join("mesh.curves", text);
-        let selector = match CurveSelector::parse(text) {
-            Ok(s) => {
-                let mut ok = true;
-                for side in &s.sides {
-                    ok &= names.check_pattern(ctx, &side.pattern, text, k.span(), "curve selector");
-                }
-                ok.then_some(s)
-            }
-            Err(err) => {
-                ctx.error(
-                    k.span(),
-                    format!("bad curve selector `{text}`: {}", err.0),
-                    Some("e.g. `\"top/f1\"`, `\"f1/box.*\"`, `\"top\"` or `\"top/f1#2\"`".into()),
-                );
-                None
-            }
-        };
+        let selector = super::curve_selector(ctx, text, k.span(), names);
         let sub = subdivision(ctx, e, &path);
         let (Some(selector), Some(subdivision)) = (selector, sub) else {
             continue;

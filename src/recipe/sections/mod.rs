@@ -115,3 +115,30 @@ fn side_span(ctx: &Ctx<'_>, key: Range<usize>, pattern: &str) -> Range<usize> {
     }
     key
 }
+
+/// The curve selector `text` (written at `span`), each side checked against the surfaces;
+/// `None` after reporting what is wrong.
+pub(crate) fn curve_selector(
+    ctx: &mut Ctx<'_>,
+    text: &str,
+    span: Range<usize>,
+    names: &Names,
+) -> Option<super::selector::CurveSelector> {
+    match super::selector::CurveSelector::parse(text) {
+        Ok(s) => {
+            let mut ok = true;
+            for side in &s.sides {
+                ok &= names.check_pattern(ctx, &side.pattern, text, span.clone(), "curve selector");
+            }
+            ok.then_some(s)
+        }
+        Err(err) => {
+            ctx.error(
+                span,
+                format!("bad curve selector `{text}`: {}", err.0),
+                Some("e.g. `\"top/f1\"`, `\"f1/box.*\"`, `\"top\"` or `\"top/f1#2\"`".into()),
+            );
+            None
+        }
+    }
+}

@@ -5,7 +5,7 @@
 
 use super::Names;
 use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
-use crate::recipe::selector::{CurveSelector, SurfaceSelector};
+use crate::recipe::selector::SurfaceSelector;
 use crate::recipe::spec::{RefineSpec, RefineTarget};
 use toml::de::DeTable;
 
@@ -116,29 +116,7 @@ fn target(
         }
         "curve" => {
             let text = rd::string(ctx, v, &at)?;
-            match CurveSelector::parse(text) {
-                Ok(s) => {
-                    let mut ok = true;
-                    for side in &s.sides {
-                        ok &= names.check_pattern(
-                            ctx,
-                            &side.pattern,
-                            text,
-                            v.span(),
-                            "curve selector",
-                        );
-                    }
-                    ok.then_some(RefineTarget::Curve(s))
-                }
-                Err(err) => {
-                    ctx.error(
-                        v.span(),
-                        format!("bad curve selector `{text}`: {}", err.0),
-                        Some("e.g. `\"top/f1\"` or `\"f1/box.*\"`".into()),
-                    );
-                    None
-                }
-            }
+            super::curve_selector(ctx, text, v.span(), names).map(RefineTarget::Curve)
         }
         _ => rd::vec3(ctx, v, &at).map(RefineTarget::Point),
     }
