@@ -10,10 +10,11 @@
 //! round-trip floats in JSON, index-ordered groups). Every name is HTML-escaped.
 //!
 //! Submodules: `input` (the typed input), `model` (patch and region summaries of a region
-//! model), `text` (escaping, number formats), `palette`
-//! (colours), `view` (projection, painter's algorithm, size bound), `pictures` (the two
+//! model), `flags` (regions meshed far worse than the rest), `text` (escaping, number formats),
+//! `palette` (colours), `view` (projection, painter's algorithm, size bound), `pictures` (the two
 //! pictures), `histogram` (bins and bar charts), `html` and `json` (the two documents).
 
+mod flags;
 mod histogram;
 mod html;
 mod input;
@@ -94,8 +95,10 @@ pub fn facts(input: &ReportInput) -> Facts {
             warnings.push(format!("step '{}' failed: {}", s.name, s.reason));
         }
     }
+    let quality = quality::report(mesh);
+    warnings.extend(flags::poor_regions(&quality.table2));
     Facts {
-        quality: quality::report(mesh),
+        quality,
         mean_ratio: histogram::mean_ratio(mesh),
         c_ratio: histogram::c_ratio(mesh),
         region_tets,
