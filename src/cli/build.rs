@@ -19,9 +19,10 @@ use std::path::Path;
 
 /// One build of `args.recipe`. Returns the report when the build succeeded.
 ///
-/// With `--locked`, the lock file is read first, and the build's output files (the engine's and
-/// the report) go to a staging directory that is published into the output directory only when
-/// the build succeeded and matches the lock: a locked build that fails changes nothing.
+/// The cache's lock is held for the whole command. With `--locked`, the lock file is read first,
+/// and the build's output files (the engine's and the report) go to a staging directory that is
+/// published into the output directory only when the build succeeded and matches the lock: a
+/// locked build that fails changes nothing.
 pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let started = std::time::Instant::now();
     let verbosity = args.verbosity();
@@ -31,6 +32,17 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let record = RecipeRecord::of(&args.recipe, &cache);
     let output_dir = recipe_dir(&args.recipe).join(&recipe.output.dir);
     let lock_file = lock_path(&args.recipe);
+    let renderer = Renderer::new(verbosity, args.explain);
+    // Held until the command returns, from before the lock file is read to after the lock file,
+    // the report and the published outputs are written: a build racing this one cannot
+    // interleave its files with ours.
+    let cache_lock = engine::lock_cache(
+        &BuildOptions {
+            record: record.name.clone(),
+            ..BuildOptions::new(&cache, &output_dir)
+        },
+        &|e| renderer.event(e),
+    )?;
     let (locked, staging) = if args.locked {
         (
             Some(read_lock(&lock_file)?),
@@ -57,8 +69,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         keep_going: true,
         record: record.name.clone(),
     };
-    let renderer = Renderer::new(verbosity, args.explain);
-    let report = engine::build(graph, &opts, &|e| renderer.event(e))?;
+    let report = engine::build_holding(graph, &opts, &cache_lock, &|e| renderer.event(e))?;
     let cached = report.count(NodeState::Cached) + report.count(NodeState::CutOff);
     if verbosity == Verbosity::Normal && cached > 0 {
         let cut = report.count(NodeState::CutOff);

@@ -373,3 +373,49 @@ fn recipes_of_one_file_name_in_two_folders_sharing_a_cache_dir_keep_their_own_re
     assert!(ok, "{err}");
     assert_eq!(nodes_in_state(&r, "ran"), Vec::<String>::new());
 }
+
+#[test]
+fn a_build_that_finds_the_cache_locked_waits_and_writes_nothing_until_it_has_the_lock() {
+    let s = Scratch::didactic_built();
+    s.edit("size = 200.0", "size = 190.0");
+    let lock_file = s.path("didactic.toml.lock");
+    let report = s.path("out/didactic/report.json");
+    let before = (
+        std::fs::read(&lock_file).unwrap(),
+        std::fs::read(&report).unwrap(),
+    );
+    let held = engine::DirLock::acquire(&s.path(".recipe"), |_| {}).expect("the cache's lock");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .args(["build", "--quiet", "didactic.toml"])
+        .current_dir(s.path(""))
+        .env_remove("RECIPE_CACHE_DIR")
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run recipe");
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "the build did not wait"
+    );
+    assert_eq!(
+        std::fs::read(&lock_file).unwrap(),
+        before.0,
+        "lock file written"
+    );
+    assert_eq!(std::fs::read(&report).unwrap(), before.1, "report written");
+    drop(held);
+    let out = child.wait_with_output().expect("the build ends");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_ne!(
+        std::fs::read(&lock_file).unwrap(),
+        before.0,
+        "the edit reached the lock"
+    );
+    // What it wrote is what a locked build of the same recipe accepts.
+    let (ok, _, err) = s.build(&["--locked"]);
+    assert!(ok, "{err}");
+}

@@ -101,14 +101,25 @@ pub enum Event {
     },
 }
 
-/// Build every node of `graph` (and every node its expanders add).
+/// Build every node of `graph` (and every node its expanders add), holding the cache's lock for
+/// the build only.
 pub fn build(
     graph: BuildGraph,
     opts: &BuildOptions,
     on_event: &(dyn Fn(&Event) + Sync),
 ) -> Result<BuildReport, EngineError> {
-    let mut graph = graph;
-    let t0 = Instant::now();
+    let lock = lock_cache(opts, on_event)?;
+    build_holding(graph, opts, &lock, on_event)
+}
+
+/// Claims `opts.cache_dir` as a cache (see `marker`) and takes its lock, telling `on_event` when
+/// another build holds it first. A caller that writes files of its own after the build (a lock
+/// file, a report) holds the guard until they are written, so that a build racing it cannot
+/// interleave its outputs with them.
+pub fn lock_cache(
+    opts: &BuildOptions,
+    on_event: &(dyn Fn(&Event) + Sync),
+) -> Result<DirLock, EngineError> {
     if !crate::manifest::is_record_name(&opts.record) {
         return Err(EngineError::Invalid {
             path: opts.cache_dir.clone(),
@@ -119,11 +130,31 @@ pub fn build(
         });
     }
     crate::marker::claim(&opts.cache_dir)?;
-    let _lock = DirLock::acquire(&opts.cache_dir, |p| {
+    DirLock::acquire(&opts.cache_dir, |p| {
         on_event(&Event::WaitingForLock {
             path: p.to_path_buf(),
         })
-    })?;
+    })
+}
+
+/// [`build`] under a lock the caller took with [`lock_cache`] on the same options.
+pub fn build_holding(
+    graph: BuildGraph,
+    opts: &BuildOptions,
+    lock: &DirLock,
+    on_event: &(dyn Fn(&Event) + Sync),
+) -> Result<BuildReport, EngineError> {
+    if lock.path() != opts.cache_dir.join("lock") {
+        return Err(EngineError::Invalid {
+            path: opts.cache_dir.clone(),
+            message: format!(
+                "the build holds the lock of another cache ({})",
+                lock.path().display()
+            ),
+        });
+    }
+    let mut graph = graph;
+    let t0 = Instant::now();
     let store = Store::open(&opts.cache_dir)?;
     store.sweep_temporaries()?;
     let record_dir = opts.record_dir();

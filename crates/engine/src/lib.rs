@@ -45,7 +45,8 @@ pub mod store;
 mod worker;
 
 pub use artifact::{Artifact, FileSet, Hash};
-pub use build::{BuildOptions, DEFAULT_RECORD, Event, build};
+pub use build::{BuildOptions, DEFAULT_RECORD, Event, build, build_holding, lock_cache};
+pub use dirlock::DirLock;
 pub use error::EngineError;
 pub use gc::{GcStats, clean, forget, gc};
 pub use graph::{BuildGraph, Expander, Expansion, GraphError, NodeId};
