@@ -43,6 +43,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         },
         &|e| renderer.event(e),
     )?;
+    sweep_debris(&lock_file, &output_dir, &record.dir(&cache));
     let (locked, staging) = if args.locked {
         (
             Some(read_lock(&lock_file)?),
@@ -251,6 +252,14 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
 /// Prints what validation found on every surface imported in this build that had findings, what
 /// repair removed and what remains, then the report (`validation.json` beside the outputs has
 /// all of it).
+/// Removes what killed builds of this recipe left (see `debris`); run under the cache's lock.
+fn sweep_debris(lock_file: &Path, output_dir: &Path, record_dir: &Path) {
+    let _ = engine::store::sweep_temporaries_of(lock_file);
+    super::debris::sweep_temporaries(output_dir);
+    super::debris::sweep_staging(output_dir);
+    super::debris::sweep_temporaries(record_dir);
+}
+
 /// The sizes' warnings for the regions whose tet mesh ran in this build (a cached region was
 /// warned about when it ran; the report keeps every warning).
 fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {

@@ -5,8 +5,8 @@
 //! engine writes there only the emitted files that differ from the output directory, the command
 //! line its report files. Until [`Staging::publish`] the output directory is never written; a
 //! staging directory that is dropped unpublished (the build or the lock check failed) is removed
-//! with everything in it, and so are the parent directories that were created for it (only a
-//! process killed outright leaves one behind, named as the temporary it is).
+//! with everything in it, and so are the parent directories that were created for it. A process
+//! killed outright leaves one behind, with its pid in it, which the next build removes (`debris`).
 
 use super::Failure;
 use std::path::{Path, PathBuf};
@@ -42,12 +42,17 @@ impl Staging {
         created.reverse();
         let mut staging = Staging { dir: None, created };
         std::fs::create_dir_all(&parent).map_err(cannot)?;
-        staging.dir = Some(
-            tempfile::Builder::new()
-                .prefix(&format!("{}{name}-", engine::store::TEMP_PREFIX))
-                .tempdir_in(&parent)
-                .map_err(cannot)?,
-        );
+        let dir = tempfile::Builder::new()
+            .prefix(&format!("{}{name}-", engine::store::TEMP_PREFIX))
+            .tempdir_in(&parent)
+            .map_err(cannot)?;
+        // Whose it is: a later build removes it if this process dies before it does.
+        std::fs::write(
+            dir.path().join(super::debris::OWNER),
+            std::process::id().to_string(),
+        )
+        .map_err(cannot)?;
+        staging.dir = Some(dir);
         Ok(staging)
     }
 
@@ -61,6 +66,7 @@ impl Staging {
         let root = self.path().to_path_buf();
         let mut files = Vec::new();
         list_files(&root, &root, &mut files)?;
+        files.retain(|f| f != Path::new(super::debris::OWNER));
         files.sort();
         for rel in &files {
             let to = output_dir.join(rel);

@@ -419,3 +419,75 @@ fn a_build_that_finds_the_cache_locked_waits_and_writes_nothing_until_it_has_the
     let (ok, _, err) = s.build(&["--locked"]);
     assert!(ok, "{err}");
 }
+
+/// Every name under the scratch folder (outside the cache's objects) that a killed write could
+/// have left.
+fn debris(s: &Scratch) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut stack = vec![s.path("")];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with(".tmp-") && name != ".tmp-notes" {
+                out.push(e.path().display().to_string());
+            }
+            if e.file_type().unwrap().is_dir() {
+                stack.push(e.path());
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn the_next_build_removes_what_killed_builds_left_and_nothing_of_the_users() {
+    let s = Scratch::didactic_built();
+    let record = s.record_of("didactic.toml");
+    let left = [
+        s.path("out/didactic/.tmp-didactic.msh.Ab12Cd"),
+        s.path(".tmp-didactic.toml.lock.Zz9Yy8"),
+        record.join(".tmp-last-report.json.q1w2e3"),
+    ];
+    for f in &left {
+        std::fs::write(f, b"partial").unwrap();
+    }
+    let staging = s.path("out/.tmp-didactic-x1y2z3");
+    std::fs::create_dir_all(&staging).unwrap();
+    std::fs::write(staging.join(".georecipe-staging"), u32::MAX.to_string()).unwrap();
+    std::fs::write(staging.join("didactic.msh"), b"partial").unwrap();
+    std::fs::write(s.path("out/didactic/.tmp-notes"), b"the user's").unwrap();
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert_eq!(debris(&s), Vec::<String>::new());
+    assert!(
+        s.path("out/didactic/.tmp-notes").exists(),
+        "a user's file stays"
+    );
+
+    // A --locked build killed at some moment of its run: whatever it left, the next one clears.
+    for delay_ms in [150, 600] {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+            .args([
+                "build",
+                "--locked",
+                "--quiet",
+                "--cache-dir",
+                "fresh",
+                "didactic.toml",
+            ])
+            .current_dir(s.path(""))
+            .spawn()
+            .expect("run recipe");
+        std::thread::sleep(std::time::Duration::from_millis(delay_ms));
+        let _ = child.kill();
+        let _ = child.wait();
+        let (ok, _, err) = s.build(&["--cache-dir", "fresh"]);
+        assert!(ok, "{err}");
+        let left: Vec<String> = debris(&s)
+            .into_iter()
+            .filter(|p| !p.contains("/fresh/"))
+            .collect();
+        assert_eq!(left, Vec::<String>::new(), "after a kill at {delay_ms} ms");
+    }
+}

@@ -159,9 +159,44 @@ impl Store {
 /// The prefix of every temporary file of an atomic write.
 pub const TEMP_PREFIX: &str = ".tmp-";
 
+/// The prefix of the temporaries [`write_atomic`] makes for `path`: [`TEMP_PREFIX`], the file's
+/// name and a dot (`.tmp-report.json.`), so that debris a killed write left can be told from
+/// anyone else's files and swept ([`sweep_temporaries_of`]).
+pub fn temp_prefix_of(path: &Path) -> String {
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    format!("{TEMP_PREFIX}{name}.")
+}
+
+/// Removes the temporaries [`write_atomic`] left beside `path` (a process killed mid-write);
+/// returns how many. Only for a path whose writers the caller's lock excludes.
+pub fn sweep_temporaries_of(path: &Path) -> std::io::Result<usize> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let prefix = temp_prefix_of(path);
+    let mut removed = 0;
+    let entries = match std::fs::read_dir(dir) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(0),
+        Err(e) => return Err(e),
+    };
+    for entry in entries {
+        let entry = entry?;
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && entry.file_name().to_string_lossy().starts_with(&prefix) {
+            std::fs::remove_file(entry.path())?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
+}
+
 /// Write `bytes` to `path` through a temporary file in the same directory and a rename.
 /// `durable` also flushes the data to disk before the rename (used for user-visible outputs).
-/// The temporary's name starts with [`TEMP_PREFIX`].
+/// The temporary's name starts with [`temp_prefix_of`] `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -169,7 +204,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result
     };
     std::fs::create_dir_all(&dir)?;
     let mut b = tempfile::Builder::new();
-    b.prefix(TEMP_PREFIX);
+    let prefix = temp_prefix_of(path);
+    b.prefix(&prefix);
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
