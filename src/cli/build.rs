@@ -106,6 +106,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     }
     if verbosity >= Verbosity::Normal {
         print_findings(&report);
+        print_crossings(&report);
         print_thin_regions(&recipe, &report);
     }
     let count = |s: NodeState| report.count(s);
@@ -258,6 +259,16 @@ fn sweep_debris(lock_file: &Path, output_dir: &Path, record_dir: &Path) {
     super::debris::sweep_temporaries(output_dir);
     super::debris::sweep_staging(output_dir);
     super::debris::sweep_temporaries(record_dir);
+}
+
+/// The surfaces that meet without being paired, when the check ran in this build.
+fn print_crossings(report: &BuildReport) {
+    let ran = report
+        .node("crossings")
+        .is_some_and(|n| n.state == NodeState::Ran);
+    for c in plan::ops::unpaired_crossings(report).iter().filter(|_| ran) {
+        errln!("{:>12} {}", "Warning", c.message());
+    }
 }
 
 /// The sizes' warnings for the regions whose tet mesh ran in this build (a cached region was

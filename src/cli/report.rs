@@ -76,7 +76,10 @@ pub fn write_report(
         .collect();
     surfaces.sort_by(|a, b| a.name.cmp(&b.name));
     let (mut curves, mut patches, mut regions) = (Vec::new(), Vec::new(), Vec::new());
-    let mut warnings = Vec::new();
+    let mut warnings: Vec<String> = crate::plan::ops::unpaired_crossings(report)
+        .iter()
+        .map(|c| c.message())
+        .collect();
     if let Some(m) = &model {
         curves = m
             .topology
@@ -95,10 +98,11 @@ pub fn write_report(
             .map(|p| (p.name.as_str(), p.surface.as_str()))
             .collect();
         (patches, regions) = model_summaries(&named, &m.regions);
-        warnings = crate::plan::ops::thin_region_warnings(recipe, m)
-            .into_iter()
-            .map(|(_, w)| w)
-            .collect();
+        warnings.extend(
+            crate::plan::ops::thin_region_warnings(recipe, m)
+                .into_iter()
+                .map(|(_, w)| w),
+        );
         for p in &mut patches {
             p.triangles = count(report, &format!("surface_mesh:{}", p.name), "triangles");
         }

@@ -111,6 +111,31 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     // The topological model needs something that closes the regions: the box, or surfaces that
     // are sealed already (`[model] sealed = true`, e.g. a gOcad Model3d).
     if box_node.is_some() || recipe.model.sealed {
+        let mut paired: Vec<(String, String)> = recipe
+            .intersect
+            .iter()
+            .map(|(a, b)| {
+                if a <= b {
+                    (a.clone(), b.clone())
+                } else {
+                    (b.clone(), a.clone())
+                }
+            })
+            .collect();
+        paired.sort();
+        paired.dedup();
+        let (check_inputs, check_groups) = Wiring::new()
+            .group("box", box_node)
+            .group("surfaces", surface_nodes.values().copied())
+            .finish();
+        g.add_op(
+            "crossings",
+            Arc::new(super::ops::CrossingsOp {
+                inputs: check_groups,
+                paired,
+            }),
+            &check_inputs,
+        )?;
         let (inputs, groups) = Wiring::new()
             .group("box", box_node)
             .group("surfaces", surface_nodes.values().copied())

@@ -229,3 +229,34 @@ fn an_intersected_surface_outside_the_box_fails_the_model_at_the_box_line_with_t
     );
     assert!(!err.contains("matches no curve"), "{err}");
 }
+
+#[test]
+fn two_surfaces_that_meet_without_an_intersect_pair_are_named_with_the_pair_to_add() {
+    let s = Scratch::didactic();
+    s.edit(
+        "pairs = [[\"F2\", \"H1\"], [\"F2\", \"H2\"]]",
+        "pairs = [[\"F2\", \"H1\"]]",
+    );
+    let (_, r, err) = s.build(&[]);
+    assert!(
+        err.contains("surfaces `F2` and `H2` meet") && err.contains("add `[\"F2\", \"H2\"]`"),
+        "{err}"
+    );
+    let crossings = r["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["name"] == "crossings")
+        .expect("the check ran");
+    assert_eq!(crossings["counts"]["unpaired"], 1);
+    let report = std::fs::read_to_string(s.path("out/didactic/report.json")).unwrap();
+    assert!(report.contains("`[intersect]` does not pair them"));
+    // With the pair back, nothing is unpaired.
+    s.edit(
+        "pairs = [[\"F2\", \"H1\"]]",
+        "pairs = [[\"F2\", \"H1\"], [\"F2\", \"H2\"]]",
+    );
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert!(!err.contains("does not pair"), "{err}");
+}

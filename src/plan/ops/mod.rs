@@ -2,6 +2,7 @@
 //! pure stage functions, plus the artifact types they exchange. Each operation declares exactly
 //! the parameters it reads; its `version` is bumped whenever its output for the same inputs changes.
 
+mod crossings;
 mod curves;
 mod expand;
 mod export;
@@ -13,6 +14,7 @@ mod patch;
 mod refine;
 mod region;
 mod sizes;
+pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
 pub use refine::RefineOp;
 pub use sizes::thin_region_warnings;
 
