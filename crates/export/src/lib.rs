@@ -119,8 +119,8 @@ pub fn export(
     let contents = match format {
         Format::Msh => vec![msh::write(mesh, false)],
         Format::MshBinary => vec![msh::write(mesh, true)],
-        Format::Vtu => vec![vtu::write(mesh, false)],
-        Format::VtuBinary => vec![vtu::write(mesh, true)],
+        Format::Vtu => vec![vtu::write(mesh, false)?],
+        Format::VtuBinary => vec![vtu::write(mesh, true)?],
         Format::TetGen => Vec::from(tetgen::write(mesh, model_name)),
         Format::Medit => vec![medit::write(mesh)],
         Format::Inp => vec![inp::write(mesh, model_name)?],

@@ -48,7 +48,7 @@ impl Operation for ExportOp {
         "export"
     }
     fn version(&self) -> u32 {
-        3
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

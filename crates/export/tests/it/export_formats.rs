@@ -51,8 +51,8 @@ fn every_format_reads_back_in_meshio_with_its_counts_and_region_tags() {
     for (format, main, region_tags, with_tris) in [
         (Format::Msh, "layered.msh", "1,2,3", true),
         (Format::MshBinary, "layered.msh", "1,2,3", true),
-        (Format::Vtu, "layered.vtu", "0,1,2", true),
-        (Format::VtuBinary, "layered.vtu", "0,1,2", true),
+        (Format::Vtu, "layered.vtu", "1,2,3", true),
+        (Format::VtuBinary, "layered.vtu", "1,2,3", true),
         (Format::Medit, "layered.mesh", "1,2,3", true),
         (Format::TetGen, "layered.1.node", "", false),
     ] {
@@ -77,7 +77,7 @@ fn every_format_reads_back_in_meshio_with_its_counts_and_region_tags() {
                 "{field}"
             );
             let cells = line("CELLS ");
-            for k in ["material", "density", "porosity", "surface"] {
+            for k in ["MaterialIDs", "density", "porosity", "surface"] {
                 assert!(cells.contains(k), "vtu cell data lacks {k}: {cells}");
             }
         }

@@ -4,6 +4,7 @@
 mod export_bytes;
 mod export_exodus;
 mod export_formats;
+mod export_vtu;
 mod quality_tables;
 mod read_malformed;
 mod read_volume_roundtrip;

@@ -1,0 +1,51 @@
+//! The VTU cell arrays, one value per cell (tets, then triangles): `MaterialIDs`, `region`,
+//! `surface` and the region properties. -1 stands for "none" in the integer arrays (ids start
+//! at 1 and material ids may be 0), NaN for a property a region does not have.
+
+use super::writer::Writer;
+use crate::property_names;
+use geom::mesh::VolumeMesh;
+use std::iter::repeat_n;
+
+/// Each region's material id as `MaterialIDs` holds it (-1 for none); fails on one that does
+/// not fit Int32.
+pub(super) fn materials(mesh: &VolumeMesh) -> Result<Vec<i32>, String> {
+    mesh.regions
+        .iter()
+        .map(|r| match r.material {
+            None => Ok(-1),
+            Some(m) => i32::try_from(m).map_err(|_| {
+                format!(
+                    "region '{}' has material {m}: VTU MaterialIDs are 32-bit",
+                    r.name
+                )
+            }),
+        })
+        .collect()
+}
+
+/// Writes every cell array; `materials` from [`materials`].
+pub(super) fn put(w: &mut Writer, mesh: &VolumeMesh, materials: &[i32]) {
+    let nf = mesh.triangles.len();
+    w.array("MaterialIDs", 1, per_tet(mesh, |r| materials[r]));
+    w.array("region", 1, per_tet(mesh, |r| r as i32 + 1));
+    let surface = mesh.triangle_group.iter().map(|&g| g as i32 + 1);
+    w.array("surface", 1, repeat_n(-1, mesh.tets.len()).chain(surface));
+    for name in &property_names(mesh) {
+        let value = |r: u32| {
+            let region = &mesh.regions[r as usize];
+            region.properties.get(name).copied().unwrap_or(f64::NAN)
+        };
+        let tets = mesh.tet_region.iter().map(|&r| value(r));
+        w.array(name, 1, tets.chain(repeat_n(f64::NAN, nf)));
+    }
+}
+
+/// `f(region)` on every tet, then -1 on every triangle.
+fn per_tet<'a>(
+    mesh: &'a VolumeMesh,
+    f: impl Fn(usize) -> i32 + 'a,
+) -> impl Iterator<Item = i32> + 'a {
+    let tets = mesh.tet_region.iter().map(move |&r| f(r as usize));
+    tets.chain(repeat_n(-1, mesh.triangles.len()))
+}
