@@ -1,73 +1,47 @@
-//! Writes named polylines (the model's discretized curves) as a VTK UnstructuredGrid (VTU) of
-//! poly-line cells, so users can look at their curve subdivisions in ParaView before any mesh.
-//! ASCII, deterministic bytes; point data `curve` (curve index) and field data with the names.
+//! Writes named polylines (the model's discretized curves) as a VTK UnstructuredGrid (VTU), so
+//! users can look at their curve subdivisions in ParaView before any mesh. Each segment is one
+//! line cell (VTK type 3) rather than each curve one poly-line: meshio reads lines and not
+//! poly-lines, and ParaView shows both alike. Cell data `curve` holds the curve's id (its index
+//! plus one, the crate's one scheme); the names table is field data, `curve:<name>` holding the
+//! id, as the volume VTU names its regions. ASCII, deterministic bytes.
 
-use std::fmt::Write as _;
+use crate::vtu::writer::Writer;
 
 /// `curves`: (name, nodes) in the order to write; returns the VTU document.
 pub fn write_curves_vtu(curves: &[(String, Vec<[f64; 3]>)]) -> Vec<u8> {
     let npts: usize = curves.iter().map(|(_, n)| n.len()).sum();
-    let mut s = String::with_capacity(64 * npts + 1024);
-    s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
-    s.push_str("<FieldData>\n");
-    for (i, (name, _)) in curves.iter().enumerate() {
-        let _ = writeln!(
-            s,
-            "<Array type=\"UInt8\" Name=\"curve {i}: {}\" NumberOfTuples=\"1\" format=\"ascii\">0</Array>",
-            xml_escape(name)
-        );
+    let segments = || {
+        let mut first = 0;
+        curves.iter().enumerate().flat_map(move |(c, (_, nodes))| {
+            let start = first;
+            first += nodes.len();
+            (1..nodes.len()).map(move |k| (c, start + k - 1))
+        })
+    };
+    let ncells = segments().count();
+    let mut w = Writer::new(false, 0);
+    w.xml.push_str("<FieldData>\n");
+    for (c, (name, _)) in curves.iter().enumerate() {
+        w.field_int(&format!("curve:{name}"), c as i64 + 1);
     }
-    s.push_str("</FieldData>\n");
-    let _ = writeln!(
-        s,
-        "<Piece NumberOfPoints=\"{npts}\" NumberOfCells=\"{}\">",
-        curves.len()
+    w.xml.push_str(&format!(
+        "</FieldData>\n<Piece NumberOfPoints=\"{npts}\" NumberOfCells=\"{ncells}\">\n<Points>\n"
+    ));
+    w.array(
+        "Points",
+        3,
+        curves.iter().flat_map(|(_, n)| n.iter().flatten().copied()),
     );
-    s.push_str(
-        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
-    );
-    for (_, nodes) in curves {
-        for p in nodes {
-            let _ = writeln!(s, "{} {} {}", p[0], p[1], p[2]);
-        }
-    }
-    s.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    let mut k = 0usize;
-    for (_, nodes) in curves {
-        joined(&mut s, k..k + nodes.len());
-        s.push('\n');
-        k += nodes.len();
-    }
-    s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    let mut off = 0usize;
-    for (_, nodes) in curves {
-        off += nodes.len();
-        let _ = write!(s, "{off} ");
-    }
-    s.push_str("\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    joined(&mut s, std::iter::repeat_n(4, curves.len()));
-    s.push_str("\n</DataArray>\n</Cells>\n<CellData Scalars=\"curve\">\n<DataArray type=\"Int32\" Name=\"curve\" format=\"ascii\">\n");
-    joined(&mut s, 0..curves.len());
-    s.push_str("\n</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    s.shrink_to_fit();
-    s.into_bytes()
-}
-
-/// Appends `items` separated by single spaces.
-fn joined(s: &mut String, items: impl Iterator<Item = usize>) {
-    for (i, v) in items.enumerate() {
-        if i > 0 {
-            s.push(' ');
-        }
-        let _ = write!(s, "{v}");
-    }
-}
-
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
+    w.xml.push_str("</Points>\n<Cells>\n");
+    w.indices("connectivity", npts, || {
+        segments().flat_map(|(_, a)| [a, a + 1])
+    });
+    w.indices("offsets", 2 * ncells, || (1..=ncells).map(|i| 2 * i));
+    w.array("types", 1, std::iter::repeat_n(3u8, ncells));
+    w.xml.push_str("</Cells>\n<CellData Scalars=\"curve\">\n");
+    w.array("curve", 1, segments().map(|(c, _)| c as i32 + 1));
+    w.xml.push_str("</CellData>\n");
+    w.finish()
 }
 
 #[cfg(test)]
@@ -75,7 +49,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_curve_becomes_one_poly_line_cell_with_its_points() {
+    fn every_segment_becomes_one_line_cell_of_its_curve() {
         let v = write_curves_vtu(&[
             ("a/b".into(), vec![[0.0; 3], [1.0, 0.0, 0.0]]),
             (
@@ -84,8 +58,19 @@ mod tests {
             ),
         ]);
         let s = String::from_utf8(v).unwrap();
-        assert!(s.contains("NumberOfPoints=\"5\" NumberOfCells=\"2\""));
-        assert!(s.contains("2 5 "));
-        assert!(s.contains("curve 1: c#1"));
+        assert!(
+            s.contains("NumberOfPoints=\"5\" NumberOfCells=\"3\""),
+            "{s}"
+        );
+        assert!(s.contains("0 1 2 3 3 4\n"), "{s}");
+        assert!(
+            s.contains("Name=\"types\" format=\"ascii\">\n3 3 3\n"),
+            "{s}"
+        );
+        assert!(
+            s.contains("Name=\"curve\" format=\"ascii\">\n1 2 2\n"),
+            "{s}"
+        );
+        assert!(s.contains("Name=\"curve:c#1\" NumberOfTuples=\"1\" format=\"ascii\">2<"));
     }
 }

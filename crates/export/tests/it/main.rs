@@ -2,6 +2,7 @@
 //! change instead of one per file).
 
 mod export_bytes;
+mod export_curves;
 mod export_exodus;
 mod export_formats;
 mod export_vtu;
