@@ -35,7 +35,8 @@ pub enum Format {
     TetGen,
     /// MEDIT `.mesh` (INRIA), as read by mmg and meshio.
     Medit,
-    /// Abaqus `.inp` (C3D4 elements, region element sets, surface node sets and surfaces).
+    /// Abaqus `.inp` (C3D4 elements, a material and a solid section per region, node sets and
+    /// element-face surfaces per surface group, a surface per fault side).
     Inp,
     /// Exodus II `.exo` (netCDF 64-bit offset): an element block per region, a side set and a
     /// node set per surface group, a front and a back side set per fault.

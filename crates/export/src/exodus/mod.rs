@@ -19,10 +19,10 @@
 mod blocks;
 mod fields;
 mod globals;
-mod numbering;
+pub(crate) mod numbering;
 mod set_vars;
-mod sets;
-mod sides;
+pub(crate) mod sets;
+pub(crate) mod sides;
 mod text;
 
 use crate::netcdf::File;

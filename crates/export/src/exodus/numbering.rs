@@ -7,16 +7,16 @@ use crate::split_by;
 use geom::mesh::VolumeMesh;
 
 /// The element blocks and every tet's element number.
-pub(super) struct Numbering {
+pub(crate) struct Numbering {
     /// Per block: its region index and its tets, in element-number order.
-    pub(super) blocks: Vec<(usize, Vec<usize>)>,
+    pub(crate) blocks: Vec<(usize, Vec<usize>)>,
     /// Per tet: its 1-based element number.
-    pub(super) number: Vec<u32>,
+    pub(crate) number: Vec<u32>,
 }
 
 impl Numbering {
     /// Numbers the tets of `mesh` (whose region tags are in range).
-    pub(super) fn new(mesh: &VolumeMesh) -> Numbering {
+    pub(crate) fn new(mesh: &VolumeMesh) -> Numbering {
         let blocks: Vec<(usize, Vec<usize>)> = split_by(&mesh.tet_region, mesh.regions.len())
             .into_iter()
             .enumerate()

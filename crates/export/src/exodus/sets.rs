@@ -18,21 +18,21 @@ use geom::mesh::{SurfaceKind, VolumeMesh};
 use std::collections::BTreeSet;
 
 /// A named set of (element, side) pairs.
-pub(super) struct SideSet {
-    pub(super) id: usize,
-    pub(super) name: String,
-    pub(super) faces: Vec<FaceUse>,
+pub(crate) struct SideSet {
+    pub(crate) id: usize,
+    pub(crate) name: String,
+    pub(crate) faces: Vec<FaceUse>,
 }
 
 /// A named set of 1-based node ids, ascending.
-pub(super) struct NodeSet {
-    pub(super) id: usize,
-    pub(super) name: String,
-    pub(super) nodes: Vec<u32>,
+pub(crate) struct NodeSet {
+    pub(crate) id: usize,
+    pub(crate) name: String,
+    pub(crate) nodes: Vec<u32>,
 }
 
 /// The side sets of `mesh`, given every triangle's face uses (lowest element first).
-pub(super) fn side_sets(mesh: &VolumeMesh, uses: &[Vec<FaceUse>]) -> Vec<SideSet> {
+pub(crate) fn side_sets(mesh: &VolumeMesh, uses: &[Vec<FaceUse>]) -> Vec<SideSet> {
     let n = mesh.surface_groups.len();
     let by_group = split_by(&mesh.triangle_group, n);
     let pick = |tris: &[usize], f: &dyn Fn(&[FaceUse]) -> Option<FaceUse>| -> Vec<FaceUse> {
@@ -60,7 +60,7 @@ pub(super) fn side_sets(mesh: &VolumeMesh, uses: &[Vec<FaceUse>]) -> Vec<SideSet
 }
 
 /// The node sets of `mesh`: each group's triangle nodes.
-pub(super) fn node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
+pub(crate) fn node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
     split_by(&mesh.triangle_group, mesh.surface_groups.len())
         .iter()
         .enumerate()

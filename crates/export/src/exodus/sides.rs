@@ -10,23 +10,23 @@ use geom::predicates::{Orientation, orient3d};
 use std::collections::HashMap;
 
 /// The TETRA4 sides as 0-based local node indices, side 1 first.
-pub(super) const TETRA4_SIDES: [[usize; 3]; 4] = [[0, 1, 3], [1, 2, 3], [0, 3, 2], [0, 2, 1]];
+pub(crate) const TETRA4_SIDES: [[usize; 3]; 4] = [[0, 1, 3], [1, 2, 3], [0, 3, 2], [0, 2, 1]];
 
 /// One tet that has a given triangle as a face.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub(super) struct FaceUse {
+pub(crate) struct FaceUse {
     /// The tet's 1-based element number.
-    pub(super) elem: u32,
+    pub(crate) elem: u32,
     /// The face's 1-based TETRA4 side number in that tet.
-    pub(super) side: u32,
+    pub(crate) side: u32,
     /// Whether the tet lies on the triangle's front.
-    pub(super) front: bool,
+    pub(crate) front: bool,
 }
 
 /// For every triangle of `mesh`, the tets that have it as a face (two for an interior face, one
 /// on the boundary), lowest element number first. Fails, naming the triangle's group and
-/// corners, when no tet has it: Exodus can name only element faces.
-pub(super) fn face_uses(mesh: &VolumeMesh, number: &[u32]) -> Result<Vec<Vec<FaceUse>>, String> {
+/// corners, when no tet has it: Exodus and Abaqus name only element faces.
+pub(crate) fn face_uses(mesh: &VolumeMesh, number: &[u32]) -> Result<Vec<Vec<FaceUse>>, String> {
     let mut by_key: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
     for (i, t) in mesh.triangles.iter().enumerate() {
         by_key.entry(sorted(*t)).or_default().push(i);
@@ -75,6 +75,6 @@ fn orphan(mesh: &VolumeMesh, i: usize) -> String {
         .map_or("?", |g| g.name.as_str());
     let corners = mesh.triangles[i].map(|v| mesh.nodes[v as usize]);
     format!(
-        "surface '{group}' triangle {i} {corners:?} is not a face of any tet: Exodus cannot name it"
+        "surface '{group}' triangle {i} {corners:?} is not a face of any tet: no side set can name it"
     )
 }

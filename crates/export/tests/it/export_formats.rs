@@ -4,6 +4,7 @@ use test_support::export_support;
 
 use export::{Format, export};
 use export_support::*;
+use std::collections::{BTreeMap, BTreeSet};
 
 fn counts(mesh: &geom::mesh::VolumeMesh) -> (usize, usize, usize) {
     (mesh.nodes.len(), mesh.tets.len(), mesh.triangles.len())
@@ -260,7 +261,11 @@ fn abaqus_inp_reads_in_meshio_with_region_sets_and_surface_node_sets() {
         "{out}"
     );
     let sets = line("SETS ").to_ascii_lowercase();
-    for r in ["underburden", "reservoir", "overburden", "f2_dangling_s"] {
+    let fault_sides = ["f2_dangling_front_s", "f2_dangling_back_s"];
+    for r in ["underburden", "reservoir", "overburden", "f2_dangling_s"]
+        .into_iter()
+        .chain(fault_sides)
+    {
         assert!(sets.contains(r), "no element set {r}: {out}");
     }
     assert!(
@@ -269,18 +274,18 @@ fn abaqus_inp_reads_in_meshio_with_region_sets_and_surface_node_sets() {
     );
 }
 
-#[test]
-fn abaqus_surfaces_name_the_tet_faces_that_are_our_triangles() {
-    let mesh = layered_box(4, 3);
-    let text = String::from_utf8(export(&mesh, "abq", Format::Inp).unwrap().remove(0).1).unwrap();
-    // Parse elements and the F2_dangling surface's element sets back.
-    let mut elems: std::collections::BTreeMap<usize, [u32; 4]> = Default::default();
-    let mut sets: std::collections::BTreeMap<String, Vec<usize>> = Default::default();
+/// Element number → its nodes (0-based).
+type Elements = BTreeMap<usize, [u32; 4]>;
+/// Surface name → its (element, face) pairs.
+type Surfaces = BTreeMap<String, Vec<(usize, String)>>;
+
+/// The elements of an `.inp` and the (element, face) pairs of each of its element-face surfaces
+/// (from the `<surface>_S<n>` element sets).
+fn inp_surfaces(text: &str) -> (Elements, Surfaces) {
+    let mut elems = BTreeMap::new();
+    let mut surfaces = Surfaces::new();
     let mut mode = String::new();
-    for l in text.lines() {
-        if l.starts_with("**") {
-            continue;
-        }
+    for l in text.lines().filter(|l| !l.starts_with("**")) {
         if l.starts_with('*') {
             mode = l.to_string();
             continue;
@@ -296,27 +301,40 @@ fn abaqus_surfaces_name_the_tet_faces_that_are_our_triangles() {
                 .map(|t| t.parse::<u32>().unwrap() - 1)
                 .collect();
             elems.insert(v[0].parse().unwrap(), [n[0], n[1], n[2], n[3]]);
-        } else if let Some(name) = mode.strip_prefix("*Elset, elset=F2_dangling_") {
-            sets.entry(name.to_string())
-                .or_default()
-                .extend(v.iter().map(|t| t.parse::<usize>().unwrap()));
+        } else if let Some((surface, face)) = mode
+            .strip_prefix("*Elset, elset=")
+            .and_then(|name| name.rsplit_once('_'))
+            .filter(|(_, f)| f.starts_with('S') && f[1..].parse::<u8>().is_ok())
+        {
+            let faces = surfaces.entry(surface.to_string()).or_default();
+            faces.extend(v.iter().map(|t| (t.parse().unwrap(), face.to_string())));
         }
     }
+    (elems, surfaces)
+}
+
+#[test]
+fn abaqus_surfaces_name_the_tet_faces_of_a_group_and_of_each_fault_side() {
+    let mesh = layered_box(4, 3);
+    let text = String::from_utf8(export(&mesh, "abq", Format::Inp).unwrap().remove(0).1).unwrap();
+    let (elems, surfaces) = inp_surfaces(&text);
     let local = |s: &str| match s {
         "S1" => [0, 1, 2],
         "S2" => [0, 3, 1],
         "S3" => [1, 3, 2],
         _ => [2, 3, 0],
     };
-    let mut faces: Vec<[u32; 3]> = Vec::new();
-    for (side, es) in &sets {
-        for e in es {
-            let mut f = local(side).map(|k| elems[e][k]);
-            f.sort();
-            faces.push(f);
-        }
-    }
-    faces.sort();
+    let faces_of = |name: &str| {
+        let mut faces: Vec<[u32; 3]> = (surfaces[name].iter())
+            .map(|(e, side)| {
+                let mut f = local(side).map(|k| elems[e][k]);
+                f.sort();
+                f
+            })
+            .collect();
+        faces.sort();
+        faces
+    };
     let mut want: Vec<[u32; 3]> = mesh
         .triangles
         .iter()
@@ -330,5 +348,49 @@ fn abaqus_surfaces_name_the_tet_faces_that_are_our_triangles() {
         .collect();
     want.sort();
     assert!(!want.is_empty());
-    assert_eq!(faces, want);
+    for name in ["F2_dangling", "F2_dangling_front", "F2_dangling_back"] {
+        assert_eq!(faces_of(name), want, "{name}");
+    }
+    let tets = |name: &str| {
+        surfaces[name]
+            .iter()
+            .map(|(e, _)| *e)
+            .collect::<BTreeSet<_>>()
+    };
+    assert!(tets("F2_dangling_front").is_disjoint(&tets("F2_dangling_back")));
+}
+
+#[test]
+fn every_abaqus_region_has_a_solid_section_of_its_own_material_with_its_density() {
+    let mesh = layered_box(4, 3);
+    let text = String::from_utf8(export(&mesh, "abq", Format::Inp).unwrap().remove(0).1).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let mut sections = BTreeMap::new();
+    let mut densities = BTreeMap::new();
+    for (i, l) in lines.iter().enumerate() {
+        if let Some(rest) = l.strip_prefix("*Solid Section, elset=") {
+            let (elset, material) = rest.split_once(", material=").unwrap();
+            sections.insert(elset.to_string(), material.to_string());
+        } else if let Some(name) = l.strip_prefix("*Material, name=") {
+            assert_eq!(lines[i + 1], "*Density", "{name}");
+            densities.insert(name.to_string(), lines[i + 2].to_string());
+        }
+    }
+    let want_sections = BTreeMap::from([
+        ("underburden".to_string(), "M3_underburden".to_string()),
+        ("reservoir".to_string(), "M2_reservoir".to_string()),
+        ("overburden".to_string(), "NOMAT_overburden".to_string()),
+    ]);
+    assert_eq!(sections, want_sections);
+    let want_densities = BTreeMap::from([
+        ("M3_underburden".to_string(), "2600,".to_string()),
+        ("M2_reservoir".to_string(), "2300,".to_string()),
+        ("NOMAT_overburden".to_string(), "2200,".to_string()),
+    ]);
+    assert_eq!(densities, want_densities);
+    assert!(
+        text.contains(
+            "*Material, name=M2_reservoir\n*Density\n2300,\n** property porosity = 0.21\n"
+        )
+    );
 }
