@@ -140,3 +140,32 @@ fn a_salt_stock_piercing_two_horizons_meshes_into_four_regions() {
 fn a_closed_salt_diapir_inside_the_box_meshes_into_four_regions() {
     builds_and_meshes(&case("closed_salt_diapir"));
 }
+
+#[test]
+fn the_coarsely_faceted_lens_meshes_once_its_rim_is_not_cut_into_needle_patches() {
+    let mut case = test_support::geology::known_gaps()
+        .into_iter()
+        .find(|c| c.name == "lens")
+        .expect("the lens is a known gap");
+    case.recipe
+        .push_str("\n[tolerances]\ncrease_angle_deg = 45.0\n");
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let recipe = case.write(dir.path());
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(dir.path())
+        .args(["build", "--json", "--quiet"])
+        .arg(&recipe)
+        .output()
+        .expect("the recipe binary runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let regions = report["nodes"]
+        .as_array()
+        .and_then(|n| n.iter().find(|n| n["name"] == "model"))
+        .and_then(|m| m["counts"]["regions"].as_u64());
+    assert_eq!(regions, Some(4), "above, lens, host around it, below");
+}

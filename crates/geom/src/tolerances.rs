@@ -13,6 +13,12 @@ pub struct Tolerances {
     /// Boundary vertices where the polyline turns by more than this angle (degrees) become
     /// topological vertices (corners) that split boundary loops into curves. Default 30°.
     pub kink_angle_deg: f64,
+    /// Edges inside a surface where its triangles bend by more than this angle (degrees) are
+    /// creases: the surface is cut into patches there (a box TSurf folded around the box's
+    /// edges, a fold's tight hinge). Default 30°, as the folded box TSurfs of RINGMesh's models
+    /// need; a coarsely faceted curved body (a lens, a dome) bends by 30-45° between facets, and
+    /// cutting there leaves needle patches of one facet each, which 45° avoids.
+    pub crease_angle_deg: f64,
     /// A patch whose triangles face more than this angle (degrees) away from their mean
     /// direction (a tube, a closed body, a cup, a salt wall) is cut into charts, each facing
     /// within this angle of one axis direction, so that every piece flattens onto a plane
@@ -31,6 +37,7 @@ impl Default for Tolerances {
     fn default() -> Self {
         Tolerances {
             kink_angle_deg: 30.0,
+            crease_angle_deg: 30.0,
             chart_angle_deg: 60.0,
             merge_distance: 0.0,
             support_distance_rel: 1e-6,
@@ -40,9 +47,10 @@ impl Default for Tolerances {
 
 impl Tolerances {
     /// The fields as (name, value) pairs in a fixed order, for cache keys and reports.
-    pub fn fields(&self) -> [(&'static str, f64); 4] {
+    pub fn fields(&self) -> [(&'static str, f64); 5] {
         [
             ("kink_angle_deg", self.kink_angle_deg),
+            ("crease_angle_deg", self.crease_angle_deg),
             ("chart_angle_deg", self.chart_angle_deg),
             ("merge_distance", self.merge_distance),
             ("support_distance_rel", self.support_distance_rel),

@@ -6,7 +6,7 @@
 //! model's box.
 //!
 //! A crease is an edge between two triangles of the imported surface that bend by more than
-//! `Tolerances::kink_angle_deg` (a box TSurf wrapping around the box's edges in one TFACE, a
+//! `Tolerances::crease_angle_deg` (a box TSurf wrapping around the box's edges in one TFACE, a
 //! fold's tight hinge): cutting there gives patches that each flatten without folding, and the
 //! crease becomes a curve the meshes share, so the feature is kept. The bend is measured on the
 //! original triangles each split triangle lies in (never on the slivers splitting makes), and is

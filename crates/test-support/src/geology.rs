@@ -52,7 +52,9 @@ pub fn cases() -> Vec<Case> {
 
 /// Situations the pipeline cannot mesh yet, kept so that they can be reproduced and moved into
 /// [`cases`] once they mesh: the lens's host region (a box with the lens as an inner shell)
-/// stalls the tet mesher's front.
+/// stalls the tet mesher's front beside the needle patches that creases cut from the lens's
+/// rim. With `crease_angle_deg = 45` it meshes (minimum mean ratio 0.18, under the corpus's
+/// 0.2), but RINGMesh's folded boxes need the default 30.
 pub fn known_gaps() -> Vec<Case> {
     vec![lens()]
 }

@@ -118,7 +118,7 @@ impl Operation for ModelOp {
                     &s.name,
                     sp,
                     &normals[i],
-                    self.tolerances.kink_angle_deg,
+                    self.tolerances.crease_angle_deg,
                 )
                 .into_iter()
                 .map(move |p| (i, p))

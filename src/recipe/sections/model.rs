@@ -77,6 +77,7 @@ pub(crate) fn read_model(
 fn range(field: &str) -> Option<(f64, bool, f64)> {
     match field {
         "kink_angle_deg" => Some((0.0, false, 180.0)),
+        "crease_angle_deg" => Some((0.0, false, 180.0)),
         "chart_angle_deg" => Some((0.0, false, 90.0)),
         "merge_distance" => Some((0.0, true, f64::INFINITY)),
         "support_distance_rel" => Some((0.0, false, f64::INFINITY)),
