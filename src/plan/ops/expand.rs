@@ -1,9 +1,11 @@
 //! The expander attached to `model`: once the model is known it adds, for every curve,
 //! `curve:<c>` → `discretize:<c>`; for every patch, `patch:<p>` → `surface_mesh:<p>` (inputs: the
 //! discretizations of its curves); for every region, `tet_mesh:<r>` (inputs: the surface meshes
-//! of its patches); then `mesh` (all regions and patches) and `export`. Editing one curve's
-//! subdivision therefore re-runs that curve, the patches it bounds, the regions those bound,
-//! `mesh` and `export`, and nothing else.
+//! of its patches); then `mesh` (all regions and patches) and `export`. Sizes come from `sizes`
+//! (a patch at the finest of its surface's and its regions' sizes, a curve at its patches'), and
+//! each `refine:<k>` feature is an extra input of exactly the curves, patches and regions within
+//! its reach. Editing one curve's subdivision therefore re-runs that curve, the patches it
+//! bounds, the regions those bound, `mesh` and `export`, and nothing else.
 
 use super::curves::{CurveSizing, add_curve_nodes, graph_error};
 use super::refine;
