@@ -8,8 +8,9 @@ use crate::common_cli::checker;
 use std::process::Command;
 use test_support::geology::{Case, cases};
 
-/// Builds `case` in a scratch folder and checks its model, mesh and quality.
-fn builds_and_meshes(case: &Case) {
+/// Builds `case` in a scratch folder (kept for the caller's checks); asserts the build
+/// succeeded and returns the folder and the build's JSON report.
+fn build(case: &Case) -> (tempfile::TempDir, serde_json::Value) {
     let dir = tempfile::tempdir().expect("a scratch folder");
     let recipe = case.write(dir.path());
     let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
@@ -25,7 +26,13 @@ fn builds_and_meshes(case: &Case) {
         case.name,
         case.recipe
     );
-    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let report = serde_json::from_slice(&out.stdout).expect("JSON");
+    (dir, report)
+}
+
+/// Builds `case` in a scratch folder and checks its model, mesh and quality.
+fn builds_and_meshes(case: &Case) {
+    let (dir, report) = build(case);
     let model = report["nodes"]
         .as_array()
         .and_then(|n| n.iter().find(|n| n["name"] == "model"))
@@ -149,20 +156,7 @@ fn the_coarsely_faceted_lens_meshes_once_its_rim_is_not_cut_into_needle_patches(
         .expect("the lens is a known gap");
     case.recipe
         .push_str("\n[tolerances]\ncrease_angle_deg = 45.0\n");
-    let dir = tempfile::tempdir().expect("a scratch folder");
-    let recipe = case.write(dir.path());
-    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .current_dir(dir.path())
-        .args(["build", "--json", "--quiet"])
-        .arg(&recipe)
-        .output()
-        .expect("the recipe binary runs");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let (_dir, report) = build(&case);
     let regions = report["nodes"]
         .as_array()
         .and_then(|n| n.iter().find(|n| n["name"] == "model"))

@@ -96,12 +96,17 @@ fn region_size(recipe: &Recipe, name: &str, thickness: f64) -> SizeChoice {
 /// Per patch of `model` (in its order), the size its surface mesh uses; `regions` as
 /// [`region_sizes`] gives them.
 pub fn patch_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]) -> Vec<SizeChoice> {
+    // Per patch, the regions on its sides (a region's sides are sorted by patch, so a region
+    // with both sides of a patch comes twice in a row).
     let mut bounded: Vec<Vec<&SizeChoice>> = vec![Vec::new(); model.patches.len()];
     for (r, choice) in model.regions.regions.iter().zip(regions) {
-        for f in &r.sides {
-            if let Some(rs) = bounded.get_mut(f.patch as usize)
-                && !rs.last().is_some_and(|c| std::ptr::eq(*c, choice))
-            {
+        let mut last = None;
+        for f in r
+            .sides
+            .iter()
+            .filter(|f| last.replace(f.patch) != Some(f.patch))
+        {
+            if let Some(rs) = bounded.get_mut(f.patch as usize) {
                 rs.push(choice);
             }
         }
