@@ -1,5 +1,6 @@
 //! `recipe tetmesh`: the tetrahedral mesher on its own, for one closed boundary given as a file
-//! (Gmsh .msh, .off, .obj), with optional embedded (dangling) faces.
+//! (Gmsh .msh, .off, .obj), with optional embedded (dangling) faces. The boundary may hold inner
+//! shells (each connected piece is a shell) and point either way: region finding orients it.
 
 use super::Failure;
 use super::build::write_atomic;
@@ -14,7 +15,8 @@ use tet_mesh::{Method, RegionInput, SizeField, TetMeshOptions, mesh_region};
 
 #[derive(clap::Args, Debug)]
 pub struct TetmeshArgs {
-    /// Closed boundary surface (.msh, .off, .obj); either orientation
+    /// Closed boundary surface (.msh, .off, .obj): an outer shell and any inner shells (the
+    /// cavities of a host around a body); either orientation
     pub boundary: PathBuf,
     /// Output mesh; the format follows the extension: .msh (4.1), .vtu, .mesh (MEDIT), .node (TetGen)
     #[arg(short, long)]
@@ -135,29 +137,12 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
             a.boundary.display()
         )));
     }
-    // Orientation: the caller's triangles may point inwards. Region finding decides exactly
-    // which side of the shell is enclosed; the triangles must face away from it.
-    let shell = regions::PatchIn {
-        chart_of: None,
-        name: "boundary".into(),
-        surface: "boundary".into(),
-        mesh: geom::TriMesh::new(pool.vertices.clone(), boundary.clone()),
-    };
-    let model = regions::find_regions(&[shell], &[]).map_err(|e| {
+    orient_outwards(&pool.vertices, &mut boundary).map_err(|e| {
         Failure(format!(
             "error: {}: the boundary does not enclose a region: {e}",
             a.boundary.display()
         ))
     })?;
-    let inward = model
-        .regions
-        .first()
-        .is_some_and(|r| r.sides.iter().any(|f| f.side == regions::Side::Front));
-    if inward {
-        for t in &mut boundary {
-            t.swap(1, 2);
-        }
-    }
     let name = a.name.clone().unwrap_or_else(|| {
         a.boundary
             .file_stem()
@@ -255,6 +240,48 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         mesh.tets.len() as f64 / secs.max(1e-9)
     );
     err!("{}", quality::render_table2(&quality::table2(&mesh)));
+    Ok(())
+}
+
+/// Orients `boundary` (over `vertices`) to face away from the region it encloses. Each connected
+/// piece is a shell: the outer one and any inner ones (the cavities of a host around a lens or a
+/// salt body). Region finding decides exactly which side of each shell is enclosed; the region
+/// meshed is the one every shell bounds, and the caller's triangles may point either way.
+fn orient_outwards(vertices: &[[f64; 3]], boundary: &mut [[u32; 3]]) -> Result<(), String> {
+    let all = geom::TriMesh::new(vertices.to_vec(), boundary.to_vec());
+    let pieces = model::charts::connected_groups(&all, |_| 0);
+    let shells: Vec<regions::PatchIn> = pieces
+        .iter()
+        .enumerate()
+        .map(|(k, ts)| regions::PatchIn {
+            chart_of: None,
+            name: format!("shell#{}", k + 1),
+            surface: "boundary".into(),
+            mesh: geom::TriMesh::new(
+                vertices.to_vec(),
+                ts.iter().map(|&t| boundary[t as usize]).collect(),
+            ),
+        })
+        .collect();
+    let model = regions::find_regions(&shells, &[]).map_err(|e| e.to_string())?;
+    let region = model
+        .regions
+        .iter()
+        .find(|r| r.sides.len() == shells.len())
+        .ok_or_else(|| {
+            format!(
+                "its {} shells do not bound one region together (are some outside the others, \
+                 or nested twice?)",
+                shells.len()
+            )
+        })?;
+    for side in &region.sides {
+        if side.side == regions::Side::Front {
+            for &t in &pieces[side.patch as usize] {
+                boundary[t as usize].swap(1, 2);
+            }
+        }
+    }
     Ok(())
 }
 

@@ -114,3 +114,126 @@ fn a_boundary_given_inward_oriented_is_turned_around_exactly_and_meshes_the_same
     assert!(a.contains("tets"), "{a}");
     assert_eq!(a, b, "both orientations give the same tet and node counts");
 }
+
+/// The OFF text of closed boxes, each given as (min, max) and written with outward triangles.
+fn boxes_off(boxes: &[([f64; 3], [f64; 3])]) -> String {
+    let mut vertices = String::new();
+    let mut faces = String::new();
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    for (k, (lo, hi)) in boxes.iter().enumerate() {
+        for i in 0..8 {
+            let p = [0, 1, 2].map(|a| if (i >> a) & 1 == 1 { hi[a] } else { lo[a] });
+            vertices.push_str(&format!("{} {} {}\n", p[0], p[1], p[2]));
+        }
+        for q in quads {
+            let q = q.map(|v| v + 8 * k);
+            faces.push_str(&format!(
+                "3 {} {} {}\n3 {} {} {}\n",
+                q[0], q[1], q[2], q[0], q[2], q[3]
+            ));
+        }
+    }
+    format!(
+        "OFF\n{} {} 0\n{vertices}{faces}",
+        8 * boxes.len(),
+        12 * boxes.len()
+    )
+}
+
+/// The total volume of the tets of a MEDIT file.
+fn medit_volume(text: &str) -> f64 {
+    let lines: Vec<&str> = text.lines().map(str::trim).collect();
+    let block = |name: &str| {
+        let at = lines.iter().position(|l| *l == name).expect(name);
+        let n: usize = lines[at + 1].parse().unwrap();
+        lines[at + 2..at + 2 + n]
+            .iter()
+            .map(|l| {
+                l.split_whitespace()
+                    .map(|x| x.parse::<f64>().unwrap())
+                    .collect::<Vec<f64>>()
+            })
+            .collect::<Vec<_>>()
+    };
+    let v = block("Vertices");
+    block("Tetrahedra")
+        .iter()
+        .map(|t| {
+            let p = |i: usize| &v[t[i] as usize - 1];
+            let d = |i: usize| [0, 1, 2].map(|a| p(i)[a] - p(0)[a]);
+            let (a, b, c) = (d(1), d(2), d(3));
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0
+        })
+        .sum()
+}
+
+#[test]
+fn a_boundary_with_an_inner_shell_meshes_the_space_between_the_shells_only() {
+    // A host block around a lens-like body: the inner box written outward like a solid, as a
+    // modeller exports it; the mesher must turn it to face into the cavity.
+    let dir = tempfile::tempdir().unwrap();
+    let off = dir.path().join("host.off");
+    std::fs::write(
+        &off,
+        boxes_off(&[
+            ([0.0, 0.0, 0.0], [10.0, 10.0, 10.0]),
+            ([3.0, 4.0, 4.5], [7.0, 6.0, 5.5]),
+        ]),
+    )
+    .unwrap();
+    let out = dir.path().join("host.mesh");
+    let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .arg("tetmesh")
+        .arg(&off)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let volume = medit_volume(&std::fs::read_to_string(&out).unwrap());
+    assert!(
+        (volume - (1000.0 - 8.0)).abs() < 1e-6,
+        "meshed volume {volume}"
+    );
+}
+
+#[test]
+fn two_boxes_side_by_side_are_refused_as_not_one_region() {
+    let dir = tempfile::tempdir().unwrap();
+    let off = dir.path().join("two.off");
+    std::fs::write(
+        &off,
+        boxes_off(&[
+            ([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]),
+            ([2.0, 0.0, 0.0], [3.0, 1.0, 1.0]),
+        ]),
+    )
+    .unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .arg("tetmesh")
+        .arg(&off)
+        .arg("-o")
+        .arg(dir.path().join("two.msh"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert!(
+        err.contains("2 shells do not bound one region together"),
+        "{err}"
+    );
+    assert!(!dir.path().join("two.msh").exists(), "no partial output");
+}
