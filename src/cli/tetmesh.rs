@@ -182,8 +182,8 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         (_, Method::Front) => "advancing front".to_string(),
         (Some(why), _) => format!("advancing front (Delaunay gave way: {why})"),
         (None, _) => format!(
-            "Delaunay, {} boundary triangles recovered",
-            out.stats.recovered_faces
+            "Delaunay, {} boundary triangles recovered by flips, {} through holes",
+            out.stats.flipped_faces, out.stats.recovered_faces
         ),
     };
 

@@ -156,6 +156,9 @@ pub struct TetMeshStats {
     /// Boundary or embedded triangles that were not Delaunay faces and were recovered through a
     /// hole re-meshed by the front (Delaunay method).
     pub recovered_faces: usize,
+    /// Boundary or embedded triangles that were not Delaunay faces and were recovered by flips
+    /// (Delaunay method).
+    pub flipped_faces: usize,
     /// Why the Delaunay method gave way to the advancing front on the whole region, if it did.
     pub fallback: Option<String>,
 }
@@ -262,6 +265,7 @@ pub fn mesh_region(
     );
     drop(mean_ratios);
     out.stats.recovered_faces = figures.missing_faces;
+    out.stats.flipped_faces = figures.flipped_faces;
     out.stats.fallback = fallback;
     verify(input, &out)?;
     Ok(out)

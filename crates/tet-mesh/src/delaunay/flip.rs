@@ -56,7 +56,7 @@ impl Tri {
 
     /// Replace the tets `old` by the positive tets `new` covering the same region: faces are
     /// linked to each other and to what bordered `old`, constraint marks kept.
-    fn replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Vec<u32> {
+    pub(super) fn replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Vec<u32> {
         let mut outer: Vec<([u32; 3], u32, bool)> = Vec::new();
         for &t in old {
             for i in 0..4 {

@@ -1,6 +1,7 @@
 //! Delaunay meshing of a region: the Delaunay tetrahedralization of the boundary and embedded
 //! vertices (`tri`, inserted in `order`), local boundary recovery (`recover`: 4-4 flips where a
-//! cocircular quad took the other diagonal (`flip`), then holes that the advancing front fills),
+//! cocircular quad took the other diagonal (`flip`), then 2-3 flips and edge removals, then holes
+//! that the advancing front fills),
 //! then interior nodes by Delaunay refinement against the background size field (`refine`). No
 //! node is ever placed on a boundary or embedded face: recovery removes and re-meshes tets
 //! instead of splitting faces, and refinement cavities never cross a constraint. It is the fast
@@ -17,7 +18,8 @@
 //!   tabulated 96-state automaton (equal to Skilling's transform) and sorted by LSD radix passes,
 //!   in a deterministic BRIO; before optimization the refined mesh is laid out again (free nodes
 //!   in curve order, tets bucketed by their highest node).
-//! * `recover`: each missing boundary or embedded triangle takes every tet that may meet it (exact
+//! * `recover`: each missing boundary or embedded triangle is first made a face by flips where it
+//!   can be (`recover/flips`); each still missing takes every tet that may meet it (exact
 //!   separating-plane tests) into a hole; kept tets are classified by flooding from the triangles'
 //!   oriented sides; the holes' inner part, grown until its surface is a manifold, is meshed by the
 //!   front. More than 500 missing triangles that are also 2 % of them (a structured cospherical
@@ -49,6 +51,8 @@ const MIN_SIZE_CELLS: usize = 4096;
 pub struct Figures {
     /// Boundary and embedded triangles recovered through holes.
     pub missing_faces: usize,
+    /// Boundary and embedded triangles recovered by flips.
+    pub flipped_faces: usize,
 }
 
 pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures), TetMeshError> {
@@ -78,6 +82,7 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
         },
         Figures {
             missing_faces: conf.missing,
+            flipped_faces: conf.flipped,
         },
     ))
 }

@@ -1,14 +1,15 @@
 //! From boundary points to a conforming mesh of the region: the Delaunay tetrahedralization of
 //! the boundary and embedded vertices, then boundary recovery without a single node on a boundary
-//! face. Most boundary triangles of a good surface mesh are Delaunay faces already. Each missing
-//! one is recovered locally: every tet that may meet its interior (exact, conservative tests) is
-//! removed, and the part of those holes inside the region (bounded by the missing triangles, the
+//! face. Most boundary triangles of a good surface mesh are Delaunay faces already; most missing
+//! ones are made faces by flips (`flips`). Each still missing one is recovered locally: every
+//! tet that may meet its interior (exact, conservative tests) is removed, and the part of those holes inside the region (bounded by the missing triangles, the
 //! boundary triangles inside the holes and the faces towards the kept inner tets) is meshed by the
 //! advancing front, which never inserts a node on a face. Kept tets are classified inside or
 //! outside by flooding from the boundary triangles' oriented sides, never across a boundary face.
 //! Any inconsistency is an error, and the caller falls back to the advancing front on the whole
 //! region.
 
+mod flips;
 mod holes;
 
 use std::collections::HashSet;
@@ -32,6 +33,8 @@ pub struct Conforming {
     pub n_input: usize,
     /// Boundary triangles that were not Delaunay faces and went through a hole.
     pub missing: usize,
+    /// Boundary triangles that were not Delaunay faces and flips made faces.
+    pub flipped: usize,
 }
 
 /// Recovery gives up when more than `MAX_MISSING` constraint triangles, and more than one in
@@ -100,6 +103,14 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
     }
     check_missing(input, &tri, &all, &missing)?;
+    let before_flips = missing.len();
+    if !missing.is_empty() {
+        let kept = flips::Kept::new(&all, &cons_index);
+        if flips::recover_by_flips(&mut tri, &all, &missing, &kept, &mut vtet) > 0 {
+            holders = find_holders(&tri, &cons_index, all.len(), n);
+            missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
+        }
+    }
 
     // Remove every tet that may meet a missing triangle.
     let mut side = hole_tets(&tri, &all, &missing, &vtet);
@@ -131,6 +142,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         tri,
         n_input: n,
         missing: missing.len(),
+        flipped: before_flips - missing.len(),
     })
 }
 
