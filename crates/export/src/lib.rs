@@ -13,7 +13,9 @@ mod inp;
 mod medit;
 mod msh;
 mod netcdf;
+mod numbering;
 pub mod quality;
+mod sides;
 mod tetgen;
 mod vtu;
 

@@ -7,9 +7,9 @@
 //! numeric properties, cell data for the viewers.
 
 use super::Common;
-use super::numbering::Numbering;
 use super::text::rows;
 use crate::netcdf::{DimId, File, Values};
+use crate::numbering::Numbering;
 use geom::mesh::VolumeMesh;
 
 /// The dimensions of the blocks: `num_el_blk` and each block's `num_el_in_blk`.

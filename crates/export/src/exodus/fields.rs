@@ -9,9 +9,9 @@
 
 use super::Common;
 use super::blocks::BlockDims;
-use super::numbering::Numbering;
 use super::text::rows;
 use crate::netcdf::{File, Values};
+use crate::numbering::Numbering;
 use crate::property_names;
 use geom::mesh::VolumeMesh;
 

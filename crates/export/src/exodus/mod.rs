@@ -9,7 +9,7 @@
 //! - the material id and the numeric properties as element variables at one time step, time 0
 //!   ([`fields`]), the cell data every viewer shows;
 //! - a side set and a node set per surface group, and a front and a back side set per fault
-//!   ([`sets`], [`sides`] for the TETRA4 side numbering);
+//!   ([`sets`], [`crate::sides`] for the TETRA4 side numbering);
 //! - QA and info records naming the program and the model ([`globals`]).
 //!
 //! Everything is written in index order and no field depends on the time of writing, so the
@@ -19,13 +19,13 @@
 mod blocks;
 mod fields;
 mod globals;
-pub(crate) mod numbering;
 mod set_vars;
 pub(crate) mod sets;
-pub(crate) mod sides;
 mod text;
 
 use crate::netcdf::File;
+use crate::numbering::Numbering;
+use crate::sides;
 use geom::mesh::VolumeMesh;
 use globals::Common;
 
@@ -37,8 +37,9 @@ const MAX_NAME_WIDTH: usize = 256;
 /// Writes `mesh` (indices checked in range) as the bytes of `<model>.exo`.
 pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     fits_32_bits(mesh)?;
-    let numbering = numbering::Numbering::new(mesh);
-    let uses = sides::face_uses(mesh, &numbering.number)?;
+    let numbering = Numbering::new(mesh);
+    let uses = sides::face_uses(mesh, &numbering.number);
+    sides::every_triangle_a_face(mesh, &uses)?;
     let side_sets = sets::side_sets(mesh, &uses);
     let node_sets = sets::node_sets(mesh);
     let names = mesh

@@ -1,8 +1,7 @@
 //! The side sets and node sets, one of each per surface group (surface, fault, box side) under
 //! the group's name and id (group index + 1, as in every format), plus two side sets per fault,
-//! `<fault>:front` and `<fault>:back` (the model's names for a surface's sides), with ids after
-//! the groups': the `k`-th fault group (in group order, empty ones counted) has `front` =
-//! groups + 2k + 1 and `back` = groups + 2k + 2.
+//! `<fault>:front` and `<fault>:back` (the model's names for a surface's sides), with the ids
+//! every format gives them, after the groups' ([`crate::sides::fault_sides`]).
 //!
 //! A group's side set names each of its triangles once, in triangle order, by the tet face of
 //! the lowest element number: on an interior face (a horizon, a fault) that is the tet of the
@@ -12,9 +11,9 @@
 //! dimension cannot be 0 long and meshio pairs node sets with names by position): their ids are
 //! then unused.
 
-use super::sides::FaceUse;
+use crate::sides::{FaceUse, fault_sides, on_side, side_name};
 use crate::split_by;
-use geom::mesh::{SurfaceKind, VolumeMesh};
+use geom::mesh::VolumeMesh;
 use std::collections::BTreeSet;
 
 /// A named set of (element, side) pairs.
@@ -43,14 +42,12 @@ pub(crate) fn side_sets(mesh: &VolumeMesh, uses: &[Vec<FaceUse>]) -> Vec<SideSet
         let name = mesh.surface_groups[g].name.clone();
         sets.push((g + 1, name, pick(tris, &|u| u.first().copied())));
     }
-    let faults = (0..n).filter(|&g| mesh.surface_groups[g].kind == SurfaceKind::Fault);
-    for (k, g) in faults.enumerate() {
-        let name = &mesh.surface_groups[g].name;
-        let tris = &by_group[g];
-        for (j, front) in [(1, true), (2, false)] {
-            let faces = pick(tris, &|u| u.iter().find(|f| f.front == front).copied());
-            let side = if front { "front" } else { "back" };
-            sets.push((n + 2 * k + j, format!("{name}:{side}"), faces));
+    for fault in fault_sides(mesh) {
+        let name = &mesh.surface_groups[fault.group].name;
+        let tris = &by_group[fault.group];
+        for front in [true, false] {
+            let faces = pick(tris, &|u| on_side(u, front));
+            sets.push((fault.id(front), side_name(name, front), faces));
         }
     }
     sets.into_iter()

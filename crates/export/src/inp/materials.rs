@@ -7,7 +7,7 @@
 //! no standard keyword takes an arbitrary named constant (`*User Material` would demand a UMAT).
 
 use super::labels::Labels;
-use crate::exodus::numbering::Numbering;
+use crate::numbering::Numbering;
 use geom::mesh::VolumeMesh;
 use std::fmt::Write as _;
 

@@ -14,8 +14,9 @@ mod labels;
 mod materials;
 mod surfaces;
 
-use crate::exodus::numbering::Numbering;
-use crate::exodus::{sets, sides};
+use crate::exodus::sets;
+use crate::numbering::Numbering;
+use crate::sides;
 use geom::mesh::VolumeMesh;
 use labels::Labels;
 use std::fmt::Write as _;
@@ -23,7 +24,8 @@ use std::fmt::Write as _;
 /// Fails when a surface triangle is not a face of any tet (Abaqus surfaces are element faces).
 pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     let numbering = Numbering::new(mesh);
-    let uses = sides::face_uses(mesh, &numbering.number)?;
+    let uses = sides::face_uses(mesh, &numbering.number);
+    sides::every_triangle_a_face(mesh, &uses)?;
     let side_sets = sets::side_sets(mesh, &uses);
     let node_sets = sets::node_sets(mesh);
     let labels = Labels::new(mesh, &side_sets);

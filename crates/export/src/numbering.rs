@@ -1,7 +1,7 @@
-//! Element numbers: Exodus numbers elements consecutively across the element blocks, in block
-//! order, from 1. Blocks are the regions in region order and a block lists its tets in mesh
-//! order, so tet `t`'s number is its rank in that sequence (the same numbering as the Abaqus
-//! writer). A region without tets has no block.
+//! Element numbers of the tets, shared by the writers: Exodus numbers elements consecutively
+//! across the element blocks, in block order, from 1. Blocks are the regions in region order and
+//! a block lists its tets in mesh order, so tet `t`'s number is its rank in that sequence (the
+//! Abaqus and msh writers number their tets the same way). A region without tets has no block.
 
 use crate::split_by;
 use geom::mesh::VolumeMesh;
