@@ -48,7 +48,7 @@ impl Operation for ExportOp {
         "export"
     }
     fn version(&self) -> u32 {
-        4
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

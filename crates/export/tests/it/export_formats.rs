@@ -140,25 +140,55 @@ gmsh.finalize()
 "#;
 
 #[test]
-fn gmsh_opens_both_msh_encodings_with_named_physical_groups_of_the_right_dimension() {
+fn gmsh_opens_both_msh_encodings_with_every_group_fault_side_and_material_and_its_elements() {
     if !python_has("gmsh") {
         return;
     }
-    let mesh = layered_box(6, 6);
+    let mut mesh = layered_box(6, 6);
+    // The overburden takes the reservoir's material: one material group over two regions.
+    mesh.regions[2].material = mesh.regions[1].material;
     let dir = tempfile::tempdir().unwrap();
-    let mut want = Vec::new();
-    for (g, s) in mesh.surface_groups.iter().enumerate() {
-        let n = mesh
-            .triangle_group
+    let triangles = |g: usize| {
+        mesh.triangle_group
             .iter()
             .filter(|&&x| x == g as u32)
-            .count();
-        want.push(format!("2|{}|{}|{n}", g + 1, s.name));
+            .count()
+    };
+    let tets = |r: usize| mesh.tet_region.iter().filter(|&&x| x == r as u32).count();
+    let n = mesh.surface_groups.len();
+    let mut want = Vec::new();
+    for (g, s) in mesh.surface_groups.iter().enumerate() {
+        want.push(format!("2|{}|{}|{}", g + 1, s.name, triangles(g)));
+    }
+    let faults = (mesh.surface_groups.iter().enumerate())
+        .filter(|(_, s)| s.kind == geom::mesh::SurfaceKind::Fault);
+    for (k, (g, s)) in faults.enumerate() {
+        want.push(format!(
+            "2|{}|{}:front|{}",
+            n + 2 * k + 1,
+            s.name,
+            triangles(g)
+        ));
+        want.push(format!(
+            "2|{}|{}:back|{}",
+            n + 2 * k + 2,
+            s.name,
+            triangles(g)
+        ));
     }
     for (r, s) in mesh.regions.iter().enumerate() {
-        let n = mesh.tet_region.iter().filter(|&&x| x == r as u32).count();
-        want.push(format!("3|{}|{}|{n}", r + 1, s.name));
+        want.push(format!("3|{}|{}|{}", r + 1, s.name, tets(r)));
     }
+    let materials: BTreeSet<i64> = mesh.regions.iter().filter_map(|r| r.material).collect();
+    for (k, m) in materials.iter().enumerate() {
+        let of_m = (0..mesh.regions.len()).filter(|&r| mesh.regions[r].material == Some(*m));
+        let count: usize = of_m.map(tets).sum();
+        want.push(format!(
+            "3|{}|material:{m}|{count}",
+            mesh.regions.len() + k + 1
+        ));
+    }
+    assert_eq!(materials.len(), 2, "3 for one region, 2 for two");
     for format in [Format::Msh, Format::MshBinary] {
         let files = export(&mesh, format.name(), format).unwrap();
         let paths = write_all(dir.path(), &files);
@@ -224,7 +254,7 @@ fn the_same_mesh_gives_the_same_bytes_every_time() {
     let msh = export(&a, "d", Format::Msh).unwrap();
     let text = String::from_utf8(msh[0].1.clone()).unwrap();
     assert!(
-        text.starts_with("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n12\n"),
+        text.starts_with("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n16\n"),
         "{}",
         &text[..80]
     );

@@ -1,0 +1,478 @@
+//! Gmsh msh 4.1 writer, ASCII and binary (little-endian, `size_t` = 8 bytes), per the Gmsh
+//! reference manual's "MSH file format version 4.1".
+//!
+//! Layout decisions (chosen so that both Gmsh and meshio read the file and recover the groups):
+//!
+//! - **Entities** ([`topology`]). One discrete volume per region (tag = region index + 1). A
+//!   surface group becomes one discrete surface per *piece*: its triangles that have the same
+//!   region in front and the same behind (the outside of the model counted as no region), in
+//!   order of group, region in front and region behind (none first), tags 1, 2, ... in that
+//!   order; a group without triangles keeps one empty surface so that its groups exist. One
+//!   surface per group could not bound a volume: a horizon between two regions here and two
+//!   others there would be the whole horizon in each region's boundary.
+//! - **Topology.** Each volume lists its bounding surfaces with the sign Gmsh's built-in kernel
+//!   gives them: `+` where the surface's triangle normals point out of the region, `-` where they
+//!   point into it, so `gmsh.model.getBoundary([(3, r + 1)])` returns the region's pieces. A
+//!   piece with the same region on both sides (where a dangling fault ends inside a region) lies
+//!   inside that volume, not on its boundary, and the format has no documented record for an
+//!   embedded entity, so no volume lists it. Surfaces list no bounding curves: the mesh carries
+//!   no curve entities (the curves file does), so a surface's boundary is empty.
+//! - **Physical groups.** 2D: surface group `g` has tag `g + 1` on its pieces; fault `k` (in group
+//!   order, empty ones counted) of `n` groups has `<fault>:front` = `n + 2k + 1` and
+//!   `<fault>:back` = `n + 2k + 2`, the ids of the Exodus side sets. 3D: region `r` has tag
+//!   `r + 1` on its volume, and each distinct material id, the `k`-th in ascending order of the
+//!   `R` regions' ids, has `R + k + 1`, named `material:<id>`, on the volumes of the regions of
+//!   that material. An entity lists its group's (region's) tag first, which is the one meshio
+//!   takes for `gmsh:physical`. `$PhysicalNames` names them all, by dimension and tag.
+//! - **Fault sides.** A side's triangles are the fault's own triangles: separate entities would
+//!   hold each fault triangle twice, and a conforming mesh would then carry two coincident
+//!   elements per fault face, which a solver reading the 2D elements as facets takes for two.
+//!   So the side groups hold the fault's own pieces with an orientation, as Gmsh does itself: a
+//!   physical group may take an entity reversed (a negative tag in `Physical Surface`, with the
+//!   default `Geometry.OrientedPhysicals`), which Gmsh's msh 4.1 writer stores as the group's
+//!   tag negated in the entity's physical tags, and reads back the same way. A side holds each
+//!   piece with the sign the piece has in the boundary of the volume on that side:
+//!   `<fault>:front` negated (seen from the front, the triangles are reversed: these are the
+//!   faces of the front tets, outward, as in the Exodus and Abaqus front side sets),
+//!   `<fault>:back` as is. `getEntitiesForPhysicalGroup` gives the pieces of either side,
+//!   `getPhysicalGroupsForEntity` the signed tags, and Gmsh reverses the front's elements when it
+//!   saves a format that stores elements per group (MSH2). meshio matches tags without sign: it
+//!   reads `<fault>` and `<fault>:back` and leaves `<fault>:front` empty.
+//!
+//! Nodes are classified on the entity of lowest dimension holding them (the first piece among
+//! their triangles, else the region of their first tet), one block per entity (tags = node
+//! index + 1, so the numbering is the mesh's whatever the blocks); elements go in one block per
+//! entity (tets type 4 by region first, then triangles type 2 by piece), numbered consecutively
+//! from 1. The recipe's surface kinds (horizon, fault, box, other) go in a
+//! `$GeorecipeSurfaceKinds` section, which other readers skip as the format prescribes for
+//! unknown sections. The recipe's attributes follow as `$ElementData` views over every element:
+//! "material" (the material id, -1 where none, and -1 on triangles) and one per region property
+//! (NaN where undefined).
+
+mod topology;
+
+use super::{bbox_of, property_names, split_by};
+use geom::mesh::{SurfaceKind, VolumeMesh};
+use std::collections::BTreeMap;
+use std::io::Write as _;
+use topology::Topology;
+
+/// One value of a record: printed space-separated in ASCII, packed little-endian in binary.
+enum F {
+    /// `size_t` (8 bytes in binary).
+    S(u64),
+    /// `int` (4 bytes in binary).
+    I(i32),
+    /// `double`.
+    D(f64),
+}
+
+struct Out {
+    binary: bool,
+    buf: Vec<u8>,
+}
+
+impl Out {
+    fn text(&mut self, s: &str) {
+        self.buf.extend_from_slice(s.as_bytes());
+    }
+    /// One record: a line in ASCII, raw values in binary.
+    fn rec(&mut self, fields: &[F]) {
+        if self.binary {
+            for f in fields {
+                match f {
+                    F::S(v) => self.buf.extend_from_slice(&v.to_le_bytes()),
+                    F::I(v) => self.buf.extend_from_slice(&v.to_le_bytes()),
+                    F::D(v) => self.buf.extend_from_slice(&v.to_le_bytes()),
+                }
+            }
+        } else {
+            let mut first = true;
+            for f in fields {
+                if !first {
+                    self.buf.push(b' ');
+                }
+                first = false;
+                // Writing into a Vec<u8> cannot fail.
+                let _ = match f {
+                    F::S(v) => write!(self.buf, "{v}"),
+                    F::I(v) => write!(self.buf, "{v}"),
+                    F::D(v) => write!(self.buf, "{v}"),
+                };
+            }
+            self.buf.push(b'\n');
+        }
+    }
+    /// Ends a section whose body may be binary: binary bodies need a newline before `$End...`.
+    fn end(&mut self, section: &str) {
+        if self.binary {
+            self.buf.push(b'\n');
+        }
+        self.text(&format!("$End{section}\n"));
+    }
+}
+
+/// A name as Gmsh reads it between double quotes (no quote or line break inside).
+fn quoted(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| {
+            if c == '"' {
+                '\''
+            } else if c.is_control() {
+                ' '
+            } else {
+                c
+            }
+        })
+        .collect();
+    format!("\"{clean}\"")
+}
+
+/// The kind's name in `$GeorecipeSurfaceKinds` (as serde spells it).
+pub(crate) fn kind_name(k: SurfaceKind) -> &'static str {
+    match k {
+        SurfaceKind::Horizon => "horizon",
+        SurfaceKind::Fault => "fault",
+        SurfaceKind::Box => "box",
+        SurfaceKind::Other => "other",
+    }
+}
+
+fn tag(i: usize) -> i32 {
+    i32::try_from(i + 1).unwrap_or(i32::MAX)
+}
+
+pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
+    let mut o = Out {
+        binary,
+        buf: Vec::new(),
+    };
+    let topology = Topology::new(mesh);
+    let tris_by_piece = &topology.tris;
+    let tets_by_region = split_by(&mesh.tet_region, mesh.regions.len());
+    mesh_format(&mut o);
+    physical_names(&mut o, &topology);
+    surface_kinds(&mut o, mesh);
+    entities(&mut o, mesh, &topology, &tets_by_region);
+    nodes(&mut o, mesh, tris_by_piece);
+    let total = elements(&mut o, mesh, tris_by_piece, &tets_by_region);
+    // Attributes as element data, in element-tag order: the order the elements were written
+    // in (tets by region, then triangles by piece), so the tags are 1, 2, ... again.
+    if total > 0 && !mesh.regions.is_empty() {
+        let order = Order {
+            tets: &tets_by_region,
+            tris: tris_by_piece,
+            total: total as usize,
+        };
+        attributes(&mut o, mesh, &order);
+    }
+    o.buf.shrink_to_fit();
+    o.buf
+}
+
+/// `$MeshFormat`: version 4.1, ASCII or binary, 8-byte `size_t` (binary adds the endianness int).
+fn mesh_format(o: &mut Out) {
+    o.text("$MeshFormat\n");
+    if o.binary {
+        o.text("4.1 1 8\n");
+        o.buf.extend_from_slice(&1i32.to_le_bytes());
+        o.text("\n");
+    } else {
+        o.text("4.1 0 8\n");
+    }
+    o.text("$EndMeshFormat\n");
+}
+
+/// `$PhysicalNames` (always ASCII): the 2D groups (surface groups, then fault sides), then the
+/// 3D ones (regions, then materials).
+fn physical_names(o: &mut Out, topology: &Topology) {
+    o.text("$PhysicalNames\n");
+    o.text(&format!("{}\n", topology.names.len()));
+    for (dim, tag, name) in &topology.names {
+        o.text(&format!("{dim} {tag} {}\n", quoted(name)));
+    }
+    o.text("$EndPhysicalNames\n");
+}
+
+/// `$GeorecipeSurfaceKinds`: what each 2D group is, geologically (a section Gmsh and meshio skip,
+/// as the format allows; our reader uses it to restore the surface kinds).
+fn surface_kinds(o: &mut Out, mesh: &VolumeMesh) {
+    o.text(&format!(
+        "$GeorecipeSurfaceKinds\n{}\n",
+        mesh.surface_groups.len()
+    ));
+    for (g, sg) in mesh.surface_groups.iter().enumerate() {
+        o.text(&format!("2 {} {}\n", tag(g), kind_name(sg.kind)));
+    }
+    o.text("$EndGeorecipeSurfaceKinds\n");
+}
+
+/// `$Entities`: the surface pieces, then one volume per region, each with its bounding box, its
+/// physical tags and its bounding entities (none for the surfaces).
+fn entities(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, tets_by_region: &[Vec<usize>]) {
+    o.text("$Entities\n");
+    o.rec(&[
+        F::S(0),
+        F::S(0),
+        F::S(topology.tris.len() as u64),
+        F::S(mesh.regions.len() as u64),
+    ]);
+    let entity = |o: &mut Out, i: usize, bb: [[f64; 3]; 2], physicals: &[i32], bounds: &[i32]| {
+        let [lo, hi] = bb;
+        let mut rec = vec![F::I(tag(i))];
+        rec.extend(lo.into_iter().chain(hi).map(F::D));
+        rec.push(F::S(physicals.len() as u64));
+        rec.extend(physicals.iter().map(|&p| F::I(p)));
+        rec.push(F::S(bounds.len() as u64));
+        rec.extend(bounds.iter().map(|&b| F::I(b)));
+        o.rec(&rec);
+    };
+    for (k, tris) in topology.tris.iter().enumerate() {
+        let bb = bbox_of(mesh, tris.iter().map(|&t| &mesh.triangles[t][..]));
+        entity(o, k, bb, &topology.surface_physicals[k], &[]);
+    }
+    for (r, sel) in tets_by_region.iter().enumerate() {
+        let bb = bbox_of(mesh, sel.iter().map(|&t| &mesh.tets[t][..]));
+        let (physicals, bounds) = (&topology.volume_physicals[r], &topology.volume_bounds[r]);
+        entity(o, r, bb, physicals, bounds);
+    }
+    o.end("Entities");
+}
+
+/// The entity each node is classified on, as (dimension, index) → its nodes in index order: the
+/// entity of lowest dimension that holds it (the first piece among its triangles, else the
+/// region of its first tet; unused nodes on the first entity).
+fn node_blocks(
+    mesh: &VolumeMesh,
+    tris_by_piece: &[Vec<usize>],
+) -> BTreeMap<(i32, usize), Vec<usize>> {
+    let n = mesh.nodes.len();
+    let mut home: Vec<Option<(i32, usize)>> = vec![None; n];
+    for (k, tris) in tris_by_piece.iter().enumerate() {
+        for &t in tris {
+            for &v in &mesh.triangles[t] {
+                let h = &mut home[v as usize];
+                if h.is_none() {
+                    *h = Some((2, k));
+                }
+            }
+        }
+    }
+    for (t, tet) in mesh.tets.iter().enumerate() {
+        let r = mesh.tet_region[t] as usize;
+        for &v in tet {
+            let h = &mut home[v as usize];
+            if h.is_none() {
+                *h = Some((3, r));
+            }
+        }
+    }
+    let fallback = if !mesh.regions.is_empty() {
+        Some((3, 0))
+    } else if !tris_by_piece.is_empty() {
+        Some((2, 0))
+    } else {
+        None
+    };
+    let mut blocks: BTreeMap<(i32, usize), Vec<usize>> = Default::default();
+    for (v, h) in home.iter().enumerate() {
+        if let Some(key) = h.or(fallback) {
+            blocks.entry(key).or_default().push(v);
+        }
+    }
+    blocks
+}
+
+/// `$Nodes`: one block per entity, surfaces then volumes. Tags stay node index + 1 (sparse per
+/// block).
+fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>]) {
+    let blocks = node_blocks(mesh, tris_by_piece);
+    let written: usize = blocks.values().map(Vec::len).sum();
+    o.text("$Nodes\n");
+    let (lo, hi) = (
+        blocks.values().flatten().min(),
+        blocks.values().flatten().max(),
+    );
+    o.rec(&[
+        F::S(blocks.len() as u64),
+        F::S(written as u64),
+        F::S(lo.map_or(0, |&v| v as u64 + 1)),
+        F::S(hi.map_or(0, |&v| v as u64 + 1)),
+    ]);
+    for (&(dim, k), vs) in &blocks {
+        o.rec(&[F::I(dim), F::I(tag(k)), F::I(0), F::S(vs.len() as u64)]);
+        for &v in vs {
+            o.rec(&[F::S(v as u64 + 1)]);
+        }
+        for &v in vs {
+            let p = mesh.nodes[v];
+            o.rec(&[F::D(p[0]), F::D(p[1]), F::D(p[2])]);
+        }
+    }
+    o.end("Nodes");
+}
+
+/// `$Elements`: tets per region, then triangles per piece; tags 1.. in that order. Returns the
+/// number of elements.
+fn elements(
+    o: &mut Out,
+    mesh: &VolumeMesh,
+    tris_by_piece: &[Vec<usize>],
+    tets_by_region: &[Vec<usize>],
+) -> u64 {
+    let blocks = tets_by_region.iter().filter(|s| !s.is_empty()).count()
+        + tris_by_piece.iter().filter(|s| !s.is_empty()).count();
+    let total = (mesh.tets.len() + mesh.triangles.len()) as u64;
+    o.text("$Elements\n");
+    o.rec(&[
+        F::S(blocks as u64),
+        F::S(total),
+        F::S(if total > 0 { 1 } else { 0 }),
+        F::S(total),
+    ]);
+    let mut next = 1u64;
+    for (r, sel) in tets_by_region
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.is_empty())
+    {
+        o.rec(&[F::I(3), F::I(tag(r)), F::I(4), F::S(sel.len() as u64)]);
+        for &t in sel {
+            let [a, b, c, d] = mesh.tets[t];
+            o.rec(&[
+                F::S(next),
+                F::S(a as u64 + 1),
+                F::S(b as u64 + 1),
+                F::S(c as u64 + 1),
+                F::S(d as u64 + 1),
+            ]);
+            next += 1;
+        }
+    }
+    for (k, sel) in tris_by_piece
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.is_empty())
+    {
+        o.rec(&[F::I(2), F::I(tag(k)), F::I(2), F::S(sel.len() as u64)]);
+        for &t in sel {
+            let [a, b, c] = mesh.triangles[t];
+            o.rec(&[
+                F::S(next),
+                F::S(a as u64 + 1),
+                F::S(b as u64 + 1),
+                F::S(c as u64 + 1),
+            ]);
+            next += 1;
+        }
+    }
+    o.end("Elements");
+    total
+}
+
+/// `$ElementData` views: "material" (-1 where none and on triangles), then one per region
+/// property (NaN where undefined).
+fn attributes(o: &mut Out, mesh: &VolumeMesh, order: &Order) {
+    let region_of = |t: usize| &mesh.regions[mesh.tet_region[t] as usize];
+    let material = |t: Option<usize>| {
+        t.and_then(|t| region_of(t).material)
+            .map_or(-1.0, |m| m as f64)
+    };
+    element_data(o, "material", order, material);
+    for name in property_names(mesh) {
+        let value = |t: Option<usize>| {
+            t.and_then(|t| region_of(t).properties.get(&name).copied())
+                .unwrap_or(f64::NAN)
+        };
+        element_data(o, &name, order, value);
+    }
+}
+
+/// The elements in tag order: `Some(tet)` for each tet by region, then `None` per triangle (by
+/// piece).
+struct Order<'a> {
+    tets: &'a [Vec<usize>],
+    tris: &'a [Vec<usize>],
+    total: usize,
+}
+
+impl Order<'_> {
+    fn iter(&self) -> impl Iterator<Item = Option<usize>> + '_ {
+        let tets = self.tets.iter().flatten().map(|&t| Some(t));
+        tets.chain(self.tris.iter().flatten().map(|_| None))
+    }
+}
+
+fn element_data(o: &mut Out, name: &str, order: &Order, value: impl Fn(Option<usize>) -> f64) {
+    o.text("$ElementData\n");
+    o.text(&format!(
+        "1\n{}\n1\n0\n3\n0\n1\n{}\n",
+        quoted(name),
+        order.total
+    ));
+    for (k, t) in (1u64..).zip(order.iter()) {
+        if o.binary {
+            o.rec(&[F::I(i32::try_from(k).unwrap_or(i32::MAX)), F::D(value(t))]);
+        } else {
+            o.rec(&[F::S(k), F::D(value(t))]);
+        }
+    }
+    o.end("ElementData");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use topology::tests::three_tets;
+
+    /// The lines of `section` in the ASCII file of `mesh`.
+    fn section(mesh: &VolumeMesh, section: &str) -> Vec<String> {
+        let text = String::from_utf8(write(mesh, false)).unwrap();
+        let start = format!("${section}\n");
+        let (_, rest) = text.split_once(&start).unwrap();
+        let (body, _) = rest.split_once(&format!("$End{section}")).unwrap();
+        body.lines().map(str::to_string).collect()
+    }
+
+    #[test]
+    fn each_entity_lists_its_physical_tags_and_each_volume_its_signed_bounding_surfaces() {
+        let lines = section(&three_tets(), "Entities");
+        let want = [
+            "0 0 5 3",
+            // Surfaces: tag, bounding box, physical tags, no bounding curves.
+            "1 0 0 0 1 0 1 1 1 0",
+            "2 0 0 -1 1 0 0 1 1 0",
+            "3 0 0 0 1 1 0 1 2 0",
+            "4 0 0 0 1 1 1 3 3 -5 6 0",
+            "5 0 0 0 0 0 0 3 4 -7 8 0",
+            // Volumes: tag, bounding box, region and material, bounding surfaces.
+            "1 0 0 0 1 1 1 2 1 5 2 -1 -3",
+            "2 0 0 -1 1 1 0 2 2 5 2 -2 3",
+            "3 0 0 0 0 0 0 2 3 4 0",
+        ];
+        assert_eq!(lines, want);
+    }
+
+    #[test]
+    fn triangles_are_written_piece_by_piece_and_their_nodes_on_the_first_piece() {
+        let elements = section(&three_tets(), "Elements");
+        let blocks: Vec<&str> = (elements.iter())
+            .filter(|l| l.split(' ').count() == 4 && l.starts_with("2 "))
+            .map(String::as_str)
+            .collect();
+        // Per piece (entity, type 2, one triangle): box/a, box/b, H, F; G's piece is empty.
+        assert_eq!(blocks, ["2 1 2 1", "2 2 2 1", "2 3 2 1", "2 4 2 1"]);
+        let nodes = section(&three_tets(), "Nodes");
+        // Nodes 1, 2, 4 (the box face of a) on piece 1, node 5 on piece 2, node 3 on piece 3
+        // (H), node 6 only in a tet.
+        let headers: Vec<&str> = (nodes.iter())
+            .filter(|l| l.split(' ').count() == 4)
+            .map(String::as_str)
+            .collect();
+        assert_eq!(
+            headers,
+            ["4 6 1 6", "2 1 0 3", "2 2 0 1", "2 3 0 1", "3 1 0 1"]
+        );
+    }
+}
