@@ -8,6 +8,7 @@ mod cli_exodus;
 mod cli_geology;
 mod cli_incremental;
 mod cli_mesh;
+mod cli_msh_groups;
 mod cli_output;
 mod cli_real_data;
 mod cli_ringmesh;
