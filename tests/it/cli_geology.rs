@@ -154,3 +154,48 @@ fn a_closed_salt_diapir_inside_the_box_meshes_into_four_regions() {
 fn a_closed_lens_inside_a_layer_meshes_as_its_own_region_inside_its_host() {
     builds_and_meshes(&case("lens"));
 }
+
+#[test]
+fn a_thin_region_the_recipe_does_not_name_is_warned_about_with_a_point_to_name_it_by() {
+    // Without `min_layers`, the lens (about 230 m thick at 250 m) is one element across; the
+    // recipe cannot give it `layers` until it names it, so the warning says how, with a point.
+    let mut lens = case("lens");
+    lens.recipe = lens.recipe.replace("min_layers = 2\n", "");
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let recipe = lens.write(dir.path());
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(dir.path())
+        .arg("build")
+        .arg(&recipe)
+        .output()
+        .expect("the recipe binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    let warning = err
+        .lines()
+        .find(|l| l.contains("region `L` is about"))
+        .unwrap_or_else(|| panic!("no warning about the lens:\n{err}"));
+    assert!(
+        warning.contains("name it in `[regions]` (for example `L = { point = ["),
+        "{warning}"
+    );
+    // The point it gives names the lens: a recipe that takes the advice builds with layers.
+    let point = warning
+        .split("point = [")
+        .nth(1)
+        .and_then(|s| s.split(']').next())
+        .expect("a point");
+    let named = format!(
+        "{}\n[regions]\nL = {{ point = [{point}] }}\n\n[mesh.regions]\nL = {{ layers = 2 }}\n",
+        std::fs::read_to_string(&recipe).unwrap()
+    );
+    std::fs::write(&recipe, named).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(dir.path())
+        .args(["build", "--quiet"])
+        .arg(&recipe)
+        .output()
+        .expect("the recipe binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("region `L` is about"), "{err}");
+}

@@ -183,11 +183,11 @@ pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, 
                 name.clone(),
                 format!(
                     "region `{name}` is about {} thick but meshed at {} (`{}.size`): about one \
-                     element across; write `layers = 3` in its `[mesh.regions]` entry (or \
-                     `min_layers = 3` in `[mesh]`) for three",
+                     element across; {}",
                     short(t),
                     short(own.size),
-                    own.path
+                    own.path,
+                    three_layers(recipe, r)
                 ),
             )),
             Some(n) if t > 0.0 && t / f64::from(n) < own.size => out.push((
@@ -204,6 +204,23 @@ pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, 
         }
     }
     out
+}
+
+/// How to ask for three layers in `r`: its `[mesh.regions]` entry when the recipe names it, else
+/// naming it first (a point of its own, which the model gives), or `min_layers` for all.
+fn three_layers(recipe: &Recipe, r: &model::regions::Region) -> String {
+    let name = &r.name;
+    if recipe.regions.contains_key(name) {
+        return "write `layers = 3` in its `[mesh.regions]` entry (or `min_layers = 3` in `[mesh]`) \
+                for three"
+            .to_string();
+    }
+    let [x, y, z] = r.interior_point.map(|c| format!("{c:.1}"));
+    format!(
+        "for three, write `min_layers = 3` in `[mesh]`, or name it in `[regions]` (for example \
+         `{name} = {{ point = [{x}, {y}, {z}] }}`, a point inside it) and write `layers = 3` in \
+         its `[mesh.regions]` entry"
+    )
 }
 
 /// A length for a message, in model units: three significant digits.
