@@ -119,25 +119,14 @@ fn a_boundary_given_inward_oriented_is_turned_around_exactly_and_meshes_the_same
 fn boxes_off(boxes: &[([f64; 3], [f64; 3])]) -> String {
     let mut vertices = String::new();
     let mut faces = String::new();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
     for (k, (lo, hi)) in boxes.iter().enumerate() {
-        for i in 0..8 {
-            let p = [0, 1, 2].map(|a| if (i >> a) & 1 == 1 { hi[a] } else { lo[a] });
+        let (corners, triangles) = test_support::shapes::cuboid(*lo, *hi);
+        for p in corners {
             vertices.push_str(&format!("{} {} {}\n", p[0], p[1], p[2]));
         }
-        for q in quads {
-            let q = q.map(|v| v + 8 * k);
-            faces.push_str(&format!(
-                "3 {} {} {}\n3 {} {} {}\n",
-                q[0], q[1], q[2], q[0], q[2], q[3]
-            ));
+        for t in triangles {
+            let t = t.map(|v| v as usize + 8 * k);
+            faces.push_str(&format!("3 {} {} {}\n", t[0], t[1], t[2]));
         }
     }
     format!(

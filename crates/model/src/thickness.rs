@@ -171,27 +171,7 @@ mod tests {
 
     /// A closed box `[0,a]×[0,b]×[0,c]`, two triangles per side, normals outwards.
     fn cuboid(a: f64, b: f64, c: f64) -> PatchIn {
-        let v = (0..8)
-            .map(|i| {
-                [
-                    if i & 1 != 0 { a } else { 0.0 },
-                    if i & 2 != 0 { b } else { 0.0 },
-                    if i & 4 != 0 { c } else { 0.0 },
-                ]
-            })
-            .collect();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let triangles = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
+        let (v, triangles) = test_support::shapes::cuboid([0.0; 3], [a, b, c]);
         PatchIn {
             name: "c#1".into(),
             surface: "c".into(),

@@ -12,4 +12,5 @@ pub mod netcdf_reader;
 pub mod paths;
 pub mod peer_support;
 pub mod peers;
+pub mod shapes;
 pub mod surface_mesh_common;

@@ -300,23 +300,10 @@ fn host_of_a_lens(origin: P, half: P, axes: P, (rings, sectors): (u32, u32)) -> 
     use std::f64::consts::PI;
     let mut pts: Vec<P> = Vec::new();
     let mut boundary: Vec<[u32; 3]> = Vec::new();
-    for i in 0..8 {
-        let s = |k: usize| if (i >> k) & 1 == 1 { 1.0 } else { -1.0 };
-        pts.push([0, 1, 2].map(|k| origin[k] + s(k) * half[k]));
-    }
-    let mut outer = Vec::new();
-    for q in [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ] {
-        outer.push([q[0], q[1], q[2]]);
-        outer.push([q[0], q[2], q[3]]);
-    }
-    outward(&pts, &mut outer, origin);
+    let lo = [0, 1, 2].map(|k| origin[k] - half[k]);
+    let hi = [0, 1, 2].map(|k| origin[k] + half[k]);
+    let (corners, outer) = test_support::shapes::cuboid(lo, hi);
+    pts.extend(corners);
     boundary.extend(outer);
     let top = pts.len() as u32;
     pts.push([origin[0], origin[1], origin[2] + axes[2]]);

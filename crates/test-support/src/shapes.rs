@@ -1,0 +1,22 @@
+//! Small closed shapes for the tests of every crate.
+
+/// The box `[lo, hi]` as eight corners (corner `i` takes `hi` on axis `k` where bit `k` of `i` is
+/// set) and twelve triangles, two per side, with normals pointing out of the box.
+pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let corners = (0..8)
+        .map(|i| [0, 1, 2].map(|k| if (i >> k) & 1 == 1 { hi[k] } else { lo[k] }))
+        .collect();
+    let quads: [[u32; 4]; 6] = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let triangles = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    (corners, triangles)
+}
