@@ -86,15 +86,8 @@ fn a_boundary_given_inward_oriented_is_turned_around_exactly_and_meshes_the_same
     let input = dir.path().join("inward.off");
     std::fs::write(&input, flipped.join("\n") + "\n").unwrap();
     let tets = |off: &Path, out: &Path| -> String {
-        let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
-            .arg("tetmesh")
-            .arg(off)
-            .arg("-o")
-            .arg(out)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&run.stderr).into_owned();
-        assert!(run.status.success(), "{err}");
+        let (ok, err) = tetmesh(off, out);
+        assert!(ok, "{err}");
         err.lines()
             .find(|l| l.contains("Finished"))
             .unwrap_or_default()
@@ -136,33 +129,19 @@ fn boxes_off(boxes: &[([f64; 3], [f64; 3])]) -> String {
     )
 }
 
-/// The total volume of the tets of a MEDIT file.
-fn medit_volume(text: &str) -> f64 {
-    let lines: Vec<&str> = text.lines().map(str::trim).collect();
-    let block = |name: &str| {
-        let at = lines.iter().position(|l| *l == name).expect(name);
-        let n: usize = lines[at + 1].parse().unwrap();
-        lines[at + 2..at + 2 + n]
-            .iter()
-            .map(|l| {
-                l.split_whitespace()
-                    .map(|x| x.parse::<f64>().unwrap())
-                    .collect::<Vec<f64>>()
-            })
-            .collect::<Vec<_>>()
-    };
-    let v = block("Vertices");
-    block("Tetrahedra")
-        .iter()
-        .map(|t| {
-            let p = |i: usize| &v[t[i] as usize - 1];
-            let d = |i: usize| [0, 1, 2].map(|a| p(i)[a] - p(0)[a]);
-            let (a, b, c) = (d(1), d(2), d(3));
-            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-                + a[2] * (b[0] * c[1] - b[1] * c[0]))
-                / 6.0
-        })
-        .sum()
+/// `recipe tetmesh <off> -o <out>`, its exit status and standard error.
+fn tetmesh(off: &Path, out: &Path) -> (bool, String) {
+    let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .arg("tetmesh")
+        .arg(off)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap();
+    (
+        run.status.success(),
+        String::from_utf8_lossy(&run.stderr).into_owned(),
+    )
 }
 
 #[test]
@@ -179,20 +158,19 @@ fn a_boundary_with_an_inner_shell_meshes_the_space_between_the_shells_only() {
         ]),
     )
     .unwrap();
-    let out = dir.path().join("host.mesh");
-    let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .arg("tetmesh")
-        .arg(&off)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let volume = medit_volume(&std::fs::read_to_string(&out).unwrap());
+    let out = dir.path().join("host.msh");
+    let (ok, err) = tetmesh(&off, &out);
+    assert!(ok, "{err}");
+    let mesh = geom::mesh::read::read_volume_msh(&std::fs::read(&out).unwrap(), "host.msh")
+        .expect("the msh reads back");
+    let volume: f64 = mesh
+        .tets
+        .iter()
+        .map(|t| {
+            let [a, b, c, d] = t.map(|v| mesh.nodes[v as usize]);
+            geom::predicates::signed_volume(&a, &b, &c, &d)
+        })
+        .sum();
     assert!(
         (volume - (1000.0 - 8.0)).abs() < 1e-6,
         "meshed volume {volume}"
@@ -211,15 +189,8 @@ fn two_boxes_side_by_side_are_refused_as_not_one_region() {
         ]),
     )
     .unwrap();
-    let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .arg("tetmesh")
-        .arg(&off)
-        .arg("-o")
-        .arg(dir.path().join("two.msh"))
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&run.stderr);
-    assert!(!run.status.success());
+    let (ok, err) = tetmesh(&off, &dir.path().join("two.msh"));
+    assert!(!ok);
     assert!(
         err.contains("2 shells do not bound one region together"),
         "{err}"

@@ -54,7 +54,7 @@ impl Operation for TetMeshOp {
         // 10: cavities grow breadth first (their tets, hence slots, come in another order).
         // 11: the size field by two raster sweeps; the layout sorts the nodes and buckets the
         //     tets by their highest node.
-        // 12: missing boundary triangles recovered by 2-3 and 3-2 flips before any hole.
+        // 12: missing boundary triangles recovered by flips (2-3, edge removal) before any hole.
         12
     }
     fn params(&self) -> Params {

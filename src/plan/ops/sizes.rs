@@ -215,7 +215,8 @@ fn three_layers(recipe: &Recipe, r: &model::regions::Region) -> String {
                 for three"
             .to_string();
     }
-    let [x, y, z] = r.interior_point.map(|c| format!("{c:.1}"));
+    // Written in full: a rounded point could fall outside a region thinner than the rounding.
+    let [x, y, z] = r.interior_point.map(|c| format!("{c:?}"));
     format!(
         "for three, write `min_layers = 3` in `[mesh]`, or name it in `[regions]` (for example \
          `{name} = {{ point = [{x}, {y}, {z}] }}`, a point inside it) and write `layers = 3` in \

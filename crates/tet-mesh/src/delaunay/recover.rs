@@ -2,12 +2,12 @@
 //! the boundary and embedded vertices, then boundary recovery without a single node on a boundary
 //! face. Most boundary triangles of a good surface mesh are Delaunay faces already; most missing
 //! ones are made faces by flips (`flips`). Each still missing one is recovered locally: every
-//! tet that may meet its interior (exact, conservative tests) is removed, and the part of those holes inside the region (bounded by the missing triangles, the
-//! boundary triangles inside the holes and the faces towards the kept inner tets) is meshed by the
-//! advancing front, which never inserts a node on a face. Kept tets are classified inside or
-//! outside by flooding from the boundary triangles' oriented sides, never across a boundary face.
-//! Any inconsistency is an error, and the caller falls back to the advancing front on the whole
-//! region.
+//! tet that may meet its interior (exact, conservative tests) is removed, and the part of those
+//! holes inside the region (bounded by the missing triangles, the boundary triangles inside the
+//! holes and the faces towards the kept inner tets) is meshed by the advancing front, which never
+//! inserts a node on a face. Kept tets are classified inside or outside by flooding from the
+//! boundary triangles' oriented sides, never across a boundary face. Any inconsistency is an
+//! error, and the caller falls back to the advancing front on the whole region.
 
 mod flips;
 mod holes;

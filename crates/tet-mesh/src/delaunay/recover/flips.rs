@@ -302,19 +302,20 @@ fn remove_edge(tri: &mut Tri, p: u32, q: u32, kept: &Kept, vtet: &mut [u32]) -> 
         if tets.len() > MAX_RING {
             return None;
         }
-        if tets.len() == 3 {
-            return remove_by_ring(tri, p, q, kept, vtet).map(|n| n + flips);
-        }
         let n = tets.len();
-        let flipped = (0..n).find_map(|i| {
-            let s = ring[i];
-            if kept.face([p, q, s]) {
-                return None;
-            }
-            flip23(tri, tets[i], tets[(i + 1) % n], [p, q, s], vtet)
-        });
+        let flipped = (n > 3)
+            .then(|| {
+                (0..n).find_map(|i| {
+                    let s = ring[i];
+                    if kept.face([p, q, s]) {
+                        return None;
+                    }
+                    flip23(tri, tets[i], tets[(i + 1) % n], [p, q, s], vtet)
+                })
+            })
+            .flatten();
         if flipped.is_none() {
-            return remove_by_ring(tri, p, q, kept, vtet).map(|n| n + flips);
+            return remove_by_ring(tri, [p, q], (&tets, &ring), kept, vtet).map(|n| n + flips);
         }
         flips += 1;
     }
@@ -323,16 +324,21 @@ fn remove_edge(tri: &mut Tri, p: u32, q: u32, kept: &Kept, vtet: &mut [u32]) -> 
 /// Removes edge `pq` by the n-to-(2n-4) flip: its ring of `n` tets is replaced by two tets
 /// (one towards `p`, one towards `q`) per triangle of the best triangulation of the ring polygon;
 /// `Some(1)`, or `None` when no triangulation gives only positive tets or a kept face would go.
-fn remove_by_ring(tri: &mut Tri, p: u32, q: u32, kept: &Kept, vtet: &mut [u32]) -> Option<usize> {
-    let start = tet_with_edge(tri, p, q, vtet)?;
-    let (tets, ring) = tri.edge_ring(p, q, start)?;
-    if tets.len() > MAX_RING || ring.iter().any(|&r| kept.face([p, q, r])) {
+/// `tets` and `ring` are the edge's ring as `Tri::edge_ring` gives it.
+fn remove_by_ring(
+    tri: &mut Tri,
+    [p, q]: [u32; 2],
+    (tets, ring): (&[u32], &[u32]),
+    kept: &Kept,
+    vtet: &mut [u32],
+) -> Option<usize> {
+    if ring.iter().any(|&r| kept.face([p, q, r])) {
         return None;
     }
     let new = [Orientation::Positive, Orientation::Negative]
         .into_iter()
-        .find_map(|side| ring_tets(tri, p, q, &ring, side))?;
-    commit(tri, &tets, &new, vtet);
+        .find_map(|side| ring_tets(tri, p, q, ring, side))?;
+    commit(tri, tets, &new, vtet);
     Some(1)
 }
 
@@ -413,14 +419,8 @@ fn shape(tri: &Tri, t: [u32; 4]) -> f64 {
 /// The 2-3 flip of the face `f` shared by tets `t` and `u`, if its apexes' edge crosses the
 /// face's open interior.
 fn flip23(tri: &mut Tri, t: u32, u: u32, f: [u32; 3], vtet: &mut [u32]) -> Option<()> {
-    let apex = |t: u32| {
-        tri.t[t as usize]
-            .v
-            .into_iter()
-            .find(|v| !f.contains(v))
-            .unwrap_or(NONE)
-    };
-    let (d, e) = (apex(t), apex(u));
+    let apex = |t: u32| tri.t[t as usize].v.into_iter().find(|v| !f.contains(v));
+    let (d, e) = (apex(t)?, apex(u)?);
     let o = |a: u32, b: u32, c: u32, x: u32| {
         let p = |v: u32| &tri.pts[v as usize];
         orient3d(p(a), p(b), p(c), p(x))
