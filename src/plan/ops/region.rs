@@ -55,7 +55,8 @@ impl Operation for TetMeshOp {
         // 11: the size field by two raster sweeps; the layout sorts the nodes and buckets the
         //     tets by their highest node.
         // 12: missing boundary triangles recovered by flips (2-3, edge removal) before any hole.
-        12
+        // 13: holes whose front gets stuck are widened round the stuck place and filled again.
+        13
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

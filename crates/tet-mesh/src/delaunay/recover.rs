@@ -5,7 +5,8 @@
 //! tet that may meet its interior (exact, conservative tests) is removed, and the part of those
 //! holes inside the region (bounded by the missing triangles, the boundary triangles inside the
 //! holes and the faces towards the kept inner tets) is meshed by the advancing front, which never
-//! inserts a node on a face. Kept tets are classified inside or outside by flooding from the
+//! inserts a node on a face. Where the front gets stuck against the walls of kept tets, the hole
+//! is widened there and meshed again. Kept tets are classified inside or outside by flooding from the
 //! boundary triangles' oriented sides, never across a boundary face. Any inconsistency is an
 //! error, and the caller falls back to the advancing front on the whole region.
 
@@ -23,7 +24,9 @@ use super::super::{RegionInput, SizeField, TetMeshError};
 use super::flip::coplanar;
 use super::order::brio;
 use super::tri::{FACE, Limits, NONE, Tri};
-use holes::{flood, hole_tets, hole_walls, mesh_holes, seed_sides, unpinched_hole_surface};
+use holes::{
+    flood, hole_tets, hole_walls, mesh_holes, seed_sides, unpinched_hole_surface, widen_hole,
+};
 
 /// Boundary-conforming mesh of a region: `tri` holds only inner tets, the boundary faces on its
 /// hull and the embedded faces as constraints; `pts[n_input..n_input + 4]` are the unused corners
@@ -45,6 +48,8 @@ const MAX_MISSING: usize = 500;
 const MAX_MISSING_SHARE: usize = 50;
 /// Rounds of hole growth before recovery gives up.
 const MAX_GROWTH: usize = 8;
+/// Times a hole is widened round the place where the front got stuck before recovery gives up.
+const MAX_WIDENING: usize = 16;
 
 /// The (tet, face) pairs that hold a constraint triangle, `4 t + i` each: at most two.
 #[derive(Clone, Copy)]
@@ -120,8 +125,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
 
     // The holes' inner part, meshed by the front.
     let extra: Vec<[u32; 4]> = if side.contains(&Side::Hole) {
-        let (sub_b, sub_e) = unpinched_hole_surface(&tri, &mut side, &all, &holders, &vtet, name)?;
-        mesh_holes(&mut tri, &sub_b, &sub_e, name, size)?
+        fill_holes(&mut tri, &mut side, &all, &holders, &vtet, name, size)?
     } else {
         Vec::new()
     };
@@ -144,6 +148,35 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
         missing: missing.len(),
         flipped: before_flips - missing.len(),
     })
+}
+
+/// The front's tets filling the holes. Where the front gets stuck, the hole is widened round the
+/// stuck place (the inner tets there join it, in rings of growing radius) and meshed again: the
+/// walls of kept tets that pinned the front there are gone, and the front has room to turn.
+fn fill_holes(
+    tri: &mut Tri,
+    side: &mut [Side],
+    all: &[([u32; 3], bool)],
+    holders: &[Holders],
+    vtet: &[u32],
+    name: &str,
+    size: &SizeField,
+) -> Result<Vec<[u32; 4]>, TetMeshError> {
+    let mut widened = 0;
+    loop {
+        let (sub_b, sub_e) = unpinched_hole_surface(tri, side, all, holders, vtet, name)?;
+        match mesh_holes(tri, &sub_b, &sub_e, name, size) {
+            Ok(tets) => return Ok(tets),
+            Err(e) if widened < MAX_WIDENING => {
+                let Some(at) = e.at else { return Err(e) };
+                widened += 1;
+                if widen_hole(tri, side, &sub_b, at) == 0 {
+                    return Err(e);
+                }
+            }
+            Err(e) => return Err(e),
+        }
+    }
 }
 
 /// A tetrahedralization of only the enclosing tet, far around the input's bounding box.

@@ -170,6 +170,52 @@ pub(super) fn unpinched_hole_surface(
     }
 }
 
+/// Widens the holes round `at`, where their front got stuck: every inner tet at a vertex of the
+/// holes' surface `sub_b` near `at` (within twice the nearest one's distance) joins them, so
+/// that the wall of kept tets that pinned the front there is gone. Returns how many tets joined.
+pub(super) fn widen_hole(tri: &Tri, side: &mut [Side], sub_b: &[[u32; 3]], at: [f64; 3]) -> usize {
+    let d2 = |v: u32| {
+        let p = &tri.pts[v as usize];
+        (0..3).map(|k| (p[k] - at[k]).powi(2)).sum::<f64>()
+    };
+    let near = sub_b
+        .iter()
+        .flatten()
+        .map(|&v| d2(v))
+        .fold(f64::INFINITY, f64::min);
+    if !near.is_finite() {
+        return 0;
+    }
+    // Where every tet at the nearest wall vertices has joined already, the next ring out.
+    for reach in [4.0, 16.0, 64.0] {
+        let mut wall: Vec<u32> = sub_b
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|&v| d2(v) <= reach * near)
+            .collect();
+        wall.sort_unstable();
+        wall.dedup();
+        let joining: Vec<u32> = tri
+            .live_tets()
+            .filter(|&t| {
+                side[t as usize] == Side::In
+                    && tri.t[t as usize]
+                        .v
+                        .iter()
+                        .any(|v| wall.binary_search(v).is_ok())
+            })
+            .collect();
+        if !joining.is_empty() {
+            for &t in &joining {
+                side[t as usize] = Side::Hole;
+            }
+            return joining.len();
+        }
+    }
+    0
+}
+
 /// The front's tets filling the holes, in `tri`'s numbering (its new nodes appended).
 pub(super) fn mesh_holes(
     tri: &mut Tri,
