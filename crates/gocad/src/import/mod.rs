@@ -12,9 +12,11 @@
 //! written (corner order unchanged), so their geometric orientation (right-hand normal) flips.
 //! Validation and topology only rely on orientation *consistency*, which a reflection preserves.
 
+mod frame;
 mod lexer;
 mod model3d;
 mod parser;
+mod pick;
 mod select;
 
 pub use model3d::{Model3dFace, Model3dInfo, Model3dRecord, Model3dRegion};
