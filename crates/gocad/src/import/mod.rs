@@ -17,6 +17,7 @@ mod lexer;
 mod model3d;
 mod parser;
 mod pick;
+mod records;
 mod select;
 
 pub use model3d::{Model3dFace, Model3dInfo, Model3dRecord, Model3dRegion};

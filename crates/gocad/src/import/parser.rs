@@ -4,15 +4,15 @@
 //! It decides object boundaries (`GOCAD <Type>` ... `END`, a missing END ends at the next `GOCAD`
 //! line or at the end of the file), group nesting (`BEGIN_MEMBERS`/`END_MEMBERS`), header names
 //! (`name:`, `name=`, `HEADER: {`), the coordinate-system block, property declarations, and the
-//! geometry records of TSurf objects (VRTX, PVRTX, ATOM, PATOM, TRGL, TFACE, BSTONE, BORDER).
+//! geometry records of TSurf objects (VRTX, PVRTX, ATOM, PATOM, TRGL, TFACE, BSTONE, BORDER), read
+//! in `records`; then which vertex every record's id means.
 //! Objects of other types keep their header and a count of their records; their geometry is not
 //! parsed. Line numbers are 1-based and stored as u32 (files beyond 4 G lines saturate).
 
 use super::ImportError;
-use super::lexer::{
-    Lines, NumberError, Tokens, eq_ci, parse_f64, parse_id, quoted_tokens, text, trim,
-};
+use super::lexer::{Lines, Tokens, eq_ci, parse_id, quoted_tokens, text, trim};
 use super::model3d::{Model3dBuilder, Model3dInfo};
+use super::records::parse_surface_record;
 use serde::{Deserialize, Serialize};
 
 /// The `GOCAD_ORIGINAL_COORDINATE_SYSTEM` block of an object (defaults when absent).
@@ -93,12 +93,12 @@ enum Mode {
 }
 
 /// An object being read: raw ids until `finish` resolves them.
-struct Builder {
-    obj: GocadObject,
-    raw_atoms: Vec<(u64, u64, u32)>,
-    raw_triangles: Vec<[u64; 3]>,
-    raw_bstones: Vec<(u64, u32)>,
-    raw_borders: Vec<(u64, u64, u32)>,
+pub(super) struct Builder {
+    pub(super) obj: GocadObject,
+    pub(super) raw_atoms: Vec<(u64, u64, u32)>,
+    pub(super) raw_triangles: Vec<[u64; 3]>,
+    pub(super) raw_bstones: Vec<(u64, u32)>,
+    pub(super) raw_borders: Vec<(u64, u64, u32)>,
     model: Option<Model3dBuilder>,
     is_group: bool,
 }
@@ -158,7 +158,7 @@ impl IdMap {
     }
 }
 
-fn line32(n: usize) -> u32 {
+pub(super) fn line32(n: usize) -> u32 {
     u32::try_from(n).unwrap_or(u32::MAX)
 }
 
@@ -346,122 +346,6 @@ fn header_entry(t: &[u8], obj: &mut GocadObject) {
         v = &v[1..v.len() - 1];
     }
     obj.name = text(v);
-}
-
-/// Reads one TSurf geometry record; returns whether `kw` was one.
-#[inline]
-fn parse_surface_record(
-    kw: &[u8],
-    toks: &mut Tokens<'_>,
-    n: usize,
-    b: &mut Builder,
-    file: &str,
-) -> Result<bool, ImportError> {
-    let err = |msg: String| ImportError::new(file, n, msg);
-    let id = |tok: Option<&[u8]>, what: &str| -> Result<u64, ImportError> {
-        match tok {
-            Some(t) => parse_id(t).ok_or_else(|| {
-                ImportError::new(
-                    file,
-                    n,
-                    format!(
-                        "{what} '{}' is not a vertex id (a non-negative integer)",
-                        text(t)
-                    ),
-                )
-            }),
-            None => Err(ImportError::new(file, n, format!("{what} is missing"))),
-        }
-    };
-    match kw {
-        b"VRTX" | b"PVRTX" => {
-            let kwname = if kw == b"VRTX" { "VRTX" } else { "PVRTX" };
-            let vid = id(
-                toks.next(),
-                if kw == b"VRTX" { "VRTX id" } else { "PVRTX id" },
-            )?;
-            let mut xyz = [0.0; 3];
-            for (k, c) in xyz.iter_mut().enumerate() {
-                let axis = ["x", "y", "z"][k];
-                let tok = toks
-                    .next()
-                    .ok_or_else(|| err(format!("{kwname} {vid} has no {axis} coordinate")))?;
-                *c = parse_f64(tok).map_err(|e| match e {
-                    NumberError::NotFinite => err(format!(
-                        "{kwname} {vid}: {axis} coordinate '{}' is infinite or NaN",
-                        text(tok)
-                    )),
-                    NumberError::NotNumeric => err(format!(
-                        "{kwname} {vid}: {axis} coordinate '{}' is not a number",
-                        text(tok)
-                    )),
-                })?;
-            }
-            let o = &mut b.obj;
-            if o.vertices.is_empty() && o.property_stride == 0 {
-                o.property_stride = declared_stride(o);
-            }
-            if kw == b"PVRTX" {
-                let stride = o.property_stride;
-                for k in 0..stride {
-                    let tok = toks.next().ok_or_else(|| {
-                        err(format!("PVRTX {vid} has {k} property values; PROPERTIES/ESIZES declare {stride}"))
-                    })?;
-                    let v = parse_f64(tok).map_err(|_| {
-                        err(format!(
-                            "PVRTX {vid}: property value '{}' is not a finite number",
-                            text(tok)
-                        ))
-                    })?;
-                    o.properties.push(v);
-                }
-            } else {
-                let stride = o.property_stride;
-                o.properties.extend(std::iter::repeat_n(f64::NAN, stride));
-            }
-            o.vertices.push(xyz);
-            o.vertex_ids.push(vid);
-            o.vertex_lines.push(line32(n));
-        }
-        b"TRGL" => {
-            let a = id(toks.next(), "TRGL corner")?;
-            let bb = id(toks.next(), "TRGL corner")?;
-            let c = id(toks.next(), "TRGL corner")?;
-            b.raw_triangles.push([a, bb, c]);
-            b.obj.triangle_lines.push(line32(n));
-            if b.obj.parts.is_empty() {
-                b.obj.parts.push(RawPart { line: b.obj.line });
-            }
-            b.obj.triangle_part.push((b.obj.parts.len() - 1) as u32);
-        }
-        b"TFACE" => b.obj.parts.push(RawPart { line: n }),
-        b"ATOM" | b"PATOM" => {
-            let aid = id(toks.next(), "ATOM id")?;
-            let target = id(toks.next(), "ATOM target")?;
-            b.raw_atoms.push((aid, target, line32(n)));
-        }
-        b"BSTONE" => {
-            let v = id(toks.next(), "BSTONE vertex")?;
-            b.raw_bstones.push((v, line32(n)));
-        }
-        b"BORDER" => {
-            let _border_id = id(toks.next(), "BORDER id")?;
-            let v0 = id(toks.next(), "BORDER vertex")?;
-            let v1 = id(toks.next(), "BORDER vertex")?;
-            b.raw_borders.push((v0, v1, line32(n)));
-        }
-        _ => return Ok(false),
-    }
-    Ok(true)
-}
-
-/// Number of property values a PVRTX carries: the ESIZES sum, else one per name.
-fn declared_stride(o: &GocadObject) -> usize {
-    if o.property_sizes.is_empty() {
-        o.property_names.len()
-    } else {
-        o.property_sizes.iter().sum()
-    }
 }
 
 /// Closes an object: resolves ids, checks references, appends it to the file.
