@@ -1,8 +1,10 @@
-//! Stage `import`: gOcad ASCII files (TSurf `.ts`, Model3d `.ml`, groups `.gp`) to typed surfaces.
+//! Stage `import`: gOcad ASCII files (TSurf `.ts`, Model3d `.ml`, groups `.gp`, PLine `.pl`) to
+//! typed surfaces and lines.
 //!
-//! It decides which object of a file is the surface a recipe names, how its coordinates map into
-//! the recipe's frame (unit scaling, `ZPOSITIVE Depth` → z := -z) and which vertex every triangle,
-//! ATOM, BSTONE and BORDER points to. Everything it cannot decide exactly — a missing vertex, a
+//! It decides which object of a file is the surface or line a recipe names (`pick`), how
+//! its coordinates map into the recipe's frame (`frame`: unit scaling, `ZPOSITIVE Depth` →
+//! z := -z, the same for every object type) and which vertex every triangle, segment, ATOM,
+//! BSTONE and BORDER points to. Everything it cannot decide exactly — a missing vertex, a
 //! non-numeric or infinite coordinate, a duplicate id, an object of another type — is an
 //! [`ImportError`] naming the file and line; no byte sequence makes it panic.
 //!
@@ -17,11 +19,13 @@ mod lexer;
 mod model3d;
 mod parser;
 mod pick;
+mod pline;
 mod records;
 mod select;
 
 pub use model3d::{Model3dFace, Model3dInfo, Model3dRecord, Model3dRegion};
 pub use parser::{CoordinateSystem, GocadFile, GocadObject, RawPart, parse_gocad};
+pub use pline::{LinePart, Polyline, import_line, import_lines};
 pub use select::{import_surface, import_surfaces};
 
 use serde::{Deserialize, Serialize};
@@ -60,12 +64,14 @@ impl fmt::Display for ObjectRef {
     }
 }
 
-/// What the recipe says about one imported surface.
+/// What the recipe says about one imported surface or line.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ImportOptions {
-    /// The object to import, by name or position. `None`: the file must hold exactly one surface.
+    /// The object to import, by name or position. `None`: the file must hold exactly one object
+    /// of the type imported.
     pub object: Option<ObjectRef>,
-    /// Skip objects of other types (PLine, VSet, SGrid...) instead of failing on them.
+    /// Skip objects of other types (a PLine when surfaces are imported, VSet, SGrid...) instead
+    /// of failing on them.
     pub skip_other_types: bool,
     /// Units of the recipe. `Some(u)`: each axis is scaled from its `AXIS_UNIT` (metres when the
     /// file has no CRS block) into `u`; an unknown unit is an error. `None`: coordinates are kept

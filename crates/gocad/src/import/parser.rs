@@ -3,16 +3,23 @@
 //!
 //! It decides object boundaries (`GOCAD <Type>` ... `END`, a missing END ends at the next `GOCAD`
 //! line or at the end of the file), group nesting (`BEGIN_MEMBERS`/`END_MEMBERS`), header names
-//! (`name:`, `name=`, `HEADER: {`), the coordinate-system block, property declarations, and the
-//! geometry records of TSurf objects (VRTX, PVRTX, ATOM, PATOM, TRGL, TFACE, BSTONE, BORDER), read
-//! in `records`; then which vertex every record's id means.
+//! (`name:`, `name=`, `HEADER: {`), the coordinate-system block, property declarations, the
+//! geometry records of TSurf objects (VRTX, PVRTX, ATOM, PATOM, TRGL, TFACE, BSTONE, BORDER) and
+//! of PLine objects (the same vertex records, SEG, ILINE), read in `records`; then which vertex
+//! every record's id means.
 //! Objects of other types keep their header and a count of their records; their geometry is not
 //! parsed. Line numbers are 1-based and stored as u32 (files beyond 4 G lines saturate).
+//!
+//! A TSurf error fails the file, as it always has. An error in a PLine is kept in its object
+//! ([`GocadObject::geometry_error`]) instead: importing a file's surfaces must not start to fail
+//! because of a line the recipe does not import; importing that line does.
+//! Lines keep no property values: a PVRTX is read for its id and coordinates only, so a line
+//! whose PVRTX carry fewer values than PROPERTIES declares (real files do) still imports.
 
 use super::ImportError;
 use super::lexer::{Lines, Tokens, eq_ci, parse_id, quoted_tokens, text, trim};
 use super::model3d::{Model3dBuilder, Model3dInfo};
-use super::records::parse_surface_record;
+use super::records::{parse_line_record, parse_surface_record};
 use serde::{Deserialize, Serialize};
 
 /// The `GOCAD_ORIGINAL_COORDINATE_SYSTEM` block of an object (defaults when absent).
@@ -25,7 +32,7 @@ pub struct CoordinateSystem {
     pub zpositive: Option<(String, usize)>,
 }
 
-/// A TFACE of a TSurf object.
+/// A TFACE of a TSurf object or an ILINE of a PLine object.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RawPart {
     pub line: usize,
@@ -34,7 +41,8 @@ pub struct RawPart {
 /// One `GOCAD <Type>` object.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct GocadObject {
-    /// `TSurf` for any spelling of it (`Tsurf`, `TSURF`); other types as written (`PLine`, `SGrid`...).
+    /// `TSurf` or `PLine` for any spelling of them (`Tsurf`, `PLINE`); other types as written
+    /// (`VSet`, `SGrid`...).
     pub kind: String,
     pub name: String,
     /// Line of the `GOCAD` signature.
@@ -62,17 +70,28 @@ pub struct GocadObject {
     pub triangles: Vec<[u32; 3]>,
     pub triangle_lines: Vec<u32>,
     pub triangle_part: Vec<u32>,
-    /// TFACEs (one implicit part when triangles come before any TFACE).
+    /// TFACEs of a TSurf, ILINEs of a PLine (one implicit part when triangles or segments come
+    /// before any TFACE or ILINE).
     pub parts: Vec<RawPart>,
     pub bstones: Vec<u32>,
     pub borders: Vec<[u32; 2]>,
-    /// Geometry records of objects whose geometry is not parsed (PLine, VSet...).
+    /// SEG records of a PLine as vertex indices (aliases resolved), their lines and their part.
+    pub segments: Vec<[u32; 2]>,
+    pub segment_lines: Vec<u32>,
+    pub segment_part: Vec<u32>,
+    /// The first error in the geometry of a PLine object. The file still parses, so that
+    /// importing its other objects does not depend on this one; importing this one returns it.
+    pub geometry_error: Option<ImportError>,
+    /// Geometry records of objects whose geometry is not parsed (VSet, SGrid...).
     pub record_count: usize,
 }
 
 impl GocadObject {
     pub fn is_surface(&self) -> bool {
         self.kind == "TSurf"
+    }
+    pub fn is_line(&self) -> bool {
+        self.kind == "PLine"
     }
 }
 
@@ -99,17 +118,17 @@ pub(super) struct Builder {
     pub(super) raw_triangles: Vec<[u64; 3]>,
     pub(super) raw_bstones: Vec<(u64, u32)>,
     pub(super) raw_borders: Vec<(u64, u64, u32)>,
+    pub(super) raw_segments: Vec<[u64; 2]>,
     model: Option<Model3dBuilder>,
     is_group: bool,
 }
 
 impl Builder {
     fn new(kind: &[u8], line: usize, group: Option<String>) -> Self {
-        let kind = if eq_ci(kind, "TSurf") {
-            "TSurf".to_string()
-        } else {
-            text(kind)
-        };
+        let kind = ["TSurf", "PLine"]
+            .into_iter()
+            .find(|k| eq_ci(kind, k))
+            .map_or_else(|| text(kind), str::to_string);
         let is_group = kind.ends_with("Group");
         let model = if kind.eq_ignore_ascii_case("Model3d") {
             Some(Model3dBuilder::default())
@@ -127,6 +146,7 @@ impl Builder {
             raw_triangles: Vec::new(),
             raw_bstones: Vec::new(),
             raw_borders: Vec::new(),
+            raw_segments: Vec::new(),
             model,
             is_group,
         }
@@ -245,6 +265,9 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
         if b.obj.is_surface() && parse_surface_record(kw, &mut toks, n, b, file_label)? {
             continue;
         }
+        if b.obj.is_line() && deferred(b, kw, &mut toks, n, file_label) {
+            continue;
+        }
         if let Some(m) = b.model.as_mut()
             && m.record(kw, t, n, file_label)?
         {
@@ -348,6 +371,15 @@ fn header_entry(t: &[u8], obj: &mut GocadObject) {
     obj.name = text(v);
 }
 
+/// Reads a PLine record into `b`; returns whether `kw` was one. An error is kept in the object
+/// (the first one) rather than returned, and the record counts as read.
+fn deferred(b: &mut Builder, kw: &[u8], toks: &mut Tokens<'_>, n: usize, file: &str) -> bool {
+    parse_line_record(kw, toks, n, b, file).unwrap_or_else(|e| {
+        b.obj.geometry_error.get_or_insert(e);
+        true
+    })
+}
+
 /// Closes an object: resolves ids, checks references, appends it to the file.
 fn finish(
     mut b: Builder,
@@ -367,6 +399,10 @@ fn finish(
             b.obj.property_sizes = vec![1; b.obj.property_names.len()];
         }
         resolve(&mut b, label)?;
+    } else if b.obj.is_line()
+        && let Err(e) = resolve(&mut b, label)
+    {
+        b.obj.geometry_error.get_or_insert(e);
     }
     file.objects.push(b.obj);
     Ok(())
@@ -468,6 +504,12 @@ fn resolve(b: &mut Builder, label: &str) -> Result<(), ImportError> {
         let a = map.get(v0).ok_or_else(|| missing("BORDER", v0, line))?;
         let c = map.get(v1).ok_or_else(|| missing("BORDER", v1, line))?;
         o.borders.push([a, c]);
+    }
+    o.segments.reserve_exact(b.raw_segments.len());
+    for (&[v0, v1], &line) in b.raw_segments.iter().zip(&o.segment_lines) {
+        let a = map.get(v0).ok_or_else(|| missing("SEG", v0, line))?;
+        let c = map.get(v1).ok_or_else(|| missing("SEG", v1, line))?;
+        o.segments.push([a, c]);
     }
     Ok(())
 }

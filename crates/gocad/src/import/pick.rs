@@ -1,7 +1,8 @@
-//! Which object of a file the options mean, for any object type the importer reads: the one
-//! named, the one at a position, or the only one of its type. A name that two objects share, a
-//! position past the end, an object of another type or a file with none of the type is an error
-//! that lists what the file holds, so the recipe can be fixed from the message alone.
+//! Which object of a file the options mean, for any object type the importer reads (surfaces,
+//! lines): the one named, the one at a position, or the only one of its type. A name that
+//! two objects share, a position past the end, an object of another type or a file with none of
+//! the type is an error that lists what the file holds, so the recipe can be fixed from the
+//! message alone.
 
 use super::parser::{GocadFile, GocadObject};
 use super::{ImportError, ImportOptions, ObjectRef};
@@ -17,6 +18,10 @@ pub(super) struct Kind {
 pub(super) const SURFACE: Kind = Kind {
     gocad: "TSurf",
     noun: "surface",
+};
+pub(super) const LINE: Kind = Kind {
+    gocad: "PLine",
+    noun: "line",
 };
 
 impl Kind {

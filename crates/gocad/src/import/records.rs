@@ -1,7 +1,8 @@
-//! The geometry records of TSurf objects: the vertex records (VRTX, PVRTX, ATOM, PATOM), apart
-//! so that other object types can share them, then TRGL, TFACE, BSTONE and BORDER. Vertex ids
-//! stay raw here; the parser resolves them when the object ends. A PVRTX must carry the property
-//! values PROPERTIES/ESIZES declare.
+//! The geometry records TSurf and PLine objects share or own: the vertex records (VRTX, PVRTX,
+//! ATOM, PATOM, read by one function for both types), TRGL, TFACE, BSTONE and BORDER for
+//! surfaces, SEG and ILINE for lines. Vertex ids stay raw here; the parser resolves them when the
+//! object ends. A surface's PVRTX must carry the property values PROPERTIES/ESIZES declare; a
+//! line's are not read, since a line keeps no property.
 
 use super::ImportError;
 use super::lexer::{NumberError, Tokens, parse_f64, parse_id, text};
@@ -33,7 +34,7 @@ pub(super) fn parse_surface_record(
     b: &mut Builder,
     file: &str,
 ) -> Result<bool, ImportError> {
-    if parse_vertex_record(kw, toks, n, b, file)? {
+    if parse_vertex_record(kw, toks, n, b, file, true)? {
         return Ok(true);
     }
     let id = |tok: Option<&[u8]>, what: &str| vertex_id(tok, what, n, file);
@@ -65,8 +66,38 @@ pub(super) fn parse_surface_record(
     Ok(true)
 }
 
-/// Reads a VRTX, PVRTX, ATOM or PATOM record; returns whether `kw` was one. A PVRTX's property
-/// values are read and checked against PROPERTIES/ESIZES.
+/// Reads one PLine geometry record (vertices without their property values, SEG, ILINE);
+/// returns whether `kw` was one.
+pub(super) fn parse_line_record(
+    kw: &[u8],
+    toks: &mut Tokens<'_>,
+    n: usize,
+    b: &mut Builder,
+    file: &str,
+) -> Result<bool, ImportError> {
+    if parse_vertex_record(kw, toks, n, b, file, false)? {
+        return Ok(true);
+    }
+    match kw {
+        b"SEG" => {
+            let a = vertex_id(toks.next(), "SEG end", n, file)?;
+            let c = vertex_id(toks.next(), "SEG end", n, file)?;
+            b.raw_segments.push([a, c]);
+            b.obj.segment_lines.push(line32(n));
+            if b.obj.parts.is_empty() {
+                b.obj.parts.push(RawPart { line: b.obj.line });
+            }
+            b.obj.segment_part.push((b.obj.parts.len() - 1) as u32);
+        }
+        b"ILINE" => b.obj.parts.push(RawPart { line: n }),
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+/// Reads a VRTX, PVRTX, ATOM or PATOM record, the vertex records TSurf and PLine share; returns
+/// whether `kw` was one. `with_properties`: a PVRTX's property values are read and checked
+/// against PROPERTIES/ESIZES (surfaces); otherwise they are not read (lines).
 #[inline]
 fn parse_vertex_record(
     kw: &[u8],
@@ -74,6 +105,7 @@ fn parse_vertex_record(
     n: usize,
     b: &mut Builder,
     file: &str,
+    with_properties: bool,
 ) -> Result<bool, ImportError> {
     let err = |msg: String| ImportError::new(file, n, msg);
     let id = |tok: Option<&[u8]>, what: &str| vertex_id(tok, what, n, file);
@@ -102,7 +134,9 @@ fn parse_vertex_record(
                 })?;
             }
             let o = &mut b.obj;
-            read_properties(kw == b"PVRTX", vid, toks, o, &err)?;
+            if with_properties {
+                read_properties(kw == b"PVRTX", vid, toks, o, &err)?;
+            }
             o.vertices.push(xyz);
             o.vertex_ids.push(vid);
             o.vertex_lines.push(line32(n));

@@ -2,6 +2,7 @@
 //! change instead of one per file).
 
 mod import_fuzz;
+mod import_lines;
 mod import_quirks;
 mod import_real_files;
 mod validate_cases;
