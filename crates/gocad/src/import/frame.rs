@@ -56,6 +56,11 @@ impl Frame {
         self.apply(p)
             .ok_or_else(|| ImportError::new(label, line, "coordinate overflows after unit scaling"))
     }
+
+    /// The z axis scale (the unit of measured depths when a Well does not name one).
+    pub(super) fn z_scale(&self) -> f64 {
+        self.scale[2]
+    }
 }
 
 /// Scale from a unit as written into the target units; `what` names the record in the error.

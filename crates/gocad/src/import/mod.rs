@@ -1,12 +1,13 @@
-//! Stage `import`: gOcad ASCII files (TSurf `.ts`, Model3d `.ml`, groups `.gp`, PLine `.pl`) to
-//! typed surfaces and lines.
+//! Stage `import`: gOcad ASCII files (TSurf `.ts`, Model3d `.ml`, groups `.gp`, PLine `.pl`,
+//! Well `.wl`) to typed surfaces, lines and well paths.
 //!
-//! It decides which object of a file is the surface or line a recipe names (`pick`), how
+//! It decides which object of a file is the surface, line or well a recipe names (`pick`), how
 //! its coordinates map into the recipe's frame (`frame`: unit scaling, `ZPOSITIVE Depth` →
 //! z := -z, the same for every object type) and which vertex every triangle, segment, ATOM,
 //! BSTONE and BORDER points to. Everything it cannot decide exactly — a missing vertex, a
-//! non-numeric or infinite coordinate, a duplicate id, an object of another type — is an
-//! [`ImportError`] naming the file and line; no byte sequence makes it panic.
+//! non-numeric or infinite coordinate, a duplicate id, an object of another type, a well whose
+//! measured depth decreases — is an [`ImportError`] naming the file and line; no byte sequence
+//! makes it panic.
 //!
 //! The stage is a pure function of bytes: the engine reads the file and passes its label.
 //!
@@ -22,11 +23,15 @@ mod pick;
 mod pline;
 mod records;
 mod select;
+mod well;
+mod well_records;
 
 pub use model3d::{Model3dFace, Model3dInfo, Model3dRecord, Model3dRegion};
 pub use parser::{CoordinateSystem, GocadFile, GocadObject, RawPart, parse_gocad};
 pub use pline::{LinePart, Polyline, import_line, import_lines};
 pub use select::{import_surface, import_surfaces};
+pub use well::{Marker, WellPath, import_well, import_wells};
+pub use well_records::{RawMarker, RawStation, StationRecord, WellRecords};
 
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -64,7 +69,7 @@ impl fmt::Display for ObjectRef {
     }
 }
 
-/// What the recipe says about one imported surface or line.
+/// What the recipe says about one imported surface, line or well.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ImportOptions {
     /// The object to import, by name or position. `None`: the file must hold exactly one object

@@ -5,14 +5,14 @@
 //! line or at the end of the file), group nesting (`BEGIN_MEMBERS`/`END_MEMBERS`), header names
 //! (`name:`, `name=`, `HEADER: {`), the coordinate-system block, property declarations, the
 //! geometry records of TSurf objects (VRTX, PVRTX, ATOM, PATOM, TRGL, TFACE, BSTONE, BORDER) and
-//! of PLine objects (the same vertex records, SEG, ILINE), read in `records`; then which vertex
-//! every record's id means.
+//! of PLine objects (the same vertex records, SEG, ILINE), read in `records`, and those of Well
+//! objects, read in `well_records`; then which vertex every record's id means.
 //! Objects of other types keep their header and a count of their records; their geometry is not
 //! parsed. Line numbers are 1-based and stored as u32 (files beyond 4 G lines saturate).
 //!
-//! A TSurf error fails the file, as it always has. An error in a PLine is kept in its object
-//! ([`GocadObject::geometry_error`]) instead: importing a file's surfaces must not start to fail
-//! because of a line the recipe does not import; importing that line does.
+//! A TSurf error fails the file, as it always has. An error in a PLine or a Well is kept in its
+//! object ([`GocadObject::geometry_error`]) instead: importing a file's surfaces must not start to
+//! fail because of a line or well the recipe does not import; importing that line or well does.
 //! Lines keep no property values: a PVRTX is read for its id and coordinates only, so a line
 //! whose PVRTX carry fewer values than PROPERTIES declares (real files do) still imports.
 
@@ -20,6 +20,7 @@ use super::ImportError;
 use super::lexer::{Lines, Tokens, eq_ci, parse_id, quoted_tokens, text, trim};
 use super::model3d::{Model3dBuilder, Model3dInfo};
 use super::records::{parse_line_record, parse_surface_record};
+use super::well_records::{self, WellRecords};
 use serde::{Deserialize, Serialize};
 
 /// The `GOCAD_ORIGINAL_COORDINATE_SYSTEM` block of an object (defaults when absent).
@@ -41,8 +42,8 @@ pub struct RawPart {
 /// One `GOCAD <Type>` object.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct GocadObject {
-    /// `TSurf` or `PLine` for any spelling of them (`Tsurf`, `PLINE`); other types as written
-    /// (`VSet`, `SGrid`...).
+    /// `TSurf`, `PLine` or `Well` for any spelling of them (`Tsurf`, `PLINE`); other types as
+    /// written (`VSet`, `SGrid`...).
     pub kind: String,
     pub name: String,
     /// Line of the `GOCAD` signature.
@@ -79,7 +80,9 @@ pub struct GocadObject {
     pub segments: Vec<[u32; 2]>,
     pub segment_lines: Vec<u32>,
     pub segment_part: Vec<u32>,
-    /// The first error in the geometry of a PLine object. The file still parses, so that
+    /// The path and marker records of a Well object, as written.
+    pub well: Option<WellRecords>,
+    /// The first error in the geometry of a PLine or Well object. The file still parses, so that
     /// importing its other objects does not depend on this one; importing this one returns it.
     pub geometry_error: Option<ImportError>,
     /// Geometry records of objects whose geometry is not parsed (VSet, SGrid...).
@@ -92,6 +95,9 @@ impl GocadObject {
     }
     pub fn is_line(&self) -> bool {
         self.kind == "PLine"
+    }
+    pub fn is_well(&self) -> bool {
+        self.kind == "Well"
     }
 }
 
@@ -109,6 +115,8 @@ enum Mode {
     Crs,
     /// Inside a `{ ... }` block that carries nothing we use (PROPERTY_CLASS_HEADER).
     Skip,
+    /// Inside a Well's `WELL_CURVE` ... `END_CURVE` block (a log: nothing we use).
+    Curve,
 }
 
 /// An object being read: raw ids until `finish` resolves them.
@@ -125,7 +133,7 @@ pub(super) struct Builder {
 
 impl Builder {
     fn new(kind: &[u8], line: usize, group: Option<String>) -> Self {
-        let kind = ["TSurf", "PLine"]
+        let kind = ["TSurf", "PLine", "Well"]
             .into_iter()
             .find(|k| eq_ci(kind, k))
             .map_or_else(|| text(kind), str::to_string);
@@ -135,11 +143,13 @@ impl Builder {
         } else {
             None
         };
+        let well = (kind == "Well").then(WellRecords::default);
         Builder {
             obj: GocadObject {
                 kind,
                 line,
                 group,
+                well,
                 ..Default::default()
             },
             raw_atoms: Vec::new(),
@@ -248,6 +258,17 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
                 }
                 continue;
             }
+            Mode::Curve => {
+                if eq_ci(kw, "END_CURVE") {
+                    mode = Mode::Body;
+                    continue;
+                }
+                if !eq_ci(kw, "END") {
+                    continue;
+                }
+                // An END inside a log block closes the block and the object.
+                mode = Mode::Body;
+            }
             Mode::Body => {}
         }
 
@@ -265,7 +286,7 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
         if b.obj.is_surface() && parse_surface_record(kw, &mut toks, n, b, file_label)? {
             continue;
         }
-        if b.obj.is_line() && deferred(b, kw, &mut toks, n, file_label) {
+        if (b.obj.is_line() || b.obj.is_well()) && deferred(b, kw, &mut toks, n, file_label) {
             continue;
         }
         if let Some(m) = b.model.as_mut()
@@ -334,6 +355,7 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
             _ if eq_ci(kw, "GEOLOGICAL_FEATURE") => {
                 b.obj.geological_feature = Some(text(toks.rest()))
             }
+            _ if eq_ci(kw, "WELL_CURVE") && !t.ends_with(b"{") => mode = Mode::Curve,
             _ if t.ends_with(b"{") => mode = Mode::Skip,
             _ if is_geometry_keyword(kw) => b.obj.record_count += 1,
             _ => {}
@@ -371,10 +393,15 @@ fn header_entry(t: &[u8], obj: &mut GocadObject) {
     obj.name = text(v);
 }
 
-/// Reads a PLine record into `b`; returns whether `kw` was one. An error is kept in the object
-/// (the first one) rather than returned, and the record counts as read.
+/// Reads a PLine or Well record into `b`; returns whether `kw` was one. An error is kept in the
+/// object (the first one) rather than returned, and the record counts as read.
 fn deferred(b: &mut Builder, kw: &[u8], toks: &mut Tokens<'_>, n: usize, file: &str) -> bool {
-    parse_line_record(kw, toks, n, b, file).unwrap_or_else(|e| {
+    let read = if b.obj.is_line() {
+        parse_line_record(kw, toks, n, b, file)
+    } else {
+        well_records::record(&mut b.obj, kw, toks, n, file)
+    };
+    read.unwrap_or_else(|e| {
         b.obj.geometry_error.get_or_insert(e);
         true
     })

@@ -1,5 +1,5 @@
 //! Which object of a file the options mean, for any object type the importer reads (surfaces,
-//! lines): the one named, the one at a position, or the only one of its type. A name that
+//! lines, wells): the one named, the one at a position, or the only one of its type. A name that
 //! two objects share, a position past the end, an object of another type or a file with none of
 //! the type is an error that lists what the file holds, so the recipe can be fixed from the
 //! message alone.
@@ -22,6 +22,10 @@ pub(super) const SURFACE: Kind = Kind {
 pub(super) const LINE: Kind = Kind {
     gocad: "PLine",
     noun: "line",
+};
+pub(super) const WELL: Kind = Kind {
+    gocad: "Well",
+    noun: "path",
 };
 
 impl Kind {

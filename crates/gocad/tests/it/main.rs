@@ -5,4 +5,5 @@ mod import_fuzz;
 mod import_lines;
 mod import_quirks;
 mod import_real_files;
+mod import_wells;
 mod validate_cases;
