@@ -1,10 +1,10 @@
 //! No byte sequence makes the import panic: proptest mutates real gOcad files (byte flips,
 //! insertions, truncations, line shuffles and duplications) and runs import, validation and
-//! topology on whatever imports. Inputs the fuzzer found are kept in tests/data/gocad/fuzz/ and
+//! topology on whatever imports; lines and wells get the same treatment. Inputs the fuzzer found are kept in tests/data/gocad/fuzz/ and
 //! replayed by `every_kept_fuzz_case_fails_or_imports_without_panicking`.
 
 use geom::Tolerances;
-use gocad::import::{ImportOptions, import_surfaces, parse_gocad};
+use gocad::import::{ImportOptions, import_lines, import_surfaces, import_wells, parse_gocad};
 use gocad::validate::{repair, validate};
 use model::topology::SurfaceTopology;
 use proptest::prelude::*;
@@ -36,6 +36,55 @@ fn seeds() -> Vec<Vec<u8>> {
     }
     v.push(FALLBACK.as_bytes().to_vec());
     v
+}
+
+const LINE_SEEDS: &[&str] = &[
+    "AuScope__geomodel-2-3dweb/test/regression/input/plTest.pl",
+    "AuScope__geomodel-2-3dweb/test/regression/input/2layer.gp",
+];
+
+const LINE_FALLBACK: &str = "GOCAD PLine 1\r\nHEADER {\r\nname: l\r\n}\r\nGOCAD_ORIGINAL_COORDINATE_SYSTEM\r\nAXIS_UNIT \"km\" \"km\" \"m\"\r\nZPOSITIVE Depth\r\nEND_ORIGINAL_COORDINATE_SYSTEM\r\nPROPERTIES a\r\nILINE\r\nPVRTX 1 1 2 300 7\r\nVRTX 2 1.5 2 310\r\nATOM 3 2\r\nVRTX 4 2 2 320\r\nSEG 1 2\r\nSEG 3 4\r\nILINE\r\nVRTX 5 0 0 0\r\nVRTX 6 0 1 0\r\nSEG 5 6\r\nEND";
+
+const WELL_FALLBACK: &str = "GOCAD Well 1\nHEADER {\nname: W1\n}\nGOCAD_ORIGINAL_COORDINATE_SYSTEM\nAXIS_UNIT m m m\nZPOSITIVE Depth\nEND_ORIGINAL_COORDINATE_SYSTEM\nPATH_ZM_UNIT ft\nWREF 1000 2000 -25\nKB 25\nPATH 0 -25 0 0\nPATH 1000 279.8 0 0\nPATH 2000 520 150 50\nMRKR Top 1 1500\nUNIT A\nMRKR \"B c\" 1 2000\nZONE z 1500 2000 1\nWELL_CURVE\nPROPERTY GR\nREC 100 5\nEND_CURVE\nEND\nGOCAD Well 1\nHEADER {name: V}\nWREF 0 0 10\nVRTX 0 0 10\nVRTX 1 0 0 -90\nMRKR m 1 50\nEND\n";
+
+fn line_and_well_seeds() -> Vec<Vec<u8>> {
+    let mut v: Vec<Vec<u8>> = paths::shared("data/gocad")
+        .map(|root| {
+            LINE_SEEDS
+                .iter()
+                .filter_map(|p| std::fs::read(root.join(p)).ok())
+                .collect()
+        })
+        .unwrap_or_default();
+    v.push(LINE_FALLBACK.as_bytes().to_vec());
+    v.push(WELL_FALLBACK.as_bytes().to_vec());
+    v
+}
+
+/// Imports the lines and wells; what imports must be consistent, panics are the other failure.
+fn exercise_lines_and_wells(bytes: &[u8]) {
+    let opts = ImportOptions {
+        skip_other_types: true,
+        ..Default::default()
+    };
+    if let Ok(lines) = import_lines(bytes, "fuzz.pl", &opts) {
+        for l in lines {
+            let n = l.vertices.len() as u32;
+            assert!(l.segments.iter().flatten().all(|&v| v < n));
+            assert!(l.segment_part.iter().all(|&p| (p as usize) < l.parts.len()));
+        }
+    }
+    if let Ok(wells) = import_wells(bytes, "fuzz.wl", &opts) {
+        for w in wells {
+            assert_eq!(w.stations.len(), w.measured_depth.len());
+            assert!(w.measured_depth.windows(2).all(|p| p[0] <= p[1]));
+            let (first, last) = (
+                w.measured_depth[0],
+                w.measured_depth[w.measured_depth.len() - 1],
+            );
+            assert!(w.markers.iter().all(|m| m.md >= first && m.md <= last));
+        }
+    }
 }
 
 /// Runs the whole chain; panics are the only failure.
@@ -149,6 +198,13 @@ proptest! {
         let all = seeds();
         let base = all[seed.index(all.len())].clone();
         exercise(&apply(base, &muts));
+    }
+
+    #[test]
+    fn mutated_lines_and_wells_never_panic(seed in any::<prop::sample::Index>(), muts in prop::collection::vec(mutation(), 1..6)) {
+        let all = line_and_well_seeds();
+        let base = all[seed.index(all.len())].clone();
+        exercise_lines_and_wells(&apply(base, &muts));
     }
 }
 
