@@ -190,5 +190,11 @@ fn model_a4_whose_regions_leave_holes_the_front_sticks_in_meshes_into_its_eight_
     sealed_model_meshes_into_its_regions("modelA4.ml");
 }
 
-// Not tested here: modelA5 has one horizon patch whose surface mesh folds, and CloudSpin_fixed
-// patches whose boundary loops touch.
+#[test]
+fn model_a5_whose_horizon_turns_round_a_fault_tip_meshes_into_its_twelve_regions() {
+    // Horizon h1 ends in a sliver 1.5 m wide between two faults, round whose tip it turns 360.2°:
+    // the coarse surface mesh's triangles there fold until they are split.
+    sealed_model_meshes_into_its_regions("modelA5.ml");
+}
+
+// Not tested here: CloudSpin_fixed, whose patches' boundary loops touch.

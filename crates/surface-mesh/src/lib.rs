@@ -41,6 +41,7 @@ mod segments;
 mod size;
 mod smooth;
 mod support;
+mod unfold;
 mod verify;
 
 use cdt::{CONSTRAINT, Cdt, CdtError, LOOP, NONE};
@@ -456,6 +457,8 @@ fn refine_and_smooth(
         stri,
     };
     s.run(SMOOTH_ROUNDS);
+    let mut stri = std::mem::take(&mut s.stri);
+    unfold::repair_folds(cdt, p3, support, &mut stri);
     Ok(())
 }
 

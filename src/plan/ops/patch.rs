@@ -100,7 +100,8 @@ impl Operation for SurfaceMeshOp {
         "surface_mesh"
     }
     fn version(&self) -> u32 {
-        3
+        // 4: triangles that fold on the support (a fan turning more than 360°) are split.
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -298,3 +298,58 @@ fn a_tight_fold_hinge_gets_smaller_triangles_than_the_flat_limbs() {
     let limb = mean_edge(&|g| g[0] < -200.0 && g[0] > -450.0 && (g[2] - 300.0).abs() < 10.0); // middle limb
     assert!(hinge < 0.75 * limb, "hinge {hinge} limb {limb}");
 }
+
+/// A horizon cut by a reverse fault that dies out at the origin: polar rings round the fault's
+/// tip, the sector angle stretched so that the horizon turns `turn` degrees round the tip, and
+/// lifted along it so that the lips (the slit along the negative x axis) are `throw` apart at the
+/// rim. With `turn` above 360 the lips overlap in map view, as a reverse fault's do.
+fn horizon_round_a_fault_tip(turn: f64, throw: f64, rings: u32, sectors: u32) -> PatchInput {
+    let radius = 1000.0;
+    let at = |r: f64, s: u32| {
+        let a = f64::from(s) / f64::from(sectors) - 0.5;
+        let phi = (turn * a).to_radians();
+        shift([r * phi.cos(), r * phi.sin(), throw * a * r / radius], UTM)
+    };
+    let mut vertices = vec![shift([0.0; 3], UTM)];
+    for k in 1..=rings {
+        let r = radius * f64::from(k) / f64::from(rings);
+        vertices.extend((0..=sectors).map(|s| at(r, s)));
+    }
+    let id = |k: u32, s: u32| 1 + (k - 1) * (sectors + 1) + s;
+    let mut triangles = Vec::new();
+    for s in 0..sectors {
+        triangles.push([0, id(1, s), id(1, s + 1)]);
+        for k in 1..rings {
+            triangles.push([id(k, s), id(k + 1, s), id(k + 1, s + 1)]);
+            triangles.push([id(k, s), id(k + 1, s + 1), id(k, s + 1)]);
+        }
+    }
+    // The loop: up one lip, round the rim, down the other lip, in coarse steps.
+    let mut border = vec![shift([0.0; 3], UTM)];
+    border.extend((1..=4).map(|k| at(radius * f64::from(k) / 4.0, 0)));
+    border.extend((1..24).map(|s| at(radius, s * sectors / 24)));
+    border.extend(
+        (1..=4)
+            .rev()
+            .map(|k| at(radius * f64::from(k) / 4.0, sectors)),
+    );
+    PatchInput {
+        name: "horizon at a fault tip".into(),
+        support: TriMesh::new(vertices, triangles),
+        loops: vec![border],
+        constraints: vec![],
+    }
+}
+
+#[test]
+fn a_horizon_whose_lips_overlap_round_a_reverse_fault_tip_meshes_without_folds() {
+    // Round the tip the horizon turns more than a full turn: a coarse mesh's triangle there
+    // spans more than 180° on the support while it spans less in the flattening, and folds.
+    // Lips 30 m apart in height, overlapping by 0.5° to 4° in map view.
+    for turn in [360.5, 362.0, 364.0] {
+        let input = horizon_round_a_fault_tip(turn, 30.0, 12, 96);
+        let out = surface_mesh::mesh_patch(&input, &uniform(600.0))
+            .unwrap_or_else(|e| panic!("turn {turn}: {e}"));
+        assert!(out.triangles.len() > 8, "turn {turn}");
+    }
+}
