@@ -3,8 +3,12 @@
 //!
 //! An artifact's hash is always blake3 of its bytes (computed here, never supplied by callers
 //! except from a verified read), so "same hash" means "same content" everywhere in the engine.
+//! A cache hit may hand out an artifact whose bytes are still in the store (`stored`): it is
+//! read and verified the first time its bytes are asked for, so a build that only needs hashes
+//! (every key of a no-op build) never reads it.
 
 use crate::op::OpError;
+use crate::stored::Stored;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
@@ -96,8 +100,14 @@ impl<'de> Deserialize<'de> for Hash {
 /// every encoder here sizes that `Vec` exactly, so no growth slack lives as long as the artifact.
 #[derive(Clone)]
 pub struct Artifact {
-    bytes: Arc<Vec<u8>>,
+    body: Arc<Body>,
     hash: Hash,
+}
+
+enum Body {
+    Bytes(Vec<u8>),
+    /// In the cache, not read yet.
+    Stored(Stored),
 }
 
 impl Artifact {
@@ -105,8 +115,33 @@ impl Artifact {
     pub fn from_bytes(b: Vec<u8>) -> Artifact {
         let hash = Hash::of(&b);
         Artifact {
-            bytes: Arc::new(b),
+            body: Arc::new(Body::Bytes(b)),
             hash,
+        }
+    }
+
+    /// The artifact named `stored.hash()` in the cache, read when its bytes are first needed.
+    pub(crate) fn stored(stored: Stored) -> Artifact {
+        Artifact {
+            hash: stored.hash(),
+            body: Arc::new(Body::Stored(stored)),
+        }
+    }
+
+    /// Whether the bytes are in memory (produced here, or a stored artifact already read).
+    pub fn is_loaded(&self) -> bool {
+        match &*self.body {
+            Body::Bytes(_) => true,
+            Body::Stored(s) => s.is_read(),
+        }
+    }
+
+    /// For a stored artifact that was damaged in the cache and made again when read: the node
+    /// that made it and what was wrong, the first time it is asked.
+    pub(crate) fn take_repair(&self) -> Option<(String, String)> {
+        match &*self.body {
+            Body::Bytes(_) => None,
+            Body::Stored(s) => s.take_repair(),
         }
     }
 
@@ -121,7 +156,7 @@ impl Artifact {
 
     /// Deserialize with postcard; a mismatch in type is an error, never a panic.
     pub fn decode<T: DeserializeOwned>(&self) -> Result<T, OpError> {
-        postcard::from_bytes(&self.bytes).map_err(|e| {
+        postcard::from_bytes(self.bytes()?).map_err(|e| {
             OpError::from(format!("cannot decode artifact {}: {e}", self.hash.short()))
         })
     }
@@ -129,7 +164,7 @@ impl Artifact {
     /// The files of an artifact that encodes a [`FileSet`], read in place (see
     /// [`FileSet::entries`]); the error names the artifact.
     pub fn file_entries(&self) -> Result<Vec<(&str, &[u8])>, OpError> {
-        FileSet::entries(&self.bytes).map_err(|e| {
+        FileSet::entries(self.bytes()?).map_err(|e| {
             OpError::from(format!(
                 "artifact {} is not a file set: {e}",
                 self.hash.short()
@@ -137,20 +172,17 @@ impl Artifact {
         })
     }
 
-    pub fn bytes(&self) -> &[u8] {
-        &self.bytes
+    /// The bytes; a stored artifact is read (and verified) the first time. The error says why a
+    /// stored artifact could neither be read nor made again.
+    pub fn bytes(&self) -> Result<&[u8], OpError> {
+        match &*self.body {
+            Body::Bytes(b) => Ok(b),
+            Body::Stored(s) => s.read().map_err(OpError::from),
+        }
     }
 
     pub fn hash(&self) -> Hash {
         self.hash
-    }
-
-    pub fn len(&self) -> usize {
-        self.bytes.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.bytes.is_empty()
     }
 }
 
@@ -163,12 +195,10 @@ impl Eq for Artifact {}
 
 impl fmt::Debug for Artifact {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "Artifact({} bytes, {})",
-            self.bytes.len(),
-            self.hash.short()
-        )
+        match &*self.body {
+            Body::Bytes(b) => write!(f, "Artifact({} bytes, {})", b.len(), self.hash.short()),
+            Body::Stored(_) => write!(f, "Artifact(stored, {})", self.hash.short()),
+        }
     }
 }
 
@@ -476,12 +506,12 @@ mod tests {
     fn a_file_set_encoded_whole_or_file_by_file_has_postcards_bytes() {
         for set in sets() {
             let want = postcard::to_stdvec(&set).unwrap();
-            assert_eq!(Artifact::encode(&set).unwrap().bytes(), &want[..]);
+            assert_eq!(Artifact::encode(&set).unwrap().bytes().unwrap(), &want[..]);
             let mut enc = FileSetEncoder::new(set.files.len());
             for (k, v) in set.files {
                 enc.push(&k, v).unwrap();
             }
-            assert_eq!(enc.finish().unwrap().bytes(), &want[..]);
+            assert_eq!(enc.finish().unwrap().bytes().unwrap(), &want[..]);
         }
     }
 

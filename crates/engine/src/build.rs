@@ -1,9 +1,11 @@
 //! `build`: run a `BuildGraph` against a cache directory and produce a `BuildReport`.
 //!
 //! The entry point takes the cache lock (telling the caller when it has to wait), loads the
-//! previous manifest of its record for explanations, runs the coordinator over a pool of `jobs`
-//! threads, writes the next manifest into the record, and orders the report topologically with ties broken by name, so the
-//! report, outputs and lock file are identical for any number of jobs.
+//! previous manifest of its record for explanations and the files its emitting nodes wrote
+//! (`emitted`), runs the coordinator over a pool of `jobs` threads, writes the next manifest and
+//! emitted files into the record (when they changed), and orders the report topologically with
+//! ties broken by name, so the report, outputs and lock file are identical for any number of
+//! jobs.
 //!
 //! One pool bounds all the work: every node runs as a task of a rayon pool of `jobs` threads
 //! built for this build, and a stage's own parallel loops (rayon, inside a node) run in that same
@@ -12,6 +14,7 @@
 
 use crate::artifact::Hash;
 use crate::dirlock::DirLock;
+use crate::emitted::Emitted;
 use crate::error::EngineError;
 use crate::executor::Coordinator;
 use crate::graph::{BuildGraph, Work};
@@ -159,6 +162,7 @@ pub fn build_holding(
     store.sweep_temporaries()?;
     let record_dir = opts.record_dir();
     let prev = Manifest::load(&record_dir).unwrap_or_default();
+    let prev_emitted = Emitted::load(&record_dir);
     let jobs = if opts.jobs == 0 {
         std::thread::available_parallelism()
             .map(|n| n.get())
@@ -167,7 +171,7 @@ pub fn build_holding(
         opts.jobs
     };
 
-    let mut co = Coordinator::new(&prev, opts.keep_going);
+    let mut co = Coordinator::new(&prev, &prev_emitted, opts.keep_going);
     co.add_nodes(&graph, 0..graph.len(), on_event);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)
@@ -201,9 +205,16 @@ pub fn build_holding(
         co.drive(&mut graph, jobs, &dispatch, &done_rx, on_event);
     });
 
-    co.manifest(&graph)
-        .save(&record_dir)
-        .map_err(|e| EngineError::io(crate::manifest::manifest_path(&record_dir), e))?;
+    // A build that changed nothing leaves its record as it was.
+    let manifest = co.manifest(&graph);
+    if manifest != prev {
+        manifest
+            .save(&record_dir)
+            .map_err(|e| EngineError::io(crate::manifest::manifest_path(&record_dir), e))?;
+    }
+    co.emitted
+        .save_over(&prev_emitted, &record_dir)
+        .map_err(|e| EngineError::io(&record_dir, e))?;
     let output_files = co.output_files.clone();
     let results = co.into_results(&graph);
 

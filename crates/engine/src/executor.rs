@@ -10,6 +10,7 @@ const QUEUE_DEPTH: usize = 4;
 
 use crate::artifact::{Artifact, Hash};
 use crate::build::Event;
+use crate::emitted::{Emitted, NodeFiles};
 use crate::graph::{BuildGraph, Expansion, NodeData, NodeId, Work};
 use crate::key::{file_key, op_key};
 use crate::manifest::{Manifest, ManifestEntry};
@@ -59,6 +60,10 @@ impl Slot {
 
 pub(crate) struct Coordinator<'a> {
     prev: &'a Manifest,
+    /// The files each emitting node emitted in the record's last build.
+    prev_emitted: &'a Emitted,
+    /// The same for this build.
+    pub emitted: Emitted,
     keep_going: bool,
     stopped: bool,
     slots: Vec<Slot>,
@@ -77,9 +82,11 @@ fn distinct_inputs(n: &NodeData) -> BTreeSet<usize> {
 }
 
 impl<'a> Coordinator<'a> {
-    pub fn new(prev: &'a Manifest, keep_going: bool) -> Self {
+    pub fn new(prev: &'a Manifest, prev_emitted: &'a Emitted, keep_going: bool) -> Self {
         Coordinator {
             prev,
+            prev_emitted,
+            emitted: Emitted::new(),
             keep_going,
             stopped: false,
             slots: Vec::new(),
@@ -257,9 +264,15 @@ impl<'a> Coordinator<'a> {
                 slot.key = key;
                 slot.version = version;
                 slot.params = params;
+                let emitted = op
+                    .emits_files()
+                    .then(|| self.prev_emitted.nodes.get(&n.name).cloned())
+                    .flatten();
                 JobWork::Op {
                     op: op.clone(),
                     key,
+                    lazy: op.lazy_output() && n.expander.is_none(),
+                    emitted,
                 }
             }
         };
@@ -454,6 +467,14 @@ impl<'a> Coordinator<'a> {
                 for (p, h) in &done.files {
                     self.file_owner.insert(p.clone(), name.clone());
                     self.output_files.insert(p.clone(), *h);
+                }
+                let emits = matches!(&graph.nodes[id].work, Work::Op(op) if op.emits_files());
+                if let (true, Some(a)) = (emits, &artifact) {
+                    let files = NodeFiles {
+                        output: a.hash(),
+                        files: done.files.clone(),
+                    };
+                    self.emitted.nodes.insert(name.clone(), files);
                 }
             }
         }

@@ -28,6 +28,7 @@
 pub mod artifact;
 pub mod build;
 pub mod dirlock;
+mod emitted;
 pub mod error;
 mod executor;
 pub mod gc;
@@ -42,6 +43,7 @@ pub mod params;
 pub mod reason;
 pub mod report;
 pub mod store;
+mod stored;
 mod worker;
 
 pub use artifact::{Artifact, FileSet, Hash};

@@ -15,7 +15,7 @@
 
 use crate::artifact::Hash;
 use crate::params::Params;
-use crate::store::write_atomic;
+use crate::store::{load_checked, save_checked};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -96,22 +96,13 @@ impl Manifest {
 
     /// The manifest in `record_dir`, or `None` when absent, unreadable or corrupt.
     pub fn load(record_dir: &Path) -> Option<Manifest> {
-        let bytes = std::fs::read(manifest_path(record_dir)).ok()?;
-        let (sum, payload) = bytes.split_first_chunk::<32>()?;
-        if Hash::of(payload).0 != *sum {
-            return None;
-        }
-        let m: Manifest = postcard::from_bytes(payload).ok()?;
+        let m: Manifest = load_checked(&manifest_path(record_dir))?;
         (m.format == FORMAT).then_some(m)
     }
 
     /// Writes the manifest into `record_dir` (created if needed), atomically.
     pub fn save(&self, record_dir: &Path) -> std::io::Result<()> {
-        let payload =
-            postcard::to_stdvec(self).map_err(|e| std::io::Error::other(e.to_string()))?;
-        let mut bytes = Hash::of(&payload).0.to_vec();
-        bytes.extend_from_slice(&payload);
-        write_atomic(&manifest_path(record_dir), &bytes, false)
+        save_checked(&manifest_path(record_dir), self)
     }
 }
 

@@ -77,4 +77,12 @@ pub trait Operation: Send + Sync {
     fn emits_files(&self) -> bool {
         false
     }
+    /// When true, a cache hit does not read this node's output until something needs its bytes
+    /// (a dependent that runs, the files it emits, the caller): for large outputs that a build
+    /// where nothing changed never looks at. The output is verified when it is read, and made
+    /// again then if the cache entry is damaged. Ignored for a node with an expander, which
+    /// always reads its output.
+    fn lazy_output(&self) -> bool {
+        false
+    }
 }

@@ -7,6 +7,8 @@
 //! and then chunk by chunk, so a big output is never read whole into memory. A build with a
 //! staging directory writes every file that differs there instead, under the same relative path,
 //! and leaves the output directory as it was: the caller publishes or discards the staged files.
+//! A cached node whose files a previous build recorded (`emitted`) is first checked by hashing
+//! the files on disk against that record, so its output is read only when one differs.
 
 use crate::artifact::Hash;
 use crate::store::write_atomic;
@@ -61,6 +63,39 @@ pub(crate) fn write_fileset(
         hashes.insert(rel.to_string(), Hash::of(bytes));
     }
     Ok((hashes, written))
+}
+
+/// Whether every file of `files` (relative path → content hash, as a previous build emitted
+/// them) is under `root` with that content: read and hashed, the files in parallel, without the
+/// node's output. Anything missing, unreadable or different is `false`.
+pub(crate) fn unchanged_on_disk(root: &Path, files: &BTreeMap<String, Hash>) -> bool {
+    use rayon::prelude::*;
+    files.par_iter().all(|(rel, want)| {
+        resolve(root, rel)
+            .ok()
+            .and_then(|p| hash_file(&p).ok())
+            .is_some_and(|h| h == *want)
+    })
+}
+
+/// The content hash of the regular file at `path`, read one chunk at a time.
+fn hash_file(path: &Path) -> std::io::Result<Hash> {
+    let mut file = std::fs::File::open(path)?;
+    if !file.metadata()?.is_file() {
+        return Err(std::io::Error::other("not a regular file"));
+    }
+    let mut h = blake3::Hasher::new();
+    let mut buf = vec![0u8; COMPARE_CHUNK];
+    loop {
+        match file.read(&mut buf) {
+            Ok(0) => return Ok(Hash(*h.finalize().as_bytes())),
+            Ok(n) => {
+                h.update(&buf[..n]);
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
 }
 
 /// Whether `path` is a regular file holding exactly `bytes`: its length first, then its

@@ -8,6 +8,7 @@
 
 use crate::artifact::{Artifact, Hash};
 use crate::error::EngineError;
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::io::{ErrorKind, Write};
@@ -94,14 +95,14 @@ impl Store {
         let path = self.object_path(h);
         match std::fs::read(&path) {
             Ok(bytes) => {
+                let len = bytes.len();
                 let a = Artifact::from_bytes(bytes);
                 if a.hash() == h {
                     Load::Hit(a)
                 } else {
                     Load::Corrupt(format!(
-                        "object {} has hash mismatch ({} bytes hash to {})",
+                        "object {} has hash mismatch ({len} bytes hash to {})",
                         h.short(),
-                        a.len(),
                         a.hash().short()
                     ))
                 }
@@ -111,8 +112,14 @@ impl Store {
         }
     }
 
+    /// Whether the object named `h` is in the store, without reading it.
+    pub fn has_object(&self, h: Hash) -> bool {
+        std::fs::metadata(self.object_path(h)).is_ok_and(|m| m.is_file())
+    }
+
     pub fn put_object(&self, a: &Artifact) -> std::io::Result<()> {
-        write_atomic(&self.object_path(a.hash()), a.bytes(), false)
+        let bytes = a.bytes().map_err(|e| std::io::Error::other(e.message))?;
+        write_atomic(&self.object_path(a.hash()), bytes, false)
     }
 
     /// Read and verify the action record for `key`.
@@ -154,6 +161,26 @@ impl Store {
         bytes.extend_from_slice(&payload);
         write_atomic(&self.action_path(key), &bytes, false)
     }
+}
+
+/// Writes `value` (postcard, a blake3 checksum in front) to `path` atomically: the format of the
+/// engine's own small files (a record's manifest and emitted files).
+pub(crate) fn save_checked<T: Serialize>(path: &Path, value: &T) -> std::io::Result<()> {
+    let payload = postcard::to_stdvec(value).map_err(|e| std::io::Error::other(e.to_string()))?;
+    let mut bytes = Hash::of(&payload).0.to_vec();
+    bytes.extend_from_slice(&payload);
+    write_atomic(path, &bytes, false)
+}
+
+/// What [`save_checked`] wrote to `path`, or `None` when it is absent, damaged or of another
+/// type.
+pub(crate) fn load_checked<T: DeserializeOwned>(path: &Path) -> Option<T> {
+    let bytes = std::fs::read(path).ok()?;
+    let (sum, payload) = bytes.split_first_chunk::<32>()?;
+    if Hash::of(payload).0 != *sum {
+        return None;
+    }
+    postcard::from_bytes(payload).ok()
 }
 
 /// The prefix of every temporary file of an atomic write.

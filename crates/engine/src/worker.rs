@@ -1,12 +1,17 @@
 //! What a worker thread does with one dispatched node: read a source file, or look the node's
-//! key up in the cache (verifying what it reads) and run the operation on a miss, storing the
-//! result; then write any emitted files (into the staging directory when the build has one). Panics inside an operation become node failures.
+//! key up in the cache (verifying what it reads, or leaving a lazy output in the store: see
+//! `stored`) and run the operation on a miss, storing the result; then write any emitted files
+//! (into the staging directory when the build has one), unless a cached node's files are on
+//! disk as the record says it emitted them (`emitted`). Panics inside an operation become node
+//! failures.
 
 use crate::artifact::{Artifact, Hash};
 use crate::build::Event;
+use crate::emitted::NodeFiles;
 use crate::op::{Operation, RunContext};
-use crate::outputs::write_fileset;
+use crate::outputs::{unchanged_on_disk, write_fileset};
 use crate::store::{ActionRecord, Load, Store};
+use crate::stored::Stored;
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
@@ -15,7 +20,14 @@ use std::time::Instant;
 
 pub(crate) enum JobWork {
     File(PathBuf),
-    Op { op: Arc<dyn Operation>, key: Hash },
+    Op {
+        op: Arc<dyn Operation>,
+        key: Hash,
+        /// A cache hit may leave the output in the store.
+        lazy: bool,
+        /// The files the node emitted in the record's last build, for an emitting node.
+        emitted: Option<NodeFiles>,
+    },
 }
 
 pub(crate) struct Job {
@@ -105,36 +117,40 @@ pub(crate) fn run_job(
                 })
                 .map_err(|e| format!("cannot read input file {}: {e}", path.display()));
         }
-        JobWork::Op { op, key } => {
+        JobWork::Op {
+            op,
+            key,
+            lazy,
+            emitted,
+        } => {
             done.result = resolve_op(
                 &job,
-                op.as_ref(),
-                *key,
+                op,
+                (*key, *lazy),
                 store,
                 on_event,
                 &mut done.ran,
                 &mut done.corrupt,
             );
             if op.emits_files()
-                && let Ok(p) = &done.result
+                && let Ok(p) = &mut done.result
             {
-                // Read in place: the files are written straight from the artifact's bytes.
-                let written = p
-                    .artifact
-                    .file_entries()
-                    .map_err(|e| e.message)
-                    .and_then(|files| write_fileset(output_dir, staging_dir, &files));
-                match written {
-                    Ok((hashes, written)) => {
-                        done.files = hashes;
-                        if !done.ran
-                            && !written.is_empty()
-                            && let Ok(p) = &mut done.result
-                        {
-                            p.notes.push(format!("rewrote {}", written.join(", ")));
+                let kept = emitted
+                    .as_ref()
+                    .filter(|e| !done.ran && e.output == p.artifact.hash())
+                    .filter(|e| unchanged_on_disk(output_dir, &e.files));
+                match kept {
+                    Some(e) => done.files = e.files.clone(),
+                    None => {
+                        let written = write_files(p, done.ran, output_dir, staging_dir);
+                        if let Some((name, detail)) = p.artifact.take_repair() {
+                            on_event(&Event::CacheCorrupt { name, detail });
+                        }
+                        match written {
+                            Ok(files) => done.files = files,
+                            Err(e) => done.result = Err(format!("emitted files: {e}")),
                         }
                     }
-                    Err(e) => done.result = Err(format!("emitted files: {e}")),
                 }
             }
         }
@@ -143,17 +159,64 @@ pub(crate) fn run_job(
     done
 }
 
+/// Writes the files of `p`'s artifact that differ on disk (read in place: straight from the
+/// artifact's bytes); a cached node notes the files it had to rewrite. Returns path → hash.
+fn write_files(
+    p: &mut Produced,
+    ran: bool,
+    output_dir: &Path,
+    staging_dir: Option<&Path>,
+) -> Result<BTreeMap<String, Hash>, String> {
+    let files = p.artifact.file_entries().map_err(|e| e.message)?;
+    let (hashes, written) = write_fileset(output_dir, staging_dir, &files)?;
+    if !ran && !written.is_empty() {
+        p.notes.push(format!("rewrote {}", written.join(", ")));
+    }
+    Ok(hashes)
+}
+
+/// The output of a cache hit: read and verified, or left in the store when the node's output is
+/// lazy (then only its presence is checked).
+fn load_hit(
+    job: &Job,
+    op: &Arc<dyn Operation>,
+    output: Hash,
+    lazy: bool,
+    store: &Store,
+) -> Load<Artifact> {
+    if !lazy {
+        return store.load_object(output);
+    }
+    if !store.has_object(output) {
+        return Load::Missing;
+    }
+    let stored = Stored::new(store, output, &job.name, op.clone(), job.inputs.clone());
+    Load::Hit(Artifact::stored(stored))
+}
+
+/// Reads every input of a node about to run (a lazy one is read from the store here, and made
+/// again if damaged, which is told as a corrupt cache entry of the node that made it).
+fn read_inputs(job: &Job, on_event: &(dyn Fn(&Event) + Sync)) -> Result<(), String> {
+    for a in &job.inputs {
+        a.bytes().map_err(|e| e.message)?;
+        if let Some((name, detail)) = a.take_repair() {
+            on_event(&Event::CacheCorrupt { name, detail });
+        }
+    }
+    Ok(())
+}
+
 fn resolve_op(
     job: &Job,
-    op: &dyn Operation,
-    key: Hash,
+    op: &Arc<dyn Operation>,
+    (key, lazy): (Hash, bool),
     store: &Store,
     on_event: &(dyn Fn(&Event) + Sync),
     ran: &mut bool,
     corrupt: &mut Option<String>,
 ) -> Result<Produced, String> {
     let hit = match store.load_action(key) {
-        Load::Hit(rec) => match store.load_object(rec.output) {
+        Load::Hit(rec) => match load_hit(job, op, rec.output, lazy, store) {
             Load::Hit(a) => Some(Produced {
                 artifact: a,
                 counts: rec.counts,
@@ -180,6 +243,7 @@ fn resolve_op(
     if let Some(p) = hit {
         return Ok(p);
     }
+    read_inputs(job, on_event)?;
     *ran = true;
     on_event(&Event::Started {
         name: job.name.clone(),

@@ -100,7 +100,7 @@ impl Operation for ImportOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let bytes = inputs.first().ok_or("import needs its file")?.bytes();
+        let bytes = inputs.first().ok_or("import needs its file")?.bytes()?;
         let opts = import::ImportOptions {
             object: self.object.clone(),
             skip_other_types: self.skip_other_types,

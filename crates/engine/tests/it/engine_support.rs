@@ -71,7 +71,7 @@ impl Operation for Toy {
 
 /// Inputs are postcard i64, or UTF-8 decimal text (file nodes).
 pub fn decode_int(a: &Artifact) -> Result<i64, OpError> {
-    if let Ok(s) = std::str::from_utf8(a.bytes())
+    if let Ok(s) = std::str::from_utf8(a.bytes()?)
         && let Ok(v) = s.trim().parse::<i64>()
     {
         return Ok(v);
@@ -255,4 +255,32 @@ pub fn value(r: &BuildReport, name: &str) -> i64 {
 /// Every state in the report, by name.
 pub fn states(r: &BuildReport) -> Vec<(String, NodeState)> {
     r.nodes.iter().map(|n| (n.name.clone(), n.state)).collect()
+}
+
+/// `op` whose cached output may stay unread in the store (`Operation::lazy_output`).
+pub struct Lazy(pub Arc<dyn Operation>);
+
+impl Operation for Lazy {
+    fn kind(&self) -> &'static str {
+        self.0.kind()
+    }
+    fn version(&self) -> u32 {
+        self.0.version()
+    }
+    fn params(&self) -> Params {
+        self.0.params()
+    }
+    fn run(&self, ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        self.0.run(ctx, inputs)
+    }
+    fn emits_files(&self) -> bool {
+        self.0.emits_files()
+    }
+    fn lazy_output(&self) -> bool {
+        true
+    }
+}
+
+pub fn lazy(op: Arc<dyn Operation>) -> Arc<dyn Operation> {
+    Arc::new(Lazy(op))
 }
