@@ -47,6 +47,10 @@ impl Operation for ExportOp {
     fn kind(&self) -> &'static str {
         "export"
     }
+    /// Its files are read only when they differ on disk from what the record says it wrote.
+    fn lazy_output(&self) -> bool {
+        true
+    }
     fn version(&self) -> u32 {
         5
     }

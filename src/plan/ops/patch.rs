@@ -99,6 +99,10 @@ impl Operation for SurfaceMeshOp {
     fn kind(&self) -> &'static str {
         "surface_mesh"
     }
+    /// A patch mesh is read only by the tet meshes that re-run and by `mesh`.
+    fn lazy_output(&self) -> bool {
+        true
+    }
     fn version(&self) -> u32 {
         // 4: triangles that fold on the support (a fan turning more than 360°) are split.
         4

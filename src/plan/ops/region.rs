@@ -42,6 +42,10 @@ impl Operation for TetMeshOp {
     fn kind(&self) -> &'static str {
         "tet_mesh"
     }
+    /// A region mesh is read only by `mesh` when it re-runs.
+    fn lazy_output(&self) -> bool {
+        true
+    }
     fn version(&self) -> u32 {
         // 6: Delaunay meshing with local recovery (the front as hole filler and fallback).
         // 7: floating-point location walks; flips and contractions up to 0.8 in thin layers.
@@ -133,6 +137,11 @@ pub struct AssembleOp {
 impl Operation for AssembleOp {
     fn kind(&self) -> &'static str {
         "mesh"
+    }
+    /// The volume mesh is read only by `export` when it re-runs and by the report's figures when
+    /// they are not cached.
+    fn lazy_output(&self) -> bool {
+        true
     }
     fn version(&self) -> u32 {
         1
