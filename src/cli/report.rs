@@ -14,7 +14,7 @@ use super::build::write_atomic;
 use crate::plan::ops::{ModelData, SurfaceData, findings_by_kind};
 use crate::recipe::Recipe;
 use crate::report::{
-    CurveSummary, ReportInput, StepSummary, SurfaceSummary, model_summaries, render_both,
+    CurveSummary, MeshFacts, ReportInput, StepSummary, SurfaceSummary, model_summaries, render_both,
 };
 use engine::{BuildReport, NodeState};
 use geom::mesh::VolumeMesh;
@@ -129,7 +129,7 @@ pub fn write_report(
         curves,
         patches,
         regions,
-        mesh: &mesh,
+        mesh: MeshFacts::of(&mesh, &recipe.model.name),
         steps,
         warnings,
     };

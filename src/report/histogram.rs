@@ -12,14 +12,14 @@ use super::palette::Rgb;
 use super::text::{coord, count, esc, num};
 use export::quality::{tet_mean_ratio, triangle_ratio};
 use geom::mesh::VolumeMesh;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 
 /// Number of bins of every histogram.
 pub const BINS: usize = 20;
 
 /// Counts of one measure over one group of elements.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Histogram {
     pub name: String,
     /// Lower edge of the first bin.

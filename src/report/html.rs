@@ -3,11 +3,10 @@
 //! the seed's Tables 1 and 2, histograms, build steps. Every name goes through `esc`; every number
 //! has a fixed precision, so the page is a pure function of its input.
 
-use super::Facts;
 use super::histogram::{self, Histogram};
 use super::input::ReportInput;
 use super::palette::{self, Rgb};
-use super::pictures::{self, FACE_CAP};
+use super::pictures::FACE_CAP;
 use super::text::{count, esc, num};
 use super::view::Picture;
 use export::quality::layout::{self, Cell, Table};
@@ -28,7 +27,7 @@ figure{margin:12px 0 22px}figcaption{color:#555;font-size:13px;max-width:960px}s
 .small{font-size:12px;color:#444}.st-ran{color:#b35c00}.st-failed{color:#c00;font-weight:600}.st-skipped{color:#888}\
 details{margin:6px 0}summary{cursor:pointer}";
 
-pub fn render(input: &ReportInput, f: &Facts) -> String {
+pub fn render(input: &ReportInput, warnings: &[String]) -> String {
     let mut h = String::with_capacity(1 << 16);
     let title = esc(input.model_name);
     let _ = write!(
@@ -42,17 +41,18 @@ pub fn render(input: &ReportInput, f: &Facts) -> String {
         env!("CARGO_PKG_VERSION")
     );
     summary(&mut h, input);
-    if !f.warnings.is_empty() {
+    if !warnings.is_empty() {
         h.push_str("<div class=\"warn\"><b>Warnings</b><ul>");
-        for w in &f.warnings {
+        for w in warnings {
             let _ = write!(h, "<li>{}</li>", esc(w));
         }
         h.push_str("</ul></div>\n");
     }
     pictures_section(&mut h, input);
-    model_tables(&mut h, input, f);
-    quality_tables(&mut h, &f.quality.table1, &f.quality.table2);
-    histograms(&mut h, input, f);
+    model_tables(&mut h, input);
+    let q = &input.mesh.quality;
+    quality_tables(&mut h, &q.table1, &q.table2);
+    histograms(&mut h, input);
     steps(&mut h, input);
     h.push_str("</body></html>\n");
     h
@@ -63,15 +63,15 @@ fn card(h: &mut String, n: usize, what: &str) {
 }
 
 fn summary(h: &mut String, input: &ReportInput) {
-    let m = input.mesh;
+    let m = &input.mesh;
     h.push_str("<section><div class=\"cards\">");
     card(h, input.surfaces.len(), "surfaces");
     card(h, input.curves.len(), "curves");
     card(h, input.patches.len(), "patches");
     card(h, input.regions.len(), "regions");
-    card(h, m.nodes.len(), "mesh nodes");
-    card(h, m.triangles.len(), "surface triangles");
-    card(h, m.tets.len(), "tetrahedra");
+    card(h, m.nodes, "mesh nodes");
+    card(h, m.triangles, "surface triangles");
+    card(h, m.tets, "tetrahedra");
     let ran = input
         .steps
         .iter()
@@ -115,40 +115,38 @@ fn bound_note(p: &Picture) -> String {
 }
 
 fn pictures_section(h: &mut String, input: &ReportInput) {
-    let m = input.mesh;
+    let m = &input.mesh;
     h.push_str("<section><h2>Pictures</h2>");
-    let (p1, colours) = pictures::model(m, &format!("{} surfaces", input.model_name));
+    let p1 = &m.pictures.model;
     h.push_str("<figure>");
     h.push_str(&p1.svg);
     legend(
         h,
         m.surface_groups
             .iter()
-            .zip(&colours)
-            .map(|(g, c)| (g.name.clone(), *c)),
+            .map(|g| (g.name.clone(), palette::surface(&g.name, g.kind))),
     );
     let _ = writeln!(
         h,
         "<figcaption>Figure 1. The model's surface triangles seen from the south-west, 30° above the horizon (parallel projection, far triangles painted first), coloured by surface name; box sides in grey, only where the model's centre lies between them and the viewer.{}</figcaption></figure>",
-        bound_note(&p1)
+        bound_note(p1)
     );
-    let (p2, kept, colours) =
-        pictures::cutaway(m, &format!("{} tetrahedra, cut away", input.model_name));
+    let (p2, kept) = (&m.pictures.cutaway, m.pictures.kept);
     h.push_str("<figure>");
     h.push_str(&p2.svg);
     legend(
         h,
         m.regions
             .iter()
-            .zip(&colours)
-            .map(|(r, c)| (r.name.clone(), *c)),
+            .enumerate()
+            .map(|(i, r)| (r.name.clone(), palette::region(i))),
     );
     let _ = writeln!(
         h,
         "<figcaption>Figure 2. The tetrahedra coloured by region, same view, cut by the vertical plane through the centre of the mesh's box facing the viewer: the {} of {} tets whose centroid lies behind it are kept, and their faces that no other kept tet shares and that face the viewer are drawn.{}</figcaption></figure>",
         count(kept),
-        count(m.tets.len()),
-        bound_note(&p2)
+        count(m.tets),
+        bound_note(p2)
     );
     h.push_str("</section>\n");
 }
@@ -169,8 +167,8 @@ fn kind(k: SurfaceKind) -> &'static str {
     }
 }
 
-fn model_tables(h: &mut String, input: &ReportInput, f: &Facts) {
-    let m = input.mesh;
+fn model_tables(h: &mut String, input: &ReportInput) {
+    let m = &input.mesh;
     h.push_str("<section><h2>Model</h2>");
     // Surfaces, with their FE triangles when the mesh has a group of that name.
     let _ = write!(h, "<h3>Surfaces ({})</h3>", input.surfaces.len());
@@ -180,7 +178,7 @@ fn model_tables(h: &mut String, input: &ReportInput, f: &Facts) {
             .surface_groups
             .iter()
             .position(|g| g.name == s.name)
-            .and_then(|i| f.group_triangles.get(i))
+            .and_then(|i| m.group_triangles.get(i))
             .map_or("-".to_string(), |&n| count(n));
         let _ = write!(
             h,
@@ -230,12 +228,12 @@ fn model_tables(h: &mut String, input: &ReportInput, f: &Facts) {
         let at = m.regions.iter().position(|g| g.name == r.name);
         let colour = at.map_or(Rgb(255, 255, 255), palette::region);
         let mesh_vol = at
-            .and_then(|i| f.region_volume.get(i))
+            .and_then(|i| m.region_volume.get(i))
             .copied()
             .unwrap_or(f64::NAN);
         // The mesh's count when the mesh has the region, else the summary's.
         let tets = at
-            .and_then(|i| f.region_tets.get(i))
+            .and_then(|i| m.region_tets.get(i))
             .copied()
             .unwrap_or(r.tets);
         let sides: Vec<String> = r
@@ -306,19 +304,19 @@ fn histogram_grid(h: &mut String, hs: &[Histogram], colours: &[Rgb], measure: &s
     h.push_str("</div>");
 }
 
-fn histograms(h: &mut String, input: &ReportInput, f: &Facts) {
-    let m = input.mesh;
+fn histograms(h: &mut String, input: &ReportInput) {
+    let m = &input.mesh;
     h.push_str("<section><h2>Histograms</h2>");
     h.push_str("<h3>Mean ratio per region</h3><p class=\"small\">20 bins on [0, 1]; bar height is the share of the region's tets; dashed lines at the seed's thresholds 0.1, 0.2, 0.3.</p>");
     let rc: Vec<Rgb> = (0..m.regions.len()).map(palette::region).collect();
-    histogram_grid(h, &f.mean_ratio, &rc, "mean ratio", &[0.1, 0.2, 0.3]);
+    histogram_grid(h, &m.mean_ratio, &rc, "mean ratio", &[0.1, 0.2, 0.3]);
     h.push_str("<h3>c/c* per surface</h3><p class=\"small\">20 bins on [1, 2], a grey bar for c/c* ≥ 2; dashed lines at the seed's thresholds 1.15 and 1.5.</p>");
     let sc: Vec<Rgb> = m
         .surface_groups
         .iter()
         .map(|g| palette::surface(&g.name, g.kind))
         .collect();
-    histogram_grid(h, &f.c_ratio, &sc, "c/c*", &[1.15, 1.5]);
+    histogram_grid(h, &m.c_ratio, &sc, "c/c*", &[1.15, 1.5]);
     h.push_str("</section>\n");
 }
 

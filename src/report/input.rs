@@ -1,9 +1,10 @@
 //! What a report is made of: the model summary (surfaces, curves, patches, regions), the final
-//! tet mesh and the build steps. Plain data handed over by the caller (the export operation);
-//! nothing here is computed from files. [`ReportInput::from_mesh`] fills what a bare mesh can say
-//! (surface groups, regions, their element counts and volumes) for callers without a model,
-//! e.g. `recipe tetmesh`.
+//! tet mesh's figures and the build steps. Plain data handed over by the caller (the command
+//! line); nothing here is computed from files. [`ReportInput::from_mesh`] fills what a bare mesh
+//! can say (surface groups, regions, their element counts and volumes) for callers without a
+//! model.
 
+use super::facts::MeshFacts;
 use geom::mesh::{SurfaceKind, VolumeMesh};
 use geom::predicates::signed_volume;
 use model::regions::Side;
@@ -87,28 +88,17 @@ pub struct ReportInput<'a> {
     pub curves: Vec<CurveSummary>,
     pub patches: Vec<PatchSummary>,
     pub regions: Vec<RegionSummary>,
-    /// The final tet mesh with its tagged triangles and groups.
-    pub mesh: &'a VolumeMesh,
+    /// The figures of the final tet mesh (with its tagged triangles and groups).
+    pub mesh: MeshFacts,
     pub steps: Vec<StepSummary>,
     /// What the build has to say about the recipe's effect (thin regions meshed one element
     /// across), shown first among the report's warnings.
     pub warnings: Vec<String>,
 }
 
-/// The empty mesh a default [`ReportInput`] points at.
-static EMPTY_MESH: VolumeMesh = VolumeMesh {
-    nodes: Vec::new(),
-    tets: Vec::new(),
-    tet_region: Vec::new(),
-    regions: Vec::new(),
-    triangles: Vec::new(),
-    triangle_group: Vec::new(),
-    surface_groups: Vec::new(),
-};
-
-/// Nothing: empty names and lists and an empty mesh, so a caller can write
-/// `ReportInput { model_name, mesh: &mesh, ..Default::default() }` and fields added later do not
-/// break it.
+/// Nothing: empty names and lists and the figures of an empty mesh, so a caller can write
+/// `ReportInput { model_name, mesh: MeshFacts::of(&mesh, model_name), ..Default::default() }` and
+/// fields added later do not break it.
 impl Default for ReportInput<'_> {
     fn default() -> Self {
         ReportInput {
@@ -118,7 +108,7 @@ impl Default for ReportInput<'_> {
             curves: Vec::new(),
             patches: Vec::new(),
             regions: Vec::new(),
-            mesh: &EMPTY_MESH,
+            mesh: MeshFacts::of(&VolumeMesh::default(), ""),
             steps: Vec::new(),
             warnings: Vec::new(),
         }
@@ -129,21 +119,20 @@ impl<'a> ReportInput<'a> {
     /// A report of a bare mesh: one surface per surface group (its FE triangles as the imported
     /// count, no findings), one region per region group (tets, summed tet volume), no curves,
     /// patches or steps. Elements whose tags or nodes are out of range are not counted.
-    pub fn from_mesh(model_name: &'a str, recipe_path: &'a str, mesh: &'a VolumeMesh) -> Self {
-        let mut tris = vec![0usize; mesh.surface_groups.len()];
-        for &g in &mesh.triangle_group {
-            if let Some(c) = tris.get_mut(g as usize) {
-                *c += 1;
-            }
-        }
-        let (tets, volume) = region_tets_and_volumes(mesh);
+    pub fn from_mesh(model_name: &'a str, recipe_path: &'a str, mesh: &VolumeMesh) -> Self {
+        let facts = MeshFacts::of(mesh, model_name);
+        let (tris, tets, volume) = (
+            &facts.group_triangles,
+            &facts.region_tets,
+            &facts.region_volume,
+        );
         ReportInput {
             model_name,
             recipe_path,
             surfaces: mesh
                 .surface_groups
                 .iter()
-                .zip(&tris)
+                .zip(tris)
                 .map(|(g, &n)| SurfaceSummary {
                     name: g.name.clone(),
                     kind: g.kind,
@@ -165,7 +154,7 @@ impl<'a> ReportInput<'a> {
                     volume: volume.get(i).copied().unwrap_or(f64::NAN),
                 })
                 .collect(),
-            mesh,
+            mesh: facts,
             steps: Vec::new(),
             warnings: Vec::new(),
         }

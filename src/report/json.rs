@@ -3,16 +3,16 @@
 //! warnings. Keys are sorted (serde_json's map is ordered), floats are shortest round-trip, and
 //! non-finite numbers (statistics of an empty group, unknown volumes) are `null`.
 
+use super::BINS;
 use super::input::ReportInput;
-use super::{BINS, Facts};
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 
 /// Version of the document's layout; bumped when a key changes meaning.
 pub const FORMAT: &str = "georecipe-report/1";
 
-pub fn render(input: &ReportInput, f: &Facts) -> String {
-    let mesh = input.mesh;
+pub fn render(input: &ReportInput, warnings: &[String]) -> String {
+    let mesh = &input.mesh;
     let mut states: BTreeMap<&str, usize> = BTreeMap::new();
     for s in &input.steps {
         *states.entry(s.state.as_str()).or_default() += 1;
@@ -26,8 +26,8 @@ pub fn render(input: &ReportInput, f: &Facts) -> String {
                 "name": r.name,
                 "material": r.material,
                 "properties": r.properties,
-                "tets": f.region_tets.get(i).copied().unwrap_or(0),
-                "volume": finite(f.region_volume.get(i).copied().unwrap_or(f64::NAN)),
+                "tets": mesh.region_tets.get(i).copied().unwrap_or(0),
+                "volume": finite(mesh.region_volume.get(i).copied().unwrap_or(f64::NAN)),
             })
         })
         .collect();
@@ -39,7 +39,7 @@ pub fn render(input: &ReportInput, f: &Facts) -> String {
             json!({
                 "name": g.name,
                 "kind": g.kind,
-                "triangles": f.group_triangles.get(i).copied().unwrap_or(0),
+                "triangles": mesh.group_triangles.get(i).copied().unwrap_or(0),
             })
         })
         .collect();
@@ -89,9 +89,9 @@ pub fn render(input: &ReportInput, f: &Facts) -> String {
             "curves": input.curves.len(),
             "patches": input.patches.len(),
             "regions": input.regions.len(),
-            "nodes": mesh.nodes.len(),
-            "tets": mesh.tets.len(),
-            "triangles": mesh.triangles.len(),
+            "nodes": mesh.nodes,
+            "tets": mesh.tets,
+            "triangles": mesh.triangles,
         },
         "surfaces": input.surfaces,
         "curves": curves,
@@ -102,18 +102,18 @@ pub fn render(input: &ReportInput, f: &Facts) -> String {
             "surface_groups": mesh_groups,
         },
         "quality": {
-            "table1": f.quality.table1,
-            "table2": f.quality.table2,
+            "table1": mesh.quality.table1,
+            "table2": mesh.quality.table2,
             "mean_ratio_scale_of_the_seed": export::quality::PAPER_MEAN_RATIO_SCALE,
         },
         "histograms": {
             "bins": BINS,
-            "mean_ratio": f.mean_ratio,
-            "c_ratio": f.c_ratio,
+            "mean_ratio": mesh.mean_ratio,
+            "c_ratio": mesh.c_ratio,
         },
         "steps": steps,
         "steps_by_state": states,
-        "warnings": f.warnings,
+        "warnings": warnings,
     });
     let mut s = serde_json::to_string_pretty(&doc).unwrap_or_else(|e| {
         // Serialising plain maps, strings and numbers cannot fail; keep a valid document anyway.

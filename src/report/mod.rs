@@ -1,6 +1,6 @@
 //! Stage `report`: the build's `report.html` (self-contained: inline CSS and inline SVG, no
 //! script, nothing fetched) and `report.json` (for machines), from the model summary, the final
-//! tet mesh and the build steps.
+//! tet mesh's figures and the build steps.
 //!
 //! What the report decides: which figures a user iterating on a recipe sees — the model summary,
 //! the seed's Tables 1 and 2 (computed by `export::quality`, not re-derived), quality histograms
@@ -9,11 +9,16 @@
 //! the same input gives the same bytes (fixed float precision in HTML, sorted keys and shortest
 //! round-trip floats in JSON, index-ordered groups). Every name is HTML-escaped.
 //!
-//! Submodules: `input` (the typed input), `model` (patch and region summaries of a region
-//! model), `flags` (regions meshed far worse than the rest), `text` (escaping, number formats),
-//! `palette` (colours), `view` (projection, painter's algorithm, size bound), `pictures` (the two
-//! pictures), `histogram` (bins and bar charts), `html` and `json` (the two documents).
+//! The mesh enters as its [`MeshFacts`], everything costly computed once from it (`facts`), so
+//! that rendering is cheap and a caller may keep the facts of a mesh instead of the mesh.
+//!
+//! Submodules: `input` (the typed input), `facts` (the mesh's figures and pictures), `model`
+//! (patch and region summaries of a region model), `flags` (regions meshed far worse than the
+//! rest), `text` (escaping, number formats), `palette` (colours), `view` (projection, painter's
+//! algorithm, size bound), `pictures` (the two pictures), `histogram` (bins and bar charts),
+//! `html` and `json` (the two documents).
 
+mod facts;
 mod flags;
 mod histogram;
 mod html;
@@ -25,6 +30,7 @@ mod pictures;
 mod text;
 mod view;
 
+pub use facts::{FACTS_VERSION, MeshFacts, Pictures};
 pub use histogram::{BINS, Histogram};
 pub use input::{
     CurveSummary, PatchSide, PatchSummary, RegionSummary, ReportInput, StepSummary, SurfaceSummary,
@@ -32,51 +38,25 @@ pub use input::{
 };
 pub use model::model_summaries;
 pub use pictures::FACE_CAP;
+pub use view::Picture;
 
-use export::quality::{self, QualityReport};
-
-/// Everything computed from the mesh that both documents show, computed once.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Facts {
-    /// The seed's Tables 1 and 2 (`export::quality::report`).
-    pub quality: QualityReport,
-    /// Mean ratio per mesh region (index order).
-    pub mean_ratio: Vec<Histogram>,
-    /// `c/c*` per mesh surface group (index order).
-    pub c_ratio: Vec<Histogram>,
-    /// Tets and summed tet volume per mesh region (index order).
-    pub region_tets: Vec<usize>,
-    pub region_volume: Vec<f64>,
-    /// Triangles per mesh surface group (index order).
-    pub group_triangles: Vec<usize>,
-    /// Things the reader should know (the build's own warnings, invalid indices, empty regions,
-    /// failed steps), in a fixed order.
-    pub warnings: Vec<String>,
-}
-
-/// Computes the mesh figures of a report.
-pub fn facts(input: &ReportInput) -> Facts {
-    let mesh = input.mesh;
-    let (region_tets, region_volume) = region_tets_and_volumes(mesh);
-    let mut group_triangles = vec![0usize; mesh.surface_groups.len()];
-    for &g in &mesh.triangle_group {
-        if let Some(c) = group_triangles.get_mut(g as usize) {
-            *c += 1;
-        }
-    }
+/// The warnings both documents show, in a fixed order: the build's own, then what the mesh's
+/// figures, the surfaces and the steps have to say.
+fn warnings(input: &ReportInput) -> Vec<String> {
+    let mesh = &input.mesh;
     let mut warnings = input.warnings.clone();
-    if let Err(e) = mesh.check_indices() {
+    if let Some(e) = &mesh.inconsistent {
         warnings.push(format!(
             "the mesh is inconsistent ({e}); elements with out-of-range indices are left out"
         ));
     }
-    for (r, &n) in mesh.regions.iter().zip(&region_tets) {
+    for (r, &n) in mesh.regions.iter().zip(&mesh.region_tets) {
         if n == 0 {
             warnings.push(format!("mesh region '{}' has no tets", r.name));
         }
     }
     for r in &input.regions {
-        if !mesh.tets.is_empty() && !mesh.regions.iter().any(|m| m.name == r.name) {
+        if mesh.tets > 0 && !mesh.regions.iter().any(|m| m.name == r.name) {
             warnings.push(format!("model region '{}' is not in the mesh", r.name));
         }
     }
@@ -95,31 +75,22 @@ pub fn facts(input: &ReportInput) -> Facts {
             warnings.push(format!("step '{}' failed: {}", s.name, s.reason));
         }
     }
-    let quality = quality::report(mesh);
-    warnings.extend(flags::poor_regions(&quality.table2));
-    Facts {
-        quality,
-        mean_ratio: histogram::mean_ratio(mesh),
-        c_ratio: histogram::c_ratio(mesh),
-        region_tets,
-        region_volume,
-        group_triangles,
-        warnings,
-    }
+    warnings.extend(flags::poor_regions(&mesh.quality.table2));
+    warnings
 }
 
 /// `report.html`: self-contained (inline CSS and SVG, no scripts, no external resources).
 pub fn render_html(input: &ReportInput) -> String {
-    html::render(input, &facts(input))
+    html::render(input, &warnings(input))
 }
 
 /// `report.json`: pretty, sorted keys, deterministic.
 pub fn render_json(input: &ReportInput) -> String {
-    json::render(input, &facts(input))
+    json::render(input, &warnings(input))
 }
 
-/// Both documents, computing the mesh figures once: `(html, json)`.
+/// Both documents: `(html, json)`.
 pub fn render_both(input: &ReportInput) -> (String, String) {
-    let f = facts(input);
-    (html::render(input, &f), json::render(input, &f))
+    let w = warnings(input);
+    (html::render(input, &w), json::render(input, &w))
 }

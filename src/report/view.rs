@@ -18,6 +18,7 @@ use super::palette::Rgb;
 use super::text::{coord, esc};
 use geom::BBox;
 use geom::predicates::{Orientation, cross, dot, orient2d, sub};
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 
 /// Picture width in SVG units.
@@ -83,7 +84,7 @@ pub struct Style<'a> {
 }
 
 /// A drawn picture and the figures its caption quotes.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Picture {
     pub svg: String,
     /// Faces that would be drawn without the size bound (after culling).

@@ -4,8 +4,8 @@
 
 use geom::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use georecipe::report::{
-    CurveSummary, PatchSide, PatchSummary, RegionSummary, ReportInput, StepSummary, SurfaceSummary,
-    render_both, render_html, render_json,
+    CurveSummary, MeshFacts, PatchSide, PatchSummary, RegionSummary, ReportInput, StepSummary,
+    SurfaceSummary, render_both, render_html, render_json,
 };
 use model::regions::Side;
 
@@ -67,7 +67,7 @@ fn mesh() -> VolumeMesh {
     m
 }
 
-fn input(m: &VolumeMesh) -> ReportInput<'_> {
+fn input(m: &VolumeMesh) -> ReportInput<'static> {
     ReportInput {
         model_name: "two <cubes>",
         recipe_path: "recipes/two&cubes.toml",
@@ -127,7 +127,7 @@ fn input(m: &VolumeMesh) -> ReportInput<'_> {
                 volume: 1e6,
             },
         ],
-        mesh: m,
+        mesh: MeshFacts::of(m, "two <cubes>"),
         steps: vec![
             StepSummary {
                 name: "import:H1".into(),
@@ -349,7 +349,7 @@ fn a_default_input_with_only_a_mesh_renders() {
     let m = mesh();
     let i = ReportInput {
         model_name: "partial",
-        mesh: &m,
+        mesh: MeshFacts::of(&m, "partial"),
         ..Default::default()
     };
     let (html, json) = render_both(&i);

@@ -12,11 +12,11 @@ pub mod measures;
 pub use measures::{PAPER_MEAN_RATIO_SCALE, tet_mean_ratio, tet_min_dihedral_deg, triangle_ratio};
 
 use geom::mesh::VolumeMesh;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 
 /// One row of the seed's Table 1: triangle shape `c/c*` over a surface group.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TriQuality {
     pub name: String,
     pub nodes: usize,
@@ -31,7 +31,7 @@ pub struct TriQuality {
 /// One row of the seed's Table 2: normalised tet mean ratio over a region (regular tet = 1.0;
 /// multiply `avg`/`min` by [`PAPER_MEAN_RATIO_SCALE`] for the paper's 0.79 scale, given here as
 /// `avg_paper` and `min_paper`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TetQuality {
     pub name: String,
     pub nodes: usize,
@@ -179,7 +179,7 @@ pub fn table2(mesh: &VolumeMesh) -> Vec<TetQuality> {
 }
 
 /// Both tables, as the build's JSON report and printed summary carry them.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct QualityReport {
     pub table1: Vec<TriQuality>,
     pub table2: Vec<TetQuality>,

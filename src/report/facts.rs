@@ -1,0 +1,92 @@
+//! What a report shows of the final mesh, computed from the mesh once: its counts and groups,
+//! the seed's Tables 1 and 2, the histograms, the element counts and volumes per group, and the
+//! two pictures.
+//!
+//! These are the report's only costly parts (a measure per element, a sort of every tet face,
+//! the painter's algorithm), and they depend on the mesh and the model's name alone (the
+//! pictures carry it in their titles), so they are a plain serialisable value: the command line
+//! keeps it in the cache by the mesh's content hash (see `cli::report`), and a build whose mesh
+//! did not change renders its report without reading the mesh. [`FACTS_VERSION`] enters that
+//! cache key: bump it whenever what [`MeshFacts::of`] computes changes.
+
+use super::histogram::{self, Histogram};
+use super::input::region_tets_and_volumes;
+use super::pictures;
+use super::view::Picture;
+use export::quality::{self, QualityReport};
+use geom::mesh::{RegionGroup, SurfaceGroup, VolumeMesh};
+use serde::{Deserialize, Serialize};
+
+/// The version of what [`MeshFacts::of`] computes, for caches of it.
+pub const FACTS_VERSION: u32 = 1;
+
+/// Everything a report shows of a mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MeshFacts {
+    pub nodes: usize,
+    pub triangles: usize,
+    pub tets: usize,
+    /// The mesh's regions and surface groups (index order).
+    pub regions: Vec<RegionGroup>,
+    pub surface_groups: Vec<SurfaceGroup>,
+    /// Why the mesh's indices are inconsistent, when they are.
+    pub inconsistent: Option<String>,
+    /// The seed's Tables 1 and 2 (`export::quality::report`).
+    pub quality: QualityReport,
+    /// Mean ratio per mesh region (index order).
+    pub mean_ratio: Vec<Histogram>,
+    /// `c/c*` per mesh surface group (index order).
+    pub c_ratio: Vec<Histogram>,
+    /// Tets and summed tet volume per mesh region (index order).
+    pub region_tets: Vec<usize>,
+    pub region_volume: Vec<f64>,
+    /// Triangles per mesh surface group (index order).
+    pub group_triangles: Vec<usize>,
+    pub pictures: Pictures,
+}
+
+/// The report's two pictures (see `pictures`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Pictures {
+    /// The surfaces, coloured by name.
+    pub model: Picture,
+    /// The cut-away of the tets, coloured by region.
+    pub cutaway: Picture,
+    /// Tets kept by the cut.
+    pub kept: usize,
+}
+
+impl MeshFacts {
+    /// The figures of `mesh`, whose pictures are titled after `model_name`.
+    pub fn of(mesh: &VolumeMesh, model_name: &str) -> MeshFacts {
+        let (region_tets, region_volume) = region_tets_and_volumes(mesh);
+        let mut group_triangles = vec![0usize; mesh.surface_groups.len()];
+        for &g in &mesh.triangle_group {
+            if let Some(c) = group_triangles.get_mut(g as usize) {
+                *c += 1;
+            }
+        }
+        let (model, _) = pictures::model(mesh, &format!("{model_name} surfaces"));
+        let (cutaway, kept, _) =
+            pictures::cutaway(mesh, &format!("{model_name} tetrahedra, cut away"));
+        MeshFacts {
+            nodes: mesh.nodes.len(),
+            triangles: mesh.triangles.len(),
+            tets: mesh.tets.len(),
+            regions: mesh.regions.clone(),
+            surface_groups: mesh.surface_groups.clone(),
+            inconsistent: mesh.check_indices().err(),
+            quality: quality::report(mesh),
+            mean_ratio: histogram::mean_ratio(mesh),
+            c_ratio: histogram::c_ratio(mesh),
+            region_tets,
+            region_volume,
+            group_triangles,
+            pictures: Pictures {
+                model,
+                cutaway,
+                kept,
+            },
+        }
+    }
+}
