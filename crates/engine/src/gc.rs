@@ -1,9 +1,10 @@
 //! Cache maintenance: `gc` keeps only the entries that the given lock files or the last build of
-//! any record (`manifest`) reference (node keys and output objects) and removes everything else,
-//! including stray temporary files and the root `manifest.bin` that builds wrote before records;
-//! `forget` removes a record, so what only its last build referenced goes at the next `gc`;
-//! `clean` removes the whole cache directory. All touch only a directory marked as a cache
-//! (`marker`), and take the directory lock so they never race a build.
+//! any record (`manifest`, and what the caller derived from it: `derive`) reference (node keys
+//! and output objects) and removes everything else, including stray temporary files and the
+//! root `manifest.bin` that builds wrote before records; `forget` removes a record, so what only
+//! its last build referenced goes at the next `gc`; `clean` removes the whole cache directory.
+//! All touch only a directory marked as a cache (`marker`), and take the directory lock so they
+//! never race a build.
 
 use crate::artifact::Hash;
 use crate::dirlock::DirLock;
@@ -109,10 +110,15 @@ fn sweep(dir: &Path, keep: &BTreeSet<Hash>, stats: &mut GcStats) -> Result<(), E
     Ok(())
 }
 
-/// What the last build of record `record` in `cache_dir` referenced, as a lock file; `None` when
-/// the record has no readable manifest.
+/// What the last build of record `record` in `cache_dir` referenced, as a lock file: its nodes
+/// and what the caller derived from them (named `derived:<name>`); `None` when the record has no
+/// readable manifest.
 pub fn last_build(cache_dir: &Path, record: &str) -> Option<LockFile> {
-    let m = Manifest::load(&manifest::record_dir(cache_dir, record))?;
+    let dir = manifest::record_dir(cache_dir, record);
+    let m = Manifest::load(&dir)?;
+    let derived = crate::derive::recorded(&dir)
+        .into_iter()
+        .map(|(n, e)| (format!("derived:{n}"), e));
     let nodes = m
         .nodes
         .into_iter()
@@ -125,6 +131,7 @@ pub fn last_build(cache_dir: &Path, record: &str) -> Option<LockFile> {
                 },
             )
         })
+        .chain(derived)
         .collect();
     Some(LockFile {
         nodes,

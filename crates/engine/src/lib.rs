@@ -27,6 +27,7 @@
 
 pub mod artifact;
 pub mod build;
+pub mod derive;
 pub mod dirlock;
 mod emitted;
 pub mod error;
@@ -48,6 +49,7 @@ mod worker;
 
 pub use artifact::{Artifact, FileSet, Hash};
 pub use build::{BuildOptions, DEFAULT_RECORD, Event, build, build_holding, lock_cache};
+pub use derive::Derivations;
 pub use dirlock::DirLock;
 pub use error::EngineError;
 pub use gc::{GcStats, clean, forget, gc};

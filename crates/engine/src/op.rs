@@ -62,6 +62,13 @@ pub trait RunContext {
     fn progress(&self, done: u64, total: u64);
 }
 
+/// The context of a run nobody watches (a repair of the store, a derivation).
+pub(crate) struct Quiet;
+
+impl RunContext for Quiet {
+    fn progress(&self, _: u64, _: u64) {}
+}
+
 /// One kind of build step.
 pub trait Operation: Send + Sync {
     /// e.g. "import", "discretize".

@@ -12,7 +12,7 @@
 //! output has the same hash (the operation is pure), and puts it back into the store.
 
 use crate::artifact::{Artifact, Hash};
-use crate::op::{Operation, RunContext};
+use crate::op::{Operation, Quiet};
 use crate::store::{Load, Store};
 use crate::worker::panic_text;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -111,11 +111,4 @@ impl Stored {
         }
         Ok(out.artifact)
     }
-}
-
-/// The context of an operation run again to repair the store: nobody watches its progress.
-struct Quiet;
-
-impl RunContext for Quiet {
-    fn progress(&self, _: u64, _: u64) {}
 }

@@ -3,6 +3,7 @@
 
 mod engine_build;
 mod engine_cache;
+mod engine_derive;
 mod engine_lazy;
 mod engine_marker;
 mod engine_parallel;
