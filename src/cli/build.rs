@@ -119,7 +119,10 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     // The report and the validation are written for failed builds too: they say what failed,
     // what ran and what is wrong with the surfaces (under `--locked` they are staged, and
     // dropped with the staging directory).
-    let written = super::report::write_report(&recipe, &args.recipe, &report, write_dir)?;
+    let derivations = engine::Derivations::open(&opts)?;
+    let written =
+        super::report::write_report(&recipe, &args.recipe, &report, &derivations, write_dir)?;
+    derivations.save()?;
     super::report::write_validation(&report, write_dir)?;
     // The report's files, by their names in the output directory.
     let written: Vec<String> = written

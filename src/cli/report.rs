@@ -1,7 +1,12 @@
 //! `report.html` and `report.json`: gathered after each build from the build report (what ran
-//! and why) and the artifacts of `model`, the imports, the per-entity nodes and `mesh`, rendered
-//! by `crate::report`, and written atomically beside the outputs. They are not build outputs in
-//! the lock file: they say what re-ran, which differs from build to build by design.
+//! and why), the artifacts of `model`, the imports and the per-entity nodes, and the figures of
+//! the final mesh, rendered by `crate::report`, and written atomically beside the outputs. They
+//! are not build outputs in the lock file: they say what re-ran, which differs from build to
+//! build by design.
+//!
+//! The mesh's figures are a derivation of the `mesh` node's output (`plan::ops::MeshFactsOp`,
+//! cached by the mesh's hash), so a build whose mesh did not change neither reads the mesh nor
+//! measures it again.
 //!
 //! `validation.json` is written here too, after every build and so also after one that failed
 //! past the imports, when it is needed most: for each surface, what validation found on import,
@@ -11,12 +16,12 @@
 
 use super::Failure;
 use super::build::write_atomic;
-use crate::plan::ops::{ModelData, SurfaceData, findings_by_kind};
+use crate::plan::ops::{MeshFactsOp, ModelData, SurfaceData, findings_by_kind};
 use crate::recipe::Recipe;
 use crate::report::{
     CurveSummary, MeshFacts, ReportInput, StepSummary, SurfaceSummary, model_summaries, render_both,
 };
-use engine::{BuildReport, NodeState};
+use engine::{BuildReport, Derivations, NodeState};
 use geom::mesh::VolumeMesh;
 use std::path::{Path, PathBuf};
 
@@ -50,14 +55,51 @@ fn decoded<T: serde::de::DeserializeOwned>(
         .map_err(|e| Failure(format!("error: report: the output of node `{name}`: {e}")))
 }
 
+/// The figures of the build's final mesh (of an empty mesh when it has none), derived from the
+/// `mesh` node's output.
+fn mesh_facts(
+    recipe: &Recipe,
+    report: &BuildReport,
+    derivations: &Derivations,
+) -> Result<MeshFacts, Failure> {
+    let model = &recipe.model.name;
+    let Some(mesh) = report.artifact("mesh") else {
+        return Ok(MeshFacts::of(&VolumeMesh::default(), model));
+    };
+    let op = MeshFactsOp {
+        model: model.clone(),
+    };
+    derivations
+        .derive("mesh_facts", &op, std::slice::from_ref(mesh))
+        .and_then(|a| a.decode())
+        .map_err(|e| Failure(format!("error: report: the figures of node `mesh`: {e}")))
+}
+
 /// Writes `report.html` and `report.json` into `output_dir`; returns their paths.
 pub fn write_report(
     recipe: &Recipe,
     recipe_path: &Path,
     report: &BuildReport,
+    derivations: &Derivations,
     output_dir: &Path,
 ) -> Result<Vec<PathBuf>, Failure> {
-    let mesh: VolumeMesh = decoded(report, "mesh")?.unwrap_or_default();
+    let label = recipe_path.display().to_string();
+    let input = report_input(recipe, &label, report, derivations)?;
+    let (html, json) = render_both(&input);
+    let h = output_dir.join("report.html");
+    let j = output_dir.join("report.json");
+    write_atomic(&h, html.as_bytes())?;
+    write_atomic(&j, json.as_bytes())?;
+    Ok(vec![h, j])
+}
+
+/// Everything the report shows of `report`'s build.
+fn report_input<'a>(
+    recipe: &'a Recipe,
+    label: &'a str,
+    report: &BuildReport,
+    derivations: &Derivations,
+) -> Result<ReportInput<'a>, Failure> {
     let model: Option<ModelData> = decoded(report, "model")?;
     let mut imported = Vec::new();
     for n in &report.nodes {
@@ -121,24 +163,17 @@ pub fn write_report(
             duration_ms: n.duration_ms,
         })
         .collect();
-    let label = recipe_path.display().to_string();
-    let input = ReportInput {
+    Ok(ReportInput {
         model_name: &recipe.model.name,
-        recipe_path: &label,
+        recipe_path: label,
         surfaces,
         curves,
         patches,
         regions,
-        mesh: MeshFacts::of(&mesh, &recipe.model.name),
+        mesh: mesh_facts(recipe, report, derivations)?,
         steps,
         warnings,
-    };
-    let (html, json) = render_both(&input);
-    let h = output_dir.join("report.html");
-    let j = output_dir.join("report.json");
-    write_atomic(&h, html.as_bytes())?;
-    write_atomic(&j, json.as_bytes())?;
-    Ok(vec![h, j])
+    })
 }
 
 /// The validation of every imported surface, by surface name: the report of what was found on

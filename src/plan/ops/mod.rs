@@ -6,6 +6,7 @@ mod crossings;
 mod curves;
 mod expand;
 mod export;
+mod facts;
 mod geometry;
 mod import;
 mod inputs;
@@ -23,6 +24,7 @@ pub use curves::{
 };
 pub use expand::ModelExpander;
 pub use export::ExportOp;
+pub use facts::MeshFactsOp;
 pub use geometry::{BoxOp, BoxSideOp, BoxSpecParams, IntersectOp};
 pub use import::{FINDINGS_REMAINING, ImportOp, OnInvalid, findings_by_kind};
 pub use inputs::{Groups, Wiring};
