@@ -11,6 +11,8 @@ use super::cache::{
     RecipeRecord, cache_dir, last_graph_path, last_report_path, lock_path, recipe_dir,
 };
 use super::render::{Renderer, Verbosity};
+use super::report::{ReportPlace, write_report};
+use super::report_state::ReportState;
 use super::staging::Staging;
 use super::{BuildArgs, Failure, load};
 use crate::plan;
@@ -120,16 +122,23 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     // what ran and what is wrong with the surfaces (under `--locked` they are staged, and
     // dropped with the staging directory).
     let derivations = engine::Derivations::open(&opts)?;
-    let written =
-        super::report::write_report(&recipe, &args.recipe, &report, &derivations, write_dir)?;
+    let place = ReportPlace {
+        write_dir,
+        output_dir: &output_dir,
+        record_dir: &record_dir,
+    };
+    let report_state = write_report(&recipe, &args.recipe, &report, &derivations, &place)?;
     derivations.save()?;
     super::report::write_validation(&report, write_dir)?;
-    // The report's files, by their names in the output directory.
-    let written: Vec<String> = written
-        .iter()
-        .filter_map(|p| p.strip_prefix(write_dir).ok())
-        .map(|p| p.display().to_string())
-        .collect();
+    // The record describes the report in the output directory: a staged one once published.
+    let save_state = |state: Option<ReportState>| match state {
+        Some(s) => s.save(&record_dir),
+        None => Ok(()),
+    };
+    let report_state = match staging {
+        None => save_state(report_state).map(|()| None)?,
+        Some(_) => report_state,
+    };
     if !report.ok {
         return Err(Failure(format!(
             "error: build of {} failed: {summary}, {} failed, {} skipped",
@@ -155,6 +164,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         }
         if let Some(staging) = staging {
             staging.publish(&output_dir)?;
+            save_state(report_state)?;
         }
     } else {
         let text = new_lock.to_text();
@@ -192,7 +202,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         // Every file the build wrote (or, staged, published) into the output directory.
         let mut files: Vec<String> = report.output_files.keys().cloned().collect();
         files.push("validation.json".into());
-        files.extend(written);
+        files.extend(super::report_state::FILES.map(String::from));
         errln!("{:>12} {}", "Outputs", files.join(", "));
     }
     errln!(

@@ -4,13 +4,15 @@
 //! Any number of recipes may share one cache directory (one `.recipe/` for a folder of recipes,
 //! one `--cache-dir` or CI cache for a repository): node entries are shared by key, and each
 //! recipe's own state lives in its engine record, `<cache>/records/<name>/`: the engine's
-//! manifest (the baseline of rebuild reasons), the last build's report and graph (for `explain`
-//! and `graph`) and `recipe`, the recipe's path, by which `gc` finds its lock file. The record is
-//! named after the recipe's path relative to the cache directory, both canonical
-//! ([`RecipeRecord`]): two recipes of the same file name in different folders get two records,
-//! and a repository checked out elsewhere with its cache (a CI cache restored into another
-//! workspace) keeps its records. A recipe that moves away from its cache starts a new record; the
-//! old one is forgotten by the next `gc`, which finds no recipe at its path.
+//! manifest (the baseline of rebuild reasons), what its emitting nodes wrote and what the report
+//! derived, the last build's report and graph (for `explain` and `graph`), the state of the
+//! report in the output directory (`report_state`) and `recipe`, the recipe's path, by which
+//! `gc` finds its lock file. The record is named after the recipe's path relative to the cache
+//! directory, both canonical ([`RecipeRecord`]): two recipes of the same file name in different
+//! folders get two records, and a repository checked out elsewhere with its cache (a CI cache
+//! restored into another workspace) keeps its records. A recipe that moves away from its cache
+//! starts a new record; the old one is forgotten by the next `gc`, which finds no recipe at its
+//! path.
 //!
 //! Caches written before records kept one `last-report.json`, `last-graph.dot` and manifest at
 //! their root, whichever recipe built last: they are not migrated (they may be another recipe's),

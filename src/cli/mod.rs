@@ -41,6 +41,7 @@ mod load;
 mod output;
 mod render;
 mod report;
+mod report_state;
 mod staging;
 mod tetmesh;
 mod watch;

@@ -6,7 +6,8 @@
 //!
 //! The mesh's figures are a derivation of the `mesh` node's output (`plan::ops::MeshFactsOp`,
 //! cached by the mesh's hash), so a build whose mesh did not change neither reads the mesh nor
-//! measures it again.
+//! measures it again; and a report that would differ from the one on disk only in its timings is
+//! not written again (`report_state`).
 //!
 //! `validation.json` is written here too, after every build and so also after one that failed
 //! past the imports, when it is needed most: for each surface, what validation found on import,
@@ -16,6 +17,7 @@
 
 use super::Failure;
 use super::build::write_atomic;
+use super::report_state::{self, ReportState};
 use crate::plan::ops::{MeshFactsOp, ModelData, SurfaceData, findings_by_kind};
 use crate::recipe::Recipe;
 use crate::report::{
@@ -75,22 +77,38 @@ fn mesh_facts(
         .map_err(|e| Failure(format!("error: report: the figures of node `mesh`: {e}")))
 }
 
-/// Writes `report.html` and `report.json` into `output_dir`; returns their paths.
+/// Where a build's report goes.
+pub struct ReportPlace<'a> {
+    /// Where the build writes its files: the output directory, or its staging directory.
+    pub write_dir: &'a Path,
+    /// Where the report ends up, which the record's state describes.
+    pub output_dir: &'a Path,
+    /// The recipe's record.
+    pub record_dir: &'a Path,
+}
+
+/// Writes `report.html` and `report.json` into `place.write_dir`, unless the output directory
+/// holds them already, timings aside (see `report_state`). Returns the report's state for the
+/// record once its files are in the output directory, `None` when they were left alone.
 pub fn write_report(
     recipe: &Recipe,
     recipe_path: &Path,
     report: &BuildReport,
     derivations: &Derivations,
-    output_dir: &Path,
-) -> Result<Vec<PathBuf>, Failure> {
+    place: &ReportPlace,
+) -> Result<Option<ReportState>, Failure> {
     let label = recipe_path.display().to_string();
     let input = report_input(recipe, &label, report, derivations)?;
+    let fingerprint = report_state::fingerprint(&input);
+    let recorded = ReportState::load(place.record_dir);
+    if recorded.is_some_and(|s| s.fingerprint == fingerprint && s.on_disk(place.output_dir)) {
+        return Ok(None);
+    }
     let (html, json) = render_both(&input);
-    let h = output_dir.join("report.html");
-    let j = output_dir.join("report.json");
-    write_atomic(&h, html.as_bytes())?;
-    write_atomic(&j, json.as_bytes())?;
-    Ok(vec![h, j])
+    for (name, text) in report_state::FILES.iter().zip([&html, &json]) {
+        write_atomic(&place.write_dir.join(name), text.as_bytes())?;
+    }
+    Ok(Some(ReportState::of(fingerprint, &html, &json)))
 }
 
 /// Everything the report shows of `report`'s build.

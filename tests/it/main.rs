@@ -9,6 +9,7 @@ mod cli_geology;
 mod cli_incremental;
 mod cli_mesh;
 mod cli_msh_groups;
+mod cli_noop;
 mod cli_output;
 mod cli_real_data;
 mod cli_ringmesh;
