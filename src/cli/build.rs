@@ -87,11 +87,11 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     // This recipe's record: where it is (for `gc`), its last report and graph.
     let record_dir = record.dir(&cache);
     record.save(&cache)?;
-    write_atomic(
+    write_record(
         &last_report_path(&record_dir),
         report.to_json().to_string().as_bytes(),
     )?;
-    write_atomic(&last_graph_path(&record_dir), report.to_dot().as_bytes())?;
+    write_record(&last_graph_path(&record_dir), report.to_dot().as_bytes())?;
     if args.json {
         let mut json = report.to_json();
         if let Some(model) = report
@@ -260,6 +260,17 @@ fn read_lock(lock_file: &Path) -> Result<LockFile, Failure> {
 /// Writes a file atomically and durably (`engine::write_atomic`), naming the file on failure.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
     engine::write_atomic(path, bytes, true)
+        .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))
+}
+
+/// Writes a file of the recipe's record atomically unless it holds `bytes` already. Not synced
+/// to disk, as the engine's manifest: a record lost in a crash only costs the next build some
+/// work (explanations, a report written again), never a wrong output.
+pub fn write_record(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    if std::fs::read(path).ok().as_deref() == Some(bytes) {
+        return Ok(());
+    }
+    engine::write_atomic(path, bytes, false)
         .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))
 }
 

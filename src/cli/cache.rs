@@ -165,11 +165,7 @@ impl RecipeRecord {
     /// Writes the recipe's path into the record (the engine made its directory), unless it is
     /// already there.
     pub fn save(&self, cache: &Path) -> Result<(), Failure> {
-        let file = self.dir(cache).join(RECIPE_FILE);
-        if std::fs::read_to_string(&file).ok().as_deref() != Some(self.path.as_str()) {
-            super::build::write_atomic(&file, self.path.as_bytes())?;
-        }
-        Ok(())
+        super::build::write_record(&self.dir(cache).join(RECIPE_FILE), self.path.as_bytes())
     }
 }
 

@@ -68,7 +68,7 @@ impl ReportState {
     /// Writes the state into the record.
     pub fn save(&self, record_dir: &Path) -> Result<(), super::Failure> {
         let text = serde_json::to_string_pretty(self)?;
-        super::build::write_atomic(&path(record_dir), text.as_bytes())
+        super::build::write_record(&path(record_dir), text.as_bytes())
     }
 
     /// Whether `output_dir` holds the report this state describes, byte for byte.
