@@ -152,6 +152,10 @@ impl Operation for CurveExtractOp {
     fn kind(&self) -> &'static str {
         "curve"
     }
+    /// Read only by its `discretize` when that re-runs.
+    fn lazy_output(&self) -> bool {
+        true
+    }
     fn version(&self) -> u32 {
         2
     }
@@ -216,6 +220,10 @@ pub struct DiscretizeOp {
 impl Operation for DiscretizeOp {
     fn kind(&self) -> &'static str {
         "discretize"
+    }
+    /// Read only by the surface meshes and the export that re-run.
+    fn lazy_output(&self) -> bool {
+        true
     }
     fn version(&self) -> u32 {
         2

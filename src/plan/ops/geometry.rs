@@ -136,6 +136,10 @@ impl Operation for IntersectOp {
     fn kind(&self) -> &'static str {
         "intersect"
     }
+    /// Read only by `model` and `crossings` when they re-run.
+    fn lazy_output(&self) -> bool {
+        true
+    }
     fn version(&self) -> u32 {
         1
     }

@@ -32,6 +32,10 @@ impl Operation for PatchExtractOp {
     fn kind(&self) -> &'static str {
         "patch"
     }
+    /// Read only by its `surface_mesh` when that re-runs.
+    fn lazy_output(&self) -> bool {
+        true
+    }
     fn version(&self) -> u32 {
         1
     }
