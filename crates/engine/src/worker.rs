@@ -132,31 +132,49 @@ pub(crate) fn run_job(
                 &mut done.ran,
                 &mut done.corrupt,
             );
-            if op.emits_files()
-                && let Ok(p) = &mut done.result
-            {
-                let kept = emitted
-                    .as_ref()
-                    .filter(|e| !done.ran && e.output == p.artifact.hash())
-                    .filter(|e| unchanged_on_disk(output_dir, &e.files));
-                match kept {
-                    Some(e) => done.files = e.files.clone(),
-                    None => {
-                        let written = write_files(p, done.ran, output_dir, staging_dir);
-                        if let Some((name, detail)) = p.artifact.take_repair() {
-                            on_event(&Event::CacheCorrupt { name, detail });
-                        }
-                        match written {
-                            Ok(files) => done.files = files,
-                            Err(e) => done.result = Err(format!("emitted files: {e}")),
-                        }
-                    }
-                }
+            if op.emits_files() {
+                emit(
+                    &mut done,
+                    emitted.as_ref(),
+                    output_dir,
+                    staging_dir,
+                    on_event,
+                );
             }
         }
     }
     done.duration_ms = t0.elapsed().as_secs_f64() * 1000.0;
     done
+}
+
+/// Puts the files of an emitting node's output into place: nothing to do for a cached node
+/// whose files are on disk as the record says it emitted them (`emitted`), else the files that
+/// differ are written from its output (read now if it was left in the store).
+fn emit(
+    done: &mut Done,
+    emitted: Option<&NodeFiles>,
+    output_dir: &Path,
+    staging_dir: Option<&Path>,
+    on_event: &(dyn Fn(&Event) + Sync),
+) {
+    let Ok(p) = &mut done.result else {
+        return;
+    };
+    let kept = emitted
+        .filter(|e| !done.ran && e.output == p.artifact.hash())
+        .filter(|e| unchanged_on_disk(output_dir, &e.files));
+    if let Some(e) = kept {
+        done.files = e.files.clone();
+        return;
+    }
+    let written = write_files(p, done.ran, output_dir, staging_dir);
+    if let Some((name, detail)) = p.artifact.take_repair() {
+        on_event(&Event::CacheCorrupt { name, detail });
+    }
+    match written {
+        Ok(files) => done.files = files,
+        Err(e) => done.result = Err(format!("emitted files: {e}")),
+    }
 }
 
 /// Writes the files of `p`'s artifact that differ on disk (read in place: straight from the
