@@ -21,7 +21,7 @@ use super::report_state::{self, ReportState};
 use crate::plan::ops::{MeshFactsOp, ModelData, SurfaceData, findings_by_kind};
 use crate::recipe::Recipe;
 use crate::report::{
-    CurveSummary, MeshFacts, ReportInput, StepSummary, SurfaceSummary, model_summaries, render_both,
+    CurveSummary, Draft, MeshFacts, ReportInput, StepSummary, SurfaceSummary, model_summaries,
 };
 use engine::{BuildReport, Derivations, NodeState};
 use geom::mesh::VolumeMesh;
@@ -99,12 +99,13 @@ pub fn write_report(
 ) -> Result<Option<ReportState>, Failure> {
     let label = recipe_path.display().to_string();
     let input = report_input(recipe, &label, report, derivations)?;
-    let fingerprint = report_state::fingerprint(&input);
+    let draft = Draft::new(&input);
+    let fingerprint = report_state::fingerprint(&draft);
     let recorded = ReportState::load(place.record_dir);
     if recorded.is_some_and(|s| s.fingerprint == fingerprint && s.on_disk(place.output_dir)) {
         return Ok(None);
     }
-    let (html, json) = render_both(&input);
+    let (html, json) = draft.finish();
     for (name, text) in report_state::FILES.iter().zip([&html, &json]) {
         write_atomic(&place.write_dir.join(name), text.as_bytes())?;
     }

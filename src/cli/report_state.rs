@@ -10,7 +10,7 @@
 //! timings of the build that wrote it. Anything else (no record, a different fingerprint, a file
 //! changed on disk) writes the report.
 
-use crate::report::{ReportInput, render_both};
+use crate::report::Draft;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -35,13 +35,9 @@ fn hash(bytes: &[u8]) -> String {
     blake3::hash(bytes).to_hex().to_string()
 }
 
-/// blake3 over both documents of `input` rendered with every step's duration zero.
-pub fn fingerprint(input: &ReportInput) -> String {
-    let mut timeless = input.clone();
-    for s in &mut timeless.steps {
-        s.duration_ms = 0.0;
-    }
-    let (html, json) = render_both(&timeless);
+/// blake3 over both documents of a report with every step's duration zero.
+pub fn fingerprint(draft: &Draft) -> String {
+    let (html, json) = draft.timeless();
     let mut h = blake3::Hasher::new();
     h.update(hash(html.as_bytes()).as_bytes());
     h.update(hash(json.as_bytes()).as_bytes());

@@ -4,7 +4,7 @@
 //! has a fixed precision, so the page is a pure function of its input.
 
 use super::histogram::{self, Histogram};
-use super::input::ReportInput;
+use super::input::{ReportInput, StepSummary};
 use super::palette::{self, Rgb};
 use super::pictures::FACE_CAP;
 use super::text::{count, esc, num};
@@ -27,7 +27,8 @@ figure{margin:12px 0 22px}figcaption{color:#555;font-size:13px;max-width:960px}s
 .small{font-size:12px;color:#444}.st-ran{color:#b35c00}.st-failed{color:#c00;font-weight:600}.st-skipped{color:#888}\
 details{margin:6px 0}summary{cursor:pointer}";
 
-pub fn render(input: &ReportInput, warnings: &[String]) -> String {
+/// The page up to its steps section, which alone quotes the steps' durations.
+pub fn body(input: &ReportInput, warnings: &[String]) -> String {
     let mut h = String::with_capacity(1 << 16);
     let title = esc(input.model_name);
     let _ = write!(
@@ -53,7 +54,12 @@ pub fn render(input: &ReportInput, warnings: &[String]) -> String {
     let q = &input.mesh.quality;
     quality_tables(&mut h, &q.table1, &q.table2);
     histograms(&mut h, input);
-    steps(&mut h, input);
+    h
+}
+
+/// The page: `body` (see [`body`]), the steps section of `steps` and the end.
+pub fn finish(mut h: String, steps: &[StepSummary]) -> String {
+    steps_section(&mut h, steps);
     h.push_str("</body></html>\n");
     h
 }
@@ -320,7 +326,7 @@ fn histograms(h: &mut String, input: &ReportInput) {
     h.push_str("</section>\n");
 }
 
-fn step_row(h: &mut String, s: &super::StepSummary) {
+fn step_row(h: &mut String, s: &StepSummary) {
     let class = s.state.replace(|c: char| !c.is_ascii_alphanumeric(), "-");
     let _ = write!(
         h,
@@ -333,22 +339,21 @@ fn step_row(h: &mut String, s: &super::StepSummary) {
     );
 }
 
-fn steps(h: &mut String, input: &ReportInput) {
+fn steps_section(h: &mut String, steps: &[StepSummary]) {
     h.push_str("<section><h2>What re-ran and why</h2>");
-    if input.steps.is_empty() {
+    if steps.is_empty() {
         h.push_str("<p>No build steps were recorded.</p></section>\n");
         return;
     }
-    let (cached, other): (Vec<_>, Vec<_>) = input.steps.iter().partition(|s| s.state == "cached");
-    let total: f64 = input
-        .steps
+    let (cached, other): (Vec<_>, Vec<_>) = steps.iter().partition(|s| s.state == "cached");
+    let total: f64 = steps
         .iter()
         .map(|s| s.duration_ms)
         .filter(|d| d.is_finite())
         .sum();
     // Counts per state, the engine's states in a fixed order, then any other state by name.
     let mut by_state: std::collections::BTreeMap<&str, usize> = Default::default();
-    for s in &input.steps {
+    for s in steps {
         *by_state.entry(s.state.as_str()).or_default() += 1;
     }
     let order = ["ran", "failed", "skipped", "cut off", "cached"];
@@ -369,7 +374,7 @@ fn steps(h: &mut String, input: &ReportInput) {
     let _ = write!(
         h,
         "<p>{} steps: {}. A step is cut off when an input re-ran but gave the same output, so it did not re-run. Time in steps: {} ms.</p>",
-        count(input.steps.len()),
+        count(steps.len()),
         parts.join(", "),
         num(total, 1)
     );

@@ -4,17 +4,18 @@
 //! non-finite numbers (statistics of an empty group, unknown volumes) are `null`.
 
 use super::BINS;
-use super::input::ReportInput;
+use super::input::{ReportInput, StepSummary};
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 
 /// Version of the document's layout; bumped when a key changes meaning.
 pub const FORMAT: &str = "georecipe-report/1";
 
-pub fn render(input: &ReportInput, warnings: &[String]) -> String {
+/// The document of `input` with `steps` (the input's, or the same with other durations).
+pub fn render(input: &ReportInput, warnings: &[String], steps: &[StepSummary]) -> String {
     let mesh = &input.mesh;
     let mut states: BTreeMap<&str, usize> = BTreeMap::new();
-    for s in &input.steps {
+    for s in steps {
         *states.entry(s.state.as_str()).or_default() += 1;
     }
     let mesh_regions: Vec<Value> = mesh
@@ -68,8 +69,7 @@ pub fn render(input: &ReportInput, warnings: &[String]) -> String {
             })
         })
         .collect();
-    let steps: Vec<Value> = input
-        .steps
+    let steps: Vec<Value> = steps
         .iter()
         .map(|s| {
             json!({

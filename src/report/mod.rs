@@ -79,18 +79,65 @@ fn warnings(input: &ReportInput) -> Vec<String> {
     warnings
 }
 
+/// A report drawn up to its timings: the page before its steps section, which is nearly all of
+/// it and does not depend on the steps' durations, is rendered once; the documents are then
+/// finished with the durations as measured, or with every duration zero (so that two builds
+/// whose reports differ only in their timings have the same timeless documents).
+pub struct Draft<'r> {
+    input: &'r ReportInput<'r>,
+    warnings: Vec<String>,
+    body: String,
+}
+
+impl<'r> Draft<'r> {
+    pub fn new(input: &'r ReportInput<'r>) -> Draft<'r> {
+        let warnings = warnings(input);
+        let body = html::body(input, &warnings);
+        Draft {
+            input,
+            warnings,
+            body,
+        }
+    }
+
+    fn with_steps(&self, steps: &[StepSummary]) -> (String, String) {
+        (
+            html::finish(self.body.clone(), steps),
+            json::render(self.input, &self.warnings, steps),
+        )
+    }
+
+    /// Both documents, `(html, json)`.
+    pub fn finish(&self) -> (String, String) {
+        self.with_steps(&self.input.steps)
+    }
+
+    /// Both documents with every step's duration zero.
+    pub fn timeless(&self) -> (String, String) {
+        let steps: Vec<StepSummary> = self
+            .input
+            .steps
+            .iter()
+            .map(|s| StepSummary {
+                duration_ms: 0.0,
+                ..s.clone()
+            })
+            .collect();
+        self.with_steps(&steps)
+    }
+}
+
 /// `report.html`: self-contained (inline CSS and SVG, no scripts, no external resources).
 pub fn render_html(input: &ReportInput) -> String {
-    html::render(input, &warnings(input))
+    render_both(input).0
 }
 
 /// `report.json`: pretty, sorted keys, deterministic.
 pub fn render_json(input: &ReportInput) -> String {
-    json::render(input, &warnings(input))
+    json::render(input, &warnings(input), &input.steps)
 }
 
 /// Both documents: `(html, json)`.
 pub fn render_both(input: &ReportInput) -> (String, String) {
-    let w = warnings(input);
-    (html::render(input, &w), json::render(input, &w))
+    Draft::new(input).finish()
 }
