@@ -12,13 +12,20 @@
 //! - The plane is the one normal to the patch's area-weighted mean normal, the plane the surface
 //!   mesher projects onto; an orthogonal projection never lengthens a distance, so a chord that
 //!   keeps within half the plane clearance in 3D keeps within it in the plane too.
-//! - Only curves *apart* from it count: not itself (its chords follow each other along it) and
-//!   not the curves it meets at an end. Chords leaving a shared end cross only if they swap sides
-//!   there, which distance does not measure; counted, those curves' clearance shrinks to zero at
-//!   the end and would split a stair-stepped curve (a chart seam along support edges) into its
-//!   support edges at every junction, which cost the salt cases tets of 2° dihedral angle.
+//! - Only the parts of curves *apart* from the point count: a piece of curve farther from the
+//!   point along the curves (along its own curve, or through an end the two curves share) than
+//!   `DETOUR` (20) times its distance in the plane. Its own neighbours and the curves leaving a
+//!   shared end at an open angle are not apart (their chords follow each other, or cross only if they
+//!   swap sides at the end, which distance does not measure); counted, their clearance would
+//!   shrink to zero at every junction and split a stair-stepped curve (a chart seam along support
+//!   edges) into its support edges there, which cost the salt cases tets of 2° dihedral angle.
+//!   But the two lips of a sliver between faults, which leave their common end at a fraction of a
+//!   degree and run side by side for kilometres, and a curve that comes back along itself, are
+//!   apart: their chords would cross.
 //! - A curve on several patches takes the smallest clearance; a point with no other curve in any
 //!   of its patches has an infinite clearance.
+//! - Work is bounded: a point looks at `MAX_CANDIDATES` nearest pieces of curve at most, and a
+//!   point with none apart among them keeps an infinite clearance from that patch.
 
 use crate::regions::PatchIn;
 use crate::{Curve, PatchBoundary};
@@ -26,8 +33,8 @@ use geom::predicates::{cross, dot, sub};
 use rstar::RTree;
 use rstar::primitives::{GeomWithData, Line};
 
-/// A projected curve segment tagged with its curve.
-type Segment = GeomWithData<Line<[f64; 2]>, u32>;
+/// A projected curve segment tagged with its curve and its index along it.
+type Segment = GeomWithData<Line<[f64; 2]>, (u32, u32)>;
 
 /// Per curve, per polyline point, the clearance (see the module doc); `bounds` are the patches'
 /// boundaries, parallel to `patches`.
@@ -40,9 +47,10 @@ pub fn clearances(
         .iter()
         .map(|c| vec![f64::INFINITY; c.points.len()])
         .collect();
+    let arcs = arc_lengths(curves);
     for (b, p) in bounds.iter().zip(patches) {
         let used = b.curves();
-        if used.len() < 2 {
+        if used.is_empty() {
             continue;
         }
         let Some(project) = Projection::of(&p.mesh) else {
@@ -53,18 +61,29 @@ pub fn clearances(
             .iter()
             .flat_map(|&c| {
                 let pts = &curves[c as usize].points;
-                pts.windows(2)
-                    .map(move |w| Segment::new(Line::new(project.at(&w[0]), project.at(&w[1])), c))
+                pts.windows(2).enumerate().map(move |(t, w)| {
+                    let line = Line::new(project.at(&w[0]), project.at(&w[1]));
+                    Segment::new(line, (c, t as u32))
+                })
             })
             .collect();
         let tree = RTree::bulk_load(segments);
         for &c in &used {
-            let apart = |o: u32| o != c && !share_an_end(&curves[c as usize], &curves[o as usize]);
             for (k, q) in curves[c as usize].points.iter().enumerate() {
+                let at = Along {
+                    curve: c,
+                    arc: arcs[c as usize][k],
+                };
                 let q = project.at(q);
                 let nearest = tree
                     .nearest_neighbor_iter_with_distance_2(q)
-                    .find(|(s, _)| apart(s.data))
+                    .take(MAX_CANDIDATES)
+                    .find(|(s, d2)| {
+                        let (j, t) = s.data;
+                        let arc = arc_at(&arcs[j as usize], t, s.geom(), &q);
+                        let there = Along { curve: j, arc };
+                        detour(curves, &arcs, at, there) > DETOUR * d2.sqrt()
+                    })
                     .map_or(f64::INFINITY, |(_, d2)| d2.sqrt());
                 let slot = &mut out[c as usize][k];
                 *slot = slot.min(nearest);
@@ -74,11 +93,82 @@ pub fn clearances(
     out
 }
 
-/// Whether two curves meet at an end point (exactly: curves share their end vertices bit for bit).
-fn share_an_end(a: &Curve, b: &Curve) -> bool {
-    let ends = |c: &Curve| [c.points.first().copied(), c.points.last().copied()];
-    let (ea, eb) = (ends(a), ends(b));
-    ea.iter().any(|p| p.is_some() && eb.contains(p))
+/// A piece of curve is apart from a point when the way between them along the curves is longer
+/// than this many times their distance in the plane: two curves leaving a shared end less than
+/// about 6° apart (2 / `DETOUR` radians), a curve doubling back on itself. Curves meeting at an
+/// open angle (a chart seam leaving a salt body's rim at 10°) stay out, so their stair-steps near
+/// the junction are not split into support edges.
+const DETOUR: f64 = 20.0;
+/// Nearest pieces of curve a point looks at for one apart from it.
+const MAX_CANDIDATES: usize = 4096;
+
+/// A place on a curve: the curve and the arc length from its first point.
+#[derive(Clone, Copy)]
+struct Along {
+    curve: u32,
+    arc: f64,
+}
+
+/// Cumulative arc length at each point of each curve.
+fn arc_lengths(curves: &[Curve]) -> Vec<Vec<f64>> {
+    curves
+        .iter()
+        .map(|c| {
+            let mut total = 0.0;
+            let mut out = Vec::with_capacity(c.points.len());
+            for (k, p) in c.points.iter().enumerate() {
+                if k > 0 {
+                    let d = sub(p, &c.points[k - 1]);
+                    total += dot(&d, &d).sqrt();
+                }
+                out.push(total);
+            }
+            out
+        })
+        .collect()
+}
+
+/// The arc length of the point of segment `t` (of a curve with arc lengths `arcs`) nearest `q`
+/// in the plane.
+fn arc_at(arcs: &[f64], t: u32, seg: &Line<[f64; 2]>, q: &[f64; 2]) -> f64 {
+    let (a, b) = (seg.from, seg.to);
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let l2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let f = if l2 > 0.0 {
+        (((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (s0, s1) = (arcs[t as usize], arcs[t as usize + 1]);
+    s0 + f * (s1 - s0)
+}
+
+/// The length of the way along the curves between two places: along the curve itself (either
+/// way round a closed one), or through an end the two curves share; infinite when the curves
+/// share no end.
+fn detour(curves: &[Curve], arcs: &[Vec<f64>], a: Along, b: Along) -> f64 {
+    let len = |c: u32| arcs[c as usize].last().copied().unwrap_or(0.0);
+    if a.curve == b.curve {
+        let d = (a.arc - b.arc).abs();
+        return if curves[a.curve as usize].closed {
+            d.min(len(a.curve) - d)
+        } else {
+            d
+        };
+    }
+    let ends = |c: u32| {
+        let pts = &curves[c as usize].points;
+        [(pts.first().copied(), 0.0), (pts.last().copied(), len(c))]
+    };
+    let mut best = f64::INFINITY;
+    for (pa, sa) in ends(a.curve) {
+        for (pb, sb) in ends(b.curve) {
+            if pa.is_some() && pa == pb {
+                best = best.min((a.arc - sa).abs() + (b.arc - sb).abs());
+            }
+        }
+    }
+    best
 }
 
 /// Orthogonal projection onto the plane normal to a mesh's area-weighted mean normal.
@@ -205,6 +295,97 @@ mod tests {
         assert!(
             c[2].iter().all(|d| d.is_infinite()),
             "`high` is on no patch"
+        );
+    }
+
+    /// A flat patch bounded by `curves` (used in order, none reversed) over a 2 km square.
+    fn patch_of(curves: &[Curve]) -> (PatchBoundary, PatchIn) {
+        let bound = PatchBoundary {
+            loops: vec![
+                (0..curves.len() as u32)
+                    .map(|curve| CurveUse {
+                        curve,
+                        reversed: false,
+                    })
+                    .collect(),
+            ],
+            constraints: Vec::new(),
+        };
+        let p = |x: f64, y: f64| [x, y, 0.0];
+        let mesh = TriMesh::new(
+            vec![p(-1e3, -1e3), p(2e3, -1e3), p(2e3, 1e3), p(-1e3, 1e3)],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let patch = PatchIn {
+            name: "s#1".into(),
+            surface: "s".into(),
+            mesh,
+            chart_of: None,
+        };
+        (bound, patch)
+    }
+
+    #[test]
+    fn the_lips_of_a_sliver_that_meet_at_its_tip_bound_each_others_chords() {
+        // A horizon sliver between two faults: its lips leave the tip 0.6° apart and run 1 km
+        // side by side; their chords would cross unless each keeps within half the gap.
+        let p = |x: f64, y: f64| [x, y, 0.0];
+        let lip = |name: &str, y: f64| {
+            curve(
+                name,
+                (0..=10)
+                    .map(|k| p(100.0 * f64::from(k), y * f64::from(k) / 10.0))
+                    .collect(),
+            )
+        };
+        let curves = vec![
+            lip("upper", 5.0),
+            curve("end", vec![p(1000.0, 5.0), p(1000.0, -5.0)]),
+            lip("lower", -5.0),
+        ];
+        let (bound, patch) = patch_of(&curves);
+        let c = clearances(&curves, &[bound], &[patch]);
+        let gap = c[0][5];
+        assert!(
+            (gap - 5.0).abs() < 0.01,
+            "midway the lips are 5 m apart: {gap}"
+        );
+        assert!(c[2][8] < 8.0 + 1e-9 && c[2][8] > 7.9, "{}", c[2][8]);
+        assert!(c[0][0] > 0.0, "at the tip itself the lips do not count");
+    }
+
+    #[test]
+    fn a_curve_that_comes_back_along_itself_bounds_its_own_chords() {
+        let p = |x: f64, y: f64| [x, y, 0.0];
+        let curves = vec![
+            curve(
+                "hairpin",
+                vec![
+                    p(0.0, 0.0),
+                    p(500.0, 0.0),
+                    p(1000.0, 0.0),
+                    p(1000.0, 10.0),
+                    p(500.0, 10.0),
+                    p(0.0, 10.0),
+                ],
+            ),
+            curve("mouth", vec![p(0.0, 10.0), p(0.0, 0.0)]),
+        ];
+        let (bound, patch) = patch_of(&curves);
+        let c = clearances(&curves, &[bound], &[patch]);
+        assert_eq!(c[0][1], 10.0, "the way back runs 10 m away");
+        assert_eq!(c[0][4], 10.0);
+    }
+
+    #[test]
+    fn curves_meeting_at_an_open_angle_do_not_bound_each_other_near_their_junction() {
+        // The strip's corner: `low` and `left` meet at a right angle; the way between points
+        // near the corner is under three times their distance.
+        let (curves, bound, patch) = strip(0.0);
+        let c = clearances(&curves, &[bound], &[patch]);
+        assert_eq!(
+            c[3][0], 100.0,
+            "`left` at the corner: `low` and `high`, met at its ends, do not count; `right` does"
         );
     }
 }

@@ -63,7 +63,9 @@ impl Operation for ModelOp {
         "model"
     }
     fn version(&self) -> u32 {
-        11
+        // 12: curves' clearances count the parts of curves apart along the curves (a sliver's
+        //     lips, a curve coming back along itself), not only curves sharing no end.
+        12
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
