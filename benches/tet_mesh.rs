@@ -69,6 +69,7 @@ fn cube(n: u32, step: f64) -> RegionInput {
         vertices,
         boundary,
         embedded: vec![],
+        lines: Vec::new(),
     }
 }
 

@@ -106,6 +106,7 @@ fn grid_cube(n: u32) -> RegionInput {
         vertices,
         boundary,
         embedded: vec![],
+        lines: Vec::new(),
     }
 }
 
@@ -126,6 +127,7 @@ fn main() {
         vertices: b.vertices,
         boundary: b.triangles,
         embedded: vec![],
+        lines: Vec::new(),
     };
     // One closed shell: orient it outward by the sign of its enclosed volume.
     let vol: f64 = input

@@ -163,6 +163,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         vertices: pool.vertices,
         boundary,
         embedded,
+        lines: Vec::new(),
     };
     let field = SizeField {
         size: a.size.unwrap_or(f64::INFINITY),

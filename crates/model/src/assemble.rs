@@ -135,6 +135,7 @@ pub fn region_input<'a>(
         vertices: w.points,
         boundary,
         embedded,
+        lines: Vec::new(),
     })
 }
 

@@ -62,5 +62,6 @@ pub fn peer_region(dir: &str, name: &str) -> Result<RegionInput, String> {
         vertices,
         boundary,
         embedded,
+        lines: Vec::new(),
     })
 }

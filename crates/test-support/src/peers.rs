@@ -108,6 +108,7 @@ pub fn peer_mesh(dir: &str, regions: &[&str]) -> Result<(VolumeMesh, Vec<f64>), 
             vertices,
             boundary: off.triangles.clone(),
             embedded,
+            lines: Vec::new(),
         };
         let out = mesh_region(&input, &SizeField::default(), &TetMeshOptions::default())
             .map_err(|e| e.to_string())?;

@@ -326,6 +326,7 @@ mod tests {
             vertices,
             boundary,
             embedded: vec![],
+            lines: Vec::new(),
         }
     }
 

@@ -1,6 +1,7 @@
 //! The tetrahedral complex the quality optimizer edits: tets with a free list, node→tets
 //! incidence, and what must never change — the protected faces (boundary and embedded
-//! triangles), their edges, and the fixed nodes (every input vertex). Adjacency is derived from
+//! triangles), their edges, the pieces of embedded segments, and the fixed nodes (every input
+//! vertex and every node on a segment). Adjacency is derived from
 //! the incidence lists (a face's other tet is the one sharing its three nodes), which stay short,
 //! so no face table has to be kept consistent through flips and insertions.
 //!
@@ -43,6 +44,9 @@ pub struct Complex {
     stamp: Vec<u64>,
     protected_faces: WordSet<[u32; 3]>,
     protected_edges: WordSet<[u32; 2]>,
+    /// Whether some protected edge is a piece of a segment: one that no protected face holds,
+    /// which a cavity could swallow without swallowing a protected face (see `slivers`).
+    pub line_edges: bool,
 }
 
 #[inline]
@@ -110,6 +114,15 @@ impl Complex {
             stamp: vec![0; n_nodes],
             protected_faces,
             protected_edges,
+            line_edges: false,
+        }
+    }
+
+    /// Protect the pieces of embedded segments too (their nodes must be fixed).
+    pub fn protect_edges(&mut self, edges: impl Iterator<Item = [u32; 2]>) {
+        for [a, b] in edges {
+            self.protected_edges.insert(sorted2(a, b));
+            self.line_edges = true;
         }
     }
 

@@ -315,6 +315,93 @@ fn same_ray(v: &[f64; 2], x: &[f64; 2], y: &[f64; 2]) -> bool {
     (x[ax] > v[ax]) == (y[ax] > v[ax]) && y[ax] != v[ax]
 }
 
+/// True when the three points lie on one line (or coincide), exactly: the three components of
+/// `(b-a)×(c-a)` are the `orient2d` of the three coordinate projections.
+pub fn collinear(a: &P, b: &P, c: &P) -> bool {
+    (0..3).all(|k| s2(&proj(a, k), &proj(b, k), &proj(c, k)) == 0)
+}
+
+/// True when segment `e` (vertex ids) meets triangle `t` anywhere but in a vertex they share by
+/// index. A segment that is an edge of `t` meets it along that edge.
+pub fn seg_tri_improper(e: [u32; 2], t: [u32; 3], pts: &[P]) -> bool {
+    if t.contains(&e[0]) && t.contains(&e[1]) {
+        return true;
+    }
+    edge_hits_improper(e[0], e[1], t, pts)
+}
+
+/// True when segments `e` and `f` (vertex ids) meet anywhere but in a vertex they share by index
+/// (the same segment twice meets itself everywhere).
+pub fn seg_seg_improper(e: [u32; 2], f: [u32; 2], pts: &[P]) -> bool {
+    let p = |v: u32| &pts[v as usize];
+    let shared: Vec<u32> = e.iter().copied().filter(|v| f.contains(v)).collect();
+    match shared.len() {
+        0 => segs_meet_closed(p(e[0]), p(e[1]), p(f[0]), p(f[1])),
+        1 => {
+            let v = shared[0];
+            let x = if e[0] == v { e[1] } else { e[0] };
+            let y = if f[0] == v { f[1] } else { f[0] };
+            same_ray_3d(p(v), p(x), p(y))
+        }
+        _ => true,
+    }
+}
+
+/// Segments `v x` and `v y` overlap beyond `v` (collinear, same direction), or an end of one
+/// coincides with `v` or the other's end.
+fn same_ray_3d(v: &P, x: &P, y: &P) -> bool {
+    if x == v || y == v || x == y {
+        return true;
+    }
+    if !collinear(v, x, y) {
+        return false;
+    }
+    let k = (0..3).find(|&k| x[k] != v[k]).unwrap_or(0);
+    (x[k] > v[k]) == (y[k] > v[k])
+}
+
+/// Closed segments `pq` and `rs` (each of two distinct points) meet, exactly: coplanar, then
+/// compared in a coordinate projection that is one to one on their plane (or line).
+fn segs_meet_closed(p: &P, q: &P, r: &P, s: &P) -> bool {
+    if orient3d(p, q, r, s) != Orientation::Zero {
+        return false;
+    }
+    let axis = [(p, q, r), (p, q, s), (r, s, p), (r, s, q)]
+        .into_iter()
+        .find_map(|(a, b, c)| plane_axis(a, b, c))
+        // All four on one line: drop an axis along which it does not run.
+        .or_else(|| (0..3).rev().find(|&k| proj(p, k) != proj(q, k)));
+    let Some(ax) = axis else { return true };
+    seg_seg_2d(&proj(p, ax), &proj(q, ax), &proj(r, ax), &proj(s, ax))
+}
+
+/// True when the closed segment `ab` meets the closed axis-aligned box `[lo, hi]`, exactly
+/// (separating axes: the box's three, and the segment's direction crossed with each box edge,
+/// that is the box's corners strictly on one side of the segment's line in a projection).
+pub fn seg_meets_box(a: &P, b: &P, lo: &P, hi: &P) -> bool {
+    for k in 0..3 {
+        let (s0, s1) = min_max(a[k], b[k]);
+        if s1 < lo[k] || hi[k] < s0 {
+            return false;
+        }
+    }
+    for ax in 0..3 {
+        let (a2, b2) = (proj(a, ax), proj(b, ax));
+        let (l2, h2) = (proj(lo, ax), proj(hi, ax));
+        let corners = [
+            [l2[0], l2[1]],
+            [h2[0], l2[1]],
+            [l2[0], h2[1]],
+            [h2[0], h2[1]],
+        ];
+        let sides = corners.map(|c| s2(&a2, &b2, &c));
+        if sides.iter().all(|&x| x > 0) || sides.iter().all(|&x| x < 0) {
+            return false;
+        }
+    }
+    true
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -433,5 +520,53 @@ mod tests {
             &p[2],
             &p[3]
         ));
+    }
+
+    #[test]
+    fn segments_meeting_only_at_a_shared_end_are_proper_and_overlapping_or_crossing_ones_are_not() {
+        let p = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 1.0, 1.0],
+            [2.0, 2.0, 2.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 1.0],
+            [3.0, 3.0, 3.0],
+            [1.0, 1.0, 0.0],
+        ];
+        // A polyline bending at vertex 1, and one going straight on.
+        assert!(!seg_seg_improper([0, 1], [1, 3], &p));
+        assert!(!seg_seg_improper([0, 1], [1, 2], &p));
+        // Folding back over itself from the shared vertex.
+        assert!(seg_seg_improper([1, 2], [1, 5], &p));
+        // Two diagonals of the unit square's shadow crossing at (0.5, 0.5, 0.5).
+        assert!(seg_seg_improper([0, 1], [3, 4], &p));
+        // Skew segments do not meet.
+        assert!(!seg_seg_improper([0, 1], [3, 6], &p));
+        // Collinear and apart, collinear and overlapping.
+        assert!(!seg_seg_improper([0, 1], [2, 5], &p));
+        assert!(seg_seg_improper([0, 2], [1, 5], &p));
+        // The same segment twice.
+        assert!(seg_seg_improper([0, 1], [1, 0], &p));
+    }
+
+    #[test]
+    fn a_segment_along_a_triangle_edge_or_touching_its_inside_meets_it_and_one_from_a_vertex_does_not()
+     {
+        let mut p = pts();
+        p.push([0.25, 0.25, 0.0]);
+        assert!(seg_tri_improper([0, 1], [0, 1, 2], &p));
+        assert!(!seg_tri_improper([0, 3], [0, 1, 2], &p));
+        assert!(seg_tri_improper([3, 8], [0, 1, 2], &p));
+        assert!(seg_tri_improper([4, 5], [0, 1, 2], &p));
+    }
+
+    #[test]
+    fn a_box_around_a_point_near_a_slanted_segment_meets_it_and_one_beside_it_does_not() {
+        let (a, b) = ([0.0, 0.0, 0.0], [3.0, 1.0, 2.0]);
+        let near = |c: P, r: f64| seg_meets_box(&a, &b, &c.map(|x| x - r), &c.map(|x| x + r));
+        assert!(near([1.5, 0.5, 1.0], 1e-12));
+        assert!(near([1.5, 0.5, 1.0 + 1e-3], 2e-3));
+        assert!(!near([1.5, 0.5, 1.0 + 1e-3], 1e-4));
+        assert!(!near([4.0, 1.5, 2.5], 0.1));
     }
 }

@@ -287,6 +287,25 @@ mod tests {
     }
 
     #[test]
+    fn a_protected_segment_edge_is_never_removed() {
+        let nodes = vec![
+            [0.5, 0.02, 0.5],
+            [0.5, 0.02, -0.5],
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 0.9, 0.0],
+        ];
+        let tets = vec![[1, 0, 2, 3], [1, 0, 3, 4], [1, 0, 4, 2]];
+        let mut cx = Complex::new(nodes, tets, 0, std::iter::empty());
+        cx.protect_edges([[0, 1]].into_iter());
+        assert!(!remove_edge(&mut cx, 1, 0, &mut Scratch::default()));
+        // Whatever else improving the tets does, the edge stays.
+        improve_tet(&mut cx, 0, &mut Scratch::default());
+        let (_, tets) = cx.into_parts();
+        assert!(tets.iter().any(|t| t.contains(&0) && t.contains(&1)));
+    }
+
+    #[test]
     fn a_protected_face_is_never_flipped_away() {
         let nodes = vec![
             [0.0, 0.0, 0.0],

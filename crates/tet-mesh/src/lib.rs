@@ -1,5 +1,6 @@
 //! Stage `tet_mesh`: fill one region with tetrahedra that conform exactly to its boundary
-//! triangles and to the dangling (embedded) fault triangles inside it.
+//! triangles, to the dangling (embedded) fault triangles inside it and to embedded segments
+//! (well paths), each of which becomes a chain of tet edges.
 //!
 //! Two methods share the input checks, the size field, the optimizer and the exact verification.
 //!
@@ -18,17 +19,26 @@
 //! valid apex the mesher back-tracks (deletes the tetrahedra around it, restores the front and
 //! re-meshes the cavity), iteratively, never recursively.
 //!
+//! **Embedded segments (well paths, `RegionInput::lines`).** Checked exactly like the triangles
+//! (`lines`, `inside`: a segment meets other input only in shared end vertices, and lies inside
+//! the region); the Delaunay method inserts their vertices with the boundary's, divides them to
+//! the size field, makes each piece an edge by flips or by nodes on the segment, and protects the
+//! pieces from then on (`delaunay`); the optimizer keeps them and their nodes fixed; `verify`
+//! checks each chain (`TetMeshOutput::lines`). The advancing front does not embed segments: a
+//! region with segments that the Delaunay method cannot mesh is an error saying so.
+//!
 //! Afterwards `optimize` raises the worst qualities: optimization-based smoothing of interior
 //! nodes (`smooth`), 2-3 flips and edge removal (`flips`) and node insertion for bad tets nothing
 //! else fixes (`slivers`), over a tet complex with adjacency (`complex`); every change keeps every
-//! tetrahedron positive (exact) and every boundary and embedded face a face. `verify` checks the
-//! result exactly before `mesh_region` returns it, so a partial or overlapping mesh is an error,
-//! never a result.
+//! tetrahedron positive (exact), every boundary and embedded face a face and every piece of a
+//! segment an edge. `verify` checks the result exactly before `mesh_region` returns it, so a
+//! partial or overlapping mesh is an error, never a result.
 //!
 //! Submodules: `exact` (intersection predicates, with exact shortcuts for repeated and
 //! axis-coplanar points), `quality` (measures), `check` (input validation, with `box_pairs` its
-//! broad phase), `delaunay` (kernel, insertion order, recovery, refinement), `front` (front faces, their spatial grid, and grids of
-//! front nodes and of all nodes), `advance` (the front loop and back-tracking), `sides` (exact
+//! broad phase), `lines` and `inside` (the segments' checks and the check of their chains),
+//! `delaunay` (kernel, insertion order, recovery, refinement), `front` (front faces, their spatial
+//! grid, and grids of front nodes and of all nodes), `advance` (the front loop and back-tracking), `sides` (exact
 //! sides of nearby front nodes against a candidate's planes), `optimize` (the optimization
 //! driver) with `complex`, `smooth`, `flips` and `slivers`, `verify` (exact output check).
 
@@ -40,6 +50,8 @@ mod delaunay;
 pub mod exact;
 mod flips;
 mod front;
+mod inside;
+mod lines;
 mod optimize;
 pub mod quality;
 mod sides;
@@ -63,6 +75,11 @@ pub struct RegionInput {
     pub boundary: Vec<[u32; 3]>,
     /// Embedded (dangling) triangles inside the region: must appear as faces, with tets on both sides.
     pub embedded: Vec<[u32; 3]>,
+    /// Embedded line segments (well paths) between two vertices: each becomes a chain of tet
+    /// edges. A segment meets the boundary, an embedded triangle or another segment only at its
+    /// end vertices (then vertices of those triangles or segments); segments sharing ends form
+    /// polylines, which may end inside the region.
+    pub lines: Vec<[u32; 2]>,
 }
 
 /// Target element size inside the region. The front's own face sizes (from the boundary) drive
@@ -161,6 +178,12 @@ pub struct TetMeshStats {
     pub flipped_faces: usize,
     /// Why the Delaunay method gave way to the advancing front on the whole region, if it did.
     pub fallback: Option<String>,
+    /// Nodes on the embedded segments (all new, kept fixed by the optimizer).
+    pub line_nodes: usize,
+    /// Of those, the nodes inserted to recover pieces of segments that were not edges.
+    pub line_splits: usize,
+    /// Pieces of segments that were not edges and flips made edges.
+    pub line_flips: usize,
 }
 
 /// The tetrahedral mesh of one region.
@@ -170,6 +193,9 @@ pub struct TetMeshOutput {
     pub nodes: Vec<[f64; 3]>,
     /// Positively oriented: `det[b-a, c-a, d-a] > 0`.
     pub tets: Vec<[u32; 4]>,
+    /// Per input segment (`RegionInput::lines`, same order): the nodes it became, from its first
+    /// vertex to its second; consecutive nodes are tet edges, the inner ones new nodes on it.
+    pub lines: Vec<Vec<u32>>,
     pub stats: TetMeshStats,
 }
 
@@ -215,6 +241,7 @@ pub fn mesh_region(
     let (mut mesh, figures) = match opts.method {
         Method::Delaunay => {
             check::check_shape(input)?;
+            lines::check_lines(input)?;
             match delaunay::mesh(input, size) {
                 Ok(done) => done,
                 Err(why) => {
@@ -222,6 +249,9 @@ pub fn mesh_region(
                     // of its faces: an input it could not take is tested in full before the
                     // front, which relies on it, meshes it.
                     check::check_intersections(input)?;
+                    if !input.lines.is_empty() {
+                        return Err(no_front_for_lines(input, Some(&why)));
+                    }
                     // The front meshes the region; if it fails too, its error says why both did.
                     let m = advance::advance_front(input, size).map_err(|mut e| {
                         e.message =
@@ -235,26 +265,41 @@ pub fn mesh_region(
         }
         Method::Front => {
             check_input(input)?;
+            lines::check_lines(input)?;
+            if !input.lines.is_empty() {
+                return Err(no_front_for_lines(input, None));
+            }
             (advance::advance_front(input, size)?, Default::default())
         }
     };
+    // Nodes on segments follow the input vertices and stay fixed, as those do.
+    let n_fixed = input.vertices.len() + figures.line_nodes;
     let mut mean_ratios = None;
     if opts.optimize {
         let protected = input.boundary.iter().chain(&input.embedded).copied();
+        let line_edges = figures
+            .chains
+            .iter()
+            .flat_map(|c| c.windows(2).map(|w| [w[0], w[1]]));
         let (nodes, tets, measured) = optimize::optimize(
             std::mem::take(&mut mesh.nodes),
             std::mem::take(&mut mesh.tets),
-            input.vertices.len(),
+            n_fixed,
             protected,
+            line_edges,
         );
         mesh.nodes = nodes;
         mesh.tets = tets;
         mean_ratios = Some(measured);
     }
-    let (nodes, tets) = compact(mesh.nodes, mesh.tets, input.vertices.len());
+    let (nodes, tets, map) = compact(mesh.nodes, mesh.tets, input.vertices.len());
+    let lines = (figures.chains.iter())
+        .map(|c| c.iter().map(|&v| map[v as usize]).collect())
+        .collect();
     let mut out = TetMeshOutput {
         nodes,
         tets,
+        lines,
         stats: TetMeshStats::default(),
     };
     out.stats = measured_stats(
@@ -266,18 +311,40 @@ pub fn mesh_region(
     drop(mean_ratios);
     out.stats.recovered_faces = figures.missing_faces;
     out.stats.flipped_faces = figures.flipped_faces;
+    out.stats.line_nodes = figures.line_nodes;
+    out.stats.line_splits = figures.line_splits;
+    out.stats.line_flips = figures.line_flips;
     out.stats.fallback = fallback;
     verify(input, &out)?;
     Ok(out)
 }
 
+/// The error for segments the Delaunay method could not embed (`why`), or that the front was
+/// asked to: the advancing front does not embed segments.
+fn no_front_for_lines(input: &RegionInput, why: Option<&TetMeshError>) -> TetMeshError {
+    let n = input.lines.len();
+    let reason = match why {
+        Some(e) => format!("the Delaunay method failed ({}), and ", e.message),
+        None => String::new(),
+    };
+    TetMeshError::new(
+        &input.name,
+        format!(
+            "the well cannot be embedded in this region: {reason}the advancing front cannot \
+             embed its {n} line segments"
+        ),
+        why.and_then(|e| e.at)
+            .or_else(|| input.vertices.get(input.lines[0][0] as usize).copied()),
+    )
+}
+
 /// Drop interior nodes no tetrahedron uses (left behind by back-tracking), keeping input
-/// vertices at their indices and the others in creation order.
+/// vertices at their indices and the others in creation order; with the map from old ids.
 fn compact(
     nodes: Vec<[f64; 3]>,
     mut tets: Vec<[u32; 4]>,
     n_input: usize,
-) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
+) -> (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<u32>) {
     let mut used = vec![false; nodes.len()];
     for t in &tets {
         for &v in t {
@@ -297,7 +364,7 @@ fn compact(
             *v = map[*v as usize];
         }
     }
-    (out, tets)
+    (out, tets, map)
 }
 
 /// Quality statistics of a mesh.

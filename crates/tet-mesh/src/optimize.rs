@@ -4,9 +4,10 @@
 //! Laplacian relaxation of every free node and a last smoothing and flip pass. The objective
 //! is `quality::shape`: the mean ratio capped by the scaled smallest dihedral sine, so both bars
 //! of the seed's Table 2 (mean ratio >= 0.3, dihedral >= 10°) are raised together. Every change
-//! keeps every tet positive (exact `orient3d`), never moves an input vertex and never removes a
-//! boundary or embedded face, so the optimizer cannot break what `advance` built; `verify`
-//! checks the result anyway.
+//! keeps every tet positive (exact `orient3d`), never moves an input vertex or a node on an
+//! embedded segment (those are all below `n_fixed`: a node may not yet slide along its segment)
+//! and never removes a boundary or embedded face or a piece of a segment, so the optimizer
+//! cannot break what `advance` or `delaunay` built; `verify` checks the result anyway.
 //!
 //! Flips come first (in a thin layer, after a first relaxation and smoothing of its few free
 //! nodes): a refined Delaunay mesh's bad tets are slivers that a flip removes at once,
@@ -60,15 +61,18 @@ const MEAN_FLIP_FREE_SHARE: f64 = 0.01;
 /// Laplacian relaxation passes after the rounds.
 const RELAX_PASSES: usize = 1;
 
-/// Optimize in place. `protected` lists every boundary and embedded triangle; nodes below
-/// `n_fixed` never move. Returns the nodes, the tets and each tet's mean ratio.
+/// Optimize in place. `protected` lists every boundary and embedded triangle, `line_edges` the
+/// pieces of embedded segments (whose nodes must be below `n_fixed`); nodes below `n_fixed`
+/// never move. Returns the nodes, the tets and each tet's mean ratio.
 pub fn optimize(
     nodes: Vec<P>,
     tets: Vec<[u32; 4]>,
     n_fixed: usize,
     protected: impl Iterator<Item = [u32; 3]>,
+    line_edges: impl Iterator<Item = [u32; 2]>,
 ) -> (Vec<P>, Vec<[u32; 4]>, Vec<f64>) {
     let mut cx = Complex::new(nodes, tets, n_fixed, protected);
+    cx.protect_edges(line_edges);
     let free = (cx.nodes.len() - n_fixed) as f64;
     let thin = free < THIN_FREE_SHARE * cx.nodes.len() as f64;
     let flip_below = if thin { THIN_FLIP_BELOW } else { FLIP_BELOW };
@@ -279,6 +283,7 @@ mod tests {
             vertices,
             boundary,
             embedded: vec![[sq[0], sq[1], sq[2]], [sq[0], sq[2], sq[3]]],
+            lines: Vec::new(),
         }
     }
 
@@ -290,14 +295,16 @@ mod tests {
         let before = TetMeshOutput {
             nodes: raw.nodes.clone(),
             tets: raw.tets.clone(),
+            lines: Vec::new(),
             stats: Default::default(),
         };
         verify(&input, &before).expect("the raw mesh is valid");
         let protected = input.boundary.iter().chain(&input.embedded).copied();
-        let (nodes, tets, _) = optimize(raw.nodes, raw.tets, n_in, protected);
+        let (nodes, tets, _) = optimize(raw.nodes, raw.tets, n_in, protected, std::iter::empty());
         let after = TetMeshOutput {
             nodes,
             tets,
+            lines: Vec::new(),
             stats: Default::default(),
         };
         assert_eq!(&after.nodes[..n_in], &input.vertices[..]);

@@ -5,8 +5,8 @@
 //! across unprotected faces and grows across every hull face that `p` does not see strictly from
 //! inside (exact `orient3d`) until `p` sees the whole hull: the cavity is then star-shaped from
 //! `p` and is replaced by the cone from `p` over its hull. The cavity never grows across a
-//! protected (boundary or embedded) face and never swallows a fixed node, so those faces stay
-//! faces. The new node is then smoothed, and the whole change is undone unless the worst quality
+//! protected (boundary or embedded) face and never swallows a fixed node or a piece of an
+//! embedded segment, so those faces stay faces and those edges edges. The new node is then smoothed, and the whole change is undone unless the worst quality
 //! of the new tets beats that of the cavity.
 
 use geom::predicates::{Orientation, dist, orient3d};
@@ -203,6 +203,9 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
             return Attempt::Failed;
         }
     }
+    if cx.line_edges && swallows_protected_edge(cx, &cavity, &hull) {
+        return Attempt::Failed;
+    }
     let mut on_hull: Vec<u32> = hull.iter().flatten().copied().collect();
     on_hull.sort_unstable();
     on_hull.dedup();
@@ -249,6 +252,26 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
     // Nothing changed: a later round may skip what was tried here.
     cx.restore_stamps(&touched, &saved);
     Attempt::Failed
+}
+
+/// Whether a protected edge of the cavity's tets is not an edge of its hull: the cone would
+/// remove it (a piece of a segment, which no protected face holds and keeps).
+fn swallows_protected_edge(cx: &Complex, cavity: &[u32], hull: &[[u32; 3]]) -> bool {
+    let pair = |a: u32, b: u32| [a.min(b), a.max(b)];
+    let mut kept: Vec<[u32; 2]> = hull
+        .iter()
+        .flat_map(|f| [pair(f[0], f[1]), pair(f[1], f[2]), pair(f[2], f[0])])
+        .collect();
+    kept.sort_unstable();
+    kept.dedup();
+    cavity.iter().any(|&c| {
+        let t = cx.tets[c as usize];
+        [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
+            .into_iter()
+            .any(|(i, j)| {
+                cx.edge_protected(t[i], t[j]) && kept.binary_search(&pair(t[i], t[j])).is_err()
+            })
+    })
 }
 
 #[cfg(test)]

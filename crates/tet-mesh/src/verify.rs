@@ -6,6 +6,7 @@
 use geom::predicates::{Orientation, orient3d, signed_volume};
 
 use super::check::{enclosed_volume, reference_point};
+use super::lines::verify_chains;
 use super::{RegionInput, TetMeshError, TetMeshOutput};
 
 /// The four faces of a positive tet `abcd`, each oriented with its normal pointing out of the tet.
@@ -114,8 +115,9 @@ fn for_each_face_run<E>(
 
 /// Every tet positive (exact), each boundary triangle the outward face of exactly one tet and of
 /// none reversed, each embedded triangle a face of exactly two tets (one per side), every other
-/// face shared by exactly two tets with opposite orientations, and the tets' total volume equal
-/// to the enclosed volume (relative 1e-9).
+/// face shared by exactly two tets with opposite orientations, the tets' total volume equal
+/// to the enclosed volume (relative 1e-9), and each embedded segment a chain of tet edges on it
+/// (`lines::verify_chains`).
 pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshError> {
     let name = &input.name;
     let n_in = input.vertices.len();
@@ -284,6 +286,9 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
             ),
             None,
         ));
+    }
+    if !input.lines.is_empty() || !out.lines.is_empty() {
+        verify_chains(input, out)?;
     }
     Ok(())
 }

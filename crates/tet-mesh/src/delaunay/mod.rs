@@ -24,9 +24,16 @@
 //!   oriented sides; the holes' inner part, grown until its surface is a manifold, is meshed by the
 //!   front. More than 500 missing triangles that are also 2 % of them (a structured cospherical
 //!   grid) send the region to the front at once.
+//! * `recover/segments`: embedded segments (wells), once the triangles are faces: divided to the
+//!   size field, each piece made an edge by flips or split at a node on it, then protected as a
+//!   constraint edge (`tri/edges`) that no later cavity removes.
 //! * `refine`: circumcenters, or the ideal apex over a boundary face, inserted in Hilbert-ordered
-//!   rounds with spacing and height limits from the size field; new tets propose as they are
-//!   created; a point whose tet an insertion destroyed since is dropped.
+//!   rounds with spacing and height limits from the size field (height over constraint faces and
+//!   distance to constraint edges); new tets propose as they are created; a point whose tet an
+//!   insertion destroyed since is dropped.
+//!
+//! The segments' nodes come right after the input vertices in the output (the optimizer keeps
+//! every node below a bound fixed: nodes on a segment stay where they are).
 
 mod flip;
 mod order;
@@ -53,6 +60,14 @@ pub struct Figures {
     pub missing_faces: usize,
     /// Boundary and embedded triangles recovered by flips.
     pub flipped_faces: usize,
+    /// Per input segment, its chain of nodes (output numbering); the chains' inner nodes are
+    /// the nodes right after the input vertices.
+    pub chains: Vec<Vec<u32>>,
+    /// Nodes on segments: placed to the size field, and split to recover missing pieces.
+    pub line_nodes: usize,
+    pub line_splits: usize,
+    /// Pieces of segments made edges by flips.
+    pub line_flips: usize,
 }
 
 pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures), TetMeshError> {
@@ -62,6 +77,11 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
     all.extend_from_slice(&input.embedded);
     let cells = (4 * all.len()).clamp(MIN_SIZE_CELLS, SIZE_CELLS);
     let bg = Background::with_max_cells(&input.vertices, &all, size, cells);
+    let lines = if input.lines.is_empty() {
+        None
+    } else {
+        Some(recover::recover_segments(&mut tri, input, &bg)?)
+    };
     refine::refine(&mut tri, &bg);
     // Drop the enclosing tet's four corners: ids after them shift down by four.
     let n = conf.n_input;
@@ -73,16 +93,72 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
         .map(|t| tri.t[t as usize].v.map(map))
         .collect();
     drop(tri);
-    order::spatial_layout(&mut nodes, &mut tets, n);
+    let mut figures = Figures {
+        missing_faces: conf.missing,
+        flipped_faces: conf.flipped,
+        ..Figures::default()
+    };
+    let mut fixed = n;
+    if let Some(r) = lines {
+        figures.chains = r
+            .chains
+            .iter()
+            .map(|c| c.iter().map(|&v| map(v)).collect())
+            .collect();
+        fixed += chain_nodes_first(&mut nodes, &mut tets, &mut figures.chains, n);
+        (figures.line_nodes, figures.line_splits) = (r.placed + r.split, r.split);
+        figures.line_flips = r.flipped;
+    }
+    order::spatial_layout(&mut nodes, &mut tets, fixed);
     Ok((
         RawMesh {
             nodes,
             tets,
             backtracks: 0,
         },
-        Figures {
-            missing_faces: conf.missing,
-            flipped_faces: conf.flipped,
-        },
+        figures,
     ))
+}
+
+/// Renumbers the chains' inner nodes to follow the `n` input vertices (in chain order), the
+/// other new nodes after them in their order; returns how many the chains hold.
+fn chain_nodes_first(
+    nodes: &mut Vec<[f64; 3]>,
+    tets: &mut [[u32; 4]],
+    chains: &mut [Vec<u32>],
+    n: usize,
+) -> usize {
+    let mut map: Vec<u32> = vec![u32::MAX; nodes.len()];
+    let mut next = n as u32;
+    for c in chains.iter() {
+        for &v in &c[1..c.len() - 1] {
+            if map[v as usize] == u32::MAX {
+                map[v as usize] = next;
+                next += 1;
+            }
+        }
+    }
+    let on_chains = next as usize - n;
+    for (v, m) in map.iter_mut().enumerate() {
+        if v < n {
+            *m = v as u32;
+        } else if *m == u32::MAX {
+            *m = next;
+            next += 1;
+        }
+    }
+    let mut moved = vec![[0.0; 3]; nodes.len()];
+    for (v, p) in nodes.iter().enumerate() {
+        moved[map[v] as usize] = *p;
+    }
+    *nodes = moved;
+    for t in tets.iter_mut() {
+        *t = t.map(|v| map[v as usize]);
+    }
+    for c in chains.iter_mut() {
+        for v in c.iter_mut() {
+            *v = map[*v as usize];
+        }
+    }
+    on_chains
 }

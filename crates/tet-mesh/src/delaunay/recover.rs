@@ -12,6 +12,7 @@
 
 mod flips;
 mod holes;
+mod segments;
 
 use std::collections::HashSet;
 
@@ -27,6 +28,7 @@ use super::tri::{FACE, Limits, NONE, Tri};
 use holes::{
     flood, hole_tets, hole_walls, mesh_holes, seed_sides, unpinched_hole_surface, widen_hole,
 };
+pub use segments::recover_segments;
 
 /// Boundary-conforming mesh of a region: `tri` holds only inner tets, the boundary faces on its
 /// hull and the embedded faces as constraints; `pts[n_input..n_input + 4]` are the unused corners
@@ -208,7 +210,8 @@ fn enclosing_tet(input: &RegionInput) -> Tri {
     Tri::new(pts, st)
 }
 
-/// Inserts the boundary and embedded vertices (in `brio` order); one that fails is the error.
+/// Inserts the boundary, embedded and segment vertices (in `brio` order); one that fails is the
+/// error.
 fn insert_boundary_vertices(tri: &mut Tri, input: &RegionInput) -> Result<(), TetMeshError> {
     let n = input.vertices.len();
     let mut used = vec![false; n];
@@ -216,6 +219,9 @@ fn insert_boundary_vertices(tri: &mut Tri, input: &RegionInput) -> Result<(), Te
         for &v in t {
             used[v as usize] = true;
         }
+    }
+    for &v in input.lines.iter().flatten() {
+        used[v as usize] = true;
     }
     let ids: Vec<u32> = (0..n as u32).filter(|&v| used[v as usize]).collect();
     // A Delaunay tetrahedralization of boundary points (the enclosing tet's included) has 7 to

@@ -3,13 +3,16 @@
 //! it (exact `insphere`) and starring the cavity's boundary from the point. Cavities never cross a
 //! constraint face or the hull (a missing neighbour), and the cavity is shrunk until every
 //! boundary face sees the point strictly (exact `orient3d`), so every new tet is positive whatever
-//! the constraints do to the Delaunay property. Without constraints the result is the Delaunay
-//! tetrahedralization. Nothing here knows about sizes or boundaries: callers pass the checks an
-//! insertion must pass (`Limits`).
+//! the constraints do to the Delaunay property. Constraint edges (`edges`: recovered pieces of
+//! embedded segments) are kept the same way: a cavity that would take every tet round one is
+//! shrunk. Without constraints the result is the Delaunay tetrahedralization. Nothing here knows
+//! about sizes or boundaries: callers pass the checks an insertion must pass (`Limits`).
 
 use geom::predicates::{Orientation, cross, dot, insphere, sub};
 
 use super::super::exact::orient3d;
+
+mod edges;
 
 pub type P = [f64; 3];
 /// No neighbour (hull or removed) / dead tet marker.
@@ -24,7 +27,7 @@ pub struct Limits {
     /// Reject the point if a vertex of its cavity is closer than this.
     pub min_dist: f64,
     /// Reject the point if it is closer than this to the plane of a cavity boundary face that is
-    /// a constraint or on the hull.
+    /// a constraint or on the hull, or to a constraint edge of the cavity.
     pub min_height: f64,
 }
 
@@ -86,6 +89,8 @@ pub struct Tri {
     /// Tets created by insertions, while `record` is on.
     pub created: Vec<u32>,
     pub record: bool,
+    /// Edges no insertion may remove (see `edges`).
+    cons_edges: edges::EdgeSet,
 }
 
 impl Tri {
@@ -109,6 +114,7 @@ impl Tri {
             recs: Vec::new(),
             created: Vec::new(),
             record: false,
+            cons_edges: Default::default(),
         }
     }
 
@@ -453,6 +459,9 @@ impl Tri {
                 }
             }
             if bad.is_empty() {
+                bad = self.tets_freeing_edges(root);
+            }
+            if bad.is_empty() {
                 return Ok(());
             }
             if bad.contains(&root) {
@@ -467,9 +476,13 @@ impl Tri {
         }
     }
 
-    /// The spacing was checked while the cavity grew; here the height over boundary faces.
+    /// The spacing was checked while the cavity grew; here the height over boundary faces and
+    /// the distance to constraint edges.
     fn check_limits(&self, p: &P, lim: &Limits) -> Result<(), Reject> {
         if lim.min_height > 0.0 {
+            if !self.clear_of_edges(p, lim.min_height) {
+                return Err(Reject::TooClose);
+            }
             for &(t, i) in &self.bnd {
                 let hull = self.t[t as usize].adj[i as usize] == NONE;
                 if !hull && self.t[t as usize].cons & (1 << i) == 0 {

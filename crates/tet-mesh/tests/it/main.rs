@@ -2,6 +2,7 @@
 //! change instead of one per file).
 
 mod tet_mesh_delaunay;
+mod tet_mesh_lines;
 mod tet_mesh_peers;
 mod tet_mesh_quality;
 mod tet_mesh_simple;

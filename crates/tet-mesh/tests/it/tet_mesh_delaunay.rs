@@ -30,7 +30,7 @@ fn outward(pts: &[P], tris: &mut [[u32; 3]], centre: P) {
 /// The box `[0, w] x [0, l] x [0, h]` with both long sides split into `n` columns. The bottom is
 /// a regular zigzag strip; the top is two fans of needles (from the first point of one row to
 /// every point of the other and back), a triangulation no Delaunay tetrahedralization contains.
-fn box_with_fanned_top(n: u32, w: f64, l: f64, h: f64, origin: P) -> RegionInput {
+pub(crate) fn box_with_fanned_top(n: u32, w: f64, l: f64, h: f64, origin: P) -> RegionInput {
     let mut pts: Vec<P> = Vec::new();
     let mut id = |x: f64, y: f64, z: f64| {
         pts.push([origin[0] + x, origin[1] + y, origin[2] + z]);
@@ -79,6 +79,7 @@ fn box_with_fanned_top(n: u32, w: f64, l: f64, h: f64, origin: P) -> RegionInput
         vertices: pts,
         boundary: tris,
         embedded: vec![],
+        lines: Vec::new(),
     }
 }
 
@@ -218,6 +219,7 @@ fn cube_with_fanned_fault(n: u32, s: f64, m: usize) -> RegionInput {
         vertices: pts,
         boundary: tris,
         embedded,
+        lines: Vec::new(),
     }
 }
 
@@ -274,6 +276,7 @@ fn the_worst_tets_of_a_thin_layer_meshed_by_gmsh_are_raised_by_flips_up_to_0_8()
         vertices: b.vertices,
         boundary: b.triangles,
         embedded: vec![],
+        lines: Vec::new(),
     };
     let o = input.vertices[0];
     let vol: f64 = input
@@ -346,6 +349,7 @@ fn host_of_a_lens(origin: P, half: P, axes: P, (rings, sectors): (u32, u32)) -> 
         vertices: pts,
         boundary,
         embedded: Vec::new(),
+        lines: Vec::new(),
     };
     (input, box_volume - lens_volume)
 }

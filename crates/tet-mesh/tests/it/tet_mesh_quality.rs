@@ -55,6 +55,7 @@ fn case(name: &str) -> RegionInput {
         vertices,
         boundary,
         embedded,
+        lines: Vec::new(),
     }
 }
 

@@ -114,6 +114,7 @@ fn region(name: &str, cells: &[[i64; 3]], n: i64, scale: f64, offset: [f64; 3]) 
         vertices: b.verts,
         boundary: tris,
         embedded: vec![],
+        lines: Vec::new(),
     }
 }
 
@@ -208,6 +209,7 @@ fn cube_with_dangling_square(scale: f64, offset: [f64; 3]) -> RegionInput {
         vertices: b.verts,
         boundary: tris,
         embedded: emb,
+        lines: Vec::new(),
     }
 }
 
@@ -222,6 +224,7 @@ fn a_small_embedded_square_is_meshed() {
         vertices: b.verts,
         boundary: tris,
         embedded: emb,
+        lines: Vec::new(),
     };
     mesh(&input);
 }
@@ -323,6 +326,7 @@ fn two_unit_cubes(name: &str, offset: [f64; 3]) -> RegionInput {
         vertices: b.verts,
         boundary: tris,
         embedded: vec![],
+        lines: Vec::new(),
     }
 }
 

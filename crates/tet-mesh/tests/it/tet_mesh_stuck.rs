@@ -90,6 +90,7 @@ fn layer_with_dipping_side(nx: usize, ny: usize, nz: usize, splits: usize) -> Re
         vertices,
         boundary: tris,
         embedded: Vec::new(),
+        lines: Vec::new(),
     }
 }
 
@@ -105,6 +106,7 @@ fn committed() -> RegionInput {
         vertices: m.vertices,
         boundary: m.triangles,
         embedded: Vec::new(),
+        lines: Vec::new(),
     }
 }
 

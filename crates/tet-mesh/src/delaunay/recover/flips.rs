@@ -14,8 +14,9 @@
 //! Decisions and why:
 //! - Every flip is checked exactly (`orient3d`): a 2-3 flip only where the new edge crosses the
 //!   shared face's interior, an edge removal only where every new tet is positive. Flips never
-//!   remove a constraint triangle that is already a face nor an edge of any constraint triangle,
-//!   so a recovered triangle stays recovered.
+//!   remove a constraint triangle that is already a face nor an edge of any constraint triangle
+//!   or a recovered piece of an embedded segment, so what is recovered stays recovered. The
+//!   segments' recovery (`segments`) makes their missing pieces edges with the same flips.
 //! - Greedy and bounded (`MAX_PASSES` over the missing triangles, `MAX_ROUNDS` per triangle,
 //!   `MAX_EDGE_STEPS` per missing edge, rings of at most `MAX_RING` tets); what is left goes to
 //!   the holes as before. Triangles pierced only through an edge or a vertex of theirs are left
@@ -43,7 +44,8 @@ const MAX_CROSSED: usize = 256;
 /// Longest edge ring a removal works on (each 2-3 flip shortens it by one).
 const MAX_RING: usize = 12;
 
-/// What flips must keep: the constraint triangles (as faces) and their edges.
+/// What flips must keep: the constraint triangles (as faces), their edges, and the recovered
+/// pieces of embedded segments.
 pub(super) struct Kept<'a> {
     faces: &'a FaceMap<u32>,
     edges: HashSet<[u32; 2]>,
@@ -56,6 +58,11 @@ impl<'a> Kept<'a> {
             .flat_map(|(t, _)| (0..3).map(move |i| pair(t[i], t[(i + 1) % 3])))
             .collect();
         Kept { faces, edges }
+    }
+
+    /// From now on flips keep the edge `ab` too (a recovered piece of a segment).
+    pub(super) fn keep_edge(&mut self, a: u32, b: u32) {
+        self.edges.insert(pair(a, b));
     }
 
     fn face(&self, f: [u32; 3]) -> bool {
@@ -121,7 +128,7 @@ fn recover_one(tri: &mut Tri, f: [u32; 3], kept: &Kept, vtet: &mut [u32]) -> usi
 
 /// Makes the segment `uv` an edge by flips: 2-3 flips of the faces it crosses, or removals of
 /// their edges where no 2-3 flip is valid; the number of flips (the edge may still be missing).
-fn recover_edge(tri: &mut Tri, u: u32, v: u32, kept: &Kept, vtet: &mut [u32]) -> usize {
+pub(super) fn recover_edge(tri: &mut Tri, u: u32, v: u32, kept: &Kept, vtet: &mut [u32]) -> usize {
     let mut flips = 0;
     for _ in 0..MAX_EDGE_STEPS {
         if tet_with_edge(tri, u, v, vtet).is_some() {
@@ -162,7 +169,7 @@ fn recover_edge(tri: &mut Tri, u: u32, v: u32, kept: &Kept, vtet: &mut [u32]) ->
 /// The faces the open segment `uv` crosses strictly (through their open interior), in order
 /// from `u`, as (tet, face) with the tet on `u`'s side; the walk stops early where the segment
 /// goes through an edge or a vertex.
-fn crossed_faces(tri: &Tri, u: u32, v: u32, vtet: &[u32]) -> Vec<(u32, usize)> {
+pub(super) fn crossed_faces(tri: &Tri, u: u32, v: u32, vtet: &[u32]) -> Vec<(u32, usize)> {
     let crosses = |f: [u32; 3]| {
         let p = |x: u32| &tri.pts[x as usize];
         let o = |a: u32, b: u32, c: u32, d: u32| orient3d(p(a), p(b), p(c), p(d)).sign();

@@ -370,6 +370,7 @@ fn compact_input(
             vertices,
             boundary: b,
             embedded: e,
+            lines: Vec::new(),
         },
         back,
     )

@@ -1,0 +1,126 @@
+//! Which side of a closed boundary an embedded segment lies on, decided exactly: the parity of
+//! the boundary triangles a ray along +x crosses, cast from a point of the open segment.
+//!
+//! No float point of a segment's interior can be named in general, and a ray through an edge or
+//! a vertex makes the count ambiguous, so the ray starts at a symbolically perturbed point
+//! `q(ε) = u + ε (v - u) + ε² e_y + ε³ e_z` (ε infinitely small): a point of the open segment
+//! next to `u`, nudged off every edge and plane that would make a tie. Every predicate the count
+//! needs is affine in `q`, so its sign at `q(ε)` is the first non-zero of its value at `u`, its
+//! value at `v`, and its two partial derivatives in y and z, each an exact `orient2d`, `orient3d`
+//! or float comparison. The caller has checked that the open segment meets no boundary
+//! triangle, so every point of it, `q(ε)` included, lies on the same side.
+
+use geom::predicates::{Orientation, orient2d};
+
+use super::exact::orient3d;
+
+type P = [f64; 3];
+
+/// The (y, z) projection, the plane the +x ray is seen in.
+fn yz(p: &P) -> [f64; 2] {
+    [p[1], p[2]]
+}
+
+/// The first non-zero sign of a symbolic expansion.
+fn first(signs: impl IntoIterator<Item = i32>) -> i32 {
+    signs.into_iter().find(|&s| s != 0).unwrap_or(0)
+}
+
+/// Sign of `orient2d(x, y, q(ε))` in the (y, z) projection.
+fn turn(x: &P, y: &P, u: &P, v: &P) -> i32 {
+    let (x2, y2) = (yz(x), yz(y));
+    // Affine in q = (q_y, q_z): d/dq_y = x_z - y_z, d/dq_z = y_y - x_y.
+    let cmp = |a: f64, b: f64| Orientation::from_f64(a - b).sign();
+    first([
+        orient2d(&x2, &y2, &yz(u)).sign(),
+        orient2d(&x2, &y2, &yz(v)).sign(),
+        cmp(x[2], y[2]),
+        cmp(y[1], x[1]),
+    ])
+}
+
+/// Whether the segment `uv` (its open part, next to `u`) lies inside the region the closed,
+/// outward `boundary` encloses; `None` when the perturbed point lies on a boundary triangle
+/// (the segment runs in it, which the caller's intersection test rules out).
+pub fn segment_inside(u: &P, v: &P, pts: &[P], boundary: &[[u32; 3]]) -> Option<bool> {
+    let mut crossings = 0usize;
+    for t in boundary {
+        let [a, b, c] = t.map(|i| &pts[i as usize]);
+        // The x component of the right-hand normal: zero for a triangle parallel to the ray,
+        // which the perturbed ray never meets.
+        let nx = orient2d(&yz(a), &yz(b), &yz(c)).sign();
+        if nx == 0 {
+            continue;
+        }
+        let inside = [turn(a, b, u, v), turn(b, c, u, v), turn(c, a, u, v)];
+        if inside.iter().any(|&s| s != nx) {
+            continue;
+        }
+        // Which side of the plane q(ε) lies on: n·(q - a), with n_y and n_z the normal's other
+        // components (the (z, x) and (x, y) projections' turns).
+        let zx = |p: &P| [p[2], p[0]];
+        let xy = |p: &P| [p[0], p[1]];
+        let side = first([
+            orient3d(a, b, c, u).sign(),
+            orient3d(a, b, c, v).sign(),
+            orient2d(&zx(a), &zx(b), &zx(c)).sign(),
+            orient2d(&xy(a), &xy(b), &xy(c)).sign(),
+        ]);
+        if side == 0 {
+            return None;
+        }
+        // The ray q + s e_x meets the plane at s = -n·(q - a) / n_x: ahead when the signs differ.
+        if side != nx {
+            crossings += 1;
+        }
+    }
+    Some(crossings % 2 == 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unit cube's corners and its twelve outward triangles.
+    fn cube() -> (Vec<P>, Vec<[u32; 3]>) {
+        let mut pts = Vec::new();
+        for i in 0..8 {
+            pts.push([(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64]);
+        }
+        let quads = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        let tris = quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
+        (pts, tris)
+    }
+
+    #[test]
+    fn segments_inside_and_outside_a_cube_are_told_apart_even_when_the_ray_runs_through_an_edge() {
+        let (mut pts, tris) = cube();
+        // The ray from the centre leaves through the middle of the +x side's diagonal.
+        pts.extend([
+            [0.5, 0.5, 0.5],
+            [0.25, 0.25, 0.25],
+            [3.0, 0.5, 0.5],
+            [-1.0, -1.0, 0.5],
+        ]);
+        let (centre, low, far, away) = (8, 9, 10, 11);
+        let inside = |u: usize, v: usize| segment_inside(&pts[u], &pts[v], &pts, &tris);
+        assert_eq!(inside(centre, low), Some(true));
+        // From a corner into the cube, along its space diagonal, and away from it.
+        assert_eq!(inside(0, centre), Some(true));
+        assert_eq!(inside(7, low), Some(true));
+        assert_eq!(inside(0, 7), Some(true));
+        assert_eq!(inside(1, far), Some(false));
+        assert_eq!(inside(0, away), Some(false));
+        assert_eq!(inside(far, away), Some(false));
+    }
+}
