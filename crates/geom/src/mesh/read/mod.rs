@@ -2,7 +2,9 @@
 //! OBJ and Gmsh msh (4.1 ASCII and binary, 2.2 ASCII). They take bytes (the CLI reads the file)
 //! and a label for messages, and return triangles with an integer tag per triangle (OBJ group,
 //! msh entity) plus the tag names the file gives. Polygons are fan-triangulated; everything else
-//! (normals, texture coordinates, lines, points) is skipped.
+//! (normals, texture coordinates, lines, points) is skipped. The line readers
+//! ([`read_lines_by_extension`]) take the lines of an OBJ (`l` polylines) or msh (line elements,
+//! type 1) file instead: the segments the mesher embeds (well paths).
 //!
 //! Bad input never panics: every error names the file (label) and the line where it was found.
 //! Non-finite coordinates and out-of-range indices are errors, not silently kept.
@@ -13,8 +15,8 @@ mod msh_sections;
 mod obj;
 mod off;
 
-pub use msh::{read_msh, read_volume_msh};
-pub use obj::read_obj;
+pub use msh::{read_msh, read_msh_lines, read_volume_msh};
+pub use obj::{read_obj, read_obj_lines};
 pub use off::read_off;
 
 use serde::Serialize;
@@ -31,6 +33,13 @@ pub struct BoundaryMesh {
     pub triangle_tag: Vec<i32>,
     /// Names of tags, where the file names them (OBJ group names, msh physical names).
     pub tag_names: BTreeMap<i32, String>,
+}
+
+/// Segments between vertices (the embedded lines of the standalone mesher).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LineMesh {
+    pub vertices: Vec<[f64; 3]>,
+    pub lines: Vec<[u32; 2]>,
 }
 
 /// A read error at `file:line`.
@@ -63,6 +72,23 @@ pub fn read_by_extension(path_label: &str, bytes: &[u8]) -> Result<BoundaryMesh,
             file: path_label.to_string(),
             line: 0,
             message: format!("unknown mesh file extension '.{ext}': expected .off, .obj or .msh"),
+        }),
+    }
+}
+
+/// Reads the lines of an `.obj` or `.msh` file, by the extension of `path_label`.
+pub fn read_lines_by_extension(path_label: &str, bytes: &[u8]) -> Result<LineMesh, ReadError> {
+    let ext = path_label
+        .rsplit_once('.')
+        .map(|(_, e)| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "obj" => read_obj_lines(bytes, path_label),
+        "msh" => read_msh_lines(bytes, path_label),
+        _ => Err(ReadError {
+            file: path_label.to_string(),
+            line: 0,
+            message: format!("unknown line file extension '.{ext}': expected .obj or .msh"),
         }),
     }
 }

@@ -4,14 +4,15 @@
 //! are returned in node-tag order.
 //!
 //! [`read_msh`] returns the triangles (type 2) as a [`BoundaryMesh`] tagged by their elementary
-//! entity, each entity named after its first 2D physical group. [`read_volume_msh`] reads a whole
+//! entity, each entity named after its first 2D physical group; [`read_msh_lines`] the line
+//! elements (type 1) as segments. [`read_volume_msh`] reads a whole
 //! tet mesh back into a [`VolumeMesh`] (3D physical groups become regions, 2D ones surface
 //! groups, the "material" element data and other scalar element data become region attributes),
 //! which is how exports are round-trip tested.
 
 use super::cursor::Cursor;
 use super::msh_sections::{Elem, Msh, parse};
-use super::{BoundaryMesh, ReadError};
+use super::{BoundaryMesh, LineMesh, ReadError};
 use crate::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use std::collections::BTreeMap;
 
@@ -99,6 +100,24 @@ pub fn read_msh(bytes: &[u8], label: &str) -> Result<BoundaryMesh, ReadError> {
         return Err(c.err_at(bytes.len(), "the file holds no triangles (element type 2)"));
     }
     Ok(out)
+}
+
+/// Reads the line elements (type 1: two nodes each) of a Gmsh msh file as segments.
+pub fn read_msh_lines(bytes: &[u8], label: &str) -> Result<LineMesh, ReadError> {
+    let m = parse(bytes, label)?;
+    let c = Cursor::new(bytes, label);
+    let idx = resolve(&m, &c)?;
+    let lines: Vec<[u32; 2]> = (m.elems.iter().zip(&idx))
+        .filter(|(e, _)| e.n == 2)
+        .map(|(_, ix)| [ix[0], ix[1]])
+        .collect();
+    if lines.is_empty() {
+        return Err(c.err_at(bytes.len(), "the file holds no lines (element type 1)"));
+    }
+    Ok(LineMesh {
+        vertices: m.nodes,
+        lines,
+    })
 }
 
 /// Reads a tet mesh (tets type 4, triangles type 2) back into a [`VolumeMesh`]: regions are the 3D
@@ -221,6 +240,21 @@ $Nodes\n4\n10 0 0 0\n20 1 0 0\n30 0 1 0\n40 0 0 1\n$EndNodes\n$Elements\n2\n1 2 
                 .message
                 .contains("node tag 10 is defined twice")
         );
+    }
+
+    #[test]
+    fn line_elements_are_read_as_segments_and_a_file_without_any_is_refused() {
+        let with = V22.replace("$Elements\n2\n", "$Elements\n3\n3 1 2 5 9 10 40\n");
+        let m = read_msh_lines(with.as_bytes(), "w.msh").unwrap();
+        assert_eq!(m.lines, vec![[0, 3]]);
+        assert_eq!(m.vertices[3], [0.0, 0.0, 1.0]);
+        // The triangles are read as before.
+        assert_eq!(
+            read_msh(with.as_bytes(), "w.msh").unwrap().triangles.len(),
+            1
+        );
+        let e = read_msh_lines(V22.as_bytes(), "v22.msh").unwrap_err();
+        assert!(e.message.contains("no lines (element type 1)"), "{e}");
     }
 
     #[test]

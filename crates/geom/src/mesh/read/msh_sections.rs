@@ -1,15 +1,15 @@
 //! Gmsh msh section parser: turns the bytes of a format 4.1 (ASCII or binary, little-endian,
 //! `size_t` = 8) or 2.2 (ASCII) file into its raw parts — physical names, entity physical tags,
-//! nodes by tag, triangles and tets with their entity, scalar element data, and our own surface
-//! kinds — checking every count against the bytes left so that no input can make it allocate
-//! or loop without bound. Other element types are read past; unknown sections are skipped.
+//! nodes by tag, lines, triangles and tets with their entity, scalar element data, and our own
+//! surface kinds — checking every count against the bytes left so that no input can make it
+//! allocate or loop without bound. Other element types are read past; unknown sections are skipped.
 
 use super::ReadError;
 use super::cursor::Cursor;
 use crate::mesh::SurfaceKind;
 use std::collections::BTreeMap;
 
-/// A triangle or tet as read: its element tag, entity, nodes (by tag) and byte offset.
+/// A line, triangle or tet as read: its element tag, entity, nodes (by tag) and byte offset.
 pub(super) struct Elem {
     pub tag: u64,
     pub dim: i32,
@@ -31,6 +31,11 @@ pub(super) struct Msh {
     pub data: BTreeMap<String, BTreeMap<u64, f64>>,
     /// Surface kinds by 2D physical tag (our own `$GeorecipeSurfaceKinds` section).
     pub kinds: BTreeMap<i32, SurfaceKind>,
+}
+
+/// The element types kept: lines (1), triangles (2) and tets (4); the others are read past.
+fn kept(ty: i32) -> bool {
+    matches!(ty, 1 | 2 | 4)
 }
 
 /// Nodes per element type, for the types a file may hold.
@@ -371,12 +376,12 @@ fn elements_41(r: &mut Rd<'_>, m: &mut Msh) -> Result<(), ReadError> {
             };
             for k in 0..nn {
                 let v = r.size("a node tag")?;
-                if (ty == 2 || ty == 4) && k < 4 {
+                if kept(ty) && k < 4 {
                     e.nodes[k] = v;
                     e.n = k + 1;
                 }
             }
-            if ty == 2 || ty == 4 {
+            if kept(ty) {
                 m.elems.push(e);
             }
         }
@@ -424,7 +429,7 @@ fn elements_22(r: &mut Rd<'_>, m: &mut Msh) -> Result<(), ReadError> {
             }
         }
         e.n = nn.min(4);
-        if ty == 2 || ty == 4 {
+        if kept(ty) {
             m.elems.push(e);
         }
     }
