@@ -101,6 +101,14 @@ impl Format {
     }
 }
 
+/// Line elements to write with a mesh: a named group of segments between its nodes (the chains
+/// of tet edges an embedded well became).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LineGroup {
+    pub name: String,
+    pub lines: Vec<[u32; 2]>,
+}
+
 /// Writes `mesh` in `format`. Returns `(file name, bytes)` pairs: file names are `model_name`
 /// plus the format's extension (`didactic.msh`, `didactic.1.node`, ...). Fails with a message on
 /// a mesh whose indices are out of range or a model name that cannot be a file name.
@@ -109,8 +117,37 @@ pub fn export(
     model_name: &str,
     format: Format,
 ) -> Result<Vec<(String, Vec<u8>)>, String> {
+    export_with_lines(mesh, &[], model_name, format)
+}
+
+/// [`export`] with line elements: msh writes each group as a curve entity of line elements
+/// (type 1) with a 1D physical group of the group's name; the other formats take no lines (an
+/// error if some are given).
+pub fn export_with_lines(
+    mesh: &VolumeMesh,
+    lines: &[LineGroup],
+    model_name: &str,
+    format: Format,
+) -> Result<Vec<(String, Vec<u8>)>, String> {
     mesh.check_indices()
         .map_err(|e| format!("cannot export model '{model_name}': {e}"))?;
+    let n = mesh.nodes.len();
+    if let Some(g) = lines
+        .iter()
+        .find(|g| g.lines.iter().flatten().any(|&v| v as usize >= n))
+    {
+        return Err(format!(
+            "cannot export model '{model_name}': line group '{}' refers to a node beyond the {n} nodes",
+            g.name
+        ));
+    }
+    if lines.iter().any(|g| !g.lines.is_empty())
+        && !matches!(format, Format::Msh | Format::MshBinary)
+    {
+        return Err(format!(
+            "cannot export model '{model_name}' with line elements as {format:?}: only msh takes them"
+        ));
+    }
     if model_name.is_empty()
         || model_name.contains(['/', '\\'])
         || model_name.chars().any(char::is_control)
@@ -120,8 +157,8 @@ pub fn export(
         ));
     }
     let contents = match format {
-        Format::Msh => vec![msh::write(mesh, false)],
-        Format::MshBinary => vec![msh::write(mesh, true)],
+        Format::Msh => vec![msh::write(mesh, lines, false)],
+        Format::MshBinary => vec![msh::write(mesh, lines, true)],
         Format::Vtu => vec![vtu::write(mesh, false)?],
         Format::VtuBinary => vec![vtu::write(mesh, true)?],
         Format::TetGen => Vec::from(tetgen::write(mesh, model_name)),

@@ -3,7 +3,10 @@
 //!
 //! Layout decisions (chosen so that both Gmsh and meshio read the file and recover the groups):
 //!
-//! - **Entities** ([`topology`]). One discrete volume per region (tag = region index + 1). A
+//! - **Entities** ([`topology`]). One discrete curve per line group, when the caller gives line
+//!   elements (an embedded well's chain of tet edges; tag = group index + 1), lying inside its
+//!   volume like a dangling fault, so no volume lists it. One discrete volume per region (tag =
+//!   region index + 1). A
 //!   surface group becomes one discrete surface per *piece*: its triangles that have the same
 //!   region in front and the same behind (the outside of the model counted as no region), in
 //!   order of group, region in front and region behind (none first), tags 1, 2, ... in that
@@ -17,7 +20,8 @@
 //!   inside that volume, not on its boundary, and the format has no documented record for an
 //!   embedded entity, so no volume lists it. Surfaces list no bounding curves: the mesh carries
 //!   no curve entities (the curves file does), so a surface's boundary is empty.
-//! - **Physical groups.** 2D: surface group `g` has tag `g + 1` on its pieces; fault `k` (in group
+//! - **Physical groups.** 1D: line group `g` has tag `g + 1`, named after the group, on its
+//!   curve. 2D: surface group `g` has tag `g + 1` on its pieces; fault `k` (in group
 //!   order, empty ones counted) of `n` groups has `<fault>:front` = `n + 2k + 1` and
 //!   `<fault>:back` = `n + 2k + 2`, the ids of the Exodus side sets. 3D: region `r` has tag
 //!   `r + 1` on its volume, and each distinct material id, the `k`-th in ascending order of the
@@ -39,19 +43,19 @@
 //!   saves a format that stores elements per group (MSH2). meshio matches tags without sign: it
 //!   reads `<fault>` and `<fault>:back` and leaves `<fault>:front` empty.
 //!
-//! Nodes are classified on the entity of lowest dimension holding them (the first piece among
-//! their triangles, else the region of their first tet), one block per entity (tags = node
-//! index + 1, so the numbering is the mesh's whatever the blocks); elements go in one block per
-//! entity (tets type 4 by region first, then triangles type 2 by piece), numbered consecutively
-//! from 1. The recipe's surface kinds (horizon, fault, box, other) go in a
+//! Nodes are classified on the entity of lowest dimension holding them (the first line group
+//! among their lines, else the first piece among their triangles, else the region of their first
+//! tet), one block per entity (tags = node index + 1, so the numbering is the mesh's whatever the
+//! blocks); elements go in one block per entity (tets type 4 by region first, then triangles type
+//! 2 by piece, then lines type 1 by group), numbered consecutively from 1. The recipe's surface kinds (horizon, fault, box, other) go in a
 //! `$GeorecipeSurfaceKinds` section, which other readers skip as the format prescribes for
 //! unknown sections. The recipe's attributes follow as `$ElementData` views over every element:
-//! "material" (the material id, -1 where none, and -1 on triangles) and one per region property
-//! (NaN where undefined).
+//! "material" (the material id, -1 where none, and -1 on triangles and lines) and one per region
+//! property (NaN where undefined).
 
 mod topology;
 
-use super::{bbox_of, property_names, split_by};
+use super::{LineGroup, bbox_of, property_names, split_by};
 use geom::mesh::{SurfaceKind, VolumeMesh};
 use std::collections::BTreeMap;
 use std::io::Write as _;
@@ -143,7 +147,9 @@ fn tag(i: usize) -> i32 {
     i32::try_from(i + 1).unwrap_or(i32::MAX)
 }
 
-pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
+/// `mesh` as a msh file, with the line elements of `lines` (one curve entity and one 1D
+/// physical group per group, tags 1, 2, ... in order).
+pub(super) fn write(mesh: &VolumeMesh, lines: &[LineGroup], binary: bool) -> Vec<u8> {
     let mut o = Out {
         binary,
         buf: Vec::new(),
@@ -152,17 +158,19 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Vec<u8> {
     let tris_by_piece = &topology.tris;
     let tets_by_region = split_by(&mesh.tet_region, mesh.regions.len());
     mesh_format(&mut o);
-    physical_names(&mut o, &topology);
+    physical_names(&mut o, &topology, lines);
     surface_kinds(&mut o, mesh);
-    entities(&mut o, mesh, &topology, &tets_by_region);
-    nodes(&mut o, mesh, tris_by_piece);
-    let total = elements(&mut o, mesh, tris_by_piece, &tets_by_region);
+    entities(&mut o, mesh, &topology, &tets_by_region, lines);
+    nodes(&mut o, mesh, tris_by_piece, lines);
+    let total = elements(&mut o, mesh, tris_by_piece, &tets_by_region, lines);
     // Attributes as element data, in element-tag order: the order the elements were written
-    // in (tets by region, then triangles by piece), so the tags are 1, 2, ... again.
+    // in (tets by region, then triangles by piece, then lines by group), so the tags are 1, 2,
+    // ... again.
     if total > 0 && !mesh.regions.is_empty() {
         let order = Order {
             tets: &tets_by_region,
             tris: tris_by_piece,
+            lines: lines.iter().map(|g| g.lines.len()).sum(),
             total: total as usize,
         };
         attributes(&mut o, mesh, &order);
@@ -184,11 +192,14 @@ fn mesh_format(o: &mut Out) {
     o.text("$EndMeshFormat\n");
 }
 
-/// `$PhysicalNames` (always ASCII): the 2D groups (surface groups, then fault sides), then the
-/// 3D ones (regions, then materials).
-fn physical_names(o: &mut Out, topology: &Topology) {
+/// `$PhysicalNames` (always ASCII): the 1D groups (line groups), the 2D ones (surface groups,
+/// then fault sides), then the 3D ones (regions, then materials).
+fn physical_names(o: &mut Out, topology: &Topology, lines: &[LineGroup]) {
     o.text("$PhysicalNames\n");
-    o.text(&format!("{}\n", topology.names.len()));
+    o.text(&format!("{}\n", lines.len() + topology.names.len()));
+    for (g, group) in lines.iter().enumerate() {
+        o.text(&format!("1 {} {}\n", tag(g), quoted(&group.name)));
+    }
     for (dim, tag, name) in &topology.names {
         o.text(&format!("{dim} {tag} {}\n", quoted(name)));
     }
@@ -208,13 +219,20 @@ fn surface_kinds(o: &mut Out, mesh: &VolumeMesh) {
     o.text("$EndGeorecipeSurfaceKinds\n");
 }
 
-/// `$Entities`: the surface pieces, then one volume per region, each with its bounding box, its
-/// physical tags and its bounding entities (none for the surfaces).
-fn entities(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, tets_by_region: &[Vec<usize>]) {
+/// `$Entities`: one curve per line group, the surface pieces, then one volume per region, each
+/// with its bounding box, its physical tags and its bounding entities (none for the curves and
+/// surfaces).
+fn entities(
+    o: &mut Out,
+    mesh: &VolumeMesh,
+    topology: &Topology,
+    tets_by_region: &[Vec<usize>],
+    lines: &[LineGroup],
+) {
     o.text("$Entities\n");
     o.rec(&[
         F::S(0),
-        F::S(0),
+        F::S(lines.len() as u64),
         F::S(topology.tris.len() as u64),
         F::S(mesh.regions.len() as u64),
     ]);
@@ -228,6 +246,10 @@ fn entities(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, tets_by_region:
         rec.extend(bounds.iter().map(|&b| F::I(b)));
         o.rec(&rec);
     };
+    for (g, group) in lines.iter().enumerate() {
+        let bb = bbox_of(mesh, group.lines.iter().map(|l| &l[..]));
+        entity(o, g, bb, &[tag(g)], &[]);
+    }
     for (k, tris) in topology.tris.iter().enumerate() {
         let bb = bbox_of(mesh, tris.iter().map(|&t| &mesh.triangles[t][..]));
         entity(o, k, bb, &topology.surface_physicals[k], &[]);
@@ -241,14 +263,24 @@ fn entities(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, tets_by_region:
 }
 
 /// The entity each node is classified on, as (dimension, index) → its nodes in index order: the
-/// entity of lowest dimension that holds it (the first piece among its triangles, else the
-/// region of its first tet; unused nodes on the first entity).
+/// entity of lowest dimension that holds it (the first line group among its lines, else the
+/// first piece among its triangles, else the region of its first tet; unused nodes on the first
+/// entity).
 fn node_blocks(
     mesh: &VolumeMesh,
     tris_by_piece: &[Vec<usize>],
+    lines: &[LineGroup],
 ) -> BTreeMap<(i32, usize), Vec<usize>> {
     let n = mesh.nodes.len();
     let mut home: Vec<Option<(i32, usize)>> = vec![None; n];
+    for (g, group) in lines.iter().enumerate() {
+        for &v in group.lines.iter().flatten() {
+            let h = &mut home[v as usize];
+            if h.is_none() {
+                *h = Some((1, g));
+            }
+        }
+    }
     for (k, tris) in tris_by_piece.iter().enumerate() {
         for &t in tris {
             for &v in &mesh.triangles[t] {
@@ -284,10 +316,10 @@ fn node_blocks(
     blocks
 }
 
-/// `$Nodes`: one block per entity, surfaces then volumes. Tags stay node index + 1 (sparse per
-/// block).
-fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>]) {
-    let blocks = node_blocks(mesh, tris_by_piece);
+/// `$Nodes`: one block per entity, curves, surfaces then volumes. Tags stay node index + 1
+/// (sparse per block).
+fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>], lines: &[LineGroup]) {
+    let blocks = node_blocks(mesh, tris_by_piece, lines);
     let written: usize = blocks.values().map(Vec::len).sum();
     o.text("$Nodes\n");
     let (lo, hi) = (
@@ -313,17 +345,20 @@ fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>]) {
     o.end("Nodes");
 }
 
-/// `$Elements`: tets per region, then triangles per piece; tags 1.. in that order. Returns the
-/// number of elements.
+/// `$Elements`: tets per region, then triangles per piece, then lines (type 1) per group; tags
+/// 1.. in that order. Returns the number of elements.
 fn elements(
     o: &mut Out,
     mesh: &VolumeMesh,
     tris_by_piece: &[Vec<usize>],
     tets_by_region: &[Vec<usize>],
+    lines: &[LineGroup],
 ) -> u64 {
     let blocks = tets_by_region.iter().filter(|s| !s.is_empty()).count()
-        + tris_by_piece.iter().filter(|s| !s.is_empty()).count();
-    let total = (mesh.tets.len() + mesh.triangles.len()) as u64;
+        + tris_by_piece.iter().filter(|s| !s.is_empty()).count()
+        + lines.iter().filter(|g| !g.lines.is_empty()).count();
+    let n_lines: usize = lines.iter().map(|g| g.lines.len()).sum();
+    let total = (mesh.tets.len() + mesh.triangles.len() + n_lines) as u64;
     o.text("$Elements\n");
     o.rec(&[
         F::S(blocks as u64),
@@ -367,12 +402,28 @@ fn elements(
             next += 1;
         }
     }
+    for (g, group) in lines
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| !g.lines.is_empty())
+    {
+        o.rec(&[
+            F::I(1),
+            F::I(tag(g)),
+            F::I(1),
+            F::S(group.lines.len() as u64),
+        ]);
+        for &[a, b] in &group.lines {
+            o.rec(&[F::S(next), F::S(a as u64 + 1), F::S(b as u64 + 1)]);
+            next += 1;
+        }
+    }
     o.end("Elements");
     total
 }
 
-/// `$ElementData` views: "material" (-1 where none and on triangles), then one per region
-/// property (NaN where undefined).
+/// `$ElementData` views: "material" (-1 where none and on triangles and lines), then one per
+/// region property (NaN where undefined).
 fn attributes(o: &mut Out, mesh: &VolumeMesh, order: &Order) {
     let region_of = |t: usize| &mesh.regions[mesh.tet_region[t] as usize];
     let material = |t: Option<usize>| {
@@ -390,17 +441,20 @@ fn attributes(o: &mut Out, mesh: &VolumeMesh, order: &Order) {
 }
 
 /// The elements in tag order: `Some(tet)` for each tet by region, then `None` per triangle (by
-/// piece).
+/// piece) and per line.
 struct Order<'a> {
     tets: &'a [Vec<usize>],
     tris: &'a [Vec<usize>],
+    lines: usize,
     total: usize,
 }
 
 impl Order<'_> {
     fn iter(&self) -> impl Iterator<Item = Option<usize>> + '_ {
         let tets = self.tets.iter().flatten().map(|&t| Some(t));
-        tets.chain(self.tris.iter().flatten().map(|_| None))
+        let tris = self.tris.iter().flatten().map(|_| None);
+        tets.chain(tris)
+            .chain(std::iter::repeat_n(None, self.lines))
     }
 }
 
@@ -428,7 +482,7 @@ mod tests {
 
     /// The lines of `section` in the ASCII file of `mesh`.
     fn section(mesh: &VolumeMesh, section: &str) -> Vec<String> {
-        let text = String::from_utf8(write(mesh, false)).unwrap();
+        let text = String::from_utf8(write(mesh, &[], false)).unwrap();
         let start = format!("${section}\n");
         let (_, rest) = text.split_once(&start).unwrap();
         let (body, _) = rest.split_once(&format!("$End{section}")).unwrap();
@@ -474,5 +528,35 @@ mod tests {
             headers,
             ["4 6 1 6", "2 1 0 3", "2 2 0 1", "2 3 0 1", "3 1 0 1"]
         );
+    }
+
+    #[test]
+    fn a_line_group_is_a_curve_of_line_elements_after_the_triangles_with_its_own_1d_group() {
+        let mesh = three_tets();
+        let well = LineGroup {
+            name: "well".into(),
+            lines: vec![[3, 0], [0, 4]],
+        };
+        let text = String::from_utf8(write(&mesh, std::slice::from_ref(&well), false)).unwrap();
+        let section = |name: &str| -> Vec<String> {
+            let (_, rest) = text.split_once(&format!("${name}\n")).unwrap();
+            let (body, _) = rest.split_once(&format!("$End{name}")).unwrap();
+            body.lines().map(str::to_string).collect()
+        };
+        assert_eq!(section("PhysicalNames")[1], "1 1 \"well\"");
+        let entities = section("Entities");
+        assert_eq!(entities[0], "0 1 5 3");
+        assert_eq!(entities[1], "1 0 0 -1 0 0 1 1 1 0");
+        let elements = section("Elements");
+        // Seven blocks: tets of two regions, four pieces of triangles, then the two lines.
+        assert_eq!(elements[0], "7 9 1 9");
+        let at = elements.iter().position(|l| l == "1 1 1 2").unwrap();
+        assert_eq!(elements[at + 1..at + 3], ["8 4 1", "9 1 5"]);
+        // Nodes 1, 4 and 5 lie on the curve.
+        assert_eq!(section("Nodes")[1], "1 1 0 3");
+        let lines = geom::mesh::read::read_msh_lines(text.as_bytes(), "w.msh").unwrap();
+        assert_eq!(lines.lines, well.lines);
+        let back = geom::mesh::read::read_volume_msh(text.as_bytes(), "w.msh").unwrap();
+        assert_eq!(back.tets.len(), mesh.tets.len());
     }
 }
