@@ -1,12 +1,14 @@
 //! `recipe tetmesh`: the tetrahedral mesher on its own, for one closed boundary given as a file
-//! (Gmsh .msh, .off, .obj), with optional embedded (dangling) faces. The boundary may hold inner
-//! shells (each connected piece is a shell) and point either way: region finding orients it.
+//! (Gmsh .msh, .off, .obj), with optional embedded (dangling) faces and embedded lines (well
+//! paths, each meshed as a chain of tet edges and written as line elements). The boundary may
+//! hold inner shells (each connected piece is a shell) and point either way: region finding
+//! orients it.
 
 use super::Failure;
 use super::build::write_atomic;
 use export::quality;
-use export::{Format, export};
-use geom::mesh::read::{BoundaryMesh, read_by_extension};
+use export::{Format, LineGroup, export_with_lines};
+use geom::mesh::read::{BoundaryMesh, read_by_extension, read_lines_by_extension};
 use geom::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use model::regions;
 use std::collections::BTreeMap;
@@ -31,6 +33,12 @@ pub struct TetmeshArgs {
     /// Take only the triangles with these tags from the --embed file
     #[arg(long, value_delimiter = ',')]
     pub embed_tags: Vec<i32>,
+    /// Lines to embed as chains of tet edges (well paths): the `l` polylines of an .obj or the
+    /// line elements (type 1) of a .msh; their vertices are matched to the others by exact
+    /// coordinates, or are new inner vertices. Written to the .msh output as line elements, in a
+    /// 1D physical group named after the file
+    #[arg(long)]
+    pub embed_lines: Option<PathBuf>,
     /// Weld --embed vertices to boundary vertices closer than this (model units); files written
     /// with fewer digits need it [default: 1e-9 × the boundary's bounding-box diagonal]
     #[arg(long)]
@@ -74,11 +82,19 @@ struct VertexPool {
 
 impl VertexPool {
     fn add(&mut self, p: [f64; 3]) -> u32 {
+        self.add_welding(p, true)
+    }
+    /// [`VertexPool::add`] by exact coordinates only, whatever the weld distance.
+    fn add_exact(&mut self, p: [f64; 3]) -> u32 {
+        self.add_welding(p, false)
+    }
+    fn add_welding(&mut self, p: [f64; 3], weld: bool) -> u32 {
         let key = p.map(|c| (if c == 0.0 { 0.0 } else { c }).to_bits());
         if let Some(&i) = self.index.get(&key) {
             return i;
         }
-        if let Some((tol, tree)) = &self.weld
+        if weld
+            && let Some((tol, tree)) = &self.weld
             && let Some(n) = tree.nearest_neighbor(p)
         {
             let q = n.geom();
@@ -113,8 +129,30 @@ impl VertexPool {
     }
 }
 
+/// The segments of the --embed-lines file, over the pool's vertices (by exact coordinates), and
+/// the group name their line elements get (the file's stem).
+fn embed_lines(path: &PathBuf, pool: &mut VertexPool) -> Result<(Vec<[u32; 2]>, String), Failure> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| Failure(format!("error: cannot read {}: {e}", path.display())))?;
+    let m = read_lines_by_extension(&path.display().to_string(), &bytes)
+        .map_err(|e| Failure(format!("error: {e}")))?;
+    let map: Vec<u32> = m.vertices.iter().map(|&p| pool.add_exact(p)).collect();
+    let lines = m.lines.iter().map(|l| l.map(|v| map[v as usize])).collect();
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "lines".into());
+    Ok((lines, name))
+}
+
 pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     let format = output_format(&a.output)?;
+    if a.embed_lines.is_some() && format != Format::Msh {
+        return Err(Failure(format!(
+            "error: {}: --embed-lines writes line elements, which only the .msh output takes",
+            a.output.display()
+        )));
+    }
     let b = read(&a.boundary)?;
     let mut pool = VertexPool::default();
     let mut boundary = pool.triangles(&b, |t| !a.embedded_tags.contains(&t));
@@ -131,6 +169,10 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
             a.embed_tags.is_empty() || a.embed_tags.contains(&t)
         }));
     }
+    let (lines, line_group) = match &a.embed_lines {
+        Some(path) => embed_lines(path, &mut pool)?,
+        None => (Vec::new(), String::new()),
+    };
     if boundary.is_empty() {
         return Err(Failure(format!(
             "error: {}: no boundary triangles",
@@ -163,7 +205,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         vertices: pool.vertices,
         boundary,
         embedded,
-        lines: Vec::new(),
+        lines,
     };
     let field = SizeField {
         size: a.size.unwrap_or(f64::INFINITY),
@@ -202,6 +244,24 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
             kind: SurfaceKind::Fault,
         });
     }
+    let line_groups: Vec<LineGroup> = if input.lines.is_empty() {
+        Vec::new()
+    } else {
+        let steps = out
+            .lines
+            .iter()
+            .flat_map(|c| c.windows(2).map(|w| [w[0], w[1]]));
+        errln!(
+            "    Embedded {} line segments as {} line elements ({} new nodes on them)",
+            input.lines.len(),
+            steps.clone().count(),
+            out.stats.line_nodes
+        );
+        vec![LineGroup {
+            name: line_group,
+            lines: steps.collect(),
+        }]
+    };
     let mesh = VolumeMesh {
         nodes: out.nodes,
         tet_region: vec![0; out.tets.len()],
@@ -226,8 +286,8 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         .filter(|p| !p.as_os_str().is_empty())
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from("."));
-    for (file, bytes) in
-        export(&mesh, &stem, format).map_err(|e| Failure(format!("error: export: {e}")))?
+    for (file, bytes) in export_with_lines(&mesh, &line_groups, &stem, format)
+        .map_err(|e| Failure(format!("error: export: {e}")))?
     {
         write_atomic(&dir.join(&file), &bytes)?;
         errln!("       Wrote {}", dir.join(&file).display());

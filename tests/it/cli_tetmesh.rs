@@ -1,5 +1,6 @@
 //! `recipe tetmesh` on boundaries that no one here wrote (meshed by Gmsh), checked by the
-//! independent checker `../shared/tools/check_mesh.py`.
+//! independent checker `../shared/tools/check_mesh.py`, and with embedded wells (`--embed-lines`)
+//! written as line elements.
 
 use crate::common_cli::checker;
 use std::path::{Path, PathBuf};
@@ -196,4 +197,131 @@ fn two_boxes_side_by_side_are_refused_as_not_one_region() {
         "{err}"
     );
     assert!(!dir.path().join("two.msh").exists(), "no partial output");
+}
+
+/// `recipe tetmesh <boundary> --embed-lines <lines> -o <out>`, its exit status and standard error.
+fn tetmesh_with_lines(boundary: &Path, lines: &Path, out: &Path) -> (bool, String) {
+    let run = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .arg("tetmesh")
+        .arg(boundary)
+        .arg("--embed-lines")
+        .arg(lines)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap();
+    (
+        run.status.success(),
+        String::from_utf8_lossy(&run.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_well_given_with_embed_lines_is_written_as_line_elements_along_tet_edges() {
+    let dir = tempfile::tempdir().unwrap();
+    let off = dir.path().join("block.off");
+    std::fs::write(&off, boxes_off(&[([0.0; 3], [10.0, 10.0, 10.0])])).unwrap();
+    // A deviated well from a box corner (a boundary vertex) into the block, given as an OBJ
+    // polyline, and a second one as msh line elements.
+    let stations = [
+        [0.0, 0.0, 10.0],
+        [1.5, 1.25, 8.0],
+        [3.25, 2.5, 5.5],
+        [4.0, 4.5, 3.0],
+    ];
+    let mut obj = String::new();
+    for p in &stations {
+        obj.push_str(&format!("v {} {} {}\n", p[0], p[1], p[2]));
+    }
+    obj.push_str("l 1 2 3 4\n");
+    let well = dir.path().join("W1.obj");
+    std::fs::write(&well, obj).unwrap();
+    let out = dir.path().join("block.msh");
+    let (ok, err) = tetmesh_with_lines(&off, &well, &out);
+    assert!(ok, "{err}");
+    assert!(err.contains("Embedded 3 line segments"), "{err}");
+    let bytes = std::fs::read(&out).unwrap();
+    let text = String::from_utf8_lossy(&bytes);
+    assert!(
+        text.contains("1 1 \"W1\""),
+        "a 1D group named after the file"
+    );
+    let mesh = geom::mesh::read::read_volume_msh(&bytes, "block.msh").unwrap();
+    let lines = geom::mesh::read::read_msh_lines(&bytes, "block.msh").unwrap();
+    assert_eq!(lines.vertices, mesh.nodes);
+    // Every line element is an edge of a tet.
+    let mut edges = std::collections::BTreeSet::new();
+    for t in &mesh.tets {
+        for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            edges.insert([t[i].min(t[j]), t[i].max(t[j])]);
+        }
+    }
+    for l in &lines.lines {
+        assert!(edges.contains(&[l[0].min(l[1]), l[0].max(l[1])]), "{l:?}");
+    }
+    // They chain from the first station to the last through points of the polyline.
+    let at = |v: u32| mesh.nodes[v as usize];
+    assert_eq!(at(lines.lines[0][0]), stations[0]);
+    assert_eq!(at(lines.lines[lines.lines.len() - 1][1]), stations[3]);
+    for w in lines.lines.windows(2) {
+        assert_eq!(w[0][1], w[1][0]);
+    }
+    let on_path = |p: [f64; 3]| {
+        stations.windows(2).any(|s| {
+            let (a, b) = (s[0], s[1]);
+            let d: Vec<f64> = (0..3).map(|k| b[k] - a[k]).collect();
+            let l2: f64 = d.iter().map(|x| x * x).sum();
+            let t = (0..3).map(|k| (p[k] - a[k]) * d[k]).sum::<f64>() / l2;
+            let e: f64 = (0..3).map(|k| (a[k] + t * d[k] - p[k]).powi(2)).sum();
+            (-1e-12..=1.0 + 1e-12).contains(&t) && e.sqrt() < 1e-9
+        })
+    };
+    assert!(lines.lines.iter().flatten().all(|&v| on_path(at(v))));
+    if let Some(tool) = checker() {
+        let check = Command::new("python3")
+            .arg(tool)
+            .arg(&out)
+            .args(["--regions", "1"])
+            .output()
+            .unwrap();
+        assert!(
+            check.status.success(),
+            "check_mesh.py failed on a file with line elements:\n{}",
+            String::from_utf8_lossy(&check.stdout)
+        );
+    }
+
+    // The same well as msh line elements (format 2.2).
+    let mut msh = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n");
+    for (i, p) in stations.iter().enumerate() {
+        msh.push_str(&format!("{} {} {} {}\n", i + 1, p[0], p[1], p[2]));
+    }
+    msh.push_str("$EndNodes\n$Elements\n3\n1 1 2 0 1 1 2\n2 1 2 0 1 2 3\n3 1 2 0 1 3 4\n");
+    msh.push_str("$EndElements\n");
+    let well2 = dir.path().join("W2.msh");
+    std::fs::write(&well2, msh).unwrap();
+    let out2 = dir.path().join("block2.msh");
+    let (ok, err) = tetmesh_with_lines(&off, &well2, &out2);
+    assert!(ok, "{err}");
+    let lines2 = geom::mesh::read::read_msh_lines(&std::fs::read(&out2).unwrap(), "b2.msh");
+    assert_eq!(lines2.unwrap().lines.len(), lines.lines.len());
+}
+
+#[test]
+fn embed_lines_refuses_an_output_without_line_elements_and_a_well_leaving_the_block() {
+    let dir = tempfile::tempdir().unwrap();
+    let off = dir.path().join("block.off");
+    std::fs::write(&off, boxes_off(&[([0.0; 3], [10.0, 10.0, 10.0])])).unwrap();
+    let well = dir.path().join("well.obj");
+    std::fs::write(&well, "v 5 5 5\nv 5 5 12\nl 1 2\n").unwrap();
+    let (ok, err) = tetmesh_with_lines(&off, &well, &dir.path().join("block.vtu"));
+    assert!(!ok);
+    assert!(err.contains("only the .msh output takes"), "{err}");
+    let (ok, err) = tetmesh_with_lines(&off, &well, &dir.path().join("block.msh"));
+    assert!(!ok);
+    assert!(
+        err.contains("line segment 0 [8, 9] from [5.0, 5.0, 5.0] to [5.0, 5.0, 12.0]"),
+        "{err}"
+    );
+    assert!(!dir.path().join("block.msh").exists(), "no partial output");
 }
