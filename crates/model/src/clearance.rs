@@ -15,8 +15,8 @@
 //! - Only the parts of curves *apart* from the point count: a piece of curve farther from the
 //!   point along the curves (along its own curve, or through an end the two curves share) than
 //!   `DETOUR` (20) times its distance in the plane. Its own neighbours and the curves leaving a
-//!   shared end at an open angle are not apart (their chords follow each other, or cross only if they
-//!   swap sides at the end, which distance does not measure); counted, their clearance would
+//!   shared end at an open angle are not apart (their chords follow each other, or cross only if
+//!   they swap sides at the end, which distance does not measure); counted, their clearance would
 //!   shrink to zero at every junction and split a stair-stepped curve (a chart seam along support
 //!   edges) into its support edges there, which cost the salt cases tets of 2° dihedral angle.
 //!   But the two lips of a sliver between faults, which leave their common end at a fraction of a

@@ -82,29 +82,9 @@ mod tests {
     use super::*;
 
     /// The unit cube's corners and its twelve outward triangles.
-    fn cube() -> (Vec<P>, Vec<[u32; 3]>) {
-        let mut pts = Vec::new();
-        for i in 0..8 {
-            pts.push([(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64]);
-        }
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let tris = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
-        (pts, tris)
-    }
-
     #[test]
     fn segments_inside_and_outside_a_cube_are_told_apart_even_when_the_ray_runs_through_an_edge() {
-        let (mut pts, tris) = cube();
+        let (mut pts, tris) = test_support::shapes::cuboid([0.0; 3], [1.0; 3]);
         // The ray from the centre leaves through the middle of the +x side's diagonal.
         pts.extend([
             [0.5, 0.5, 0.5],
