@@ -247,17 +247,18 @@ mod tests {
             ]],
             constraints: Vec::new(),
         };
-        let mesh = TriMesh::new(
-            vec![p(0.0, 0.0), p(100.0, 0.0), p(100.0, 10.0), p(0.0, 10.0)],
-            vec![[0, 1, 2], [0, 2, 3]],
-        );
-        let patch = PatchIn {
+        let patch = quad([p(0.0, 0.0), p(100.0, 0.0), p(100.0, 10.0), p(0.0, 10.0)]);
+        (curves, bound, patch)
+    }
+
+    /// A patch on a support of two triangles over the quad `corners`.
+    fn quad(corners: [[f64; 3]; 4]) -> PatchIn {
+        PatchIn {
             name: "s#1".into(),
             surface: "s".into(),
-            mesh,
+            mesh: TriMesh::new(corners.to_vec(), vec![[0, 1, 2], [0, 2, 3]]),
             chart_of: None,
-        };
-        (curves, bound, patch)
+        }
     }
 
     #[test]
@@ -312,17 +313,10 @@ mod tests {
             constraints: Vec::new(),
         };
         let p = |x: f64, y: f64| [x, y, 0.0];
-        let mesh = TriMesh::new(
-            vec![p(-1e3, -1e3), p(2e3, -1e3), p(2e3, 1e3), p(-1e3, 1e3)],
-            vec![[0, 1, 2], [0, 2, 3]],
-        );
-        let patch = PatchIn {
-            name: "s#1".into(),
-            surface: "s".into(),
-            mesh,
-            chart_of: None,
-        };
-        (bound, patch)
+        (
+            bound,
+            quad([p(-1e3, -1e3), p(2e3, -1e3), p(2e3, 1e3), p(-1e3, 1e3)]),
+        )
     }
 
     #[test]
