@@ -41,6 +41,7 @@ pub mod regions;
 pub mod thickness;
 pub mod topology;
 pub mod trims;
+pub mod wells;
 
 pub use assemble::{VolumeAssembly, assemble_volume, patch_input, region_input};
 pub use curves::build_topology;

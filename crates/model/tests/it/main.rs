@@ -18,3 +18,4 @@ mod split_didactic;
 mod split_ringmesh;
 mod topology_cases;
 mod trims_didactic;
+mod wells_cases;

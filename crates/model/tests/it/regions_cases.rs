@@ -13,7 +13,7 @@ const STEP: f64 = 0.25;
 
 /// An axis-aligned rectangle at `axis = c`, spanning `u` on axis+1 and `v` on axis+2 (cyclic),
 /// gridded with STEP; its right-hand normal points to +axis, or -axis when `flip`.
-fn rect(
+pub(crate) fn rect(
     name: &str,
     surface: &str,
     axis: usize,
@@ -57,7 +57,7 @@ fn rect(
 }
 
 /// The unit cube's six faces with outward normals, each side face split at the given heights.
-fn cube(cuts: &[f64]) -> Vec<PatchIn> {
+pub(crate) fn cube(cuts: &[f64]) -> Vec<PatchIn> {
     let mut zs = vec![0.0];
     zs.extend_from_slice(cuts);
     zs.push(1.0);
@@ -108,7 +108,7 @@ fn cube(cuts: &[f64]) -> Vec<PatchIn> {
     out
 }
 
-fn octahedron(name: &str, c: [f64; 3], r: f64) -> PatchIn {
+pub(crate) fn octahedron(name: &str, c: [f64; 3], r: f64) -> PatchIn {
     let v = vec![
         [c[0] + r, c[1], c[2]],
         [c[0] - r, c[1], c[2]],
@@ -136,7 +136,7 @@ fn octahedron(name: &str, c: [f64; 3], r: f64) -> PatchIn {
     }
 }
 
-fn shifted(mut patches: Vec<PatchIn>, d: [f64; 3]) -> Vec<PatchIn> {
+pub(crate) fn shifted(mut patches: Vec<PatchIn>, d: [f64; 3]) -> Vec<PatchIn> {
     for p in &mut patches {
         for v in &mut p.mesh.vertices {
             for k in 0..3 {
@@ -151,7 +151,7 @@ fn add(p: [f64; 3], d: [f64; 3]) -> [f64; 3] {
     [p[0] + d[0], p[1] + d[1], p[2] + d[2]]
 }
 
-const OFFSETS: [[f64; 3]; 2] = [[0.0; 3], [5e5, 7e6, 0.0]];
+pub(crate) const OFFSETS: [[f64; 3]; 2] = [[0.0; 3], [5e5, 7e6, 0.0]];
 
 fn idx(patches: &[PatchIn], name: &str) -> u32 {
     patches.iter().position(|p| p.name == name).expect("patch") as u32
@@ -206,7 +206,7 @@ fn a_unit_cube_of_six_patches_is_one_region_bounded_by_the_inner_sides() {
     }
 }
 
-fn split_cube() -> Vec<PatchIn> {
+pub(crate) fn split_cube() -> Vec<PatchIn> {
     let mut p = cube(&[0.5]);
     p.push(rect("h1#1", "h1", 2, 0.5, (0.0, 1.0), (0.0, 1.0), false));
     p

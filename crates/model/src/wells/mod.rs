@@ -1,0 +1,94 @@
+//! Wells in the model: where a well path crosses the model's patches, and which region holds
+//! each piece of the path between crossings.
+//!
+//! It decides:
+//! * the **crossings** (the markers of the well): every place a path segment meets a patch's
+//!   support triangle, found with `orient3d` only (`cross`). A crossing strictly inside a support
+//!   triangle is the segment's intersection with the triangle's plane; one through a support edge
+//!   or vertex is met by every triangle there and kept once; one through a support vertex is that
+//!   vertex, bit for bit; a station lying on a patch is the crossing itself. Each crossing
+//!   becomes a node of that patch's surface mesh, so the well is cut there and its pieces end on
+//!   the surfaces exactly.
+//! * what is refused, with the well, the place and the surface: a path that runs along a patch
+//!   (a segment in a support triangle's plane meeting it), and a crossing on a curve (a patch's
+//!   border edge or vertex, where surfaces meet or a fault ends), which would need the curve's
+//!   discretization to hold the point.
+//! * the **pieces** (`pieces`): the path cut at every crossing, each piece located exactly in the
+//!   region that strictly contains it (`regions::Locator` on a point of its longest segment);
+//!   pieces outside every region (above the box, say) are left out.
+//! * the **resampling** of a piece to a target segment length (`resample`): the tet mesher makes
+//!   every well segment a chain of tet edges, so a path surveyed every metre would force
+//!   metre-sized elements; the resampled piece keeps its two ends bit for bit.
+
+mod cross;
+mod pieces;
+
+pub use pieces::resample;
+
+use crate::regions::{Locator, PatchIn};
+use serde::{Deserialize, Serialize};
+
+/// Where a well meets one patch.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WellCrossing {
+    /// Index of the patch in the slice given to [`cut_well`].
+    pub patch: u32,
+    pub point: [f64; 3],
+    /// Length along the path from its first station.
+    pub along: f64,
+}
+
+/// A piece of a well inside one region, between two crossings or a crossing and a path end.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WellPiece {
+    /// Index of the region in the `RegionModel` the locator was built from.
+    pub region: u32,
+    /// The path's stations between the ends, the ends being crossings or path ends (bit for bit).
+    pub points: Vec<[f64; 3]>,
+}
+
+/// A well cut by the model.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct WellCut {
+    /// In order along the path.
+    pub crossings: Vec<WellCrossing>,
+    /// In order along the path.
+    pub pieces: Vec<WellPiece>,
+}
+
+/// Why a well cannot be cut: what happened, at which path segment (index of its first station)
+/// and where.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WellError {
+    pub message: String,
+    pub segment: Option<usize>,
+    pub at: Option<[f64; 3]>,
+}
+
+impl std::fmt::Display for WellError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)?;
+        if let Some(p) = self.at {
+            write!(f, " at ({}, {}, {})", p[0], p[1], p[2])?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for WellError {}
+
+/// Cuts the well path `stations` (at least two, no two consecutive equal) by `patches` and
+/// locates its pieces with `locator` (built from the same patches).
+pub fn cut_well(
+    stations: &[[f64; 3]],
+    patches: &[PatchIn],
+    locator: &Locator,
+) -> Result<WellCut, WellError> {
+    pieces::check_path(stations)?;
+    let crossings = cross::crossings(stations, patches)?;
+    let pieces = pieces::split(stations, &crossings, locator)?;
+    Ok(WellCut {
+        crossings: crossings.into_iter().map(|c| c.crossing).collect(),
+        pieces,
+    })
+}
