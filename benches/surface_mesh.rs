@@ -26,6 +26,7 @@ fn input(size: f64) -> PatchInput {
         support: g.support(),
         loops: vec![g.border_loop(n, n)],
         constraints: vec![],
+        points: Vec::new(),
     }
 }
 

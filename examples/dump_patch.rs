@@ -9,8 +9,8 @@
 //! The first form builds with a cache in `OUT_DIR/cache` (the surface meshing nodes may fail:
 //! only the model and the curve discretizations are needed) and writes `<patch>.patch` (the
 //! input, with full-precision numbers, and the recipe's sizes) and `<patch>.input.obj` (the
-//! support, and the loops and constraints as lines, to look at). The second meshes a `.patch`
-//! file and writes the mesh as OBJ, or prints the mesher's error.
+//! support, the loops and constraints as lines and the isolated points as points, to look at).
+//! The second meshes a `.patch` file and writes the mesh as OBJ, or prints the mesher's error.
 
 use engine::{self, BuildOptions};
 use geom::TriMesh;
@@ -97,7 +97,7 @@ fn write(path: &Path, text: &str) -> Result<(), String> {
 }
 
 /// `name`, `size s min max growth`, `v x y z`, `t a b c`, then `loop`/`constraint` headers each
-/// followed by its `p x y z` points.
+/// followed by its `p x y z` points, then one `point x y z` line per isolated point.
 fn patch_text(input: &PatchInput, size: &SurfaceSize) -> String {
     let mut s = format!("name {}\n", input.name);
     let _ = writeln!(
@@ -119,6 +119,9 @@ fn patch_text(input: &PatchInput, size: &SurfaceSize) -> String {
             }
         }
     }
+    for p in &input.points {
+        let _ = writeln!(s, "point {:?} {:?} {:?}", p[0], p[1], p[2]);
+    }
     s
 }
 
@@ -128,6 +131,7 @@ fn read_patch(text: &str) -> Result<(PatchInput, SurfaceSize), String> {
         support: TriMesh::new(Vec::new(), Vec::new()),
         loops: Vec::new(),
         constraints: Vec::new(),
+        points: Vec::new(),
     };
     let mut size = None;
     let mut into_loops = true;
@@ -173,6 +177,7 @@ fn read_patch(text: &str) -> Result<(PatchInput, SurfaceSize), String> {
                     .ok_or_else(bad)?
                     .push([nums[0], nums[1], nums[2]]);
             }
+            "point" if nums.len() == 3 => input.points.push([nums[0], nums[1], nums[2]]),
             "" => {}
             _ => return Err(bad()),
         }
@@ -196,6 +201,11 @@ fn input_obj(input: &PatchInput) -> String {
             .collect();
         let _ = writeln!(s, "l {}", ids.join(" "));
         base += l.len();
+    }
+    for p in &input.points {
+        base += 1;
+        let _ = writeln!(s, "v {:?} {:?} {:?}", p[0], p[1], p[2]);
+        let _ = writeln!(s, "p {base}");
     }
     s
 }

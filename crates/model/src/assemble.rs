@@ -75,6 +75,7 @@ pub fn patch_input<'a>(
         support: support.clone(),
         loops,
         constraints,
+        points: Vec::new(),
     })
 }
 

@@ -1,11 +1,13 @@
-//! The given nodes of a patch: loop and constraint nodes numbered once each, in the documented
-//! output order (loop nodes in the order given, loop after loop, then constraint nodes not
-//! already met). A node bit-identical to an earlier node is the same node: a constraint that
-//! starts on the boundary (a dangling trace), two constraints sharing an end, and loops that
-//! touch at a vertex (a patch pinched there, where two faults meet its border at one point or
-//! a hole touches the outer border). Such a pinch node is recorded: its triangles form one fan
-//! per visit. Checks the shapes of the input: finite coordinates, loops of at least 3 distinct
-//! nodes, constraints of at least 2, no zero-length segment.
+//! The given nodes of a patch: loop and constraint nodes and points numbered once each, in the
+//! documented output order (loop nodes in the order given, loop after loop, then constraint nodes
+//! not already met, then points not already met). A node bit-identical to an earlier node is the
+//! same node: a constraint that starts on the boundary (a dangling trace), two constraints sharing
+//! an end, loops that touch at a vertex (a patch pinched there, where two faults meet its border
+//! at one point or a hole touches the outer border), a point given twice or given where a loop or
+//! constraint already has a node. Such a pinch node is recorded: its triangles form one fan per
+//! visit. Checks the shapes of the input: finite coordinates, loops of at least 3 distinct nodes,
+//! constraints of at least 2, no zero-length segment. Where the points may lie is checked once
+//! they are flattened (`points`).
 
 use super::{PatchInput, SurfaceMeshError};
 use std::collections::BTreeMap;
@@ -14,8 +16,13 @@ pub struct GivenNodes {
     pub nodes: Vec<[f64; 3]>,
     pub loops: Vec<Vec<u32>>,
     pub constraints: Vec<Vec<u32>>,
-    /// Per node, how many times the loops pass through it (0 for constraint nodes).
+    /// Per node, how many times the loops pass through it (0 for constraint nodes and points).
     pub loop_visits: Vec<u32>,
+    /// The number of loop and constraint nodes: the nodes from this index on are points that no
+    /// loop or constraint passes through.
+    pub first_point: usize,
+    /// Per node from `first_point` on, the first given point that is it.
+    point_index: Vec<usize>,
 }
 
 impl GivenNodes {
@@ -29,6 +36,33 @@ impl GivenNodes {
         self.constraints
             .iter()
             .flat_map(|c| c.windows(2).map(|w| (w[0], w[1])))
+    }
+
+    /// The first given point that is node `v`, if `v` is a node of its own (not a loop or
+    /// constraint node): its index in `PatchInput::points`.
+    pub fn point_of(&self, v: usize) -> Option<usize> {
+        v.checked_sub(self.first_point)
+            .and_then(|k| self.point_index.get(k).copied())
+    }
+
+    /// Segment `k` of `loop_segments` then `constraint_segments`, named for messages: "segment
+    /// 3 of loop 0" (segment `s` of a loop runs from its node `s` to its node `s + 1`).
+    pub fn segment_name(&self, k: usize) -> String {
+        let mut k = k;
+        for (li, l) in self.loops.iter().enumerate() {
+            if k < l.len() {
+                return format!("segment {k} of loop {li}");
+            }
+            k -= l.len();
+        }
+        for (ci, c) in self.constraints.iter().enumerate() {
+            let n = c.len().saturating_sub(1);
+            if k < n {
+                return format!("segment {k} of constraint {ci}");
+            }
+            k -= n;
+        }
+        format!("segment {k} past the last constraint")
     }
 }
 
@@ -124,6 +158,18 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
         }
         constraints.push(ids);
     }
+    let first_point = nodes.len();
+    let mut point_index = Vec::new();
+    for (k, p) in input.points.iter().enumerate() {
+        if p.iter().any(|x| !x.is_finite()) {
+            return Err(fail(format!("point {k} is not finite"), None));
+        }
+        index.entry(key(p)).or_insert_with(|| {
+            nodes.push(*p);
+            point_index.push(k);
+            nodes.len() as u32 - 1
+        });
+    }
     let mut loop_visits = vec![0u32; nodes.len()];
     for &v in loops.iter().flatten() {
         loop_visits[v as usize] += 1;
@@ -133,5 +179,7 @@ pub fn given_nodes(input: &PatchInput) -> Result<GivenNodes, SurfaceMeshError> {
         loops,
         constraints,
         loop_visits,
+        first_point,
+        point_index,
     })
 }

@@ -6,18 +6,23 @@
 //! topological decision be an exact 2D predicate):
 //! 1. `param`: flatten the support triangulation — projection onto its mean plane when that is
 //!    exactly fold-free, else a Tutte embedding — and index it with R-trees (`support`).
-//! 2. `input`: number the given loop and constraint nodes; map each to the plane by projecting it
-//!    onto the support (it must lie within `Tolerances::support_distance_rel` × its segment
-//!    length); check exactly that loops and constraints do not cross (`segments`).
+//! 2. `input`: number the given loop and constraint nodes and the given points (isolated nodes,
+//!    where wells cross the patch); map each to the plane by projecting it onto the support (it
+//!    must lie within `Tolerances::support_distance_rel` × its segment length, or for a point its
+//!    local size); check exactly that loops and constraints do not cross (`segments`) and that no
+//!    point lies on them (`points`).
 //! 3. `cdt`: constrained Delaunay triangulation of those nodes and segments; inside = odd number of
 //!    loop crossings from outside (so loops may come in either orientation and any order; the
-//!    output is oriented like the support regardless).
+//!    output is oriented like the support regardless). The points are inserted last, as vertices
+//!    with no segment; each must land in an inside triangle.
 //! 4. `refine` (geometric pass): frontal Delaunay point insertion with sizes from `size` (graded
-//!    from the boundary discretization, bounded by the support's curvature) measured in 3D, placed
-//!    in the flattening's local metric; new points are mapped onto the support through it.
+//!    from the boundary discretization and the points, bounded by the support's curvature)
+//!    measured in 3D, placed in the flattening's local metric; new points are mapped onto the
+//!    support through it. The given points are vertices from the start: new points keep the
+//!    same distance from them as from any other vertex (`refine`'s spacing rule).
 //! 5. `smooth` (topological pass + smoothing): 3D quality flips and smoothing towards the
 //!    neighbours' mean or the fan's equilateral apexes, with pull-back onto the support, guarded
-//!    by exact orientation tests in the plane.
+//!    by exact orientation tests in the plane. Given nodes, points included, never move.
 //!
 //! Sizes grade at most `MAX_SURFACE_GROWTH` (1.15) per element on a surface, whatever growth the
 //! recipe allows for volumes: the seed's Table 1 judges surface triangles, and grading is what
@@ -34,6 +39,7 @@
 mod cdt;
 mod input;
 mod param;
+mod points;
 pub mod quality;
 mod refine;
 mod retriangulate;
@@ -67,6 +73,14 @@ pub struct PatchInput {
     pub loops: Vec<Vec<[f64; 3]>>,
     /// Internal constraint polylines (open), each node exactly as given; must appear as mesh edges.
     pub constraints: Vec<Vec<[f64; 3]>>,
+    /// Isolated points strictly inside the patch (where wells cross it), each exactly as given;
+    /// each becomes a mesh node, bit-identical, with no edge imposed on it. A point bit-identical
+    /// to a loop or constraint node, or to an earlier point, is that node. A point must lie on the
+    /// support (within `Tolerances::support_distance_rel` × its local size, the target size
+    /// clamped to [`min_size`, `max_size`]) and strictly inside the patch: a point outside it, or
+    /// on a loop or constraint segment away from its nodes (exactly in the flattening, or within
+    /// that tolerance in 3D), is an error naming the point.
+    pub points: Vec<[f64; 3]>,
 }
 
 /// Element sizes (model units): target `size`, clamped to [`min_size`, `max_size`], growing away
@@ -84,8 +98,8 @@ pub struct SurfaceSize {
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceMeshOutput {
     /// The given loop nodes (loop after loop, in order, a node where loops touch at its first
-    /// visit only), then the constraint nodes not already given (in order), all bit-identical;
-    /// then the generated interior nodes.
+    /// visit only), then the constraint nodes not already given (in order), then the points not
+    /// already given (in order), all bit-identical; then the generated interior nodes.
     pub nodes: Vec<[f64; 3]>,
     /// Oriented like the support.
     pub triangles: Vec<[u32; 3]>,
@@ -165,13 +179,14 @@ pub fn mesh_patch_refined(
             None,
         ));
     }
-    let hloc = given_sizes(input, &given)?;
+    let hloc = given_sizes(input, &given, point_size(size))?;
     let uv = flatten_given(input, &given, &support, tol, &hloc)?;
     let segs: Vec<(u32, u32)> = given
         .loop_segments()
         .chain(given.constraint_segments())
         .collect();
     check_given_crossings(input, &given, &support, &uv, &segs)?;
+    let hloc = points::check_points(input, &given, &uv, &segs, tol, &hloc)?;
     let (mut cdt, mut p3) = triangulate_given(input, &given, &uv, &segs)?;
     let sizing = Sizing { size, refine };
     refine_and_smooth(input, &sizing, &given, &hloc, &support, &mut cdt, &mut p3)?;
@@ -216,8 +231,19 @@ fn check_sizes(input: &PatchInput, size: &SurfaceSize) -> Result<(), SurfaceMesh
     Ok(())
 }
 
-/// Local sizes of the given nodes (mean adjacent given segment length); no segment may be empty.
-fn given_sizes(input: &PatchInput, given: &GivenNodes) -> Result<Vec<f64>, SurfaceMeshError> {
+/// The local size of a given point: the target size clamped to [min, max] (a point has no
+/// segment to measure).
+fn point_size(size: &SurfaceSize) -> f64 {
+    size.size.max(size.min_size).min(size.max_size)
+}
+
+/// Local sizes of the given nodes (mean adjacent given segment length; `hpoint` for a point that
+/// no loop or constraint passes through); no segment may be empty.
+fn given_sizes(
+    input: &PatchInput,
+    given: &GivenNodes,
+    hpoint: f64,
+) -> Result<Vec<f64>, SurfaceMeshError> {
     let ng = given.nodes.len();
     let mut hsum = vec![0.0f64; ng];
     let mut hcnt = vec![0u32; ng];
@@ -235,11 +261,19 @@ fn given_sizes(input: &PatchInput, given: &GivenNodes) -> Result<Vec<f64>, Surfa
             hcnt[v as usize] += 1;
         }
     }
-    Ok((0..ng).map(|i| hsum[i] / hcnt[i].max(1) as f64).collect())
+    Ok((0..ng)
+        .map(|i| {
+            if i < given.first_point {
+                hsum[i] / hcnt[i].max(1) as f64
+            } else {
+                hpoint
+            }
+        })
+        .collect())
 }
 
-/// Maps the given nodes into the plane: each must lie within `tol` × its local size of the
-/// support.
+/// Maps the given nodes (points included) into the plane: each must lie within `tol` × its local
+/// size of the support.
 fn flatten_given(
     input: &PatchInput,
     given: &GivenNodes,
@@ -253,10 +287,14 @@ fn flatten_given(
             .project(p)
             .ok_or_else(|| fail(input, "empty support".into(), Some(*p)))?;
         if on.dist > tol * hloc[i] {
+            let what = match given.point_of(i) {
+                Some(k) => format!("point {k}"),
+                None => "a given node".to_string(),
+            };
             return Err(fail(
                 input,
                 format!(
-                    "a given node is {:.3e} off the support (allowed {:.3e})",
+                    "{what} is {:.3e} off the support (allowed {:.3e})",
                     on.dist,
                     tol * hloc[i]
                 ),
@@ -295,7 +333,10 @@ fn check_given_crossings(
 }
 
 /// Constrained Delaunay triangulation of the given nodes and segments, inside labelled; returns
-/// it with its vertices in 3D (the super triangle's three first, as zeros).
+/// it with its vertices in 3D (the super triangle's three first, as zeros). The points are
+/// inserted last, each into the labelled triangulation: one that lands in an outside triangle
+/// lies outside the patch (exact: inside and outside triangles meet only across loop edges, and
+/// `check_points` has refused points on those).
 fn triangulate_given(
     input: &PatchInput,
     given: &GivenNodes,
@@ -312,7 +353,7 @@ fn triangulate_given(
     }
     let mut cdt = Cdt::new(lo, hi);
     let mut p3: Vec<[f64; 3]> = vec![[0.0; 3]; 3];
-    for (i, q) in uv.iter().enumerate() {
+    for (i, q) in uv[..given.first_point].iter().enumerate() {
         match cdt.insert(*q, NONE, &mut |_: &Cdt, _: &[(u32, u32, u8)]| true) {
             Ok(v) => {
                 debug_assert_eq!(v as usize, i + 3);
@@ -352,7 +393,56 @@ fn triangulate_given(
     }
     cdt.label_inside();
     check_inside(input, given, &cdt, &p3)?;
+    insert_points(input, given, uv, &mut cdt, &mut p3)?;
     Ok((cdt, p3))
+}
+
+/// Inserts the points (given nodes from `first_point` on) into the labelled triangulation; each
+/// must land in an inside triangle.
+fn insert_points(
+    input: &PatchInput,
+    given: &GivenNodes,
+    uv: &[[f64; 2]],
+    cdt: &mut Cdt,
+    p3: &mut Vec<[f64; 3]>,
+) -> Result<(), SurfaceMeshError> {
+    for i in given.first_point..given.nodes.len() {
+        let k = given.point_of(i).unwrap_or(i - given.first_point);
+        let p = given.nodes[i];
+        let t = cdt.locate(&uv[i], NONE);
+        if !t.is_some_and(|t| cdt.inside[t as usize]) {
+            return Err(fail(
+                input,
+                format!("point {k} lies outside the patch"),
+                Some(p),
+            ));
+        }
+        let start = t.unwrap_or(NONE);
+        match cdt.insert(uv[i], start, &mut |_: &Cdt, _: &[(u32, u32, u8)]| true) {
+            Ok(v) => {
+                debug_assert_eq!(v as usize, i + 3);
+                p3.push(p);
+            }
+            Err(CdtError::Duplicate(v)) => {
+                return Err(fail(
+                    input,
+                    format!(
+                        "point {k} lands on the same place of the support as node {}",
+                        v.saturating_sub(3)
+                    ),
+                    Some(p),
+                ));
+            }
+            Err(_) => {
+                return Err(fail(
+                    input,
+                    format!("point {k} could not be placed"),
+                    Some(p),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Whether the constraint edges run inside the patch and the loops enclose some area.

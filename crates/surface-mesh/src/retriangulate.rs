@@ -34,6 +34,7 @@ pub fn retriangulate(support: &TriMesh, size: f64) -> Result<TriMesh, SurfaceMes
         support: support.clone(),
         loops: out_loops,
         constraints: vec![],
+        points: Vec::new(),
     };
     let out = mesh_patch(
         &input,

@@ -1,7 +1,8 @@
 //! The element size field: how long an edge should be at a point of the patch.
 //!
-//! With g = growth - 1, the x_i the given loop and constraint nodes and h_i their local segment
-//! length (mean of the adjacent given segments):
+//! With g = growth - 1, the x_i the given loop and constraint nodes and points, and h_i their local
+//! segment length (mean of the adjacent given segments; for a point, the target size clamped to
+//! [min, max], lowered to the distance to the nearest other given node, see `points`):
 //!   up(x) = min_i(h_i + g·|x - x_i|), down(x) = max_i(h_i - g·|x - x_i|),
 //!   h(x) = clamp(min(up(x), max(size, down(x))), min_size, max_size).
 //! So sizes start from the boundary discretization and change away from it by at most g per unit
@@ -200,8 +201,8 @@ impl SizeField {
         self
     }
 
-    /// `nodes`: (position, local size) of the given boundary and constraint nodes; `curvature`:
-    /// up-only nodes from `curvature_nodes`.
+    /// `nodes`: (position, local size) of the given boundary and constraint nodes and points;
+    /// `curvature`: up-only nodes from `curvature_nodes`.
     pub fn new(
         nodes: &[([f64; 3], f64)],
         curvature: &[([f64; 3], f64)],

@@ -9,8 +9,8 @@
 //!   walk over the support from the triangle the node sits on, the global R-tree search as the
 //!   fallback); its parameter comes from that projection. A move is kept only if every incident
 //!   triangle stays strictly counter-clockwise in the plane (exact), the fan's sum of squared c/c*
-//!   drops and its worst shape does not degrade noticeably. Given loop and constraint nodes never
-//!   move.
+//!   drops and its worst shape does not degrade noticeably. Given nodes (loop and constraint
+//!   nodes and points, all numbered below `first_free`) never move.
 //!
 //! Sweeps go in index order (Gauss–Seidel), so the result does not depend on anything but input.
 
@@ -29,7 +29,7 @@ pub struct Smoother<'a> {
     pub cdt: &'a mut Cdt,
     pub p3: &'a mut Vec<[f64; 3]>,
     pub support: &'a Support,
-    /// Vertices below this index never move (super vertices and given nodes).
+    /// Vertices below this index never move (super vertices and given nodes, points included).
     pub first_free: u32,
     /// The support triangle under each vertex (hint for local projections).
     pub stri: Vec<u32>,

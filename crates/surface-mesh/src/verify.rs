@@ -1,6 +1,7 @@
 //! The validity check every surface mesh passes before it leaves the mesher (and that anyone can
 //! run on a mesh from elsewhere). Exact where it decides:
-//! - the given loop and constraint nodes come first, bit-identical, in the documented order;
+//! - the given loop and constraint nodes and points come first, bit-identical, in the documented
+//!   order (a point is then an interior node: the border edges are the loop edges, below);
 //! - every directed edge is used at most once (manifold, consistently oriented), every vertex
 //!   has a single fan (a node where the loops touch: one open fan per visit), every node is used;
 //! - the border edges are exactly the given loop edges; every constraint edge is an interior edge;

@@ -29,6 +29,7 @@ fn the_wavy_didactic_horizon_meshes_on_its_support() {
             support: g.support(),
             loops: vec![g.border_loop(40, 40)],
             constraints: vec![],
+            points: Vec::new(),
         };
         let (out, q) = mesh_and_check(&input, &uniform(100.0), 1.03, 1.6);
         assert!(q.triangles > 3000);
@@ -59,6 +60,7 @@ fn a_fault_dipping_85_degrees_meshes_like_a_flat_patch() {
             support: g.support(),
             loops: vec![g.border_loop(40, 30)],
             constraints: vec![],
+            points: Vec::new(),
         };
         let (_, q) = mesh_and_check(&input, &uniform(50.0), 1.03, 1.5);
         assert!(q.triangles > 2000);
@@ -68,7 +70,7 @@ fn a_fault_dipping_85_degrees_meshes_like_a_flat_patch() {
 /// A recumbent fold in the xz-plane: three horizontal limbs 600 m long stacked 300 m apart,
 /// joined by two hinges of radius 150 m (a Z with round hinges), as a function of u in [0, 5]
 /// (one unit per limb or hinge). The limbs overlap in every direction: no height field anywhere.
-fn z_curve(u: f64) -> [f64; 2] {
+pub(crate) fn z_curve(u: f64) -> [f64; 2] {
     let (l, r) = (600.0, 150.0);
     let k = (u.floor() as i64).clamp(0, 4);
     let t = u - k as f64;
@@ -106,6 +108,7 @@ fn a_recumbent_fold_that_is_no_height_field_meshes_without_folds() {
             support: g.support(),
             loops: vec![g.border_loop(60, 24)],
             constraints: vec![],
+            points: Vec::new(),
         };
         let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.04, 1.6);
         assert!(q.triangles > 1500);
@@ -123,7 +126,7 @@ fn a_recumbent_fold_that_is_no_height_field_meshes_without_folds() {
 }
 
 /// A disk triangulation mapped onto a sphere cap: ring k has 6k vertices.
-fn cap(rings: usize, radius: f64, max_polar: f64, off: [f64; 3]) -> TriMesh {
+pub(crate) fn cap(rings: usize, radius: f64, max_polar: f64, off: [f64; 3]) -> TriMesh {
     let mut vs = vec![shift([0.0, 0.0, radius], off)];
     let mut start = vec![0usize];
     for k in 1..=rings {
@@ -191,6 +194,7 @@ fn a_hemisphere_cap_meshes_with_nodes_on_the_sphere_facets() {
             support,
             loops: vec![rim],
             constraints: vec![],
+            points: Vec::new(),
         };
         let (out, q) = mesh_and_check(&input, &uniform(90.0), 1.06, 1.8);
         assert!(q.triangles > 300);
@@ -220,6 +224,7 @@ fn a_coarse_support_of_long_thin_triangles_is_meshed_finely_on_it() {
             support: g.support(),
             loops: vec![g.border_loop(40, 40)],
             constraints: vec![],
+            points: Vec::new(),
         };
         mesh_and_check(&input, &uniform(75.0), 1.04, 1.6);
     }
@@ -270,6 +275,7 @@ fn a_tight_fold_hinge_gets_smaller_triangles_than_the_flat_limbs() {
         support: g.support(),
         loops: vec![g.border_loop(30, 12)],
         constraints: vec![],
+        points: Vec::new(),
     };
     let size = surface_mesh::SurfaceSize {
         size: 150.0,
@@ -338,6 +344,7 @@ fn horizon_round_a_fault_tip(turn: f64, throw: f64, rings: u32, sectors: u32) ->
         support: TriMesh::new(vertices, triangles),
         loops: vec![border],
         constraints: vec![],
+        points: Vec::new(),
     }
 }
 

@@ -26,6 +26,7 @@ fn a_flat_square_with_four_discretized_sides_meshes_into_near_equilateral_triang
             support: g.support(),
             loops: vec![g.border_loop(20, 20)],
             constraints: vec![],
+            points: Vec::new(),
         };
         let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.06, 1.6);
         assert!(
@@ -47,6 +48,7 @@ fn a_square_with_a_hole_leaves_the_hole_empty() {
             support: g.support(),
             loops: vec![g.border_loop(20, 20), g.hole(500.0, 500.0, 200.0, 25)],
             constraints: vec![],
+            points: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.08, 1.7);
         // No triangle centroid inside the hole.
@@ -79,6 +81,7 @@ fn a_dangling_constraint_polyline_becomes_interior_edges() {
             support: g.support(),
             loops: vec![g.border_loop(20, 20)],
             constraints: vec![trace.clone(), from_border],
+            points: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.08, 1.8);
         // The border-touching constraint starts on loop node 75 (left side, 250 m up): shared.
@@ -121,6 +124,7 @@ fn graded_boundary_nodes_give_a_graded_valid_mesh() {
             support: g.support(),
             loops: vec![l],
             constraints: vec![],
+            points: Vec::new(),
         };
         let size = SurfaceSize {
             size: 100.0,
@@ -169,6 +173,7 @@ fn a_self_intersecting_loop_is_an_error_naming_the_patch_and_the_place() {
             support: g.support(),
             loops: vec![bow],
             constraints: vec![],
+            points: Vec::new(),
         };
         let e = mesh_patch(&input, &uniform(50.0)).unwrap_err();
         let at = e.at.expect("a place");
@@ -194,6 +199,7 @@ fn a_loop_node_off_the_support_is_an_error_with_its_place() {
         support: g.support(),
         loops: vec![l.clone()],
         constraints: vec![],
+        points: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert_eq!(e.at, Some(l[3]), "{e}");
@@ -211,6 +217,7 @@ fn meshing_twice_gives_the_same_mesh_bit_for_bit() {
         support: g.support(),
         loops: vec![g.border_loop(17, 23), g.hole(700.0, 300.0, 100.0, 13)],
         constraints: vec![trace],
+        points: Vec::new(),
     };
     let a = mesh_patch(&input, &uniform(45.0)).unwrap();
     let b = mesh_patch(&input, &uniform(45.0)).unwrap();
@@ -227,6 +234,7 @@ fn a_constraint_that_leaves_the_patch_is_an_error_with_a_place() {
         // From inside the square through its top side towards a point outside (still on the
         // support, which extends nowhere beyond: the end is off the support).
         constraints: vec![vec![g.at(500.0, 900.0), [550.0, 1100.0, -500.0]]],
+        points: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert!(
@@ -251,6 +259,7 @@ fn a_constraint_crossing_the_boundary_on_the_support_is_an_intersection_error() 
         support: g.support(),
         loops: vec![square],
         constraints: vec![vec![g.at(500.0, 850.0), g.at(530.0, 1150.0)]],
+        points: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     let at = e.at.expect("a place");
@@ -272,6 +281,7 @@ fn invalid_sizes_are_refused_with_the_values() {
         support: g.support(),
         loops: vec![g.border_loop(4, 4)],
         constraints: vec![],
+        points: Vec::new(),
     };
     let e = mesh_patch(
         &input,
@@ -307,6 +317,7 @@ fn a_clockwise_outer_loop_still_gives_triangles_oriented_like_the_support() {
         support: g.support(),
         loops: vec![l],
         constraints: vec![],
+        points: Vec::new(),
     };
     let (out, _) = mesh_and_check(&input, &uniform(80.0), 1.06, 1.6);
     // The support faces +z: every triangle's normal must too.
@@ -332,6 +343,7 @@ fn a_closed_support_is_refused_because_it_must_come_split_into_patches() {
         support: tet,
         loops: vec![vec![v[0], v[1], v[2]]],
         constraints: vec![],
+        points: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(0.1)).unwrap_err();
     assert!(
@@ -375,6 +387,7 @@ fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_fla
             support,
             loops: vec![border],
             constraints: vec![],
+            points: Vec::new(),
         };
         mesh_and_check(&input, &uniform(100.0), 1.06, 1.6);
     }
@@ -419,6 +432,7 @@ fn a_hole_whose_rim_overhangs_its_neighbour_is_not_flattened_by_projection() {
             support,
             loops: vec![border, vec![vs[6], vs[7], vs[8]]],
             constraints: vec![],
+            points: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(100.0), 1.2, 3.0);
         // The sliver stays a hole: the mesh uses P1 P2 and P2 P3 on the left, P3 P1 on the right.
@@ -483,6 +497,7 @@ fn a_hole_touching_the_outer_border_at_one_node_meshes_with_one_fan_per_side() {
                 support,
                 loops: loops.clone(),
                 constraints: vec![],
+                points: Vec::new(),
             };
             let (out, _) = mesh_and_check(&input, &uniform(100.0), 1.2, 3.0);
             // The pinch node is given once and its triangles form two fans, none inside the hole.
@@ -511,6 +526,7 @@ fn a_loop_repeating_a_node_next_to_itself_is_an_error_naming_the_node() {
         support,
         loops,
         constraints: vec![],
+        points: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert!(e.to_string().contains("zero-length segment"), "{e}");

@@ -64,6 +64,7 @@ fn a_25_m_border_graded_into_a_200_m_interior_stays_near_equilateral() {
         support: g.support(),
         loops: vec![border(&g, 80, 80, 80, 80)],
         constraints: vec![],
+        points: Vec::new(),
     };
     // Gmsh's frontal-Delaunay (algorithm 6) on the same square and sizes: mean 1.048 at growth
     // 1.3, 1.030 at 1.15.
@@ -87,6 +88,7 @@ fn a_fine_curve_ending_on_a_coarse_one_keeps_its_size_up_to_the_corner() {
         support: g.support(),
         loops: vec![border(&g, 64, 6, 8, 6)],
         constraints: vec![],
+        points: Vec::new(),
     };
     // The triangles on the two 200 m edges next to the corners cannot be good (a 200 m edge
     // beside 25 m elements); they are the only bad ones.
@@ -135,6 +137,7 @@ fn a_35_m_strip_between_curves_at_its_width_has_no_bad_triangle() {
         support: g.support(),
         loops: vec![border(&g, 125, 1, 125, 1)],
         constraints: vec![],
+        points: Vec::new(),
     };
     let (_, q) = mesh_and_check(&input, &recipe_size(), 1.2, 1.25);
     assert_eq!(q.pct_above_1_5, 0.0);
@@ -151,6 +154,7 @@ fn a_strip_with_single_segment_ends_and_coarse_sides_is_meshed_validly_and_no_wo
         support: g.support(),
         loops: vec![border(&g, 10, 1, 10, 1)],
         constraints: vec![],
+        points: Vec::new(),
     };
     let forced = (200.0f64.powi(2) + 35.0f64.powi(2)) / (3f64.sqrt() * 200.0 * 35.0);
     let (out, q) = mesh_and_check(&input, &recipe_size(), forced + 1e-6, forced + 1e-6);
@@ -168,6 +172,7 @@ fn the_surface_growth_is_capped_whatever_the_volume_growth_allows() {
         support: g.support(),
         loops: vec![border(&g, 80, 80, 80, 80)],
         constraints: vec![],
+        points: Vec::new(),
     };
     let fast = SurfaceSize {
         growth: 3.0,
