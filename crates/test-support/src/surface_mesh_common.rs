@@ -136,10 +136,15 @@ pub fn mesh_and_check(
     };
     let secs = t0.elapsed().as_secs_f64();
     verify(input, &out, 1e-6).unwrap_or_else(|e| panic!("verify: {e}"));
-    // Given nodes first, bit-identical, once each (loops that touch share the node).
+    // Given nodes first, bit-identical, once each (loops that touch share the node), in the
+    // documented order: loop nodes, then constraint nodes, then points.
     let mut k = 0;
     let mut seen = std::collections::BTreeSet::new();
-    for p in input.loops.iter().flatten() {
+    let given = input.loops.iter().flatten();
+    for p in given
+        .chain(input.constraints.iter().flatten())
+        .chain(&input.points)
+    {
         if seen.insert(p.map(f64::to_bits)) {
             assert_eq!(out.nodes[k].map(f64::to_bits), p.map(f64::to_bits));
             k += 1;
