@@ -21,6 +21,7 @@ mod model3d;
 mod parser;
 mod pick;
 mod pline;
+mod pline_path;
 mod records;
 mod select;
 mod well;

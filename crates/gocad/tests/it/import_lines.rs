@@ -248,3 +248,51 @@ fn a_line_without_segments_is_an_error_naming_it() {
         "PLine object 'dots' has no segments (no SEG record)"
     );
 }
+
+fn pline(body: &str) -> Polyline {
+    let text = format!("GOCAD PLine 1\r\nHEADER {{\r\nname:w\r\n}}\r\n{body}END\r\n");
+    import_line(text.as_bytes(), "w.pl", &opts()).expect("a valid PLine")
+}
+
+#[test]
+fn a_pline_read_as_a_path_starts_at_its_higher_end_and_follows_its_segments() {
+    // Segments given out of order and reversed: the path still runs from the top down.
+    let l = pline(
+        "ILINE\r\nVRTX 1 0 0 -300\r\nVRTX 2 5 0 0\r\nVRTX 3 2 0 -100\r\nSEG 3 1\r\nSEG 2 3\r\n",
+    );
+    let (path, lines) = l.open_path().expect("one chain");
+    assert_eq!(
+        path,
+        [[5.0, 0.0, 0.0], [2.0, 0.0, -100.0], [0.0, 0.0, -300.0]]
+    );
+    assert_eq!(lines, [7, 8, 6], "the VRTX record of each point");
+}
+
+#[test]
+fn a_pline_that_branches_closes_or_breaks_is_not_a_path_and_the_error_names_the_line() {
+    let branch = pline(
+        "ILINE\r\nVRTX 1 0 0 0\r\nVRTX 2 0 0 -1\r\nVRTX 3 1 0 -2\r\nVRTX 4 -1 0 -2\r\nSEG 1 2\r\nSEG 2 3\r\nSEG 2 4\r\n",
+    );
+    let e = branch.open_path().expect_err("branches");
+    assert!(e.message.contains("branches"), "{e}");
+    assert_eq!(
+        (e.file.as_str(), e.line),
+        ("w.pl", 7),
+        "the branching vertex's VRTX"
+    );
+    let closed = pline(
+        "ILINE\r\nVRTX 1 0 0 0\r\nVRTX 2 1 0 -1\r\nVRTX 3 -1 0 -1\r\nSEG 1 2\r\nSEG 2 3\r\nSEG 3 1\r\n",
+    );
+    assert!(
+        closed
+            .open_path()
+            .expect_err("closed")
+            .message
+            .contains("closed")
+    );
+    let broken = pline(
+        "ILINE\r\nVRTX 1 0 0 0\r\nVRTX 2 0 0 -1\r\nILINE\r\nVRTX 3 5 0 0\r\nVRTX 4 5 0 -1\r\nSEG 1 2\r\nSEG 3 4\r\n",
+    );
+    let e = broken.open_path().expect_err("two pieces");
+    assert!(e.message.contains("several pieces"), "{e}");
+}
