@@ -7,9 +7,9 @@
 use super::Failure;
 use super::build::write_atomic;
 use export::quality;
-use export::{Format, LineGroup, export_with_lines};
+use export::{Format, export};
 use geom::mesh::read::{BoundaryMesh, read_by_extension, read_lines_by_extension};
-use geom::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
+use geom::mesh::{LineGroup, RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use model::regions;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -274,6 +274,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         triangles,
         triangle_group,
         surface_groups,
+        lines: line_groups,
     };
     let stem = a
         .output
@@ -286,8 +287,8 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         .filter(|p| !p.as_os_str().is_empty())
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from("."));
-    for (file, bytes) in export_with_lines(&mesh, &line_groups, &stem, format)
-        .map_err(|e| Failure(format!("error: export: {e}")))?
+    for (file, bytes) in
+        export(&mesh, &stem, format).map_err(|e| Failure(format!("error: export: {e}")))?
     {
         write_atomic(&dir.join(&file), &bytes)?;
         errln!("       Wrote {}", dir.join(&file).display());

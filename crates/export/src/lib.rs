@@ -101,47 +101,20 @@ impl Format {
     }
 }
 
-/// Line elements to write with a mesh: a named group of segments between its nodes (the chains
-/// of tet edges an embedded well became).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct LineGroup {
-    pub name: String,
-    pub lines: Vec<[u32; 2]>,
-}
-
 /// Writes `mesh` in `format`. Returns `(file name, bytes)` pairs: file names are `model_name`
 /// plus the format's extension (`didactic.msh`, `didactic.1.node`, ...). Fails with a message on
-/// a mesh whose indices are out of range or a model name that cannot be a file name.
+/// a mesh whose indices are out of range or a model name that cannot be a file name. The mesh's
+/// line groups (wells): msh writes each as a curve entity of line elements (type 1) with a 1D
+/// physical group of the group's name; the other formats take no lines (an error if some are
+/// given).
 pub fn export(
     mesh: &VolumeMesh,
     model_name: &str,
     format: Format,
 ) -> Result<Vec<(String, Vec<u8>)>, String> {
-    export_with_lines(mesh, &[], model_name, format)
-}
-
-/// [`export`] with line elements: msh writes each group as a curve entity of line elements
-/// (type 1) with a 1D physical group of the group's name; the other formats take no lines (an
-/// error if some are given).
-pub fn export_with_lines(
-    mesh: &VolumeMesh,
-    lines: &[LineGroup],
-    model_name: &str,
-    format: Format,
-) -> Result<Vec<(String, Vec<u8>)>, String> {
     mesh.check_indices()
         .map_err(|e| format!("cannot export model '{model_name}': {e}"))?;
-    let n = mesh.nodes.len();
-    if let Some(g) = lines
-        .iter()
-        .find(|g| g.lines.iter().flatten().any(|&v| v as usize >= n))
-    {
-        return Err(format!(
-            "cannot export model '{model_name}': line group '{}' refers to a node beyond the {n} nodes",
-            g.name
-        ));
-    }
-    if lines.iter().any(|g| !g.lines.is_empty())
+    if mesh.lines.iter().any(|g| !g.lines.is_empty())
         && !matches!(format, Format::Msh | Format::MshBinary)
     {
         return Err(format!(
@@ -156,6 +129,7 @@ pub fn export_with_lines(
             "model name '{model_name}' cannot be used as a file name"
         ));
     }
+    let lines = &mesh.lines;
     let contents = match format {
         Format::Msh => vec![msh::write(mesh, lines, false)],
         Format::MshBinary => vec![msh::write(mesh, lines, true)],

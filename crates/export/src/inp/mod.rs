@@ -77,6 +77,7 @@ mod tests {
                 name: "fault".into(),
                 kind: geom::mesh::SurfaceKind::Fault,
             }],
+            lines: Vec::new(),
         };
         let e = write(&mesh, "m").unwrap_err();
         assert!(

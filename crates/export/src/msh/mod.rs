@@ -55,8 +55,8 @@
 
 mod topology;
 
-use super::{LineGroup, bbox_of, property_names, split_by};
-use geom::mesh::{SurfaceKind, VolumeMesh};
+use super::{bbox_of, property_names, split_by};
+use geom::mesh::{LineGroup, SurfaceKind, VolumeMesh};
 use std::collections::BTreeMap;
 use std::io::Write as _;
 use topology::Topology;

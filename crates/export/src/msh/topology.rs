@@ -163,6 +163,7 @@ pub(super) mod tests {
                 group("F", SurfaceKind::Fault),
                 group("G", SurfaceKind::Fault),
             ],
+            lines: Vec::new(),
         }
     }
 

@@ -34,6 +34,15 @@ pub struct RegionGroup {
     pub properties: BTreeMap<String, f64>,
 }
 
+/// A named group of line elements: the chain of mesh edges an embedded well became (a 1D
+/// physical group).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LineGroup {
+    pub name: String,
+    /// Segments between mesh nodes, each an edge of a tet.
+    pub lines: Vec<[u32; 2]>,
+}
+
 /// A tetrahedral FE mesh with tagged surface triangles.
 ///
 /// Invariants (checked by `validate`): every index is in range; every tet has positive signed
@@ -51,6 +60,8 @@ pub struct VolumeMesh {
     /// Index into `surface_groups` for each triangle.
     pub triangle_group: Vec<u32>,
     pub surface_groups: Vec<SurfaceGroup>,
+    /// Line elements by group (the wells), in name order; empty without wells.
+    pub lines: Vec<LineGroup>,
 }
 
 impl VolumeMesh {
@@ -96,6 +107,16 @@ impl VolumeMesh {
             return Err(format!(
                 "triangle {i} has group {} of {ng}",
                 self.triangle_group[i]
+            ));
+        }
+        if let Some(g) = self
+            .lines
+            .iter()
+            .find(|g| g.lines.iter().flatten().any(|&v| v >= n))
+        {
+            return Err(format!(
+                "line group '{}' references a node beyond {n}",
+                g.name
             ));
         }
         Ok(())
