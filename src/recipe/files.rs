@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use super::Recipe;
 use super::diagnostic::{Diagnostic, did_you_mean};
 
-/// One diagnostic per import whose file does not exist, in surface-name order.
+/// One diagnostic per import whose file does not exist: surfaces, then wells, each in name
+/// order.
 pub fn check_files(r: &Recipe, exists: &dyn Fn(&Path) -> bool) -> Vec<Diagnostic> {
     check_files_with_listing(r, exists, &|_| Vec::new())
 }
@@ -20,25 +21,32 @@ pub fn check_files_with_listing(
     exists: &dyn Fn(&Path) -> bool,
     list_dir: &dyn Fn(&Path) -> Vec<String>,
 ) -> Vec<Diagnostic> {
+    let surfaces = r
+        .surfaces
+        .values()
+        .map(|s| ("surface", &s.name, &s.file, &s.path, s.file_span));
+    let wells = r
+        .wells
+        .values()
+        .map(|w| ("well", &w.name, &w.file, &w.path, w.file_span));
     let mut out = Vec::new();
-    for s in r.surfaces.values() {
-        if exists(&s.path) {
+    for (what, name, file, path, span) in surfaces.chain(wells) {
+        if exists(path) {
             continue;
         }
-        let written = s.file.display().to_string();
-        let message = if s.path == s.file {
-            format!("file `{written}` of surface `{}` not found", s.name)
+        let written = file.display().to_string();
+        let message = if path == file {
+            format!("file `{written}` of {what} `{name}` not found")
         } else {
             format!(
-                "file `{written}` of surface `{}` not found (looked for `{}`)",
-                s.name,
-                s.path.display()
+                "file `{written}` of {what} `{name}` not found (looked for `{}`)",
+                path.display()
             )
         };
-        let help = suggestion(r, &s.file, exists, list_dir)
+        let help = suggestion(r, file, exists, list_dir)
             .map(|p| format!("did you mean `{}`?", p.display()))
             .or_else(|| Some("paths are relative to the recipe file's directory".into()));
-        out.push(r.diagnostic_at(s.file_span, message, help));
+        out.push(r.diagnostic_at(span, message, help));
     }
     out
 }
@@ -75,7 +83,7 @@ fn suggestion(
     for n in [name.to_lowercase(), name.to_uppercase()] {
         candidates.push(parent.join(n));
     }
-    for ext in ["ts", "TS", "ml", "gp"] {
+    for ext in ["ts", "TS", "ml", "gp", "wl", "pl"] {
         candidates.push(parent.join(format!("{stem}.{ext}")));
     }
     candidates

@@ -58,6 +58,7 @@ const ROOT_KEYS: &[&str] = &[
     "trim",
     "mesh",
     "regions",
+    "wells",
     "output",
 ];
 
@@ -81,6 +82,8 @@ pub struct Recipe {
     pub trims: Vec<TrimSpec>,
     pub mesh: MeshSpec,
     pub regions: BTreeMap<String, RegionSpec>,
+    /// `[wells]`, by name.
+    pub wells: BTreeMap<String, WellSpec>,
     pub output: OutputSpec,
     src: SourceText,
 }
@@ -164,6 +167,7 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     region_names.sort();
     let mesh = sections::mesh::read(&mut ctx, root, root_span, &names, &region_names);
     let output = sections::output::read(&mut ctx, root.get("output"), &base_dir);
+    let wells = sections::wells::read(&mut ctx, root.get("wells"), &base_dir, &names.surfaces);
 
     let mut diags = ctx.diags;
     if let (true, Some(model), Some(mesh), Some(output)) =
@@ -182,6 +186,7 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
             trims,
             mesh,
             regions,
+            wells,
             output,
             src,
         });

@@ -88,6 +88,38 @@ pub struct SurfaceSpec {
     pub file_span: Span,
 }
 
+/// The format of a well file, from its extension (case-insensitive).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+pub enum WellFormat {
+    /// `.wl`: gOcad Well (a path of stations from the well head, with markers).
+    Well,
+    /// `.pl`: gOcad PLine whose segments form one open path.
+    PLine,
+}
+
+/// One `[wells]` entry: a well path embedded in the mesh as a chain of edges.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct WellSpec {
+    /// The well name (the key).
+    pub name: String,
+    /// The file as written in the recipe.
+    pub file: PathBuf,
+    /// `file` joined to the recipe's directory.
+    pub path: PathBuf,
+    pub format: WellFormat,
+    /// The object to take from a file of several, by name or position from 1; `None` = the
+    /// file's only Well (or PLine) object.
+    pub object: Option<gocad::import::ObjectRef>,
+    /// Target length of the well's mesh edges (> 0); `None` = `mesh.size`.
+    pub size: Option<f64>,
+    /// Span of the name (the key).
+    #[serde(skip)]
+    pub span: Span,
+    /// Span of the `file` value.
+    #[serde(skip)]
+    pub file_span: Span,
+}
+
 /// How the bounding box is given.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum BoxExtent {

@@ -12,6 +12,7 @@ pub(crate) mod refine;
 pub(crate) mod regions;
 pub(crate) mod surfaces;
 pub(crate) mod trim;
+pub(crate) mod wells;
 
 use std::ops::Range;
 

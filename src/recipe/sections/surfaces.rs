@@ -161,7 +161,7 @@ pub(crate) fn read(
 }
 
 /// `object`: a TSurf name (a non-empty string) or a position in the file (an integer from 1).
-fn object(ctx: &mut Ctx<'_>, x: &Value<'_>, path: &str) -> Option<ObjectRef> {
+pub(crate) fn object(ctx: &mut Ctx<'_>, x: &Value<'_>, path: &str) -> Option<ObjectRef> {
     if let DeValue::Integer(_) = x.get_ref() {
         let k = rd::int(ctx, x, path)?;
         return match u32::try_from(k) {
@@ -197,7 +197,7 @@ fn object(ctx: &mut Ctx<'_>, x: &Value<'_>, path: &str) -> Option<ObjectRef> {
         ctx.error(
             x.span(),
             format!("`{path}` must not be empty"),
-            Some("remove `object` to take the file's only TSurf object".into()),
+            Some("remove `object` to take the file's only object of its type".into()),
         );
         return None;
     }

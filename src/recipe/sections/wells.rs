@@ -1,0 +1,133 @@
+//! `[wells]`: well name -> path file. Decides which names are legal (those of surfaces, and not
+//! a surface's own name, so every output group has one meaning), the format from the extension
+//! (`.wl` Well, `.pl` PLine), and the options: `object` and the target edge length `size`.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use toml::de::DeValue;
+
+use super::surfaces::{check_name, object};
+use crate::recipe::diagnostic::did_you_mean;
+use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
+use crate::recipe::spec::{WellFormat, WellSpec};
+
+const KEYS: &[&str] = &["file", "object", "size"];
+
+pub(crate) fn read(
+    ctx: &mut Ctx<'_>,
+    v: Option<&Value<'_>>,
+    base_dir: &Path,
+    surfaces: &[String],
+) -> BTreeMap<String, WellSpec> {
+    let mut out = BTreeMap::new();
+    let Some(v) = v else { return out };
+    let Some(t) = rd::as_table(ctx, v, "wells", None) else {
+        return out;
+    };
+    for (k, e) in t.iter() {
+        let name: &str = k.get_ref();
+        let path = path_join("wells", name);
+        let mut ok = check_name(ctx, name, k.span(), "well");
+        if ok && surfaces.iter().any(|s| s == name) {
+            ctx.error(
+                k.span(),
+                format!("well name `{name}` is also a surface name"),
+                Some(format!(
+                    "outputs group elements by name: rename the well, e.g. `well_{name}`"
+                )),
+            );
+            ok = false;
+        }
+        if let DeValue::String(file) = e.get_ref() {
+            if let (true, Some(format)) = (ok, well_format(ctx, file, e)) {
+                let spec = spec(ctx, base_dir, (name, k.span()), (file, e.span()), format);
+                out.insert(name.to_string(), spec);
+            }
+            continue;
+        }
+        let help = format!("write `{name} = {{ file = \"data/{name}.wl\", size = 50.0 }}`");
+        let Some(st) = rd::as_table(ctx, e, &path, Some(&help)) else {
+            continue;
+        };
+        rd::check_keys(ctx, st, &path, KEYS, &|_| None);
+        let file = rd::required(
+            ctx,
+            st,
+            e.span(),
+            &path,
+            "file",
+            "add `file = \"path/to/well.wl\"` (relative to the recipe)",
+        )
+        .and_then(|f| {
+            let s = rd::string(ctx, f, &path_join(&path, "file"))?;
+            let fmt = well_format(ctx, s, f)?;
+            Some((s.to_string(), fmt, f.span()))
+        });
+        let object = match st.get("object") {
+            Some(x) => object(ctx, x, &path_join(&path, "object")).map(Some),
+            None => Some(None),
+        };
+        let size = match st.get("size") {
+            Some(x) => rd::size(ctx, x, &path_join(&path, "size")).map(Some),
+            None => Some(None),
+        };
+        if let (true, Some((file, format, fspan)), Some(object), Some(size)) =
+            (ok, file, object, size)
+        {
+            let mut spec = spec(ctx, base_dir, (name, k.span()), (&file, fspan), format);
+            spec.object = object;
+            spec.size = size;
+            out.insert(name.to_string(), spec);
+        }
+    }
+    out
+}
+
+/// A spec with every option at its default.
+fn spec(
+    ctx: &Ctx<'_>,
+    base_dir: &Path,
+    (name, name_span): (&str, Range<usize>),
+    (file, file_span): (&str, Range<usize>),
+    format: WellFormat,
+) -> WellSpec {
+    let file = PathBuf::from(file);
+    WellSpec {
+        name: name.to_string(),
+        path: base_dir.join(&file),
+        file,
+        format,
+        object: None,
+        size: None,
+        span: ctx.span(name_span),
+        file_span: ctx.span(file_span),
+    }
+}
+
+fn well_format(ctx: &mut Ctx<'_>, file: &str, v: &Value<'_>) -> Option<WellFormat> {
+    let ext = Path::new(file)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("wl") => Some(WellFormat::Well),
+        Some("pl") => Some(WellFormat::PLine),
+        other => {
+            let msg = match other {
+                Some(e) => format!(
+                    "well file `{file}` has extension `.{e}`, which is not a gOcad well or line"
+                ),
+                None => format!("well file `{file}` has no extension: cannot tell its format"),
+            };
+            let kinds = "wells are gOcad Well `.wl` or PLine `.pl` files";
+            let help = match other.and_then(|e| did_you_mean(e, ["wl", "pl"])) {
+                Some(c) => format!("did you mean `.{c}`? {kinds}"),
+                None => kinds.to_string(),
+            };
+            ctx.error(v.span(), msg, Some(help));
+            None
+        }
+    }
+}
