@@ -102,3 +102,27 @@ fn a_binary_node_reference_out_of_range_is_refused() {
     let e = read_volume_msh(&bytes, "c.msh").unwrap_err();
     assert!(e.message.contains("node 123456789"), "{e}");
 }
+
+#[test]
+fn msh_line_groups_round_trip_by_name_in_both_encodings() {
+    let mut mesh = layered_box(4, 6);
+    // Two "wells": chains along edges of the box's tets (any node pairs serve the writer).
+    let t = mesh.tets[0];
+    let u = mesh.tets[mesh.tets.len() - 1];
+    mesh.lines = vec![
+        geom::mesh::LineGroup {
+            name: "W1".into(),
+            lines: vec![[t[0], t[1]], [t[1], t[2]]],
+        },
+        geom::mesh::LineGroup {
+            name: "W2".into(),
+            lines: vec![[u[0], u[3]]],
+        },
+    ];
+    for format in [Format::Msh, Format::MshBinary] {
+        let files = export(&mesh, "rt", format).unwrap();
+        let back = read_volume_msh(&files[0].1, "rt.msh").unwrap();
+        assert_eq!(back.lines, mesh.lines, "{format:?}");
+        assert_eq!(back.tets.len(), mesh.tets.len());
+    }
+}

@@ -13,7 +13,7 @@
 use super::cursor::Cursor;
 use super::msh_sections::{Elem, Msh, parse};
 use super::{BoundaryMesh, LineMesh, ReadError};
-use crate::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
+use crate::mesh::{LineGroup, RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use std::collections::BTreeMap;
 
 /// Maps node tags to indices and checks every element's nodes.
@@ -120,9 +120,9 @@ pub fn read_msh_lines(bytes: &[u8], label: &str) -> Result<LineMesh, ReadError> 
     })
 }
 
-/// Reads a tet mesh (tets type 4, triangles type 2) back into a [`VolumeMesh`]: regions are the 3D
-/// physical groups in tag order (an element without one goes to a group named after its entity),
-/// surface groups the 2D ones (kinds from our `$GeorecipeSurfaceKinds` section, else `Other`). Region attributes come from
+/// Reads a tet mesh (tets type 4, triangles type 2, lines type 1) back into a [`VolumeMesh`]:
+/// regions are the 3D physical groups in tag order (an element without one goes to a group named
+/// after its entity), line groups the 1D ones, surface groups the 2D ones (kinds from our `$GeorecipeSurfaceKinds` section, else `Other`). Region attributes come from
 /// scalar `$ElementData`: "material" (negative or NaN = none) and every other view as a property,
 /// taken from the region's first tet that has a finite value.
 pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadError> {
@@ -137,10 +137,12 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
     let key = |e: &Elem| phys_of(&m, e).ok_or(e.entity);
     let mut reg_keys: BTreeMap<Result<i32, i32>, u32> = BTreeMap::new();
     let mut grp_keys: BTreeMap<Result<i32, i32>, u32> = BTreeMap::new();
+    let mut line_keys: BTreeMap<Result<i32, i32>, u32> = BTreeMap::new();
     for e in &m.elems {
         match e.n {
             4 => reg_keys.insert(key(e), 0),
             3 => grp_keys.insert(key(e), 0),
+            2 => line_keys.insert(key(e), 0),
             _ => None,
         };
     }
@@ -171,8 +173,19 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
             kind,
         });
     }
+    for (i, (k, v)) in line_keys.iter_mut().enumerate() {
+        *v = i as u32;
+        out.lines.push(LineGroup {
+            name: name(1, k),
+            lines: Vec::new(),
+        });
+    }
     for (e, ix) in m.elems.iter().zip(&idx) {
-        if e.n == 4 {
+        if e.n == 2 {
+            out.lines[line_keys[&key(e)] as usize]
+                .lines
+                .push([ix[0], ix[1]]);
+        } else if e.n == 4 {
             let r = reg_keys[&key(e)];
             out.tets.push(*ix);
             out.tet_region.push(r);
