@@ -1,5 +1,6 @@
-//! Writes the data of the shipped example `recipes/didactic.toml` (the generator is
-//! `test_support::didactic`: the seed paper's didactic model at UTM-sized coordinates).
+//! Writes the data of the shipped examples `recipes/didactic.toml` and `didactic_wells.toml`
+//! (the generators are `test_support::didactic`, the seed paper's didactic model at UTM-sized
+//! coordinates, and `test_support::didactic_wells`, its two wells).
 //!
 //! Usage: `cargo run --example make_didactic -- recipes/data/didactic` (the shipped data), or
 //! `cargo run --example make_didactic -- --triangles 100000 /tmp/dense` for about 100 000
@@ -7,6 +8,7 @@
 
 use std::path::PathBuf;
 use test_support::didactic::{Density, didactic_files};
+use test_support::didactic_wells::didactic_wells;
 
 fn main() {
     let mut out = PathBuf::from("recipes/data/didactic");
@@ -33,5 +35,11 @@ fn main() {
         std::fs::write(&path, text)
             .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
         println!("wrote {} ({nv} vertices, {nt} triangles)", path.display());
+    }
+    for (file, text, stations) in didactic_wells() {
+        let path = out.join(file);
+        std::fs::write(&path, text)
+            .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+        println!("wrote {} ({stations} stations)", path.display());
     }
 }

@@ -45,6 +45,17 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
         surface_nodes.insert(name.clone(), id);
     }
     let import_ids: Vec<NodeId> = surface_nodes.values().copied().collect();
+    for (name, w) in &recipe.wells {
+        let file = g.add_file(&format!("file:{name}"), w.path.clone())?;
+        let op = WellImportOp {
+            name: name.clone(),
+            file_label: w.file.display().to_string(),
+            format: w.format,
+            object: w.object.clone(),
+            target_units: recipe.model.units,
+        };
+        g.add_op(&format!("well:{name}"), Arc::new(op), &[file])?;
+    }
 
     let mut box_node = None;
     if let Some(b) = &recipe.bbox {

@@ -17,6 +17,7 @@ mod cli_sizes;
 mod cli_tetmesh;
 mod cli_validation;
 mod cli_watch;
+mod cli_wells;
 mod common_cli;
 mod export_op_files;
 mod recipe_errors;

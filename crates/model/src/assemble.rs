@@ -140,6 +140,33 @@ pub fn region_input<'a>(
     })
 }
 
+/// Adds polylines (well pieces inside the region) to a region's input as embedded segments. A
+/// polyline node bit-identical to a boundary node (a well's crossing, a node of the patch mesh)
+/// is that node; the others are new vertices. Returns, per polyline, the range of its segments
+/// in `input.lines`.
+pub fn embed_polylines(
+    input: &mut RegionInput,
+    polylines: &[Vec<[f64; 3]>],
+) -> Vec<std::ops::Range<usize>> {
+    let mut w = Welder::default();
+    for p in &input.vertices {
+        w.id(p);
+    }
+    let mut ranges = Vec::with_capacity(polylines.len());
+    for line in polylines {
+        let start = input.lines.len();
+        let ids: Vec<u32> = line.iter().map(|p| w.id(p)).collect();
+        input.lines.extend(
+            ids.windows(2)
+                .filter(|s| s[0] != s[1])
+                .map(|s| [s[0], s[1]]),
+        );
+        ranges.push(start..input.lines.len());
+    }
+    input.vertices = w.points;
+    ranges
+}
+
 /// One region's part of the final mesh: its group (name and attributes), nodes and positive tets.
 pub type RegionPart<'a> = (RegionGroup, &'a [[f64; 3]], &'a [[u32; 4]]);
 

@@ -43,7 +43,7 @@ pub mod topology;
 pub mod trims;
 pub mod wells;
 
-pub use assemble::{VolumeAssembly, assemble_volume, patch_input, region_input};
+pub use assemble::{VolumeAssembly, assemble_volume, embed_polylines, patch_input, region_input};
 pub use curves::build_topology;
 
 use serde::{Deserialize, Serialize};

@@ -33,7 +33,7 @@ impl Rng {
     }
 }
 
-fn z_top(x: f64, y: f64) -> f64 {
+pub(crate) fn z_top(x: f64, y: f64) -> f64 {
     -1200.0 + 80.0 * (x / 900.0).sin() * (y / 1100.0).cos()
 }
 

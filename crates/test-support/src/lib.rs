@@ -5,6 +5,7 @@
 #![allow(dead_code)]
 
 pub mod didactic;
+pub mod didactic_wells;
 pub mod export_support;
 pub mod geology;
 pub mod grid;

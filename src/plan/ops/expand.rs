@@ -1,7 +1,9 @@
 //! The expander attached to `model`: once the model is known it adds, for every curve,
-//! `curve:<c>` → `discretize:<c>`; for every patch, `patch:<p>` → `surface_mesh:<p>` (inputs: the
-//! discretizations of its curves); for every region, `tet_mesh:<r>` (inputs: the surface meshes
-//! of its patches); then `mesh` (all regions and patches) and `export`. Sizes come from `sizes`
+//! `curve:<c>` → `discretize:<c>`; for every well, `well_cut:<w>`; for every patch, `patch:<p>`
+//! (inputs: the model and the well cuts) → `surface_mesh:<p>` (inputs: the discretizations of its
+//! curves); for every region, `wells_in:<r>` when there are wells and `tet_mesh:<r>` (inputs: the
+//! surface meshes of its patches and its wells); then `mesh` (all regions and patches) and
+//! `export`. Sizes come from `sizes`
 //! (a patch at the finest of its surface's and its regions' sizes, a curve at its patches'), and
 //! each `refine:<k>` feature is an extra input of exactly the curves, patches and regions within
 //! its reach. Editing one curve's subdivision therefore re-runs that curve, the patches it
@@ -10,6 +12,7 @@
 use super::curves::{CurveSizing, add_curve_nodes, graph_error};
 use super::refine;
 use super::sizes::{self, SizeChoice};
+use super::wells::{RegionWellsOp, WellCutOp};
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
 use engine::{Artifact, Expander, Expansion, NodeId, OpError};
@@ -68,6 +71,32 @@ impl ModelExpander {
     }
 }
 
+impl ModelExpander {
+    /// `well_cut:<w>` for every well (inputs `model` and `well:<w>`), in name order.
+    fn add_well_cuts(&self, x: &mut Expansion, model: NodeId) -> Result<Vec<NodeId>, OpError> {
+        let mut cuts = Vec::with_capacity(self.recipe.wells.len());
+        for (name, w) in &self.recipe.wells {
+            let well = x
+                .node(&format!("well:{name}"))
+                .ok_or_else(|| format!("no `well:{name}` node"))?;
+            let (size_path, size) = match w.size {
+                Some(s) => (format!("wells.{name}.size"), s),
+                None => ("mesh.size".to_string(), self.recipe.mesh.size),
+            };
+            let op = WellCutOp {
+                name: name.clone(),
+                size_path,
+                size,
+            };
+            let id = x
+                .add_op(&format!("well_cut:{name}"), Arc::new(op), &[model, well])
+                .map_err(graph_error)?;
+            cuts.push(id);
+        }
+        Ok(cuts)
+    }
+}
+
 impl Expander for ModelExpander {
     fn expand(&self, output: &Artifact, x: &mut Expansion) -> Result<(), OpError> {
         let model: ModelData = output.decode()?;
@@ -102,6 +131,9 @@ impl Expander for ModelExpander {
             )?);
         }
 
+        let cuts = self.add_well_cuts(x, model_node)?;
+        let mut piece_inputs = vec![model_node];
+        piece_inputs.extend(&cuts);
         let mut meshed = Vec::with_capacity(model.patches.len());
         for ((p, boundary), choice) in model.patches.iter().zip(&topo.patches).zip(&patch_sizes) {
             let piece = x
@@ -110,7 +142,7 @@ impl Expander for ModelExpander {
                     Arc::new(PatchExtractOp {
                         name: p.name.clone(),
                     }),
-                    &[model_node],
+                    &piece_inputs,
                 )
                 .map_err(graph_error)?;
             let mut inputs = vec![piece];
@@ -149,6 +181,18 @@ impl Expander for ModelExpander {
                 })
                 .collect();
             let mut inputs: Vec<NodeId> = patches.iter().map(|&p| meshed[p as usize]).collect();
+            if !cuts.is_empty() {
+                let wells = x
+                    .add_op(
+                        &format!("wells_in:{}", r.name),
+                        Arc::new(RegionWellsOp {
+                            region: r.name.clone(),
+                        }),
+                        &cuts,
+                    )
+                    .map_err(graph_error)?;
+                inputs.push(wells);
+            }
             let (size_path, mut size, method) = self.region_settings(&r.name);
             size.size = own.size;
             let near = refine::bounds_of(
@@ -173,6 +217,7 @@ impl Expander for ModelExpander {
                         size,
                         method,
                         refinements: features.len(),
+                        wells: !cuts.is_empty(),
                     }),
                     &inputs,
                 )

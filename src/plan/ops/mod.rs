@@ -15,6 +15,7 @@ mod patch;
 mod refine;
 mod region;
 mod sizes;
+mod wells;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
 pub use refine::RefineOp;
 pub use sizes::thin_region_warnings;
@@ -31,6 +32,9 @@ pub use inputs::{Groups, Wiring};
 pub use model::{ModelData, ModelOp, ModelPatch};
 pub use patch::{PatchExtractOp, PatchMesh, PatchPiece, SurfaceMeshOp};
 pub use region::{AssembleOp, RegionMesh, TetMeshOp};
+pub use wells::{
+    RegionWells, RegionWellsOp, WellCutData, WellCutOp, WellData, WellImportOp, WellMarker,
+};
 
 use geom::TriMesh;
 use geom::mesh::SurfaceKind;

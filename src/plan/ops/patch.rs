@@ -1,14 +1,17 @@
-//! `patch:<p>` and `surface_mesh:<p>`: one patch of the model extracted with its boundary (so a
-//! patch whose support and boundary did not change cuts its dependents off early), and its FE
-//! surface mesh from the discretizations of its curves.
+//! `patch:<p>` and `surface_mesh:<p>`: one patch of the model extracted with its boundary and the
+//! wells' crossings of it (so a patch whose support, boundary and crossings did not change cuts
+//! its dependents off early), and its FE surface mesh from the discretizations of its curves,
+//! with every crossing a node.
 
+use super::wells::{WellCutData, patch_crossings};
 use super::{CurveNodes, ModelData};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::SurfaceKind;
+use geom::refine::Refinement;
 use geom::{Tolerances, TriMesh};
 use model::{PatchBoundary, patch_input};
 use serde::{Deserialize, Serialize};
-use surface_mesh::{SurfaceSize, mesh_patch_refined};
+use surface_mesh::{MAX_SURFACE_GROWTH, SurfaceSize, mesh_patch_refined};
 
 /// The output of `patch:<p>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -21,9 +24,19 @@ pub struct PatchPiece {
     pub boundary: PatchBoundary,
     /// Names of the curves bounding or constraining the patch, in model order.
     pub curves: Vec<String>,
+    /// Where wells cross the patch (nodes its mesh must have), in well order then path order.
+    pub crossings: Vec<PatchCrossing>,
 }
 
-/// `patch:<p>`: extracts patch `p` (index `index` in the model) from the model.
+/// A well's crossing of a patch: a node of its mesh, with the well's element size around it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PatchCrossing {
+    pub point: [f64; 3],
+    pub well: String,
+    pub size: f64,
+}
+
+/// `patch:<p>`: extracts patch `p` from the model; inputs `model`, then every `well_cut:<w>`.
 pub struct PatchExtractOp {
     pub name: String,
 }
@@ -37,7 +50,8 @@ impl Operation for PatchExtractOp {
         true
     }
     fn version(&self) -> u32 {
-        1
+        // 2: the wells' crossings of the patch.
+        2
     }
     fn params(&self) -> Params {
         Params::new()
@@ -45,7 +59,9 @@ impl Operation for PatchExtractOp {
             .expect("string")
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let model: ModelData = inputs.first().ok_or("patch needs the model")?.decode()?;
+        let (model, cuts) = inputs.split_first().ok_or("patch needs the model")?;
+        let model: ModelData = model.decode()?;
+        let cuts: Vec<WellCutData> = cuts.iter().map(|a| a.decode()).collect::<Result<_, _>>()?;
         let i = model
             .patches
             .iter()
@@ -71,6 +87,7 @@ impl Operation for PatchExtractOp {
                 .iter()
                 .map(|&c| model.topology.curves[c as usize].name.clone())
                 .collect(),
+            crossings: patch_crossings(&p.name, &cuts),
         };
         let n = piece.support.triangles.len() as u64;
         Ok(Output::new(Artifact::encode(&piece)?).count("support_triangles", n))
@@ -144,10 +161,19 @@ impl Operation for SurfaceMeshOp {
             .into());
         }
         let nodes = |c: u32| curves.get(c as usize).map(|c| c.nodes.as_slice());
-        let input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
+        let mut input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
             .map_err(|e| OpError::from(e.to_string()))?;
+        input.points = piece.crossings.iter().map(|c| c.point).collect();
+        let slope = self.size.growth.min(MAX_SURFACE_GROWTH) - 1.0;
+        let refine: Vec<Refinement> = (refine.into_iter())
+            .chain(piece.crossings.iter().map(|c| Refinement {
+                points: vec![c.point],
+                size: c.size,
+                slope,
+            }))
+            .collect();
         let out = mesh_patch_refined(&input, &self.size, &self.tolerances, &refine)
-            .map_err(|e| OpError::from(e.to_string()))?;
+            .map_err(|e| OpError::from(well_context(e, &piece)))?;
         let mesh = TriMesh::new(out.nodes, out.triangles);
         let (nn, nt) = (mesh.vertices.len() as u64, mesh.triangles.len() as u64);
         Ok(Output::new(Artifact::encode(&PatchMesh {
@@ -158,5 +184,16 @@ impl Operation for SurfaceMeshOp {
         })?)
         .count("nodes", nn)
         .count("triangles", nt))
+    }
+}
+
+/// A surface-mesh error, naming the well whose crossing it is at, if any.
+fn well_context(e: surface_mesh::SurfaceMeshError, piece: &PatchPiece) -> String {
+    match piece.crossings.iter().find(|c| Some(c.point) == e.at) {
+        Some(c) => format!(
+            "{e} (where well `{}` crosses the patch; move the well path a little if the crossing is too close to a curve)",
+            c.well
+        ),
+        None => e.to_string(),
     }
 }

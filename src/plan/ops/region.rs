@@ -2,11 +2,12 @@
 //! that bound it (sides known from the model, carried as parameters), and the final volume mesh
 //! welded from all regions with every patch's triangles in its surface's group.
 
+use super::wells::RegionWells;
 use super::{Groups, PatchMesh};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use geom::mesh::{RegionGroup, VolumeMesh};
+use geom::mesh::{LineGroup, RegionGroup, VolumeMesh};
 use model::regions::{FaceUse, Side};
-use model::{VolumeAssembly, assemble_volume, region_input};
+use model::{VolumeAssembly, assemble_volume, embed_polylines, region_input};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region};
@@ -19,9 +20,13 @@ pub struct RegionMesh {
     pub nodes: Vec<[f64; 3]>,
     /// Positive tets.
     pub tets: Vec<[u32; 4]>,
+    /// Per well crossing the region (by name), its edges: the chains of tet edges its pieces
+    /// became.
+    pub wells: Vec<(String, Vec<[u32; 2]>)>,
 }
 
-/// `tet_mesh:<r>`: inputs are `surface_mesh:<p>` for every patch in `patches`.
+/// `tet_mesh:<r>`: inputs are `surface_mesh:<p>` for every patch in `patches`, then
+/// `wells_in:<r>` when the recipe has wells, then the refinements.
 pub struct TetMeshOp {
     pub name: String,
     /// The distinct patches bounding the region, in model order.
@@ -36,6 +41,8 @@ pub struct TetMeshOp {
     pub method: Method,
     /// How many `refine:<k>` inputs follow the patch meshes (features within reach).
     pub refinements: usize,
+    /// Whether `wells_in:<r>` follows the patch meshes.
+    pub wells: bool,
 }
 
 impl Operation for TetMeshOp {
@@ -60,7 +67,8 @@ impl Operation for TetMeshOp {
         //     tets by their highest node.
         // 12: missing boundary triangles recovered by flips (2-3, edge removal) before any hole.
         // 13: holes whose front gets stuck are widened round the stuck place and filled again.
-        13
+        // 14: the wells' edges in the output.
+        14
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -95,6 +103,10 @@ impl Operation for TetMeshOp {
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let (inputs, refine) = super::refine::split_refinements(inputs, self.refinements)?;
+        let (inputs, wells) = match (self.wells, inputs.split_last()) {
+            (true, Some((w, rest))) => (rest, w.decode::<RegionWells>()?),
+            _ => (inputs, RegionWells::default()),
+        };
         let meshes: Vec<PatchMesh> = inputs
             .iter()
             .map(|a| a.decode())
@@ -103,26 +115,51 @@ impl Operation for TetMeshOp {
             return Err(format!("tet_mesh:{} needs the meshes of its patches", self.name).into());
         }
         let get = |p: u32| meshes.get(p as usize).map(|m| &m.mesh);
-        let input = region_input(&self.name, &self.sides, &get)
+        let mut input = region_input(&self.name, &self.sides, &get)
             .map_err(|e| OpError::from(e.to_string()))?;
+        let pieces: Vec<Vec<[f64; 3]>> = wells.wells.iter().flat_map(|(_, p)| p.clone()).collect();
+        let ranges = embed_polylines(&mut input, &pieces);
         let opts = TetMeshOptions {
             method: self.method,
             ..TetMeshOptions::default()
         };
         let size = SizeField {
-            refine,
+            refine: refine.into_iter().chain(wells.refine.clone()).collect(),
             ..self.size.clone()
         };
         let out = mesh_region(&input, &size, &opts).map_err(|e| OpError::from(e.to_string()))?;
+        let well_edges = well_edges(&wells, &ranges, &out.lines);
         let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
         Ok(Output::new(Artifact::encode(&RegionMesh {
             name: self.name.clone(),
             nodes: out.nodes,
             tets: out.tets,
+            wells: well_edges,
         })?)
         .count("nodes", nn)
         .count("tets", nt))
     }
+}
+
+/// Per well, the tet edges its pieces became: `ranges` are the pieces' segments in the input's
+/// lines (pieces in the order of `wells`), `chains` the nodes each segment became.
+fn well_edges(
+    wells: &RegionWells,
+    ranges: &[std::ops::Range<usize>],
+    chains: &[Vec<u32>],
+) -> Vec<(String, Vec<[u32; 2]>)> {
+    let mut ranges = ranges.iter();
+    let mut out = Vec::with_capacity(wells.wells.len());
+    for (name, pieces) in &wells.wells {
+        let mut edges = Vec::new();
+        for r in ranges.by_ref().take(pieces.len()) {
+            for c in &chains[r.clone()] {
+                edges.extend(c.windows(2).map(|w| [w[0], w[1]]));
+            }
+        }
+        out.push((name.clone(), edges));
+    }
+    out
 }
 
 /// `mesh`: the regions' tets welded with the patches' triangles.
@@ -144,7 +181,8 @@ impl Operation for AssembleOp {
         true
     }
     fn version(&self) -> u32 {
-        1
+        // 2: the wells' line elements.
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -179,7 +217,9 @@ impl Operation for AssembleOp {
                 .map(|p| (p.surface.as_str(), p.kind, &p.mesh))
                 .collect(),
         };
-        let mesh: VolumeMesh = assemble_volume(&parts).map_err(|e| OpError::from(e.to_string()))?;
+        let mut mesh: VolumeMesh =
+            assemble_volume(&parts).map_err(|e| OpError::from(e.to_string()))?;
+        mesh.lines = well_lines(&mesh.nodes, &regions)?;
         let (nn, nt, nf) = (
             mesh.nodes.len() as u64,
             mesh.tets.len() as u64,
@@ -190,4 +230,41 @@ impl Operation for AssembleOp {
             .count("tets", nt)
             .count("triangles", nf))
     }
+}
+
+/// The wells' edges in the welded mesh's numbering (nodes joined by exact coordinates), one
+/// group per well in name order, its edges in region order then path order.
+fn well_lines(nodes: &[[f64; 3]], regions: &[RegionMesh]) -> Result<Vec<LineGroup>, OpError> {
+    if regions.iter().all(|r| r.wells.is_empty()) {
+        return Ok(Vec::new());
+    }
+    let key = |p: &[f64; 3]| p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+    let ids: BTreeMap<[u64; 3], u32> = (nodes.iter().enumerate())
+        .map(|(i, p)| (key(p), i as u32))
+        .collect();
+    let mut groups: BTreeMap<&str, Vec<[u32; 2]>> = BTreeMap::new();
+    for r in regions {
+        let global = |v: u32| {
+            let p = r.nodes.get(v as usize);
+            p.and_then(|p| ids.get(&key(p))).copied().ok_or_else(|| {
+                OpError::from(format!(
+                    "mesh: a well edge of region `{}` ends at node {v}, which is not in the mesh",
+                    r.name
+                ))
+            })
+        };
+        for (name, edges) in &r.wells {
+            let g = groups.entry(name).or_default();
+            for e in edges {
+                g.push([global(e[0])?, global(e[1])?]);
+            }
+        }
+    }
+    Ok(groups
+        .into_iter()
+        .map(|(name, lines)| LineGroup {
+            name: name.to_string(),
+            lines,
+        })
+        .collect())
 }

@@ -144,27 +144,29 @@ fn place_through(p: &P3, q: &P3, t: &[P3; 3]) -> Place {
     ])
 }
 
-/// The parameter along `pq` where it crosses the plane of `t` (floating point, in [0, 1]).
-fn plane_parameter(p: &P3, q: &P3, t: &[P3; 3]) -> f64 {
+/// Where segment `pq` crosses triangle `t` at `place` (not `Corner`): the combination of the
+/// triangle's corners weighted by the volumes `pq` spans with the opposite edges, so the point is
+/// on the triangle up to rounding (on a plane of constant z its z is exact), and on the edge when
+/// `place` is an edge (the opposite corner's weight is exactly zero).
+fn crossing_point(p: &P3, q: &P3, t: &[P3; 3], place: Place) -> P3 {
     let sub = |u: &P3, v: &P3| [u[0] - v[0], u[1] - v[1], u[2] - v[2]];
-    let (e1, e2) = (sub(&t[1], &t[0]), sub(&t[2], &t[0]));
-    let n = [
-        e1[1] * e2[2] - e1[2] * e2[1],
-        e1[2] * e2[0] - e1[0] * e2[2],
-        e1[0] * e2[1] - e1[1] * e2[0],
-    ];
-    let dot = |u: &P3| n[0] * u[0] + n[1] * u[1] + n[2] * u[2];
-    let (dp, dq) = (dot(&sub(p, &t[0])), dot(&sub(q, &t[0])));
-    let s = dp / (dp - dq);
-    if s.is_finite() {
-        s.clamp(0.0, 1.0)
-    } else {
-        0.5
+    let d = sub(q, p);
+    let det = |u: &P3, v: &P3| {
+        let (u, v) = (sub(u, p), sub(v, p));
+        d[0] * (u[1] * v[2] - u[2] * v[1]) - d[1] * (u[0] * v[2] - u[2] * v[0])
+            + d[2] * (u[0] * v[1] - u[1] * v[0])
+    };
+    // Weight of corner k: the volume with the edge opposite it.
+    let mut w = [det(&t[1], &t[2]), det(&t[2], &t[0]), det(&t[0], &t[1])];
+    if let Place::Edge(k) = place {
+        w[(k + 2) % 3] = 0.0;
     }
-}
-
-fn lerp(p: &P3, q: &P3, s: f64) -> P3 {
-    [0, 1, 2].map(|k| p[k] + s * (q[k] - p[k]))
+    let sum = w[0] + w[1] + w[2];
+    if sum == 0.0 || !sum.is_finite() {
+        return [0, 1, 2].map(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0);
+    }
+    let w = w.map(|x| x / sum);
+    [0, 1, 2].map(|k| w[0] * t[0][k] + w[1] * t[1][k] + w[2] * t[2][k])
 }
 
 fn length(p: &P3, q: &P3) -> f64 {
@@ -359,13 +361,11 @@ impl Walk<'_> {
                 continue;
             }
             let f = feature(ti, &ids, place);
-            let (point, s) = match place {
-                Place::Corner(k) => (t[k], length(&p, &t[k]) / length(&p, &q)),
-                _ => {
-                    let s = plane_parameter(&p, &q, &t);
-                    (lerp(&p, &q, s), s)
-                }
+            let point = match place {
+                Place::Corner(k) => t[k],
+                _ => crossing_point(&p, &q, &t, place),
             };
+            let s = (length(&p, &point) / length(&p, &q)).clamp(0.0, 1.0);
             let along = self.along[i] + s * (self.along[i + 1] - self.along[i]);
             self.record(pi, Spot::Segment(i, f), f, || Found {
                 crossing: WellCrossing {

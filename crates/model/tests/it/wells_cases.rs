@@ -235,7 +235,11 @@ fn a_well_crossing_where_a_horizon_meets_a_box_side_is_refused_as_on_a_curve() {
     let path = [[-0.1, 0.4, 0.6], [0.1, 0.4, 0.4]];
     let e = cut(&patches, &[], &path).expect_err("through the curve h1/west");
     assert!(e.message.contains("border of its patch"), "{e}");
-    assert_eq!(e.at, Some([0.0, 0.4, 0.5]));
+    let at = e.at.expect("a place");
+    assert!(
+        (at[0], (at[1] - 0.4).abs() < 1e-12, at[2]) == (0.0, true, 0.5),
+        "{at:?}"
+    );
 }
 
 #[test]
@@ -280,4 +284,15 @@ fn resampling_keeps_both_ends_bit_for_bit_and_evens_the_segments() {
         2,
         "a short piece is one segment"
     );
+}
+
+#[test]
+fn an_oblique_well_crosses_a_flat_horizon_at_its_height_exactly() {
+    for d in OFFSETS {
+        let patches = shifted(split_cube(), d);
+        let path = [add([0.13, 0.27, 0.93], d), add([0.71, 0.58, 0.11], d)];
+        let c = cut(&patches, &[], &path).expect("cut");
+        assert_eq!(surfaces(&c, &patches), ["h1#1"]);
+        assert_eq!(c.crossings[0].point[2], 0.5 + d[2]);
+    }
 }

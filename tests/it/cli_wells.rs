@@ -1,0 +1,196 @@
+//! The shipped example with wells (`recipes/didactic_wells.toml`): every well segment is a chain
+//! of tet edges whose crossings are nodes of the surfaces they cross, the mesh passes the
+//! independent checker, editing one well re-runs only what it touches, and a well outside the
+//! model is an error in the recipe's terms.
+
+use crate::common_cli;
+use common_cli::*;
+use geom::mesh::VolumeMesh;
+use geom::mesh::read::read_volume_msh;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+use std::process::Command;
+
+const RECIPE: &str = "didactic_wells.toml";
+
+/// A scratch copy of the didactic data with the wells recipe, built once per test binary.
+fn built() -> Scratch {
+    static BASE: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    let base = BASE.get_or_init(|| {
+        let s = Scratch::didactic();
+        let src = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("recipes")
+            .join(RECIPE);
+        std::fs::copy(src, s.path(RECIPE)).expect("copy the wells recipe");
+        let (ok, _, err) = s.build_recipe(RECIPE, &[]);
+        assert!(ok, "the wells recipe builds: {err}");
+        s.dir.keep()
+    });
+    let dir = tempfile::tempdir().expect("temp dir");
+    copy_dir(base, dir.path());
+    Scratch { dir }
+}
+
+fn mesh_of(s: &Scratch) -> VolumeMesh {
+    let file = s.path("out/didactic_wells/didactic_wells.msh");
+    read_volume_msh(
+        &std::fs::read(&file).expect("the msh"),
+        "didactic_wells.msh",
+    )
+    .expect("reads")
+}
+
+fn edit(s: &Scratch, from: &str, to: &str) {
+    let p = s.path(RECIPE);
+    let text = std::fs::read_to_string(&p).unwrap();
+    assert!(text.contains(from), "the recipe has no `{from}`");
+    std::fs::write(&p, text.replacen(from, to, 1)).unwrap();
+}
+
+/// The nodes of a well's lines in chain order; panics unless they form one open chain.
+fn chain(lines: &[[u32; 2]]) -> Vec<u32> {
+    let mut next: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    for &[a, b] in lines {
+        next.entry(a).or_default().push(b);
+        next.entry(b).or_default().push(a);
+    }
+    assert!(next.values().all(|n| n.len() <= 2), "the well branches");
+    let ends: Vec<u32> = next
+        .iter()
+        .filter(|(_, n)| n.len() == 1)
+        .map(|(&v, _)| v)
+        .collect();
+    assert_eq!(ends.len(), 2, "one open chain");
+    let mut path = vec![ends[0]];
+    let mut prev = u32::MAX;
+    while let Some(&n) = next[path.last().unwrap()].iter().find(|&&n| n != prev) {
+        prev = *path.last().unwrap();
+        path.push(n);
+    }
+    assert_eq!(path.len(), next.len(), "every line is on the chain");
+    path
+}
+
+#[test]
+fn every_well_segment_is_a_chain_of_tet_edges_through_nodes_of_the_surfaces_it_crosses() {
+    let s = built();
+    let mesh = mesh_of(&s);
+    let mut edges = BTreeSet::new();
+    for t in &mesh.tets {
+        for i in 0..4 {
+            for j in i + 1..4 {
+                edges.insert((t[i].min(t[j]), t[i].max(t[j])));
+            }
+        }
+    }
+    let names: Vec<&str> = mesh.lines.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(names, ["W1", "W2"]);
+    // Which surface groups each node is on.
+    let mut on: BTreeMap<u32, BTreeSet<&str>> = BTreeMap::new();
+    for (t, &g) in mesh.triangles.iter().zip(&mesh.triangle_group) {
+        for &v in t {
+            on.entry(v)
+                .or_default()
+                .insert(&mesh.surface_groups[g as usize].name);
+        }
+    }
+    let crosses = |w: &str, want: &[&str]| {
+        let g = mesh.lines.iter().find(|g| g.name == w).unwrap();
+        for &[a, b] in &g.lines {
+            assert!(
+                edges.contains(&(a.min(b), a.max(b))),
+                "{w}: [{a}, {b}] is no tet edge"
+            );
+        }
+        let path = chain(&g.lines);
+        let met: BTreeSet<&str> = path
+            .iter()
+            .flat_map(|v| on.get(v).into_iter().flatten())
+            .copied()
+            .collect();
+        let want: BTreeSet<&str> = want.iter().copied().collect();
+        assert_eq!(
+            met, want,
+            "{w}: the surfaces whose nodes the well passes through"
+        );
+        // It starts on the top of the box (the part above it is left out).
+        let top = path
+            .iter()
+            .map(|&v| mesh.nodes[v as usize][2])
+            .fold(f64::MIN, f64::max);
+        assert_eq!(top, 0.0, "{w} starts at the box top");
+    };
+    crosses("W1", &["box.zmax", "H1", "H2"]);
+    crosses("W2", &["box.zmax", "H1", "F1", "H2"]);
+}
+
+#[test]
+fn the_example_with_wells_passes_the_independent_checker() {
+    let s = built();
+    let Some(check) = checker() else { return };
+    let out = Command::new("python3")
+        .arg(&check)
+        .arg(s.path("out/didactic_wells/didactic_wells.msh"))
+        .args(["--regions", "6", "--box"])
+        .args(["500000", "7000000", "-2500", "505000", "7005000", "0"])
+        .output()
+        .expect("python3 runs");
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{report}");
+    assert!(report.contains("\"fail\": []"), "{report}");
+}
+
+#[test]
+fn editing_one_well_reruns_its_cut_its_patches_and_regions_and_nothing_else() {
+    let s = built();
+    edit(&s, "size = 50.0 }", "size = 60.0 }");
+    let (ok, r, err) = s.build_recipe(RECIPE, &[]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&r, "ran");
+    for must in [
+        "well_cut:W2",
+        "tet_mesh:reservoir_W",
+        "tet_mesh:reservoir_E",
+        "mesh",
+        "export",
+    ] {
+        assert!(
+            ran.contains(&must.to_string()),
+            "`{must}` did not re-run: {ran:?}"
+        );
+    }
+    assert!(
+        ran.iter().any(|n| n.starts_with("surface_mesh:H1#")),
+        "{ran:?}"
+    );
+    for n in all_nodes(&r) {
+        let untouched = n.starts_with("import:")
+            || n.starts_with("well:")
+            || n.starts_with("discretize:")
+            || n.starts_with("surface_mesh:F2#")
+            || n.starts_with("surface_mesh:box.zmin#")
+            || n == "model"
+            || n == "well_cut:W1"
+            || n == "tet_mesh:underburden_W"
+            || n == "tet_mesh:overburden_E";
+        assert!(!(untouched && ran.contains(&n)), "`{n}` re-ran");
+    }
+}
+
+#[test]
+fn a_well_outside_the_model_is_an_error_naming_the_well_and_its_file() {
+    let s = built();
+    let f = s.path("data/didactic/W1_vertical.wl");
+    let text = std::fs::read_to_string(&f).unwrap();
+    // 10 km east of the box.
+    std::fs::write(&f, text.replace("WREF 502600", "WREF 512600")).unwrap();
+    let (ok, r, err) = s.build_recipe(RECIPE, &[]);
+    assert!(!ok);
+    assert!(
+        nodes_in_state(&r, "failed").contains(&"well_cut:W1".to_string()),
+        "{err}"
+    );
+    for needle in ["well `W1`", "W1_vertical.wl", "outside every region"] {
+        assert!(err.contains(needle), "`{needle}` not in:\n{err}");
+    }
+}
