@@ -141,7 +141,7 @@ fn the_example_with_wells_passes_the_independent_checker() {
 }
 
 #[test]
-fn editing_one_well_reruns_its_cut_its_patches_and_regions_and_nothing_else() {
+fn editing_one_wells_size_reruns_the_meshes_within_its_reach_and_nothing_else() {
     let s = built();
     edit(&s, "size = 50.0 }", "size = 60.0 }");
     let (ok, r, err) = s.build_recipe(RECIPE, &[]);
@@ -163,18 +163,56 @@ fn editing_one_well_reruns_its_cut_its_patches_and_regions_and_nothing_else() {
         ran.iter().any(|n| n.starts_with("surface_mesh:H1#")),
         "{ran:?}"
     );
+    // Far from W2 (more than its size's reach, 1 km at the surfaces' growth): the sides of the
+    // box at y = 0 and x = 5000.
     for n in all_nodes(&r) {
         let untouched = n.starts_with("import:")
             || n.starts_with("well:")
             || n.starts_with("discretize:")
-            || n.starts_with("surface_mesh:F2#")
-            || n.starts_with("surface_mesh:box.zmin#")
+            || n.starts_with("surface_mesh:box.ymin#")
+            || n.starts_with("surface_mesh:box.xmax#")
             || n == "model"
-            || n == "well_cut:W1"
-            || n == "tet_mesh:underburden_W"
-            || n == "tet_mesh:overburden_E";
+            || n == "well_cut:W1";
         assert!(!(untouched && ran.contains(&n)), "`{n}` re-ran");
     }
+}
+
+#[test]
+fn moving_a_well_at_the_mesh_size_reruns_the_patches_and_regions_it_crosses_only() {
+    let s = built();
+    let f = s.path("data/didactic/W1_vertical.wl");
+    let text = std::fs::read_to_string(&f).unwrap();
+    // 10 m east: W1 still crosses the same surfaces of the eastern block.
+    std::fs::write(&f, text.replace("WREF 502600", "WREF 502610")).unwrap();
+    let (ok, r, err) = s.build_recipe(RECIPE, &[]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&r, "ran");
+    for must in [
+        "well:W1",
+        "well_cut:W1",
+        "tet_mesh:reservoir_E",
+        "mesh",
+        "export",
+    ] {
+        assert!(
+            ran.contains(&must.to_string()),
+            "`{must}` did not re-run: {ran:?}"
+        );
+    }
+    let meshed: Vec<&String> = ran
+        .iter()
+        .filter(|n| n.starts_with("surface_mesh:") || n.starts_with("tet_mesh:"))
+        .collect();
+    let expected = [
+        "surface_mesh:H1#4",
+        "surface_mesh:H2#4",
+        "surface_mesh:box.zmax#2",
+        "tet_mesh:overburden_E",
+        "tet_mesh:reservoir_E",
+        "tet_mesh:underburden_E",
+    ];
+    assert_eq!(meshed, expected, "only what W1 crosses is meshed again");
+    assert!(!ran.contains(&"well_cut:W2".to_string()));
 }
 
 #[test]

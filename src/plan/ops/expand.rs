@@ -10,6 +10,7 @@
 //! bounds, the regions those bound, `mesh` and `export`, and nothing else.
 
 use super::curves::{CurveSizing, add_curve_nodes, graph_error};
+use super::patch::WellReach;
 use super::refine;
 use super::sizes::{self, SizeChoice};
 use super::wells::{RegionWellsOp, WellCutOp};
@@ -136,11 +137,16 @@ impl Expander for ModelExpander {
         piece_inputs.extend(&cuts);
         let mut meshed = Vec::with_capacity(model.patches.len());
         for ((p, boundary), choice) in model.patches.iter().zip(&topo.patches).zip(&patch_sizes) {
+            let reach = (!cuts.is_empty()).then_some(WellReach {
+                size: choice.size,
+                slope: surface_slope,
+            });
             let piece = x
                 .add_op(
                     &format!("patch:{}", p.name),
                     Arc::new(PatchExtractOp {
                         name: p.name.clone(),
+                        reach,
                     }),
                     &piece_inputs,
                 )

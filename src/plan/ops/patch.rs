@@ -3,7 +3,7 @@
 //! its dependents off early), and its FE surface mesh from the discretizations of its curves,
 //! with every crossing a node.
 
-use super::wells::{WellCutData, patch_crossings};
+use super::wells::{WellCutData, patch_crossings, wells_within_reach};
 use super::{CurveNodes, ModelData};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::SurfaceKind;
@@ -11,7 +11,7 @@ use geom::refine::Refinement;
 use geom::{Tolerances, TriMesh};
 use model::{PatchBoundary, patch_input};
 use serde::{Deserialize, Serialize};
-use surface_mesh::{MAX_SURFACE_GROWTH, SurfaceSize, mesh_patch_refined};
+use surface_mesh::{SurfaceSize, mesh_patch_refined};
 
 /// The output of `patch:<p>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -26,19 +26,31 @@ pub struct PatchPiece {
     pub curves: Vec<String>,
     /// Where wells cross the patch (nodes its mesh must have), in well order then path order.
     pub crossings: Vec<PatchCrossing>,
+    /// The sizes near the wells that come within reach of the patch, in well order.
+    pub well_refine: Vec<Refinement>,
 }
 
-/// A well's crossing of a patch: a node of its mesh, with the well's element size around it.
+/// A well's crossing of a patch: a node of its mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PatchCrossing {
     pub point: [f64; 3],
     pub well: String,
+}
+
+/// How far a well's size reaches on a patch: the patch's own size and the slope its mesh grows
+/// at (a well finer than the patch refines it up to `(size - well size) / slope` away).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WellReach {
     pub size: f64,
+    pub slope: f64,
 }
 
 /// `patch:<p>`: extracts patch `p` from the model; inputs `model`, then every `well_cut:<w>`.
 pub struct PatchExtractOp {
     pub name: String,
+    /// With wells: how far their sizes reach (in the key only then, so recipes without wells
+    /// keep their keys).
+    pub reach: Option<WellReach>,
 }
 
 impl Operation for PatchExtractOp {
@@ -50,13 +62,18 @@ impl Operation for PatchExtractOp {
         true
     }
     fn version(&self) -> u32 {
-        // 2: the wells' crossings of the patch.
-        2
+        // 3: the wells' crossings of the patch and their sizes within reach.
+        3
     }
     fn params(&self) -> Params {
-        Params::new()
+        let mut p = Params::new()
             .with("patch", self.name.as_str())
-            .expect("string")
+            .expect("string");
+        if let Some(r) = self.reach {
+            p.set("size", r.size).expect("validated finite");
+            p.set("slope", r.slope).expect("validated finite");
+        }
+        p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let (model, cuts) = inputs.split_first().ok_or("patch needs the model")?;
@@ -88,6 +105,10 @@ impl Operation for PatchExtractOp {
                 .map(|&c| model.topology.curves[c as usize].name.clone())
                 .collect(),
             crossings: patch_crossings(&p.name, &cuts),
+            well_refine: match self.reach {
+                Some(r) => wells_within_reach(&cuts, &p.mesh, r.size, r.slope),
+                None => Vec::new(),
+            },
         };
         let n = piece.support.triangles.len() as u64;
         Ok(Output::new(Artifact::encode(&piece)?).count("support_triangles", n))
@@ -164,13 +185,8 @@ impl Operation for SurfaceMeshOp {
         let mut input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
             .map_err(|e| OpError::from(e.to_string()))?;
         input.points = piece.crossings.iter().map(|c| c.point).collect();
-        let slope = self.size.growth.min(MAX_SURFACE_GROWTH) - 1.0;
         let refine: Vec<Refinement> = (refine.into_iter())
-            .chain(piece.crossings.iter().map(|c| Refinement {
-                points: vec![c.point],
-                size: c.size,
-                slope,
-            }))
+            .chain(piece.well_refine.iter().cloned())
             .collect();
         let out = mesh_patch_refined(&input, &self.size, &self.tolerances, &refine)
             .map_err(|e| OpError::from(well_context(e, &piece)))?;

@@ -8,7 +8,8 @@ use super::ModelData;
 use super::patch::PatchCrossing;
 use crate::recipe::WellFormat;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use geom::refine::Refinement;
+use geom::TriMesh;
+use geom::refine::{Refinement, boxes_meet};
 use gocad::import::{self, Marker, ObjectRef, Units};
 use model::regions::{Locator, PatchIn};
 use model::wells::{WellError, cut_well, resample};
@@ -372,7 +373,38 @@ pub fn patch_crossings(patch: &str, cuts: &[WellCutData]) -> Vec<PatchCrossing> 
         .map(|(m, c)| PatchCrossing {
             point: m.point,
             well: c.name.clone(),
-            size: c.size,
         })
         .collect()
+}
+
+/// The sizes near the wells `cuts` that reach the support `support` of a patch meshed at `size`
+/// growing at `slope`: one refinement per well finer than the patch with a piece within
+/// `(size - well size) / slope` of the support's box.
+pub fn wells_within_reach(
+    cuts: &[WellCutData],
+    support: &TriMesh,
+    size: f64,
+    slope: f64,
+) -> Vec<Refinement> {
+    let Some(near) = Refinement {
+        points: support.vertices.clone(),
+        ..Refinement::default()
+    }
+    .bounds(0.0) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for c in cuts.iter().filter(|c| c.size < size && slope > 0.0) {
+        let pieces: Vec<Vec<[f64; 3]>> = c.pieces.iter().map(|(_, p)| p.clone()).collect();
+        let r = Refinement {
+            points: samples(&pieces, c.size),
+            size: c.size,
+            slope,
+        };
+        let reach = r.reach(size);
+        if r.bounds(reach).is_some_and(|b| boxes_meet(b, near)) {
+            out.push(r);
+        }
+    }
+    out
 }
