@@ -96,7 +96,9 @@ mod tests {
     fn formats_of_one_file_family_are_exactly_those_the_export_gives_a_common_file() {
         for (_, a) in recipe::Format::ALL {
             for (_, b) in recipe::Format::ALL {
-                let files = |f| export::file_names("m", output_format(f));
+                let files = |f| {
+                    export::file_names("m", output_format(f), &geom::mesh::VolumeMesh::default())
+                };
                 let common = files(a).iter().any(|n| files(b).contains(n));
                 assert_eq!(a.file_family() == b.file_family(), common, "{a:?} {b:?}");
             }

@@ -359,13 +359,14 @@ pub enum Format {
     Vtu,
     /// VTK unstructured grid XML with raw appended binary data (large meshes).
     VtuBinary,
-    /// TetGen `.node`/`.ele`/`.face`.
+    /// TetGen `.node`/`.ele`/`.face` (and `.edge` for the wells).
     Tetgen,
     /// MEDIT `.mesh`.
     Medit,
-    /// Abaqus `.inp` (C3D4 elements, region element sets, surface node sets and surfaces).
+    /// Abaqus `.inp` (C3D4 elements, region element sets, surface node sets and surfaces, T3D2
+    /// well element sets).
     Inp,
-    /// Exodus II `.exo` (element blocks, side sets, node sets).
+    /// Exodus II `.exo` (element blocks, the wells' BAR2 ones too, side sets, node sets).
     Exodus,
 }
 

@@ -1,8 +1,12 @@
 //! Stage `export`: writes a finished [`VolumeMesh`] in the formats downstream solvers read, as
-//! named byte buffers (the CLI writes them to disk). Every region becomes a 3D group and every
-//! surface group (surface, fault, box side) a 2D group under the same names and ids in every
-//! format: region `r` has id `r + 1`, surface group `g` has id `g + 1`. The recipe's attributes
-//! (material id, numeric properties) travel as cell data wherever the format can carry them.
+//! named byte buffers (the CLI writes them to disk). Every region becomes a 3D group, every
+//! surface group (surface, fault, box side) a 2D group and every line group (well) a group of
+//! 2-node line elements under the same names and ids in every format: region `r` has id `r + 1`,
+//! surface group `g` has id `g + 1`, line group `w` has id `w + 1` (Exodus, whose element block
+//! and node set ids must differ from the regions' and the surface groups', numbers the wells'
+//! on after those). The recipe's attributes (material id, numeric properties) travel as cell
+//! data wherever the format can carry them. A mesh without line groups is written exactly as
+//! before line groups existed, in every format.
 //!
 //! Output bytes are a pure function of the mesh and the model name: no timestamps, no hash-order
 //! iteration, floats printed with Rust's shortest round-trip formatting.
@@ -33,15 +37,17 @@ pub enum Format {
     Vtu,
     /// VTK XML UnstructuredGrid with raw appended binary data (for large meshes).
     VtuBinary,
-    /// TetGen `.node` / `.ele` / `.face`.
+    /// TetGen `.node` / `.ele` / `.face`, and `.edge` for a mesh with line groups.
     TetGen,
     /// MEDIT `.mesh` (INRIA), as read by mmg and meshio.
     Medit,
     /// Abaqus `.inp` (C3D4 elements, a material and a solid section per region, node sets and
-    /// element-face surfaces per surface group, a surface per fault side).
+    /// element-face surfaces per surface group, a surface per fault side, T3D2 elements per
+    /// well).
     Inp,
     /// Exodus II `.exo` (netCDF 64-bit offset): an element block per region, a side set and a
-    /// node set per surface group, a front and a back side set per fault.
+    /// node set per surface group, a front and a back side set per fault, a BAR2 element block
+    /// and a node set per well.
     Exodus,
 }
 
@@ -102,11 +108,24 @@ impl Format {
 }
 
 /// Writes `mesh` in `format`. Returns `(file name, bytes)` pairs: file names are `model_name`
-/// plus the format's extension (`didactic.msh`, `didactic.1.node`, ...). Fails with a message on
-/// a mesh whose indices are out of range or a model name that cannot be a file name. The mesh's
-/// line groups (wells): msh writes each as a curve entity of line elements (type 1) with a 1D
-/// physical group of the group's name; the other formats take no lines (an error if some are
-/// given).
+/// plus the format's extension (`didactic.msh`, `didactic.1.node`, ...), as [`file_names`]
+/// lists them. Fails with a message on a mesh whose indices are out of range or a model name
+/// that cannot be a file name.
+///
+/// The mesh's line groups (wells) go into every format, each in its own way, under the group's
+/// name where the format has names and its id (`w + 1`) where it has tags:
+/// - msh: a curve entity of line elements (type 1) per group, with a 1D physical group of the
+///   group's name;
+/// - VTU: line cells (VTK type 3) after the triangles, an Int32 `well` cell array (the group's
+///   id on lines, -1 elsewhere; -1 and NaN on lines in the other arrays) and `well:<name>`
+///   field data;
+/// - Exodus II: a `BAR2` element block per group with lines, after the regions' blocks and
+///   named after it, and a node set of its nodes under its name (meshio names no block);
+/// - MEDIT: an `Edges` section, the reference being the group's id;
+/// - TetGen: a `<model>.1.edge` file, the boundary marker being the group's id (written only
+///   when the mesh has line groups);
+/// - Abaqus: a `*Element, type=T3D2, elset=<name>` block per group with lines, numbered after
+///   the tets (without a section, which needs the well's cross-section area).
 pub fn export(
     mesh: &VolumeMesh,
     model_name: &str,
@@ -114,13 +133,6 @@ pub fn export(
 ) -> Result<Vec<(String, Vec<u8>)>, String> {
     mesh.check_indices()
         .map_err(|e| format!("cannot export model '{model_name}': {e}"))?;
-    if mesh.lines.iter().any(|g| !g.lines.is_empty())
-        && !matches!(format, Format::Msh | Format::MshBinary)
-    {
-        return Err(format!(
-            "cannot export model '{model_name}' with line elements as {format:?}: only msh takes them"
-        ));
-    }
     if model_name.is_empty()
         || model_name.contains(['/', '\\'])
         || model_name.chars().any(char::is_control)
@@ -135,24 +147,27 @@ pub fn export(
         Format::MshBinary => vec![msh::write(mesh, lines, true)],
         Format::Vtu => vec![vtu::write(mesh, false)?],
         Format::VtuBinary => vec![vtu::write(mesh, true)?],
-        Format::TetGen => Vec::from(tetgen::write(mesh, model_name)),
+        Format::TetGen => tetgen::write(mesh, model_name),
         Format::Medit => vec![medit::write(mesh)],
         Format::Inp => vec![inp::write(mesh, model_name)?],
         Format::Exodus => vec![exodus::write(mesh, model_name)?],
     };
-    Ok(file_names(model_name, format)
+    Ok(file_names(model_name, format, mesh)
         .into_iter()
         .zip(contents)
         .collect())
 }
 
-/// The names of the files [`export`] writes for `format`, in the order it returns them
-/// (known before any is written, so a caller can produce them in its own order).
-pub fn file_names(model_name: &str, format: Format) -> Vec<String> {
+/// The names of the files [`export`] writes for `mesh` in `format`, in the order it returns
+/// them (known before any is written, so a caller can produce them in its own order). They
+/// depend on the mesh only through its line groups: TetGen's `.edge` file is written only for a
+/// mesh that has some.
+pub fn file_names(model_name: &str, format: Format, mesh: &VolumeMesh) -> Vec<String> {
     let exts: &[&str] = match format {
         Format::Msh | Format::MshBinary => &["msh"],
         Format::Vtu | Format::VtuBinary => &["vtu"],
-        Format::TetGen => &["1.node", "1.ele", "1.face"],
+        Format::TetGen if mesh.lines.is_empty() => &["1.node", "1.ele", "1.face"],
+        Format::TetGen => &["1.node", "1.ele", "1.face", "1.edge"],
         Format::Medit => &["mesh"],
         Format::Inp => &["inp"],
         Format::Exodus => &["exo"],
@@ -223,11 +238,22 @@ mod tests {
         let all = [Format::VtuBinary, Format::Inp]
             .into_iter()
             .chain(Format::ALL);
+        let well = VolumeMesh {
+            nodes: vec![[0.0; 3], [0.0, 0.0, -1.0]],
+            lines: vec![geom::mesh::LineGroup {
+                name: "W".into(),
+                lines: vec![[0, 1]],
+            }],
+            ..Default::default()
+        };
         for f in all {
-            let files = export(&VolumeMesh::default(), "m", f).unwrap();
-            let names: Vec<String> = files.into_iter().map(|(n, _)| n).collect();
-            assert_eq!(names, file_names("m", f), "{f:?}");
+            for mesh in [&VolumeMesh::default(), &well] {
+                let files = export(mesh, "m", f).unwrap();
+                let names: Vec<String> = files.into_iter().map(|(n, _)| n).collect();
+                assert_eq!(names, file_names("m", f, mesh), "{f:?}");
+            }
         }
+        assert_eq!(file_names("m", Format::TetGen, &well)[3], "m.1.edge");
     }
 
     #[test]

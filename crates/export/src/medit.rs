@@ -1,7 +1,9 @@
 //! MEDIT `.mesh` writer (INRIA ASCII format, read by mmg, FreeFem and meshio): `Vertices` with
-//! reference 0, `Tetrahedra` with reference = region index + 1, `Triangles` with reference =
-//! surface group index + 1. Indices are 1-based. MEDIT has no names: the references are the
-//! same ids as the msh physical tags, so the names can be looked up there or in the report.
+//! reference 0, `Edges` (the wells' line elements, group after group) with reference = line
+//! group index + 1, `Triangles` with reference = surface group index + 1, `Tetrahedra` with
+//! reference = region index + 1, in the order mmg writes them. Indices are 1-based. A section
+//! with no element is left out. MEDIT has no names: the references are the same ids as the msh
+//! physical tags, so the names can be looked up there or in the report.
 
 use geom::mesh::VolumeMesh;
 use std::fmt::Write as _;
@@ -12,6 +14,15 @@ pub(super) fn write(mesh: &VolumeMesh) -> Vec<u8> {
     let _ = writeln!(s, "Vertices\n{}", mesh.nodes.len());
     for p in &mesh.nodes {
         let _ = writeln!(s, "{} {} {} 0", p[0], p[1], p[2]);
+    }
+    let edges: usize = mesh.lines.iter().map(|g| g.lines.len()).sum();
+    if edges > 0 {
+        let _ = writeln!(s, "\nEdges\n{edges}");
+        for (g, group) in mesh.lines.iter().enumerate() {
+            for [a, b] in &group.lines {
+                let _ = writeln!(s, "{} {} {}", a + 1, b + 1, g + 1);
+            }
+        }
     }
     if !mesh.triangles.is_empty() {
         let _ = writeln!(s, "\nTriangles\n{}", mesh.triangles.len());

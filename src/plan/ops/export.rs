@@ -77,14 +77,15 @@ impl Operation for ExportOp {
         let mut mesh = None;
         let mut quality = None;
         if let Some(m) = self.inputs.get("mesh", inputs)?.first() {
+            let m: VolumeMesh = m.decode()?;
             for &format in &self.formats {
-                for name in file_names(&self.model, format) {
+                // The names depend on the mesh (TetGen's `.edge` is there only with wells).
+                for name in file_names(&self.model, format, &m) {
                     plan.insert(name, Source::Mesh(format));
                 }
             }
             plan.insert(format!("{}.quality.txt", self.model), Source::QualityTxt);
             plan.insert(format!("{}.quality.json", self.model), Source::QualityJson);
-            let m: VolumeMesh = m.decode()?;
             quality = Some(quality::report(&m));
             mesh = Some(m);
         }

@@ -5,6 +5,12 @@
 //! material id, -1 where the recipe gives none (as in the msh "material" view), for programs
 //! that read block properties through the Exodus API; [`super::fields`] makes it, and the
 //! numeric properties, cell data for the viewers.
+//!
+//! Then one block per line group (well) that has lines, in group order, named by the well:
+//! `BAR2` elements (2 nodes; VTK reads them as line cells, meshio as `line`), id = the number of
+//! regions + well index + 1 (block ids must differ from the regions'), material -1. Exodus also
+//! has edge blocks (`num_ed_blk`, `ebconn*`), but meshio reads only `connect*` variables, so a
+//! well written as an edge block would vanish there; an element block is read by both.
 
 use super::Common;
 use super::text::rows;
@@ -12,10 +18,23 @@ use crate::netcdf::{DimId, File, Values};
 use crate::numbering::Numbering;
 use geom::mesh::VolumeMesh;
 
-/// The dimensions of the blocks: `num_el_blk` and each block's `num_el_in_blk`.
+/// The dimensions of the blocks: `num_el_blk` and each block's `num_el_in_blk`, with the
+/// region each block holds (`None` for a well's).
 pub(super) struct BlockDims {
     pub(super) count: DimId,
-    pub(super) sizes: Vec<DimId>,
+    pub(super) sizes: Vec<(Option<usize>, DimId, usize)>,
+}
+
+/// One element block as written.
+struct Block<'a> {
+    region: Option<usize>,
+    id: i32,
+    name: &'a str,
+    material: i32,
+    elem_type: &'static str,
+    per_el: usize,
+    /// 1-based node ids, `per_el` per element.
+    connect: Vec<i32>,
 }
 
 /// Writes the block table (`eb_status`, ids, material ids, names) and every block; `None` when
@@ -26,39 +45,77 @@ pub(super) fn put(
     mesh: &VolumeMesh,
     numbering: &Numbering,
 ) -> Result<Option<BlockDims>, String> {
-    let blocks = &numbering.blocks;
+    let blocks = all_blocks(mesh, numbering)?;
     if blocks.is_empty() {
         return Ok(None);
     }
-    let num_elem: usize = blocks.iter().map(|(_, tets)| tets.len()).sum();
+    let num_elem: usize = blocks.iter().map(|b| b.connect.len() / b.per_el).sum();
     f.dim("num_elem", num_elem);
     let num_blk = f.dim("num_el_blk", blocks.len());
-    let regions: Vec<usize> = blocks.iter().map(|(r, _)| *r).collect();
     f.var("eb_status", &[num_blk], Values::Int(vec![1; blocks.len()]));
-    let ids = regions.iter().map(|&r| r as i32 + 1).collect();
+    let ids = blocks.iter().map(|b| b.id).collect();
     f.var("eb_prop1", &[num_blk], Values::Int(ids))
         .attr("name", Values::text("ID"));
-    let materials = regions
-        .iter()
-        .map(|&r| material(mesh, r))
-        .collect::<Result<_, _>>()?;
+    let materials = blocks.iter().map(|b| b.material).collect();
     f.var("eb_prop2", &[num_blk], Values::Int(materials))
         .attr("name", Values::text("MATERIAL_ID"));
-    let names = regions.iter().map(|&r| mesh.regions[r].name.as_str());
+    let names = blocks.iter().map(|b| b.name);
     f.var(
         "eb_names",
         &[num_blk, c.len_name.0],
         rows(names, c.len_name.1),
     );
-    let sizes = blocks
-        .iter()
-        .enumerate()
-        .map(|(i, (_, tets))| put_block(f, mesh, i + 1, tets))
+    let sizes = (1..)
+        .zip(blocks)
+        .map(|(i, b)| {
+            let n = b.connect.len() / b.per_el;
+            (b.region, put_block(f, i, b), n)
+        })
         .collect();
     Ok(Some(BlockDims {
         count: num_blk,
         sizes,
     }))
+}
+
+/// The regions' blocks, then the wells'.
+fn all_blocks<'a>(mesh: &'a VolumeMesh, numbering: &Numbering) -> Result<Vec<Block<'a>>, String> {
+    let mut blocks = Vec::new();
+    for (r, tets) in &numbering.blocks {
+        let connect = tets
+            .iter()
+            .flat_map(|&t| mesh.tets[t])
+            .map(|v| v as i32 + 1)
+            .collect();
+        blocks.push(Block {
+            region: Some(*r),
+            id: *r as i32 + 1,
+            name: &mesh.regions[*r].name,
+            material: material(mesh, *r)?,
+            elem_type: "TETRA",
+            per_el: 4,
+            connect,
+        });
+    }
+    for &(g, _) in &numbering.wells {
+        let group = &mesh.lines[g];
+        let connect = group
+            .lines
+            .iter()
+            .flatten()
+            .map(|&v| v as i32 + 1)
+            .collect();
+        blocks.push(Block {
+            region: None,
+            id: (mesh.regions.len() + g + 1) as i32,
+            name: &group.name,
+            material: -1,
+            elem_type: "BAR2",
+            per_el: 2,
+            connect,
+        });
+    }
+    Ok(blocks)
 }
 
 /// The region's material id as an Exodus property (32-bit), -1 when none.
@@ -75,19 +132,14 @@ fn material(mesh: &VolumeMesh, r: usize) -> Result<i32, String> {
 }
 
 /// Block `i` (1-based): its connectivity; returns its `num_el_in_blk` dimension.
-fn put_block(f: &mut File, mesh: &VolumeMesh, i: usize, tets: &[usize]) -> DimId {
-    let num_el = f.dim(&format!("num_el_in_blk{i}"), tets.len());
-    let per_el = f.dim(&format!("num_nod_per_el{i}"), 4);
-    let connect = tets
-        .iter()
-        .flat_map(|&t| mesh.tets[t])
-        .map(|v| v as i32 + 1)
-        .collect();
+fn put_block(f: &mut File, i: usize, b: Block) -> DimId {
+    let num_el = f.dim(&format!("num_el_in_blk{i}"), b.connect.len() / b.per_el);
+    let per_el = f.dim(&format!("num_nod_per_el{i}"), b.per_el);
     f.var(
         &format!("connect{i}"),
         &[num_el, per_el],
-        Values::Int(connect),
+        Values::Int(b.connect),
     )
-    .attr("elem_type", Values::text("TETRA"));
+    .attr("elem_type", Values::text(b.elem_type));
     num_el
 }

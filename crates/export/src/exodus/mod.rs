@@ -8,6 +8,8 @@
 //!   index + 1, the material id as a block property);
 //! - the material id and the numeric properties as element variables at one time step, time 0
 //!   ([`fields`]), the cell data every viewer shows;
+//! - one 2-node `BAR2` element block per line group (well) with lines, after the regions', and
+//!   a node set of its nodes, both named after the well ([`blocks`], [`sets`]);
 //! - a side set and a node set per surface group, and a front and a back side set per fault
 //!   ([`sets`], [`crate::sides`] for the TETRA4 side numbering);
 //! - QA and info records naming the program and the model ([`globals`]).
@@ -41,25 +43,27 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     let uses = sides::face_uses(mesh, &numbering.number);
     sides::every_triangle_a_face(mesh, &uses)?;
     let side_sets = sets::side_sets(mesh, &uses);
-    let node_sets = sets::node_sets(mesh);
+    let mut node_sets = sets::node_sets(mesh);
+    node_sets.extend(sets::well_node_sets(mesh));
     let names = mesh
         .regions
         .iter()
         .flat_map(|r| std::iter::once(&r.name).chain(r.properties.keys()))
-        .chain(side_sets.iter().map(|s| &s.name));
+        .chain(side_sets.iter().map(|s| &s.name))
+        .chain(mesh.lines.iter().map(|g| &g.name));
     let width = names
         .map(|n| n.len() + 1)
         .fold(MIN_NAME_WIDTH, usize::max)
         .min(MAX_NAME_WIDTH);
     let mut f = File::default();
-    let times = if numbering.blocks.is_empty() {
+    let times = if numbering.blocks.is_empty() && numbering.wells.is_empty() {
         vec![]
     } else {
         vec![0.0]
     };
     let common = globals::put(&mut f, mesh, model, width, times);
     if let Some(dims) = blocks::put(&mut f, &common, mesh, &numbering)? {
-        fields::put(&mut f, &common, mesh, &numbering, &dims);
+        fields::put(&mut f, &common, mesh, &dims);
     }
     set_vars::put_side_sets(&mut f, &common, &side_sets);
     set_vars::put_node_sets(&mut f, &common, &node_sets);
@@ -68,11 +72,15 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
 
 /// Fails when a node id, element number or set id would not fit a 32-bit Exodus integer.
 fn fits_32_bits(mesh: &VolumeMesh) -> Result<(), String> {
-    let ids = mesh.regions.len() + 3 * mesh.surface_groups.len();
-    let largest = mesh.nodes.len().max(mesh.tets.len()).max(ids);
+    let wells = mesh.lines.len();
+    let ids = mesh.regions.len() + 3 * mesh.surface_groups.len() + wells;
+    let lines: usize = mesh.lines.iter().map(|g| g.lines.len()).sum();
+    let elements = mesh.tets.len().saturating_add(lines);
+    let largest = mesh.nodes.len().max(elements).max(ids);
     if largest >= i32::MAX as usize {
         return Err(format!(
-            "the mesh has {} nodes and {} tets: too many for 32-bit Exodus ids",
+            "the mesh has {} nodes, {} tets and {lines} line elements: too many for 32-bit \
+             Exodus ids",
             mesh.nodes.len(),
             mesh.tets.len()
         ));

@@ -10,6 +10,10 @@
 //! condition or a slip model can address each side apart. Empty sets are left out (a netCDF
 //! dimension cannot be 0 long and meshio pairs node sets with names by position): their ids are
 //! then unused.
+//!
+//! Each line group (well) with lines also has a node set of its line nodes under its name, after
+//! the groups' ([`well_node_sets`]), id = the number of surface groups + well index + 1: meshio
+//! names no element block, so these carry the wells' names there.
 
 use crate::sides::{FaceUse, fault_sides, on_side, side_name};
 use crate::split_by;
@@ -67,6 +71,22 @@ pub(crate) fn node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
             NodeSet {
                 id: g + 1,
                 name: mesh.surface_groups[g].name.clone(),
+                nodes: nodes.into_iter().map(|v| v + 1).collect(),
+            }
+        })
+        .collect()
+}
+
+/// The node sets of the wells of `mesh`: each line group's line nodes.
+pub(crate) fn well_node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
+    let first = mesh.surface_groups.len() + 1;
+    (mesh.lines.iter().enumerate())
+        .filter(|(_, g)| !g.lines.is_empty())
+        .map(|(w, g)| {
+            let nodes: BTreeSet<u32> = g.lines.iter().flatten().copied().collect();
+            NodeSet {
+                id: first + w,
+                name: g.name.clone(),
                 nodes: nodes.into_iter().map(|v| v + 1).collect(),
             }
         })

@@ -1,4 +1,5 @@
-//! Abaqus names for the regions, the surface groups and the fault sides: letters, digits and
+//! Abaqus names for the regions, the surface groups, the fault sides and the wells (line
+//! groups; labelled last, so a mesh without them keeps its labels): letters, digits and
 //! `_`, starting with a letter, unique without regard to case (Abaqus folds names to upper
 //! case), and the `**` comments that pair each with its original name.
 
@@ -13,6 +14,8 @@ pub(super) struct Labels {
     pub(super) regions: Vec<String>,
     /// Per side set id, its surface (and, for a group, its node set).
     pub(super) sets: BTreeMap<usize, String>,
+    /// Per line group, its element set.
+    pub(super) wells: Vec<String>,
 }
 
 impl Labels {
@@ -24,7 +27,14 @@ impl Labels {
         let sets = (side_sets.iter())
             .map(|s| (s.id, label(&s.name, &format!("S{}", s.id), &mut taken)))
             .collect();
-        Labels { regions, sets }
+        let wells = (mesh.lines.iter().enumerate())
+            .map(|(w, g)| label(&g.name, &format!("W{}", w + 1), &mut taken))
+            .collect();
+        Labels {
+            regions,
+            sets,
+            wells,
+        }
     }
 
     /// `**` lines naming every region (with its material) and every set by its original name.
@@ -42,6 +52,16 @@ impl Labels {
         for set in side_sets {
             let label = &self.sets[&set.id];
             let _ = writeln!(s, "** set {} \"{}\" surface={label}", set.id, set.name);
+        }
+        for (w, g) in mesh.lines.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "** well {} \"{}\" elset={} (T3D2 without a section: add one, with the well's \
+                 cross-section area, to run it)",
+                w + 1,
+                g.name,
+                self.wells[w]
+            );
         }
     }
 }

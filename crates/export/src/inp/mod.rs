@@ -1,14 +1,17 @@
 //! Abaqus `.inp` writer (also read by CalculiX, PyLith's converters and meshio): `*Node`, one
-//! `*Element, type=C3D4, elset=<region>` block per region, a material and a solid section per
+//! `*Element, type=C3D4, elset=<region>` block per region, one `*Element, type=T3D2,
+//! elset=<well>` block per line group (well) with lines, a material and a solid section per
 //! region ([`materials`]), and the boundary groups ([`surfaces`]): a node set and an
-//! element-face surface per surface group, and a surface per side of every fault.
+//! element-face surface per surface group, and a surface per side of every fault. The wells get
+//! no section: a truss section needs the well's cross-section area, which the mesh does not
+//! know, so the analyst adds it (a `**` comment says so) before Abaqus runs the file.
 //!
 //! Element numbers, side sets and fault sides are the Exodus writer's (tets numbered in region
-//! order from 1; a face named from the tet of the lowest element number, a fault side from the
-//! tets on that side), so the two files name the same faces. Abaqus names cannot hold spaces,
-//! commas or colons: names are sanitised and made unique ([`labels`]; `F1:front` becomes
-//! `F1_front`), and `**` comment lines, which every reader skips, pair each label with the
-//! original name, id and material.
+//! order from 1, then the wells' line elements in group order; a face named from the tet of the
+//! lowest element number, a fault side from the tets on that side), so the two files name the
+//! same elements and faces. Abaqus names cannot hold spaces, commas or colons: names are
+//! sanitised and made unique ([`labels`]; `F1:front` becomes `F1_front`), and `**` comment
+//! lines, which every reader skips, pair each label with the original name, id and material.
 
 mod labels;
 mod materials;
@@ -42,6 +45,12 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
             let [a, b, c, d] = mesh.tets[t];
             let n = numbering.number[t];
             let _ = writeln!(s, "{n}, {}, {}, {}, {}", a + 1, b + 1, c + 1, d + 1);
+        }
+    }
+    for &(w, first) in &numbering.wells {
+        let _ = writeln!(s, "*Element, type=T3D2, elset={}", labels.wells[w]);
+        for (n, [a, b]) in (first..).zip(&mesh.lines[w].lines) {
+            let _ = writeln!(s, "{n}, {}, {}", a + 1, b + 1);
         }
     }
     materials::put(&mut s, mesh, &labels, &numbering);

@@ -1,6 +1,7 @@
-//! The VTU cell arrays, one value per cell (tets, then triangles): `MaterialIDs`, `region`,
-//! `surface` and the region properties. -1 stands for "none" in the integer arrays (ids start
-//! at 1 and material ids may be 0), NaN for a property a region does not have.
+//! The VTU cell arrays, one value per cell (tets, then triangles, then lines): `MaterialIDs`,
+//! `region`, `surface`, the region properties and, when the mesh has line groups, `well`. -1
+//! stands for "none" in the integer arrays (ids start at 1 and material ids may be 0), NaN for a
+//! property a region does not have (and on triangles and lines).
 
 use super::writer::Writer;
 use crate::property_names;
@@ -26,26 +27,33 @@ pub(super) fn materials(mesh: &VolumeMesh) -> Result<Vec<i32>, String> {
 
 /// Writes every cell array; `materials` from [`materials`].
 pub(super) fn put(w: &mut Writer, mesh: &VolumeMesh, materials: &[i32]) {
-    let nf = mesh.triangles.len();
+    let (nf, nl) = (mesh.triangles.len(), super::line_count(mesh));
     w.array("MaterialIDs", 1, per_tet(mesh, |r| materials[r]));
     w.array("region", 1, per_tet(mesh, |r| r as i32 + 1));
     let surface = mesh.triangle_group.iter().map(|&g| g as i32 + 1);
-    w.array("surface", 1, repeat_n(-1, mesh.tets.len()).chain(surface));
+    let surface = repeat_n(-1, mesh.tets.len()).chain(surface);
+    w.array("surface", 1, surface.chain(repeat_n(-1, nl)));
     for name in &property_names(mesh) {
         let value = |r: u32| {
             let region = &mesh.regions[r as usize];
             region.properties.get(name).copied().unwrap_or(f64::NAN)
         };
         let tets = mesh.tet_region.iter().map(|&r| value(r));
-        w.array(name, 1, tets.chain(repeat_n(f64::NAN, nf)));
+        w.array(name, 1, tets.chain(repeat_n(f64::NAN, nf + nl)));
+    }
+    if !mesh.lines.is_empty() {
+        let lines = (mesh.lines.iter().enumerate())
+            .flat_map(|(g, group)| repeat_n(g as i32 + 1, group.lines.len()));
+        w.array("well", 1, repeat_n(-1, mesh.tets.len() + nf).chain(lines));
     }
 }
 
-/// `f(region)` on every tet, then -1 on every triangle.
+/// `f(region)` on every tet, then -1 on every triangle and line.
 fn per_tet<'a>(
     mesh: &'a VolumeMesh,
     f: impl Fn(usize) -> i32 + 'a,
 ) -> impl Iterator<Item = i32> + 'a {
     let tets = mesh.tet_region.iter().map(move |&r| f(r as usize));
-    tets.chain(repeat_n(-1, mesh.triangles.len()))
+    let rest = mesh.triangles.len() + super::line_count(mesh);
+    tets.chain(repeat_n(-1, rest))
 }

@@ -2,15 +2,20 @@
 //! ASCII data arrays or raw appended binary for large meshes.
 //!
 //! Cells: every tet (VTK type 10) in index order, then every surface triangle (type 5), so
-//! faults, horizons and box sides can be shown and selected. Ids follow the crate's one scheme
-//! (region `r` is `r + 1`, surface group `g` is `g + 1`); -1 means "none" in every cell array.
+//! faults, horizons and box sides can be shown and selected, then the line elements of the line
+//! groups (wells) as line cells (type 3), group after group, as the curves VTU writes its
+//! segments. Ids follow the crate's one scheme (region `r` is `r + 1`, surface group `g` is
+//! `g + 1`, line group `w` is `w + 1`); -1 means "none" in every cell array.
 //! Cell data ([`cell_data`]): `MaterialIDs` (Int32, the OpenGeoSys convention: the region's
-//! material id; -1 for a region without a material and on triangles), `region` (region id, -1 on
-//! triangles), `surface` (surface group id, -1 on tets), and one Float64 array per region
-//! property (NaN where undefined). The names table is field data: one single-value Int32 array
-//! per region, `region:<name>` holding its id, and per surface group, `surface:<name>` (VTU
-//! string arrays are not read by meshio; these are, as by VTK). Connectivity and offsets are
-//! Int32 whenever they fit and cell types UInt8, so the binary file is smaller than the ASCII.
+//! material id; -1 for a region without a material and on triangles and lines), `region`
+//! (region id, -1 on triangles and lines), `surface` (surface group id, -1 on tets and lines),
+//! one Float64 array per region property (NaN where undefined), and, only when the mesh has line
+//! groups, `well` (Int32, the line group's id on lines, -1 on tets and triangles). The names
+//! table is field data: one single-value Int32 array per region, `region:<name>` holding its id,
+//! per surface group, `surface:<name>`, and per line group, `well:<name>` (VTU string arrays are
+//! not read by meshio; these are, as by VTK). A mesh without line groups is written as before
+//! they existed. Connectivity and offsets are Int32 whenever they fit and cell types UInt8, so
+//! the binary file is smaller than the ASCII.
 
 mod cell_data;
 pub(crate) mod writer;
@@ -23,11 +28,11 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Result<Vec<u8>, String> 
     let materials = cell_data::materials(mesh)?;
     let mut w = Writer::new(binary, raw_capacity(mesh));
     names_table(&mut w, mesh);
-    let (nt, nf) = (mesh.tets.len(), mesh.triangles.len());
+    let (nt, nf, nl) = (mesh.tets.len(), mesh.triangles.len(), line_count(mesh));
     w.xml.push_str(&format!(
         "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n",
         mesh.nodes.len(),
-        nt + nf
+        nt + nf + nl
     ));
     w.array("Points", 3, mesh.nodes.iter().flatten().copied());
     w.xml.push_str("</Points>\n<Cells>\n");
@@ -39,7 +44,7 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Result<Vec<u8>, String> 
     Ok(w.finish())
 }
 
-/// `<FieldData>`: `region:<name>` and `surface:<name>`, each holding its id.
+/// `<FieldData>`: `region:<name>`, `surface:<name>` and `well:<name>`, each holding its id.
 fn names_table(w: &mut Writer, mesh: &VolumeMesh) {
     w.xml.push_str("<FieldData>\n");
     for (r, rg) in mesh.regions.iter().enumerate() {
@@ -48,15 +53,25 @@ fn names_table(w: &mut Writer, mesh: &VolumeMesh) {
     for (g, sg) in mesh.surface_groups.iter().enumerate() {
         w.field_int(&format!("surface:{}", sg.name), g as i64 + 1);
     }
+    for (g, lg) in mesh.lines.iter().enumerate() {
+        w.field_int(&format!("well:{}", lg.name), g as i64 + 1);
+    }
     w.xml.push_str("</FieldData>\n");
 }
 
-/// `<Cells>`' arrays: tets, then triangles.
+/// The number of line elements of `mesh`.
+pub(super) fn line_count(mesh: &VolumeMesh) -> usize {
+    mesh.lines.iter().map(|g| g.lines.len()).sum()
+}
+
+/// `<Cells>`' arrays: tets, then triangles, then lines.
 fn cells(w: &mut Writer, mesh: &VolumeMesh) {
-    let (nt, nf) = (mesh.tets.len(), mesh.triangles.len());
+    let (nt, nf, nl) = (mesh.tets.len(), mesh.triangles.len(), line_count(mesh));
     let conn = || {
         let tets = mesh.tets.iter().flat_map(|t| t.iter());
+        let lines = mesh.lines.iter().flat_map(|g| g.lines.iter().flatten());
         tets.chain(mesh.triangles.iter().flat_map(|t| t.iter()))
+            .chain(lines)
             .map(|&v| v as usize)
     };
     w.indices("connectivity", mesh.nodes.len(), conn);
@@ -64,18 +79,22 @@ fn cells(w: &mut Writer, mesh: &VolumeMesh) {
         (1..=nt)
             .map(|i| 4 * i)
             .chain((1..=nf).map(|i| 4 * nt + 3 * i))
+            .chain((1..=nl).map(|i| 4 * nt + 3 * nf + 2 * i))
     };
-    w.indices("offsets", 4 * nt + 3 * nf, offsets);
-    let types = std::iter::repeat_n(10u8, nt).chain(std::iter::repeat_n(5u8, nf));
+    w.indices("offsets", 4 * nt + 3 * nf + 2 * nl, offsets);
+    let types = std::iter::repeat_n(10u8, nt)
+        .chain(std::iter::repeat_n(5u8, nf))
+        .chain(std::iter::repeat_n(3u8, nl));
     w.array("types", 1, types);
 }
 
 /// About the size of the appended block (a capacity hint; exact for meshes under 2^31 nodes).
 fn raw_capacity(mesh: &VolumeMesh) -> usize {
-    let (nt, nf) = (mesh.tets.len(), mesh.triangles.len());
+    let (nt, nf, nl) = (mesh.tets.len(), mesh.triangles.len(), line_count(mesh));
     let n_props = crate::property_names(mesh).len();
-    let arrays = 7 + n_props;
+    let wells = usize::from(!mesh.lines.is_empty());
+    let arrays = 7 + n_props + wells;
     let points = 3 * 8 * mesh.nodes.len();
-    let cells = (nt + nf) * (4 + 1 + 3 * 4 + 8 * n_props);
-    8 * arrays + points + 4 * (4 * nt + 3 * nf) + cells
+    let cells = (nt + nf + nl) * (4 + 1 + 3 * 4 + 8 * n_props + 4 * wells);
+    8 * arrays + points + 4 * (4 * nt + 3 * nf + 2 * nl) + cells
 }
