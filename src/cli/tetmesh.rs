@@ -35,8 +35,8 @@ pub struct TetmeshArgs {
     pub embed_tags: Vec<i32>,
     /// Lines to embed as chains of tet edges (well paths): the `l` polylines of an .obj or the
     /// line elements (type 1) of a .msh; their vertices are matched to the others by exact
-    /// coordinates, or are new inner vertices. Written to the .msh output as line elements, in a
-    /// 1D physical group named after the file
+    /// coordinates, or are new inner vertices. Written to every output format as line elements
+    /// named after the file (in .msh a 1D physical group; see `export::export`)
     #[arg(long)]
     pub embed_lines: Option<PathBuf>,
     /// Weld --embed vertices to boundary vertices closer than this (model units); files written
@@ -147,12 +147,6 @@ fn embed_lines(path: &PathBuf, pool: &mut VertexPool) -> Result<(Vec<[u32; 2]>, 
 
 pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
     let format = output_format(&a.output)?;
-    if a.embed_lines.is_some() && format != Format::Msh {
-        return Err(Failure(format!(
-            "error: {}: --embed-lines writes line elements, which only the .msh output takes",
-            a.output.display()
-        )));
-    }
     let b = read(&a.boundary)?;
     let mut pool = VertexPool::default();
     let mut boundary = pool.triangles(&b, |t| !a.embedded_tags.contains(&t));

@@ -308,15 +308,21 @@ fn a_well_given_with_embed_lines_is_written_as_line_elements_along_tet_edges() {
 }
 
 #[test]
-fn embed_lines_refuses_an_output_without_line_elements_and_a_well_leaving_the_block() {
+fn embed_lines_writes_the_well_in_a_vtu_and_refuses_a_well_leaving_the_block() {
     let dir = tempfile::tempdir().unwrap();
     let off = dir.path().join("block.off");
     std::fs::write(&off, boxes_off(&[([0.0; 3], [10.0, 10.0, 10.0])])).unwrap();
+    let inside = dir.path().join("inside.obj");
+    std::fs::write(&inside, "v 5 5 5\nv 5 5 8\nl 1 2\n").unwrap();
+    let (ok, err) = tetmesh_with_lines(&off, &inside, &dir.path().join("block.vtu"));
+    assert!(ok, "{err}");
+    let vtu = std::fs::read_to_string(dir.path().join("block.vtu")).unwrap();
+    assert!(
+        vtu.contains("Name=\"well:inside\" NumberOfTuples=\"1\" format=\"ascii\">1<"),
+        "the well's name in the names table"
+    );
     let well = dir.path().join("well.obj");
     std::fs::write(&well, "v 5 5 5\nv 5 5 12\nl 1 2\n").unwrap();
-    let (ok, err) = tetmesh_with_lines(&off, &well, &dir.path().join("block.vtu"));
-    assert!(!ok);
-    assert!(err.contains("only the .msh output takes"), "{err}");
     let (ok, err) = tetmesh_with_lines(&off, &well, &dir.path().join("block.msh"));
     assert!(!ok);
     assert!(
