@@ -2,6 +2,8 @@
 //! the way real exports look: irregular jittered triangulations at UTM coordinates, some written
 //! with `ZPOSITIVE Depth` or CRLF, every surface reaching past the box so that the box cuts it.
 //! Each case knows how many regions its model has, so a test can build it and check the mesh.
+//! Some cases carry a well (a gOcad PLine) across their bodies: through a fault, a lens, into a
+//! salt flank.
 //!
 //! The box is [0, 4000]² × [-2000, 0] m before the UTM shift of `didactic`. A fault plane with
 //! strike along y is `x = x0 + (z - z0) / tan(dip)`: its height over a column grows with x, so the
@@ -52,9 +54,16 @@ pub fn cases() -> Vec<Case> {
 }
 
 /// Situations the pipeline cannot mesh yet, kept so that they can be reproduced and moved into
-/// [`cases`] once they mesh: none at present.
+/// [`cases`] once they mesh: the closed diapir with a well into its flank (its salt region
+/// needs the advancing front when Delaunay recovery gets stuck, and the front embeds no well).
 pub fn known_gaps() -> Vec<Case> {
-    Vec::new()
+    vec![salt_case(
+        "closed_salt_diapir_with_well",
+        0x7361_6c74_2064_6970,
+        (-300.0, -1900.0),
+        true,
+        true,
+    )]
 }
 
 /// The extent surfaces are made over (past the box on every side).
@@ -118,6 +127,8 @@ struct Recipe {
     surfaces: Vec<(String, &'static str)>,
     files: Vec<(String, String)>,
     trims: Vec<String>,
+    /// `[wells]` entries: name and mesh edge size.
+    wells: Vec<(String, f64)>,
 }
 
 impl Recipe {
@@ -127,7 +138,29 @@ impl Recipe {
             surfaces: Vec::new(),
             files: Vec::new(),
             trims: Vec::new(),
+            wells: Vec::new(),
         }
+    }
+
+    /// A well through the local `stations` (from its head down), written as a gOcad PLine with
+    /// its segments in reverse order, as an export may list them.
+    fn well(&mut self, name: &str, stations: &[[f64; 3]], size: f64) {
+        let mut t = format!("GOCAD PLine 1\r\nHEADER {{\r\nname:{name}\r\n}}\r\nILINE\r\n");
+        for (i, p) in stations.iter().enumerate() {
+            t.push_str(&format!(
+                "VRTX {} {:.3} {:.3} {:.3}\r\n",
+                i + 1,
+                p[0] + ORIGIN_X,
+                p[1] + ORIGIN_Y,
+                p[2]
+            ));
+        }
+        for i in (1..stations.len()).rev() {
+            t.push_str(&format!("SEG {} {}\r\n", i + 1, i));
+        }
+        t.push_str("END\r\n");
+        self.files.push((format!("{name}.pl"), t));
+        self.wells.push((name.to_string(), size));
     }
 
     fn surface(&mut self, name: &str, kind: &'static str, s: &Surface, style: &Style) {
@@ -164,6 +197,15 @@ impl Recipe {
             t.push_str(tr);
             t.push('\n');
         }
+        if !self.wells.is_empty() {
+            t.push_str("[wells]\n");
+            for (w, size) in &self.wells {
+                t.push_str(&format!(
+                    "{w} = {{ file = \"data/{w}.pl\", size = {size:?} }}\n"
+                ));
+            }
+            t.push('\n');
+        }
         t.push_str("[mesh]\nsize = 250.0\n\n[output]\ndir = \"out\"\nformats = [\"msh\"]\n");
         Case {
             name: self.name,
@@ -191,6 +233,17 @@ fn fault_with_throw(name: &'static str, throw: f64) -> Case {
         r.keep(&format!("{h}_hw"), "above", "F");
         r.keep(&format!("{h}_fw"), "below", "F");
     }
+    // A deviated well from the hanging wall across the fault into the footwall.
+    r.well(
+        "W",
+        &[
+            [1400.0, 1910.0, 40.0],
+            [1430.0, 1915.0, -500.0],
+            [1900.0, 1990.0, -1200.0],
+            [2550.0, 2080.0, -1750.0],
+        ],
+        120.0,
+    );
     r.case(&["box", "F", "H1_hw", "H1_fw", "H2_hw", "H2_fw"], 6)
 }
 
@@ -450,6 +503,12 @@ fn lens() -> Case {
         &mut rng,
     );
     r.surface("L", "other", &l, &PLAIN);
+    // A vertical well through the lens, off its axis.
+    r.well(
+        "W",
+        &[[2040.0, 1960.0, 30.0], [2040.0, 1960.0, -1800.0]],
+        100.0,
+    );
     let case = r.case(&["box", "H1", "H2"], 4);
     Case {
         recipe: case
@@ -505,7 +564,14 @@ fn salt_profile(t: f64, top: f64, bottom: f64, closed: bool) -> (f64, f64) {
 
 /// Two horizons pierced by a salt stock of `salt`'s shape, each horizon's disk inside the salt
 /// discarded (the nearest patch to the stock's axis on it).
-fn salt_case(name: &'static str, seed: u64, top: f64, bottom: f64, closed: bool) -> Case {
+/// With `well`, a well beside the salt turns into its flank and ends inside it.
+fn salt_case(
+    name: &'static str,
+    seed: u64,
+    (top, bottom): (f64, f64),
+    closed: bool,
+    well: bool,
+) -> Case {
     let mut rng = Rng(seed);
     let mut r = Recipe::new(name);
     let (cx, cy) = (2000.0, 2100.0);
@@ -528,12 +594,31 @@ fn salt_case(name: &'static str, seed: u64, top: f64, bottom: f64, closed: bool)
         &mut rng,
     );
     r.surface("SALT", "other", &s, &PLAIN);
+    if well {
+        r.well(
+            "W",
+            &[
+                [2930.0, 2130.0, 25.0],
+                [2930.0, 2130.0, -700.0],
+                [2640.0, 2110.0, -1050.0],
+                [2310.0, 2090.0, -1250.0],
+            ],
+            100.0,
+        );
+    }
     r.case(&["box", "H1", "H2", "SALT"], 4)
 }
 
-/// A salt stock rising from below the box through two horizons to a round top at -500 m.
+/// A salt stock rising from below the box through two horizons to a round top at -500 m, with
+/// a well into its flank.
 fn salt_stock() -> Case {
-    salt_case("salt_stock", 0x7361_6c74_2073_746b, -500.0, -2300.0, false)
+    salt_case(
+        "salt_stock",
+        0x7361_6c74_2073_746b,
+        (-500.0, -2300.0),
+        false,
+        true,
+    )
 }
 
 /// A closed salt diapir from -1900 m to -300 m, inside the box, piercing both horizons.
@@ -541,8 +626,8 @@ fn closed_salt_diapir() -> Case {
     salt_case(
         "closed_salt_diapir",
         0x7361_6c74_2064_6970,
-        -300.0,
-        -1900.0,
+        (-300.0, -1900.0),
         true,
+        false,
     )
 }
