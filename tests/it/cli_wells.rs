@@ -47,6 +47,19 @@ fn edit(s: &Scratch, from: &str, to: &str) {
     std::fs::write(&p, text.replacen(from, to, 1)).unwrap();
 }
 
+/// Builds the scratch copy again: the nodes that ran and the report.
+fn rebuilt(s: &Scratch) -> (Vec<String>, serde_json::Value) {
+    let (ok, r, err) = s.build_recipe(RECIPE, &[]);
+    assert!(ok, "{err}");
+    (nodes_in_state(&r, "ran"), r)
+}
+
+fn assert_ran(ran: &[String], must: &[&str]) {
+    for m in must {
+        assert!(ran.iter().any(|n| n == m), "`{m}` did not re-run: {ran:?}");
+    }
+}
+
 /// The nodes of a well's lines in chain order; panics unless they form one open chain.
 fn chain(lines: &[[u32; 2]]) -> Vec<u32> {
     let mut next: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
@@ -144,21 +157,17 @@ fn the_example_with_wells_passes_the_independent_checker() {
 fn editing_one_wells_size_reruns_the_meshes_within_its_reach_and_nothing_else() {
     let s = built();
     edit(&s, "size = 50.0 }", "size = 60.0 }");
-    let (ok, r, err) = s.build_recipe(RECIPE, &[]);
-    assert!(ok, "{err}");
-    let ran = nodes_in_state(&r, "ran");
-    for must in [
-        "well_cut:W2",
-        "tet_mesh:reservoir_W",
-        "tet_mesh:reservoir_E",
-        "mesh",
-        "export",
-    ] {
-        assert!(
-            ran.contains(&must.to_string()),
-            "`{must}` did not re-run: {ran:?}"
-        );
-    }
+    let (ran, r) = rebuilt(&s);
+    assert_ran(
+        &ran,
+        &[
+            "well_cut:W2",
+            "tet_mesh:reservoir_W",
+            "tet_mesh:reservoir_E",
+            "mesh",
+            "export",
+        ],
+    );
     assert!(
         ran.iter().any(|n| n.starts_with("surface_mesh:H1#")),
         "{ran:?}"
@@ -184,21 +193,17 @@ fn moving_a_well_at_the_mesh_size_reruns_the_patches_and_regions_it_crosses_only
     let text = std::fs::read_to_string(&f).unwrap();
     // 10 m east: W1 still crosses the same surfaces of the eastern block.
     std::fs::write(&f, text.replace("WREF 502600", "WREF 502610")).unwrap();
-    let (ok, r, err) = s.build_recipe(RECIPE, &[]);
-    assert!(ok, "{err}");
-    let ran = nodes_in_state(&r, "ran");
-    for must in [
-        "well:W1",
-        "well_cut:W1",
-        "tet_mesh:reservoir_E",
-        "mesh",
-        "export",
-    ] {
-        assert!(
-            ran.contains(&must.to_string()),
-            "`{must}` did not re-run: {ran:?}"
-        );
-    }
+    let (ran, _) = rebuilt(&s);
+    assert_ran(
+        &ran,
+        &[
+            "well:W1",
+            "well_cut:W1",
+            "tet_mesh:reservoir_E",
+            "mesh",
+            "export",
+        ],
+    );
     let meshed: Vec<&String> = ran
         .iter()
         .filter(|n| n.starts_with("surface_mesh:") || n.starts_with("tet_mesh:"))
