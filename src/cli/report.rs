@@ -1,13 +1,17 @@
 //! `report.html` and `report.json`: gathered after each build from the build report (what ran
-//! and why), the artifacts of `model`, the imports and the per-entity nodes, and the figures of
-//! the final mesh, rendered by `crate::report`, and written atomically beside the outputs. They
-//! are not build outputs in the lock file: they say what re-ran, which differs from build to
-//! build by design.
+//! and why), the artifacts of `model`, the imports, the wells (`well:<w>`, `well_cut:<w>`) and
+//! the per-entity nodes, and the figures of the final mesh, rendered by `crate::report`, and
+//! written atomically beside the outputs. They are not build outputs in the lock file: they say
+//! what re-ran, which differs from build to build by design.
 //!
 //! The mesh's figures are a derivation of the `mesh` node's output (`plan::ops::MeshFactsOp`,
 //! cached by the mesh's hash), so a build whose mesh did not change neither reads the mesh nor
 //! measures it again; and a report that would differ from the one on disk only in its timings is
 //! not written again (`report_state`).
+//!
+//! A well is reported from the recipe's list, so one whose file was not read or that was not
+//! cut is still there, with what is known of it (the file; its stations and markers once read)
+//! and why the rest is missing, as a failed import is reported in `validation.json`.
 //!
 //! `validation.json` is written here too, after every build and so also after one that failed
 //! past the imports, when it is needed most: for each surface, what validation found on import,
@@ -18,12 +22,16 @@
 use super::Failure;
 use super::build::write_atomic;
 use super::report_state::{self, ReportState};
-use crate::plan::ops::{MeshFactsOp, ModelData, SurfaceData, findings_by_kind};
+use crate::plan::ops::{
+    MeshFactsOp, ModelData, SurfaceData, WellCutData, WellData, findings_by_kind,
+};
 use crate::recipe::Recipe;
 use crate::report::{
-    CurveSummary, Draft, MeshFacts, ReportInput, StepSummary, SurfaceSummary, model_summaries,
+    CurveSummary, Draft, MeshFacts, ReportInput, StepSummary, SurfaceSummary, WellMarkerRow,
+    WellSummary, model_summaries, well_markers,
 };
-use engine::{BuildReport, Derivations, NodeState};
+use engine::{BuildReport, Derivations, NodeReport, NodeState};
+use geom::mesh::SurfaceKind;
 use geom::mesh::VolumeMesh;
 use std::path::{Path, PathBuf};
 
@@ -55,6 +63,79 @@ fn decoded<T: serde::de::DeserializeOwned>(
         .map(|a| a.decode::<T>())
         .transpose()
         .map_err(|e| Failure(format!("error: report: the output of node `{name}`: {e}")))
+}
+
+/// Why node `node` has no output, in words: its error, or that it was skipped and why.
+fn why_not(node: Option<&NodeReport>, what: &str) -> String {
+    match node {
+        None => format!("not {what}: the build has no such step"),
+        Some(n) => match (&n.error, n.state) {
+            (Some(e), _) => e.clone(),
+            (None, NodeState::Skipped) => format!("not {what}: {}", n.reason),
+            (None, state) => format!("not {what} ({state})"),
+        },
+    }
+}
+
+/// The recipe's wells, in name order, from their `well:<w>` and `well_cut:<w>` nodes and the
+/// mesh's line groups; `surfaces` says which crossings are of box sides.
+fn well_summaries(
+    recipe: &Recipe,
+    report: &BuildReport,
+    surfaces: &[SurfaceSummary],
+    mesh: &MeshFacts,
+) -> Result<Vec<WellSummary>, Failure> {
+    let box_side = |name: &str| {
+        surfaces
+            .iter()
+            .any(|s| s.name == name && s.kind == SurfaceKind::Box)
+    };
+    let mut wells = Vec::new();
+    for (name, spec) in &recipe.wells {
+        let (read, cut) = (format!("well:{name}"), format!("well_cut:{name}"));
+        let data: Option<WellData> = decoded(report, &read)?;
+        let cut_data: Option<WellCutData> = decoded(report, &cut)?;
+        let error = match (&data, &cut_data) {
+            (None, _) => Some(why_not(report.node(&read), "read")),
+            (Some(_), None) => Some(why_not(report.node(&cut), "cut")),
+            _ => None,
+        };
+        let file_markers = data.as_ref().map_or(Vec::new(), |d| {
+            d.markers
+                .iter()
+                .map(|m| WellMarkerRow::file(&m.name, m.md, m.xyz))
+                .collect()
+        });
+        let crossings = cut_data.as_ref().map_or(Vec::new(), |c| {
+            c.markers
+                .iter()
+                .map(|m| WellMarkerRow::crossing(&m.surface, &m.patch, m.md, m.point))
+                .collect()
+        });
+        let mut regions: Vec<String> = Vec::new();
+        if let Some(c) = &cut_data {
+            for (r, _) in &c.pieces {
+                if regions.last() != Some(r) {
+                    regions.push(r.clone());
+                }
+            }
+        }
+        wells.push(WellSummary {
+            name: name.clone(),
+            file: data
+                .as_ref()
+                .map_or_else(|| spec.file.display().to_string(), |d| d.file.clone()),
+            stations: data.as_ref().map(|d| d.stations.len()),
+            regions,
+            length: cut_data.as_ref().map_or(f64::NAN, |c| {
+                c.pieces.iter().map(|(_, p)| polyline_length(p)).sum()
+            }),
+            edges: mesh.lines.iter().find(|l| l.name == *name).map(|l| l.edges),
+            markers: well_markers(crossings, file_markers, box_side),
+            error,
+        });
+    }
+    Ok(wells)
 }
 
 /// The figures of the build's final mesh (of an empty mesh when it has none), derived from the
@@ -172,6 +253,8 @@ fn report_input<'a>(
             r.material = recipe.regions.get(&r.name).and_then(|s| s.material);
         }
     }
+    let mesh = mesh_facts(recipe, report, derivations)?;
+    let wells = well_summaries(recipe, report, &surfaces, &mesh)?;
     let steps = report
         .nodes
         .iter()
@@ -189,7 +272,8 @@ fn report_input<'a>(
         curves,
         patches,
         regions,
-        mesh: mesh_facts(recipe, report, derivations)?,
+        wells,
+        mesh,
         steps,
         warnings,
     })
@@ -208,11 +292,7 @@ pub fn validation_json(report: &BuildReport) -> Result<String, Failure> {
             .unwrap_or(&n.name)
             .to_string();
         let Some(s) = decoded::<SurfaceData>(report, &n.name)? else {
-            let why = match (&n.error, n.state) {
-                (Some(e), _) => e.clone(),
-                (None, NodeState::Skipped) => format!("not imported: {}", n.reason),
-                (None, state) => format!("not imported ({state})"),
-            };
+            let why = why_not(Some(n), "imported");
             surfaces.insert(name, serde_json::json!({ "error": why }));
             continue;
         };

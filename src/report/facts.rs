@@ -1,6 +1,6 @@
 //! What a report shows of the final mesh, computed from the mesh once: its counts and groups,
-//! the seed's Tables 1 and 2, the histograms, the element counts and volumes per group, and the
-//! two pictures.
+//! the seed's Tables 1 and 2, the histograms, the element counts and volumes per group, the
+//! edges and length of every line group (well), and the two pictures.
 //!
 //! These are the report's only costly parts (a measure per element, a sort of every tet face,
 //! the painter's algorithm), and they depend on the mesh and the model's name alone (the
@@ -14,11 +14,11 @@ use super::input::region_tets_and_volumes;
 use super::pictures;
 use super::view::Picture;
 use export::quality::{self, QualityReport};
-use geom::mesh::{RegionGroup, SurfaceGroup, VolumeMesh};
+use geom::mesh::{LineGroup, RegionGroup, SurfaceGroup, VolumeMesh};
 use serde::{Deserialize, Serialize};
 
 /// The version of what [`MeshFacts::of`] computes, for caches of it.
-pub const FACTS_VERSION: u32 = 1;
+pub const FACTS_VERSION: u32 = 2;
 
 /// Everything a report shows of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -42,7 +42,38 @@ pub struct MeshFacts {
     pub region_volume: Vec<f64>,
     /// Triangles per mesh surface group (index order).
     pub group_triangles: Vec<usize>,
+    /// The mesh's line groups (the wells), index order.
+    pub lines: Vec<LineFacts>,
     pub pictures: Pictures,
+}
+
+/// One line group of a mesh (a well).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LineFacts {
+    pub name: String,
+    /// Its edges whose nodes are in range.
+    pub edges: usize,
+    /// Their summed length (model units).
+    pub length: f64,
+}
+
+impl LineFacts {
+    fn of(mesh: &VolumeMesh, g: &LineGroup) -> LineFacts {
+        let (mut edges, mut length) = (0, 0.0);
+        for &[a, b] in &g.lines {
+            let (Some(p), Some(q)) = (mesh.nodes.get(a as usize), mesh.nodes.get(b as usize))
+            else {
+                continue;
+            };
+            edges += 1;
+            length += (0..3).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>().sqrt();
+        }
+        LineFacts {
+            name: g.name.clone(),
+            edges,
+            length,
+        }
+    }
 }
 
 /// The report's two pictures (see `pictures`).
@@ -82,6 +113,7 @@ impl MeshFacts {
             region_tets,
             region_volume,
             group_triangles,
+            lines: mesh.lines.iter().map(|g| LineFacts::of(mesh, g)).collect(),
             pictures: Pictures {
                 model,
                 cutaway,

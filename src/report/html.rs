@@ -1,10 +1,11 @@
 //! `report.html`: one self-contained page (inline CSS and SVG; no script, font, image or style
 //! fetched from anywhere) in a fixed section order: summary, warnings, pictures, model tables,
-//! the seed's Tables 1 and 2, histograms, build steps. Every name goes through `esc`; every number
-//! has a fixed precision, so the page is a pure function of its input.
+//! wells (only when the recipe has any), the seed's Tables 1 and 2, histograms, build steps.
+//! Every name goes through `esc`; every number has a fixed precision, so the page is a pure
+//! function of its input.
 
 use super::histogram::{self, Histogram};
-use super::input::{ReportInput, StepSummary};
+use super::input::{MarkerKind, ReportInput, StepSummary, WellSummary};
 use super::palette::{self, Rgb};
 use super::pictures::FACE_CAP;
 use super::text::{count, esc, num};
@@ -51,6 +52,7 @@ pub fn body(input: &ReportInput, warnings: &[String]) -> String {
     }
     pictures_section(&mut h, input);
     model_tables(&mut h, input);
+    wells_section(&mut h, input);
     let q = &input.mesh.quality;
     quality_tables(&mut h, &q.table1, &q.table2);
     histograms(&mut h, input);
@@ -75,6 +77,9 @@ fn summary(h: &mut String, input: &ReportInput) {
     card(h, input.curves.len(), "curves");
     card(h, input.patches.len(), "patches");
     card(h, input.regions.len(), "regions");
+    if !input.wells.is_empty() {
+        card(h, input.wells.len(), "wells");
+    }
     card(h, m.nodes, "mesh nodes");
     card(h, m.triangles, "surface triangles");
     card(h, m.tets, "tetrahedra");
@@ -132,9 +137,14 @@ fn pictures_section(h: &mut String, input: &ReportInput) {
             .iter()
             .map(|g| (g.name.clone(), palette::surface(&g.name, g.kind))),
     );
+    let wells = if m.lines.is_empty() {
+        ""
+    } else {
+        " The wells (the mesh's line groups) are the dark lines, named at their heads, drawn over the surfaces whatever lies in front of them."
+    };
     let _ = writeln!(
         h,
-        "<figcaption>Figure 1. The model's surface triangles seen from the south-west, 30° above the horizon (parallel projection, far triangles painted first), coloured by surface name; box sides in grey, only where the model's centre lies between them and the viewer.{}</figcaption></figure>",
+        "<figcaption>Figure 1. The model's surface triangles seen from the south-west, 30° above the horizon (parallel projection, far triangles painted first), coloured by surface name; box sides in grey, only where the model's centre lies between them and the viewer.{wells}{}</figcaption></figure>",
         bound_note(p1)
     );
     let (p2, kept) = (&m.pictures.cutaway, m.pictures.kept);
@@ -260,6 +270,123 @@ fn model_tables(h: &mut String, input: &ReportInput) {
         );
     }
     h.push_str("</table></section>\n");
+}
+
+/// A difference of measured depths with its sign (`+2.50`, `-0.75`, `0.00`).
+fn signed(v: f64, digits: usize) -> String {
+    let s = num(v, digits);
+    if v > 0.0 && s.bytes().any(|b| (b'1'..=b'9').contains(&b)) {
+        format!("+{s}")
+    } else {
+        s
+    }
+}
+
+/// The wells: one row per well (its file, stations, the regions it passes through, its mesh
+/// edges and its length inside the model), then each well's crossings and file markers in MD
+/// order. Left out when the recipe has no wells.
+fn wells_section(h: &mut String, input: &ReportInput) {
+    if input.wells.is_empty() {
+        return;
+    }
+    let _ = write!(h, "<section><h2>Wells ({})</h2>", input.wells.len());
+    h.push_str("<table><tr><th class=\"l\">well</th><th class=\"l\">file</th><th>stations</th><th class=\"l\">regions (path order)</th><th>mesh edges</th><th>length in model</th></tr>");
+    for w in &input.wells {
+        let regions = match &w.error {
+            Some(e) if w.regions.is_empty() => {
+                format!("<span class=\"st-failed\">{}</span>", esc(e))
+            }
+            _ => {
+                let r: Vec<String> = w.regions.iter().map(|r| region_name(input, r)).collect();
+                if r.is_empty() {
+                    "-".to_string()
+                } else {
+                    r.join(" → ")
+                }
+            }
+        };
+        let _ = write!(
+            h,
+            "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td class=\"l small\">{regions}</td><td>{}</td><td>{}</td></tr>",
+            esc(&w.name),
+            if w.file.is_empty() {
+                "-".to_string()
+            } else {
+                format!("<code>{}</code>", esc(&w.file))
+            },
+            w.stations.map_or("-".to_string(), count),
+            w.edges.map_or("-".to_string(), count),
+            num(w.length, 2)
+        );
+    }
+    h.push_str("</table>");
+    if input.wells.iter().all(|w| w.markers.is_empty()) {
+        h.push_str("</section>\n");
+        return;
+    }
+    h.push_str("<p class=\"small\">Markers down each well in measured depth (MD, model units along the path from its head): where the well crosses a patch of the model (a node of that patch's mesh), and the file's own markers. ΔMD is a file marker's MD minus that of the nearest crossing of a surface other than a box side: positive when the marker lies deeper along the path than the model's surface.</p>");
+    for w in input.wells.iter().filter(|w| !w.markers.is_empty()) {
+        well_markers_table(h, input, w);
+    }
+    h.push_str("</section>\n");
+}
+
+/// A region's name with the swatch of its colour in the mesh (none when the mesh lacks it).
+fn region_name(input: &ReportInput, name: &str) -> String {
+    match input.mesh.regions.iter().position(|g| g.name == name) {
+        Some(i) => format!(
+            "<span class=\"sw\" style=\"background:{}\"></span>{}",
+            palette::region(i).hex(),
+            esc(name)
+        ),
+        None => esc(name),
+    }
+}
+
+fn well_markers_table(h: &mut String, input: &ReportInput, w: &WellSummary) {
+    let _ = write!(
+        h,
+        "<h3>{} ({} marker{})</h3><table><tr><th>MD</th><th class=\"l\">marker</th><th class=\"l\">surface / name</th><th class=\"l\">patch</th><th>x</th><th>y</th><th>z</th><th>ΔMD to nearest surface</th></tr>",
+        esc(&w.name),
+        count(w.markers.len()),
+        if w.markers.len() == 1 { "" } else { "s" }
+    );
+    for m in &w.markers {
+        let (what, name, nearest) = match m.kind {
+            MarkerKind::Crossing => {
+                let colour = input
+                    .surfaces
+                    .iter()
+                    .find(|s| s.name == m.name)
+                    .map(|s| palette::surface(&s.name, s.kind));
+                let name = match colour {
+                    Some(c) => format!(
+                        "<span class=\"sw\" style=\"background:{}\"></span>{}",
+                        c.hex(),
+                        esc(&m.name)
+                    ),
+                    None => esc(&m.name),
+                };
+                ("crossing", name, String::new())
+            }
+            MarkerKind::File => {
+                let nearest = m.nearest.as_ref().map_or("-".to_string(), |n| {
+                    format!("{} ({})", signed(n.delta_md, 2), esc(&n.surface))
+                });
+                ("file", format!("<b>{}</b>", esc(&m.name)), nearest)
+            }
+        };
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td class=\"l\">{what}</td><td class=\"l\">{name}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{nearest}</td></tr>",
+            num(m.md, 2),
+            m.patch.as_deref().map_or(String::new(), esc),
+            num(m.xyz[0], 2),
+            num(m.xyz[1], 2),
+            num(m.xyz[2], 2)
+        );
+    }
+    h.push_str("</table>");
 }
 
 /// One quality table from its shared layout; the last ("all") row is set apart.

@@ -1,10 +1,19 @@
 //! `report.json`: the report for machines. Same content as the HTML minus the pictures: model
 //! summary, mesh groups, the seed's Tables 1 and 2, the histograms (fixed bins), the steps and the
-//! warnings. Keys are sorted (serde_json's map is ordered), floats are shortest round-trip, and
-//! non-finite numbers (statistics of an empty group, unknown volumes) are `null`.
+//! warnings, and the wells. Keys are sorted (serde_json's map is ordered), floats are shortest
+//! round-trip, and non-finite numbers (statistics of an empty group, unknown volumes) are `null`.
+//!
+//! `wells` is there only when the recipe has wells, so that the document of a build without
+//! wells is the one it was before wells existed (its report is not written again). A well's
+//! `length` is that of its path inside the model, `mesh_edges` its edges in the mesh, `error` why
+//! it is known only in part (`null` for whatever is unknown). It lists its `markers` in MD order
+//! as the HTML does, each with its `kind` (`crossing`: `name`
+//! is the surface, `patch` the patch crossed; `file`: `name` is the file's marker, `nearest` the
+//! nearest crossing of a surface other than a box side with `delta_md` = the marker's MD minus
+//! the crossing's).
 
 use super::BINS;
-use super::input::{ReportInput, StepSummary};
+use super::input::{ReportInput, StepSummary, WellSummary};
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 
@@ -80,7 +89,7 @@ pub fn render(input: &ReportInput, warnings: &[String], steps: &[StepSummary]) -
             })
         })
         .collect();
-    let doc = json!({
+    let mut doc = json!({
         "format": FORMAT,
         "model": input.model_name,
         "recipe": input.recipe_path,
@@ -115,12 +124,50 @@ pub fn render(input: &ReportInput, warnings: &[String], steps: &[StepSummary]) -
         "steps_by_state": states,
         "warnings": warnings,
     });
+    if !input.wells.is_empty()
+        && let Some(o) = doc.as_object_mut()
+    {
+        o.insert(
+            "wells".into(),
+            Value::Array(input.wells.iter().map(well).collect()),
+        );
+    }
     let mut s = serde_json::to_string_pretty(&doc).unwrap_or_else(|e| {
         // Serialising plain maps, strings and numbers cannot fail; keep a valid document anyway.
         json!({ "format": FORMAT, "error": e.to_string() }).to_string()
     });
     s.push('\n');
     s
+}
+
+fn well(w: &WellSummary) -> Value {
+    let markers: Vec<Value> = w
+        .markers
+        .iter()
+        .map(|m| {
+            json!({
+                "kind": m.kind,
+                "name": m.name,
+                "patch": m.patch,
+                "md": finite(m.md),
+                "xyz": m.xyz.map(finite),
+                "nearest": m.nearest.as_ref().map(|n| json!({
+                    "surface": n.surface,
+                    "delta_md": finite(n.delta_md),
+                })),
+            })
+        })
+        .collect();
+    json!({
+        "name": w.name,
+        "file": w.file,
+        "stations": w.stations,
+        "regions": w.regions,
+        "length": finite(w.length),
+        "mesh_edges": w.edges,
+        "markers": markers,
+        "error": w.error,
+    })
 }
 
 /// `null` for NaN and infinities (JSON has no such numbers).

@@ -3,9 +3,12 @@
 //! tet mesh's figures and the build steps.
 //!
 //! What the report decides: which figures a user iterating on a recipe sees — the model summary,
-//! the seed's Tables 1 and 2 (computed by `export::quality`, not re-derived), quality histograms
-//! per region and per surface, what re-ran and why, and two pictures rendered here (surfaces
-//! coloured by name; a cut-away of the tets coloured by region). Pure: no filesystem, no clock;
+//! the wells (the regions each passes through, its mesh edges, its crossings of the model's
+//! surfaces interleaved with its file's markers), the seed's Tables 1 and 2 (computed by
+//! `export::quality`, not re-derived), quality histograms per region and per surface, what
+//! re-ran and why, and two pictures rendered here (surfaces coloured by name, with the wells
+//! drawn over them; a cut-away of the tets coloured by region). A build without wells gets the
+//! report it got before wells existed: no wells section, no `wells` key. Pure: no filesystem, no clock;
 //! the same input gives the same bytes (fixed float precision in HTML, sorted keys and shortest
 //! round-trip floats in JSON, index-ordered groups). Every name is HTML-escaped.
 //!
@@ -30,11 +33,11 @@ mod pictures;
 mod text;
 mod view;
 
-pub use facts::{FACTS_VERSION, MeshFacts, Pictures};
+pub use facts::{FACTS_VERSION, LineFacts, MeshFacts, Pictures};
 pub use histogram::{BINS, Histogram};
 pub use input::{
-    CurveSummary, PatchSide, PatchSummary, RegionSummary, ReportInput, StepSummary, SurfaceSummary,
-    region_tets_and_volumes,
+    CurveSummary, MarkerKind, NearestCrossing, PatchSide, PatchSummary, RegionSummary, ReportInput,
+    StepSummary, SurfaceSummary, WellMarkerRow, WellSummary, region_tets_and_volumes, well_markers,
 };
 pub use model::model_summaries;
 pub use pictures::FACE_CAP;
@@ -140,4 +143,151 @@ pub fn render_json(input: &ReportInput) -> String {
 /// Both documents: `(html, json)`.
 pub fn render_both(input: &ReportInput) -> (String, String) {
     Draft::new(input).finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(z: f64) -> [f64; 3] {
+        [500.0, 700.0, z]
+    }
+
+    /// A well cut by the model with a file marker near its H1 crossing, and one whose cut
+    /// failed (its name and error with markup characters).
+    fn wells() -> Vec<WellSummary> {
+        vec![
+            WellSummary {
+                name: "W1".into(),
+                file: "data/W1.wl".into(),
+                stations: Some(68),
+                regions: vec!["upper".into(), "lower".into()],
+                length: 1985.0,
+                edges: Some(11),
+                markers: well_markers(
+                    vec![
+                        WellMarkerRow::crossing("box.top", "box.top#0", 25.0, at(0.0)),
+                        WellMarkerRow::crossing("H1", "H1#0", 1226.4, at(-1201.4)),
+                    ],
+                    vec![WellMarkerRow::file("H1_pick", 1226.31, at(-1201.31))],
+                    |s| s.starts_with("box."),
+                ),
+                error: None,
+            },
+            WellSummary {
+                name: "W<2>".into(),
+                file: "data/W&2.wl".into(),
+                stations: Some(5),
+                regions: Vec::new(),
+                length: f64::NAN,
+                edges: None,
+                markers: well_markers(
+                    Vec::new(),
+                    vec![WellMarkerRow::file("top", 3.0, at(22.0))],
+                    |_| false,
+                ),
+                error: Some("well `W<2>` runs along F1".into()),
+            },
+        ]
+    }
+
+    fn with_wells() -> ReportInput<'static> {
+        ReportInput {
+            model_name: "wells",
+            wells: wells(),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn the_wells_section_has_a_row_per_well_and_its_markers_in_md_order() {
+        let (html, _) = render_both(&with_wells());
+        assert!(html.contains("<b>2</b>wells</div>"), "a summary card");
+        let section = &html[html.find("<h2>Wells (2)</h2>").expect("the section")..];
+        let section = &section[..section.find("</section>").unwrap()];
+        assert!(section.contains(
+            "<tr><td class=\"l\">W1</td><td class=\"l\"><code>data/W1.wl</code></td><td>68</td><td class=\"l small\">upper → lower</td><td>11</td><td>1985.00</td></tr>"
+        ));
+        // The failed cut: what is known, why the rest is not, every name escaped.
+        assert!(section.contains(
+            "<tr><td class=\"l\">W&lt;2&gt;</td><td class=\"l\"><code>data/W&amp;2.wl</code></td><td>5</td><td class=\"l small\"><span class=\"st-failed\">well `W&lt;2&gt;` runs along F1</span></td><td>-</td><td>-</td></tr>"
+        ));
+        let w1 = &section[section.find("<h3>W1 (3 markers)</h3>").unwrap()..];
+        let rows: Vec<&str> = w1.split("<tr>").skip(2).take(3).collect();
+        assert!(rows[0].starts_with("<td>25.00</td><td class=\"l\">crossing</td><td class=\"l\">box.top</td><td class=\"l\">box.top#0</td><td>500.00</td><td>700.00</td><td>0.00</td><td></td>"), "{}", rows[0]);
+        assert!(rows[1].starts_with("<td>1226.31</td><td class=\"l\">file</td><td class=\"l\"><b>H1_pick</b></td><td class=\"l\"></td><td>500.00</td><td>700.00</td><td>-1201.31</td><td>-0.09 (H1)</td>"), "{}", rows[1]);
+        assert!(
+            rows[2].starts_with(
+                "<td>1226.40</td><td class=\"l\">crossing</td><td class=\"l\">H1</td>"
+            )
+        );
+        let w2 = &section[section.find("<h3>W&lt;2&gt; (1 marker)</h3>").unwrap()..];
+        assert!(w2.contains("<td class=\"l\"><b>top</b></td><td class=\"l\"></td><td>500.00</td><td>700.00</td><td>22.00</td><td>-</td>"));
+    }
+
+    #[test]
+    fn a_bare_meshs_line_groups_are_its_wells() {
+        let m = geom::mesh::VolumeMesh {
+            nodes: vec![[0.0, 0.0, 0.0], [0.0, 0.0, -3.0], [0.0, 4.0, -3.0]],
+            lines: vec![geom::mesh::LineGroup {
+                name: "W1".into(),
+                lines: vec![[0, 1], [1, 2], [2, 7]],
+            }],
+            ..Default::default()
+        };
+        let i = ReportInput::from_mesh("bare", "bare.msh", &m);
+        assert_eq!(i.wells.len(), 1);
+        assert_eq!((i.wells[0].edges, i.wells[0].length), (Some(2), 7.0));
+        let html = render_html(&i);
+        assert!(html.contains(
+            "<tr><td class=\"l\">W1</td><td class=\"l\">-</td><td>-</td><td class=\"l small\">-</td><td>2</td><td>7.00</td></tr>"
+        ));
+    }
+
+    #[test]
+    fn a_report_without_wells_has_no_wells_section_card_or_key() {
+        let (html, json) = render_both(&ReportInput::default());
+        assert!(!html.contains("Wells") && !html.contains("wells</div>"));
+        assert!(
+            !html.contains("The wells"),
+            "nor a word of them in Figure 1"
+        );
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        assert!(v.get("wells").is_none());
+    }
+
+    #[test]
+    fn report_json_lists_the_wells_with_their_markers_in_md_order() {
+        let (_, json) = render_both(&with_wells());
+        let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+        let w = v["wells"].as_array().expect("wells");
+        assert_eq!(w.len(), 2);
+        assert_eq!(w[0]["name"], "W1");
+        assert_eq!(w[0]["file"], "data/W1.wl");
+        assert_eq!(w[0]["stations"], 68);
+        assert_eq!(w[0]["regions"], serde_json::json!(["upper", "lower"]));
+        assert_eq!(w[0]["length"], 1985.0);
+        assert_eq!(w[0]["mesh_edges"], 11);
+        assert_eq!(w[0]["error"], serde_json::Value::Null);
+        let kinds: Vec<&str> = (w[0]["markers"].as_array().unwrap().iter())
+            .map(|m| m["kind"].as_str().unwrap())
+            .collect();
+        assert_eq!(kinds, ["crossing", "file", "crossing"]);
+        let pick = &w[0]["markers"][1];
+        assert_eq!(pick["name"], "H1_pick");
+        assert_eq!(pick["patch"], serde_json::Value::Null);
+        assert_eq!(pick["nearest"]["surface"], "H1");
+        assert!((pick["nearest"]["delta_md"].as_f64().unwrap() + 0.09).abs() < 1e-9);
+        assert_eq!(w[0]["markers"][2]["patch"], "H1#0");
+        assert_eq!(
+            w[0]["markers"][2]["xyz"],
+            serde_json::json!([500.0, 700.0, -1201.4])
+        );
+        // What is known of a well that was not cut; unknowns are null.
+        assert_eq!(w[1]["length"], serde_json::Value::Null);
+        assert_eq!(w[1]["mesh_edges"], serde_json::Value::Null);
+        assert_eq!(w[1]["error"], "well `W<2>` runs along F1");
+        assert_eq!(w[1]["markers"][0]["nearest"], serde_json::Value::Null);
+        assert_eq!(json, render_both(&with_wells()).1, "deterministic");
+    }
 }

@@ -11,13 +11,21 @@
 //!
 //! The side of a plane a point lies on is the exact `orient3d`; both are picture choices, not
 //! model decisions.
+//!
+//! The wells (the mesh's line groups) are drawn on the first picture, over the surfaces (see
+//! `view`), with the same camera and frame, so they are seen where they cross the surfaces. A
+//! group's edges are in no useful order in the mesh (region by region), so they are chained
+//! into polylines here; a well's name is written at its head, taken as the highest end of its
+//! chains (a well path starts at its head, and the part of it inside the box starts at the box's
+//! top or the head below it).
 
 use super::input::{tet_points, tri_points};
 use super::palette::{self, Rgb};
-use super::view::{self, Camera, Face, Picture, Style};
+use super::view::{self, Camera, Face, Line, Picture, Style};
 use geom::BBox;
 use geom::mesh::{SurfaceKind, VolumeMesh};
 use geom::predicates::{Orientation, orient3d};
+use std::collections::BTreeMap;
 
 /// Most faces drawn in one picture: at roughly 55 bytes per face, two pictures stay under 3 MB.
 pub const FACE_CAP: usize = 25_000;
@@ -95,9 +103,77 @@ pub fn model(mesh: &VolumeMesh, title: &str) -> (Picture, Vec<Rgb>) {
             edges: None,
             cap: FACE_CAP,
             title,
+            lines: &wells(mesh),
         },
     );
     (pic, colours)
+}
+
+/// The line groups of `mesh` as polylines, each named at its head (the highest end of its
+/// chains, the first on a tie). Edges with a node out of range are left out.
+pub fn wells(mesh: &VolumeMesh) -> Vec<Line> {
+    mesh.lines
+        .iter()
+        .map(|g| {
+            let parts: Vec<Vec<[f64; 3]>> = chains(&g.lines, mesh.nodes.len())
+                .iter()
+                .map(|c| c.iter().map(|&v| mesh.nodes[v as usize]).collect())
+                .collect();
+            let head = parts
+                .iter()
+                .flat_map(|p| [p.first(), p.last()])
+                .flatten()
+                .filter(|p| p.iter().all(|c| c.is_finite()))
+                .fold(None, |best: Option<[f64; 3]>, &p| match best {
+                    Some(b) if b[2] >= p[2] => Some(b),
+                    _ => Some(p),
+                });
+            Line {
+                name: g.name.clone(),
+                parts,
+                head,
+            }
+        })
+        .collect()
+}
+
+/// `edges` (between nodes below `n`) chained into walks that use every edge once: first from
+/// every node that does not have two edges (the ends of open chains, branch points), in node
+/// order, then around the loops left, from their smallest node. One open chain gives one walk.
+fn chains(edges: &[[u32; 2]], n: usize) -> Vec<Vec<u32>> {
+    let mut e: Vec<[u32; 2]> = edges
+        .iter()
+        .filter(|&&[a, b]| a != b && (a as usize) < n && (b as usize) < n)
+        .map(|&[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    e.sort_unstable();
+    e.dedup();
+    let mut adj: BTreeMap<u32, Vec<(u32, usize)>> = BTreeMap::new();
+    for (i, &[a, b]) in e.iter().enumerate() {
+        adj.entry(a).or_default().push((b, i));
+        adj.entry(b).or_default().push((a, i));
+    }
+    let starts: Vec<u32> = (adj.iter().filter(|(_, a)| a.len() != 2).map(|(&v, _)| v))
+        .chain(adj.keys().copied())
+        .collect();
+    let mut used = vec![false; e.len()];
+    let mut out = Vec::new();
+    for s in starts {
+        loop {
+            let mut walk = vec![s];
+            let mut v = s;
+            while let Some(&(w, i)) = adj[&v].iter().find(|(_, i)| !used[*i]) {
+                used[i] = true;
+                walk.push(w);
+                v = w;
+            }
+            if walk.len() < 2 {
+                break;
+            }
+            out.push(walk);
+        }
+    }
+    out
 }
 
 /// Whether the plane of triangle `p` has `centre` strictly on the viewer's side (the viewer is
@@ -171,6 +247,7 @@ pub fn cutaway(mesh: &VolumeMesh, title: &str) -> (Picture, usize, Vec<Rgb>) {
             edges: Some("#00000059"),
             cap: FACE_CAP,
             title,
+            lines: &[],
         },
     );
     (pic, kept, colours)
@@ -196,7 +273,7 @@ fn outward_face(mesh: &VolumeMesh, t: usize, l: usize) -> Option<Face> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geom::mesh::RegionGroup;
+    use geom::mesh::{LineGroup, RegionGroup, SurfaceGroup};
 
     /// Two unit cubes side by side along x, each as 6 Kuhn tets, regions 0 and 1.
     fn two_cubes() -> VolumeMesh {
@@ -251,6 +328,74 @@ mod tests {
         assert!(far_wall(&bottom, &c, &cam.toward, 1.0));
         assert!(far_wall(&north, &c, &cam.toward, 1.0));
         assert!(!far_wall(&south, &c, &cam.toward, 1.0));
+    }
+
+    #[test]
+    fn edges_in_any_order_chain_into_one_walk_per_open_chain() {
+        // 0-1-2-3 shuffled and repeated, a loop 5-6-7, an edge out of range and a degenerate one.
+        let edges = [
+            [2, 3],
+            [1, 0],
+            [6, 7],
+            [2, 1],
+            [7, 5],
+            [3, 2],
+            [5, 6],
+            [4, 99],
+            [8, 8],
+        ];
+        let walks = chains(&edges, 10);
+        assert_eq!(walks, [vec![0, 1, 2, 3], vec![5, 6, 7, 5]]);
+        // A branch: every edge once, a walk from each node without two edges.
+        let walks = chains(&[[0, 1], [1, 2], [1, 3]], 4);
+        assert_eq!(walks.iter().map(|w| w.len() - 1).sum::<usize>(), 3);
+    }
+
+    #[test]
+    fn the_model_picture_draws_a_polyline_per_well_named_at_its_head() {
+        let mut m = two_cubes();
+        // The top of the first cube as a horizon (nodes i * 4 + j * 2 + k at (i, j, k)).
+        m.surface_groups.push(SurfaceGroup {
+            name: "H".into(),
+            kind: SurfaceKind::Horizon,
+        });
+        m.triangles.extend([[1, 5, 7], [1, 7, 3]]);
+        m.triangle_group.extend([0, 0]);
+        let bare = model(&m, "m").0;
+        assert!(bare.drawn > 0);
+        assert!(!bare.svg.contains("<polyline") && !bare.svg.contains("-wells"));
+        // W<1>: 4 (1, 0, 0) up to 5 (1, 0, 1), on to 9 (2, 0, 1) and 11 (2, 1, 1), its edges out
+        // of order; W2: 0 (0, 0, 0) to 2 (0, 1, 0) up to 3 (0, 1, 1).
+        m.lines.push(LineGroup {
+            name: "W<1>".into(),
+            lines: vec![[9, 11], [5, 4], [9, 5]],
+        });
+        m.lines.push(LineGroup {
+            name: "W2".into(),
+            lines: vec![[2, 0], [3, 2]],
+        });
+        let pic = model(&m, "m").0;
+        assert_eq!(pic.svg.matches("<polyline").count(), 2, "{}", pic.svg);
+        assert!(pic.svg.contains("<title>W&lt;1&gt;</title></polyline>"));
+        assert!(pic.svg.contains("<title>W2</title></polyline>"));
+        assert_eq!(
+            pic.svg.matches("<text x").count(),
+            2 + 3,
+            "two names, three axes"
+        );
+        // The lines come after every face, the names after the lines.
+        let last_face = pic.svg.rfind("<path").unwrap();
+        let first_line = pic.svg.find("<polyline").unwrap();
+        let name = pic.svg.find(">W&lt;1&gt;</text>").unwrap();
+        assert!(last_face < first_line && first_line < name);
+        // Each well is one chain, named at its highest end.
+        let w = wells(&m);
+        assert_eq!(w[0].parts, [[4, 5, 9, 11].map(|v| m.nodes[v])]);
+        assert_eq!(w[0].head, Some(m.nodes[11]));
+        assert_eq!(w[1].parts, [[0, 2, 3].map(|v| m.nodes[v])]);
+        assert_eq!(w[1].head, Some(m.nodes[3]));
+        // The faces are drawn as without wells.
+        assert_eq!((pic.visible, pic.drawn), (bare.visible, bare.drawn));
     }
 
     #[test]

@@ -13,6 +13,12 @@
 //! without a gap), and of faces with the same snapped corners only the nearest is kept (it hides
 //! the others exactly). `cell` starts at one unit (of a picture at most 960 units wide and 640
 //! high) and grows by a quarter until at most `cap` faces remain.
+//!
+//! Lines (the wells) are drawn after every face, dark and named at their heads: they lie inside
+//! the model, so painted in depth order they would be hidden by the surfaces around them, which
+//! is the opposite of what a picture of where the wells go is for. They are not under the size
+//! bound (a well is a few thousand points at most); consecutive points that fall on the same
+//! tenth of a picture unit are written once.
 
 use super::palette::Rgb;
 use super::text::{coord, esc};
@@ -66,6 +72,14 @@ pub struct Face {
     pub colour: u32,
 }
 
+/// A named set of 3D polylines drawn over the faces (a well), its name written at `head`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Line {
+    pub name: String,
+    pub parts: Vec<Vec<[f64; 3]>>,
+    pub head: Option<[f64; 3]>,
+}
+
 /// How a picture is drawn.
 #[derive(Clone, Debug)]
 pub struct Style<'a> {
@@ -81,6 +95,8 @@ pub struct Style<'a> {
     pub cap: usize,
     /// Title inside the SVG (for screen readers and standalone viewing).
     pub title: &'a str,
+    /// Drawn over the faces, in order.
+    pub lines: &'a [Line],
 }
 
 /// A drawn picture and the figures its caption quotes.
@@ -221,7 +237,7 @@ pub fn draw(faces: &[Face], frame: &BBox, style: &Style) -> Picture {
     flat.sort_by(|a, b| a.depth.total_cmp(&b.depth));
     let visible = flat.len();
     let (keep, cell) = bound(&flat, fit.width, fit.height, style.cap);
-    let svg = write_svg(&flat, &keep, cell, fit.width, fit.height, style);
+    let svg = write_svg(&flat, &keep, cell, (&cam, &fit), style);
     Picture {
         svg,
         visible,
@@ -270,10 +286,10 @@ fn write_svg(
     flat: &[Flat],
     keep: &[bool],
     cell: f64,
-    width: f64,
-    height: f64,
+    (cam, fit): (&Camera, &Fit),
     style: &Style,
 ) -> String {
+    let (width, height) = (fit.width, fit.height);
     let id = style.id;
     let mut used: Vec<(u32, u8)> = flat
         .iter()
@@ -333,8 +349,61 @@ fn write_svg(
         );
     }
     s.push_str("</g>");
+    if !style.lines.is_empty() {
+        s.push_str(&lines_svg(cam, fit, style));
+    }
     axes(&mut s, height);
     s.push_str("</svg>");
+    s
+}
+
+/// The lines of `style` over the faces: one `<polyline>` per part with the line's name as its
+/// `<title>`, then every name at its head in dark text on a white halo.
+fn lines_svg(cam: &Camera, fit: &Fit, style: &Style) -> String {
+    let id = style.id;
+    let mut s = format!(
+        "<g class=\"{id}-wells\" fill=\"none\" stroke=\"#111\" stroke-width=\"2\" stroke-linejoin=\"round\" stroke-linecap=\"round\">"
+    );
+    let mut labels = String::new();
+    for line in style.lines {
+        let name = esc(&line.name);
+        for part in &line.parts {
+            let mut points: Vec<String> = Vec::with_capacity(part.len());
+            let mut last = String::new();
+            for p in part.iter().filter(|p| p.iter().all(|c| c.is_finite())) {
+                let q = fit.map(cam.project(p));
+                let xy = format!("{},{}", coord(q[0]), coord(q[1]));
+                if xy != last {
+                    points.push(xy.clone());
+                    last = xy;
+                }
+            }
+            if points.len() < 2 {
+                continue;
+            }
+            let _ = write!(
+                s,
+                "<polyline points=\"{}\"><title>{name}</title></polyline>",
+                points.join(" ")
+            );
+        }
+        if let Some(h) = line.head.filter(|h| h.iter().all(|c| c.is_finite())) {
+            let q = fit.map(cam.project(&h));
+            let _ = write!(
+                labels,
+                "<text x=\"{}\" y=\"{}\">{name}</text>",
+                coord(q[0] + 4.0),
+                coord(q[1] - 5.0)
+            );
+        }
+    }
+    s.push_str("</g>");
+    if !labels.is_empty() {
+        let _ = write!(
+            s,
+            "<g class=\"{id}-names\" font-size=\"12\" font-weight=\"600\" font-family=\"sans-serif\" fill=\"#111\" stroke=\"#fff\" stroke-width=\"3\" stroke-linejoin=\"round\" paint-order=\"stroke\">{labels}</g>"
+        );
+    }
     s
 }
 
@@ -393,6 +462,7 @@ mod tests {
             edges: None,
             cap,
             title: "test",
+            lines: &[],
         }
     }
 

@@ -1,7 +1,8 @@
 //! The shipped example with wells (`recipes/didactic_wells.toml`): every well segment is a chain
 //! of tet edges whose crossings are nodes of the surfaces they cross, the mesh passes the
-//! independent checker, editing one well re-runs only what it touches, and a well outside the
-//! model is an error in the recipe's terms.
+//! independent checker, editing one well re-runs only what it touches, a well outside the
+//! model is an error in the recipe's terms, and the report lists each well's crossings, regions
+//! and file markers.
 
 use crate::common_cli;
 use common_cli::*;
@@ -138,6 +139,81 @@ fn every_well_segment_is_a_chain_of_tet_edges_through_nodes_of_the_surfaces_it_c
 }
 
 #[test]
+fn report_json_lists_each_wells_crossings_in_md_order_its_regions_and_its_picks() {
+    let s = built();
+    let out = s.path("out/didactic_wells");
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+    let wells = v["wells"].as_array().expect("a wells array");
+    let names: Vec<&str> = wells.iter().map(|w| w["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["W1", "W2"]);
+    let check = |w: &serde_json::Value, file: &str, crossed: &[&str], regions: &[&str]| {
+        let name = w["name"].as_str().unwrap();
+        assert_eq!(w["file"], file);
+        assert_eq!(w["error"], serde_json::Value::Null, "{name}");
+        assert!(w["stations"].as_u64().unwrap() > 2, "{name}");
+        assert!(w["mesh_edges"].as_u64().unwrap() > 5, "{name}");
+        assert!(w["length"].as_f64().unwrap() > 1000.0, "{name}");
+        assert_eq!(w["regions"], serde_json::json!(regions), "{name}");
+        let markers = w["markers"].as_array().unwrap();
+        let mds: Vec<f64> = markers.iter().map(|m| m["md"].as_f64().unwrap()).collect();
+        assert!(
+            mds.windows(2).all(|p| p[0] <= p[1]),
+            "{name}: MD order {mds:?}"
+        );
+        let of = |kind: &str| -> Vec<&serde_json::Value> {
+            markers.iter().filter(|m| m["kind"] == kind).collect()
+        };
+        let crossings = of("crossing");
+        let surfaces: Vec<&str> = crossings
+            .iter()
+            .map(|c| c["name"].as_str().unwrap())
+            .collect();
+        assert_eq!(surfaces, crossed, "{name}: the surfaces crossed");
+        assert!(
+            crossings
+                .iter()
+                .all(|c| c["patch"].as_str().unwrap().contains('#'))
+        );
+        // The generator puts the file's H1 pick on the path a little off the model's H1.
+        let h1 = crossings[surfaces.iter().position(|&s| s == "H1").unwrap()];
+        let picks = of("file");
+        assert_eq!(picks.len(), 1, "{name}");
+        let pick = picks[0];
+        assert_eq!(pick["name"], "H1_pick");
+        let delta = pick["md"].as_f64().unwrap() - h1["md"].as_f64().unwrap();
+        assert!(
+            delta.abs() < 5.0,
+            "{name}: H1_pick is {delta} m of MD off H1"
+        );
+        assert_eq!(pick["nearest"]["surface"], "H1");
+        assert!((pick["nearest"]["delta_md"].as_f64().unwrap() - delta).abs() < 1e-9);
+    };
+    check(
+        &wells[0],
+        "data/didactic/W1_vertical.wl",
+        &["box.zmax", "H1", "H2"],
+        &["overburden_E", "reservoir_E", "underburden_E"],
+    );
+    check(
+        &wells[1],
+        "data/didactic/W2_deviated.wl",
+        &["box.zmax", "H1", "F1", "H2"],
+        &[
+            "overburden_W",
+            "reservoir_W",
+            "reservoir_E",
+            "underburden_E",
+        ],
+    );
+    // The page: the section, and the wells drawn on Figure 1 (before Figure 2).
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("<h2>Wells (2)</h2>"));
+    let figure1 = &html[..html.find("Figure 2.").unwrap()];
+    assert_eq!(figure1.matches("<polyline").count(), 2);
+}
+
+#[test]
 fn the_example_with_wells_passes_the_independent_checker() {
     let s = built();
     let Some(check) = checker() else { return };
@@ -236,4 +312,25 @@ fn a_well_outside_the_model_is_an_error_naming_the_well_and_its_file() {
     for needle in ["well `W1`", "W1_vertical.wl", "outside every region"] {
         assert!(err.contains(needle), "`{needle}` not in:\n{err}");
     }
+    // The report keeps what is known of the well (its file, stations and picks) and says why
+    // the rest is missing.
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(s.path("out/didactic_wells/report.json")).unwrap())
+            .unwrap();
+    let w1 = &v["wells"][0];
+    assert_eq!(w1["name"], "W1");
+    assert_eq!(w1["file"], "data/didactic/W1_vertical.wl");
+    assert!(w1["stations"].as_u64().unwrap() > 2);
+    assert!(
+        w1["error"]
+            .as_str()
+            .unwrap()
+            .contains("outside every region")
+    );
+    assert_eq!(w1["regions"], serde_json::json!([]));
+    assert_eq!(w1["length"], serde_json::Value::Null);
+    let kinds: Vec<&str> = (w1["markers"].as_array().unwrap().iter())
+        .map(|m| m["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["file"]);
 }
