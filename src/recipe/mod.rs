@@ -167,7 +167,13 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
     region_names.sort();
     let mesh = sections::mesh::read(&mut ctx, root, root_span, &names, &region_names);
     let output = sections::output::read(&mut ctx, root.get("output"), &base_dir);
-    let wells = sections::wells::read(&mut ctx, root.get("wells"), &base_dir, &names.surfaces);
+    let wells = sections::wells::read(
+        &mut ctx,
+        root.get("wells"),
+        &base_dir,
+        &names.surfaces,
+        &region_names,
+    );
 
     let mut diags = ctx.diags;
     if let (true, Some(model), Some(mesh), Some(output)) =

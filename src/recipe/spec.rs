@@ -112,6 +112,9 @@ pub struct WellSpec {
     pub object: Option<gocad::import::ObjectRef>,
     /// Target length of the well's mesh edges (> 0); `None` = `mesh.size`.
     pub size: Option<f64>,
+    /// The regions the well is embedded in (sorted `[regions]` names); `None` = every region it
+    /// crosses.
+    pub regions: Option<Vec<String>>,
     /// Span of the name (the key).
     #[serde(skip)]
     pub span: Span,

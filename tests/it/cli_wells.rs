@@ -297,6 +297,35 @@ fn moving_a_well_at_the_mesh_size_reruns_the_patches_and_regions_it_crosses_only
 }
 
 #[test]
+fn a_well_restricted_to_the_reservoir_is_embedded_there_only() {
+    let s = built();
+    edit(
+        &s,
+        "size = 50.0 }",
+        "size = 50.0, regions = [\"reservoir_E\", \"reservoir_W\"] }",
+    );
+    let (_, _) = rebuilt(&s);
+    let mesh = mesh_of(&s);
+    let w2 = mesh.lines.iter().find(|g| g.name == "W2").expect("W2");
+    let zs: Vec<f64> = w2
+        .lines
+        .iter()
+        .flatten()
+        .map(|&v| mesh.nodes[v as usize][2])
+        .collect();
+    let (top, bottom) = zs
+        .iter()
+        .fold((f64::MIN, f64::MAX), |(a, b), &z| (a.max(z), b.min(z)));
+    // The reservoir lies between about 1160 and 1340 m below the box top along W2's path.
+    assert!(
+        top < -1100.0 && bottom > -1400.0,
+        "W2 spans z {bottom} .. {top}"
+    );
+    let w1 = mesh.lines.iter().find(|g| g.name == "W1").expect("W1");
+    assert_eq!(w1.lines.len(), 11, "W1 keeps every region");
+}
+
+#[test]
 fn a_well_outside_the_model_is_an_error_naming_the_well_and_its_file() {
     let s = built();
     let f = s.path("data/didactic/W1_vertical.wl");

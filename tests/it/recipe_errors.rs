@@ -728,3 +728,28 @@ fn a_refinement_names_exactly_one_feature_and_grows_to_a_larger_size() {
     let (d, rendered) = single_at(&text, "1.5", 0);
     assert!(d.message.contains("not larger than"), "{rendered}");
 }
+
+#[test]
+fn wells_are_read_with_their_options_and_bad_entries_point_at_the_value() {
+    let named = format!(
+        "{BASE}\n[regions]\nres = {{ point = [5.0, 5.0, -5.0] }}\n\n[wells]\nW1 = \"data/w1.wl\"\nW2 = {{ file = \"data/w2.pl\", size = 2.5, object = 2, regions = [\"res\"] }}\n"
+    );
+    let r = ok(&named);
+    let w2 = &r.wells["W2"];
+    assert_eq!(
+        (w2.size, w2.regions.clone(), w2.path.clone()),
+        (
+            Some(2.5),
+            Some(vec!["res".to_string()]),
+            Path::new("recipes/data/w2.pl").to_path_buf()
+        )
+    );
+    assert_eq!(r.wells["W1"].size, None);
+    let (_, rendered) = single_at(&named.replace("[\"res\"]", "[\"rez\"]"), "\"rez\"", 0);
+    assert!(rendered.contains("unknown region `rez`"), "{rendered}");
+    assert!(rendered.contains("did you mean `res`?"), "{rendered}");
+    let (_, rendered) = single_at(&named.replace("w1.wl", "w1.ts"), "\"data/w1.ts\"", 0);
+    assert!(rendered.contains("not a gOcad well or line"), "{rendered}");
+    let (_, rendered) = single_at(&named.replace("W1 =", "top ="), "top =", 1);
+    assert!(rendered.contains("also a surface name"), "{rendered}");
+}

@@ -88,6 +88,7 @@ impl ModelExpander {
                 name: name.clone(),
                 size_path,
                 size,
+                regions: w.regions.clone(),
             };
             let id = x
                 .add_op(&format!("well_cut:{name}"), Arc::new(op), &[model, well])

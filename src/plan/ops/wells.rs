@@ -12,7 +12,7 @@ use geom::TriMesh;
 use geom::refine::{Refinement, boxes_meet};
 use gocad::import::{self, Marker, ObjectRef, Units};
 use model::regions::{Locator, PatchIn};
-use model::wells::{WellError, cut_well, resample};
+use model::wells::{WellCut, WellError, cut_well, resample};
 use serde::{Deserialize, Serialize};
 
 /// The output of `well:<w>`: the path in the recipe's frame.
@@ -159,6 +159,8 @@ pub struct WellCutOp {
     /// Recipe path of the edge length (`wells.<w>.size` or `mesh.size`) and its value.
     pub size_path: String,
     pub size: f64,
+    /// The regions the well is embedded in; `None`: every region it crosses.
+    pub regions: Option<Vec<String>>,
 }
 
 impl Operation for WellCutOp {
@@ -172,6 +174,10 @@ impl Operation for WellCutOp {
         let mut p = Params::new();
         p.set("well", self.name.as_str()).expect("string");
         p.set(&self.size_path, self.size).expect("validated finite");
+        if let Some(r) = &self.regions {
+            p.set(&format!("wells.{}.regions", self.name), r.clone())
+                .expect("strings");
+        }
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -200,6 +206,16 @@ impl Operation for WellCutOp {
                 well.file,
                 fmt_point(&well.stations[0]),
                 fmt_point(well.stations.last().expect("two stations")),
+            )
+            .into());
+        }
+        let cut = self.within_regions(cut, &model);
+        if cut.pieces.is_empty() {
+            return Err(format!(
+                "well `{}` ({}) crosses none of the regions its `regions` names ({})",
+                well.name,
+                well.file,
+                self.regions.as_deref().unwrap_or_default().join(", ")
             )
             .into());
         }
@@ -236,6 +252,27 @@ impl Operation for WellCutOp {
         .count("markers", nm)
         .count("pieces", np)
         .count("segments", segments as u64))
+    }
+}
+
+impl WellCutOp {
+    /// The cut restricted to the recipe's regions: their pieces, and the crossings that end one.
+    fn within_regions(&self, cut: WellCut, model: &ModelData) -> WellCut {
+        let Some(keep) = &self.regions else {
+            return cut;
+        };
+        let name = |r: u32| model.regions.regions[r as usize].name.as_str();
+        let pieces: Vec<_> = (cut.pieces.into_iter())
+            .filter(|p| keep.iter().any(|k| k == name(p.region)))
+            .collect();
+        let ends: Vec<[f64; 3]> = pieces
+            .iter()
+            .flat_map(|p| [p.points[0], p.points[p.points.len() - 1]])
+            .collect();
+        let crossings = (cut.crossings.into_iter())
+            .filter(|c| ends.contains(&c.point))
+            .collect();
+        WellCut { crossings, pieces }
     }
 }
 

@@ -1,6 +1,7 @@
 //! `[wells]`: well name -> path file. Decides which names are legal (those of surfaces, and not
 //! a surface's own name, so every output group has one meaning), the format from the extension
-//! (`.wl` Well, `.pl` PLine), and the options: `object` and the target edge length `size`.
+//! (`.wl` Well, `.pl` PLine), and the options: `object`, the target edge length `size`, and the
+//! `regions` it is embedded in (names from `[regions]`; by default every region it crosses).
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -10,16 +11,17 @@ use toml::de::DeValue;
 
 use super::surfaces::{check_name, object};
 use crate::recipe::diagnostic::did_you_mean;
-use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
+use crate::recipe::reader::{self as rd, Ctx, Value, name_help, path_join};
 use crate::recipe::spec::{WellFormat, WellSpec};
 
-const KEYS: &[&str] = &["file", "object", "size"];
+const KEYS: &[&str] = &["file", "object", "size", "regions"];
 
 pub(crate) fn read(
     ctx: &mut Ctx<'_>,
     v: Option<&Value<'_>>,
     base_dir: &Path,
     surfaces: &[String],
+    regions: &[String],
 ) -> BTreeMap<String, WellSpec> {
     let mut out = BTreeMap::new();
     let Some(v) = v else { return out };
@@ -73,12 +75,17 @@ pub(crate) fn read(
             Some(x) => rd::size(ctx, x, &path_join(&path, "size")).map(Some),
             None => Some(None),
         };
-        if let (true, Some((file, format, fspan)), Some(object), Some(size)) =
-            (ok, file, object, size)
+        let within = match st.get("regions") {
+            Some(x) => region_list(ctx, x, &path_join(&path, "regions"), regions).map(Some),
+            None => Some(None),
+        };
+        if let (true, Some((file, format, fspan)), Some(object), Some(size), Some(within)) =
+            (ok, file, object, size, within)
         {
             let mut spec = spec(ctx, base_dir, (name, k.span()), (&file, fspan), format);
             spec.object = object;
             spec.size = size;
+            spec.regions = within;
             out.insert(name.to_string(), spec);
         }
     }
@@ -101,9 +108,51 @@ fn spec(
         format,
         object: None,
         size: None,
+        regions: None,
         span: ctx.span(name_span),
         file_span: ctx.span(file_span),
     }
+}
+
+/// `regions = ["a", "b"]`: non-empty, each a `[regions]` name, no repeats; sorted.
+fn region_list(
+    ctx: &mut Ctx<'_>,
+    v: &Value<'_>,
+    path: &str,
+    regions: &[String],
+) -> Option<Vec<String>> {
+    let names = rd::strings(ctx, v, path)?;
+    if names.is_empty() {
+        ctx.error(
+            v.span(),
+            format!("`{path}` is empty: the well would be embedded nowhere"),
+            Some("name the regions it is embedded in, or leave `regions` out for all".into()),
+        );
+        return None;
+    }
+    let mut ok = true;
+    for (n, span) in &names {
+        if !regions.iter().any(|r| r == n) {
+            let help = name_help(n, regions.iter().map(String::as_str)).or_else(|| {
+                Some("name the region in `[regions]` with a point inside it first".into())
+            });
+            ctx.error(
+                span.clone(),
+                format!("`{path}` names unknown region `{n}`"),
+                help,
+            );
+            ok = false;
+        }
+    }
+    let mut out: Vec<String> = names.into_iter().map(|(n, _)| n).collect();
+    out.sort();
+    let n = out.len();
+    out.dedup();
+    if out.len() != n {
+        ctx.error(v.span(), format!("`{path}` names a region twice"), None);
+        ok = false;
+    }
+    ok.then_some(out)
 }
 
 fn well_format(ctx: &mut Ctx<'_>, file: &str, v: &Value<'_>) -> Option<WellFormat> {
