@@ -1,11 +1,13 @@
 //! Exact geometry shared by every stage: predicates (the only place orientation and
 //! inside/outside decisions are taken), the one `Tolerances` struct, bounding boxes and
 //! triangle meshes with f64 coordinates as read (never rescaled), and the FE mesh types the
-//! meshing stages exchange (`mesh`, with readers for the formats meshes come in).
+//! meshing stages exchange (`mesh`, with readers for the formats meshes come in); and `progress`,
+//! how a long stage reports how far it got without knowing who watches.
 
 pub mod bbox;
 pub mod mesh;
 pub mod predicates;
+pub mod progress;
 pub mod refine;
 pub mod tolerances;
 pub mod trimesh;
