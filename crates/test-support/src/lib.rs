@@ -13,5 +13,6 @@ pub mod netcdf_reader;
 pub mod paths;
 pub mod peer_support;
 pub mod peers;
+pub mod progress;
 pub mod shapes;
 pub mod surface_mesh_common;

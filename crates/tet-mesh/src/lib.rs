@@ -40,7 +40,14 @@
 //! `delaunay` (kernel, insertion order, recovery, refinement), `front` (front faces, their spatial
 //! grid, and grids of front nodes and of all nodes), `advance` (the front loop and back-tracking), `sides` (exact
 //! sides of nearby front nodes against a candidate's planes), `optimize` (the optimization
-//! driver) with `complex`, `smooth`, `flips` and `slivers`, `verify` (exact output check).
+//! driver) with `complex`, `smooth`, `flips` and `slivers`, `verify` (exact output check),
+//! `progress` (how the phases share a progress bar, for [`mesh_region_with_progress`]).
+//!
+//! **Progress.** [`mesh_region_with_progress`] reports to a plain `&dyn Fn(done, total)`
+//! (`geom::progress`), so the crate knows nothing of who watches (the build engine, a command
+//! line). Each phase counts what it has (input vertices inserted, refinement's nodes of those
+//! estimated, the front's volume, the optimizer's lists), on a share of the bar set from
+//! measured times; reporting is throttled and only reads, so the mesh is the same bit for bit.
 
 mod advance;
 mod box_pairs;
@@ -53,6 +60,7 @@ mod front;
 mod inside;
 mod lines;
 mod optimize;
+mod progress;
 pub mod quality;
 mod sides;
 mod sizing;
@@ -63,6 +71,7 @@ mod verify;
 pub use check::check_input;
 pub use verify::verify;
 
+use geom::progress::{Meter, Span};
 use std::fmt;
 
 /// One region to fill.
@@ -237,12 +246,29 @@ pub fn mesh_region(
     size: &SizeField,
     opts: &TetMeshOptions,
 ) -> Result<TetMeshOutput, TetMeshError> {
+    mesh_region_with_progress(input, size, opts, &|_, _| {})
+}
+
+/// [`mesh_region`], telling `progress(done, total)` how far it got, for a progress bar: `total`
+/// is fixed, `done` never decreases, a mesh returned was last reported as `done == total`, and
+/// there are at most a few hundred calls (`geom::progress`; how the phases share the bar is in
+/// this crate's `progress` module). The mesh is the same, bit for bit.
+pub fn mesh_region_with_progress(
+    input: &RegionInput,
+    size: &SizeField,
+    opts: &TetMeshOptions,
+    progress: &dyn Fn(u64, u64),
+) -> Result<TetMeshOutput, TetMeshError> {
+    let meter = Meter::new(progress);
+    let bar = meter.whole();
     let mut fallback = None;
-    let (mut mesh, figures) = match opts.method {
+    let (mut mesh, figures, tail) = match opts.method {
         Method::Delaunay => {
             check::check_shape(input)?;
             lines::check_lines(input)?;
-            match delaunay::mesh(input, size) {
+            bar.reach(progress::CHECKS);
+            let rest = bar.part(progress::CHECKS, 1.0);
+            match delaunay::mesh(input, size, rest, opts.optimize) {
                 Ok(done) => done,
                 Err(why) => {
                     // The Delaunay path tests intersections only where a triangle is not one
@@ -252,14 +278,17 @@ pub fn mesh_region(
                     if !input.lines.is_empty() {
                         return Err(no_front_for_lines(input, Some(&why)));
                     }
+                    let [front, optimize, finish] =
+                        meter.rest().split(progress::front(opts.optimize));
                     // The front meshes the region; if it fails too, its error says why both did.
-                    let m = advance::advance_front(input, size).map_err(|mut e| {
-                        e.message =
-                            format!("{} (after Delaunay gave way: {})", e.message, why.message);
-                        e
-                    })?;
+                    let m =
+                        advance::advance_front_reporting(input, size, front).map_err(|mut e| {
+                            e.message =
+                                format!("{} (after Delaunay gave way: {})", e.message, why.message);
+                            e
+                        })?;
                     fallback = Some(why.to_string());
-                    (m, delaunay::Figures::default())
+                    (m, delaunay::Figures::default(), Tail { optimize, finish })
                 }
             }
         }
@@ -269,7 +298,12 @@ pub fn mesh_region(
             if !input.lines.is_empty() {
                 return Err(no_front_for_lines(input, None));
             }
-            (advance::advance_front(input, size)?, Default::default())
+            bar.reach(progress::FRONT_CHECKS);
+            let [front, optimize, finish] = bar
+                .part(progress::FRONT_CHECKS, 1.0)
+                .split(progress::front(opts.optimize));
+            let m = advance::advance_front_reporting(input, size, front)?;
+            (m, Default::default(), Tail { optimize, finish })
         }
     };
     // Nodes on segments follow the input vertices and stay fixed, as those do.
@@ -287,11 +321,13 @@ pub fn mesh_region(
             n_fixed,
             protected,
             line_edges,
+            tail.optimize,
         );
         mesh.nodes = nodes;
         mesh.tets = tets;
         mean_ratios = Some(measured);
     }
+    tail.optimize.done();
     let (nodes, tets, map) = compact(mesh.nodes, mesh.tets, input.vertices.len());
     let lines = (figures.chains.iter())
         .map(|c| c.iter().map(|&v| map[v as usize]).collect())
@@ -315,8 +351,17 @@ pub fn mesh_region(
     out.stats.line_splits = figures.line_splits;
     out.stats.line_flips = figures.line_flips;
     out.stats.fallback = fallback;
+    // The statistics were about a third of this share, the exact verification the rest.
+    tail.finish.reach(0.3);
     verify(input, &out)?;
+    meter.finish();
     Ok(out)
+}
+
+/// The shares of a region's progress bar left once its mesh is made.
+pub(crate) struct Tail<'m> {
+    pub optimize: Span<'m>,
+    pub finish: Span<'m>,
 }
 
 /// The error for segments the Delaunay method could not embed (`why`), or that the front was

@@ -41,9 +41,12 @@ mod recover;
 mod refine;
 mod tri;
 
+use geom::progress::Span;
+
 use super::advance::RawMesh;
+use super::progress;
 use super::sizing::Background;
-use super::{RegionInput, SizeField, TetMeshError};
+use super::{RegionInput, SizeField, Tail, TetMeshError};
 
 /// Cells of the background size field. The field grows smoothly (at most the growth rate per
 /// unit length), so a coarser grid than the front's loses nothing, and its set-up (then a
@@ -70,19 +73,34 @@ pub struct Figures {
     pub line_flips: usize,
 }
 
-pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures), TetMeshError> {
-    let conf = recover::conforming(input, size)?;
+/// The region's mesh before optimization; `bar` is its share of the region's progress bar
+/// (`progress`), which it cuts once it can estimate how many nodes refinement inserts, and
+/// returns the shares left for the optimizer (`optimize`: whether it runs) and the last checks.
+pub fn mesh<'m>(
+    input: &RegionInput,
+    size: &SizeField,
+    bar: Span<'m>,
+    optimize: bool,
+) -> Result<(RawMesh, Figures, Tail<'m>), TetMeshError> {
+    let guess = progress::guessed_new_nodes(input);
+    let (conforming, inserting) = progress::conforming_share(input.vertices.len(), guess, optimize);
+    let [conforming, rest] = bar.split([conforming, 1.0 - conforming]);
+    let conf = recover::conforming(input, size, conforming.split([inserting, 1.0 - inserting]))?;
     let mut tri = conf.tri;
     let mut all = input.boundary.clone();
     all.extend_from_slice(&input.embedded);
     let cells = (4 * all.len()).clamp(MIN_SIZE_CELLS, SIZE_CELLS);
     let bg = Background::with_max_cells(&input.vertices, &all, size, cells);
+    let new_nodes = progress::new_nodes(refine::estimate(&tri, &bg), conf.n_input);
+    let weights = progress::after_conforming(conf.n_input, new_nodes, optimize);
+    let [refining, layout, optimizing, finishing] = rest.split(weights);
     let lines = if input.lines.is_empty() {
         None
     } else {
         Some(recover::recover_segments(&mut tri, input, &bg)?)
     };
-    refine::refine(&mut tri, &bg);
+    refine::refine(&mut tri, &bg, refining, new_nodes);
+    refining.done();
     // Drop the enclosing tet's four corners: ids after them shift down by four.
     let n = conf.n_input;
     let map = |v: u32| if (v as usize) < n { v } else { v - 4 };
@@ -110,6 +128,7 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
         figures.line_flips = r.flipped;
     }
     order::spatial_layout(&mut nodes, &mut tets, fixed);
+    layout.done();
     Ok((
         RawMesh {
             nodes,
@@ -117,6 +136,10 @@ pub fn mesh(input: &RegionInput, size: &SizeField) -> Result<(RawMesh, Figures),
             backtracks: 0,
         },
         figures,
+        Tail {
+            optimize: optimizing,
+            finish: finishing,
+        },
     ))
 }
 

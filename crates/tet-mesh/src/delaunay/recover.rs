@@ -17,6 +17,7 @@ mod segments;
 use std::collections::HashSet;
 
 use geom::predicates::Orientation;
+use geom::progress::Span;
 
 use super::super::check::check_intersections;
 use super::super::exact::orient3d;
@@ -94,11 +95,17 @@ fn same_turn(f: [u32; 3], g: [u32; 3]) -> bool {
     f == g || f == [g[1], g[2], g[0]] || f == [g[2], g[0], g[1]]
 }
 
-pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, TetMeshError> {
+/// `bar`: the shares of the region's progress bar of the insertion and of the recovery.
+pub fn conforming(
+    input: &RegionInput,
+    size: &SizeField,
+    bar: [Span<'_>; 2],
+) -> Result<Conforming, TetMeshError> {
+    let [inserting, recovering] = bar;
     let name = input.name.as_str();
     let n = input.vertices.len();
     let mut tri = enclosing_tet(input);
-    insert_boundary_vertices(&mut tri, input)?;
+    insert_boundary_vertices(&mut tri, input, inserting)?;
 
     // Which constraint triangles are faces.
     let (all, cons_index) = constraints(input);
@@ -118,6 +125,9 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
             missing = (0..all.len()).filter(|&k| holders[k].is_empty()).collect();
         }
     }
+
+    // Half way: the holes follow (none in most regions).
+    recovering.reach(0.5);
 
     // Remove every tet that may meet a missing triangle.
     let mut side = hole_tets(&tri, &all, &missing, &vtet);
@@ -144,6 +154,7 @@ pub fn conforming(input: &RegionInput, size: &SizeField) -> Result<Conforming, T
     drop(side);
     let embedded: HashSet<[u32; 3]> = input.embedded.iter().map(|&t| sorted(t)).collect();
     tri.link_in(&extra, &surface, &embedded);
+    recovering.done();
     Ok(Conforming {
         tri,
         n_input: n,
@@ -212,7 +223,11 @@ fn enclosing_tet(input: &RegionInput) -> Tri {
 
 /// Inserts the boundary, embedded and segment vertices (in `brio` order); one that fails is the
 /// error.
-fn insert_boundary_vertices(tri: &mut Tri, input: &RegionInput) -> Result<(), TetMeshError> {
+fn insert_boundary_vertices(
+    tri: &mut Tri,
+    input: &RegionInput,
+    bar: Span<'_>,
+) -> Result<(), TetMeshError> {
     let n = input.vertices.len();
     let mut used = vec![false; n];
     for t in input.boundary.iter().chain(&input.embedded) {
@@ -228,7 +243,8 @@ fn insert_boundary_vertices(tri: &mut Tri, input: &RegionInput) -> Result<(), Te
     // 7.7 tets per point on our regions, thin layers the most: room for 8, so that no
     // reallocation doubles the array at its peak, and no more (it is most of a thin region's).
     tri.reserve(8 * ids.len() + 64);
-    for v in brio(&ids, &input.vertices) {
+    for (k, v) in brio(&ids, &input.vertices).into_iter().enumerate() {
+        bar.step(k, ids.len());
         let p = input.vertices[v as usize];
         tri.insert_vertex(v, NONE, &Limits::default())
             .map_err(|r| {

@@ -13,6 +13,7 @@
 //! round's sort. Deterministic: one thread, sorted work lists.
 
 use geom::predicates::{cross, dist, dot, sub};
+use geom::progress::Span;
 
 use super::super::sizing::Background;
 use super::order::hilbert_sort;
@@ -30,9 +31,37 @@ const APEX_HEIGHT: f64 = 0.816;
 
 /// A proposed point, the slot of the tet that proposed it and that tet's [`fingerprint`].
 type Cand = (P, u32, u32);
+/// [`estimate`] looks at one tet slot in this many.
+const ESTIMATE_EVERY: usize = 4;
 
-/// Refine in place.
-pub fn refine(tri: &mut Tri, bg: &Background) {
+/// The live tets' volume in units of the local size cubed, `∫ h⁻³ dV`, with `h` sampled at each
+/// tet's centroid and halfway from it to each corner: what `progress` estimates refinement's
+/// nodes from. From one slot in [`ESTIMATE_EVERY`], picked by a hash: within 2 % of the sum over
+/// every tet on the didactic model's regions, for a quarter of its time (0.1-0.2 % of a region's).
+pub fn estimate(tri: &Tri, bg: &Background) -> f64 {
+    let mut sum = 0.0;
+    for t in 0..tri.t.len() {
+        if !geom::progress::sampled(t, ESTIMATE_EVERY) || !tri.alive(t as u32) {
+            continue;
+        }
+        let [a, b, c, d] = tri.t[t].v.map(|v| tri.pts[v as usize]);
+        let volume = dot(&sub(&b, &a), &cross(&sub(&c, &a), &sub(&d, &a))).abs() / 6.0;
+        let g = [0, 1, 2].map(|k| 0.25 * (a[k] + b[k] + c[k] + d[k]));
+        let per_volume = |p: &P| bg.size_at(p).powi(-3);
+        let mut density = per_volume(&g);
+        for q in [a, b, c, d] {
+            density += per_volume(&[0, 1, 2].map(|k| 0.5 * (g[k] + q[k])));
+        }
+        sum += volume * density / 5.0;
+    }
+    let sum = sum * ESTIMATE_EVERY as f64;
+    if sum.is_finite() { sum } else { 0.0 }
+}
+
+/// Refine in place, reporting on `bar` the points inserted of the `expected` ones.
+pub fn refine(tri: &mut Tri, bg: &Background, bar: Span<'_>, expected: f64) {
+    let expected = expected.max(1.0);
+    let mut inserted = 0usize;
     let mut cands: Vec<Cand> = Vec::new();
     for t in 0..tri.t.len() as u32 {
         if tri.alive(t) {
@@ -65,6 +94,8 @@ pub fn refine(tri: &mut Tri, bg: &Background) {
             tri.created.clear();
             if tri.insert(p, from, &lim).is_ok() {
                 round += 1;
+                inserted += 1;
+                bar.reach(inserted as f64 / expected);
                 // The new tets propose now, while their corners are in cache; a proposal whose
                 // tet an insertion destroys before the next round is dropped then.
                 for k in 0..tri.created.len() {

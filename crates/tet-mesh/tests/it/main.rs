@@ -4,6 +4,7 @@
 mod tet_mesh_delaunay;
 mod tet_mesh_lines;
 mod tet_mesh_peers;
+mod tet_mesh_progress;
 mod tet_mesh_quality;
 mod tet_mesh_simple;
 mod tet_mesh_stuck;

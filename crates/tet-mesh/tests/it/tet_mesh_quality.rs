@@ -30,7 +30,7 @@ fn read_off(path: &Path) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
 
 /// The boundary and its embedded triangles, matched to the boundary's vertices by exact
 /// coordinates.
-fn case(name: &str) -> RegionInput {
+pub fn case(name: &str) -> RegionInput {
     let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
         .join("tests/data/tet_mesh/quality");
     let (mut vertices, boundary) = read_off(&dir.join(format!("{name}.off")));
@@ -60,7 +60,7 @@ fn case(name: &str) -> RegionInput {
 }
 
 /// The shipped build's size field (`[mesh] size = 200` with the recipe defaults).
-fn build_size() -> SizeField {
+pub fn build_size() -> SizeField {
     SizeField {
         size: 200.0,
         min_size: 2.0,
