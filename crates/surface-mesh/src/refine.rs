@@ -17,6 +17,7 @@ use super::cdt::{Cdt, FREE, NONE, next, prev};
 use super::quality::{circumradius, shape};
 use super::size::SizeField;
 use super::support::Support;
+use geom::progress::Span;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -36,6 +37,38 @@ pub struct Refiner<'a> {
     /// The support triangle under each vertex inserted here (`u32::MAX` for the others).
     pub stri: Vec<u32>,
 }
+
+/// How many points refinement will insert, for the progress bar only: the inside triangles'
+/// area over that of the equilateral triangle of the local size (sampled at each triangle's
+/// centroid and halfway from it to each corner), 1.45 points per such triangle. Size queries
+/// are searches, so only about [`SAMPLES`] triangle slots, picked by a hash, are looked at: at most
+/// 0.7 ms a patch, 0.5 % of a patch of 5,000 points. On the didactic model's refinements
+/// (b)-(d), patches of 1,000 to 5,300 new points were estimated within 25 % of the count (one
+/// 40 % over), smaller ones within a factor of 2.5.
+pub fn expected_points(cdt: &Cdt, p3: &[[f64; 3]], size: &SizeField) -> f64 {
+    let equilateral = 3f64.sqrt() / 4.0;
+    let every = cdt.tri.len().div_ceil(SAMPLES).max(1);
+    let mut sum = 0.0;
+    for t in 0..cdt.tri.len() {
+        if !geom::progress::sampled(t, every) || !cdt.alive[t] || !cdt.inside[t] {
+            continue;
+        }
+        let [a, b, c] = cdt.tri[t].map(|v| p3[v as usize]);
+        let area = geom::trimesh::triangle_area([&a, &b, &c]);
+        let g = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
+        let per_area = |p: &[f64; 3]| size.at(p).powi(-2) / equilateral;
+        let mut density = per_area(&g);
+        for q in [a, b, c] {
+            density += per_area(&[0, 1, 2].map(|k| 0.5 * (g[k] + q[k])));
+        }
+        sum += area * density / 4.0;
+    }
+    let points = 1.45 * sum * every as f64 / 2.0;
+    if points.is_finite() { points } else { 0.0 }
+}
+
+/// About how many triangle slots [`expected_points`] looks at.
+const SAMPLES: usize = 256;
 
 fn dist3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
@@ -87,8 +120,15 @@ impl<'a> Refiner<'a> {
     }
 
     /// Refines until every triangle is accepted or no point can be placed; at most `max_points`
-    /// new points (an error beyond that).
-    pub fn run(&mut self, max_points: usize) -> Result<usize, String> {
+    /// new points (an error beyond that). Reports on `bar` the points inserted of the `expected`
+    /// ones.
+    pub fn run(
+        &mut self,
+        max_points: usize,
+        bar: Span<'_>,
+        expected: f64,
+    ) -> Result<usize, String> {
+        let expected = expected.max(1.0);
         let mut heap: BinaryHeap<(u64, Reverse<u32>, [u32; 3])> = BinaryHeap::new();
         let live: Vec<u32> = self.cdt.live_triangles().collect();
         for &t in &live {
@@ -146,6 +186,7 @@ impl<'a> Refiner<'a> {
             match ok {
                 Some(_) => {
                     added += 1;
+                    bar.reach(added as f64 / expected);
                     if added > max_points {
                         return Err(format!(
                             "refinement did not converge after {max_points} points (size field too small for the patch?)"

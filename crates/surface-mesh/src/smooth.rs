@@ -18,6 +18,7 @@ use super::cdt::{Cdt, FREE, NONE, next, prev};
 use super::quality::shape;
 use super::support::Support;
 use geom::predicates::{cross, dot, sub};
+use geom::progress::Span;
 use geom::{Orientation, orient2d};
 
 /// The squared c/c* of a triangle of shape `s` (1/s²; large for a degenerate triangle).
@@ -207,12 +208,14 @@ impl Smoother<'_> {
         }
     }
 
-    /// Alternating flips and smoothing.
-    pub fn run(&mut self, rounds: usize) {
+    /// Alternating flips and smoothing: at most `rounds` rounds of both, then flips until none
+    /// is left; reports each round on `bar` (the last flips as one more).
+    pub fn run(&mut self, rounds: usize, bar: Span<'_>) {
         self.resync();
-        for _ in 0..rounds {
+        for r in 0..rounds {
             let f = self.flip_sweep();
             let m = self.smooth_sweep();
+            bar.step(r + 1, rounds + 1);
             if f == 0 && m == 0 {
                 break;
             }
@@ -222,5 +225,6 @@ impl Smoother<'_> {
                 break;
             }
         }
+        bar.done();
     }
 }

@@ -4,6 +4,7 @@
 mod surface_mesh_curved;
 mod surface_mesh_flat;
 mod surface_mesh_points;
+mod surface_mesh_progress;
 mod surface_mesh_quality;
 mod surface_mesh_random;
 mod surface_mesh_retriangulate;
