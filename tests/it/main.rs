@@ -20,6 +20,7 @@ mod cli_watch;
 mod cli_wells;
 mod common_cli;
 mod export_op_files;
+mod ops_progress;
 mod recipe_errors;
 mod recipe_fuzz;
 mod recipe_roundtrip;

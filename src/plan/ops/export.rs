@@ -64,7 +64,7 @@ impl Operation for ExportOp {
     fn emits_files(&self) -> bool {
         true
     }
-    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+    fn run(&self, ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let mut curves = Vec::new();
         for c in self.inputs.decode::<CurveNodes>("curves", inputs)? {
             curves.push((c.name, c.nodes));
@@ -138,6 +138,8 @@ impl Operation for ExportOp {
                 mesh = None;
             }
             enc.push(name, bytes).map_err(OpError::from)?;
+            // One step per file written (each format's files, the curves, the quality tables).
+            ctx.progress(i as u64 + 1, n as u64);
         }
         Ok(Output::new(enc.finish().map_err(OpError::from)?)
             .count("files", n as u64)

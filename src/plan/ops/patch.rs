@@ -11,7 +11,7 @@ use geom::refine::Refinement;
 use geom::{Tolerances, TriMesh};
 use model::{PatchBoundary, patch_input};
 use serde::{Deserialize, Serialize};
-use surface_mesh::{SurfaceSize, mesh_patch_refined};
+use surface_mesh::{SurfaceSize, mesh_patch_with_progress};
 
 /// The output of `patch:<p>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -167,7 +167,7 @@ impl Operation for SurfaceMeshOp {
         .expect("validated finite");
         p
     }
-    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+    fn run(&self, ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let (inputs, refine) = super::refine::split_refinements(inputs, self.refinements)?;
         let (piece, rest) = inputs.split_first().ok_or("surface_mesh needs its patch")?;
         let piece: PatchPiece = piece.decode()?;
@@ -188,8 +188,10 @@ impl Operation for SurfaceMeshOp {
         let refine: Vec<Refinement> = (refine.into_iter())
             .chain(piece.well_refine.iter().cloned())
             .collect();
-        let out = mesh_patch_refined(&input, &self.size, &self.tolerances, &refine)
-            .map_err(|e| OpError::from(well_context(e, &piece)))?;
+        let progress = |done, total| ctx.progress(done, total);
+        let out =
+            mesh_patch_with_progress(&input, &self.size, &self.tolerances, &refine, &progress)
+                .map_err(|e| OpError::from(well_context(e, &piece)))?;
         let mesh = TriMesh::new(out.nodes, out.triangles);
         let (nn, nt) = (mesh.vertices.len() as u64, mesh.triangles.len() as u64);
         Ok(Output::new(Artifact::encode(&PatchMesh {

@@ -10,7 +10,7 @@ use model::regions::{FaceUse, Side};
 use model::{VolumeAssembly, assemble_volume, embed_polylines, region_input};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region};
+use tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region_with_progress};
 
 /// The output of `tet_mesh:<r>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -101,7 +101,7 @@ impl Operation for TetMeshOp {
         }
         p
     }
-    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+    fn run(&self, ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let (inputs, refine) = super::refine::split_refinements(inputs, self.refinements)?;
         let (inputs, wells) = match (self.wells, inputs.split_last()) {
             (true, Some((w, rest))) => (rest, w.decode::<RegionWells>()?),
@@ -127,7 +127,9 @@ impl Operation for TetMeshOp {
             refine: refine.into_iter().chain(wells.refine.clone()).collect(),
             ..self.size.clone()
         };
-        let out = mesh_region(&input, &size, &opts).map_err(|e| OpError::from(e.to_string()))?;
+        let progress = |done, total| ctx.progress(done, total);
+        let out = mesh_region_with_progress(&input, &size, &opts, &progress)
+            .map_err(|e| OpError::from(e.to_string()))?;
         let well_edges = well_edges(&wells, &ranges, &out.lines);
         let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
         Ok(Output::new(Artifact::encode(&RegionMesh {
