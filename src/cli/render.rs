@@ -3,12 +3,22 @@
 //! What a build says, by verbosity: by default one line per node that ran (with its notes) and
 //! every failure in full, cached nodes only counted (the command line prints the count); `-v`
 //! also a line per cached, cut-off or skipped node and each expansion; `--quiet` only failures.
+//!
+//! Progress bars (from the nodes' `Event::Progress`): drawn only when standard error, where
+//! they go, is a terminal and the build is not `--quiet`, so a log, a pipe or a script never
+//! gets a bar's escape sequences. A node gets its bar once it has run for [`BAR_DELAY`] (or
+//! `RECIPE_BAR_DELAY_MS` milliseconds, for tests): most nodes take milliseconds, and a bar that
+//! appears and vanishes at once is only flicker.
 
 use engine::{Event, NodeReport, NodeState};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// How long a node runs before its progress bar is shown.
+const BAR_DELAY: Duration = Duration::from_millis(300);
 
 /// How much a build prints (`--quiet`, default, `-v`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -26,17 +36,33 @@ pub struct Renderer {
     verbosity: Verbosity,
     explain: bool,
     bars: Option<MultiProgress>,
-    active: Mutex<BTreeMap<String, ProgressBar>>,
+    delay: Duration,
+    active: Mutex<BTreeMap<String, Running>>,
+}
+
+/// A node that runs, when bars are drawn: since when, and its bar once it has one.
+struct Running {
+    since: Instant,
+    bar: Option<ProgressBar>,
+}
+
+/// Whether a build draws progress bars.
+fn draws_bars(verbosity: Verbosity, stderr_is_terminal: bool) -> bool {
+    verbosity > Verbosity::Quiet && stderr_is_terminal
 }
 
 impl Renderer {
     pub fn new(verbosity: Verbosity, explain: bool) -> Self {
-        let bars = (verbosity > Verbosity::Quiet && std::io::stderr().is_terminal())
-            .then(MultiProgress::new);
+        let bars = draws_bars(verbosity, std::io::stderr().is_terminal()).then(MultiProgress::new);
+        let delay = std::env::var("RECIPE_BAR_DELAY_MS")
+            .ok()
+            .and_then(|ms| ms.parse().ok())
+            .map_or(BAR_DELAY, Duration::from_millis);
         Renderer {
             verbosity,
             explain,
             bars,
+            delay,
             active: Mutex::new(BTreeMap::new()),
         }
     }
@@ -63,6 +89,16 @@ impl Renderer {
             Event::Expanded { by, added } if self.verbosity == Verbosity::Verbose => {
                 self.line(format!("    Expanded {by}: {added} nodes"))
             }
+            Event::Started { name, .. } if self.bars.is_some() => {
+                let mut active = self.active.lock().unwrap_or_else(|p| p.into_inner());
+                active.insert(
+                    name.clone(),
+                    Running {
+                        since: Instant::now(),
+                        bar: None,
+                    },
+                );
+            }
             Event::Progress { name, done, total } => self.progress(name, *done, *total),
             Event::Finished(r) => self.finished(r),
             _ => {}
@@ -72,7 +108,14 @@ impl Renderer {
     fn progress(&self, name: &str, done: u64, total: u64) {
         let Some(m) = &self.bars else { return };
         let mut active = self.active.lock().unwrap_or_else(|p| p.into_inner());
-        let bar = active.entry(name.to_string()).or_insert_with(|| {
+        let running = active.entry(name.to_string()).or_insert_with(|| Running {
+            since: Instant::now(),
+            bar: None,
+        });
+        if running.bar.is_none() && running.since.elapsed() < self.delay {
+            return;
+        }
+        let bar = running.bar.get_or_insert_with(|| {
             let b = m.add(ProgressBar::new(total));
             b.set_style(
                 ProgressStyle::with_template("{prefix:>12.cyan.bold} [{bar:30}] {pos}/{len} {msg}")
@@ -92,6 +135,7 @@ impl Renderer {
             .lock()
             .unwrap_or_else(|p| p.into_inner())
             .remove(&r.name)
+            .and_then(|running| running.bar)
         {
             b.finish_and_clear();
         }
