@@ -269,6 +269,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         triangle_group,
         surface_groups,
         lines: line_groups,
+        points: Vec::new(),
     };
     let stem = a
         .output

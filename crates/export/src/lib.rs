@@ -6,7 +6,8 @@
 //! and node set ids must differ from the regions' and the surface groups', numbers the wells'
 //! on after those). The recipe's attributes (material id, numeric properties) travel as cell
 //! data wherever the format can carry them. A mesh without line groups is written exactly as
-//! before line groups existed, in every format.
+//! before line groups existed, in every format, and one without named points (the wells'
+//! crossings of the surfaces) as before those existed.
 //!
 //! Output bytes are a pure function of the mesh and the model name: no timestamps, no hash-order
 //! iteration, floats printed with Rust's shortest round-trip formatting.
@@ -126,6 +127,17 @@ impl Format {
 ///   when the mesh has line groups);
 /// - Abaqus: a `*Element, type=T3D2, elset=<name>` block per group with lines, numbered after
 ///   the tets (without a section, which needs the well's cross-section area).
+///
+/// The mesh's named points (where a well crosses a surface, `<well>:<surface>`) go where the
+/// format can name a node:
+/// - msh: a point entity, a point element (type 15) and a 0D physical group of the point's name
+///   each (tags `i + 1`);
+/// - Exodus II: a one-node node set each, named after it, ids after the wells' node sets;
+/// - VTU: `point:<name>` field data holding the node's 0-based index;
+/// - Abaqus: a one-node `*Nset` each (the name made Abaqus-safe);
+/// - MEDIT and TetGen: not written (they have no named node sets; see their modules).
+///
+/// A mesh without named points is written exactly as before they existed.
 pub fn export(
     mesh: &VolumeMesh,
     model_name: &str,

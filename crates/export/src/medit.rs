@@ -4,6 +4,11 @@
 //! reference = region index + 1, in the order mmg writes them. Indices are 1-based. A section
 //! with no element is left out. MEDIT has no names: the references are the same ids as the msh
 //! physical tags, so the names can be looked up there or in the report.
+//!
+//! The named points (the wells' crossings of the surfaces) are not written: MEDIT's `Corners`
+//! and `RequiredVertices` are remeshing constraints for mmg, not labels (no reference, no name),
+//! and a vertex reference would give every other vertex a meaning it does not have. The msh,
+//! Exodus, VTU and Abaqus files carry them.
 
 use geom::mesh::VolumeMesh;
 use std::fmt::Write as _;

@@ -5,6 +5,11 @@
 //! group) with a boundary marker = line group index + 1, as TetGen writes an `.edge` file only
 //! when asked (`-e`). Files are named `<model>.1.node` etc. (by `super::file_names`), as TetGen
 //! names the first refinement's output.
+//!
+//! The named points (the wells' crossings of the surfaces) are not written: a `.node` boundary
+//! marker is one integer per node that TetGen itself sets on its boundary nodes, so using it
+//! for a few labelled nodes would be read as a boundary marking. The msh, Exodus, VTU and
+//! Abaqus files carry them.
 
 use geom::mesh::VolumeMesh;
 use std::fmt::Write as _;

@@ -10,6 +10,8 @@
 //!   ([`fields`]), the cell data every viewer shows;
 //! - one 2-node `BAR2` element block per line group (well) with lines, after the regions', and
 //!   a node set of its nodes, both named after the well ([`blocks`], [`sets`]);
+//! - a one-node node set per named point (a well's crossing of a surface), named after it, with
+//!   ids after the wells' node sets ([`sets`]);
 //! - a side set and a node set per surface group, and a front and a back side set per fault
 //!   ([`sets`], [`crate::sides`] for the TETRA4 side numbering);
 //! - QA and info records naming the program and the model ([`globals`]).
@@ -45,12 +47,14 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     let side_sets = sets::side_sets(mesh, &uses);
     let mut node_sets = sets::node_sets(mesh);
     node_sets.extend(sets::well_node_sets(mesh));
+    node_sets.extend(sets::point_node_sets(mesh));
     let names = mesh
         .regions
         .iter()
         .flat_map(|r| std::iter::once(&r.name).chain(r.properties.keys()))
         .chain(side_sets.iter().map(|s| &s.name))
-        .chain(mesh.lines.iter().map(|g| &g.name));
+        .chain(mesh.lines.iter().map(|g| &g.name))
+        .chain(mesh.points.iter().map(|p| &p.name));
     let width = names
         .map(|n| n.len() + 1)
         .fold(MIN_NAME_WIDTH, usize::max)
@@ -73,7 +77,7 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
 /// Fails when a node id, element number or set id would not fit a 32-bit Exodus integer.
 fn fits_32_bits(mesh: &VolumeMesh) -> Result<(), String> {
     let wells = mesh.lines.len();
-    let ids = mesh.regions.len() + 3 * mesh.surface_groups.len() + wells;
+    let ids = mesh.regions.len() + 3 * mesh.surface_groups.len() + wells + mesh.points.len();
     let lines: usize = mesh.lines.iter().map(|g| g.lines.len()).sum();
     let elements = mesh.tets.len().saturating_add(lines);
     let largest = mesh.nodes.len().max(elements).max(ids);

@@ -14,6 +14,11 @@
 //! Each line group (well) with lines also has a node set of its line nodes under its name, after
 //! the groups' ([`well_node_sets`]), id = the number of surface groups + well index + 1: meshio
 //! names no element block, so these carry the wells' names there.
+//!
+//! Each named point (a well's crossing of a surface) is a node set of its one node under its
+//! name, after the wells' ([`point_node_sets`]), id = the number of surface groups + the number
+//! of line groups + point index + 1: Exodus has no point entity, and a one-node set is what a
+//! solver reading Exodus (MOOSE, PyLith) takes a point source or a point constraint on.
 
 use crate::sides::{FaceUse, fault_sides, on_side, side_name};
 use crate::split_by;
@@ -89,6 +94,18 @@ pub(crate) fn well_node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
                 name: g.name.clone(),
                 nodes: nodes.into_iter().map(|v| v + 1).collect(),
             }
+        })
+        .collect()
+}
+
+/// The node sets of the named points of `mesh`: one node each, ids after the wells'.
+pub(crate) fn point_node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
+    let first = mesh.surface_groups.len() + mesh.lines.len() + 1;
+    (mesh.points.iter().enumerate())
+        .map(|(i, p)| NodeSet {
+            id: first + i,
+            name: p.name.clone(),
+            nodes: vec![p.node + 1],
         })
         .collect()
 }

@@ -1,5 +1,6 @@
-//! Abaqus names for the regions, the surface groups, the fault sides and the wells (line
-//! groups; labelled last, so a mesh without them keeps its labels): letters, digits and
+//! Abaqus names for the regions, the surface groups, the fault sides, the wells (line
+//! groups) and the named points (labelled last, wells then points, so a mesh without them
+//! keeps its labels): letters, digits and
 //! `_`, starting with a letter, unique without regard to case (Abaqus folds names to upper
 //! case), and the `**` comments that pair each with its original name.
 
@@ -16,6 +17,8 @@ pub(super) struct Labels {
     pub(super) sets: BTreeMap<usize, String>,
     /// Per line group, its element set.
     pub(super) wells: Vec<String>,
+    /// Per named point, its node set.
+    pub(super) points: Vec<String>,
 }
 
 impl Labels {
@@ -30,10 +33,14 @@ impl Labels {
         let wells = (mesh.lines.iter().enumerate())
             .map(|(w, g)| label(&g.name, &format!("W{}", w + 1), &mut taken))
             .collect();
+        let points = (mesh.points.iter().enumerate())
+            .map(|(i, p)| label(&p.name, &format!("P{}", i + 1), &mut taken))
+            .collect();
         Labels {
             regions,
             sets,
             wells,
+            points,
         }
     }
 
@@ -62,6 +69,10 @@ impl Labels {
                 g.name,
                 self.wells[w]
             );
+        }
+        for (i, p) in mesh.points.iter().enumerate() {
+            let label = &self.points[i];
+            let _ = writeln!(s, "** point {} \"{}\" nset={label}", i + 1, p.name);
         }
     }
 }

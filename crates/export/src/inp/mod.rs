@@ -2,7 +2,8 @@
 //! `*Element, type=C3D4, elset=<region>` block per region, one `*Element, type=T3D2,
 //! elset=<well>` block per line group (well) with lines, a material and a solid section per
 //! region ([`materials`]), and the boundary groups ([`surfaces`]): a node set and an
-//! element-face surface per surface group, and a surface per side of every fault. The wells get
+//! element-face surface per surface group, and a surface per side of every fault, then a
+//! one-node `*Nset` per named point (a well's crossing of a surface). The wells get
 //! no section: a truss section needs the well's cross-section area, which the mesh does not
 //! know, so the analyst adds it (a `**` comment says so) before Abaqus runs the file.
 //!
@@ -55,6 +56,9 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     }
     materials::put(&mut s, mesh, &labels, &numbering);
     surfaces::put(&mut s, &labels, &node_sets, &side_sets);
+    for (p, label) in mesh.points.iter().zip(&labels.points) {
+        let _ = writeln!(s, "*Nset, nset={label}\n{}", p.node + 1);
+    }
     s.shrink_to_fit();
     Ok(s.into_bytes())
 }
@@ -87,6 +91,7 @@ mod tests {
                 kind: geom::mesh::SurfaceKind::Fault,
             }],
             lines: Vec::new(),
+            points: Vec::new(),
         };
         let e = write(&mesh, "m").unwrap_err();
         assert!(

@@ -3,7 +3,9 @@
 //!
 //! Layout decisions (chosen so that both Gmsh and meshio read the file and recover the groups):
 //!
-//! - **Entities** ([`topology`]). One discrete curve per line group, when the caller gives line
+//! - **Entities** ([`topology`]). One point entity per named point (a well's crossing of a
+//!   surface; tag = point index + 1, at its node's coordinates), bounding nothing, like the
+//!   curves. One discrete curve per line group, when the caller gives line
 //!   elements (an embedded well's chain of tet edges; tag = group index + 1), lying inside its
 //!   volume like a dangling fault, so no volume lists it. One discrete volume per region (tag =
 //!   region index + 1). A
@@ -20,7 +22,9 @@
 //!   inside that volume, not on its boundary, and the format has no documented record for an
 //!   embedded entity, so no volume lists it. Surfaces list no bounding curves: the mesh carries
 //!   no curve entities (the curves file does), so a surface's boundary is empty.
-//! - **Physical groups.** 1D: line group `g` has tag `g + 1`, named after the group, on its
+//! - **Physical groups.** 0D: named point `i` has tag `i + 1`, named after the point, on its
+//!   point entity (the tags of each dimension are their own, so volumes, surfaces and curves keep
+//!   theirs whether or not the mesh has points). 1D: line group `g` has tag `g + 1`, named after the group, on its
 //!   curve. 2D: surface group `g` has tag `g + 1` on its pieces; fault `k` (in group
 //!   order, empty ones counted) of `n` groups has `<fault>:front` = `n + 2k + 1` and
 //!   `<fault>:back` = `n + 2k + 2`, the ids of the Exodus side sets. 3D: region `r` has tag
@@ -43,14 +47,15 @@
 //!   saves a format that stores elements per group (MSH2). meshio matches tags without sign: it
 //!   reads `<fault>` and `<fault>:back` and leaves `<fault>:front` empty.
 //!
-//! Nodes are classified on the entity of lowest dimension holding them (the first line group
-//! among their lines, else the first piece among their triangles, else the region of their first
+//! Nodes are classified on the entity of lowest dimension holding them (the first named point at
+//! them, else the first line group among their lines, else the first piece among their triangles, else the region of their first
 //! tet), one block per entity (tags = node index + 1, so the numbering is the mesh's whatever the
 //! blocks); elements go in one block per entity (tets type 4 by region first, then triangles type
-//! 2 by piece, then lines type 1 by group), numbered consecutively from 1. The recipe's surface kinds (horizon, fault, box, other) go in a
+//! 2 by piece, then lines type 1 by group, then one point element type 15 per named point, last so
+//! that the other elements keep their tags), numbered consecutively from 1. The recipe's surface kinds (horizon, fault, box, other) go in a
 //! `$GeorecipeSurfaceKinds` section, which other readers skip as the format prescribes for
 //! unknown sections. The recipe's attributes follow as `$ElementData` views over every element:
-//! "material" (the material id, -1 where none, and -1 on triangles and lines) and one per region
+//! "material" (the material id, -1 where none, and -1 on triangles, lines and points) and one per region
 //! property (NaN where undefined).
 
 mod topology;
@@ -148,7 +153,8 @@ fn tag(i: usize) -> i32 {
 }
 
 /// `mesh` as a msh file, with the line elements of `lines` (one curve entity and one 1D
-/// physical group per group, tags 1, 2, ... in order).
+/// physical group per group, tags 1, 2, ... in order) and the mesh's named points (one point
+/// entity, one point element and one 0D physical group each).
 pub(super) fn write(mesh: &VolumeMesh, lines: &[LineGroup], binary: bool) -> Vec<u8> {
     let mut o = Out {
         binary,
@@ -158,7 +164,7 @@ pub(super) fn write(mesh: &VolumeMesh, lines: &[LineGroup], binary: bool) -> Vec
     let tris_by_piece = &topology.tris;
     let tets_by_region = split_by(&mesh.tet_region, mesh.regions.len());
     mesh_format(&mut o);
-    physical_names(&mut o, &topology, lines);
+    physical_names(&mut o, mesh, &topology, lines);
     surface_kinds(&mut o, mesh);
     entities(&mut o, mesh, &topology, &tets_by_region, lines);
     nodes(&mut o, mesh, tris_by_piece, lines);
@@ -170,7 +176,7 @@ pub(super) fn write(mesh: &VolumeMesh, lines: &[LineGroup], binary: bool) -> Vec
         let order = Order {
             tets: &tets_by_region,
             tris: tris_by_piece,
-            lines: lines.iter().map(|g| g.lines.len()).sum(),
+            lines: lines.iter().map(|g| g.lines.len()).sum::<usize>() + mesh.points.len(),
             total: total as usize,
         };
         attributes(&mut o, mesh, &order);
@@ -192,11 +198,16 @@ fn mesh_format(o: &mut Out) {
     o.text("$EndMeshFormat\n");
 }
 
-/// `$PhysicalNames` (always ASCII): the 1D groups (line groups), the 2D ones (surface groups,
+/// `$PhysicalNames` (always ASCII): the 0D groups (named points), the 1D ones (line groups), the
+/// 2D ones (surface groups,
 /// then fault sides), then the 3D ones (regions, then materials).
-fn physical_names(o: &mut Out, topology: &Topology, lines: &[LineGroup]) {
+fn physical_names(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, lines: &[LineGroup]) {
     o.text("$PhysicalNames\n");
-    o.text(&format!("{}\n", lines.len() + topology.names.len()));
+    let n = mesh.points.len() + lines.len() + topology.names.len();
+    o.text(&format!("{n}\n"));
+    for (i, p) in mesh.points.iter().enumerate() {
+        o.text(&format!("0 {} {}\n", tag(i), quoted(&p.name)));
+    }
     for (g, group) in lines.iter().enumerate() {
         o.text(&format!("1 {} {}\n", tag(g), quoted(&group.name)));
     }
@@ -219,7 +230,8 @@ fn surface_kinds(o: &mut Out, mesh: &VolumeMesh) {
     o.text("$EndGeorecipeSurfaceKinds\n");
 }
 
-/// `$Entities`: one curve per line group, the surface pieces, then one volume per region, each
+/// `$Entities`: one point per named point (its coordinates and 0D physical tag), one curve per
+/// line group, the surface pieces, then one volume per region, each
 /// with its bounding box, its physical tags and its bounding entities (none for the curves and
 /// surfaces).
 fn entities(
@@ -231,7 +243,7 @@ fn entities(
 ) {
     o.text("$Entities\n");
     o.rec(&[
-        F::S(0),
+        F::S(mesh.points.len() as u64),
         F::S(lines.len() as u64),
         F::S(topology.tris.len() as u64),
         F::S(mesh.regions.len() as u64),
@@ -246,6 +258,12 @@ fn entities(
         rec.extend(bounds.iter().map(|&b| F::I(b)));
         o.rec(&rec);
     };
+    for (i, p) in mesh.points.iter().enumerate() {
+        let mut rec = vec![F::I(tag(i))];
+        rec.extend(mesh.nodes[p.node as usize].map(F::D));
+        rec.extend([F::S(1), F::I(tag(i))]);
+        o.rec(&rec);
+    }
     for (g, group) in lines.iter().enumerate() {
         let bb = bbox_of(mesh, group.lines.iter().map(|l| &l[..]));
         entity(o, g, bb, &[tag(g)], &[]);
@@ -263,7 +281,8 @@ fn entities(
 }
 
 /// The entity each node is classified on, as (dimension, index) → its nodes in index order: the
-/// entity of lowest dimension that holds it (the first line group among its lines, else the
+/// entity of lowest dimension that holds it (the first named point at it, else the first line
+/// group among its lines, else the
 /// first piece among its triangles, else the region of its first tet; unused nodes on the first
 /// entity).
 fn node_blocks(
@@ -273,6 +292,12 @@ fn node_blocks(
 ) -> BTreeMap<(i32, usize), Vec<usize>> {
     let n = mesh.nodes.len();
     let mut home: Vec<Option<(i32, usize)>> = vec![None; n];
+    for (i, p) in mesh.points.iter().enumerate() {
+        let h = &mut home[p.node as usize];
+        if h.is_none() {
+            *h = Some((0, i));
+        }
+    }
     for (g, group) in lines.iter().enumerate() {
         for &v in group.lines.iter().flatten() {
             let h = &mut home[v as usize];
@@ -316,7 +341,7 @@ fn node_blocks(
     blocks
 }
 
-/// `$Nodes`: one block per entity, curves, surfaces then volumes. Tags stay node index + 1
+/// `$Nodes`: one block per entity, points, curves, surfaces then volumes. Tags stay node index + 1
 /// (sparse per block).
 fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>], lines: &[LineGroup]) {
     let blocks = node_blocks(mesh, tris_by_piece, lines);
@@ -345,8 +370,8 @@ fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>], lines: &[
     o.end("Nodes");
 }
 
-/// `$Elements`: tets per region, then triangles per piece, then lines (type 1) per group; tags
-/// 1.. in that order. Returns the number of elements.
+/// `$Elements`: tets per region, then triangles per piece, then lines (type 1) per group, then a
+/// point (type 15) per named point; tags 1.. in that order. Returns the number of elements.
 fn elements(
     o: &mut Out,
     mesh: &VolumeMesh,
@@ -356,9 +381,10 @@ fn elements(
 ) -> u64 {
     let blocks = tets_by_region.iter().filter(|s| !s.is_empty()).count()
         + tris_by_piece.iter().filter(|s| !s.is_empty()).count()
-        + lines.iter().filter(|g| !g.lines.is_empty()).count();
+        + lines.iter().filter(|g| !g.lines.is_empty()).count()
+        + mesh.points.len();
     let n_lines: usize = lines.iter().map(|g| g.lines.len()).sum();
-    let total = (mesh.tets.len() + mesh.triangles.len() + n_lines) as u64;
+    let total = (mesh.tets.len() + mesh.triangles.len() + n_lines + mesh.points.len()) as u64;
     o.text("$Elements\n");
     o.rec(&[
         F::S(blocks as u64),
@@ -418,11 +444,16 @@ fn elements(
             next += 1;
         }
     }
+    for (i, p) in mesh.points.iter().enumerate() {
+        o.rec(&[F::I(0), F::I(tag(i)), F::I(15), F::S(1)]);
+        o.rec(&[F::S(next), F::S(p.node as u64 + 1)]);
+        next += 1;
+    }
     o.end("Elements");
     total
 }
 
-/// `$ElementData` views: "material" (-1 where none and on triangles and lines), then one per
+/// `$ElementData` views: "material" (-1 where none and on triangles, lines and points), then one per
 /// region property (NaN where undefined).
 fn attributes(o: &mut Out, mesh: &VolumeMesh, order: &Order) {
     let region_of = |t: usize| &mesh.regions[mesh.tet_region[t] as usize];
@@ -441,10 +472,11 @@ fn attributes(o: &mut Out, mesh: &VolumeMesh, order: &Order) {
 }
 
 /// The elements in tag order: `Some(tet)` for each tet by region, then `None` per triangle (by
-/// piece) and per line.
+/// piece), per line and per point.
 struct Order<'a> {
     tets: &'a [Vec<usize>],
     tris: &'a [Vec<usize>],
+    /// Lines and point elements.
     lines: usize,
     total: usize,
 }

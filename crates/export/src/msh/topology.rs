@@ -164,6 +164,7 @@ pub(super) mod tests {
                 group("G", SurfaceKind::Fault),
             ],
             lines: Vec::new(),
+            points: Vec::new(),
         }
     }
 

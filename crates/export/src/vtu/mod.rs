@@ -13,8 +13,11 @@
 //! groups, `well` (Int32, the line group's id on lines, -1 on tets and triangles). The names
 //! table is field data: one single-value Int32 array per region, `region:<name>` holding its id,
 //! per surface group, `surface:<name>`, and per line group, `well:<name>` (VTU string arrays are
-//! not read by meshio; these are, as by VTK). A mesh without line groups is written as before
-//! they existed. Connectivity and offsets are Int32 whenever they fit and cell types UInt8, so
+//! not read by meshio; these are, as by VTK). Each named point (a well's crossing of a surface)
+//! is field data too, `point:<name>` holding its node's 0-based index (the VTK point id): VTK
+//! has no named vertex set, and a vertex cell per point would change every cell array's length
+//! for the sake of a name. A mesh without line groups or points is written as before they
+//! existed. Connectivity and offsets are Int32 whenever they fit and cell types UInt8, so
 //! the binary file is smaller than the ASCII.
 
 mod cell_data;
@@ -44,7 +47,8 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Result<Vec<u8>, String> 
     Ok(w.finish())
 }
 
-/// `<FieldData>`: `region:<name>`, `surface:<name>` and `well:<name>`, each holding its id.
+/// `<FieldData>`: `region:<name>`, `surface:<name>` and `well:<name>`, each holding its id, then
+/// `point:<name>` holding the point's 0-based node index.
 fn names_table(w: &mut Writer, mesh: &VolumeMesh) {
     w.xml.push_str("<FieldData>\n");
     for (r, rg) in mesh.regions.iter().enumerate() {
@@ -55,6 +59,9 @@ fn names_table(w: &mut Writer, mesh: &VolumeMesh) {
     }
     for (g, lg) in mesh.lines.iter().enumerate() {
         w.field_int(&format!("well:{}", lg.name), g as i64 + 1);
+    }
+    for p in &mesh.points {
+        w.field_int(&format!("point:{}", p.name), p.node as i64);
     }
     w.xml.push_str("</FieldData>\n");
 }

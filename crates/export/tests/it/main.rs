@@ -6,6 +6,7 @@ mod export_curves;
 mod export_exodus;
 mod export_formats;
 mod export_lines;
+mod export_points;
 mod export_vtu;
 mod quality_tables;
 mod read_malformed;

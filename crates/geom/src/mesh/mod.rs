@@ -43,6 +43,16 @@ pub struct LineGroup {
     pub lines: Vec<[u32; 2]>,
 }
 
+/// A named mesh node: where a well crosses a surface (`<well>:<surface>`, `:2`, `:3`, ... for
+/// the same well crossing the same surface again, in path order), for a solver to put a source,
+/// a monitor or a boundary condition at (a 0D physical group).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct NamedPoint {
+    pub name: String,
+    /// Index into `nodes`.
+    pub node: u32,
+}
+
 /// A tetrahedral FE mesh with tagged surface triangles.
 ///
 /// Invariants (checked by `validate`): every index is in range; every tet has positive signed
@@ -62,6 +72,8 @@ pub struct VolumeMesh {
     pub surface_groups: Vec<SurfaceGroup>,
     /// Line elements by group (the wells), in name order; empty without wells.
     pub lines: Vec<LineGroup>,
+    /// Named nodes (the wells' crossings of the surfaces), in name order; empty without wells.
+    pub points: Vec<NamedPoint>,
 }
 
 impl VolumeMesh {
@@ -118,6 +130,9 @@ impl VolumeMesh {
                 "line group '{}' references a node beyond {n}",
                 g.name
             ));
+        }
+        if let Some(p) = self.points.iter().find(|p| p.node >= n) {
+            return Err(format!("point '{}' is node {}, beyond {n}", p.name, p.node));
         }
         Ok(())
     }

@@ -7,13 +7,14 @@
 //! entity, each entity named after its first 2D physical group; [`read_msh_lines`] the line
 //! elements (type 1) as segments. [`read_volume_msh`] reads a whole
 //! tet mesh back into a [`VolumeMesh`] (3D physical groups become regions, 2D ones surface
-//! groups, the "material" element data and other scalar element data become region attributes),
+//! groups, 1D ones line groups, named 0D ones on point elements named points, the "material"
+//! element data and other scalar element data become region attributes),
 //! which is how exports are round-trip tested.
 
 use super::cursor::Cursor;
 use super::msh_sections::{Elem, Msh, parse};
 use super::{BoundaryMesh, LineMesh, ReadError};
-use crate::mesh::{LineGroup, RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
+use crate::mesh::{LineGroup, NamedPoint, RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use std::collections::BTreeMap;
 
 /// Maps node tags to indices and checks every element's nodes.
@@ -120,9 +121,11 @@ pub fn read_msh_lines(bytes: &[u8], label: &str) -> Result<LineMesh, ReadError> 
     })
 }
 
-/// Reads a tet mesh (tets type 4, triangles type 2, lines type 1) back into a [`VolumeMesh`]:
-/// regions are the 3D physical groups in tag order (an element without one goes to a group named
-/// after its entity), line groups the 1D ones, surface groups the 2D ones (kinds from our `$GeorecipeSurfaceKinds` section, else `Other`). Region attributes come from
+/// Reads a tet mesh (tets type 4, triangles type 2, lines type 1, points type 15) back into a
+/// [`VolumeMesh`]: regions are the 3D physical groups in tag order (an element without one goes
+/// to a group named after its entity), line groups the 1D ones, named points the point elements
+/// of named 0D ones (sorted by name; unnamed or group-less points, such as the geometry points
+/// Gmsh saves, are skipped), surface groups the 2D ones (kinds from our `$GeorecipeSurfaceKinds` section, else `Other`). Region attributes come from
 /// scalar `$ElementData`: "material" (negative or NaN = none) and every other view as a property,
 /// taken from the region's first tet that has a finite value.
 pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadError> {
@@ -181,7 +184,15 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
         });
     }
     for (e, ix) in m.elems.iter().zip(&idx) {
-        if e.n == 2 {
+        if e.n == 1 {
+            let named = phys_of(&m, e).and_then(|p| m.names.get(&(0, p)));
+            if let Some(name) = named {
+                out.points.push(NamedPoint {
+                    name: name.clone(),
+                    node: ix[0],
+                });
+            }
+        } else if e.n == 2 {
             out.lines[line_keys[&key(e)] as usize]
                 .lines
                 .push([ix[0], ix[1]]);
@@ -211,6 +222,7 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
     if out.tets.is_empty() {
         return Err(c.err_at(bytes.len(), "the file holds no tetrahedra (element type 4)"));
     }
+    out.points.sort_by(|a, b| a.name.cmp(&b.name));
     Ok(out)
 }
 

@@ -9,7 +9,7 @@ use super::cursor::Cursor;
 use crate::mesh::SurfaceKind;
 use std::collections::BTreeMap;
 
-/// A line, triangle or tet as read: its element tag, entity, nodes (by tag) and byte offset.
+/// A point, line, triangle or tet as read: its element tag, entity, nodes (by tag) and byte offset.
 pub(super) struct Elem {
     pub tag: u64,
     pub dim: i32,
@@ -33,9 +33,10 @@ pub(super) struct Msh {
     pub kinds: BTreeMap<i32, SurfaceKind>,
 }
 
-/// The element types kept: lines (1), triangles (2) and tets (4); the others are read past.
+/// The element types kept: points (15), lines (1), triangles (2) and tets (4); the others are
+/// read past.
 fn kept(ty: i32) -> bool {
-    matches!(ty, 1 | 2 | 4)
+    matches!(ty, 15 | 1 | 2 | 4)
 }
 
 /// Nodes per element type, for the types a file may hold.
