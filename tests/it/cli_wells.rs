@@ -214,6 +214,49 @@ fn report_json_lists_each_wells_crossings_in_md_order_its_regions_and_its_picks(
 }
 
 #[test]
+fn each_crossing_is_a_named_point_at_a_node_of_the_crossed_surface_on_the_well() {
+    let s = built();
+    let mesh = mesh_of(&s);
+    let names: Vec<&str> = mesh.points.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "W1:H1",
+            "W1:H2",
+            "W1:box.zmax",
+            "W2:F1",
+            "W2:H1",
+            "W2:H2",
+            "W2:box.zmax"
+        ]
+    );
+    for p in &mesh.points {
+        let (well, surface) = p.name.split_once(':').unwrap();
+        let on_surface = (mesh.triangles.iter().zip(&mesh.triangle_group))
+            .filter(|(_, g)| mesh.surface_groups[**g as usize].name == surface)
+            .any(|(t, _)| t.contains(&p.node));
+        assert!(
+            on_surface,
+            "{}: node {} is on no {surface} triangle",
+            p.name, p.node
+        );
+        let g = mesh.lines.iter().find(|g| g.name == well).unwrap();
+        assert!(
+            g.lines.iter().flatten().any(|&v| v == p.node),
+            "{}: node {} is not on the well",
+            p.name,
+            p.node
+        );
+    }
+    let top = |name: &str| {
+        let p = mesh.points.iter().find(|p| p.name == name).unwrap();
+        mesh.nodes[p.node as usize][2]
+    };
+    assert_eq!(top("W1:box.zmax"), 0.0);
+    assert!(top("W1:H1") > top("W1:H2"), "H1 lies above H2 along W1");
+}
+
+#[test]
 fn the_example_with_wells_passes_the_independent_checker() {
     let s = built();
     let Some(check) = checker() else { return };

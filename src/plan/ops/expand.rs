@@ -2,7 +2,8 @@
 //! `curve:<c>` → `discretize:<c>`; for every well, `well_cut:<w>`; for every patch, `patch:<p>`
 //! (inputs: the model and the well cuts) → `surface_mesh:<p>` (inputs: the discretizations of its
 //! curves); for every region, `wells_in:<r>` when there are wells and `tet_mesh:<r>` (inputs: the
-//! surface meshes of its patches and its wells); then `mesh` (all regions and patches) and
+//! surface meshes of its patches and its wells); then `mesh` (all regions and patches, and the
+//! well cuts when there are wells, for the named points where they cross the surfaces) and
 //! `export`. Sizes come from `sizes`
 //! (a patch at the finest of its surface's and its regions' sizes, a curve at its patches'), and
 //! each `refine:<k>` feature is an extra input of exactly the curves, patches and regions within
@@ -237,10 +238,14 @@ impl Expander for ModelExpander {
                 properties: spec.map(|s| s.properties.clone()).unwrap_or_default(),
             });
         }
-        let (mesh_inputs, inputs) = Wiring::new()
+        let mut wiring = Wiring::new()
             .group("regions", region_nodes)
-            .group("patches", meshed)
-            .finish();
+            .group("patches", meshed);
+        if !cuts.is_empty() {
+            // Only with wells, so that a recipe without keeps its graph.
+            wiring = wiring.group("wells", cuts);
+        }
+        let (mesh_inputs, inputs) = wiring.finish();
         let assemble = AssembleOp {
             regions: groups,
             inputs,

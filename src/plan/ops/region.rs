@@ -1,11 +1,19 @@
 //! `tet_mesh:<r>` and `mesh`: one region filled with tetrahedra from the FE meshes of the patches
 //! that bound it (sides known from the model, carried as parameters), and the final volume mesh
-//! welded from all regions with every patch's triangles in its surface's group.
+//! welded from all regions with every patch's triangles in its surface's group, the wells' edges
+//! as line groups and the wells' crossings of the surfaces as named points.
+//!
+//! A crossing's name is `<well>:<surface>` (`:2`, `:3`, ... when the well crosses the same
+//! surface again, in path order): the surface, not the patch, because the analyst knows the
+//! horizons and faults of the recipe, not the pieces the model cut them into. Its node is found
+//! by exact coordinates, as the wells' edges are: the cut put the crossing into the patch's
+//! surface mesh bit for bit and welding keeps coordinates, so a crossing that is not a node of
+//! the mesh is a broken invariant, reported by well and surface.
 
-use super::wells::RegionWells;
+use super::wells::{RegionWells, WellCutData};
 use super::{Groups, PatchMesh};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
-use geom::mesh::{LineGroup, RegionGroup, VolumeMesh};
+use geom::mesh::{LineGroup, NamedPoint, RegionGroup, VolumeMesh};
 use model::regions::{FaceUse, Side};
 use model::{VolumeAssembly, assemble_volume, embed_polylines, region_input};
 use serde::{Deserialize, Serialize};
@@ -168,8 +176,9 @@ fn well_edges(
 pub struct AssembleOp {
     /// Each region's group: name and the recipe's attributes.
     pub regions: Vec<RegionGroup>,
-    /// `regions` (every `tet_mesh:<r>`, in the order of `regions`) and `patches` (every
-    /// `surface_mesh:<p>`, in model order).
+    /// `regions` (every `tet_mesh:<r>`, in the order of `regions`), `patches` (every
+    /// `surface_mesh:<p>`, in model order) and, only when the recipe has wells, `wells` (every
+    /// `well_cut:<w>`, in name order).
     pub inputs: Groups,
 }
 
@@ -184,7 +193,8 @@ impl Operation for AssembleOp {
     }
     fn version(&self) -> u32 {
         // 2: the wells' line elements.
-        2
+        // 3: the wells' crossings of the surfaces as named points.
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -222,6 +232,10 @@ impl Operation for AssembleOp {
         let mut mesh: VolumeMesh =
             assemble_volume(&parts).map_err(|e| OpError::from(e.to_string()))?;
         mesh.lines = well_lines(&mesh.nodes, &regions)?;
+        if self.inputs.len("wells") > 0 {
+            let cuts: Vec<WellCutData> = self.inputs.decode("wells", inputs)?;
+            mesh.points = well_points(&mesh.nodes, &cuts)?;
+        }
         let (nn, nt, nf) = (
             mesh.nodes.len() as u64,
             mesh.tets.len() as u64,
@@ -234,13 +248,49 @@ impl Operation for AssembleOp {
     }
 }
 
+/// A point's bits as a map key, -0.0 taken as 0.0.
+fn coordinate_key(p: &[f64; 3]) -> [u64; 3] {
+    p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })
+}
+
+/// The wells' crossings of the surfaces as named points of the welded mesh (nodes found by
+/// exact coordinates), `<well>:<surface>` then `:2`, `:3`, ... for the same well crossing the
+/// same surface again in path order; sorted by name.
+fn well_points(nodes: &[[f64; 3]], cuts: &[WellCutData]) -> Result<Vec<NamedPoint>, OpError> {
+    let ids: BTreeMap<[u64; 3], u32> = (nodes.iter().enumerate())
+        .map(|(i, p)| (coordinate_key(p), i as u32))
+        .collect();
+    let mut points = Vec::new();
+    for cut in cuts {
+        let mut seen: BTreeMap<&str, usize> = BTreeMap::new();
+        for m in &cut.markers {
+            let k = seen.entry(m.surface.as_str()).or_default();
+            *k += 1;
+            let name = match *k {
+                1 => format!("{}:{}", cut.name, m.surface),
+                k => format!("{}:{}:{k}", cut.name, m.surface),
+            };
+            let node = ids.get(&coordinate_key(&m.point)).copied().ok_or_else(|| {
+                OpError::from(format!(
+                    "mesh: well `{}` crosses surface `{}` (patch `{}`) at ({}, {}, {}), which is \
+                     not a node of the mesh",
+                    cut.name, m.surface, m.patch, m.point[0], m.point[1], m.point[2]
+                ))
+            })?;
+            points.push(NamedPoint { name, node });
+        }
+    }
+    points.sort_by(|a, b| a.name.cmp(&b.name));
+    Ok(points)
+}
+
 /// The wells' edges in the welded mesh's numbering (nodes joined by exact coordinates), one
 /// group per well in name order, its edges in region order then path order.
 fn well_lines(nodes: &[[f64; 3]], regions: &[RegionMesh]) -> Result<Vec<LineGroup>, OpError> {
     if regions.iter().all(|r| r.wells.is_empty()) {
         return Ok(Vec::new());
     }
-    let key = |p: &[f64; 3]| p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+    let key = coordinate_key;
     let ids: BTreeMap<[u64; 3], u32> = (nodes.iter().enumerate())
         .map(|(i, p)| (key(p), i as u32))
         .collect();
@@ -269,4 +319,63 @@ fn well_lines(nodes: &[[f64; 3]], regions: &[RegionMesh]) -> Result<Vec<LineGrou
             lines,
         })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::ops::WellMarker;
+
+    fn marker(surface: &str, point: [f64; 3]) -> WellMarker {
+        WellMarker {
+            patch: format!("{surface}#0"),
+            surface: surface.into(),
+            point,
+            md: 0.0,
+        }
+    }
+
+    fn cut(name: &str, markers: Vec<WellMarker>) -> WellCutData {
+        WellCutData {
+            name: name.into(),
+            size: 1.0,
+            markers,
+            pieces: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_well_crossing_a_surface_again_numbers_the_later_crossings_in_path_order() {
+        let nodes = [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, -1.0],
+            [0.0, 0.0, -2.0],
+            [1.0; 3],
+        ];
+        let cuts = [
+            cut(
+                "W2",
+                vec![
+                    marker("H1", [0.0, 0.0, -2.0]),
+                    marker("F1", [1.0; 3]),
+                    marker("H1", [0.0, 0.0, -1.0]),
+                ],
+            ),
+            // -0.0 is the node at 0.0.
+            cut("W1", vec![marker("H1", [-0.0, 0.0, 0.0])]),
+        ];
+        let points = well_points(&nodes, &cuts).unwrap();
+        let got: Vec<(&str, u32)> = points.iter().map(|p| (p.name.as_str(), p.node)).collect();
+        assert_eq!(
+            got,
+            [("W1:H1", 0), ("W2:F1", 3), ("W2:H1", 2), ("W2:H1:2", 1)]
+        );
+    }
+
+    #[test]
+    fn a_crossing_that_is_not_a_node_is_an_error_naming_the_well_and_the_surface() {
+        let cuts = [cut("W1", vec![marker("H2", [0.5, 0.0, 0.0])])];
+        let e = well_points(&[[0.0; 3]], &cuts).unwrap_err().to_string();
+        assert!(e.contains("well `W1`") && e.contains("surface `H2`"), "{e}");
+    }
 }
