@@ -1,0 +1,210 @@
+//! `well_cut:<w>`: the well cut by the model (`model::wells`), in the well's terms: its
+//! crossings as markers with their measured depths, its pieces by region name, resampled to its
+//! size, restricted to the recipe's `regions` when it names them; errors name the well, its file
+//! and the line of the segment.
+
+use super::import::WellData;
+use crate::plan::ops::ModelData;
+use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use model::regions::{Locator, PatchIn};
+use model::wells::{WellCut, WellError, cut_well, resample};
+use serde::{Deserialize, Serialize};
+
+/// Where a well crosses a patch: a node of that patch's mesh and a marker of the well.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WellMarker {
+    pub patch: String,
+    pub surface: String,
+    pub point: [f64; 3],
+    /// Measured depth, interpolated between the stations around it.
+    pub md: f64,
+}
+
+/// The output of `well_cut:<w>`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WellCutData {
+    pub name: String,
+    /// The element size along and around the well.
+    pub size: f64,
+    /// In path order.
+    pub markers: Vec<WellMarker>,
+    /// In path order: the region's name and the piece, resampled (its ends kept bit for bit).
+    pub pieces: Vec<(String, Vec<[f64; 3]>)>,
+}
+
+/// `well_cut:<w>`: inputs `model`, `well:<w>`.
+pub struct WellCutOp {
+    pub name: String,
+    /// Recipe path of the edge length (`wells.<w>.size` or `mesh.size`) and its value.
+    pub size_path: String,
+    pub size: f64,
+    /// The regions the well is embedded in; `None`: every region it crosses.
+    pub regions: Option<Vec<String>>,
+}
+
+impl Operation for WellCutOp {
+    fn kind(&self) -> &'static str {
+        "well_cut"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let mut p = Params::new();
+        p.set("well", self.name.as_str()).expect("string");
+        p.set(&self.size_path, self.size).expect("validated finite");
+        if let Some(r) = &self.regions {
+            p.set(&format!("wells.{}.regions", self.name), r.clone())
+                .expect("strings");
+        }
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let [model, well] = inputs else {
+            return Err("well_cut needs the model and the well".into());
+        };
+        let model: ModelData = model.decode()?;
+        let well: WellData = well.decode()?;
+        let patches: Vec<PatchIn> = model
+            .patches
+            .iter()
+            .map(|p| PatchIn {
+                name: p.name.clone(),
+                surface: p.surface.clone(),
+                mesh: p.mesh.clone(),
+                chart_of: None,
+            })
+            .collect();
+        let locator = Locator::new(&model.regions, &patches);
+        let cut = cut_well(&well.stations, &patches, &locator)
+            .map_err(|e| OpError::from(describe(&well, &e)))?;
+        if cut.pieces.is_empty() {
+            return Err(format!(
+                "well `{}` ({}) has no part inside the model: its path from ({}) to ({}) lies outside every region; check the file's coordinates and units against the [box]",
+                well.name,
+                well.file,
+                fmt_point(&well.stations[0]),
+                fmt_point(well.stations.last().expect("two stations")),
+            )
+            .into());
+        }
+        let cut = self.within_regions(cut, &model);
+        if cut.pieces.is_empty() {
+            return Err(format!(
+                "well `{}` ({}) crosses none of the regions its `regions` names ({})",
+                well.name,
+                well.file,
+                self.regions.as_deref().unwrap_or_default().join(", ")
+            )
+            .into());
+        }
+        let md = MeasuredDepth::new(&well);
+        let markers: Vec<WellMarker> = cut
+            .crossings
+            .iter()
+            .map(|c| {
+                let p = &model.patches[c.patch as usize];
+                WellMarker {
+                    patch: p.name.clone(),
+                    surface: p.surface.clone(),
+                    point: c.point,
+                    md: md.at(c.along),
+                }
+            })
+            .collect();
+        let pieces: Vec<(String, Vec<[f64; 3]>)> = cut
+            .pieces
+            .iter()
+            .map(|p| {
+                let region = model.regions.regions[p.region as usize].name.clone();
+                (region, resample(&p.points, self.size))
+            })
+            .collect();
+        let (nm, np) = (markers.len() as u64, pieces.len() as u64);
+        let segments: usize = pieces.iter().map(|(_, p)| p.len() - 1).sum();
+        Ok(Output::new(Artifact::encode(&WellCutData {
+            name: self.name.clone(),
+            size: self.size,
+            markers,
+            pieces,
+        })?)
+        .count("markers", nm)
+        .count("pieces", np)
+        .count("segments", segments as u64))
+    }
+}
+
+impl WellCutOp {
+    /// The cut restricted to the recipe's regions: their pieces, and the crossings that end one.
+    fn within_regions(&self, cut: WellCut, model: &ModelData) -> WellCut {
+        let Some(keep) = &self.regions else {
+            return cut;
+        };
+        let name = |r: u32| model.regions.regions[r as usize].name.as_str();
+        let pieces: Vec<_> = (cut.pieces.into_iter())
+            .filter(|p| keep.iter().any(|k| k == name(p.region)))
+            .collect();
+        let ends: Vec<[f64; 3]> = pieces
+            .iter()
+            .flat_map(|p| [p.points[0], p.points[p.points.len() - 1]])
+            .collect();
+        let crossings = (cut.crossings.into_iter())
+            .filter(|c| ends.contains(&c.point))
+            .collect();
+        WellCut { crossings, pieces }
+    }
+}
+
+fn fmt_point(p: &[f64; 3]) -> String {
+    format!("{}, {}, {}", p[0], p[1], p[2])
+}
+
+/// A cut error in the well's terms: its name, file and the line of the segment's first station.
+fn describe(well: &WellData, e: &WellError) -> String {
+    let line = e
+        .segment
+        .and_then(|i| well.station_lines.get(i))
+        .filter(|&&l| l > 0);
+    let place = match line {
+        Some(l) => format!("{}:{l}", well.file),
+        None => well.file.clone(),
+    };
+    format!(
+        "well `{}` ({place}): {e}; move the path off the surface or its curve, or leave the well out",
+        well.name
+    )
+}
+
+/// Measured depth along the path, from the length along it.
+struct MeasuredDepth<'a> {
+    along: Vec<f64>,
+    md: &'a [f64],
+}
+
+impl<'a> MeasuredDepth<'a> {
+    fn new(w: &'a WellData) -> Self {
+        let mut along = vec![0.0];
+        for s in w.stations.windows(2) {
+            let d = (0..3).map(|k| (s[1][k] - s[0][k]).powi(2)).sum::<f64>();
+            along.push(along[along.len() - 1] + d.sqrt());
+        }
+        MeasuredDepth {
+            along,
+            md: &w.measured_depth,
+        }
+    }
+
+    fn at(&self, s: f64) -> f64 {
+        let i = self
+            .along
+            .partition_point(|&a| a <= s)
+            .clamp(1, self.along.len() - 1);
+        let (a0, a1) = (self.along[i - 1], self.along[i]);
+        let (m0, m1) = (self.md[i - 1], self.md[i]);
+        if a1 > a0 {
+            m0 + (s - a0) / (a1 - a0) * (m1 - m0)
+        } else {
+            m0
+        }
+    }
+}
