@@ -16,9 +16,10 @@ pub(crate) mod wells;
 
 use std::ops::Range;
 
-use super::reader::{Ctx, name_help};
+use super::reader::{self as rd, Ctx, Value, name_help, path_join};
 use super::selector::{SurfaceSelector, is_glob};
 use super::spec::BOX_SIDES;
+use toml::de::DeTable;
 
 /// The surface names a selector or a reference may use: the `[surfaces]` keys, plus the six
 /// box sides when a `[box]` is given.
@@ -142,4 +143,28 @@ pub(crate) fn curve_selector(
             None
         }
     }
+}
+
+/// The file of a `{ file = "...", … }` entry, with its format (read by `format`) and span.
+pub(crate) type FileOf<T> = Option<(String, T, Range<usize>)>;
+
+/// A `name = { file = "...", … }` entry at `path`: the table, its keys checked against `keys`,
+/// and its `file` (`None` when missing or bad, reported with `file_help`). `None` when the entry
+/// is not a table, reported with `example` as the help.
+pub(crate) fn file_table<'a, 'i, T>(
+    ctx: &mut Ctx<'_>,
+    e: &'a Value<'i>,
+    path: &str,
+    keys: &[&str],
+    (example, file_help): (&str, &str),
+    format: impl Fn(&mut Ctx<'_>, &str, &Value<'_>) -> Option<T>,
+) -> Option<(&'a DeTable<'i>, FileOf<T>)> {
+    let st = rd::as_table(ctx, e, path, Some(example))?;
+    rd::check_keys(ctx, st, path, keys, &|_| None);
+    let file = rd::required(ctx, st, e.span(), path, "file", file_help).and_then(|f| {
+        let s = rd::string(ctx, f, &path_join(path, "file"))?;
+        let fmt = format(ctx, s, f)?;
+        Some((s.to_string(), fmt, f.span()))
+    });
+    Some((st, file))
 }

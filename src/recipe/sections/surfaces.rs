@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use toml::de::DeValue;
 
+use super::file_table;
 use crate::recipe::diagnostic::did_you_mean;
 use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
 use crate::recipe::selector::valid_name_char;
@@ -86,24 +87,14 @@ pub(crate) fn read(
             }
             continue;
         }
-        let help = format!("write `{name} = {{ file = \"data/{name}.ts\", kind = \"horizon\" }}`");
-        let Some(st) = rd::as_table(ctx, e, &path, Some(&help)) else {
+        let example =
+            format!("write `{name} = {{ file = \"data/{name}.ts\", kind = \"horizon\" }}`");
+        let file_help = "add `file = \"path/to/surface.ts\"` (relative to the recipe)";
+        let Some((st, file)) =
+            file_table(ctx, e, &path, KEYS, (&example, file_help), import_format)
+        else {
             continue;
         };
-        rd::check_keys(ctx, st, &path, KEYS, &|_| None);
-        let file = rd::required(
-            ctx,
-            st,
-            e.span(),
-            &path,
-            "file",
-            "add `file = \"path/to/surface.ts\"` (relative to the recipe)",
-        );
-        let file = file.and_then(|f| {
-            let s = rd::string(ctx, f, &path_join(&path, "file"))?;
-            let fmt = import_format(ctx, s, f)?;
-            Some((s.to_string(), fmt, f.span()))
-        });
         let kind = match st.get("kind") {
             Some(x) => rd::choice(
                 ctx,

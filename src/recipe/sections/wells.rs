@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use toml::de::DeValue;
 
+use super::file_table;
 use super::surfaces::{check_name, object};
 use crate::recipe::diagnostic::did_you_mean;
 use crate::recipe::reader::{self as rd, Ctx, Value, name_help, path_join};
@@ -49,24 +50,12 @@ pub(crate) fn read(
             }
             continue;
         }
-        let help = format!("write `{name} = {{ file = \"data/{name}.wl\", size = 50.0 }}`");
-        let Some(st) = rd::as_table(ctx, e, &path, Some(&help)) else {
+        let example = format!("write `{name} = {{ file = \"data/{name}.wl\", size = 50.0 }}`");
+        let file_help = "add `file = \"path/to/well.wl\"` (relative to the recipe)";
+        let Some((st, file)) = file_table(ctx, e, &path, KEYS, (&example, file_help), well_format)
+        else {
             continue;
         };
-        rd::check_keys(ctx, st, &path, KEYS, &|_| None);
-        let file = rd::required(
-            ctx,
-            st,
-            e.span(),
-            &path,
-            "file",
-            "add `file = \"path/to/well.wl\"` (relative to the recipe)",
-        )
-        .and_then(|f| {
-            let s = rd::string(ctx, f, &path_join(&path, "file"))?;
-            let fmt = well_format(ctx, s, f)?;
-            Some((s.to_string(), fmt, f.span()))
-        });
         let object = match st.get("object") {
             Some(x) => object(ctx, x, &path_join(&path, "object")).map(Some),
             None => Some(None),
