@@ -3,8 +3,10 @@
 //! a triangle's plane), one crossing per patch and place, and the refusals (a path along a patch,
 //! a crossing on a patch's border).
 
+use super::pieces::lengths_along;
 use super::{WellCrossing, WellError};
 use crate::regions::PatchIn;
+use geom::predicates::{cross, dist, dot, sub};
 use geom::{Orientation, orient2d, orient3d};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
@@ -149,13 +151,8 @@ fn place_through(p: &P3, q: &P3, t: &[P3; 3]) -> Place {
 /// on the triangle up to rounding (on a plane of constant z its z is exact), and on the edge when
 /// `place` is an edge (the opposite corner's weight is exactly zero).
 fn crossing_point(p: &P3, q: &P3, t: &[P3; 3], place: Place) -> P3 {
-    let sub = |u: &P3, v: &P3| [u[0] - v[0], u[1] - v[1], u[2] - v[2]];
     let d = sub(q, p);
-    let det = |u: &P3, v: &P3| {
-        let (u, v) = (sub(u, p), sub(v, p));
-        d[0] * (u[1] * v[2] - u[2] * v[1]) - d[1] * (u[0] * v[2] - u[2] * v[0])
-            + d[2] * (u[0] * v[1] - u[1] * v[0])
-    };
+    let det = |u: &P3, v: &P3| dot(&d, &cross(&sub(u, p), &sub(v, p)));
     // Weight of corner k: the volume with the edge opposite it.
     let mut w = [det(&t[1], &t[2]), det(&t[2], &t[0]), det(&t[0], &t[1])];
     if let Place::Edge(k) = place {
@@ -167,10 +164,6 @@ fn crossing_point(p: &P3, q: &P3, t: &[P3; 3], place: Place) -> P3 {
     }
     let w = w.map(|x| x / sum);
     [0, 1, 2].map(|k| w[0] * t[0][k] + w[1] * t[1][k] + w[2] * t[2][k])
-}
-
-fn length(p: &P3, q: &P3) -> f64 {
-    ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2)).sqrt()
 }
 
 /// The border edges (used by one triangle) and border vertices of a patch.
@@ -365,7 +358,7 @@ impl Walk<'_> {
                 Place::Corner(k) => t[k],
                 _ => crossing_point(&p, &q, &t, place),
             };
-            let s = (length(&p, &point) / length(&p, &q)).clamp(0.0, 1.0);
+            let s = (dist(&p, &point) / dist(&p, &q)).clamp(0.0, 1.0);
             let along = self.along[i] + s * (self.along[i + 1] - self.along[i]);
             self.record(pi, Spot::Segment(i, f), f, || Found {
                 crossing: WellCrossing {
@@ -385,10 +378,7 @@ impl Walk<'_> {
 /// inside the segment that starts there, by length along it); two patches crossed at one point
 /// are refused.
 pub(super) fn crossings(stations: &[P3], patches: &[PatchIn]) -> Result<Vec<Found>, WellError> {
-    let mut along = vec![0.0; stations.len()];
-    for i in 1..stations.len() {
-        along[i] = along[i - 1] + length(&stations[i - 1], &stations[i]);
-    }
+    let along = lengths_along(stations);
     let tree = index(patches);
     let mut walk = Walk {
         stations,

@@ -23,7 +23,7 @@
 mod cross;
 mod pieces;
 
-pub use pieces::resample;
+pub use pieces::{lengths_along, resample};
 
 use crate::regions::{Locator, PatchIn};
 use serde::{Deserialize, Serialize};

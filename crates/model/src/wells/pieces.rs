@@ -4,6 +4,7 @@
 use super::cross::Found;
 use super::{WellError, WellPiece};
 use crate::regions::Locator;
+use geom::predicates::dist;
 
 type P3 = [f64; 3];
 
@@ -105,21 +106,26 @@ fn inner_point(points: &[P3]) -> P3 {
     [0, 1, 2].map(|k| 0.5 * (w[0][k] + w[1][k]))
 }
 
+/// The length along the polyline `points` from its first point to each of them.
+pub fn lengths_along(points: &[P3]) -> Vec<f64> {
+    let mut along = Vec::with_capacity(points.len());
+    let mut s = 0.0;
+    for (i, p) in points.iter().enumerate() {
+        if i > 0 {
+            s += dist(&points[i - 1], p);
+        }
+        along.push(s);
+    }
+    along
+}
+
 /// `points` resampled to segments of about `size` along its length, its two ends kept bit for
 /// bit (a piece shorter than `size` becomes one segment).
 pub fn resample(points: &[P3], size: f64) -> Vec<P3> {
     let (Some(&first), Some(&last)) = (points.first(), points.last()) else {
         return Vec::new();
     };
-    let lengths: Vec<f64> = points
-        .windows(2)
-        .map(|w| {
-            (0..3)
-                .map(|k| (w[1][k] - w[0][k]).powi(2))
-                .sum::<f64>()
-                .sqrt()
-        })
-        .collect();
+    let lengths: Vec<f64> = points.windows(2).map(|w| dist(&w[0], &w[1])).collect();
     let total: f64 = lengths.iter().sum();
     let n = if size > 0.0 && total.is_finite() {
         ((total / size).round() as usize).max(1)

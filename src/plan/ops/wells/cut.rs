@@ -7,7 +7,7 @@ use super::import::WellData;
 use crate::plan::ops::ModelData;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use model::regions::{Locator, PatchIn};
-use model::wells::{WellCut, WellError, cut_well, resample};
+use model::wells::{WellCut, WellError, cut_well, lengths_along, resample};
 use serde::{Deserialize, Serialize};
 
 /// Where a well crosses a patch: a node of that patch's mesh and a marker of the well.
@@ -183,13 +183,8 @@ struct MeasuredDepth<'a> {
 
 impl<'a> MeasuredDepth<'a> {
     fn new(w: &'a WellData) -> Self {
-        let mut along = vec![0.0];
-        for s in w.stations.windows(2) {
-            let d = (0..3).map(|k| (s[1][k] - s[0][k]).powi(2)).sum::<f64>();
-            along.push(along[along.len() - 1] + d.sqrt());
-        }
         MeasuredDepth {
-            along,
+            along: lengths_along(&w.stations),
             md: &w.measured_depth,
         }
     }

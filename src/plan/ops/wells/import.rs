@@ -77,11 +77,7 @@ impl Operation for WellImportOp {
             WellFormat::PLine => {
                 let l = import::import_line(bytes, &self.file_label, &opts).map_err(fail)?;
                 let (stations, station_lines) = l.open_path().map_err(fail)?;
-                let mut md = vec![0.0];
-                for w in stations.windows(2) {
-                    let d = (0..3).map(|k| (w[1][k] - w[0][k]).powi(2)).sum::<f64>();
-                    md.push(md[md.len() - 1] + d.sqrt());
-                }
+                let md = model::wells::lengths_along(&stations);
                 WellData {
                     name: self.name.clone(),
                     file: self.file_label.clone(),

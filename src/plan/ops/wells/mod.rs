@@ -22,10 +22,7 @@ pub(super) fn samples(pieces: &[Vec<[f64; 3]>], size: f64) -> Vec<[f64; 3]> {
     let mut out = Vec::new();
     for p in pieces {
         for w in p.windows(2) {
-            let len = (0..3)
-                .map(|k| (w[1][k] - w[0][k]).powi(2))
-                .sum::<f64>()
-                .sqrt();
+            let len = geom::predicates::dist(&w[0], &w[1]);
             let n = (2.0 * len / size).ceil().max(1.0) as usize;
             out.extend((0..n).map(|i| {
                 let t = i as f64 / n as f64;
