@@ -76,7 +76,8 @@ impl Operation for TetMeshOp {
         // 12: missing boundary triangles recovered by flips (2-3, edge removal) before any hole.
         // 13: holes whose front gets stuck are widened round the stuck place and filled again.
         // 14: the wells' edges in the output.
-        14
+        // 15: recovery holes filled by their own Delaunay tetrahedralization or a cone first.
+        15
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -1,7 +1,7 @@
 //! Delaunay meshing of a region: the Delaunay tetrahedralization of the boundary and embedded
 //! vertices (`tri`, inserted in `order`), local boundary recovery (`recover`: 4-4 flips where a
 //! cocircular quad took the other diagonal (`flip`), then 2-3 flips and edge removals, then holes
-//! that the advancing front fills),
+//! filled by their own Delaunay mesh, a cone, or the advancing front),
 //! then interior nodes by Delaunay refinement against the background size field (`refine`). No
 //! node is ever placed on a boundary or embedded face: recovery removes and re-meshes tets
 //! instead of splitting faces, and refinement cavities never cross a constraint. It is the fast
@@ -21,7 +21,8 @@
 //! * `recover`: each missing boundary or embedded triangle is first made a face by flips where it
 //!   can be (`recover/flips`); each still missing takes every tet that may meet it (exact
 //!   separating-plane tests) into a hole; kept tets are classified by flooding from the triangles'
-//!   oriented sides; the holes' inner part, grown until its surface is a manifold, is meshed by the
+//!   oriented sides; the holes' inner part, grown until its surface is a manifold, is filled hole
+//!   by hole without new nodes where it can be, else from one node in its kernel, else by the
 //!   front. More than 500 missing triangles that are also 2 % of them (a structured cospherical
 //!   grid) send the region to the front at once.
 //! * `recover/segments`: embedded segments (wells), once the triangles are faces: divided to the

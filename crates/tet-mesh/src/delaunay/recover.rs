@@ -4,14 +4,18 @@
 //! ones are made faces by flips (`flips`). Each still missing one is recovered locally: every
 //! tet that may meet its interior (exact, conservative tests) is removed, and the part of those
 //! holes inside the region (bounded by the missing triangles, the boundary triangles inside the
-//! holes and the faces towards the kept inner tets) is meshed by the advancing front, which never
-//! inserts a node on a face. Where the front gets stuck against the walls of kept tets, the hole
-//! is widened there and meshed again. Kept tets are classified inside or outside by flooding from the
-//! boundary triangles' oriented sides, never across a boundary face. Any inconsistency is an
-//! error, and the caller falls back to the advancing front on the whole region.
+//! holes and the faces towards the kept inner tets) is filled, hole by hole (`holes`): by the
+//! hole's own conforming Delaunay mesh (this same recovery, two levels deep), else by a cone
+//! from a node in its kernel (`kernel`), else the hole takes the inner tets round it and is
+//! tried again. What is left goes to the advancing front, which never inserts a node on a face;
+//! where the front gets stuck against the walls of kept tets, the hole is widened there and
+//! meshed again. Kept tets are classified inside or outside by flooding from the boundary
+//! triangles' oriented sides, never across a boundary face. Any inconsistency is an error, and
+//! the caller falls back to the advancing front on the whole region.
 
 mod flips;
 mod holes;
+mod kernel;
 mod segments;
 
 use std::collections::HashSet;
@@ -25,9 +29,10 @@ use super::super::front::FaceMap;
 use super::super::{RegionInput, SizeField, TetMeshError};
 use super::flip::coplanar;
 use super::order::brio;
-use super::tri::{FACE, Limits, NONE, Tri};
+use super::tri::{FACE, Limits, NONE, P, Tri};
 use holes::{
-    flood, hole_tets, hole_walls, mesh_holes, seed_sides, unpinched_hole_surface, widen_hole,
+    Filler, flood, hole_tets, hole_walls, mesh_holes, seed_sides, unpinched_hole_surface,
+    widen_around, widen_hole,
 };
 pub use segments::recover_segments;
 
@@ -53,6 +58,9 @@ const MAX_MISSING_SHARE: usize = 50;
 const MAX_GROWTH: usize = 8;
 /// Times a hole is widened round the place where the front got stuck before recovery gives up.
 const MAX_WIDENING: usize = 16;
+/// Holes inside holes: a hole is first tetrahedralized as a region of its own (its vertices'
+/// Delaunay tetrahedralization, recovered), down to this depth, before the front meshes it.
+const MAX_DEPTH: u32 = 2;
 
 /// The (tet, face) pairs that hold a constraint triangle, `4 t + i` each: at most two.
 #[derive(Clone, Copy)]
@@ -101,6 +109,21 @@ pub fn conforming(
     size: &SizeField,
     bar: [Span<'_>; 2],
 ) -> Result<Conforming, TetMeshError> {
+    let segments: Vec<[P; 2]> = (input.lines.iter())
+        .map(|l| l.map(|v| input.vertices[v as usize]))
+        .collect();
+    conforming_at(input, size, bar, &segments, 0)
+}
+
+/// [`conforming`] of a region (`depth` 0) or of a recovery hole inside one (`depth` > 0: the
+/// holes' own holes never go to the front); `segments` are the region's embedded segments.
+fn conforming_at(
+    input: &RegionInput,
+    size: &SizeField,
+    bar: [Span<'_>; 2],
+    segments: &[[P; 2]],
+    depth: u32,
+) -> Result<Conforming, TetMeshError> {
     let [inserting, recovering] = bar;
     let name = input.name.as_str();
     let n = input.vertices.len();
@@ -135,9 +158,11 @@ pub fn conforming(
     seed_sides(&mut tri, &mut side, &all, &holders, n, name)?;
     flood(&tri, &mut side, name)?;
 
-    // The holes' inner part, meshed by the front.
+    // The holes' inner part, filled.
     let extra: Vec<[u32; 4]> = if side.contains(&Side::Hole) {
-        fill_holes(&mut tri, &mut side, &all, &holders, &vtet, name, size)?
+        fill_holes(
+            &mut tri, &mut side, &all, &holders, &vtet, name, size, segments, depth,
+        )?
     } else {
         Vec::new()
     };
@@ -163,9 +188,15 @@ pub fn conforming(
     })
 }
 
-/// The front's tets filling the holes. Where the front gets stuck, the hole is widened round the
-/// stuck place (the inner tets there join it, in rings of growing radius) and meshed again: the
-/// walls of kept tets that pinned the front there are gone, and the front has room to turn.
+/// The tets filling the holes: first without the front, each hole that neither its own
+/// Delaunay tetrahedralization nor a cone fills taking the inner tets round it
+/// ([`without_front`]); then the front, once on the holes so widened (where they took the whole
+/// region, as in a closed body, this is the front's mesh of it inside this method, which still
+/// recovers the segments), else on the holes as they were. Where the front gets stuck, the hole
+/// is widened round the stuck place (the inner tets there join it, in rings of growing radius)
+/// and meshed again: the walls of kept tets that pinned the front there are gone. A hole's own
+/// holes (`depth` > 0) never go to the front.
+#[allow(clippy::too_many_arguments)]
 fn fill_holes(
     tri: &mut Tri,
     side: &mut [Side],
@@ -174,22 +205,90 @@ fn fill_holes(
     vtet: &[u32],
     name: &str,
     size: &SizeField,
+    segments: &[[P; 2]],
+    depth: u32,
 ) -> Result<Vec<[u32; 4]>, TetMeshError> {
+    let fill = Filler {
+        name,
+        size,
+        segments,
+        delaunay: |sub: &RegionInput| {
+            (depth < MAX_DEPTH)
+                .then(|| {
+                    conforming_at(sub, size, [Span::none(), Span::none()], segments, depth + 1).ok()
+                })
+                .flatten()
+                .map(|c| inner_tets(&c))
+        },
+    };
+    let before = side.to_vec();
+    // A hole's own holes are not widened: each level would multiply the tries.
+    let widenings = if depth == 0 { MAX_WIDENING } else { 0 };
+    match without_front(tri, side, all, holders, vtet, &fill, widenings) {
+        Ok(tets) => return Ok(tets),
+        Err(e) if depth > 0 => return Err(e),
+        Err(_) => {}
+    }
+    if let Ok((sub_b, sub_e)) = unpinched_hole_surface(tri, side, all, holders, vtet, name)
+        && let Ok(tets) = mesh_holes(tri, &sub_b, &sub_e, true, &fill)
+    {
+        return Ok(tets);
+    }
+    side.copy_from_slice(&before);
     let mut widened = 0;
     loop {
         let (sub_b, sub_e) = unpinched_hole_surface(tri, side, all, holders, vtet, name)?;
-        match mesh_holes(tri, &sub_b, &sub_e, name, size) {
+        match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
             Ok(tets) => return Ok(tets),
-            Err(e) if widened < MAX_WIDENING => {
+            Err((e, _)) if widened < MAX_WIDENING => {
                 let Some(at) = e.at else { return Err(e) };
                 widened += 1;
                 if widen_hole(tri, side, &sub_b, at) == 0 {
                     return Err(e);
                 }
             }
-            Err(e) => return Err(e),
+            Err((e, _)) => return Err(e),
         }
     }
+}
+
+/// The holes filled without the front, each that cannot be taking the inner tets round it, at
+/// most `widenings` times; the error is the last hole's.
+fn without_front<D: Fn(&RegionInput) -> Option<holes::Filled>>(
+    tri: &mut Tri,
+    side: &mut [Side],
+    all: &[([u32; 3], bool)],
+    holders: &[Holders],
+    vtet: &[u32],
+    fill: &Filler<'_, D>,
+    widenings: usize,
+) -> Result<Vec<[u32; 4]>, TetMeshError> {
+    let mut widened = 0;
+    loop {
+        let (sub_b, sub_e) = unpinched_hole_surface(tri, side, all, holders, vtet, fill.name)?;
+        match mesh_holes(tri, &sub_b, &sub_e, false, fill) {
+            Ok(tets) => return Ok(tets),
+            Err((e, hole)) => {
+                if widened == widenings || widen_around(tri, side, &hole) == 0 {
+                    return Err(e);
+                }
+                widened += 1;
+            }
+        }
+    }
+}
+
+/// The inner tets of a conforming mesh in its input's numbering, the nodes its holes added
+/// numbered after the input's (no inner tet uses an enclosing corner), and those nodes.
+fn inner_tets(c: &Conforming) -> holes::Filled {
+    let n = c.n_input as u32;
+    let map = |v: u32| if v < n { v } else { v - 4 };
+    let tets = c
+        .tri
+        .live_tets()
+        .map(|t| c.tri.t[t as usize].v.map(map))
+        .collect();
+    (c.tri.pts[c.n_input + 4..].to_vec(), tets)
 }
 
 /// A tetrahedralization of only the enclosing tet, far around the input's bounding box.

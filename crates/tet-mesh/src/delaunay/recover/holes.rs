@@ -1,7 +1,9 @@
 //! The recovery holes: which tets may meet a missing constraint triangle, which side of the
 //! boundary each kept tet lies on (flooded from the constraint triangles' oriented sides, never
 //! across a constrained face), and the holes' inner part, grown until its surface is a manifold
-//! and meshed by the advancing front.
+//! and filled piece by piece: without new nodes, from one node in the piece's kernel, or by the
+//! advancing front. A piece that only the front could fill is first widened by the inner tets
+//! round it, since the front's sized nodes rarely fit in a thin recovery hole.
 
 use std::collections::HashMap;
 
@@ -9,7 +11,7 @@ use super::super::super::advance::advance_front;
 use super::super::super::check::check_input;
 use super::super::super::{RegionInput, SizeField, TetMeshError};
 use super::super::tri::{NONE, P, Tri};
-use super::{Holders, MAX_GROWTH, Side, meets, same_turn, sorted, star};
+use super::{Holders, MAX_GROWTH, Side, kernel, meets, same_turn, sorted, star};
 
 /// The holes' inner surface: its boundary triangles, and the embedded triangles inside it.
 type HoleSurface = (Vec<[u32; 3]>, Vec<[u32; 3]>);
@@ -216,14 +218,61 @@ pub(super) fn widen_hole(tri: &Tri, side: &mut [Side], sub_b: &[[u32; 3]], at: [
     0
 }
 
-/// The front's tets filling the holes, in `tri`'s numbering (its new nodes appended).
-pub(super) fn mesh_holes(
+/// Why the holes could not be filled, with the hole that failed.
+pub(super) type HoleError = (TetMeshError, Vec<[u32; 3]>);
+
+/// A hole's own tets and new nodes (numbered after its vertices).
+pub(super) type Filled = (Vec<P>, Vec<[u32; 4]>);
+
+/// How holes are filled: the region's name and size field, its embedded segments (which no
+/// cone's node may come near), and a tetrahedralization of a hole without new nodes.
+pub(super) struct Filler<'a, D: Fn(&RegionInput) -> Option<Filled>> {
+    pub name: &'a str,
+    pub size: &'a SizeField,
+    pub segments: &'a [[P; 2]],
+    pub delaunay: D,
+}
+
+/// The tets filling the holes, in `tri`'s numbering (new nodes appended). Each hole (a
+/// connected piece of the surface; all of them at once where embedded triangles lie inside) is
+/// tried in turn by `delaunay`, which adds no node, then as a cone from one node in its kernel
+/// (`kernel`), then, with `front`, by the front. An error comes with the hole that failed.
+pub(super) fn mesh_holes<D: Fn(&RegionInput) -> Option<Filled>>(
     tri: &mut Tri,
     sub_b: &[[u32; 3]],
     sub_e: &[[u32; 3]],
-    name: &str,
-    size: &SizeField,
+    front: bool,
+    fill: &Filler<'_, D>,
+) -> Result<Vec<[u32; 4]>, HoleError> {
+    let pieces = if sub_e.is_empty() {
+        connected_pieces(sub_b)
+    } else {
+        vec![sub_b.to_vec()]
+    };
+    // On an error no node added for the holes before it stays.
+    let n = tri.pts.len();
+    let mut out = Vec::new();
+    for piece in pieces {
+        match mesh_hole(tri, &piece, sub_e, front, fill) {
+            Ok(tets) => out.extend(tets),
+            Err(e) => {
+                tri.pts.truncate(n);
+                return Err((e, piece));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// One hole's tets (see [`mesh_holes`]).
+fn mesh_hole<D: Fn(&RegionInput) -> Option<Filled>>(
+    tri: &mut Tri,
+    sub_b: &[[u32; 3]],
+    sub_e: &[[u32; 3]],
+    front: bool,
+    fill: &Filler<'_, D>,
 ) -> Result<Vec<[u32; 4]>, TetMeshError> {
+    let name = fill.name;
     let (sub, back) = compact_input(name, &tri.pts, sub_b, sub_e);
     check_input(&sub).map_err(|e| {
         TetMeshError::new(
@@ -232,17 +281,104 @@ pub(super) fn mesh_holes(
             e.at,
         )
     })?;
-    let raw = advance_front(&sub, size)?;
+    let cone =
+        || kernel::cone(&sub.vertices, &sub.boundary, fill.segments).filter(|_| sub_e.is_empty());
+    let (nodes, tets) = match (fill.delaunay)(&sub) {
+        Some(filled) => filled,
+        None => match cone() {
+            Some((apex, tets)) => (vec![apex], tets),
+            None if !front => {
+                return Err(TetMeshError::new(
+                    name,
+                    "a recovery hole is not star-shaped",
+                    Some(centre(&sub.vertices)),
+                ));
+            }
+            None => {
+                let raw = advance_front(&sub, fill.size)?;
+                (raw.nodes[sub.vertices.len()..].to_vec(), raw.tets)
+            }
+        },
+    };
+    // The new nodes follow the hole's vertices.
     let mut map = back;
-    for p in &raw.nodes[sub.vertices.len()..] {
+    for p in nodes {
         map.push(tri.pts.len() as u32);
-        tri.pts.push(*p);
+        tri.pts.push(p);
     }
-    Ok(raw
-        .tets
+    Ok(tets.iter().map(|t| t.map(|v| map[v as usize])).collect())
+}
+
+fn centre(pts: &[P]) -> P {
+    let mut c = [0.0; 3];
+    for p in pts {
+        for k in 0..3 {
+            c[k] += p[k] / pts.len() as f64;
+        }
+    }
+    c
+}
+
+/// The pieces of a closed surface that share no edge, each in its input order.
+fn connected_pieces(tris: &[[u32; 3]]) -> Vec<Vec<[u32; 3]>> {
+    let mut by_edge: Vec<([u32; 2], usize)> = tris
         .iter()
-        .map(|t| t.map(|v| map[v as usize]))
-        .collect())
+        .enumerate()
+        .flat_map(|(k, t)| (0..3).map(move |e| (sorted2(t[e], t[(e + 1) % 3]), k)))
+        .collect();
+    by_edge.sort_unstable();
+    let mut piece = vec![usize::MAX; tris.len()];
+    let mut count = 0;
+    for start in 0..tris.len() {
+        if piece[start] != usize::MAX {
+            continue;
+        }
+        piece[start] = count;
+        let mut stack = vec![start];
+        while let Some(k) = stack.pop() {
+            for e in 0..3 {
+                let key = sorted2(tris[k][e], tris[k][(e + 1) % 3]);
+                let first = by_edge.partition_point(|&(x, _)| x < key);
+                for &(_, j) in by_edge[first..].iter().take_while(|&&(x, _)| x == key) {
+                    if piece[j] == usize::MAX {
+                        piece[j] = count;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        count += 1;
+    }
+    let mut out = vec![Vec::new(); count];
+    for (k, t) in tris.iter().enumerate() {
+        out[piece[k]].push(*t);
+    }
+    out
+}
+
+fn sorted2(a: u32, b: u32) -> [u32; 2] {
+    [a.min(b), a.max(b)]
+}
+
+/// Widens a hole by every inner tet at one of its vertices; returns how many joined.
+pub(super) fn widen_around(tri: &Tri, side: &mut [Side], hole: &[[u32; 3]]) -> usize {
+    let mut wall: Vec<u32> = hole.iter().flatten().copied().collect();
+    wall.sort_unstable();
+    wall.dedup();
+    let joining: Vec<u32> = tri
+        .live_tets()
+        .filter(|&t| {
+            side[t as usize] == Side::In
+                && tri.t[t as usize]
+                    .v
+                    .iter()
+                    .any(|v| wall.binary_search(v).is_ok())
+        })
+        .collect();
+    for &t in &joining {
+        side[t as usize] = Side::Hole;
+    }
+    joining.len()
 }
 
 /// The faces holes share with inner tets (by sorted vertices), each with the inner tet's side.
