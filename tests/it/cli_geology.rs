@@ -32,7 +32,7 @@ fn build(case: &Case) -> (tempfile::TempDir, serde_json::Value) {
 }
 
 /// Builds `case` in a scratch folder and checks its model, mesh and quality.
-fn builds_and_meshes(case: &Case) {
+fn builds_and_meshes(case: &Case) -> tempfile::TempDir {
     let (dir, report) = build(case);
     let model = report["nodes"]
         .as_array()
@@ -58,7 +58,7 @@ fn builds_and_meshes(case: &Case) {
             case.name
         );
     }
-    let Some(check) = checker() else { return };
+    let Some(check) = checker() else { return dir };
     let msh = dir.path().join(format!("out/{}.msh", case.name));
     let out = Command::new("python3")
         .arg(&check)
@@ -72,6 +72,7 @@ fn builds_and_meshes(case: &Case) {
         "{}: {text}",
         case.name
     );
+    dir
 }
 
 fn case(name: &str) -> Case {
@@ -129,6 +130,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "vertical_tube",
         "salt_stock",
         "closed_salt_diapir",
+        "closed_salt_diapir_with_well",
         "lens",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
@@ -148,6 +150,27 @@ fn a_salt_stock_piercing_two_horizons_meshes_into_four_regions() {
 #[test]
 fn a_closed_salt_diapir_inside_the_box_meshes_into_four_regions() {
     builds_and_meshes(&case("closed_salt_diapir"));
+}
+
+#[test]
+fn a_closed_salt_diapir_with_a_well_into_its_flank_meshes_with_the_well_embedded() {
+    let case = case("closed_salt_diapir_with_well");
+    let dir = builds_and_meshes(&case);
+    // The well is a line group of the mesh, so its salt region was meshed by the Delaunay path
+    // (the front embeds no segments).
+    let msh = std::fs::read_to_string(dir.path().join(format!("out/{}.msh", case.name)))
+        .expect("the mesh");
+    let names = msh
+        .split("$PhysicalNames")
+        .nth(1)
+        .and_then(|s| s.split("$EndPhysicalNames").next())
+        .expect("physical names");
+    assert!(
+        names
+            .lines()
+            .any(|l| l.starts_with("1 ") && l.contains("\"W\"")),
+        "{names}"
+    );
 }
 
 #[test]
