@@ -356,12 +356,14 @@ fn host_of_a_lens(origin: P, half: P, axes: P, (rings, sectors): (u32, u32)) -> 
 
 #[test]
 fn a_lens_rim_of_long_low_facets_is_recovered_by_flips_rather_than_holes() {
-    // The same lens in boxes of three sizes. Not yet covered: a box 3 km wide (the front cannot
-    // fill the holes by the rim however far they are widened, nor the whole region).
+    // The same lens in boxes of four sizes. In the box 3 km wide the front cannot fill the holes
+    // by the rim however far they are widened: they are filled by their own Delaunay meshes and
+    // by cones from their kernels.
     let origin = [502_100.0, 7_001_900.0, -1000.0];
     for half in [
         [1200.0, 1000.0, 400.0],
         [1500.0, 1200.0, 500.0],
+        [1500.0, 1500.0, 500.0],
         [2000.0, 2000.0, 600.0],
     ] {
         let (input, expected) = host_of_a_lens(origin, half, [900.0, 600.0, 150.0], (14, 40));
@@ -410,3 +412,4 @@ fn holes_whose_front_gets_stuck_are_widened_until_it_fills_them() {
         );
     }
 }
+
