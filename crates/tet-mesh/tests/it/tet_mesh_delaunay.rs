@@ -412,4 +412,3 @@ fn holes_whose_front_gets_stuck_are_widened_until_it_fills_them() {
         );
     }
 }
-

@@ -190,29 +190,15 @@ pub(super) fn widen_hole(tri: &Tri, side: &mut [Side], sub_b: &[[u32; 3]], at: [
     }
     // Where every tet at the nearest wall vertices has joined already, the next ring out.
     for reach in [4.0, 16.0, 64.0] {
-        let mut wall: Vec<u32> = sub_b
+        let wall: Vec<u32> = sub_b
             .iter()
             .flatten()
             .copied()
             .filter(|&v| d2(v) <= reach * near)
             .collect();
-        wall.sort_unstable();
-        wall.dedup();
-        let joining: Vec<u32> = tri
-            .live_tets()
-            .filter(|&t| {
-                side[t as usize] == Side::In
-                    && tri.t[t as usize]
-                        .v
-                        .iter()
-                        .any(|v| wall.binary_search(v).is_ok())
-            })
-            .collect();
-        if !joining.is_empty() {
-            for &t in &joining {
-                side[t as usize] = Side::Hole;
-            }
-            return joining.len();
+        let joined = join_at(tri, side, wall);
+        if joined > 0 {
+            return joined;
         }
     }
     0
@@ -362,7 +348,11 @@ fn sorted2(a: u32, b: u32) -> [u32; 2] {
 
 /// Widens a hole by every inner tet at one of its vertices; returns how many joined.
 pub(super) fn widen_around(tri: &Tri, side: &mut [Side], hole: &[[u32; 3]]) -> usize {
-    let mut wall: Vec<u32> = hole.iter().flatten().copied().collect();
+    join_at(tri, side, hole.iter().flatten().copied().collect())
+}
+
+/// Every inner tet at one of the `wall` vertices joins the holes; returns how many did.
+fn join_at(tri: &Tri, side: &mut [Side], mut wall: Vec<u32>) -> usize {
     wall.sort_unstable();
     wall.dedup();
     let joining: Vec<u32> = tri
@@ -510,4 +500,19 @@ fn compact_input(
         },
         back,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::connected_pieces;
+
+    #[test]
+    fn holes_sharing_only_a_vertex_are_separate_pieces_in_input_order() {
+        // Two tetrahedra's surfaces meeting at vertex 0, the second listed first.
+        let a = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]];
+        let b = [[0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]];
+        let tris: Vec<[u32; 3]> = b.iter().chain(&a).copied().collect();
+        let pieces = connected_pieces(&tris);
+        assert_eq!(pieces, vec![b.to_vec(), a.to_vec()]);
+    }
 }

@@ -186,34 +186,35 @@ fn pivot(tab: &mut [f64], cols: usize, row: usize, col: usize) {
 mod tests {
     use super::*;
 
-    /// A unit cube's 12 outward triangles over its 8 corners.
-    fn cube() -> (Vec<P>, Vec<[u32; 3]>) {
-        let pts: Vec<P> = (0..8)
-            .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
-            .collect();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let faces = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
+    /// The prism over a counter-clockwise `plan` from z = 0 to 1, its caps triangulated by
+    /// `caps` (counter-clockwise in plan): outward triangles.
+    fn prism(plan: &[[f64; 2]], caps: &[[u32; 3]]) -> (Vec<P>, Vec<[u32; 3]>) {
+        let n = plan.len() as u32;
+        let mut pts: Vec<P> = plan.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        pts.extend(plan.iter().map(|p| [p[0], p[1], 1.0]));
+        let mut faces: Vec<[u32; 3]> = Vec::new();
+        for &[a, b, c] in caps {
+            faces.push([a, c, b]);
+            faces.push([a + n, b + n, c + n]);
+        }
+        for i in 0..n {
+            let j = (i + 1) % n;
+            faces.push([i, j, j + n]);
+            faces.push([i, j + n, i + n]);
+        }
         (pts, faces)
     }
 
     #[test]
     fn a_cube_is_coned_from_its_centre() {
-        let (pts, faces) = cube();
+        let (pts, faces) = test_support::shapes::cuboid([0.0; 3], [1.0; 3]);
         let (x, tets) = cone(&pts, &faces, &[]).expect("a convex hole is star-shaped");
         for k in 0..3 {
             assert!((x[k] - 0.5).abs() < 1e-9, "{x:?}");
         }
         assert_eq!(tets.len(), 12);
+        // A well through the centre keeps the node away.
+        assert!(cone(&pts, &faces, &[[[0.5, 0.5, 0.0], [0.5, 0.5, 1.0]]]).is_none());
     }
 
     #[test]
@@ -242,9 +243,9 @@ mod tests {
 
     #[test]
     fn a_u_shaped_hole_whose_arms_hide_each_other_is_refused() {
-        // The U polygon (counter-clockwise), extruded from z = 0 to 1: the left arm's inner side
-        // x = 1 and the right arm's x = 2 face each other, so no point sees both.
-        let plan = [
+        // The left arm's inner side x = 1 and the right arm's x = 2 face each other, so no point
+        // sees both.
+        let u = [
             [0., 0.],
             [3., 0.],
             [3., 3.],
@@ -254,8 +255,6 @@ mod tests {
             [1., 3.],
             [0., 3.],
         ];
-        let mut pts: Vec<P> = plan.iter().map(|p| [p[0], p[1], 0.0]).collect();
-        pts.extend(plan.iter().map(|p| [p[0], p[1], 1.0]));
         let caps = [
             [0, 1, 4],
             [0, 4, 5],
@@ -264,32 +263,12 @@ mod tests {
             [0, 5, 6],
             [0, 6, 7],
         ];
-        let mut faces: Vec<[u32; 3]> = Vec::new();
-        for [a, b, c] in caps {
-            faces.push([a, c, b]);
-            faces.push([a + 8, b + 8, c + 8]);
-        }
-        for i in 0..8u32 {
-            let j = (i + 1) % 8;
-            faces.push([i, j, j + 8]);
-            faces.push([i, j + 8, i + 8]);
-        }
+        let (pts, faces) = prism(&u, &caps);
         assert!(cone(&pts, &faces, &[]).is_none());
-        // The same prism without its right arm (an L) is star-shaped.
-        let l_plan = [[0., 0.], [3., 0.], [3., 1.], [1., 1.], [1., 3.], [0., 3.]];
-        let mut pts: Vec<P> = l_plan.iter().map(|p| [p[0], p[1], 0.0]).collect();
-        pts.extend(l_plan.iter().map(|p| [p[0], p[1], 1.0]));
+        // Without its right arm (an L) it is star-shaped.
+        let l = [[0., 0.], [3., 0.], [3., 1.], [1., 1.], [1., 3.], [0., 3.]];
         let caps = [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]];
-        let mut faces: Vec<[u32; 3]> = Vec::new();
-        for [a, b, c] in caps {
-            faces.push([a, c, b]);
-            faces.push([a + 6, b + 6, c + 6]);
-        }
-        for i in 0..6u32 {
-            let j = (i + 1) % 6;
-            faces.push([i, j, j + 6]);
-            faces.push([i, j + 6, i + 6]);
-        }
+        let (pts, faces) = prism(&l, &caps);
         let (x, tets) = cone(&pts, &faces, &[]).expect("an L sees its corner");
         assert!(x[0] < 1.0 && x[1] < 1.0, "{x:?}");
         assert_eq!(tets.len(), faces.len());
