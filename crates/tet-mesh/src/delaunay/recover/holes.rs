@@ -230,10 +230,10 @@ pub(super) fn mesh_holes<D: Fn(&RegionInput) -> Option<Filled>>(
     front: bool,
     fill: &Filler<'_, D>,
 ) -> Result<Vec<[u32; 4]>, HoleError> {
-    let pieces = if sub_e.is_empty() {
-        connected_pieces(sub_b)
-    } else {
-        vec![sub_b.to_vec()]
+    // Pieces are filled apart only when each is a solid (not a cavity shell inside another).
+    let pieces = match connected_pieces(sub_b) {
+        p if sub_e.is_empty() && p.iter().all(|q| enclosed_volume(&tri.pts, q) > 0.0) => p,
+        _ => vec![sub_b.to_vec()],
     };
     // On an error no node added for the holes before it stays.
     let n = tri.pts.len();
@@ -303,6 +303,18 @@ fn centre(pts: &[P]) -> P {
         }
     }
     c
+}
+
+/// The volume a closed surface encloses, positive when its right-hand normals point out (float:
+/// it only tells a solid piece from a cavity shell, whose volume is negative).
+fn enclosed_volume(pts: &[P], tris: &[[u32; 3]]) -> f64 {
+    let o = pts[tris[0][0] as usize];
+    tris.iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| pts[v as usize]);
+            geom::predicates::signed_volume(&o, &a, &b, &c)
+        })
+        .sum()
 }
 
 /// The pieces of a closed surface that share no edge, each in its input order.
@@ -505,6 +517,16 @@ fn compact_input(
 #[cfg(test)]
 mod tests {
     use super::connected_pieces;
+
+    #[test]
+    fn a_solid_encloses_a_positive_volume_and_a_cavity_shell_a_negative_one() {
+        let (pts, mut faces) = test_support::shapes::cuboid([0.0; 3], [2.0; 3]);
+        assert!((super::enclosed_volume(&pts, &faces) - 8.0).abs() < 1e-12);
+        for f in &mut faces {
+            f.swap(1, 2);
+        }
+        assert!((super::enclosed_volume(&pts, &faces) + 8.0).abs() < 1e-12);
+    }
 
     #[test]
     fn holes_sharing_only_a_vertex_are_separate_pieces_in_input_order() {
