@@ -220,7 +220,8 @@ pub(super) struct Filler<'a, D: Fn(&RegionInput) -> Option<Filled>> {
 }
 
 /// The tets filling the holes, in `tri`'s numbering (new nodes appended). Each hole (a
-/// connected piece of the surface; all of them at once where embedded triangles lie inside) is
+/// connected piece of the surface; all of them at once where embedded triangles lie inside or
+/// a piece is a cavity shell) is
 /// tried in turn by `delaunay`, which adds no node, then as a cone from one node in its kernel
 /// (`kernel`), then, with `front`, by the front. An error comes with the hole that failed.
 pub(super) fn mesh_holes<D: Fn(&RegionInput) -> Option<Filled>>(
