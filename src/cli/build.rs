@@ -34,7 +34,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let record = RecipeRecord::of(&args.recipe, &cache);
     let output_dir = recipe_dir(&args.recipe).join(&recipe.output.dir);
     let lock_file = lock_path(&args.recipe);
-    let renderer = Renderer::new(verbosity, args.explain);
+    let renderer = Renderer::new(&recipe, verbosity, args.explain);
     // Held until the command returns, from before the lock file is read to after the lock file,
     // the report and the published outputs are written: a build racing this one cannot
     // interleave its files with ours.

@@ -1,7 +1,7 @@
 //! Cargo-style status lines and progress bars for build events.
 //!
 //! What a build says, by verbosity: by default one line per node that ran (with its notes) and
-//! every failure in full, cached nodes only counted (the command line prints the count); `-v`
+//! every failure in full (at its recipe entry when it names one), cached nodes only counted (the command line prints the count); `-v`
 //! also a line per cached, cut-off or skipped node and each expansion; `--quiet` only failures.
 //!
 //! Progress bars (from the nodes' `Event::Progress`): drawn only when standard error, where
@@ -10,6 +10,7 @@
 //! `RECIPE_BAR_DELAY_MS` milliseconds, for tests): most nodes take milliseconds, and a bar that
 //! appears and vanishes at once is only flicker.
 
+use crate::recipe::Recipe;
 use engine::{Event, NodeReport, NodeState};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::collections::BTreeMap;
@@ -33,6 +34,8 @@ pub enum Verbosity {
 
 /// Renders events on stderr.
 pub struct Renderer {
+    /// The recipe built, to show failures located in it as recipe errors are shown.
+    recipe: Recipe,
     verbosity: Verbosity,
     explain: bool,
     bars: Option<MultiProgress>,
@@ -52,13 +55,14 @@ fn draws_bars(verbosity: Verbosity, stderr_is_terminal: bool) -> bool {
 }
 
 impl Renderer {
-    pub fn new(verbosity: Verbosity, explain: bool) -> Self {
+    pub fn new(recipe: &Recipe, verbosity: Verbosity, explain: bool) -> Self {
         let bars = draws_bars(verbosity, std::io::stderr().is_terminal()).then(MultiProgress::new);
         let delay = std::env::var("RECIPE_BAR_DELAY_MS")
             .ok()
             .and_then(|ms| ms.parse().ok())
             .map_or(BAR_DELAY, Duration::from_millis);
         Renderer {
+            recipe: recipe.clone(),
             verbosity,
             explain,
             bars,
@@ -146,11 +150,7 @@ impl Renderer {
         };
         match r.state {
             NodeState::Failed => {
-                self.line(format!(
-                    "       error `{}` failed: {}",
-                    r.name,
-                    r.error.as_deref().unwrap_or("unknown error")
-                ));
+                self.line(self.failure(&r.name, r.error.as_deref().unwrap_or("unknown error")));
             }
             NodeState::Ran if self.verbosity >= Verbosity::Normal => {
                 self.line(format!(
@@ -181,6 +181,21 @@ impl Renderer {
                 self.line(format!("{:>12} {} ({})", "Skipped", r.name, r.reason));
             }
             _ => {}
+        }
+    }
+}
+
+impl Renderer {
+    /// A node's failure: at its recipe entry, with the line quoted and the entry underlined,
+    /// when the error starts with a recipe location (as the model's errors about regions, the
+    /// box and trims do); else on one line.
+    fn failure(&self, node: &str, error: &str) -> String {
+        match self.recipe.located(error) {
+            Some(mut d) => {
+                d.message = format!("`{node}` failed: {}", d.message);
+                d.to_string()
+            }
+            None => format!("       error `{node}` failed: {error}"),
         }
     }
 }

@@ -168,14 +168,11 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             names_at: recipe
                 .regions
                 .values()
-                .map(|r| format!("{}:{}:{}", recipe.path.display(), r.span.line, r.span.col))
+                .map(|r| recipe.place(r.span))
                 .collect(),
             tolerances: recipe.tolerances.clone(),
             trims: trims(recipe),
-            box_at: recipe
-                .bbox
-                .as_ref()
-                .map(|b| format!("{}:{}:{}", recipe.path.display(), b.span.line, b.span.col)),
+            box_at: recipe.bbox.as_ref().map(|b| recipe.place(b.span)),
         };
         let model = g.add_op("model", Arc::new(op), &inputs)?;
         for k in 0..recipe.mesh.refine.len() {
@@ -249,7 +246,7 @@ fn trims(recipe: &Recipe) -> Vec<(model::trims::TrimSpec, String)> {
                     .collect(),
                 action: super::trim_action(&t.action),
             };
-            let at = format!("{}:{}:{}", recipe.path.display(), t.span.line, t.span.col);
+            let at = recipe.place(t.span);
             (spec, at)
         })
         .collect()

@@ -126,6 +126,21 @@ impl SourceText {
         }
     }
 
+    /// The span of the TOML token that starts at a 1-based `line` and `col` (a `[table]` or
+    /// `[[array]]` header, a quoted string or a bare key), for errors that hold only a position.
+    /// `None` when the text has no such place.
+    pub fn token_at(&self, line: usize, col: usize) -> Option<Span> {
+        let start_of_line = *self.line_starts.get(line.checked_sub(1)?)?;
+        let text = self.line_text(line);
+        let (offset, rest) = text
+            .char_indices()
+            .nth(col.checked_sub(1)?)
+            .map(|(i, _)| (i, &text[i..]))?;
+        let len = token_len(rest);
+        let start = start_of_line + offset;
+        Some(self.span(start..start + len))
+    }
+
     /// The text of a line (1-based), without `\r\n` / `\n`.
     fn line_text(&self, line: usize) -> &str {
         let Some(&start) = self.line_starts.get(line.saturating_sub(1)) else {
@@ -161,6 +176,22 @@ impl SourceText {
             len,
         }
     }
+}
+
+/// The byte length of the TOML token at the start of `s`: a header through its closing `]`s, a
+/// quoted string up to its closing quote, or a bare key; at least one character.
+fn token_len(s: &str) -> usize {
+    let first = s.chars().next().map_or(0, char::len_utf8);
+    let end = match s.chars().next() {
+        Some('[') => s
+            .find(']')
+            .map(|i| i + s[i..].chars().take_while(|&c| c == ']').count()),
+        Some(q @ ('"' | '\'')) => s[1..].find(q).map(|i| i + 2),
+        _ => s
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '-'))
+            .or(Some(s.len())),
+    };
+    end.filter(|&e| e > 0).unwrap_or(first)
 }
 
 /// The closest candidate to `word`, if it is close enough to be a plausible typo.

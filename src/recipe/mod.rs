@@ -100,6 +100,27 @@ impl Recipe {
         self.src.diagnostic(span, message.into(), help)
     }
 
+    /// A recipe location as later stages quote it at the start of an error: `file:line:col`.
+    /// [`Recipe::located`] reads such an error back.
+    pub fn place(&self, span: Span) -> String {
+        format!("{}:{}:{}", self.src.label, span.line, span.col)
+    }
+
+    /// An error that starts with a location of this recipe ([`Recipe::place`] then `": "`) as a
+    /// diagnostic there, quoting the line and underlining the entry; the text after `"; help: "`
+    /// becomes its help. `None` for an error that starts with no such location.
+    pub fn located(&self, error: &str) -> Option<Diagnostic> {
+        let rest = error.strip_prefix(&self.src.label)?.strip_prefix(':')?;
+        let (line, rest) = rest.split_once(':')?;
+        let (col, message) = rest.split_once(": ")?;
+        let span = self.src.token_at(line.parse().ok()?, col.parse().ok()?)?;
+        let (message, help) = match message.split_once("; help: ") {
+            Some((m, h)) => (m, Some(h.to_string())),
+            None => (message, None),
+        };
+        Some(self.diagnostic_at(span, message, help))
+    }
+
     /// The recipe text as parsed.
     pub fn source(&self) -> &str {
         &self.src.text

@@ -85,8 +85,21 @@ fn a_missing_recipe_is_an_error_not_a_panic() {
 fn a_trim_that_discards_nothing_fails_the_model_and_points_at_its_recipe_line() {
     let s = Scratch::didactic();
     add_a_trim_that_discards_nothing(&s);
-    // The trim's line is named, and its surface.
-    model_fails_saying(&s, &[], &["didactic.toml:", "F1"]);
+    // The trim's line is quoted with its header underlined, and its surface is named.
+    let err = model_fails_saying(
+        &s,
+        &[],
+        &[
+            "error: `model` failed: [[trim]] #1 (surface = \"F1\"",
+            "no patch has an area below 0.001",
+            "--> didactic.toml:",
+            " | [[trim]]\n   | ^^^^^^^^\n",
+        ],
+    );
+    assert!(
+        !err.contains("error `model` failed"),
+        "shown once, as a recipe error: {err}"
+    );
 }
 
 /// Runs `recipe args` in `s` with standard output given as `stdout`; returns the exit code and
@@ -177,9 +190,11 @@ fn a_region_point_on_a_surface_fails_the_model_at_its_regions_line_with_the_fix(
         &s,
         &[],
         &[
-            "didactic.toml:40:1: region name `on_h1`",
+            "error: `model` failed: region name `on_h1`: the point",
             "is strictly inside no region",
-            "it lies on a surface",
+            "--> didactic.toml:40:1\n",
+            "\n40 | on_h1 = { point = [501068.203, 7001122.535, -1161.209] }\n   | ^^^^^\n",
+            "= help: the point is inside the model's extent but in no region: it lies on a surface",
             "move it off the surfaces",
         ],
     );
@@ -201,7 +216,9 @@ fn a_box_that_meets_no_surface_fails_the_model_at_the_box_line_naming_each_exten
         &s,
         &[],
         &[
-            "didactic.toml:16:1: the box [0, 0, -2500]..[5000, 5000, 0] meets no imported surface",
+            "error: `model` failed: the box [0, 0, -2500]..[5000, 5000, 0] meets no imported surface",
+            "--> didactic.toml:16:1\n",
+            "\n16 | [box]\n   | ^^^^^\n",
             "`F2` spans [502600, 7003125, -1503.109]..[504200, 7003475, -896.891]",
             "different coordinates",
             "give `[box]` corners that cover the surfaces, or write `around = [\"F1\", \"F2\", \"H1\", \"H2\"]`",
@@ -222,9 +239,10 @@ fn an_intersected_surface_outside_the_box_fails_the_model_at_the_box_line_with_t
         &s,
         &[],
         &[
-            "didactic.toml:16:1: the surface `F2`, listed in `[intersect]`, lies entirely outside the box [500000, 7000000, -2500]..[505000, 7003000, 0]",
+            "error: `model` failed: the surface `F2`, listed in `[intersect]`, lies entirely outside the box [500000, 7000000, -2500]..[505000, 7003000, 0]",
             "(y 7003125..7003475 against the box's 7000000..7003000)",
-            "help: widen `[box]` to cover it, or, if it is not part of this model, remove `F2` from `[intersect]`",
+            "\n16 | [box]\n   | ^^^^^\n",
+            "= help: widen `[box]` to cover it, or, if it is not part of this model, remove `F2` from `[intersect]`",
         ],
     );
     assert!(!err.contains("matches no curve"), "{err}");

@@ -753,3 +753,53 @@ fn wells_are_read_with_their_options_and_bad_entries_point_at_the_value() {
     let (_, rendered) = single_at(&named.replace("W1 =", "top ="), "top =", 1);
     assert!(rendered.contains("also a surface name"), "{rendered}");
 }
+
+#[test]
+fn an_error_that_starts_at_a_recipe_entry_reads_back_underlining_that_entry() {
+    let text = format!(
+        "{BASE}\n[[trim]]\nsurface = \"f1\"\ndiscard = {{ area_below = 1.0 }}\n\n[regions]\n\"upper.layer\" = {{ point = [5.0, 5.0, -1.0] }}\nlower = {{ point = [5.0, 5.0, -9.0] }}\n"
+    );
+    let r = ok(&text);
+    let cases = [
+        ("box", r.bbox.as_ref().expect("a box").span, "[box]"),
+        ("trim", r.trims[0].span, "[[trim]]"),
+        (
+            "quoted region",
+            r.regions["upper.layer"].span,
+            "\"upper.layer\"",
+        ),
+        ("region", r.regions["lower"].span, "lower"),
+    ];
+    for (what, span, entry) in cases {
+        let error = format!("{}: it is wrong; help: change it", r.place(span));
+        let d = r
+            .located(&error)
+            .unwrap_or_else(|| panic!("{what}: not located"));
+        assert_eq!((d.line, d.col), (span.line, span.col), "{what}");
+        assert_eq!(d.message, "it is wrong", "{what}");
+        assert_eq!(d.help.as_deref(), Some("change it"), "{what}");
+        let shown = d.to_string();
+        let underline = format!(
+            "| {}{}\n",
+            " ".repeat(d.col - 1),
+            "^".repeat(entry.chars().count())
+        );
+        assert!(shown.contains(&format!("| {entry}")), "{what}: {shown}");
+        assert!(shown.contains(&underline), "{what}: {shown}");
+    }
+}
+
+#[test]
+fn an_error_that_starts_elsewhere_is_not_read_as_a_recipe_location() {
+    let r = ok(BASE);
+    for error in [
+        "data/top.ts:3:1: a bad vertex",
+        "recipes/other.toml:1:1: another recipe",
+        &format!("{FILE}:999:1: past the end of the recipe"),
+        &format!("{FILE}:1:99: past the end of the line"),
+        &format!("{FILE}: no line"),
+        "the region `x` is strictly inside no region",
+    ] {
+        assert!(r.located(error).is_none(), "{error}");
+    }
+}
