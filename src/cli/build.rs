@@ -263,14 +263,12 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
         .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))
 }
 
-/// Writes a file of the recipe's record atomically unless it holds `bytes` already. Not synced
-/// to disk, as the engine's manifest: a record lost in a crash only costs the next build some
-/// work (explanations, a report written again), never a wrong output.
+/// Writes a file of the recipe's record (`engine::checked`: atomic, checksummed, left alone when
+/// it holds `bytes` already). Not synced to disk, as the engine's manifest: a record lost in a
+/// crash only costs the next build some work (explanations, a report written again), never a
+/// wrong output.
 pub fn write_record(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    if std::fs::read(path).ok().as_deref() == Some(bytes) {
-        return Ok(());
-    }
-    engine::write_atomic(path, bytes, false)
+    engine::checked::write(path, bytes)
         .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))
 }
 

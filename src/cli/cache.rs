@@ -19,6 +19,7 @@
 //! but ignored, so each recipe's first build explains its nodes as new, and `gc` deletes them.
 
 use super::{CacheArgs, Failure};
+use engine::checked::CheckedError;
 use engine::{self, LockFile};
 use std::path::{Path, PathBuf};
 
@@ -189,16 +190,28 @@ fn read_last(
 ) -> Result<String, Failure> {
     let cache = cache_dir(recipe, args);
     let p = path(&RecipeRecord::of(recipe, &cache).dir(&cache));
-    std::fs::read_to_string(&p).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => Failure(format!(
+    let bytes = engine::checked::read(&p).map_err(|e| match e {
+        CheckedError::Missing => Failure(format!(
             "error: no build recorded in {} yet: run `recipe build {}` first",
             p.display(),
             recipe.display()
         )),
-        _ => Failure(format!(
+        CheckedError::Damaged(_) => Failure(format!(
+            "error: the last build's record {} {e}: run `recipe build {}` to record it again",
+            p.display(),
+            recipe.display()
+        )),
+        CheckedError::Io(e) => Failure(format!(
             "error: cannot read the last build's record {}: {e}",
             p.display()
         )),
+    })?;
+    String::from_utf8(bytes).map_err(|_| {
+        Failure(format!(
+            "error: the last build's record {} is not text: run `recipe build {}` to record it again",
+            p.display(),
+            recipe.display()
+        ))
     })
 }
 
@@ -273,7 +286,11 @@ pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
         .map_err(|e| Failure(format!("error: cannot read {}: {e}", dir.display())))?;
     for name in names {
         let record_dir = engine::manifest::record_dir(&dir, &name);
-        let Ok(path) = std::fs::read_to_string(record_dir.join(RECIPE_FILE)) else {
+        // A record that does not say where its recipe is, or says it damaged, is kept.
+        let Some(path) = engine::checked::read(&record_dir.join(RECIPE_FILE))
+            .ok()
+            .and_then(|b| String::from_utf8(b).ok())
+        else {
             continue;
         };
         let record = RecipeRecord { name, path };

@@ -57,7 +57,7 @@ impl ReportState {
 
     /// The record's state, or `None` when it has none (or an unreadable one).
     pub fn load(record_dir: &Path) -> Option<ReportState> {
-        let text = std::fs::read(path(record_dir)).ok()?;
+        let text = engine::checked::read(&path(record_dir)).ok()?;
         serde_json::from_slice(&text).ok()
     }
 

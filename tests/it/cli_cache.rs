@@ -199,6 +199,36 @@ fn an_unreadable_last_build_record_is_not_reported_as_missing() {
 }
 
 #[test]
+fn a_last_build_record_with_a_flipped_byte_is_refused_as_damaged_not_printed() {
+    let s = Scratch::didactic_built();
+    for (file, command) in [("last-report.json", "explain"), ("last-graph.dot", "graph")] {
+        let record = s.record_of("didactic.toml").join(file);
+        let mut bytes = std::fs::read(&record).unwrap();
+        let at = bytes.len() / 2;
+        bytes[at] ^= 0x04;
+        std::fs::write(&record, &bytes).unwrap();
+        let out = s.recipe_cmd(&[command, "didactic.toml"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{command}: {err}");
+        assert!(out.stdout.is_empty(), "{command} printed a damaged record");
+        assert!(err.contains("is damaged"), "{command}: {err}");
+        assert!(
+            err.contains("run `recipe build didactic.toml`"),
+            "{command}: {err}"
+        );
+    }
+    // The next build records them again.
+    let (ok, _, err) = s.build(&["--quiet"]);
+    assert!(ok, "{err}");
+    let out = s.recipe_cmd(&["explain", "didactic.toml"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
 fn an_unreadable_lock_file_is_not_reported_as_missing() {
     let s = Scratch::didactic_built();
     let lock = s.path("didactic.toml.lock");

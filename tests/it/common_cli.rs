@@ -56,7 +56,7 @@ impl Scratch {
         std::fs::read_dir(&records)
             .unwrap_or_else(|e| panic!("{}: {e}", records.display()))
             .map(|e| e.unwrap().path())
-            .find(|d| std::fs::read_to_string(d.join("recipe")).is_ok_and(|r| r == want))
+            .find(|d| engine::checked::read(&d.join("recipe")).is_ok_and(|r| r == want.as_bytes()))
             .unwrap_or_else(|| panic!("no record of {recipe} in {}", records.display()))
     }
     /// `recipe build --json ARGS RECIPE` for another recipe in the scratch folder; returns

@@ -12,11 +12,12 @@
 
 use crate::artifact::{Artifact, Hash};
 use crate::build::BuildOptions;
+use crate::checked;
 use crate::error::EngineError;
 use crate::key::op_key;
 use crate::lockfile::LockedNode;
 use crate::op::{OpError, Operation, Quiet};
-use crate::store::{ActionRecord, Load, Store, load_checked, save_checked};
+use crate::store::{ActionRecord, Load, Store};
 use crate::worker::panic_text;
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -32,7 +33,7 @@ fn list_path(record_dir: &Path) -> PathBuf {
 
 /// What the last build of the record in `record_dir` derived (none when unreadable).
 pub(crate) fn recorded(record_dir: &Path) -> Entries {
-    load_checked(&list_path(record_dir)).unwrap_or_default()
+    checked::load(&list_path(record_dir)).unwrap_or_default()
 }
 
 /// The derivations of one build of one record.
@@ -113,6 +114,6 @@ impl Derivations {
             return Ok(());
         }
         let path = list_path(&self.record_dir);
-        save_checked(&path, &*used).map_err(|e| EngineError::io(&path, e))
+        checked::save(&path, &*used).map_err(|e| EngineError::io(&path, e))
     }
 }

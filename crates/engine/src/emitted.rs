@@ -10,7 +10,7 @@
 //! only costs that reading.
 
 use crate::artifact::Hash;
-use crate::store::{load_checked, save_checked};
+use crate::checked;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -45,7 +45,7 @@ impl Emitted {
 
     /// The record's emitted files, or none when absent or unreadable.
     pub(crate) fn load(record_dir: &Path) -> Emitted {
-        load_checked::<Emitted>(&path(record_dir))
+        checked::load::<Emitted>(&path(record_dir))
             .filter(|e| e.format == FORMAT)
             .unwrap_or_default()
     }
@@ -55,6 +55,6 @@ impl Emitted {
         if self == before {
             return Ok(());
         }
-        save_checked(&path(record_dir), self)
+        checked::save(&path(record_dir), self)
     }
 }

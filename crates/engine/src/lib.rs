@@ -27,9 +27,11 @@
 
 pub mod artifact;
 pub mod build;
+pub mod checked;
 pub mod derive;
 pub mod dirlock;
 mod emitted;
+mod entry;
 pub mod error;
 mod executor;
 pub mod gc;

@@ -14,8 +14,8 @@
 //! wrong result, because caching itself is decided by keys alone.
 
 use crate::artifact::Hash;
+use crate::checked;
 use crate::params::Params;
-use crate::store::{load_checked, save_checked};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -96,13 +96,13 @@ impl Manifest {
 
     /// The manifest in `record_dir`, or `None` when absent, unreadable or corrupt.
     pub fn load(record_dir: &Path) -> Option<Manifest> {
-        let m: Manifest = load_checked(&manifest_path(record_dir))?;
+        let m: Manifest = checked::load(&manifest_path(record_dir))?;
         (m.format == FORMAT).then_some(m)
     }
 
     /// Writes the manifest into `record_dir` (created if needed), atomically.
     pub fn save(&self, record_dir: &Path) -> std::io::Result<()> {
-        save_checked(&manifest_path(record_dir), self)
+        checked::save(&manifest_path(record_dir), self)
     }
 }
 

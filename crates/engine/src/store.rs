@@ -3,15 +3,15 @@
 //! Layout: `<cache>/objects/<hash>` holds artifact bytes, named by their blake3; `<cache>/actions/<key>`
 //! holds a small record (output hash, counts, notes) prefixed by the blake3 of its payload. Every
 //! read re-hashes what it read, so a truncated, altered or half-written entry is reported as
-//! corrupt and never used; every write goes to a temporary file in the same directory and is
+//! corrupt and never used (and anything but a regular file is not even read: see `entry`); every write goes to a temporary file in the same directory and is
 //! renamed into place, so readers see either the old entry or the whole new one.
 
 use crate::artifact::{Artifact, Hash};
+use crate::entry;
 use crate::error::EngineError;
-use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::io::{ErrorKind, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// What a cache read found.
@@ -21,6 +21,9 @@ pub enum Load<T> {
     Missing,
     /// The entry exists but cannot be trusted; the text says why.
     Corrupt(String),
+    /// The entry could not be read (an I/O error, e.g. too many open files): nothing is known
+    /// about it, so it is neither used nor replaced.
+    Unreadable(String),
 }
 
 /// The cached record of one action (node key).
@@ -92,29 +95,31 @@ impl Store {
 
     /// Read and verify the object named `h`.
     pub fn load_object(&self, h: Hash) -> Load<Artifact> {
-        let path = self.object_path(h);
-        match std::fs::read(&path) {
-            Ok(bytes) => {
-                let len = bytes.len();
-                let a = Artifact::from_bytes(bytes);
-                if a.hash() == h {
-                    Load::Hit(a)
-                } else {
-                    Load::Corrupt(format!(
-                        "object {} has hash mismatch ({len} bytes hash to {})",
-                        h.short(),
-                        a.hash().short()
-                    ))
-                }
+        let bytes = match entry::read(&self.object_path(h)) {
+            entry::Read::Bytes(b) => b,
+            entry::Read::Missing => return Load::Missing,
+            entry::Read::Damaged(d) => return Load::Corrupt(format!("object {}: {d}", h.short())),
+            entry::Read::Failed(e) => {
+                return Load::Unreadable(format!("object {} unreadable: {e}", h.short()));
             }
-            Err(e) if e.kind() == ErrorKind::NotFound => Load::Missing,
-            Err(e) => Load::Corrupt(format!("object {} unreadable: {e}", h.short())),
+        };
+        let len = bytes.len();
+        let a = Artifact::from_bytes(bytes);
+        if a.hash() == h {
+            Load::Hit(a)
+        } else {
+            Load::Corrupt(format!(
+                "object {} has hash mismatch ({len} bytes hash to {})",
+                h.short(),
+                a.hash().short()
+            ))
         }
     }
 
     /// Whether the object named `h` is in the store, without reading it.
+    /// Something other than a regular file at its path is removed, as a read would.
     pub fn has_object(&self, h: Hash) -> bool {
-        std::fs::metadata(self.object_path(h)).is_ok_and(|m| m.is_file())
+        entry::present(&self.object_path(h))
     }
 
     pub fn put_object(&self, a: &Artifact) -> std::io::Result<()> {
@@ -124,11 +129,15 @@ impl Store {
 
     /// Read and verify the action record for `key`.
     pub fn load_action(&self, key: Hash) -> Load<ActionRecord> {
-        let path = self.action_path(key);
-        let bytes = match std::fs::read(&path) {
-            Ok(b) => b,
-            Err(e) if e.kind() == ErrorKind::NotFound => return Load::Missing,
-            Err(e) => return Load::Corrupt(format!("action {} unreadable: {e}", key.short())),
+        let bytes = match entry::read(&self.action_path(key)) {
+            entry::Read::Bytes(b) => b,
+            entry::Read::Missing => return Load::Missing,
+            entry::Read::Damaged(d) => {
+                return Load::Corrupt(format!("action {}: {d}", key.short()));
+            }
+            entry::Read::Failed(e) => {
+                return Load::Unreadable(format!("action {} unreadable: {e}", key.short()));
+            }
         };
         let Some((sum, payload)) = bytes.split_first_chunk::<32>() else {
             return Load::Corrupt(format!(
@@ -161,26 +170,6 @@ impl Store {
         bytes.extend_from_slice(&payload);
         write_atomic(&self.action_path(key), &bytes, false)
     }
-}
-
-/// Writes `value` (postcard, a blake3 checksum in front) to `path` atomically: the format of the
-/// engine's own small files (a record's manifest and emitted files).
-pub(crate) fn save_checked<T: Serialize>(path: &Path, value: &T) -> std::io::Result<()> {
-    let payload = postcard::to_stdvec(value).map_err(|e| std::io::Error::other(e.to_string()))?;
-    let mut bytes = Hash::of(&payload).0.to_vec();
-    bytes.extend_from_slice(&payload);
-    write_atomic(path, &bytes, false)
-}
-
-/// What [`save_checked`] wrote to `path`, or `None` when it is absent, damaged or of another
-/// type.
-pub(crate) fn load_checked<T: DeserializeOwned>(path: &Path) -> Option<T> {
-    let bytes = std::fs::read(path).ok()?;
-    let (sum, payload) = bytes.split_first_chunk::<32>()?;
-    if Hash::of(payload).0 != *sum {
-        return None;
-    }
-    postcard::from_bytes(payload).ok()
 }
 
 /// The prefix of every temporary file of an atomic write.

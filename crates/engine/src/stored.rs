@@ -85,6 +85,12 @@ impl Stored {
             Load::Hit(a) => return Ok(a),
             Load::Missing => format!("object {} is missing", self.hash.short()),
             Load::Corrupt(d) => d,
+            Load::Unreadable(e) => {
+                return Err(format!(
+                    "the cached output of `{}` could not be read: {e}",
+                    self.node
+                ));
+            }
         };
         let made = self.remake().map_err(|e| {
             format!(

@@ -224,6 +224,12 @@ fn read_inputs(job: &Job, on_event: &(dyn Fn(&Event) + Sync)) -> Result<(), Stri
     Ok(())
 }
 
+/// The failure of a node whose cache entry could not be read: an I/O error, not damage, so the
+/// entry is neither used nor written over.
+fn unreadable(error: &str) -> String {
+    format!("the cache could not be read ({error}); the entry was left as it is")
+}
+
 fn resolve_op(
     job: &Job,
     op: &Arc<dyn Operation>,
@@ -245,12 +251,14 @@ fn resolve_op(
                 *corrupt = Some(d);
                 None
             }
+            Load::Unreadable(e) => return Err(unreadable(&e)),
         },
         Load::Missing => None,
         Load::Corrupt(d) => {
             *corrupt = Some(d);
             None
         }
+        Load::Unreadable(e) => return Err(unreadable(&e)),
     };
     if let Some(d) = corrupt.as_ref() {
         on_event(&Event::CacheCorrupt {

@@ -86,6 +86,79 @@ fn truncating_or_corrupting_any_cache_entry_is_detected_repaired_and_then_fully_
     }
 }
 
+/// Puts `kind` in place of the cache entry at `path`: a directory holding a file, a FIFO, or a
+/// symbolic link to `/dev/zero`. False when this system cannot make it.
+fn replace_entry(path: &Path, kind: &str) -> bool {
+    std::fs::remove_file(path).unwrap();
+    match kind {
+        "directory" => {
+            std::fs::create_dir_all(path.join("inside")).unwrap();
+            std::fs::write(path.join("inside/file"), b"x").is_ok()
+        }
+        "fifo" => std::process::Command::new("mkfifo")
+            .arg(path)
+            .status()
+            .is_ok_and(|s| s.success()),
+        _ => {
+            #[cfg(unix)]
+            return Path::new("/dev/zero").exists()
+                && std::os::unix::fs::symlink("/dev/zero", path).is_ok();
+            #[cfg(not(unix))]
+            false
+        }
+    }
+}
+
+/// Builds `g` in another thread and fails the test, rather than hang it, after a minute.
+fn build_within_a_minute(g: BuildGraph, o: &BuildOptions) -> (BuildReport, Vec<(String, String)>) {
+    let (tx, rx) = std::sync::mpsc::channel();
+    let o = o.clone();
+    std::thread::spawn(move || {
+        let _ = tx.send(build_collecting(g, &o));
+    });
+    rx.recv_timeout(std::time::Duration::from_secs(60))
+        .expect("the build finishes instead of blocking on the entry")
+}
+
+#[test]
+fn a_directory_fifo_or_device_link_in_place_of_a_cache_entry_is_replaced_without_blocking() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 2);
+    let runs = Runs::default();
+    let first = run(chain(1, &runs), &o);
+    let expected: Vec<i64> = first.nodes.iter().map(|n| value(&first, &n.name)).collect();
+    for kind in ["directory", "fifo", "device link"] {
+        for path in entries(&o.cache_dir) {
+            if !replace_entry(&path, kind) {
+                eprintln!("skipped: cannot make a {kind} here");
+                return;
+            }
+            let (r, corrupt) = build_within_a_minute(chain(1, &runs), &o);
+            assert!(r.ok, "{kind} at {}", path.display());
+            let values: Vec<i64> = r.nodes.iter().map(|n| value(&r, &n.name)).collect();
+            assert_eq!(values, expected, "{kind} at {}", path.display());
+            assert!(
+                corrupt.iter().any(|(_, d)| d.contains("not a file")),
+                "{kind} at {}: {corrupt:?}",
+                path.display()
+            );
+            assert!(
+                std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_file()),
+                "{kind} at {} is a file again",
+                path.display()
+            );
+            let (again, corrupt) = build_collecting(chain(1, &runs), &o);
+            assert!(corrupt.is_empty(), "{kind}: {corrupt:?}");
+            assert!(
+                again.nodes.iter().all(|n| n.state == NodeState::Cached),
+                "{kind} at {}: {:?}",
+                path.display(),
+                states(&again)
+            );
+        }
+    }
+}
+
 #[test]
 fn a_deleted_cache_entry_is_rebuilt_with_reason_cache_missing() {
     let dir = tempfile::tempdir().unwrap();

@@ -1,0 +1,171 @@
+//! Reading one file of the cache without trusting what is at its path.
+//!
+//! A cache entry is only ever a regular file that the engine wrote. Anything else at its path (a
+//! directory, a FIFO, a device, a symlink to `/dev/zero`) is damage: reading it could fail on
+//! every build, block forever while the cache lock is held, or never end. So the path is looked
+//! at without following links, only a regular file is opened, and the read is bounded by the
+//! size the open file has. A wrong kind of file is removed, so that the entry can be written
+//! again. An I/O error (too many open files, a failing disk) says nothing about the entry: it is
+//! told as such, never as damage, and the entry is left alone.
+//!
+//! Between the look and the open nobody else writes: only builds holding the cache's lock write
+//! entries.
+
+use std::io::{ErrorKind, Read as _};
+use std::path::Path;
+
+/// What reading an entry found.
+#[derive(Debug)]
+pub(crate) enum Read {
+    Bytes(Vec<u8>),
+    Missing,
+    /// Not a regular file, or it changed while read; the text says what it was. A wrong kind of
+    /// file has been removed.
+    Damaged(String),
+    /// The entry could not be read; the text is the I/O error.
+    Failed(String),
+}
+
+/// Reads the entry at `path` (see the module docs).
+pub(crate) fn read(path: &Path) -> Read {
+    let meta = match std::fs::symlink_metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == ErrorKind::NotFound => return Read::Missing,
+        Err(e) => return Read::Failed(e.to_string()),
+    };
+    if !meta.file_type().is_file() {
+        return remove_wrong(path, kind_of(&meta.file_type()));
+    }
+    let file = match std::fs::File::open(path) {
+        Ok(f) => f,
+        Err(e) if e.kind() == ErrorKind::NotFound => return Read::Missing,
+        Err(e) => return Read::Failed(e.to_string()),
+    };
+    let len = match file.metadata() {
+        Ok(m) if m.is_file() => m.len(),
+        Ok(m) => return remove_wrong(path, kind_of(&m.file_type())),
+        Err(e) => return Read::Failed(e.to_string()),
+    };
+    let mut bytes = Vec::with_capacity(usize::try_from(len).unwrap_or(0));
+    match file.take(len.saturating_add(1)).read_to_end(&mut bytes) {
+        Ok(n) if n as u64 > len => {
+            Read::Damaged(format!("it grew past its {len} bytes while read"))
+        }
+        Ok(_) => Read::Bytes(bytes),
+        Err(e) => Read::Failed(e.to_string()),
+    }
+}
+
+/// Whether a regular file is at `path`, without reading it; a wrong kind of file is removed.
+pub(crate) fn present(path: &Path) -> bool {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_file() => true,
+        Ok(m) => {
+            remove_wrong(path, kind_of(&m.file_type()));
+            false
+        }
+        Err(_) => false,
+    }
+}
+
+/// Removes what is at `path` in place of an entry, and says what it was.
+fn remove_wrong(path: &Path, kind: &str) -> Read {
+    let removed = if kind == "a directory" {
+        std::fs::remove_dir_all(path)
+    } else {
+        std::fs::remove_file(path)
+    };
+    match removed {
+        Ok(()) => Read::Damaged(format!("{kind}, not a file: removed")),
+        Err(e) => Read::Damaged(format!(
+            "{kind}, not a file, that could not be removed: {e}"
+        )),
+    }
+}
+
+/// A file type in words.
+fn kind_of(t: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_symlink() {
+        "a symbolic link"
+    } else if t.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_regular_file_reads_whole_and_a_missing_one_is_missing() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("e");
+        assert!(matches!(read(&p), Read::Missing));
+        std::fs::write(&p, b"bytes").unwrap();
+        assert!(matches!(read(&p), Read::Bytes(b) if b == b"bytes"));
+    }
+
+    #[test]
+    fn a_directory_or_a_link_in_place_of_an_entry_is_damage_and_is_removed() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path().join("d");
+        std::fs::create_dir_all(d.join("inner")).unwrap();
+        std::fs::write(d.join("inner/f"), b"x").unwrap();
+        assert!(matches!(read(&d), Read::Damaged(w) if w.contains("a directory")));
+        assert!(!d.exists());
+        #[cfg(unix)]
+        {
+            let target = dir.path().join("target");
+            std::fs::write(&target, b"kept").unwrap();
+            let l = dir.path().join("l");
+            std::os::unix::fs::symlink(&target, &l).unwrap();
+            assert!(matches!(read(&l), Read::Damaged(w) if w.contains("symbolic link")));
+            assert!(std::fs::symlink_metadata(&l).is_err(), "the link is gone");
+            assert_eq!(
+                std::fs::read(&target).unwrap(),
+                b"kept",
+                "not what it pointed at"
+            );
+        }
+    }
+
+    #[test]
+    fn an_io_error_is_told_as_a_failure_not_as_damage_and_removes_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("file");
+        std::fs::write(&file, b"kept").unwrap();
+        // A path through a regular file fails with "not a directory", as EMFILE or EIO would.
+        assert!(matches!(read(&file.join("entry")), Read::Failed(_)));
+        assert!(!present(&file.join("entry")));
+        assert_eq!(std::fs::read(&file).unwrap(), b"kept");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_in_place_of_an_entry_is_damage_without_blocking() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("fifo");
+        let made = std::process::Command::new("mkfifo").arg(&p).status();
+        if !made.is_ok_and(|s| s.success()) {
+            eprintln!("skipped: mkfifo is not available");
+            return;
+        }
+        assert!(matches!(read(&p), Read::Damaged(w) if w.contains("FIFO")));
+        assert!(std::fs::symlink_metadata(&p).is_err());
+    }
+}
