@@ -64,7 +64,8 @@ impl Operation for ImportOp {
         "import"
     }
     fn version(&self) -> u32 {
-        2
+        // 3: coordinates beyond ±1e12 (no-data markers, damaged numbers) are refused.
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -95,7 +95,22 @@ impl Default for ImportOptions {
     }
 }
 
-/// An import failure: `file:line: message` (line 0 when the whole file is concerned).
+/// The largest coordinate (or depth) magnitude an import accepts: 10¹² in the file's unit, more
+/// than the Earth's circumference in millimetres. A larger value is no position in any unit but
+/// a no-data marker or a damaged number, and beyond it products in the exact predicates would
+/// lose their range, so it is refused at its line instead of failing far away in a later stage.
+pub const MAX_COORDINATE: f64 = 1e12;
+
+/// The message for a value beyond [`MAX_COORDINATE`]: `what` names it.
+pub(crate) fn beyond_earth(what: &str, value: f64) -> String {
+    format!(
+        "{what} {value:e} is beyond ±{MAX_COORDINATE:e}, no position in any unit: it is probably \
+         a no-data value or a damaged number; remove the vertex or write its real value"
+    )
+}
+
+/// An import failure: `file:line: message`, or `file: message` when the whole file is concerned
+/// (`line` 0).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ImportError {
     pub file: String,
@@ -105,7 +120,10 @@ pub struct ImportError {
 
 impl fmt::Display for ImportError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}: {}", self.file, self.line, self.message)
+        match self.line {
+            0 => write!(f, "{}: {}", self.file, self.message),
+            line => write!(f, "{}:{line}: {}", self.file, self.message),
+        }
     }
 }
 

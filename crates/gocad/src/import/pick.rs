@@ -176,7 +176,12 @@ fn only_one(
 /// The file holds no object of the type.
 fn none_of(file: &GocadFile, label: &str, kind: &Kind) -> ImportError {
     match file.objects.first() {
-        None => ImportError::new(label, 0, "the file holds no GOCAD object"),
+        None => ImportError::new(
+            label,
+            0,
+            "the file holds no GOCAD object: it is empty, or not a gOcad ASCII file (no \
+             `GOCAD <type> 1` header line)",
+        ),
         Some(o) => ImportError::new(
             label,
             o.line,

@@ -4,9 +4,9 @@
 //! object ends. A surface's PVRTX must carry the property values PROPERTIES/ESIZES declare; a
 //! line's are not read, since a line keeps no property.
 
-use super::ImportError;
 use super::lexer::{NumberError, Tokens, parse_f64, parse_id, text};
 use super::parser::{Builder, GocadObject, RawPart, line32};
+use super::{ImportError, MAX_COORDINATE, beyond_earth};
 
 /// The vertex index a record names: a non-negative integer token.
 fn vertex_id(tok: Option<&[u8]>, what: &str, n: usize, file: &str) -> Result<u64, ImportError> {
@@ -132,6 +132,12 @@ fn parse_vertex_record(
                         text(tok)
                     )),
                 })?;
+                if c.abs() > MAX_COORDINATE {
+                    return Err(err(beyond_earth(
+                        &format!("{kwname} {vid}: {axis} coordinate"),
+                        *c,
+                    )));
+                }
             }
             let o = &mut b.obj;
             if with_properties {

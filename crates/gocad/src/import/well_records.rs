@@ -18,9 +18,9 @@
 //! in log curves, which are not read). Logs (`WELL_CURVE` blocks), zones, KB and DATUM are
 //! skipped by the parser.
 
-use super::ImportError;
 use super::lexer::{NumberError, Tokens, eq_ci, parse_f64, parse_id, quoted_tokens, text};
 use super::parser::GocadObject;
+use super::{ImportError, MAX_COORDINATE, beyond_earth};
 use serde::{Deserialize, Serialize};
 
 /// A path station as written.
@@ -148,13 +148,24 @@ fn numbers<const N: usize>(
 }
 
 fn number(tok: &[u8], kw: &str, n: usize, file: &str) -> Result<f64, ImportError> {
-    parse_f64(tok).map_err(|e| {
-        let what = match e {
-            NumberError::NotFinite => "is infinite or NaN",
-            NumberError::NotNumeric => "is not a number",
-        };
-        ImportError::new(file, n, format!("{kw}: '{}' {what}", text(tok)))
-    })
+    parse_f64(tok)
+        .map_err(|e| {
+            let what = match e {
+                NumberError::NotFinite => "is infinite or NaN",
+                NumberError::NotNumeric => "is not a number",
+            };
+            ImportError::new(file, n, format!("{kw}: '{}' {what}", text(tok)))
+        })
+        .and_then(|v| {
+            if v.abs() > MAX_COORDINATE {
+                return Err(ImportError::new(
+                    file,
+                    n,
+                    beyond_earth(&format!("{kw}: a value"), v),
+                ));
+            }
+            Ok(v)
+        })
 }
 
 /// `VRTX x y z`, or `VRTX id x y z` where the first of four tokens is an integer id.

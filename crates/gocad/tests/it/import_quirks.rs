@@ -171,6 +171,42 @@ fn a_non_numeric_or_infinite_coordinate_names_the_line_and_axis() {
 }
 
 #[test]
+fn a_coordinate_beyond_any_position_on_earth_is_refused_at_its_line_as_likely_no_data() {
+    for (value, axis) in [("1e308", "x"), ("-2.5e13", "z")] {
+        let vrtx = if axis == "x" {
+            format!("VRTX 2 {value} 0 0")
+        } else {
+            format!("VRTX 2 0 0 {value}")
+        };
+        let t = format!("GOCAD TSurf 1\nVRTX 1 0 0 0\n{vrtx}\nVRTX 3 0 1 0\nTRGL 1 2 3\nEND\n");
+        let e = import_surface(t.as_bytes(), "spike.ts", &ImportOptions::default()).unwrap_err();
+        assert_eq!(e.line, 3, "{e}");
+        assert!(
+            e.message.contains(&format!("VRTX 2: {axis} coordinate")),
+            "{e}"
+        );
+        assert!(e.message.contains("no-data value"), "{e}");
+    }
+    // A UTM northing in millimetres is still a position.
+    let t = "GOCAD TSurf 1\nVRTX 1 0 7e9 0\nVRTX 2 1 7e9 0\nVRTX 3 0 7.000000001e9 0\nTRGL 1 2 3\nEND\n";
+    assert!(import_surface(t.as_bytes(), "mm.ts", &ImportOptions::default()).is_ok());
+}
+
+#[test]
+fn an_empty_file_is_named_without_a_line_zero() {
+    let e = import_surface(b"", "empty.ts", &ImportOptions::default()).unwrap_err();
+    let shown = e.to_string();
+    assert!(
+        shown.starts_with("empty.ts: the file holds no GOCAD object"),
+        "{shown}"
+    );
+    assert!(
+        shown.contains("it is empty, or not a gOcad ASCII file"),
+        "{shown}"
+    );
+}
+
+#[test]
 fn a_duplicate_vertex_id_names_the_second_line() {
     let t = "GOCAD TSurf 1\nVRTX 1 0 0 0\nVRTX 2 1 0 0\nVRTX 1 0 1 0\n";
     let e = parse_gocad(t.as_bytes(), "d.ts").unwrap_err();

@@ -37,7 +37,8 @@ impl Operation for WellImportOp {
         "well"
     }
     fn version(&self) -> u32 {
-        1
+        // 2: values beyond ±1e12 (no-data markers, damaged numbers) are refused.
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
