@@ -1,26 +1,46 @@
-//! Missing import files. The library never touches the filesystem: the caller passes an
-//! `exists` probe (and optionally a directory listing), and this module decides which imports
-//! are missing and what the user most likely meant: the closest name in the same directory, or
-//! the same file name in a directory other imports use, or another letter case or extension.
+//! Missing import files. The library never touches the filesystem: the caller passes a probe
+//! (and optionally a directory listing), and this module decides which imports are missing or
+//! are not regular files (a directory, a FIFO that would block the build) and what the user most
+//! likely meant: the closest name in the same directory, or the same file name in a directory
+//! other imports use, or another letter case or extension.
 
 use std::path::{Path, PathBuf};
 
 use super::Recipe;
 use super::diagnostic::{Diagnostic, did_you_mean};
 
+/// What is at an import's path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileKind {
+    /// A regular file (or a link to one).
+    File,
+    Missing,
+    /// Something else, in words: `"a directory"`, `"a FIFO"`...
+    Other(&'static str),
+}
+
 /// One diagnostic per import whose file does not exist: surfaces, then wells, each in name
 /// order.
 pub fn check_files(r: &Recipe, exists: &dyn Fn(&Path) -> bool) -> Vec<Diagnostic> {
-    check_files_with_listing(r, exists, &|_| Vec::new())
+    let kind = |p: &Path| {
+        if exists(p) {
+            FileKind::File
+        } else {
+            FileKind::Missing
+        }
+    };
+    check_files_with_listing(r, &kind, &|_| Vec::new())
 }
 
-/// As [`check_files`], with `list_dir(dir)` giving the file names in `dir` (empty if unknown)
-/// to suggest the closest existing name.
+/// As [`check_files`], with `kind(path)` saying what is at each path (an import that is no
+/// regular file is an error saying what it is) and `list_dir(dir)` giving the file names in
+/// `dir` (empty if unknown) to suggest the closest existing name.
 pub fn check_files_with_listing(
     r: &Recipe,
-    exists: &dyn Fn(&Path) -> bool,
+    kind: &dyn Fn(&Path) -> FileKind,
     list_dir: &dyn Fn(&Path) -> Vec<String>,
 ) -> Vec<Diagnostic> {
+    let exists = &|p: &Path| kind(p) == FileKind::File;
     let surfaces = r
         .surfaces
         .values()
@@ -31,10 +51,18 @@ pub fn check_files_with_listing(
         .map(|w| ("well", &w.name, &w.file, &w.path, w.file_span));
     let mut out = Vec::new();
     for (what, name, file, path, span) in surfaces.chain(wells) {
-        if exists(path) {
-            continue;
-        }
         let written = file.display().to_string();
+        match kind(path) {
+            FileKind::File => continue,
+            FileKind::Missing => {}
+            FileKind::Other(what_it_is) => {
+                let message =
+                    format!("file `{written}` of {what} `{name}` is {what_it_is}, not a file");
+                let help = "point `file` at the gOcad file itself".to_string();
+                out.push(r.diagnostic_at(span, message, Some(help)));
+                continue;
+            }
+        }
         let message = if path == file {
             format!("file `{written}` of {what} `{name}` not found")
         } else {

@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 use toml::de::DeTable;
 
 pub use diagnostic::{Diagnostic, Span};
-pub use files::{check_files, check_files_with_listing};
+pub use files::{FileKind, check_files, check_files_with_listing};
 pub use selector::{CurveSelector, SurfaceSelector, glob_match};
 pub use spec::*;
 

@@ -278,3 +278,42 @@ fn two_surfaces_that_meet_without_an_intersect_pair_are_named_with_the_pair_to_a
     assert!(ok, "{err}");
     assert!(!err.contains("does not pair"), "{err}");
 }
+
+#[test]
+fn a_recipe_that_is_not_utf8_is_refused_at_the_line_and_column_of_the_byte() {
+    let s = Scratch::didactic();
+    let p = s.recipe();
+    let text = std::fs::read(&p).unwrap();
+    let at = text
+        .windows(18)
+        .position(|w| w == b"name = \"didactic\"\n")
+        .unwrap();
+    let mut bytes = text[..at].to_vec();
+    bytes.extend_from_slice(b"name = \"d\xe9mo\"\n");
+    bytes.extend_from_slice(&text[at + 18..]);
+    std::fs::write(&p, &bytes).unwrap();
+    let line = text[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+    fails_with(
+        &s,
+        &["check", "didactic.toml"],
+        &[
+            &format!("didactic.toml:{line}:10: the recipe is not UTF-8 text (byte 0xe9 here)"),
+            "save the recipe as UTF-8",
+        ],
+    );
+}
+
+#[test]
+fn a_fifo_given_as_a_surface_file_is_named_as_a_fifo_and_nothing_blocks() {
+    let s = Scratch::didactic();
+    let fifo = s.path("data/pipe.ts");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|st| st.success()) {
+        eprintln!("skipped: mkfifo is not available");
+        return;
+    }
+    s.edit("data/didactic/F2_dangling.ts", "data/pipe.ts");
+    let needles = ["file `data/pipe.ts` of surface `F2` is a FIFO (a named pipe), not a file"];
+    fails_with(&s, &["check", "didactic.toml"], &needles);
+    fails_with(&s, &["build", "didactic.toml"], &needles);
+}

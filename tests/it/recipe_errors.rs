@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use georecipe::recipe::{Diagnostic, Format, Recipe, check_files, parse};
+use georecipe::recipe::{Diagnostic, FileKind, Format, Recipe, check_files, parse};
 
 const FILE: &str = "recipes/bad.toml";
 
@@ -247,7 +247,13 @@ fn a_missing_file_suggests_the_closest_name_from_a_directory_listing() {
     };
     let d = georecipe::recipe::check_files_with_listing(
         &r,
-        &|p: &Path| !p.ends_with("fault1.ts"),
+        &|p: &Path| {
+            if p.ends_with("fault1.ts") {
+                FileKind::Missing
+            } else {
+                FileKind::File
+            }
+        },
         &list,
     );
     assert_eq!(d.len(), 1);
@@ -802,4 +808,71 @@ fn an_error_that_starts_elsewhere_is_not_read_as_a_recipe_location() {
     ] {
         assert!(r.located(error).is_none(), "{error}");
     }
+}
+
+#[test]
+fn an_output_dir_outside_the_recipes_folder_is_refused_unless_the_recipe_allows_it() {
+    for dir in ["../../x", "/tmp/x", "out/../../x"] {
+        let text = format!("{BASE}\n[output]\ndir = \"{dir}\"\n");
+        let (d, _) = single_at(&text, &format!("\"{dir}\""), 0);
+        assert!(
+            d.message.contains("outside the recipe's folder"),
+            "{dir}: {}",
+            d.message
+        );
+        assert!(
+            d.help
+                .as_deref()
+                .unwrap_or("")
+                .contains("allow_outside = true"),
+            "{dir}"
+        );
+        let allowed = format!("{BASE}\n[output]\ndir = \"{dir}\"\nallow_outside = true\n");
+        assert_eq!(ok(&allowed).output.dir, Path::new(dir));
+    }
+    for dir in ["out", "results/run1", "a/../b", "."] {
+        let text = format!("{BASE}\n[output]\ndir = \"{dir}\"\n");
+        assert_eq!(ok(&text).output.dir, Path::new(dir), "{dir} stays inside");
+    }
+}
+
+#[test]
+fn a_model_name_that_would_make_hidden_files_is_refused_with_a_portable_one() {
+    for (name, suggested) in [(".", "model"), ("..", "model"), (".hidden", "hidden")] {
+        let text = BASE.replace("name = \"t\"", &format!("name = \"{name}\""));
+        let (d, _) = single_at(&text, &format!("\"{name}\""), 0);
+        assert!(
+            d.message.contains("starts with `.`"),
+            "{name}: {}",
+            d.message
+        );
+        assert_eq!(
+            d.help.as_deref(),
+            Some(format!("e.g. `name = \"{suggested}\"`").as_str()),
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn an_import_that_is_a_directory_or_a_fifo_says_what_it_is_not_that_it_is_missing() {
+    let r = ok(BASE);
+    let kind = |p: &Path| {
+        if p.ends_with("f1.ts") {
+            FileKind::Other("a FIFO (a named pipe)")
+        } else if p.ends_with("top.ts") {
+            FileKind::Other("a directory")
+        } else {
+            FileKind::File
+        }
+    };
+    let d = georecipe::recipe::check_files_with_listing(&r, &kind, &|_| Vec::new());
+    let messages: Vec<&str> = d.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(
+        messages,
+        [
+            "file `data/f1.ts` of surface `f1` is a FIFO (a named pipe), not a file",
+            "file `data/top.ts` of surface `top` is a directory, not a file",
+        ]
+    );
 }

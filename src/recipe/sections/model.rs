@@ -43,8 +43,20 @@ pub(crate) fn read_model(
             );
             return None;
         }
-        // The name becomes part of output file names: keep it to a portable character set.
-        super::surfaces::check_name(ctx, s, n.span(), "model").then(|| s.to_string())
+        // The name becomes part of output file names: keep it to a portable character set, and
+        // let it make no hidden file (`.x.msh`, `..msh`).
+        if !super::surfaces::check_name(ctx, s, n.span(), "model") {
+            return None;
+        }
+        if s.starts_with('.') {
+            ctx.error(
+                n.span(),
+                format!("`model.name` `{s}` starts with `.`, which makes hidden output files (`{s}.msh`)"),
+                Some(format!("e.g. `name = \"{}\"`", portable(s.trim_start_matches('.')))),
+            );
+            return None;
+        }
+        Some(s.to_string())
     });
     let units = match t.get("units") {
         Some(u) => rd::choice(
@@ -127,4 +139,19 @@ pub(crate) fn read_tolerances(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>) -> Toler
             tol
         }
     }
+}
+
+/// `name` made a name the recipe accepts, for a suggestion.
+fn portable(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() { "model".to_string() } else { s }
 }

@@ -1,12 +1,15 @@
 //! `[output]`: where results go (relative to the recipe file) and in which formats. Decides the
-//! defaults (`out`, `["msh", "vtu"]`) and that every format is known and listed once.
+//! defaults (`out`, `["msh", "vtu"]`), that every format is known and listed once, and that the
+//! results stay inside the recipe's folder unless the recipe says `allow_outside = true`: a
+//! `dir` of `../../x` or `/tmp/x` is more often a slip than a wish, and a build writes and
+//! replaces files there. The test is on the path as written (symbolic links are not followed).
 
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 
 use crate::recipe::reader::{self as rd, Ctx, Value};
 use crate::recipe::spec::{Format, OutputSpec};
 
-const KEYS: &[&str] = &["dir", "formats"];
+const KEYS: &[&str] = &["dir", "formats", "allow_outside"];
 
 pub(crate) fn read(
     ctx: &mut Ctx<'_>,
@@ -40,6 +43,26 @@ pub(crate) fn read(
         }),
         None => Some(PathBuf::from("out")),
     };
+    let allow_outside = match t.get("allow_outside") {
+        Some(x) => rd::boolean(ctx, x, "output.allow_outside"),
+        None => Some(false),
+    };
+    if let (Some(d), Some(dir), Some(false)) = (t.get("dir"), &dir, allow_outside)
+        && leaves_folder(dir)
+    {
+        ctx.error(
+            d.span(),
+            format!(
+                "`output.dir` `{}` is outside the recipe's folder",
+                dir.display()
+            ),
+            Some(
+                "write a folder inside it (e.g. `dir = \"out\"`), or add `allow_outside = true` \
+                 to `[output]` to write there on purpose"
+                    .into(),
+            ),
+        );
+    }
     let formats = match t.get("formats") {
         Some(f) => formats(ctx, f),
         None => Some(default_formats),
@@ -51,6 +74,24 @@ pub(crate) fn read(
         formats: formats?,
         span: ctx.span(v.span()),
     })
+}
+
+/// Whether `dir`, relative to the recipe's folder, leads out of it: an absolute path, or more
+/// `..` than folders before them.
+fn leaves_folder(dir: &Path) -> bool {
+    let mut depth = 0i64;
+    for c in dir.components() {
+        match c {
+            Component::Normal(_) => depth += 1,
+            Component::ParentDir => depth -= 1,
+            Component::CurDir => {}
+            Component::RootDir | Component::Prefix(_) => return true,
+        }
+        if depth < 0 {
+            return true;
+        }
+    }
+    false
 }
 
 fn formats(ctx: &mut Ctx<'_>, v: &Value<'_>) -> Option<Vec<Format>> {

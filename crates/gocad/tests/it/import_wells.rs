@@ -320,7 +320,10 @@ fn a_broken_well_does_not_stop_the_surfaces_of_its_file_from_importing() {
 
 #[test]
 fn a_well_value_beyond_any_position_on_earth_is_refused_at_its_line() {
-    let t = VERTICAL.replace("WREF 377318.5 8372318.25 0", "WREF 377318.5 8372318.25 1e200");
+    let t = VERTICAL.replace(
+        "WREF 377318.5 8372318.25 0",
+        "WREF 377318.5 8372318.25 1e200",
+    );
     let line = t.lines().position(|l| l.starts_with("WREF")).unwrap() + 1;
     let e = import_well(t.as_bytes(), "w1.wl", &opts()).unwrap_err();
     assert_eq!(e.line, line, "{e}");
