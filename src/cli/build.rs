@@ -45,7 +45,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         },
         &|e| renderer.event(e),
     )?;
-    sweep_debris(&lock_file, &output_dir, &record.dir(&cache));
+    super::debris::sweep_recipe(&lock_file, &output_dir, &record.dir(&cache));
     let (locked, staging) = if args.locked {
         (
             Some(read_lock(&lock_file)?),
@@ -272,17 +272,6 @@ pub fn write_record(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
         .map_err(|e| Failure(format!("error: cannot write {}: {e}", path.display())))
 }
 
-/// Prints what validation found on every surface imported in this build that had findings, what
-/// repair removed and what remains, then the report (`validation.json` beside the outputs has
-/// all of it).
-/// Removes what killed builds of this recipe left (see `debris`); run under the cache's lock.
-fn sweep_debris(lock_file: &Path, output_dir: &Path, record_dir: &Path) {
-    let _ = engine::store::sweep_temporaries_of(lock_file);
-    super::debris::sweep_temporaries(output_dir);
-    super::debris::sweep_staging(output_dir);
-    super::debris::sweep_temporaries(record_dir);
-}
-
 /// The surfaces that meet without being paired, when the check ran in this build.
 fn print_crossings(report: &BuildReport) {
     let ran = report
@@ -313,6 +302,9 @@ fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     }
 }
 
+/// Prints what validation found on every surface imported in this build that had findings, what
+/// repair removed and what remains, then the report (`validation.json` beside the outputs has
+/// all of it).
 fn print_findings(report: &BuildReport) {
     for n in report
         .nodes

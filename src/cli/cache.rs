@@ -269,9 +269,20 @@ fn read_lock(recipe: &Path) -> Result<Option<LockFile>, Failure> {
     }
 }
 
+/// Where a recorded recipe's builds write outside the cache (its lock file, its output directory,
+/// its record), for the sweep of their debris; `None` for a recipe that no longer parses (its
+/// output directory is unknown).
+fn debris_places(recipe: &Path, cache: &Path) -> Option<(PathBuf, PathBuf, PathBuf)> {
+    let text = std::fs::read_to_string(recipe).ok()?;
+    let r = crate::recipe::parse(recipe, &text).ok()?;
+    let output = recipe_dir(recipe).join(&r.output.dir);
+    let record = RecipeRecord::of(recipe, cache).dir(cache);
+    Some((lock_path(recipe), output, record))
+}
+
 /// `recipe gc`: keeps what the lock file or the last build of any recipe that built into the
 /// cache references (the one named included, even if it never built there), and removes the
-/// rest. A record whose recipe is gone from its path is forgotten first, and a record that does
+/// rest, and what killed builds of those recipes left outside the cache (`debris`). A record whose recipe is gone from its path is forgotten first, and a record that does
 /// not say where its recipe is (its build was interrupted) is kept.
 pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let dir = cache_dir(recipe, args);
@@ -307,7 +318,23 @@ pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     for r in &recipes {
         keep.extend(read_lock(r)?);
     }
-    let stats = engine::gc(&dir, &keep)?;
+    let places: Vec<(PathBuf, PathBuf, PathBuf)> = recipes
+        .iter()
+        .filter_map(|r| debris_places(r, &dir))
+        .collect();
+    let swept = std::cell::Cell::new(0);
+    let stats = engine::gc_and(&dir, &keep, &|| {
+        for (lock, output, record) in &places {
+            swept.set(swept.get() + super::debris::sweep_recipe(lock, output, record));
+        }
+    })?;
+    if swept.get() > 0 {
+        outln!(
+            "removed {} temporar{} that killed builds left beside outputs and recipes",
+            swept.get(),
+            if swept.get() == 1 { "y" } else { "ies" }
+        );
+    }
     // What the command line kept at the root before records.
     for old in ["last-report.json", "last-graph.dot"] {
         let _ = std::fs::remove_file(dir.join(old));

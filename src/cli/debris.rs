@@ -1,5 +1,5 @@
-//! What a killed build leaves behind, found and removed by the next build of the recipe while it
-//! holds the cache's lock: temporaries of atomic writes (`.tmp-<file name>.XXXXXX`) in the
+//! What a killed build leaves behind, found and removed by the next build of the recipe, or by
+//! `gc` for every recipe recorded in the cache, while it holds the cache's lock: temporaries of atomic writes (`.tmp-<file name>.XXXXXX`) in the
 //! output directory, beside the recipe (its lock file's) and in the recipe's record, and staging
 //! directories of `--locked` builds beside the output directory whose process is gone.
 //!
@@ -29,6 +29,16 @@ pub fn is_temporary(name: &str) -> bool {
         }
         None => false,
     }
+}
+
+/// Removes what killed builds of one recipe left: temporaries beside its lock file, in its
+/// output directory and in its record, and its dead staging directories; returns how many. Run
+/// under the cache's lock (by the recipe's next build, and by `gc`).
+pub fn sweep_recipe(lock_file: &Path, output_dir: &Path, record_dir: &Path) -> usize {
+    engine::store::sweep_temporaries_of(lock_file).unwrap_or(0)
+        + sweep_temporaries(output_dir)
+        + sweep_staging(output_dir)
+        + sweep_temporaries(record_dir)
 }
 
 /// Removes the temporaries in `dir` (not below it); returns how many.

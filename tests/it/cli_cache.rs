@@ -470,9 +470,9 @@ fn debris(s: &Scratch) -> Vec<String> {
     out
 }
 
-#[test]
-fn the_next_build_removes_what_killed_builds_left_and_nothing_of_the_users() {
-    let s = Scratch::didactic_built();
+/// Plants what a killed build of the example leaves (temporaries beside the output, the lock file
+/// and in the record, a staging directory of a process that is gone) and a user's `.tmp-notes`.
+fn plant_debris(s: &Scratch) {
     let record = s.record_of("didactic.toml");
     let left = [
         s.path("out/didactic/.tmp-didactic.msh.Ab12Cd"),
@@ -487,6 +487,47 @@ fn the_next_build_removes_what_killed_builds_left_and_nothing_of_the_users() {
     std::fs::write(staging.join(".georecipe-staging"), u32::MAX.to_string()).unwrap();
     std::fs::write(staging.join("didactic.msh"), b"partial").unwrap();
     std::fs::write(s.path("out/didactic/.tmp-notes"), b"the user's").unwrap();
+}
+
+#[test]
+fn gc_removes_what_killed_builds_of_every_recorded_recipe_left_and_nothing_of_the_users() {
+    let s = Scratch::didactic_built();
+    // A second recipe in another folder, sharing the cache, with its own output directory.
+    std::fs::create_dir_all(s.path("other")).unwrap();
+    let text = std::fs::read_to_string(s.recipe()).unwrap();
+    let other = text
+        .replace("data/didactic/", "../data/didactic/")
+        .replace("dir = \"out/didactic\"", "dir = \"results/didactic\"");
+    std::fs::write(s.path("other/r.toml"), other).unwrap();
+    let (ok, _, err) = s.build_recipe("other/r.toml", &["--cache-dir", ".recipe"]);
+    assert!(ok, "{err}");
+    plant_debris(&s);
+    std::fs::write(
+        s.path("other/results/didactic/.tmp-didactic.vtu.Qq1Ww2"),
+        b"partial",
+    )
+    .unwrap();
+    std::fs::write(s.path("other/.tmp-r.toml.lock.Ee3Rr4"), b"partial").unwrap();
+    assert_eq!(debris(&s).len(), 6, "{:?}", debris(&s));
+    let out = s.recipe_cmd(&["gc", "didactic.toml"]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(debris(&s), Vec::<String>::new());
+    assert!(said.contains("removed 6 temporaries"), "{said}");
+    assert!(
+        s.path("out/didactic/.tmp-notes").exists(),
+        "a user's file stays"
+    );
+}
+
+#[test]
+fn the_next_build_removes_what_killed_builds_left_and_nothing_of_the_users() {
+    let s = Scratch::didactic_built();
+    plant_debris(&s);
     let (ok, _, err) = s.build(&[]);
     assert!(ok, "{err}");
     assert_eq!(debris(&s), Vec::<String>::new());

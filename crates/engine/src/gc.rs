@@ -33,11 +33,23 @@ fn lock_now(cache_dir: &Path) -> Result<DirLock, EngineError> {
 /// touching nothing, when the directory is not a cache). The records' last builds are read under
 /// the cache lock, so a build that finished just before is kept whole.
 pub fn gc(cache_dir: &Path, keep: &[LockFile]) -> Result<GcStats, EngineError> {
+    gc_and(cache_dir, keep, &|| {})
+}
+
+/// [`gc`], also running `tidy` while the cache lock is held: the caller's sweep of what killed
+/// builds left outside the cache (beside outputs and recipes), which no build can be writing
+/// while the lock is held.
+pub fn gc_and(
+    cache_dir: &Path,
+    keep: &[LockFile],
+    tidy: &dyn Fn(),
+) -> Result<GcStats, EngineError> {
     if !cache_dir.exists() {
         return Ok(GcStats::default());
     }
     marker::require(cache_dir)?;
     let _lock = lock_now(cache_dir)?;
+    tidy();
     let records = manifest::records(cache_dir).map_err(|e| EngineError::io(cache_dir, e))?;
     let last: Vec<LockFile> = records
         .iter()

@@ -54,7 +54,7 @@ pub use build::{BuildOptions, DEFAULT_RECORD, Event, build, build_holding, lock_
 pub use derive::Derivations;
 pub use dirlock::DirLock;
 pub use error::EngineError;
-pub use gc::{GcStats, clean, forget, gc};
+pub use gc::{GcStats, clean, forget, gc, gc_and};
 pub use graph::{BuildGraph, Expander, Expansion, GraphError, NodeId};
 pub use lockfile::{LockFile, LockedNode};
 pub use op::{OpError, Operation, Output, RunContext};
