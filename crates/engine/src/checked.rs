@@ -35,7 +35,7 @@ pub fn write(path: &Path, payload: &[u8]) -> std::io::Result<()> {
     write_atomic(path, &bytes, false)
 }
 
-/// The payload [`write`] wrote to `path`, verified.
+/// The payload [`write()`] wrote to `path`, verified.
 pub fn read(path: &Path) -> Result<Vec<u8>, CheckedError> {
     let mut bytes = std::fs::read(path).map_err(|e| match e.kind() {
         ErrorKind::NotFound => CheckedError::Missing,
