@@ -89,6 +89,23 @@ pub fn orient3d(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Orien
     Orientation::from_f64(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)))
 }
 
+/// [`orient3d`] after two exact shortcuts for degenerate inputs, which meshes meet all the time
+/// and on which the adaptive stage is slowest: a repeated point (a determinant with two equal
+/// rows is zero) and four points sharing one coordinate exactly (all on one axis-aligned plane,
+/// such as a box side: a zero column). Both are decided by float equality, which is exact.
+#[inline]
+pub fn orient3d_shortcut(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Orientation {
+    if d == a || d == b || d == c || a == b || b == c || c == a {
+        return Orientation::Zero;
+    }
+    for k in 0..3 {
+        if a[k] == d[k] && b[k] == d[k] && c[k] == d[k] {
+            return Orientation::Zero;
+        }
+    }
+    orient3d(a, b, c, d)
+}
+
 /// Exact turn of `abc` in the plane: `Positive` is counter-clockwise.
 #[inline]
 pub fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Orientation {
@@ -291,6 +308,38 @@ mod tests {
         }
         // The lattice does produce degenerate cases, which only the adaptive stage settles.
         assert!(zeros[0] > 0 && zeros[1] > 0, "{zeros:?}");
+    }
+
+    #[test]
+    fn the_shortcut_orient3d_agrees_with_the_adaptive_predicate_on_degenerate_and_general_points() {
+        // A small lattice with repeated points, points sharing one coordinate (axis planes),
+        // general positions and tiny offsets: every quadruple is compared.
+        let mut pts: Vec<[f64; 3]> = Vec::new();
+        for &x in &[0.0, 1.0, 1.0 + 1e-12] {
+            for &y in &[0.0, 2.5] {
+                for &z in &[-3.0, 0.1] {
+                    pts.push([x, y, z]);
+                }
+            }
+        }
+        pts.push([0.3, 0.7, 0.0]);
+        pts.push([0.0, 0.0, -3.0]);
+        let n = pts.len();
+        let mut zero = 0;
+        for i in 0..n {
+            for j in 0..n {
+                for k in 0..n {
+                    for l in (0..n).step_by(3) {
+                        let (a, b, c, d) = (&pts[i], &pts[j], &pts[k], &pts[l]);
+                        let fast = orient3d_shortcut(a, b, c, d);
+                        assert_eq!(fast, orient3d(a, b, c, d));
+                        zero += (fast == Orientation::Zero) as usize;
+                    }
+                }
+            }
+        }
+        // The shortcuts were exercised (and agreed), and not every case was degenerate.
+        assert!(zero > 0 && zero < n * n * n * n.div_ceil(3));
     }
 
     #[test]

@@ -27,12 +27,13 @@ use std::collections::HashMap;
 use geom::predicates::{Orientation, cross, dist, dot, sub};
 use geom::progress::Span;
 
-use super::exact::{orient3d, tri_tri_improper_with};
+use super::exact::orient3d;
 use super::front::{FaceMap, Front, bbox_of};
 use super::sides::{SideCache, orientation_of};
 use super::sizing::Background;
 use super::verify::outward_faces;
 use super::{RegionInput, SizeField, TetMeshError};
+use geom::contact::{Contact, Tri, triangle_contact_with};
 
 type P = [f64; 3];
 
@@ -705,7 +706,8 @@ impl State<'_> {
                     continue;
                 }
                 let ou = [0, 1, 2].map(|i| orientation_of(sg[i][k]));
-                if tri_tri_improper_with(nf, gv, ou, &self.nodes) {
+                let (nf, gv) = (Tri::of(nf, &self.nodes), Tri::of(gv, &self.nodes));
+                if triangle_contact_with(&nf, &gv, ou) != Contact::None {
                     ok = false;
                     break;
                 }

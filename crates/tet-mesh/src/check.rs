@@ -1,13 +1,13 @@
 //! Input validation for one region, before any tetrahedron is built: the mesher relies on a
 //! closed, consistently and outward oriented, non-self-intersecting boundary, so each violation
 //! is reported with the triangle(s) or edge and coordinates instead of surfacing later as a stuck
-//! front. Intersections are decided with the exact tests of `exact`. The Delaunay path runs the
+//! front. Intersections are decided with the exact tests of `geom::contact`. The Delaunay path runs the
 //! pairwise intersection test only when some triangle is not a face of the boundary's Delaunay
 //! tetrahedralization (`check_shape`): on the peer model it was a fifth of a thin layer's time.
 
 use super::box_pairs::for_each_overlapping_pair;
-use super::exact::{tri_tri_improper, triangle_is_degenerate};
 use super::{RegionInput, TetMeshError};
+use geom::contact::{Contact, Tri, triangle_contact, triangle_is_degenerate};
 
 type P = [f64; 3];
 
@@ -231,7 +231,7 @@ fn check_self_intersection(
             return;
         }
         let same = all[k].iter().all(|v| all[j].contains(v));
-        if same || tri_tri_improper(all[k], all[j], pts) {
+        if same || triangle_contact(&Tri::of(all[k], pts), &Tri::of(all[j], pts)) != Contact::None {
             first = Some((k, j, same));
         }
     });

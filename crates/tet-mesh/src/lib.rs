@@ -34,9 +34,9 @@
 //! segment an edge. `verify` checks the result exactly before `mesh_region` returns it, so a
 //! partial or overlapping mesh is an error, never a result.
 //!
-//! Submodules: `exact` (intersection predicates, with exact shortcuts for repeated and
-//! axis-coplanar points), `quality` (measures), `check` (input validation, with `box_pairs` its
-//! broad phase), `lines` and `inside` (the segments' checks and the check of their chains),
+//! Submodules: `exact` (the predicates, with exact shortcuts for repeated and axis-coplanar
+//! points; triangles and segments meet by `geom::contact`), `quality` (measures), `check` (input
+//! validation, with `box_pairs` its broad phase), `lines` and `inside` (the segments' checks and the check of their chains),
 //! `delaunay` (kernel, insertion order, recovery, refinement), `front` (front faces, their spatial
 //! grid, and grids of front nodes and of all nodes), `advance` (the front loop and back-tracking), `sides` (exact
 //! sides of nearby front nodes against a candidate's planes), `optimize` (the optimization

@@ -4,7 +4,7 @@
 //! Input (`check_lines`): a segment joins two distinct vertices; it meets a boundary or embedded
 //! triangle, or another segment, only in a vertex they share by index (so a segment along a
 //! triangle's edge is refused: it would lie in that triangle); and it lies inside the region.
-//! Every test is exact (`exact`, `inside`); a segment that fails is named with its end
+//! Every test is exact (`geom::contact`, `inside`); a segment that fails is named with its end
 //! coordinates.
 //!
 //! Output (`verify_chains`): each segment's chain runs from its first vertex to its second
@@ -18,9 +18,9 @@
 
 use super::box_pairs::for_each_overlapping_pair;
 use super::check::reference_point;
-use super::exact::{seg_meets_box, seg_seg_improper, seg_tri_improper};
 use super::inside::segment_inside;
 use super::{RegionInput, TetMeshError, TetMeshOutput};
+use geom::contact::{Seg, Tri, segment_meets_box, segment_meets_triangle, segments_meet};
 
 type P = [f64; 3];
 
@@ -46,7 +46,7 @@ pub(crate) fn on_segment(a: &P, b: &P, p: &P) -> bool {
     let e = [0, 1, 2].map(|k| ROUNDING_ULPS * ulp(a[k].abs().max(b[k].abs())));
     let lo = [0, 1, 2].map(|k| p[k] - e[k]);
     let hi = [0, 1, 2].map(|k| p[k] + e[k]);
-    seg_meets_box(a, b, &lo, &hi)
+    segment_meets_box(a, b, &lo, &hi)
 }
 
 /// The axis along which segment `ab` runs the most (float: any axis along which it varies
@@ -120,9 +120,10 @@ fn check_crossings(input: &RegionInput) -> Result<(), TetMeshError> {
             return;
         }
         let bad = if y < segs.len() {
-            seg_seg_improper(segs[x], segs[y], pts)
+            segments_meet(&Seg::of(segs[x], pts), &Seg::of(segs[y], pts))
         } else {
-            seg_tri_improper(segs[x], tris[near[y - segs.len()]].0, pts)
+            let t = Tri::of(tris[near[y - segs.len()]].0, pts);
+            segment_meets_triangle(&Seg::of(segs[x], pts), &t)
         };
         if bad {
             first = Some((x, y));

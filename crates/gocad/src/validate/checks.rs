@@ -6,15 +6,8 @@
 //! Adjacency is taken on canonical vertices (coincident vertices merged), so the seams between
 //! TFACEs that repeat their vertices are seen as the shared edges they are geometrically.
 
-use geom::{Orientation, Tolerances, orient2d};
-
-/// Exact collinearity of three points in 3D: all three axis-plane projections have zero area.
-pub fn collinear(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> bool {
-    let z = Orientation::Zero;
-    orient2d(&[a[0], a[1]], &[b[0], b[1]], &[c[0], c[1]]) == z
-        && orient2d(&[a[1], a[2]], &[b[1], b[2]], &[c[1], c[2]]) == z
-        && orient2d(&[a[2], a[0]], &[b[2], b[0]], &[c[2], c[0]]) == z
-}
+use geom::Tolerances;
+use geom::contact::collinear;
 
 /// For every vertex, the smallest index of the vertices coincident with it. With
 /// `merge_distance == 0` coincident means equal coordinates (exact); otherwise within that

@@ -1,11 +1,12 @@
 //! Self-intersection search: a broad phase over triangle boxes proposes candidate pairs (a box
-//! test can only skip pairs that cannot touch), and the exact tests of `intersect` decide each
-//! pair. The broad phase is a uniform grid of boxes when triangle sizes are even (the usual case,
-//! and the fastest), else an R-tree traversed against itself. Pairs are judged in parallel; the
-//! result is sorted, so it does not depend on the thread count.
+//! test can only skip pairs that cannot touch), and the exact `geom::contact` decides each pair
+//! by the canonical vertices the two share. The broad phase is a uniform grid of boxes when
+//! triangle sizes are even (the usual case, and the fastest), else an R-tree traversed against
+//! itself. Pairs are judged in parallel; the result is sorted, so it does not depend on the
+//! thread count.
 
 use super::checks::TriStatus;
-use super::intersect::{Contact, disjoint_pair, edge_pair, vertex_pair};
+use geom::contact::{Contact, Tri, triangle_contact};
 use rayon::prelude::*;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, Envelope, RTree};
@@ -27,37 +28,18 @@ fn tri_box(v: &[[f64; 3]], tri: &[u32; 3]) -> AABB<[f64; 3]> {
     AABB::from_corners(lo, hi)
 }
 
-/// Judges one pair of `Ok` triangles by the canonical vertices they share.
+/// How two `Ok` triangles meet, by the canonical vertices they share. A vertex `u` shares with
+/// `t` is taken at `t`'s position (the two may differ by up to the merge distance), so the two
+/// agree on where the shared vertex is.
 pub fn judge(v: &[[f64; 3]], canon: &[u32], t: &[u32; 3], u: &[u32; 3]) -> Contact {
     let ct = t.map(|i| canon[i as usize]);
     let cu = u.map(|i| canon[i as usize]);
-    let p = |i: u32| &v[i as usize];
-    let mut buf = [(0usize, 0usize); 3];
-    let mut n = 0;
-    for (i, a) in ct.iter().enumerate() {
-        for (j, b) in cu.iter().enumerate() {
-            if a == b && n < 3 {
-                buf[n] = (i, j);
-                n += 1;
-            }
-        }
-    }
-    match &buf[..n] {
-        [] => disjoint_pair(t.map(p), u.map(p)),
-        [(i, j)] => {
-            let (a, b) = (t[(i + 1) % 3], t[(i + 2) % 3]);
-            let (c, d) = (u[(j + 1) % 3], u[(j + 2) % 3]);
-            vertex_pair(p(t[*i]), p(a), p(b), p(c), p(d))
-        }
-        [(i0, j0), (i1, _)] => {
-            let a = t[3 - i0 - i1];
-            let j2 = (0..3)
-                .find(|&j| cu[j] != ct[*i0] && cu[j] != ct[*i1])
-                .unwrap_or(*j0);
-            edge_pair(p(t[*i0]), p(t[*i1]), p(a), p(u[j2]))
-        }
-        _ => Contact::None,
-    }
+    let tp = t.map(|i| &v[i as usize]);
+    let up = [0, 1, 2].map(|j| match ct.iter().position(|&c| c == cu[j]) {
+        Some(i) => tp[i],
+        None => &v[u[j] as usize],
+    });
+    triangle_contact(&Tri { ids: ct, pts: tp }, &Tri { ids: cu, pts: up })
 }
 
 /// All intersecting pairs `(t, u, contact)` with `t < u`, sorted.
