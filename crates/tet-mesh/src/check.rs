@@ -1,12 +1,14 @@
 //! Input validation for one region, before any tetrahedron is built: the mesher relies on a
 //! closed, consistently and outward oriented, non-self-intersecting boundary, so each violation
 //! is reported with the triangle(s) or edge and coordinates instead of surfacing later as a stuck
-//! front. Intersections are decided with the exact tests of `geom::contact`. The Delaunay path runs the
+//! front. Intersections are decided with the exact tests of `geom::contact`, on the pairs of
+//! overlapping boxes `geom::broad_phase` finds. The Delaunay path runs the
 //! pairwise intersection test only when some triangle is not a face of the boundary's Delaunay
 //! tetrahedralization (`check_shape`): on the peer model it was a fifth of a thin layer's time.
 
-use super::box_pairs::for_each_overlapping_pair;
 use super::{RegionInput, TetMeshError};
+use geom::BBox;
+use geom::broad_phase::overlapping_pairs;
 use geom::contact::{Contact, Tri, triangle_contact, triangle_is_degenerate};
 
 type P = [f64; 3];
@@ -211,30 +213,27 @@ pub(crate) fn reference_point(pts: &[P]) -> P {
     [o[0] / n, o[1] / n, o[2] / n]
 }
 
-/// No two triangles meet improperly. Candidate pairs come from an R-tree of single-precision
-/// boxes around the vertices' centroid, rounded outward (half the memory of double boxes; a box is
-/// only a filter, the exact test decides).
+/// No two triangles meet improperly; the first pair that does, in (k, j) order, is reported.
 fn check_self_intersection(
     input: &RegionInput,
     all: &[[u32; 3]],
     named: impl Fn(usize) -> (&'static str, usize),
 ) -> Result<(), TetMeshError> {
     let pts = &input.vertices;
-    let o = reference_point(pts);
-    let boxes: Vec<_> = all.iter().map(|&t| bbox(t, pts, o)).collect();
-    // The first failing pair in (k, j) order is reported, whatever order the pairs come in.
+    let boxes: Vec<BBox> = all
+        .iter()
+        .map(|t| BBox::from_points(t.map(|v| &pts[v as usize])))
+        .collect();
     // With whether the two use the same vertices.
-    let mut first: Option<(usize, usize, bool)> = None;
-    for_each_overlapping_pair(&boxes, |k, j| {
-        let (k, j) = (k as usize, j as usize);
-        if first.is_some_and(|f| (f.0, f.1) <= (k, j)) {
-            return;
-        }
-        let same = all[k].iter().all(|v| all[j].contains(v));
-        if same || triangle_contact(&Tri::of(all[k], pts), &Tri::of(all[j], pts)) != Contact::None {
-            first = Some((k, j, same));
-        }
+    let bad = overlapping_pairs(&boxes, |k, j| {
+        let (t, u) = (all[k as usize], all[j as usize]);
+        let same = t.iter().all(|v| u.contains(v));
+        let meet = || triangle_contact(&Tri::of(t, pts), &Tri::of(u, pts)) != Contact::None;
+        (same || meet()).then_some(same)
     });
+    let first = bad
+        .first()
+        .map(|&(k, j, same)| (k as usize, j as usize, same));
     let Some((k, j, same)) = first else {
         return Ok(());
     };
@@ -263,27 +262,6 @@ fn check_self_intersection(
         ),
         Some(pts[t[0] as usize]),
     ))
-}
-
-/// The single-precision box of triangle `t` relative to `o`, rounded outward.
-fn bbox(t: [u32; 3], pts: &[P], o: P) -> ([f32; 3], [f32; 3]) {
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for &v in &t {
-        let p = pts[v as usize];
-        for k in 0..3 {
-            let x = p[k] - o[k];
-            let r = x as f32;
-            let (down, up) = match f64::from(r).partial_cmp(&x) {
-                Some(std::cmp::Ordering::Greater) => (r.next_down(), r),
-                Some(std::cmp::Ordering::Less) => (r, r.next_up()),
-                _ => (r, r),
-            };
-            lo[k] = lo[k].min(down);
-            hi[k] = hi[k].max(up);
-        }
-    }
-    (lo, hi)
 }
 
 #[cfg(test)]

@@ -36,7 +36,7 @@
 //!
 //! Submodules: `exact` (the predicates, with exact shortcuts for repeated and axis-coplanar
 //! points; triangles and segments meet by `geom::contact`), `quality` (measures), `check` (input
-//! validation, with `box_pairs` its broad phase), `lines` and `inside` (the segments' checks and the check of their chains),
+//! validation, on the pairs `geom::broad_phase` proposes), `lines` and `inside` (the segments' checks and the check of their chains),
 //! `delaunay` (kernel, insertion order, recovery, refinement), `front` (front faces, their spatial
 //! grid, and grids of front nodes and of all nodes), `advance` (the front loop and back-tracking), `sides` (exact
 //! sides of nearby front nodes against a candidate's planes), `optimize` (the optimization
@@ -50,7 +50,6 @@
 //! measured times; reporting is throttled and only reads, so the mesh is the same bit for bit.
 
 mod advance;
-mod box_pairs;
 mod check;
 mod complex;
 mod delaunay;

@@ -16,10 +16,10 @@
 //! `ROUNDING_ULPS` units in the last place of the segment's coordinates around the node (well
 //! over the construction's error), and the nodes advance strictly along the segment's main axis.
 
-use super::box_pairs::for_each_overlapping_pair;
-use super::check::reference_point;
 use super::inside::segment_inside;
 use super::{RegionInput, TetMeshError, TetMeshOutput};
+use geom::BBox;
+use geom::broad_phase::overlapping_pairs;
 use geom::contact::{Seg, Tri, segment_meets_box, segment_meets_triangle, segments_meet};
 
 type P = [f64; 3];
@@ -98,38 +98,28 @@ fn check_crossings(input: &RegionInput) -> Result<(), TetMeshError> {
         .chain((input.embedded.iter().enumerate()).map(|(i, &t)| (t, "embedded", i)))
         .collect();
     let segs = &input.lines;
-    let o = reference_point(pts);
+    let box_of = |vs: &[u32]| BBox::from_points(vs.iter().map(|&v| &pts[v as usize]));
     // Boxes: the segments first, then the triangles near them.
-    let reach = bbox(segs.iter().flatten().copied(), pts, &o);
+    let reach = box_of(segs.as_flattened());
     let near: Vec<usize> = (0..tris.len())
-        .filter(|&i| overlap(&bbox(tris[i].0.iter().copied(), pts, &o), &reach))
+        .filter(|&i| box_of(&tris[i].0).overlaps(&reach))
         .collect();
-    let mut boxes: Vec<([f32; 3], [f32; 3])> = segs
-        .iter()
-        .map(|s| bbox(s.iter().copied(), pts, &o))
-        .collect();
-    boxes.extend(
-        near.iter()
-            .map(|&i| bbox(tris[i].0.iter().copied(), pts, &o)),
-    );
+    let mut boxes: Vec<BBox> = segs.iter().map(|s| box_of(s)).collect();
+    boxes.extend(near.iter().map(|&i| box_of(&tris[i].0)));
     // The first failing pair in (segment, other) order is reported.
-    let mut first: Option<(usize, usize)> = None;
-    for_each_overlapping_pair(&boxes, |x, y| {
-        let (x, y) = (x.min(y) as usize, x.max(y) as usize);
-        if x >= segs.len() || first.is_some_and(|f| f <= (x, y)) {
-            return;
-        }
-        let bad = if y < segs.len() {
-            segments_meet(&Seg::of(segs[x], pts), &Seg::of(segs[y], pts))
-        } else {
-            let t = Tri::of(tris[near[y - segs.len()]].0, pts);
-            segment_meets_triangle(&Seg::of(segs[x], pts), &t)
+    let bad = overlapping_pairs(&boxes, |x, y| {
+        let (x, y) = (x as usize, y as usize);
+        let e = Seg::of(*segs.get(x)?, pts);
+        let meet = match segs.get(y) {
+            Some(&f) => segments_meet(&e, &Seg::of(f, pts)),
+            None => segment_meets_triangle(&e, &Tri::of(tris[near[y - segs.len()]].0, pts)),
         };
-        if bad {
-            first = Some((x, y));
-        }
+        meet.then_some(())
     });
-    let Some((k, y)) = first else { return Ok(()) };
+    let Some(&(k, y, ())) = bad.first() else {
+        return Ok(());
+    };
+    let (k, y) = (k as usize, y as usize);
     let what = if y < segs.len() {
         let [a, b] = segs[y];
         format!(
@@ -192,25 +182,6 @@ fn check_inside(input: &RegionInput) -> Result<(), TetMeshError> {
         }
     }
     Ok(())
-}
-
-/// The single-precision box of some vertices relative to `o`, rounded outward (a filter only).
-fn bbox(vs: impl Iterator<Item = u32>, pts: &[P], o: &P) -> ([f32; 3], [f32; 3]) {
-    let mut lo = [f32::INFINITY; 3];
-    let mut hi = [f32::NEG_INFINITY; 3];
-    for v in vs {
-        let p = pts[v as usize];
-        for k in 0..3 {
-            let r = (p[k] - o[k]) as f32;
-            lo[k] = lo[k].min(r.next_down());
-            hi[k] = hi[k].max(r.next_up());
-        }
-    }
-    (lo, hi)
-}
-
-fn overlap(a: &([f32; 3], [f32; 3]), b: &([f32; 3], [f32; 3])) -> bool {
-    (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
 
 /// Checks that `out.lines` holds, for each input segment, a chain of tet edges along it (see the

@@ -5,8 +5,8 @@
 //! (`Tolerances::merge_distance`, exact equality by default), which triangles are degenerate
 //! (exactly collinear corners, by `orient2d` on the three axis planes) or duplicated, which
 //! neighbours disagree on orientation, which edges carry three or more triangles, and which
-//! non-adjacent triangles cross or overlap in one plane (R-tree or grid of boxes, then the
-//! exact `geom::contact`, shared with the tet mesher's input check).
+//! non-adjacent triangles cross or overlap in one plane (`geom::broad_phase` and the exact
+//! `geom::contact`, shared with the tet mesher's input check).
 //! What to do about them is the recipe's choice: [`repair`] fixes what is safe, or the build stops.
 //! Repair removes unreferenced and duplicate vertices, degenerate and duplicate triangles and
 //! inconsistent orientation (except where a piece is not orientable); non-manifold edges,
