@@ -23,7 +23,8 @@ pub struct Span {
 }
 
 /// One error, rendered rustc-style by `Display`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{}", self.rendered())]
 pub struct Diagnostic {
     /// The recipe file as the user named it.
     pub file: String,
@@ -41,8 +42,15 @@ pub struct Diagnostic {
     pub len: usize,
 }
 
-impl fmt::Display for Diagnostic {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl Diagnostic {
+    /// The message, the location and the quoted line with its caret, and the help.
+    fn rendered(&self) -> String {
+        let mut f = String::new();
+        self.render(&mut f).expect("writing to a String");
+        f
+    }
+
+    fn render(&self, f: &mut impl fmt::Write) -> fmt::Result {
         let gutter = self.line.to_string().len();
         let pad = " ".repeat(gutter);
         writeln!(f, "error: {}", self.message)?;
@@ -69,8 +77,6 @@ impl fmt::Display for Diagnostic {
         Ok(())
     }
 }
-
-impl std::error::Error for Diagnostic {}
 
 /// The recipe text with its label and line starts, for turning byte offsets into positions.
 #[derive(Clone, Debug)]

@@ -25,3 +25,11 @@ pub use units::Units;
 
 /// A point in model coordinates (metres, or the recipe's units), as read from the input.
 pub type Point3 = [f64; 3];
+
+/// How an error message ends with the place it concerns: ` at (x, y, z)`, or nothing.
+pub fn at_suffix(at: &Option<Point3>) -> String {
+    match at {
+        Some(p) => format!(" at ({}, {}, {})", p[0], p[1], p[2]),
+        None => String::new(),
+    }
+}

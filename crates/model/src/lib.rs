@@ -114,7 +114,8 @@ pub struct ModelTopology {
 
 /// Why the model's topology or an FE assembly could not be built: a message naming the patch,
 /// curve or region, and a point where it happens.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, thiserror::Error)]
+#[error("{message}{}", geom::at_suffix(.at))]
 pub struct ModelError {
     pub message: String,
     pub at: Option<[f64; 3]>,
@@ -128,18 +129,6 @@ impl ModelError {
         }
     }
 }
-
-impl std::fmt::Display for ModelError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.message)?;
-        if let Some(p) = self.at {
-            write!(f, " at ({}, {}, {})", p[0], p[1], p[2])?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for ModelError {}
 
 /// Lexicographic total order on points (`f64::total_cmp`): the order every machine agrees on.
 pub(crate) fn cmp_points(a: &[f64; 3], b: &[f64; 3]) -> std::cmp::Ordering {

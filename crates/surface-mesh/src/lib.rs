@@ -111,28 +111,13 @@ pub struct SurfaceMeshOutput {
 }
 
 /// A patch that cannot be meshed: its name, what went wrong, and where.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("surface mesh of patch '{patch}': {message}{}", geom::at_suffix(.at))]
 pub struct SurfaceMeshError {
     pub patch: String,
     pub message: String,
     pub at: Option<[f64; 3]>,
 }
-
-impl std::fmt::Display for SurfaceMeshError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "surface mesh of patch '{}': {}",
-            self.patch, self.message
-        )?;
-        if let Some(p) = self.at {
-            write!(f, " at ({}, {}, {})", p[0], p[1], p[2])?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for SurfaceMeshError {}
 
 /// The fastest size growth a surface mesh uses (ratio per element), whatever `SurfaceSize::growth`
 /// allows (the recipe's `mesh.growth`, 1.3 by default, is meant for volumes). A triangle spanning

@@ -71,7 +71,6 @@ pub use check::check_input;
 pub use verify::verify;
 
 use geom::progress::{Meter, Span};
-use std::fmt;
 
 /// One region to fill.
 #[derive(Clone, Debug, Default)]
@@ -208,7 +207,8 @@ pub struct TetMeshOutput {
 }
 
 /// Why a region could not be meshed (or a mesh is not valid): names the region and the place.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("region '{region}': {message}{}", geom::at_suffix(.at))]
 pub struct TetMeshError {
     pub region: String,
     pub message: String,
@@ -224,18 +224,6 @@ impl TetMeshError {
         }
     }
 }
-
-impl fmt::Display for TetMeshError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "region '{}': {}", self.region, self.message)?;
-        if let Some(p) = self.at {
-            write!(f, " at ({}, {}, {})", p[0], p[1], p[2])?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for TetMeshError {}
 
 /// Mesh one region: check the input, mesh it (Delaunay with local recovery, the front as its
 /// fallback, or the front alone), optimize, compute statistics and verify exactly. Never returns a

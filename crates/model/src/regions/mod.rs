@@ -27,7 +27,6 @@ mod weld;
 pub use locate::Locator;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
-use std::fmt;
 
 /// One conforming patch: a connected, consistently oriented piece of a surface between curves.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -102,7 +101,8 @@ pub struct RegionModel {
 }
 
 /// Why regions could not be found: a message naming the surface and a point where it happens.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, thiserror::Error)]
+#[error("{message}")]
 pub struct RegionError {
     pub message: String,
     pub surface: Option<String>,
@@ -122,14 +122,6 @@ impl RegionError {
         }
     }
 }
-
-impl fmt::Display for RegionError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for RegionError {}
 
 /// Which surfaces may end inside the model (have free borders) without closing a region.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

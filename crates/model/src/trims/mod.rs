@@ -42,7 +42,6 @@ pub use side::{Column, Verdict};
 use geom::{BBox, Tolerances, TriMesh};
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::fmt;
 
 /// Which side of a surface a `keep` trim keeps.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
@@ -113,7 +112,8 @@ pub struct TrimOutcome {
 }
 
 /// Why trimming failed: the trim (index in recipe order), and the patch and point concerned.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{message}")]
 pub struct TrimError {
     /// `None` for a malformed patch (found before any trim runs).
     pub trim: Option<usize>,
@@ -121,14 +121,6 @@ pub struct TrimError {
     pub at: Option<[f64; 3]>,
     pub message: String,
 }
-
-impl fmt::Display for TrimError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for TrimError {}
 
 /// A point as a recipe writes it.
 fn pt(p: &[f64; 3]) -> String {

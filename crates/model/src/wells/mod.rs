@@ -58,24 +58,13 @@ pub struct WellCut {
 
 /// Why a well cannot be cut: what happened, at which path segment (index of its first station)
 /// and where.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, thiserror::Error)]
+#[error("{message}{}", geom::at_suffix(.at))]
 pub struct WellError {
     pub message: String,
     pub segment: Option<usize>,
     pub at: Option<[f64; 3]>,
 }
-
-impl std::fmt::Display for WellError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.message)?;
-        if let Some(p) = self.at {
-            write!(f, " at ({}, {}, {})", p[0], p[1], p[2])?;
-        }
-        Ok(())
-    }
-}
-
-impl std::error::Error for WellError {}
 
 /// Cuts the well path `stations` (at least two, no two consecutive equal) by `patches` and
 /// locates its pieces with `locator` (built from the same patches).

@@ -21,7 +21,6 @@ pub use off::read_off;
 
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::fmt;
 
 /// A triangulated surface with tagged triangles (the input of the standalone mesher).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -43,20 +42,13 @@ pub struct LineMesh {
 }
 
 /// A read error at `file:line`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{file}:{line}: {message}")]
 pub struct ReadError {
     pub file: String,
     pub line: usize,
     pub message: String,
 }
-
-impl fmt::Display for ReadError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}: {}", self.file, self.line, self.message)
-    }
-}
-
-impl std::error::Error for ReadError {}
 
 /// Reads by the extension of `path_label` (`.off`, `.obj`, `.msh`; case-insensitive).
 pub fn read_by_extension(path_label: &str, bytes: &[u8]) -> Result<BoundaryMesh, ReadError> {
