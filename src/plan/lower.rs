@@ -7,19 +7,29 @@ use model::discretize::{Grading, Subdivision};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-#[derive(Debug)]
-pub struct PlanError(pub String);
-
-impl std::fmt::Display for PlanError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+/// Why a recipe cannot be lowered to a graph.
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    #[error(transparent)]
+    Graph(#[from] GraphError),
+    /// A section (`box.around`, `intersect`) names a surface the recipe does not import.
+    #[error("{section} names unknown surface `{name}`")]
+    UnknownSurface { section: &'static str, name: String },
 }
 
-impl From<GraphError> for PlanError {
-    fn from(e: GraphError) -> Self {
-        PlanError(e.to_string())
-    }
+/// The node of surface `name`, which `section` names.
+fn surface_node(
+    nodes: &BTreeMap<String, NodeId>,
+    section: &'static str,
+    name: &str,
+) -> Result<NodeId, PlanError> {
+    nodes
+        .get(name)
+        .copied()
+        .ok_or_else(|| PlanError::UnknownSurface {
+            section,
+            name: name.to_string(),
+        })
 }
 
 /// Builds the graph for `recipe`. Paths of imported files are resolved against the recipe's directory.
@@ -70,11 +80,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             recipe::BoxExtent::Around { surfaces, margin } => {
                 let ids = surfaces
                     .iter()
-                    .map(|n| {
-                        surface_nodes.get(n).copied().ok_or_else(|| {
-                            PlanError(format!("box.around names unknown surface `{n}`"))
-                        })
-                    })
+                    .map(|n| surface_node(&surface_nodes, "box.around", n))
                     .collect::<Result<Vec<_>, _>>()?;
                 (
                     BoxSpecParams::Around {
@@ -102,12 +108,8 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
     let mut intersections = Vec::new();
     for (a, b) in &recipe.intersect {
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        let ia = *surface_nodes
-            .get(a)
-            .ok_or_else(|| PlanError(format!("intersect names unknown surface `{a}`")))?;
-        let ib = *surface_nodes
-            .get(b)
-            .ok_or_else(|| PlanError(format!("intersect names unknown surface `{b}`")))?;
+        let ia = surface_node(&surface_nodes, "intersect", a)?;
+        let ib = surface_node(&surface_nodes, "intersect", b)?;
         let id = g.add_op(
             &format!("intersect:{a}/{b}"),
             Arc::new(IntersectOp {

@@ -103,45 +103,48 @@ pub struct CurveSelector {
     pub component: Option<u32>,
 }
 
-/// Why a curve selector's text is malformed.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SelectorError(pub String);
+/// Why a curve selector's text is malformed (worded for users).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SelectorError {
+    #[error("the component after `#` must be a whole number, found `{0}`")]
+    Component(String),
+    #[error("a curve selector has at most one `#k` suffix")]
+    TwoComponents,
+    #[error("a curve selector has one or two sides separated by one `/`, e.g. `top/f1`")]
+    TooManySides,
+    #[error("empty side in curve selector: write `top/f1`, `top` or `f1/box.*`")]
+    EmptySide,
+    #[error(
+        "character `{0}` is not allowed in a selector (names use letters, digits, `_ . -`; globs `* ?`)"
+    )]
+    Character(char),
+}
 
 impl CurveSelector {
     /// Parses `a/b#k`. Errors are worded for users; the caller adds the recipe location.
     pub fn parse(text: &str) -> Result<CurveSelector, SelectorError> {
         let (body, component) = match text.rsplit_once('#') {
             Some((b, k)) => {
-                let k: u32 = k.parse().map_err(|_| {
-                    SelectorError(format!(
-                        "the component after `#` must be a whole number, found `{k}`"
-                    ))
-                })?;
+                let k: u32 = k
+                    .parse()
+                    .map_err(|_| SelectorError::Component(k.to_string()))?;
                 (b, Some(k))
             }
             None => (text, None),
         };
         if body.contains('#') {
-            return Err(SelectorError(
-                "a curve selector has at most one `#k` suffix".into(),
-            ));
+            return Err(SelectorError::TwoComponents);
         }
         let parts: Vec<&str> = body.split('/').collect();
         if parts.len() > 2 {
-            return Err(SelectorError(
-                "a curve selector has one or two sides separated by one `/`, e.g. `top/f1`".into(),
-            ));
+            return Err(SelectorError::TooManySides);
         }
         for p in &parts {
             if p.is_empty() {
-                return Err(SelectorError(
-                    "empty side in curve selector: write `top/f1`, `top` or `f1/box.*`".into(),
-                ));
+                return Err(SelectorError::EmptySide);
             }
             if let Some(c) = p.chars().find(|c| !valid_pattern_char(*c)) {
-                return Err(SelectorError(format!(
-                    "character `{c}` is not allowed in a selector (names use letters, digits, `_ . -`; globs `* ?`)"
-                )));
+                return Err(SelectorError::Character(c));
             }
         }
         let mut sides: Vec<SurfaceSelector> = parts

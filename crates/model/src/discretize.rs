@@ -35,13 +35,27 @@ pub enum Grading {
     Bump,
 }
 
-#[derive(Debug, Clone, PartialEq)]
-pub struct DiscretizeError(pub String);
-
-impl std::fmt::Display for DiscretizeError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+/// Why a curve cannot be subdivided: the curve, the rule or the size field is unusable.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DiscretizeError {
+    #[error("a curve needs at least 2 points, got {0}")]
+    TooFewPoints(usize),
+    #[error("the curve has zero or non-finite length ({0})")]
+    Length(f64),
+    #[error("the size field is {size} on the curve, at arc length {arc}")]
+    SizeField { size: f64, arc: f64 },
+    #[error("more than {MAX_SEGMENTS} segments: the size near a feature is too small")]
+    FieldTooFine,
+    #[error("a curve needs a count of at least 1")]
+    ZeroCount,
+    #[error("size must be positive and finite, got {0}")]
+    Size(f64),
+    #[error("ratio must be positive and finite, got {0}")]
+    Ratio(f64),
+    #[error(
+        "size {size} would give {n} segments on a curve of length {length}: more than {MAX_SEGMENTS}"
+    )]
+    TooManySegments { size: f64, n: f64, length: f64 },
 }
 
 /// A size field over space: the element size wanted at a point.
@@ -74,10 +88,7 @@ pub fn discretize_within(
     size_at: Option<SizeAt<'_>>,
 ) -> Result<Vec<[f64; 3]>, DiscretizeError> {
     if polyline.len() < 2 {
-        return Err(DiscretizeError(format!(
-            "a curve needs at least 2 points, got {}",
-            polyline.len()
-        )));
+        return Err(DiscretizeError::TooFewPoints(polyline.len()));
     }
     let mut cum = Vec::with_capacity(polyline.len());
     cum.push(0.0);
@@ -87,9 +98,7 @@ pub fn discretize_within(
     }
     let length = cum[cum.len() - 1];
     if length.is_nan() || length <= 0.0 || length.is_infinite() {
-        return Err(DiscretizeError(format!(
-            "the curve has zero or non-finite length ({length})"
-        )));
+        return Err(DiscretizeError::Length(length));
     }
     let curve = Polyline {
         points: polyline,
@@ -130,18 +139,14 @@ fn field_lengths(
     while s < length {
         let here = h(s);
         if !(here > 0.0 && here.is_finite()) {
-            return Err(DiscretizeError(format!(
-                "the size field is {here} on the curve, at arc length {s}"
-            )));
+            return Err(DiscretizeError::SizeField { size: here, arc: s });
         }
         let ds = (0.25 * here).min(length - s);
         total += ds / h(s + 0.5 * ds);
         s += ds;
         table.push((s, total));
         if table.len() > 4 * MAX_SEGMENTS {
-            return Err(DiscretizeError(format!(
-                "more than {MAX_SEGMENTS} segments: the size near a feature is too small"
-            )));
+            return Err(DiscretizeError::FieldTooFine);
         }
     }
     let n = (total.round() as usize).max(1);
@@ -289,9 +294,7 @@ pub fn segment_lengths(length: f64, rule: &Subdivision) -> Result<Vec<f64>, Disc
     match *rule {
         Subdivision::Count(n) => {
             if n == 0 {
-                return Err(DiscretizeError(
-                    "a curve needs a count of at least 1".into(),
-                ));
+                return Err(DiscretizeError::ZeroCount);
             }
             Ok(vec![length / n as f64; n as usize])
         }
@@ -301,14 +304,10 @@ pub fn segment_lengths(length: f64, rule: &Subdivision) -> Result<Vec<f64>, Disc
             grading,
         } => {
             if !(size > 0.0 && size.is_finite()) {
-                return Err(DiscretizeError(format!(
-                    "size must be positive and finite, got {size}"
-                )));
+                return Err(DiscretizeError::Size(size));
             }
             if !(ratio > 0.0 && ratio.is_finite()) {
-                return Err(DiscretizeError(format!(
-                    "ratio must be positive and finite, got {ratio}"
-                )));
+                return Err(DiscretizeError::Ratio(ratio));
             }
             match grading {
                 Grading::Geometric => geometric(length, size, ratio),
@@ -338,9 +337,7 @@ fn geometric(length: f64, size: f64, ratio: f64) -> Result<Vec<f64>, DiscretizeE
         1.0
     };
     if n > MAX_SEGMENTS as f64 {
-        return Err(DiscretizeError(format!(
-            "size {size} would give {n} segments on a curve of length {length}: more than {MAX_SEGMENTS}"
-        )));
+        return Err(DiscretizeError::TooManySegments { size, n, length });
     }
     let n = n as usize;
     let first = if uniform {

@@ -137,7 +137,7 @@ pub(crate) fn curve_selector(
         Err(err) => {
             ctx.error(
                 span,
-                format!("bad curve selector `{text}`: {}", err.0),
+                format!("bad curve selector `{text}`: {err}"),
                 Some("e.g. `\"top/f1\"`, `\"f1/box.*\"`, `\"top\"` or `\"top/f1#2\"`".into()),
             );
             None
