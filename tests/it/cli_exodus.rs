@@ -204,3 +204,42 @@ fn vtk_reads_the_example_exodus_with_a_block_per_region_and_every_side_set() {
     let node_sets = out.lines().filter(|l| l.starts_with("NODES ")).count();
     assert_eq!(node_sets, mesh.surface_groups.len(), "{out}");
 }
+
+const RECORDS: &str = r#"
+import sys, netCDF4
+ds = netCDF4.Dataset(sys.argv[1])
+for rec in ds["qa_records"][:]:
+    print("QA", ";".join(netCDF4.chartostring(rec).tolist()))
+for line in netCDF4.chartostring(ds["info_records"][:]).tolist():
+    print("INFO", line)
+"#;
+
+/// The `[nodes.export]` key of the lock file beside `s`'s recipe.
+fn locked_export_key(s: &Scratch) -> String {
+    let lock = std::fs::read_to_string(s.path("didactic.toml.lock")).expect("the lock is written");
+    let after = lock
+        .split("[nodes.export]\nkey = \"")
+        .nth(1)
+        .expect("an export node");
+    after[..64].to_string()
+}
+
+#[test]
+fn the_exodus_qa_and_info_records_name_the_recipe_and_the_lock_files_export_key() {
+    if !python_has("netCDF4") {
+        return;
+    }
+    let (s, _) = built();
+    let exo = s.path("out/didactic/didactic.exo").display().to_string();
+    let out = python(RECORDS, &[&exo]);
+    let key = locked_export_key(&s);
+    for want in [
+        format!("QA georecipe;{};;", env!("CARGO_PKG_VERSION")),
+        format!("QA didactic.toml;{};;", &key[..32]),
+        "INFO didactic".to_string(),
+        "INFO recipe didactic.toml".to_string(),
+        format!("INFO key {key}"),
+    ] {
+        assert!(out.lines().any(|l| l == want), "{want} not in\n{out}");
+    }
+}

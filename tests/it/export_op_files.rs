@@ -42,6 +42,7 @@ fn run(formats: &[&str], model: &str) -> (Artifact, FileSet) {
     ];
     let op = ExportOp {
         model: model.into(),
+        recipe_file: "m.toml".into(),
         formats: formats
             .iter()
             .map(|s| export::Format::from_name(s).expect("a format"))

@@ -141,6 +141,7 @@ fn the_export_reports_one_step_per_file_it_writes() {
         .finish();
     let op = ExportOp {
         model: "m".into(),
+        recipe_file: "m.toml".into(),
         formats: ["msh", "vtu", "tetgen"]
             .map(|f| export::Format::from_name(f).expect("a format"))
             .to_vec(),

@@ -9,8 +9,9 @@
 //! before line groups existed, in every format, and one without named points (the wells'
 //! crossings of the surfaces) as before those existed.
 //!
-//! Output bytes are a pure function of the mesh and the model name: no timestamps, no hash-order
-//! iteration, floats printed with Rust's shortest round-trip formatting.
+//! Output bytes are a pure function of the mesh, the model name and the [`Provenance`] the caller
+//! gives (what built the mesh, which only Exodus records): no timestamps, no hash-order iteration,
+//! floats printed with Rust's shortest round-trip formatting.
 
 pub mod curves;
 mod exodus;
@@ -108,7 +109,28 @@ impl Format {
     }
 }
 
-/// Writes `mesh` in `format`. Returns `(file name, bytes)` pairs: file names are `model_name`
+/// What a file records about the build that made it, so a file met later can be traced to the
+/// recipe and the lock file entry it came from. Only Exodus has a place for it (its QA and info
+/// records); an empty provenance records nothing, as [`export`] writes.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Provenance {
+    /// The recipe's file name (no directory, so the bytes do not depend on where it lies).
+    pub recipe: String,
+    /// A hash that identifies the build inputs, in hex: the export node's key as the lock file
+    /// records it.
+    pub key: String,
+}
+
+/// Writes `mesh` in `format`, with an empty [`Provenance`]: see [`export_with`].
+pub fn export(
+    mesh: &VolumeMesh,
+    model_name: &str,
+    format: Format,
+) -> Result<Vec<(String, Vec<u8>)>, String> {
+    export_with(mesh, model_name, format, &Provenance::default())
+}
+
+/// Writes `mesh` in `format`, recording `provenance` where the format can. Returns `(file name, bytes)` pairs: file names are `model_name`
 /// plus the format's extension (`didactic.msh`, `didactic.1.node`, ...), as [`file_names`]
 /// lists them. Fails with a message on a mesh whose indices are out of range or a model name
 /// that cannot be a file name.
@@ -138,10 +160,11 @@ impl Format {
 /// - MEDIT and TetGen: not written (they have no named node sets; see their modules).
 ///
 /// A mesh without named points is written exactly as before they existed.
-pub fn export(
+pub fn export_with(
     mesh: &VolumeMesh,
     model_name: &str,
     format: Format,
+    provenance: &Provenance,
 ) -> Result<Vec<(String, Vec<u8>)>, String> {
     mesh.check_indices()
         .map_err(|e| format!("cannot export model '{model_name}': {e}"))?;
@@ -162,7 +185,7 @@ pub fn export(
         Format::TetGen => tetgen::write(mesh, model_name),
         Format::Medit => vec![medit::write(mesh)],
         Format::Inp => vec![inp::write(mesh, model_name)?],
-        Format::Exodus => vec![exodus::write(mesh, model_name)?],
+        Format::Exodus => vec![exodus::write(mesh, model_name, provenance)?],
     };
     Ok(file_names(model_name, format, mesh)
         .into_iter()

@@ -7,6 +7,11 @@
 //! The files are produced one at a time in path order and appended to the artifact as they
 //! come (`FileSetEncoder`: the bytes of the `FileSet` encoding), so the whole set never sits in
 //! memory beside its encoding; the decoded mesh is dropped after its last file.
+//!
+//! An Exodus file records where it came from (its QA and info records): the recipe's file name
+//! and the node's own key, recomputed here from what the engine keys it by, so the file names
+//! the lock file entry (`[nodes.export] key`) of the build that wrote it. The recipe's file name
+//! enters the key only when Exodus is written, so renaming a recipe re-runs no other export.
 
 use super::{CurveNodes, Groups};
 use crate::recipe::Recipe;
@@ -14,12 +19,14 @@ use engine::artifact::FileSetEncoder;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use export::curves::write_curves_vtu;
 use export::quality;
-use export::{Format, export, file_names};
+use export::{Format, Provenance, export_with, file_names};
 use geom::mesh::VolumeMesh;
 use std::collections::BTreeMap;
 
 pub struct ExportOp {
     pub model: String,
+    /// The recipe's file name, recorded by the formats that carry provenance (Exodus).
+    pub recipe_file: String,
     /// The formats to write, in recipe order (their names enter the key).
     pub formats: Vec<Format>,
     /// `curves` (their FE nodes) and `mesh` (the volume mesh, or empty for a model that is not
@@ -32,6 +39,10 @@ impl ExportOp {
     pub fn new(recipe: &Recipe, inputs: Groups) -> ExportOp {
         ExportOp {
             model: recipe.model.name.clone(),
+            recipe_file: recipe
+                .path
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
             formats: recipe
                 .output
                 .formats
@@ -52,13 +63,17 @@ impl Operation for ExportOp {
         true
     }
     fn version(&self) -> u32 {
-        5
+        6
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
         p.set("model.name", self.model.as_str()).expect("string");
         let names: Vec<String> = self.formats.iter().map(|f| f.name().to_string()).collect();
         p.set("output.formats", names).expect("strings");
+        if self.records_provenance() {
+            p.set("recipe.file", self.recipe_file.as_str())
+                .expect("string");
+        }
         p
     }
     fn emits_files(&self) -> bool {
@@ -70,6 +85,7 @@ impl Operation for ExportOp {
             curves.push((c.name, c.nodes));
         }
         let nodes: usize = curves.iter().map(|(_, n)| n.len()).sum();
+        let provenance = self.provenance(inputs);
         // Every file's name and source, known before any is written; a later format writing
         // the same name replaces an earlier one.
         let mut plan: BTreeMap<String, Source> = BTreeMap::new();
@@ -120,7 +136,9 @@ impl Operation for ExportOp {
                             .as_ref()
                             .ok_or_else(|| OpError::from("export: no mesh to write"))?;
                         let mut this = None;
-                        for (file, b) in export(m, &self.model, *format).map_err(OpError::from)? {
+                        for (file, b) in export_with(m, &self.model, *format, &provenance)
+                            .map_err(OpError::from)?
+                        {
                             if file == *name {
                                 this = Some(b);
                             } else if matches!(plan.get(&file), Some(Source::Mesh(f)) if f == format)
@@ -144,6 +162,27 @@ impl Operation for ExportOp {
         Ok(Output::new(enc.finish().map_err(OpError::from)?)
             .count("files", n as u64)
             .count("curve_nodes", nodes as u64))
+    }
+}
+
+impl ExportOp {
+    /// Whether a format the op writes records the recipe and the key.
+    fn records_provenance(&self) -> bool {
+        self.formats.contains(&Format::Exodus)
+    }
+
+    /// The recipe's file name and this node's key, as the engine computes it from the same
+    /// inputs (empty when no format records them).
+    fn provenance(&self, inputs: &[Artifact]) -> Provenance {
+        if !self.records_provenance() {
+            return Provenance::default();
+        }
+        let hashes: Vec<engine::Hash> = inputs.iter().map(Artifact::hash).collect();
+        let key = engine::key::op_key(self.kind(), self.version(), &self.params(), &hashes);
+        Provenance {
+            recipe: self.recipe_file.clone(),
+            key: key.to_hex(),
+        }
     }
 }
 

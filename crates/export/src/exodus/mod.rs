@@ -14,10 +14,11 @@
 //!   ids after the wells' node sets ([`sets`]);
 //! - a side set and a node set per surface group, and a front and a back side set per fault
 //!   ([`sets`], [`crate::sides`] for the TETRA4 side numbering);
-//! - QA and info records naming the program and the model ([`globals`]).
+//! - QA and info records naming the program and the model, and, given a [`Provenance`], the
+//!   recipe and the key that identifies the build inputs ([`globals`]).
 //!
 //! Everything is written in index order and no field depends on the time of writing, so the
-//! bytes are a pure function of the mesh and the model name. Ids and counts are 32-bit, as
+//! bytes are a pure function of the mesh, the model name and the provenance. Ids and counts are 32-bit, as
 //! readers expect by default; a larger mesh is refused with a message.
 
 mod blocks;
@@ -29,7 +30,7 @@ mod text;
 
 use crate::netcdf::File;
 use crate::numbering::Numbering;
-use crate::sides;
+use crate::{Provenance, sides};
 use geom::mesh::VolumeMesh;
 use globals::Common;
 
@@ -39,7 +40,11 @@ const MIN_NAME_WIDTH: usize = 33;
 const MAX_NAME_WIDTH: usize = 256;
 
 /// Writes `mesh` (indices checked in range) as the bytes of `<model>.exo`.
-pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
+pub(super) fn write(
+    mesh: &VolumeMesh,
+    model: &str,
+    provenance: &Provenance,
+) -> Result<Vec<u8>, String> {
     fits_32_bits(mesh)?;
     let numbering = Numbering::new(mesh);
     let uses = sides::face_uses(mesh, &numbering.number);
@@ -65,7 +70,7 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     } else {
         vec![0.0]
     };
-    let common = globals::put(&mut f, mesh, model, width, times);
+    let common = globals::put(&mut f, mesh, (model, provenance), width, times);
     if let Some(dims) = blocks::put(&mut f, &common, mesh, &numbering)? {
         fields::put(&mut f, &common, mesh, &dims);
     }
