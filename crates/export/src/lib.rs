@@ -35,11 +35,12 @@ pub enum Format {
     Msh,
     /// Gmsh msh 4.1, binary (little-endian, size_t = 8).
     MshBinary,
-    /// VTK XML UnstructuredGrid (ASCII).
+    /// VTK XML UnstructuredGrid (ASCII), with a copy of each fault's triangles per side.
     Vtu,
     /// VTK XML UnstructuredGrid with raw appended binary data (for large meshes).
     VtuBinary,
-    /// TetGen `.node` / `.ele` / `.face`, and `.edge` for a mesh with line groups.
+    /// TetGen `.node` / `.ele` / `.face` (each face with the tets on its front and back), and
+    /// `.edge` for a mesh with line groups.
     TetGen,
     /// MEDIT `.mesh` (INRIA), as read by mmg and meshio.
     Medit,

@@ -5,6 +5,12 @@
 //! with no element is left out. MEDIT has no names: the references are the same ids as the msh
 //! physical tags, so the names can be looked up there or in the report.
 //!
+//! A fault's sides are its triangles' winding: each triangle is written once, in the mesh's
+//! vertex order, so its right-hand normal points to the fault's front (`<fault>:front` in the
+//! other formats, whose ids MEDIT does not use). A second copy of a triangle per side, with the
+//! side's id as reference, would be a duplicate boundary face to mmg and FreeFem, which read the
+//! references as boundary labels on the tet faces.
+//!
 //! The named points (the wells' crossings of the surfaces) are not written: MEDIT's `Corners`
 //! and `RequiredVertices` are remeshing constraints for mmg, not labels (no reference, no name),
 //! and a vertex reference would give every other vertex a meaning it does not have. The msh,

@@ -1,5 +1,6 @@
 //! The two sides of the surface triangles, shared by every writer that names them (Exodus and
-//! Abaqus side sets, msh physical groups and volume boundaries).
+//! Abaqus side sets, msh physical groups and volume boundaries, the VTU's fault side cells,
+//! TetGen's front and back tets of each face).
 //!
 //! A triangle's front is the side its right-hand normal `(b-a)×(c-a)` points to (exact
 //! `orient3d`); the mesh keeps every patch triangle oriented like its surface, so that is the

@@ -1,7 +1,11 @@
 //! TetGen `.node` / `.ele` / `.face` / `.edge` writer (TetGen's file formats, 1-based indices):
 //! nodes without attributes or markers; tets with one attribute, the region id (region index +
 //! 1, as TetGen's `-A` region attributes); faces with a boundary marker = surface group index +
-//! 1; and, only when the mesh has line groups (wells), edges (the line elements, group after
+//! 1, followed by the face's two tets as TetGen's `-nn` switch writes them (`.ele` numbers, -1
+//! where there is none), the tet on the face's front first, the one behind it second: the front
+//! being the side its right-hand normal points to, so each side of a fault (`<fault>:front` and
+//! `<fault>:back` in the other formats) is a column, and a face is written once, as TetGen and
+//! its readers expect (a second copy per side would be a duplicate face to them); and, only when the mesh has line groups (wells), edges (the line elements, group after
 //! group) with a boundary marker = line group index + 1, as TetGen writes an `.edge` file only
 //! when asked (`-e`). Files are named `<model>.1.node` etc. (by `super::file_names`), as TetGen
 //! names the first refinement's output.
@@ -11,6 +15,8 @@
 //! for a few labelled nodes would be read as a boundary marking. The msh, Exodus, VTU and
 //! Abaqus files carry them.
 
+use crate::numbering::Numbering;
+use crate::sides::{FaceUse, face_uses, on_side};
 use geom::mesh::VolumeMesh;
 use std::fmt::Write as _;
 
@@ -40,24 +46,7 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<Vec<u8>> {
             r + 1
         );
     }
-    let mut face = String::new();
-    let _ = writeln!(
-        face,
-        "# {model}: face n1 n2 n3 surface\n{} 1",
-        mesh.triangles.len()
-    );
-    for (i, (t, g)) in mesh.triangles.iter().zip(&mesh.triangle_group).enumerate() {
-        let _ = writeln!(
-            face,
-            "{} {} {} {} {}",
-            i + 1,
-            t[0] + 1,
-            t[1] + 1,
-            t[2] + 1,
-            g + 1
-        );
-    }
-    let mut texts = vec![node, ele, face];
+    let mut texts = vec![node, ele, faces(mesh, model)];
     if !mesh.lines.is_empty() {
         texts.push(edges(mesh, model));
     }
@@ -68,6 +57,38 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Vec<Vec<u8>> {
             text.into_bytes()
         })
         .collect()
+}
+
+/// The `.face` text: every triangle with its surface group's id as boundary marker, then the
+/// tets on its front and its back.
+fn faces(mesh: &VolumeMesh, model: &str) -> String {
+    let uses = face_uses(mesh, &Numbering::new(mesh).number);
+    let mut face = String::new();
+    let _ = writeln!(
+        face,
+        "# {model}: face n1 n2 n3 surface front_tet back_tet\n{} 1",
+        mesh.triangles.len()
+    );
+    let tris = mesh.triangles.iter().zip(&mesh.triangle_group).zip(&uses);
+    for (i, ((t, g), uses)) in tris.enumerate() {
+        let _ = writeln!(
+            face,
+            "{} {} {} {} {} {} {}",
+            i + 1,
+            t[0] + 1,
+            t[1] + 1,
+            t[2] + 1,
+            g + 1,
+            tet_on(uses, true),
+            tet_on(uses, false)
+        );
+    }
+    face
+}
+
+/// The 1-based `.ele` number of the tet on the `front` (or back) of a face, -1 for none.
+fn tet_on(uses: &[FaceUse], front: bool) -> i64 {
+    on_side(uses, front).map_or(-1, |u| i64::from(u.tet) + 1)
 }
 
 /// The `.edge` text: every line element with its line group's id as boundary marker.

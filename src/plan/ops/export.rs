@@ -63,7 +63,7 @@ impl Operation for ExportOp {
         true
     }
     fn version(&self) -> u32 {
-        6
+        7
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -1,8 +1,10 @@
-//! The VTU cell arrays, one value per cell (tets, then triangles, then lines): `MaterialIDs`,
-//! `region`, `surface`, the region properties and, when the mesh has line groups, `well`. -1
-//! stands for "none" in the integer arrays (ids start at 1 and material ids may be 0), NaN for a
-//! property a region does not have (and on triangles and lines).
+//! The VTU cell arrays, one value per cell (tets, then triangles, then lines, then the faults'
+//! side cells): `MaterialIDs`, `region`, `surface`, the region properties, when the mesh has
+//! line groups `well`, and when it has faults `fault_side`. -1 stands for "none" in the integer
+//! arrays (ids start at 1 and material ids may be 0), NaN for a property a region does not have
+//! (and on every cell but a tet).
 
+use super::Extra;
 use super::writer::Writer;
 use crate::property_names;
 use geom::mesh::VolumeMesh;
@@ -25,35 +27,45 @@ pub(super) fn materials(mesh: &VolumeMesh) -> Result<Vec<i32>, String> {
         .collect()
 }
 
-/// Writes every cell array; `materials` from [`materials`].
-pub(super) fn put(w: &mut Writer, mesh: &VolumeMesh, materials: &[i32]) {
-    let (nf, nl) = (mesh.triangles.len(), super::line_count(mesh));
-    w.array("MaterialIDs", 1, per_tet(mesh, |r| materials[r]));
-    w.array("region", 1, per_tet(mesh, |r| r as i32 + 1));
+/// Writes every cell array; `materials` from [`materials`], `extra` the cells after the tets.
+pub(super) fn put(w: &mut Writer, mesh: &VolumeMesh, materials: &[i32], extra: &Extra) {
+    let (nt, nf, nl, ns) = (
+        mesh.tets.len(),
+        extra.triangles,
+        extra.lines,
+        extra.sides.len(),
+    );
+    w.array("MaterialIDs", 1, per_tet(mesh, extra, |r| materials[r]));
+    w.array("region", 1, per_tet(mesh, extra, |r| r as i32 + 1));
     let surface = mesh.triangle_group.iter().map(|&g| g as i32 + 1);
-    let surface = repeat_n(-1, mesh.tets.len()).chain(surface);
-    w.array("surface", 1, surface.chain(repeat_n(-1, nl)));
+    let surface = repeat_n(-1, nt).chain(surface);
+    w.array("surface", 1, surface.chain(repeat_n(-1, nl + ns)));
     for name in &property_names(mesh) {
         let value = |r: u32| {
             let region = &mesh.regions[r as usize];
             region.properties.get(name).copied().unwrap_or(f64::NAN)
         };
         let tets = mesh.tet_region.iter().map(|&r| value(r));
-        w.array(name, 1, tets.chain(repeat_n(f64::NAN, nf + nl)));
+        w.array(name, 1, tets.chain(repeat_n(f64::NAN, extra.len())));
     }
     if !mesh.lines.is_empty() {
         let lines = (mesh.lines.iter().enumerate())
             .flat_map(|(g, group)| repeat_n(g as i32 + 1, group.lines.len()));
-        w.array("well", 1, repeat_n(-1, mesh.tets.len() + nf).chain(lines));
+        let lines = repeat_n(-1, nt + nf).chain(lines);
+        w.array("well", 1, lines.chain(repeat_n(-1, ns)));
+    }
+    if !extra.sides.names.is_empty() {
+        let sides = extra.sides.cells.iter().map(|&(_, id)| id);
+        w.array("fault_side", 1, repeat_n(-1, nt + nf + nl).chain(sides));
     }
 }
 
-/// `f(region)` on every tet, then -1 on every triangle and line.
+/// `f(region)` on every tet, then -1 on every other cell.
 fn per_tet<'a>(
     mesh: &'a VolumeMesh,
+    extra: &Extra,
     f: impl Fn(usize) -> i32 + 'a,
 ) -> impl Iterator<Item = i32> + 'a {
     let tets = mesh.tet_region.iter().map(move |&r| f(r as usize));
-    let rest = mesh.triangles.len() + super::line_count(mesh);
-    tets.chain(repeat_n(-1, rest))
+    tets.chain(repeat_n(-1, extra.len()))
 }

@@ -10,6 +10,14 @@ fn counts(mesh: &geom::mesh::VolumeMesh) -> (usize, usize, usize) {
     (mesh.nodes.len(), mesh.tets.len(), mesh.triangles.len())
 }
 
+/// The triangles a VTU holds: the surface groups', then a copy per side of each fault triangle
+/// (the test mesh's fault has tets on both sides).
+fn vtu_triangles(mesh: &geom::mesh::VolumeMesh) -> usize {
+    let faults = (mesh.triangle_group.iter())
+        .filter(|&&g| mesh.surface_groups[g as usize].kind == geom::mesh::SurfaceKind::Fault);
+    mesh.triangles.len() + 2 * faults.count()
+}
+
 #[test]
 fn the_test_mesh_has_the_expected_groups() {
     let m = layered_box(6, 6);
@@ -68,7 +76,11 @@ fn every_format_reads_back_in_meshio_with_its_counts_and_region_tags() {
                 .to_string()
         };
         let first = line("COUNTS ");
-        let want_tris = if with_tris { nf } else { 0 };
+        let want_tris = match format {
+            Format::Vtu | Format::VtuBinary => vtu_triangles(&mesh),
+            _ if with_tris => nf,
+            _ => 0,
+        };
         let want = format!("{nn} {nt} {want_tris} {region_tags}");
         assert_eq!(first.trim_end(), want.trim_end(), "{format:?}: {out}");
         if format == Format::Vtu || format == Format::VtuBinary {
@@ -217,8 +229,12 @@ fn check_mesh_passes_on_msh_binary_msh_vtu_and_medit_with_utm_offsets() {
         let paths = write_all(dir.path(), &files);
         let (ok, out) = run_checker(&tool, &paths[0], 3, None);
         assert!(ok, "{format:?} failed check_mesh.py:\n{out}");
+        let triangles = match format {
+            Format::Vtu | Format::VtuBinary => vtu_triangles(&mesh),
+            _ => mesh.triangles.len(),
+        };
         assert!(
-            out.contains(&format!("\"surface_triangles\": {}", mesh.triangles.len())),
+            out.contains(&format!("\"surface_triangles\": {triangles}")),
             "{format:?}: {out}"
         );
     }
@@ -423,4 +439,85 @@ fn every_abaqus_region_has_a_solid_section_of_its_own_material_with_its_density(
             "*Material, name=M2_reservoir\n*Density\n2300,\n** property porosity = 0.21\n"
         )
     );
+}
+
+/// The rows of a TetGen file, comments and the header left out, as whitespace-split numbers.
+fn tetgen_rows(bytes: &[u8]) -> Vec<Vec<f64>> {
+    let text = String::from_utf8(bytes.to_vec()).unwrap();
+    let rows = text.lines().filter(|l| !l.starts_with('#')).skip(1);
+    rows.map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+#[test]
+fn tetgen_faces_name_the_tet_on_their_front_then_the_tet_behind_them() {
+    let mesh = layered_box(4, 3);
+    let files = export(&mesh, "m", Format::TetGen).unwrap();
+    let (node, ele, face) = (
+        tetgen_rows(&files[0].1),
+        tetgen_rows(&files[1].1),
+        tetgen_rows(&files[2].1),
+    );
+    let p = |v: f64| [1, 2, 3].map(|k| node[v as usize - 1][k]);
+    // The sign of the apex's side of the face (positive: where its right-hand normal points).
+    let side = |f: &[f64], apex: [f64; 3]| {
+        let [a, b, c] = [p(f[1]), p(f[2]), p(f[3])];
+        let d = |u: [f64; 3], v: [f64; 3]| [0, 1, 2].map(|k| u[k] - v[k]);
+        let (u, v, w) = (d(b, a), d(c, a), d(apex, a));
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        n[0] * w[0] + n[1] * w[1] + n[2] * w[2]
+    };
+    let mut sided = [0usize; 2];
+    for f in &face {
+        assert_eq!(f.len(), 7, "index, 3 nodes, marker, front tet, back tet");
+        let boundary = f[4] <= 6.0;
+        assert_eq!(f[5] < 0.0 || f[6] < 0.0, boundary, "{f:?}");
+        for (col, sign) in [(5, 1.0), (6, -1.0)] {
+            if f[col] < 0.0 {
+                continue;
+            }
+            let tet = &ele[f[col] as usize - 1][1..5];
+            let apex = tet
+                .iter()
+                .find(|v| !f[1..4].contains(v))
+                .expect("a face of it");
+            assert_eq!(tet.iter().filter(|v| f[1..4].contains(v)).count(), 3);
+            assert!(side(f, p(*apex)) * sign > 0.0, "{f:?}");
+            sided[col - 5] += usize::from(f[4] == 9.0);
+        }
+    }
+    let fault = mesh.triangle_group.iter().filter(|&&g| g == 8).count();
+    assert_eq!(sided, [fault, fault], "both sides of every fault face");
+}
+
+/// The fault's triangles (reference 9) as meshio reads them from the MEDIT file, in order.
+const MESHIO_MEDIT_FAULT: &str = r#"
+import sys, meshio
+m = meshio.read(sys.argv[1])
+for b, ref in zip(m.cells, m.cell_data["medit:ref"]):
+    if b.type == "triangle":
+        for t, r in zip(b.data, ref):
+            if r == 9:
+                print(*t)
+"#;
+
+#[test]
+fn meshio_reads_medit_fault_triangles_wound_so_their_normal_points_to_the_front() {
+    if !python_has("meshio") {
+        return;
+    }
+    let mesh = layered_box(4, 3);
+    let dir = tempfile::tempdir().unwrap();
+    let paths = write_all(dir.path(), &export(&mesh, "m", Format::Medit).unwrap());
+    let out = python(MESHIO_MEDIT_FAULT, &[paths[0].to_str().unwrap()]);
+    let want: Vec<String> = (mesh.triangles.iter().zip(&mesh.triangle_group))
+        .filter(|(_, g)| **g == 8)
+        .map(|(t, _)| format!("{} {} {}", t[0], t[1], t[2]))
+        .collect();
+    assert!(!want.is_empty());
+    assert_eq!(out.lines().collect::<Vec<_>>(), want);
 }

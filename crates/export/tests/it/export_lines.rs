@@ -100,6 +100,8 @@ fn meshio_reads_each_wells_line_cells_by_id_and_name_from_both_vtu_encodings() {
             "BLOCK line 9 MaterialIDs=-1 region=-1 surface=-1 density=nan well=1,2".to_string(),
             "WELL 1 6".to_string(),
             "WELL 2 3".to_string(),
+            // The fault's sides, after the lines.
+            "BLOCK triangle 12 MaterialIDs=-1 region=-1 surface=-1 density=nan well=-1".into(),
             "FIELD well:W1 1".to_string(),
             "FIELD well:W2 deviated 2".to_string(),
         ];

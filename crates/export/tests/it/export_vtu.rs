@@ -50,7 +50,8 @@ fn meshio_reads_int32_material_ids_and_one_based_ids_from_both_vtu_encodings() {
             format!("region tetra int32 {regions}"),
             "region triangle int32 -1".to_string(),
             "surface tetra int32 -1".to_string(),
-            format!("surface triangle int32 {groups}"),
+            // The fault's side cells (after the groups' triangles) have no surface.
+            format!("surface triangle int32 -1,{groups}"),
             "FIELD region:reservoir 2".to_string(),
             "FIELD surface:F2_dangling 9".to_string(),
         ] {
@@ -101,6 +102,10 @@ fn vtk_reads_each_regions_material_and_the_names_table_from_the_vtu() {
             (mesh.surface_groups.iter().enumerate())
                 .map(|(i, g)| format!("surface:{}={}", g.name, i + 1)),
         )
+        .chain([
+            "side:F2_dangling:front=10".into(),
+            "side:F2_dangling:back=11".into(),
+        ])
         .collect();
     names.sort();
     assert!(
@@ -148,4 +153,66 @@ fn a_material_id_beyond_32_bits_is_refused_naming_the_region() {
         err.contains("'underburden'") && err.contains("32-bit"),
         "{err}"
     );
+}
+
+/// Per fault side id (VTK): the side cells, how many have exactly one tet behind them (the tet
+/// their normal points away from), and how many point against the fault triangle they copy.
+const PYVISTA_SIDES: &str = r#"
+import sys, pyvista, numpy as np
+m = pyvista.read(sys.argv[1])
+side, surface, types = m.cell_data["fault_side"], m.cell_data["surface"], m.celltypes
+P = m.points
+conn = [m.get_cell(i).point_ids for i in range(m.n_cells)]
+faces = {}
+for i in np.flatnonzero(types == 10):
+    t = conn[i]
+    for k in range(4):
+        f = [t[j] for j in range(4) if j != k]
+        faces.setdefault(tuple(sorted(f)), []).append(t[k])
+normal = lambda f: np.cross(P[f[1]] - P[f[0]], P[f[2]] - P[f[0]])
+fault = {tuple(sorted(conn[i])): normal(conn[i]) for i in np.flatnonzero(surface == 9)}
+for s in sorted(set(side[side > 0].tolist())):
+    ids = np.flatnonzero(side == s)
+    behind = against = 0
+    for i in ids:
+        f = conn[i]
+        n = normal(f)
+        apexes = faces.get(tuple(sorted(f)), [])
+        behind += sum(1 for a in apexes if np.dot(P[a] - P[f[0]], n) < 0) == 1
+        against += np.dot(n, fault[tuple(sorted(f))]) < 0
+    print("SIDE", s, len(ids), behind, against, int(types[ids[0]]))
+print("NAMES", ";".join(f"{k}={int(m.field_data[k][0])}" for k in sorted(m.field_data.keys())
+                        if k.startswith("side:")))
+"#;
+
+#[test]
+fn vtk_reads_each_fault_side_as_triangles_oriented_out_of_the_tets_on_that_side() {
+    if !python_has("pyvista") {
+        return;
+    }
+    let mesh = layered_box(4, 3);
+    let fault = mesh.triangle_group.iter().filter(|&&g| g == 8).count();
+    let dir = tempfile::tempdir().unwrap();
+    for format in [Format::Vtu, Format::VtuBinary] {
+        let paths = write_all(dir.path(), &export(&mesh, "m", format).unwrap());
+        let out = python(PYVISTA_SIDES, &[paths[0].to_str().unwrap()]);
+        let got: Vec<&str> = out.lines().collect();
+        let want = [
+            // front: every copy reversed against the fault's normal; back: as the fault.
+            format!("SIDE 10 {fault} {fault} {fault} 5"),
+            format!("SIDE 11 {fault} {fault} 0 5"),
+            "NAMES side:F2_dangling:back=11;side:F2_dangling:front=10".to_string(),
+        ];
+        assert_eq!(got, want, "{format:?}");
+    }
+}
+
+#[test]
+fn a_vtu_without_faults_has_no_side_cells_and_no_fault_side_array() {
+    let mut mesh = layered_box(4, 3);
+    mesh.surface_groups[8].kind = geom::mesh::SurfaceKind::Horizon;
+    let text = String::from_utf8(export(&mesh, "m", Format::Vtu).unwrap().remove(0).1).unwrap();
+    assert!(!text.contains("fault_side") && !text.contains("side:"));
+    let cells = mesh.tets.len() + mesh.triangles.len();
+    assert!(text.contains(&format!("NumberOfCells=\"{cells}\"")));
 }
