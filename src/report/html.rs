@@ -53,6 +53,7 @@ pub fn body(input: &ReportInput, warnings: &[String]) -> String {
     pictures_section(&mut h, input);
     model_tables(&mut h, input);
     wells_section(&mut h, input);
+    ids_section(&mut h, input);
     let q = &input.mesh.quality;
     quality_tables(&mut h, &q.table1, &q.table2);
     histograms(&mut h, input);
@@ -390,6 +391,26 @@ fn well_markers_table(h: &mut String, input: &ReportInput, w: &WellSummary) {
 }
 
 /// One quality table from its shared layout; the last ("all") row is set apart.
+/// The id table: how every region, surface group, fault side, material and well is numbered in
+/// each output format (the README's table, filled in for this mesh).
+fn ids_section(h: &mut String, input: &ReportInput) {
+    let rows = super::ids(&input.mesh);
+    if rows.is_empty() {
+        return;
+    }
+    h.push_str("<h2>Ids in the output files</h2><table><tr><th class=\"l\">what</th><th class=\"l\">name</th><th class=\"l\">msh</th><th class=\"l\">Exodus</th><th class=\"l\">VTU</th><th class=\"l\">MEDIT</th><th class=\"l\">TetGen</th></tr>");
+    for r in &rows {
+        h.push_str("<tr>");
+        for c in [
+            r.kind, &r.name, &r.msh, &r.exodus, &r.vtu, &r.medit, &r.tetgen,
+        ] {
+            let _ = write!(h, "<td class=\"l\">{}</td>", esc(c));
+        }
+        h.push_str("</tr>");
+    }
+    h.push_str("</table><p class=\"small\">Abaqus labels are these names made Abaqus-safe; the <code>.inp</code>'s <code>**</code> comments pair each with its name and id.</p>\n");
+}
+
 fn quality_table(h: &mut String, table: &Table) {
     let _ = write!(h, "<h3>{}</h3><table><tr>", esc(table.title));
     for (i, c) in table.columns.iter().enumerate() {

@@ -110,6 +110,7 @@ pub fn render(input: &ReportInput, warnings: &[String], steps: &[StepSummary]) -
             "regions": mesh_regions,
             "surface_groups": mesh_groups,
         },
+        "ids": super::ids(mesh),
         "quality": {
             "table1": mesh.quality.table1,
             "table2": mesh.quality.table2,

@@ -6,7 +6,8 @@
 //! the wells (the regions each passes through, its mesh edges, its crossings of the model's
 //! surfaces interleaved with its file's markers), the seed's Tables 1 and 2 (computed by
 //! `export::quality`, not re-derived), quality histograms per region and per surface, what
-//! re-ran and why, and two pictures rendered here (surfaces coloured by name, with the wells
+//! re-ran and why, the ids every region, surface, fault side, material and well has in each
+//! output format (`export::ids`), and two pictures rendered here (surfaces coloured by name, with the wells
 //! drawn over them; a cut-away of the tets coloured by region). A build without wells gets the
 //! report it got before wells existed: no wells section, no `wells` key. Pure: no filesystem, no clock;
 //! the same input gives the same bytes (fixed float precision in HTML, sorted keys and shortest
@@ -42,6 +43,13 @@ pub use input::{
 pub use model::model_summaries;
 pub use pictures::FACE_CAP;
 pub use view::Picture;
+
+/// The id table of the mesh (`export::ids`), shown by both documents: what each region, surface
+/// group, fault side, material and well is called and numbered in every output format.
+fn ids(mesh: &MeshFacts) -> Vec<export::ids::IdRow> {
+    let wells: Vec<String> = mesh.lines.iter().map(|l| l.name.clone()).collect();
+    export::ids::table(&mesh.regions, &mesh.surface_groups, &wells)
+}
 
 /// The warnings both documents show, in a fixed order: the build's own, then what the mesh's
 /// figures, the surfaces and the steps have to say.

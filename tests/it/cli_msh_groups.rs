@@ -300,3 +300,53 @@ fn meshio_still_reads_the_msh_with_its_material_sets_and_the_faults_back_sides()
         assert_eq!(sets[format!("{fault}:front").as_str()], 0, "{fault}:front");
     }
 }
+
+/// Every physical group as `dim|tag|name`, and the VTU's field data as `FIELD|name|id`.
+const GROUPS_AND_FIELDS: &str = r#"
+import sys, gmsh, meshio
+gmsh.initialize()
+gmsh.option.setNumber("General.Terminal", 0)
+gmsh.open(sys.argv[1])
+for dim, tag in sorted(gmsh.model.getPhysicalGroups()):
+    print(dim, tag, gmsh.model.getPhysicalName(dim, tag), sep="|")
+for k, v in meshio.read(sys.argv[2]).field_data.items():
+    print("FIELD", k, int(v[0]), sep="|")
+"#;
+
+#[test]
+fn report_json_ids_are_the_msh_groups_gmsh_reads_and_the_vtu_field_data_meshio_reads() {
+    if !python_has("gmsh, meshio") {
+        return;
+    }
+    let s = Scratch::didactic_built();
+    let out = python(
+        GROUPS_AND_FIELDS,
+        &[
+            s.path("out/didactic/didactic.msh").to_str().unwrap(),
+            s.path("out/didactic/didactic.vtu").to_str().unwrap(),
+        ],
+    );
+    let got: BTreeSet<&str> = out.lines().collect();
+    let report = std::fs::read_to_string(s.path("out/didactic/report.json")).unwrap();
+    let report: serde_json::Value = serde_json::from_str(&report).unwrap();
+    let rows = report["ids"].as_array().expect("an ids table");
+    let mut kinds = BTreeSet::new();
+    for row in rows {
+        let (kind, name) = (row["kind"].as_str().unwrap(), row["name"].as_str().unwrap());
+        kinds.insert(kind);
+        let msh = row["msh"].as_str().unwrap();
+        let (dim, tag) = msh.split_once("D group ").expect("a msh group");
+        let want = format!("{dim}|{tag}|{name}");
+        assert!(got.contains(want.as_str()), "{want} not in\n{out}");
+        let vtu = row["vtu"].as_str().unwrap();
+        let (array, id) = vtu.rsplit_once(' ').unwrap();
+        let field = match array {
+            "region" | "surface" => format!("FIELD|{array}:{name}|{id}"),
+            "fault_side" => format!("FIELD|side:{name}|{id}"),
+            _ => continue,
+        };
+        assert!(got.contains(field.as_str()), "{field} not in\n{out}");
+    }
+    let all = ["fault side", "material", "region", "surface"];
+    assert_eq!(kinds, BTreeSet::from(all));
+}

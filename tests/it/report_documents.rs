@@ -364,3 +364,38 @@ fn a_default_input_with_only_a_mesh_renders() {
     );
     assert_eq!(v["mesh"]["regions"].as_array().unwrap().len(), 3);
 }
+
+#[test]
+fn the_html_ids_table_numbers_every_region_and_surface_group_as_the_outputs_do() {
+    let m = mesh();
+    let html = render_html(&input(&m));
+    let table = html
+        .split("<h2>Ids in the output files</h2>")
+        .nth(1)
+        .expect("an ids section");
+    let table = &table[..table.find("</table>").unwrap()];
+    for (r, g) in m.regions.iter().enumerate() {
+        let row = format!(
+            "<td class=\"l\">{}</td><td class=\"l\">3D group {}</td>",
+            g.name,
+            r + 1
+        );
+        assert!(table.contains(&row), "{row} not in {table}");
+    }
+    for (i, g) in m.surface_groups.iter().enumerate() {
+        let name = georecipe_esc(&g.name);
+        let row = format!(
+            "<td class=\"l\">{name}</td><td class=\"l\">2D group {}</td>",
+            i + 1
+        );
+        assert!(table.contains(&row), "{row} not in {table}");
+    }
+}
+
+/// `s` HTML-escaped as the report escapes names.
+fn georecipe_esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}

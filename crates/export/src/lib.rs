@@ -15,6 +15,7 @@
 
 pub mod curves;
 mod exodus;
+pub mod ids;
 mod inp;
 mod medit;
 mod msh;

@@ -13,7 +13,7 @@
 //! surface groups, one id scheme for every format: the `k`-th fault group (in group order, empty
 //! ones counted) of `n` groups has `front` = `n + 2k + 1` and `back` = `n + 2k + 2`.
 
-use geom::mesh::{SurfaceKind, VolumeMesh};
+use geom::mesh::{SurfaceGroup, SurfaceKind, VolumeMesh};
 use geom::predicates::{Orientation, orient3d};
 use std::collections::HashMap;
 
@@ -125,9 +125,14 @@ impl FaultSides {
 
 /// Every fault group's side ids, in group order.
 pub(crate) fn fault_sides(mesh: &VolumeMesh) -> Vec<FaultSides> {
-    let n = mesh.surface_groups.len();
+    fault_sides_of(&mesh.surface_groups)
+}
+
+/// Every fault's side ids among `groups`, in group order.
+pub(crate) fn fault_sides_of(groups: &[SurfaceGroup]) -> Vec<FaultSides> {
+    let n = groups.len();
     (0..n)
-        .filter(|&g| mesh.surface_groups[g].kind == SurfaceKind::Fault)
+        .filter(|&g| groups[g].kind == SurfaceKind::Fault)
         .enumerate()
         .map(|(k, group)| FaultSides {
             group,

@@ -57,9 +57,10 @@ impl Topology {
             .map(|p| std::iter::once(tag(p.group)).chain(extra[p.group].iter().copied()))
             .map(Iterator::collect)
             .collect();
-        let materials: BTreeSet<i64> = mesh.regions.iter().filter_map(|r| r.material).collect();
-        let material_tag: BTreeMap<i64, i32> = (materials.iter().enumerate())
-            .map(|(k, &m)| (m, tag(regions + k)))
+        let material_tag: BTreeMap<i64, i32> = (crate::ids::materials(&mesh.regions))
+            .into_iter()
+            .enumerate()
+            .map(|(k, m)| (m, tag(regions + k)))
             .collect();
         for (r, rg) in mesh.regions.iter().enumerate() {
             names.push((3, tag(r), rg.name.clone()));
