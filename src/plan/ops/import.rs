@@ -65,7 +65,9 @@ impl Operation for ImportOp {
     }
     fn version(&self) -> u32 {
         // 3: coordinates beyond ±1e12 (no-data markers, damaged numbers) are refused.
-        3
+        // 4: validation's exact contact test also sees a triangle that merging collapsed onto a
+        //    line as a coplanar overlap.
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
