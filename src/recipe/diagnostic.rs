@@ -147,8 +147,13 @@ impl SourceText {
         Some(self.span(start..start + len))
     }
 
+    /// How many lines the text has (a last line without a line break counts).
+    pub(crate) fn line_count(&self) -> usize {
+        self.line_starts.len()
+    }
+
     /// The text of a line (1-based), without `\r\n` / `\n`.
-    fn line_text(&self, line: usize) -> &str {
+    pub(crate) fn line_text(&self, line: usize) -> &str {
         let Some(&start) = self.line_starts.get(line.saturating_sub(1)) else {
             return "";
         };

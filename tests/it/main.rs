@@ -26,6 +26,7 @@ mod recipe_errors;
 mod recipe_fuzz;
 mod recipe_roundtrip;
 mod recipe_samples;
+mod recipe_scale;
 mod recipe_sealed;
 mod recipe_selectors;
 mod report_documents;

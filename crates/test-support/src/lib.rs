@@ -4,6 +4,7 @@
 
 #![allow(dead_code)]
 
+pub mod big_recipe;
 pub mod didactic;
 pub mod didactic_wells;
 pub mod export_support;

@@ -213,6 +213,8 @@ fn curve_rules(ctx: &mut Ctx<'_>, v: &Value<'_>, names: &Names) -> Vec<CurveRule
     };
     let mut entries: Vec<_> = t.iter().collect();
     entries.sort_by_key(|(k, _)| k.span().start);
+    // Canonical selector -> its rule in `out`: one lookup per rule, however many rules.
+    let mut seen: BTreeMap<String, usize> = Default::default();
     for (k, e) in entries {
         let text: &str = k.get_ref();
         let path = path_join("mesh.curves", text);
@@ -221,10 +223,7 @@ fn curve_rules(ctx: &mut Ctx<'_>, v: &Value<'_>, names: &Names) -> Vec<CurveRule
         let (Some(selector), Some(subdivision)) = (selector, sub) else {
             continue;
         };
-        if let Some(prev) = out
-            .iter()
-            .find(|r| r.selector.canonical() == selector.canonical())
-        {
+        if let Some(prev) = seen.get(&selector.canonical()).map(|&i| &out[i]) {
             let msg = format!(
                 "curve selector `{text}` repeats `{}` (line {})",
                 prev.selector.text, prev.span.line
@@ -236,6 +235,7 @@ fn curve_rules(ctx: &mut Ctx<'_>, v: &Value<'_>, names: &Names) -> Vec<CurveRule
             );
             continue;
         }
+        seen.insert(selector.canonical(), out.len());
         out.push(CurveRule {
             selector,
             subdivision,

@@ -25,6 +25,8 @@ pub(crate) fn read(
     };
     let mut entries: Vec<_> = t.iter().collect();
     entries.sort_by_key(|(k, _)| k.span().start);
+    // Each accepted point -> its region's name: one lookup per region, however many regions.
+    let mut taken: BTreeMap<[u64; 3], String> = BTreeMap::new();
     for (k, e) in entries {
         let name: &str = k.get_ref();
         let path = path_join("regions", name);
@@ -61,7 +63,9 @@ pub(crate) fn read(
         {
             continue;
         }
-        if let Some(other) = out.values().find(|r| r.point == point) {
+        // `+ 0.0` makes -0.0 and 0.0, equal as numbers, one key.
+        let key = point.map(|c| (c + 0.0).to_bits());
+        if let Some(other) = taken.get(&key).map(|n| &out[n]) {
             let msg = format!(
                 "region `{name}` has the same point as region `{}` (line {})",
                 other.name, other.span.line
@@ -73,6 +77,7 @@ pub(crate) fn read(
             );
             continue;
         }
+        taken.insert(key, name.to_string());
         out.insert(
             name.to_string(),
             RegionSpec {

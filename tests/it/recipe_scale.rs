@@ -1,0 +1,81 @@
+//! Generated recipes with tens of thousands of entries: the checker's answers (what is accepted,
+//! which line a repeat names) stay right at that size. The time is measured in
+//! `benches/recipe_check.rs`, not here.
+
+use std::path::Path;
+
+use georecipe::recipe::{Diagnostic, Recipe, parse};
+use test_support::big_recipe::{self, FIRST_ENTRY_LINE};
+
+const FILE: &str = "recipes/big.toml";
+const N: usize = 20_000;
+
+fn parsed(text: &str) -> Result<Recipe, Vec<Diagnostic>> {
+    parse(Path::new(FILE), text)
+}
+
+#[test]
+fn twenty_thousand_regions_at_distinct_points_are_all_accepted() {
+    let r = parsed(&big_recipe::regions(N)).expect("valid");
+    assert_eq!(r.regions.len(), N);
+}
+
+#[test]
+fn a_region_repeating_a_point_far_up_is_refused_naming_that_regions_line() {
+    let (x, y) = big_recipe::region_xy(7);
+    let text = format!(
+        "{}late = {{ point = [{x}, {y}, -5.0] }}\n",
+        big_recipe::regions(N)
+    );
+    let d = parsed(&text).expect_err("a shared point");
+    assert_eq!(d.len(), 1, "{d:?}");
+    let want = format!("same point as region `r7` (line {})", FIRST_ENTRY_LINE + 7);
+    assert!(d[0].message.contains(&want), "{}", d[0]);
+    assert_eq!(d[0].line, FIRST_ENTRY_LINE + N);
+}
+
+#[test]
+fn a_point_written_as_minus_zero_is_the_same_point_as_zero() {
+    let text = big_recipe::regions(0)
+        .replace("min = [0.0, 0.0, -10.0]", "min = [-1.0, -1.0, -10.0]")
+        + "a = { point = [0.0, 1.0, -5.0] }\nb = { point = [-0.0, 1.0, -5.0] }\n";
+    let d = parsed(&text).expect_err("one point");
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert!(
+        d[0].message.contains("same point as region `a`"),
+        "{}",
+        d[0]
+    );
+}
+
+#[test]
+fn twenty_thousand_curve_rules_are_all_accepted() {
+    let r = parsed(&big_recipe::curve_rules(N)).expect("valid");
+    assert_eq!(r.mesh.curves.len(), N);
+}
+
+#[test]
+fn a_curve_rule_repeated_in_the_other_order_far_down_names_the_first_rules_line() {
+    let text = format!(
+        "{}\"f1/top#3\" = {{ count = 4 }}\n",
+        big_recipe::curve_rules(N)
+    );
+    let d = parsed(&text).expect_err("a repeat");
+    assert_eq!(d.len(), 1, "{d:?}");
+    let want = format!("repeats `top/f1#3` (line {})", FIRST_ENTRY_LINE + 3);
+    assert!(d[0].message.contains(&want), "{}", d[0]);
+}
+
+#[test]
+fn every_one_of_thousands_of_repeated_names_is_reported_at_its_repeat_naming_its_first_line() {
+    let n = 5_000;
+    let d = parsed(&big_recipe::repeated_region_names(n)).expect_err("repeats");
+    assert_eq!(d.len(), n);
+    for (i, e) in d.iter().enumerate() {
+        let first = FIRST_ENTRY_LINE + 2 * i;
+        assert_eq!(e.line, first + 1, "{e}");
+        assert!(e.message.contains(&format!("`r{i}`")), "{e}");
+        let help = e.help.as_deref().unwrap_or("");
+        assert!(help.contains(&format!("line {first}:")), "{e}");
+    }
+}
