@@ -33,6 +33,11 @@ fn build(case: &Case) -> (tempfile::TempDir, serde_json::Value) {
 
 /// Builds `case` in a scratch folder and checks its model, mesh and quality.
 fn builds_and_meshes(case: &Case) -> tempfile::TempDir {
+    builds_and_meshes_reporting(case).0
+}
+
+/// As [`builds_and_meshes`], also returning the build's JSON report.
+fn builds_and_meshes_reporting(case: &Case) -> (tempfile::TempDir, serde_json::Value) {
     let (dir, report) = build(case);
     let model = report["nodes"]
         .as_array()
@@ -58,7 +63,9 @@ fn builds_and_meshes(case: &Case) -> tempfile::TempDir {
             case.name
         );
     }
-    let Some(check) = checker() else { return dir };
+    let Some(check) = checker() else {
+        return (dir, report);
+    };
     let msh = dir.path().join(format!("out/{}.msh", case.name));
     let out = Command::new("python3")
         .arg(&check)
@@ -72,7 +79,7 @@ fn builds_and_meshes(case: &Case) -> tempfile::TempDir {
         "{}: {text}",
         case.name
     );
-    dir
+    (dir, report)
 }
 
 fn case(name: &str) -> Case {
@@ -132,6 +139,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "closed_salt_diapir",
         "closed_salt_diapir_with_well",
         "lens",
+        "fault_patches_at_corners",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -176,6 +184,22 @@ fn a_closed_salt_diapir_with_a_well_into_its_flank_meshes_with_the_well_embedded
 #[test]
 fn a_closed_lens_inside_a_layer_meshes_as_its_own_region_inside_its_host() {
     builds_and_meshes(&case("lens"));
+}
+
+#[test]
+fn a_fault_of_patches_touching_only_at_corners_embeds_every_patch_with_its_own_curves() {
+    let (_dir, report) = builds_and_meshes_reporting(&case("fault_patches_at_corners"));
+    let nodes = report["nodes"].as_array().expect("nodes");
+    let named = |prefix: &str| {
+        nodes
+            .iter()
+            .filter(|n| n["name"].as_str().is_some_and(|s| s.starts_with(prefix)))
+            .count()
+    };
+    // 144 triangles, none sharing an edge: each is a patch of its own, bounded by its own
+    // curves (split where it touches its neighbours).
+    assert_eq!(named("surface_mesh:F#"), 144, "{}", named("patch:F"));
+    assert!(named("curve:F#") >= 144, "{}", named("curve:F#"));
 }
 
 #[test]

@@ -6,15 +6,20 @@
 //! A cache hit may hand out an artifact whose bytes are still in the store (`stored`): it is
 //! read and verified the first time its bytes are asked for, so a build that only needs hashes
 //! (every key of a no-op build) never reads it.
+//!
+//! An artifact read by many nodes (the model, read by one node per curve, patch and well) can be
+//! decoded once and shared by all of them ([`Artifact::decode_shared`]): decoding it again in
+//! each reader made the build quadratic in the number of readers.
 
 use crate::op::OpError;
 use crate::stored::Stored;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::any::Any;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::str::FromStr;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// A blake3 digest. Displays as lowercase hex; serializes as a hex string.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
@@ -102,6 +107,8 @@ impl<'de> Deserialize<'de> for Hash {
 pub struct Artifact {
     body: Arc<Body>,
     hash: Hash,
+    /// The first value [`Artifact::decode_shared`] decoded, shared by every clone.
+    decoded: Arc<OnceLock<Arc<dyn Any + Send + Sync>>>,
 }
 
 enum Body {
@@ -117,6 +124,7 @@ impl Artifact {
         Artifact {
             body: Arc::new(Body::Bytes(b)),
             hash,
+            decoded: Arc::default(),
         }
     }
 
@@ -125,6 +133,7 @@ impl Artifact {
         Artifact {
             hash: stored.hash(),
             body: Arc::new(Body::Stored(stored)),
+            decoded: Arc::default(),
         }
     }
 
@@ -159,6 +168,24 @@ impl Artifact {
         postcard::from_bytes(self.bytes()?).map_err(|e| {
             OpError::from(format!("cannot decode artifact {}: {e}", self.hash.short()))
         })
+    }
+
+    /// The decoded value, decoded once and shared by every clone of this artifact (every node
+    /// that reads it in one build); it lives as long as the artifact. Only one type is kept: asked
+    /// for another, it decodes afresh each time, like [`Artifact::decode`].
+    pub fn decode_shared<T: DeserializeOwned + Send + Sync + 'static>(
+        &self,
+    ) -> Result<Arc<T>, OpError> {
+        if let Some(v) = self.decoded.get() {
+            if let Ok(t) = Arc::clone(v).downcast::<T>() {
+                return Ok(t);
+            }
+            return self.decode().map(Arc::new);
+        }
+        let t: Arc<T> = Arc::new(self.decode()?);
+        // Two first readers at once may both decode; the value kept is the same either way.
+        let _ = self.decoded.set(t.clone());
+        Ok(t)
     }
 
     /// The files of an artifact that encodes a [`FileSet`], read in place (see
@@ -413,6 +440,23 @@ mod tests {
         assert_eq!(a.decode::<(u8, u8)>().unwrap(), (1, 2));
         assert!(a.decode::<FileSet>().is_err() || a.decode::<String>().is_err());
         assert!(Artifact::from_bytes(vec![]).decode::<u64>().is_err());
+    }
+
+    #[test]
+    fn every_clone_of_an_artifact_shares_one_decoded_value() {
+        let a = Artifact::encode(&vec![1u32, 2, 3]).unwrap();
+        let b = a.clone();
+        let first = a.decode_shared::<Vec<u32>>().unwrap();
+        let again = b.decode_shared::<Vec<u32>>().unwrap();
+        assert!(Arc::ptr_eq(&first, &again), "decoded twice");
+        assert_eq!(*again, vec![1, 2, 3]);
+        // Another type still decodes, without replacing the kept value.
+        assert_eq!(b.decode_shared::<(u8, u8, u8, u8)>().unwrap().0, 3);
+        assert!(Arc::ptr_eq(&first, &a.decode_shared::<Vec<u32>>().unwrap()));
+        // A failed decode keeps nothing.
+        let c = Artifact::from_bytes(vec![]);
+        assert!(c.decode_shared::<u64>().is_err());
+        assert!(c.decoded.get().is_none());
     }
 
     fn sets() -> Vec<FileSet> {

@@ -51,6 +51,7 @@ pub fn cases() -> Vec<Case> {
         closed_salt_diapir(),
         closed_salt_diapir_with_well(),
         lens(),
+        fault_patches_touching_at_corners(),
     ]
 }
 
@@ -267,6 +268,57 @@ fn fault_stopping_in_a_layer() -> Case {
     );
     r.surface("F", "fault", &f, &PLAIN);
     r.case(&["box", "H1", "H2"], 3)
+}
+
+/// A fault mapped as slip patches that touch only at their corners: 12 × 12 right triangles on
+/// a chequerboard inside the layer between H1 and H2, each sharing only vertices with its
+/// neighbours, so that each triangle's border is its own free-border curve (432 curves) and
+/// every patch is embedded in the layer's region. What a fault stick export or a thresholded
+/// slip map looks like; it once cost time quadratic in the number of curves.
+fn fault_patches_touching_at_corners() -> Case {
+    let mut rng = Rng(0x7061_7463_6865_7321);
+    let mut r = Recipe::new("fault_patches_at_corners");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-600.0, 30.0, 0.4, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1400.0, 30.0, 1.1, &mut rng),
+        &PLAIN,
+    );
+    r.surface("F", "fault", &corner_patches(12, 100.0), &PLAIN);
+    r.case(&["box", "H1", "H2"], 3)
+}
+
+/// `k × k` right triangles of leg `d` on a chequerboard in a plane dipping 60° to the east,
+/// centred in the box at 1000 m depth; triangle (i, j) spans grid points (i, j), (i+1, j) and
+/// (i, j+1), so neighbours share one vertex and no edge.
+fn corner_patches(k: usize, d: f64) -> Surface {
+    let cot = 1.0 / 60f64.to_radians().tan();
+    let at = |i: usize, j: usize| {
+        let (u, v) = (
+            i as f64 * d - k as f64 * d / 2.0,
+            j as f64 * d - k as f64 * d / 2.0,
+        );
+        [2000.0 + v * cot * 0.5, 2000.0 + u, -1000.0 + v * 0.5]
+    };
+    let index = |i: usize, j: usize| i * (k + 1) + j;
+    let vertices = (0..=k)
+        .flat_map(|i| (0..=k).map(move |j| (i, j)))
+        .map(|(i, j)| at(i, j));
+    let triangles = (0..k)
+        .flat_map(|i| (0..k).map(move |j| (i, j)))
+        .map(|(i, j)| [index(i, j), index(i + 1, j), index(i, j + 1)])
+        .collect();
+    Surface {
+        vertices: vertices.collect(),
+        triangles,
+        corners: Vec::new(),
+    }
 }
 
 /// An erosional surface U cutting down to the east through horizon H1 (which is kept only below

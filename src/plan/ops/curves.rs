@@ -166,30 +166,29 @@ impl Operation for CurveExtractOp {
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let input = inputs.first().ok_or("curve needs the curve set")?;
-        let set: CurveSet = if self.from_model {
-            let model: super::ModelData = input.decode()?;
-            CurveSet {
-                curves: model
-                    .topology
-                    .curves
-                    .into_iter()
-                    .map(|c| ModelCurve {
-                        name: c.name,
-                        surfaces: c.surfaces,
-                        polyline: c.points,
-                        closed: c.closed,
-                        clearance: c.clearance,
-                    })
-                    .collect(),
+        let missing = || OpError::from(format!("the model has no curve `{}`", self.name));
+        // The model or curve set is decoded once for all curves (shared): one decode each made
+        // the extraction quadratic in the number of curves.
+        let c = if self.from_model {
+            let model = input.decode_shared::<super::ModelData>()?;
+            let c = model
+                .topology
+                .curves
+                .iter()
+                .find(|c| c.name == self.name)
+                .ok_or_else(missing)?;
+            ModelCurve {
+                name: c.name.clone(),
+                surfaces: c.surfaces.clone(),
+                polyline: c.points.clone(),
+                closed: c.closed,
+                clearance: c.clearance.clone(),
             }
         } else {
-            input.decode()?
+            let set = input.decode_shared::<CurveSet>()?;
+            let found = set.curves.iter().find(|c| c.name == self.name);
+            found.cloned().ok_or_else(missing)?
         };
-        let c = set
-            .curves
-            .into_iter()
-            .find(|c| c.name == self.name)
-            .ok_or_else(|| OpError::from(format!("the model has no curve `{}`", self.name)))?;
         let n = c.polyline.len() as u64;
         Ok(Output::new(Artifact::encode(&c)?).count("points", n))
     }

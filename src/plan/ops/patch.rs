@@ -77,7 +77,7 @@ impl Operation for PatchExtractOp {
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
         let (model, cuts) = inputs.split_first().ok_or("patch needs the model")?;
-        let model: ModelData = model.decode()?;
+        let model = model.decode_shared::<ModelData>()?;
         let cuts: Vec<WellCutData> = cuts.iter().map(|a| a.decode()).collect::<Result<_, _>>()?;
         let i = model
             .patches

@@ -136,7 +136,10 @@ impl Operation for RefineOp {
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
-        let model: ModelData = inputs.first().ok_or("refine needs the model")?.decode()?;
+        let model = inputs
+            .first()
+            .ok_or("refine needs the model")?
+            .decode_shared::<ModelData>()?;
         let points = self.samples(&model);
         if points.is_empty() {
             return Err(OpError::from(format!(

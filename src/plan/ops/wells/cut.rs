@@ -63,7 +63,7 @@ impl Operation for WellCutOp {
         let [model, well] = inputs else {
             return Err("well_cut needs the model and the well".into());
         };
-        let model: ModelData = model.decode()?;
+        let model = model.decode_shared::<ModelData>()?;
         let well: WellData = well.decode()?;
         let patches: Vec<PatchIn> = model
             .patches
