@@ -8,21 +8,7 @@ use georecipe::recipe::{Diagnostic, FileKind, Format, Recipe, check_files, parse
 const FILE: &str = "recipes/bad.toml";
 
 /// A small valid recipe the tests extend or edit.
-const BASE: &str = r#"[model]
-name = "t"
-
-[surfaces]
-top = { file = "data/top.ts", kind = "horizon" }
-base = { file = "data/base.ts", kind = "horizon" }
-f1 = { file = "data/f1.ts", kind = "fault" }
-
-[box]
-min = [0.0, 0.0, -10.0]
-max = [10.0, 10.0, 0.0]
-
-[mesh]
-size = 1.0
-"#;
+const BASE: &str = test_support::big_recipe::HEAD;
 
 fn errors(text: &str) -> Vec<Diagnostic> {
     match parse(Path::new(FILE), text) {

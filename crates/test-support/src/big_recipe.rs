@@ -3,9 +3,10 @@
 //! stay near-linear in their size; the tests check that the answers stay right at that scale and
 //! `benches/recipe_check.rs` measures the time.
 
-/// The head every big recipe shares: three surfaces and a 10 × 10 × 10 box.
-const HEAD: &str = r#"[model]
-name = "big"
+/// A small valid recipe: three surfaces and a 10 × 10 × 10 box. Every big recipe starts with
+/// it; the recipe-error tests extend or edit it.
+pub const HEAD: &str = r#"[model]
+name = "t"
 
 [surfaces]
 top = { file = "data/top.ts", kind = "horizon" }
