@@ -34,8 +34,11 @@ pub struct Diagnostic {
     pub col: usize,
     /// What is wrong, quoting the offending text in backticks.
     pub message: String,
-    /// The whole source line the error points into (without its line break).
+    /// The source line the error points into (without its line break); a line longer than
+    /// [`SNIPPET_WIDTH`] characters is cut to a window around the column, marked with `…`.
     pub snippet: String,
+    /// The 1-based column of `col` within `snippet`.
+    pub snippet_col: usize,
     /// A suggestion, e.g. "did you mean `size`?".
     pub help: Option<String>,
     /// How many characters to underline from `col` (at least 1 when rendered).
@@ -61,14 +64,14 @@ impl Diagnostic {
         let lead: String = self
             .snippet
             .chars()
-            .take(self.col.saturating_sub(1))
+            .take(self.snippet_col.saturating_sub(1))
             .map(|c| if c == '\t' { '\t' } else { ' ' })
             .collect();
         let avail = self
             .snippet
             .chars()
             .count()
-            .saturating_sub(self.col.saturating_sub(1));
+            .saturating_sub(self.snippet_col.saturating_sub(1));
         let width = self.len.min(avail).max(1);
         write!(f, "{pad} | {lead}{}", "^".repeat(width))?;
         if let Some(help) = &self.help {
@@ -173,7 +176,7 @@ impl SourceText {
 
     /// A diagnostic pointing at `span`; the underline stops at the end of the span's first line.
     pub fn diagnostic(&self, span: Span, message: String, help: Option<String>) -> Diagnostic {
-        let snippet = self.line_text(span.line).to_string();
+        let (snippet, snippet_col) = window(self.line_text(span.line), span.col);
         let spanned = self.slice(span);
         let first_line = spanned.split('\n').next().unwrap_or("");
         let len = first_line.trim_end_matches('\r').chars().count().max(1);
@@ -183,10 +186,39 @@ impl SourceText {
             col: span.col,
             message,
             snippet,
+            snippet_col,
             help,
             len,
         }
     }
+}
+
+/// The most characters of a source line a diagnostic quotes: a generated recipe may hold a
+/// table of millions of entries on one line, which would be quoted (and kept) whole.
+pub const SNIPPET_WIDTH: usize = 160;
+
+/// `line` cut to at most [`SNIPPET_WIDTH`] characters around the 1-based column `col`, with `…`
+/// where it was cut; and `col`'s column in the result.
+fn window(line: &str, col: usize) -> (String, usize) {
+    let count = line.chars().count();
+    if count <= SNIPPET_WIDTH {
+        return (line.to_string(), col);
+    }
+    let at = col.saturating_sub(1).min(count);
+    let from = at
+        .saturating_sub(SNIPPET_WIDTH / 3)
+        .min(count - SNIPPET_WIDTH);
+    let to = from + SNIPPET_WIDTH;
+    let mut out: String = if from > 0 {
+        "…".into()
+    } else {
+        String::new()
+    };
+    out.extend(line.chars().skip(from).take(SNIPPET_WIDTH));
+    if to < count {
+        out.push('…');
+    }
+    (out, at - from + 1 + usize::from(from > 0))
 }
 
 /// The byte length of the TOML token at the start of `s`: a header through its closing `]`s, a
