@@ -40,6 +40,7 @@ use toml::de::DeTable;
 
 pub use diagnostic::{Diagnostic, Span};
 pub use files::{FileKind, check_files, check_files_with_listing};
+pub use sections::regions::MAX_PROPERTY_NAMES;
 pub use selector::{CurveSelector, SurfaceSelector, glob_match};
 pub use spec::*;
 

@@ -79,3 +79,69 @@ fn every_one_of_thousands_of_repeated_names_is_reported_at_its_repeat_naming_its
         assert!(help.contains(&format!("line {first}:")), "{e}");
     }
 }
+
+#[test]
+fn property_names_over_the_budget_are_refused_once_at_the_first_name_too_many() {
+    use georecipe::recipe::MAX_PROPERTY_NAMES;
+    let mut text = big_recipe::regions(0);
+    for r in 0..3 {
+        let props: Vec<String> = (0..MAX_PROPERTY_NAMES)
+            .map(|k| format!("p{} = 1.0", r * 100 + k))
+            .collect();
+        text.push_str(&format!(
+            "r{r} = {{ point = [1.{r}, 1.0, -5.0], properties = {{ {} }} }}\n",
+            props.join(", ")
+        ));
+    }
+    let d = parsed(&text).expect_err("too many property names");
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert!(
+        d[0].message.contains("one name more than the 1024"),
+        "{}",
+        d[0]
+    );
+    assert_eq!(d[0].line, FIRST_ENTRY_LINE + 1, "{}", d[0]);
+    // Exactly the budget, shared by several regions, is accepted.
+    let mut text = big_recipe::regions(0);
+    for r in 0..3 {
+        let props: Vec<String> = (0..MAX_PROPERTY_NAMES)
+            .map(|k| format!("p{k} = 1.0"))
+            .collect();
+        text.push_str(&format!(
+            "r{r} = {{ point = [1.{r}, 1.0, -5.0], properties = {{ {} }} }}\n",
+            props.join(", ")
+        ));
+    }
+    assert_eq!(parsed(&text).expect("at the budget").regions.len(), 3);
+}
+
+#[test]
+fn an_error_far_along_a_very_long_line_quotes_a_window_around_it() {
+    let props: Vec<String> = (0..1000)
+        .map(|k| format!("a_rather_long_property_name_{k:05} = 1.0"))
+        .collect();
+    let mut props = props.join(", ");
+    props.push_str(", bad = \"x\"");
+    let text = format!(
+        "{}r = {{ point = [1.0, 1.0, -5.0], properties = {{ {props} }} }}\n",
+        big_recipe::regions(0)
+    );
+    let d = parsed(&text).expect_err("a property that is not a number");
+    let e = &d[0];
+    assert!(e.col > 30_000, "{}", e.col);
+    assert!(e.snippet.chars().count() <= 162, "{}", e.snippet.len());
+    assert!(e.snippet.starts_with('…'), "{}", e.snippet);
+    let shown = e.to_string();
+    let caret_line = shown.lines().find(|l| l.contains('^')).expect("a caret");
+    let quoted = shown
+        .lines()
+        .find(|l| l.contains("bad = "))
+        .expect("the line quoted");
+    // The caret stands under the quoted value.
+    let caret = caret_line.find('^').unwrap();
+    assert_eq!(
+        quoted.chars().nth(caret_line[..caret].chars().count()),
+        Some('"'),
+        "{shown}"
+    );
+}

@@ -3,8 +3,11 @@
 //! is an integer and that `properties` are finite numbers with legal names, and that each point
 //! lies strictly inside an explicit `[box]` (a point outside it, or on one of its sides, is in no
 //! region). Which region contains the point is decided later, exactly, once the model exists.
+//! At most [`MAX_PROPERTY_NAMES`] distinct property names: each is a field on every element of
+//! every output, so a generated recipe with millions of them would ask for outputs (and
+//! allocations) of terabytes; it is refused here, at the first name over the budget.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::surfaces::check_name;
 use crate::recipe::reader::{self as rd, Ctx, Value, path_join};
@@ -12,6 +15,16 @@ use crate::recipe::spec::{BoxExtent, BoxSpec, RegionSpec};
 use toml::de::DeValue;
 
 const KEYS: &[&str] = &["point", "material", "properties"];
+
+/// The most distinct property names a recipe may give its regions (all regions together).
+pub const MAX_PROPERTY_NAMES: usize = 1024;
+
+/// The property names seen so far, and whether going over the budget was reported (once).
+#[derive(Default)]
+struct PropertyNames {
+    seen: BTreeSet<String>,
+    refused: bool,
+}
 
 pub(crate) fn read(
     ctx: &mut Ctx<'_>,
@@ -27,6 +40,7 @@ pub(crate) fn read(
     entries.sort_by_key(|(k, _)| k.span().start);
     // Each accepted point -> its region's name: one lookup per region, however many regions.
     let mut taken: BTreeMap<[u64; 3], String> = BTreeMap::new();
+    let mut property_names = PropertyNames::default();
     for (k, e) in entries {
         let name: &str = k.get_ref();
         let path = path_join("regions", name);
@@ -50,7 +64,7 @@ pub(crate) fn read(
             None => Some(None),
         };
         let properties = match rt.get("properties") {
-            Some(p) => properties(ctx, p, &path_join(&path, "properties")),
+            Some(p) => properties(ctx, p, &path_join(&path, "properties"), &mut property_names),
             None => Some(BTreeMap::new()),
         };
         let (true, Some((point, pspan)), Some(material), Some(properties)) =
@@ -141,7 +155,12 @@ fn inside_box(
     false
 }
 
-fn properties(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<BTreeMap<String, f64>> {
+fn properties(
+    ctx: &mut Ctx<'_>,
+    v: &Value<'_>,
+    path: &str,
+    names: &mut PropertyNames,
+) -> Option<BTreeMap<String, f64>> {
     let t = rd::as_table(
         ctx,
         v,
@@ -150,12 +169,34 @@ fn properties(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<BTreeMap<S
     )?;
     let mut out = BTreeMap::new();
     let mut ok = true;
-    for (k, x) in t.iter() {
+    let mut entries: Vec<_> = t.iter().collect();
+    entries.sort_by_key(|(k, _)| k.span().start);
+    for (k, x) in entries {
         let name: &str = k.get_ref();
         if !check_name(ctx, name, k.span(), "property") {
             ok = false;
             continue;
         }
+        if !names.seen.contains(name) && names.seen.len() == MAX_PROPERTY_NAMES {
+            if !names.refused {
+                ctx.error(
+                    k.span(),
+                    format!(
+                        "property `{name}` is one name more than the {MAX_PROPERTY_NAMES} \
+                         distinct property names the regions may have"
+                    ),
+                    Some(
+                        "each property name becomes a field on every element of every output: \
+                         keep the ones the simulation reads"
+                            .into(),
+                    ),
+                );
+                names.refused = true;
+            }
+            ok = false;
+            continue;
+        }
+        names.seen.insert(name.to_string());
         match rd::number(ctx, x, &path_join(path, name)) {
             Some(n) => {
                 out.insert(name.to_string(), n);
