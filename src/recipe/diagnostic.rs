@@ -35,7 +35,7 @@ pub struct Diagnostic {
     /// What is wrong, quoting the offending text in backticks.
     pub message: String,
     /// The source line the error points into (without its line break); a line longer than
-    /// [`SNIPPET_WIDTH`] characters is cut to a window around the column, marked with `…`.
+    /// `SNIPPET_WIDTH` (160) characters is cut to a window around the column, marked with `…`.
     pub snippet: String,
     /// The 1-based column of `col` within `snippet`.
     pub snippet_col: usize,
