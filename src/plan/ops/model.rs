@@ -65,7 +65,9 @@ impl Operation for ModelOp {
     fn version(&self) -> u32 {
         // 12: curves' clearances count the parts of curves apart along the curves (a sliver's
         //     lips, a curve coming back along itself), not only curves sharing no end.
-        12
+        // 13: a crossing of two curves that rounds onto a corner or curve end of its face is
+        //     that vertex.
+        13
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -151,21 +151,27 @@ impl Cut<'_> {
                     // A touch is found later, as a point lying on a chord.
                     None | Some(false) => {}
                     Some(true) => {
-                        let v = self.crossing_vertex(t, i, j, axis, crossing_at);
-                        self.on_chord[i].push(v);
-                        self.on_chord[j].push(v);
+                        let v = self.crossing_vertex(t, (i, j), (start, end), axis, crossing_at);
+                        for k in [i, j] {
+                            if !self.chords[k].v.contains(&v) {
+                                self.on_chord[k].push(v);
+                            }
+                        }
                     }
                 }
             }
         }
     }
 
-    /// The vertex where chords `i` and `j` of `t` cross: the one of the same three faces, else new.
+    /// The vertex where chords `i` and `j` of `t` cross: the one of the same three faces, else
+    /// the corner or chord end of `t` (chords `run`) whose coordinates it rounds to bit for bit
+    /// (a crossing that close to a border point is that point: no float can tell them apart,
+    /// and the other surfaces, building the same bits, weld to it too), else new.
     fn crossing_vertex(
         &mut self,
         t: u32,
-        i: usize,
-        j: usize,
+        (i, j): (usize, usize),
+        run: (usize, usize),
         axis: usize,
         crossing_at: &mut BTreeMap<Vec<(String, u32)>, u32>,
     ) -> u32 {
@@ -190,6 +196,15 @@ impl Cut<'_> {
                 axis,
             )
         });
+        let tri = s.mesh.triangles[t as usize];
+        let same = tri
+            .into_iter()
+            .chain(self.chords[run.0..run.1].iter().flat_map(|c| c.v))
+            .find(|&w| self.vertices[w as usize] == xyz);
+        if let Some(w) = same {
+            crossing_at.insert(key, w);
+            return w;
+        }
         self.vertices.push(xyz);
         let v = self.vertices.len() as u32 - 1;
         crossing_at.insert(key, v);
