@@ -77,7 +77,8 @@ impl Operation for TetMeshOp {
         // 13: holes whose front gets stuck are widened round the stuck place and filled again.
         // 14: the wells' edges in the output.
         // 15: recovery holes filled by their own Delaunay tetrahedralization or a cone first.
-        15
+        // 16: hole pieces with embedded triangles filled apart, each with its own.
+        16
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -231,16 +231,20 @@ pub(super) fn mesh_holes<D: Fn(&RegionInput) -> Option<Filled>>(
     front: bool,
     fill: &Filler<'_, D>,
 ) -> Result<Vec<[u32; 4]>, HoleError> {
-    // Pieces are filled apart only when each is a solid (not a cavity shell inside another).
+    // Pieces are filled apart only when each is a solid (not a cavity shell inside another)
+    // and each embedded triangle has its corners on one piece only.
+    let whole = || vec![(sub_b.to_vec(), sub_e.to_vec())];
     let pieces = match connected_pieces(sub_b) {
-        p if sub_e.is_empty() && p.iter().all(|q| enclosed_volume(&tri.pts, q) > 0.0) => p,
-        _ => vec![sub_b.to_vec()],
+        p if p.iter().all(|q| enclosed_volume(&tri.pts, q) > 0.0) => {
+            embedded_by_piece(p, sub_e).unwrap_or_else(whole)
+        }
+        _ => whole(),
     };
     // On an error no node added for the holes before it stays.
     let n = tri.pts.len();
     let mut out = Vec::new();
-    for piece in pieces {
-        match mesh_hole(tri, &piece, sub_e, front, fill) {
+    for (piece, embedded) in pieces {
+        match mesh_hole(tri, &piece, &embedded, front, fill) {
             Ok(tets) => out.extend(tets),
             Err(e) => {
                 tri.pts.truncate(n);
@@ -353,6 +357,36 @@ fn connected_pieces(tris: &[[u32; 3]]) -> Vec<Vec<[u32; 3]>> {
         out[piece[k]].push(*t);
     }
     out
+}
+
+/// A hole piece: its surface and the embedded triangles inside it.
+type Piece = (Vec<[u32; 3]>, Vec<[u32; 3]>);
+
+/// Each piece with the embedded triangles whose corners all lie on it; `None` when all the
+/// corners of one lie on no single piece, or on two (pieces touching at an edge of it): such
+/// holes are filled together.
+fn embedded_by_piece(pieces: Vec<Vec<[u32; 3]>>, embedded: &[[u32; 3]]) -> Option<Vec<Piece>> {
+    let mut pieces_at: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (k, piece) in pieces.iter().enumerate() {
+        for &v in piece.iter().flatten() {
+            let at = pieces_at.entry(v).or_default();
+            if !at.contains(&k) {
+                at.push(k);
+            }
+        }
+    }
+    let mut out: Vec<_> = pieces.into_iter().map(|p| (p, Vec::new())).collect();
+    for t in embedded {
+        let at = |v: &u32| pieces_at.get(v).map_or(&[][..], Vec::as_slice);
+        let mut holding = at(&t[0])
+            .iter()
+            .filter(|k| t[1..].iter().all(|v| at(v).contains(k)));
+        match (holding.next(), holding.next()) {
+            (Some(&k), None) => out[k].1.push(*t),
+            _ => return None,
+        }
+    }
+    Some(out)
 }
 
 fn sorted2(a: u32, b: u32) -> [u32; 2] {
@@ -517,7 +551,7 @@ fn compact_input(
 
 #[cfg(test)]
 mod tests {
-    use super::connected_pieces;
+    use super::{connected_pieces, embedded_by_piece};
 
     #[test]
     fn a_solid_encloses_a_positive_volume_and_a_cavity_shell_a_negative_one() {
@@ -537,5 +571,30 @@ mod tests {
         let tris: Vec<[u32; 3]> = b.iter().chain(&a).copied().collect();
         let pieces = connected_pieces(&tris);
         assert_eq!(pieces, vec![b.to_vec(), a.to_vec()]);
+    }
+
+    /// Two tetrahedra's surfaces, apart (vertices 0..4 and 4..8), as pieces.
+    fn two_pieces() -> Vec<Vec<[u32; 3]>> {
+        let a = vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]];
+        let b = vec![[4, 5, 6], [4, 7, 5], [4, 6, 7], [5, 7, 6]];
+        vec![a, b]
+    }
+
+    #[test]
+    fn an_embedded_triangle_goes_with_the_piece_its_corners_lie_on() {
+        let split = embedded_by_piece(two_pieces(), &[[4, 5, 7], [0, 1, 3]]).expect("apart");
+        assert_eq!(split[0].1, vec![[0, 1, 3]]);
+        assert_eq!(split[1].1, vec![[4, 5, 7]]);
+        assert_eq!(split[1].0, two_pieces()[1]);
+    }
+
+    #[test]
+    fn an_embedded_triangle_on_no_single_piece_keeps_the_holes_together_and_a_touch_does_not() {
+        assert!(embedded_by_piece(two_pieces(), &[[0, 1, 4]]).is_none());
+        assert!(embedded_by_piece(two_pieces(), &[[0, 1, 9]]).is_none());
+        let touching = || vec![vec![[0, 1, 2], [0, 2, 3]], vec![[0, 4, 5], [0, 5, 6]]];
+        assert_eq!(embedded_by_piece(touching(), &[]).map(|s| s.len()), Some(2));
+        let split = embedded_by_piece(touching(), &[[0, 5, 6]]).expect("one piece holds it");
+        assert_eq!(split[1].1, vec![[0, 5, 6]]);
     }
 }
