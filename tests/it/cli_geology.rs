@@ -1,13 +1,15 @@
 //! The corpus of geological situations (`test_support::geology`) built through a recipe: each
 //! case meshes into its regions, every region's worst tet is within the quality bars (normalised
 //! mean ratio at least 0.2, dihedral angles at least the case's bar: 8°, or 6° for the
-//! erosional unconformity, whose gap to 8° is still open, and 7° for the lens, whose rim's needle
-//! triangles bound it), and, when the independent checker is
-//! available, the msh passes `check_mesh.py` with that region count.
+//! erosional unconformity, whose gap to 8° is still open, 7° for the lens, whose rim's needle
+//! triangles bound it, and 7° for horizons touching at a point, whose thin wedge round the touch
+//! does), and, when the independent checker is available, the msh passes `check_mesh.py` with
+//! that region count. Cases over the SCEC fault model in `../shared` skip when it is absent.
 
 use crate::common_cli::checker;
 use std::process::Command;
-use test_support::geology::{Case, cases};
+use test_support::geology::{Case, cases, scec_cases};
+use test_support::paths;
 
 /// Builds `case` in a scratch folder (kept for the caller's checks); asserts the build
 /// succeeded and returns the folder and the build's JSON report.
@@ -140,6 +142,9 @@ fn every_case_of_the_corpus_has_a_test() {
         "closed_salt_diapir_with_well",
         "lens",
         "fault_patches_at_corners",
+        "dangling_faults_crossing",
+        "horizons_touching_at_a_point",
+        "horizons_touching_along_a_line",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -189,17 +194,71 @@ fn a_closed_lens_inside_a_layer_meshes_as_its_own_region_inside_its_host() {
 #[test]
 fn a_fault_of_patches_touching_only_at_corners_embeds_every_patch_with_its_own_curves() {
     let (_dir, report) = builds_and_meshes_reporting(&case("fault_patches_at_corners"));
-    let nodes = report["nodes"].as_array().expect("nodes");
-    let named = |prefix: &str| {
-        nodes
-            .iter()
-            .filter(|n| n["name"].as_str().is_some_and(|s| s.starts_with(prefix)))
-            .count()
-    };
+    let named = |prefix: &str| count_named(&report, prefix);
     // 144 triangles, none sharing an edge: each is a patch of its own, bounded by its own
     // curves (split where it touches its neighbours).
     assert_eq!(named("surface_mesh:F#"), 144, "{}", named("patch:F"));
     assert!(named("curve:F#") >= 144, "{}", named("curve:F#"));
+}
+
+/// How many nodes of `report` have a name starting with `prefix`.
+fn count_named(report: &serde_json::Value, prefix: &str) -> usize {
+    report["nodes"]
+        .as_array()
+        .expect("nodes")
+        .iter()
+        .filter(|n| n["name"].as_str().is_some_and(|s| s.starts_with(prefix)))
+        .count()
+}
+
+#[test]
+fn two_dangling_faults_crossing_inside_a_layer_are_both_embedded_in_its_region() {
+    let (_dir, report) = builds_and_meshes_reporting(&case("dangling_faults_crossing"));
+    // F1 runs across F2 from its upper tip line to its lower one: F2 is cut in two patches,
+    // F1 keeps one with the curve inside it.
+    assert_eq!(count_named(&report, "surface_mesh:F2#"), 2);
+    assert_eq!(count_named(&report, "surface_mesh:F1#"), 1);
+    assert_eq!(count_named(&report, "discretize:F1/F2"), 1);
+}
+
+#[test]
+fn a_horizon_touching_another_at_one_point_leaves_the_layer_between_one_region() {
+    builds_and_meshes(&case("horizons_touching_at_a_point"));
+}
+
+#[test]
+fn a_horizon_touching_another_along_a_line_cuts_the_layer_between_in_two_regions() {
+    let (_dir, report) = builds_and_meshes_reporting(&case("horizons_touching_along_a_line"));
+    // The crest runs along H2's edges on H1: one curve across the box, found exactly.
+    assert_eq!(count_named(&report, "discretize:H1/H2"), 1);
+}
+
+/// The SCEC CFM case `name`, or `None` (after a note) when `../shared` is absent.
+fn scec_case(name: &str) -> Option<Case> {
+    let cfm = paths::shared("data/gocad/SCECcode__CFM")?;
+    scec_cases(&cfm).into_iter().find(|c| c.name == name)
+}
+
+#[test]
+fn the_western_transverse_ranges_faults_of_the_scec_cfm_intersected_in_a_box_mesh() {
+    let Some(case) = scec_case("scec_western_transverse_ranges") else {
+        return;
+    };
+    let (_dir, report) = builds_and_meshes_reporting(&case);
+    // Big Pine meets Pine Mountain and the box top where their curves cross: the crossing
+    // rounds onto the curve point of Big Pine's edge on the box top, and is that point.
+    assert_eq!(count_named(&report, "discretize:bigpine/pinemtn"), 1);
+    assert!(count_named(&report, "surface_mesh:bigpine#") >= 1);
+}
+
+#[test]
+fn the_tejon_pass_faults_of_the_scec_cfm_with_white_wolfs_crossing_strands_mesh() {
+    let Some(case) = scec_case("scec_tejon_pass") else {
+        return;
+    };
+    let (_dir, report) = builds_and_meshes_reporting(&case);
+    // White Wolf's strands cross along non-manifold edges inside the box: more than one patch.
+    assert!(count_named(&report, "surface_mesh:whitewolf#") >= 3);
 }
 
 #[test]

@@ -52,6 +52,9 @@ pub fn cases() -> Vec<Case> {
         closed_salt_diapir_with_well(),
         lens(),
         fault_patches_touching_at_corners(),
+        dangling_faults_crossing(),
+        horizons_touching_at_a_point(),
+        horizons_touching_along_a_line(),
     ]
 }
 
@@ -59,6 +62,72 @@ pub fn cases() -> Vec<Case> {
 /// [`cases`] once they mesh (none at present).
 pub fn known_gaps() -> Vec<Case> {
     Vec::new()
+}
+
+/// Fault systems of the SCEC Community Fault Model (`../shared/data/gocad/SCECcode__CFM`, the
+/// 1 km resampled CFM 5.3 files, at UTM zone 11 coordinates with topography above z = 0),
+/// intersected with each other and a box, each fault cut by the box where it leaves it:
+/// - `scec_western_transverse_ranges`: the San Andreas (Carrizo), Pine Mountain, Lockwood
+///   Valley and Big Pine faults; the San Andreas crosses the box, the others end inside it or on
+///   one another, and their traces meet the box top where curves of three surfaces cross.
+/// - `scec_tejon_pass`: the San Andreas, Garlock, Pleito and White Wolf faults round Tejon Pass;
+///   White Wolf is one file of several strands crossing along a line (non-manifold edges kept
+///   as curves), dying out inside the box.
+///
+/// `cfm` is that folder; the recipes name the files by absolute path, so `files` is empty.
+pub fn scec_cases(cfm: &std::path::Path) -> Vec<Case> {
+    let ts = cfm.join("CFM5.3_4/ts/1000m");
+    let fault = |name: &str, file: &str| {
+        format!(
+            "{name} = {{ file = \"{}\", kind = \"fault\" }}\n",
+            ts.join(format!("{file}_1000m.ts")).display()
+        )
+    };
+    let case = |name: &'static str, faults: &[(&str, &str)], lo: [f64; 3], hi: [f64; 3], size| {
+        let mut t = format!("[model]\nname = \"{name}\"\n\n[surfaces]\n");
+        for (f, file) in faults {
+            t.push_str(&fault(f, file));
+        }
+        let all: Vec<String> = faults.iter().map(|(f, _)| format!("\"{f}\"")).collect();
+        t.push_str(&format!(
+            "\n[box]\nmin = {lo:?}\nmax = {hi:?}\n\n[intersect]\nall = [\"box\", {}]\n\n\
+             [mesh]\nsize = {size:?}\n\n[output]\ndir = \"out\"\nformats = [\"msh\"]\n",
+            all.join(", ")
+        ));
+        Case {
+            name,
+            recipe: t,
+            files: Vec::new(),
+            regions: 2,
+            min_dihedral: 8.0,
+        }
+    };
+    vec![
+        case(
+            "scec_western_transverse_ranges",
+            &[
+                ("saf", "SAFS-SAFZ-CRRZ-San_Andreas_fault-CFM4"),
+                ("pinemtn", "CRFA-BPPM-PMTS-Pine_Mountain_fault-CFM2"),
+                ("lockwood", "CRFA-BPPM-LKWV-Lockwood_Valley_fault-CFM2"),
+                ("bigpine", "CRFA-BPPM-WEST-Big_Pine_fault-CFM2"),
+            ],
+            [265000.0, 3832000.0, -12000.0],
+            [315000.0, 3860000.0, 0.0],
+            2000.0,
+        ),
+        case(
+            "scec_tejon_pass",
+            &[
+                ("saf", "SAFS-SAFZ-CRRZ-San_Andreas_fault-CFM4"),
+                ("garlock", "GRFS-GRFZ-WEST-Garlock_fault-CFM5"),
+                ("pleito", "GVFA-PLFZ-MULT-Pleito_fault-CFM2"),
+                ("whitewolf", "GVFA-WWFZ-MULT-White_Wolf_fault-CFM5"),
+            ],
+            [320000.0, 3845000.0, -12000.0],
+            [360000.0, 3880000.0, 0.0],
+            1000.0,
+        ),
+    ]
 }
 
 /// The extent surfaces are made over (past the box on every side).
@@ -292,6 +361,126 @@ fn fault_patches_touching_at_corners() -> Case {
     );
     r.surface("F", "fault", &corner_patches(12, 100.0), &PLAIN);
     r.case(&["box", "H1", "H2"], 3)
+}
+
+/// Two faults that die out inside the layer between H1 and H2 and cross each other there: F1
+/// striking along y, F2 along x and reaching past F1 on both sides, so that their intersection
+/// runs from F2's upper tip line to its lower one. Where a tip line passes through the other
+/// fault, one fault is a whole disk round the point and the other a half-disk, so four sheets
+/// meet along the intersection and two at its ends: the fault network of a real multi-strand
+/// fault file. Both are embedded in the layer's region.
+fn dangling_faults_crossing() -> Case {
+    let mut rng = Rng(0x6461_6e67_6c65_2078);
+    let mut r = Recipe::new("dangling_faults_crossing");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-400.0, 30.0, 0.3, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1600.0, 30.0, 1.3, &mut rng),
+        &DEPTH,
+    );
+    let f1 = fault_y(
+        2000.0,
+        -1000.0,
+        70.0,
+        (1000.0, 3000.0),
+        (-1400.0, -600.0),
+        &mut rng,
+    );
+    r.surface("F1", "fault", &f1, &PLAIN);
+    let cot = 1.0 / 75f64.to_radians().tan();
+    let us = graded_axis(900.0, 2900.0, 170.0, 1.1);
+    let vs = graded_axis(-1200.0, -800.0, 150.0, 0.4);
+    let f2 = grid_surface(
+        &us,
+        &vs,
+        |x, z| [x, 2000.0 + (z + 1000.0) * cot, z],
+        &mut rng,
+    );
+    r.surface("F2", "fault", &f2, &DEPTH);
+    r.case(&["box", "H1", "H2", "F1", "F2"], 3)
+}
+
+/// A flat horizon H1 at z = -600 and below it a horizon H2 domed up so that its apex, one of
+/// its vertices, lies exactly on H1: the two surfaces touch at that point only (tangent there),
+/// and the layer between them thins to nothing round it. H3 below closes the layer under H2.
+/// A touch at one point separates nothing, so the layer is one region; the touch point is not
+/// a node of the meshes (H2's passes about 16 m under H1 there at size 250), and the thin
+/// wedge round it (H2's mesh rises about 12° from H1) holds the layer's worst dihedral near 7.7°.
+fn horizons_touching_at_a_point() -> Case {
+    let mut rng = Rng(0x746f_7563_6820_7074);
+    let mut r = Recipe::new("horizons_touching_at_a_point");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-600.0, 0.0, 0.0, &mut rng),
+        &PLAIN,
+    );
+    let mut h2 = horizon(0.0, 0.0, 0.7, &mut rng);
+    let apex = nearest_vertex(&h2, [2000.0, 2000.0]);
+    let [cx, cy, _] = h2.vertices[apex];
+    for v in &mut h2.vertices {
+        let r2 = (v[0] - cx).powi(2) + (v[1] - cy).powi(2);
+        v[2] = -1000.0 + 400.0 * (-r2 / 600f64.powi(2)).exp();
+    }
+    r.surface("H2", "horizon", &h2, &DEPTH);
+    r.surface(
+        "H3",
+        "horizon",
+        &horizon(-1500.0, 30.0, 1.9, &mut rng),
+        &PLAIN,
+    );
+    Case {
+        min_dihedral: 7.0,
+        ..r.case(&["box", "H1", "H2", "H3"], 4)
+    }
+}
+
+/// As [`horizons_touching_at_a_point`], with H2 a ridge whose crest, a column of its vertices
+/// (a zigzag chain of its edges, as jittered), lies exactly on H1: they touch along that line,
+/// which cuts the layer between them into a west and an east region.
+fn horizons_touching_along_a_line() -> Case {
+    let mut rng = Rng(0x746f_7563_6820_6c6e);
+    let mut r = Recipe::new("horizons_touching_along_a_line");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-600.0, 0.0, 0.0, &mut rng),
+        &DEPTH,
+    );
+    let mut h2 = horizon(0.0, 0.0, 0.2, &mut rng);
+    // The grid's width (its second corner is the end of the first row) and the crest column.
+    let width = h2.corners[1] + 1;
+    let column = nearest_vertex(&h2, [2000.0, 2000.0]) % width;
+    for (i, v) in h2.vertices.iter_mut().enumerate() {
+        let k = i % width;
+        let dx = 200.0 * (k as f64 - column as f64);
+        v[2] = match k == column {
+            true => -600.0,
+            false => -1000.0 + 400.0 * (-dx.powi(2) / 600f64.powi(2)).exp(),
+        };
+    }
+    r.surface("H2", "horizon", &h2, &PLAIN);
+    r.surface(
+        "H3",
+        "horizon",
+        &horizon(-1500.0, 30.0, 2.3, &mut rng),
+        &DEPTH,
+    );
+    r.case(&["box", "H1", "H2", "H3"], 5)
+}
+
+/// The vertex of `s` nearest `(x, y)` in plan.
+fn nearest_vertex(s: &Surface, [x, y]: [f64; 2]) -> usize {
+    let d = |v: &[f64; 3]| (v[0] - x).powi(2) + (v[1] - y).powi(2);
+    (0..s.vertices.len())
+        .min_by(|&a, &b| d(&s.vertices[a]).total_cmp(&d(&s.vertices[b])))
+        .unwrap_or(0)
 }
 
 /// `k × k` right triangles of leg `d` on a chequerboard in a plane dipping 60° to the east,
