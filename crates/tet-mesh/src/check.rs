@@ -6,6 +6,7 @@
 //! pairwise intersection test only when some triangle is not a face of the boundary's Delaunay
 //! tetrahedralization (`check_shape`): on the peer model it was a fifth of a thin layer's time.
 
+use super::inside::{boundary_vertices, one_per_group, segment_inside};
 use super::{RegionInput, TetMeshError};
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
@@ -18,6 +19,7 @@ type P = [f64; 3];
 /// (boundary or embedded) intersect other than in shared vertices/edges (exact).
 pub fn check_input(input: &RegionInput) -> Result<(), TetMeshError> {
     check_shape(input)?;
+    check_embedded_inside(input)?;
     check_intersections(input)
 }
 
@@ -77,6 +79,38 @@ pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
             ),
             None,
         );
+    }
+    Ok(())
+}
+
+/// Every embedded triangle lies inside the region, decided exactly for one triangle of each
+/// group joined at vertices off the boundary (`inside::one_per_group`): the ray parity from a
+/// point of the triangle next to its first corner, towards its centroid. A surface that lies
+/// wholly outside (another region's fault, or a cavity's body given as embedded) once sent the
+/// mesher searching for minutes. A triangle crossing the boundary is the intersection test's
+/// to report (run first when a test point lies outside); one whose test point lies on the
+/// boundary is left to it too.
+pub(crate) fn check_embedded_inside(input: &RegionInput) -> Result<(), TetMeshError> {
+    let pts = &input.vertices;
+    let on_boundary = boundary_vertices(pts.len(), &input.boundary);
+    for k in one_per_group(&input.embedded, &on_boundary) {
+        let t = input.embedded[k];
+        let [a, b, c] = t.map(|v| pts[v as usize]);
+        let centroid = [0, 1, 2].map(|i| (a[i] + b[i] + c[i]) / 3.0);
+        if segment_inside(&a, &centroid, pts, &input.boundary) == Some(false) {
+            // Part of a triangle crossing the boundary is outside too: that crossing is the
+            // cause to name.
+            check_intersections(input)?;
+            return Err(TetMeshError::new(
+                &input.name,
+                format!(
+                    "embedded triangle {k} {t:?} ({a:?}, {b:?}, {c:?}) lies outside the region: \
+                     an embedded surface (a dangling fault) must lie inside the region it is \
+                     embedded in"
+                ),
+                Some(a),
+            ));
+        }
     }
     Ok(())
 }

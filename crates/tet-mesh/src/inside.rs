@@ -77,6 +77,43 @@ pub fn segment_inside(u: &P, v: &P, pts: &[P], boundary: &[[u32; 3]]) -> Option<
     Some(crossings % 2 == 1)
 }
 
+/// Which vertices the boundary triangles use.
+pub fn boundary_vertices(n: usize, boundary: &[[u32; 3]]) -> Vec<bool> {
+    let mut on = vec![false; n];
+    for &v in boundary.iter().flatten() {
+        on[v as usize] = true;
+    }
+    on
+}
+
+/// The first item of each group of items joined at vertices off the boundary (`on_boundary`
+/// marks its vertices), in item order. When no item crosses the boundary, the items of a group
+/// lie on one side of it together, so testing one of each decides them all.
+pub fn one_per_group<const N: usize>(items: &[[u32; N]], on_boundary: &[bool]) -> Vec<usize> {
+    let mut parent: Vec<usize> = (0..items.len()).collect();
+    let find = |parent: &mut Vec<usize>, mut x: usize| {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    };
+    let mut at_vertex: Vec<(u32, usize)> = (items.iter().enumerate())
+        .flat_map(|(k, s)| s.map(|v| (v, k)))
+        .filter(|&(v, _)| !on_boundary[v as usize])
+        .collect();
+    at_vertex.sort_unstable();
+    for w in at_vertex.windows(2) {
+        if w[0].0 == w[1].0 {
+            let (a, b) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    (0..items.len())
+        .filter(|&k| find(&mut parent, k) == k)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -252,6 +252,7 @@ pub fn mesh_region_with_progress(
     let (mut mesh, figures, tail) = match opts.method {
         Method::Delaunay => {
             check::check_shape(input)?;
+            check::check_embedded_inside(input)?;
             lines::check_lines(input)?;
             bar.reach(progress::CHECKS);
             let rest = bar.part(progress::CHECKS, 1.0);

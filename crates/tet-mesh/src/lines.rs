@@ -16,7 +16,7 @@
 //! `ROUNDING_ULPS` units in the last place of the segment's coordinates around the node (well
 //! over the construction's error), and the nodes advance strictly along the segment's main axis.
 
-use super::inside::segment_inside;
+use super::inside::{boundary_vertices, one_per_group, segment_inside};
 use super::{RegionInput, TetMeshError, TetMeshOutput};
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
@@ -139,37 +139,9 @@ fn check_crossings(input: &RegionInput) -> Result<(), TetMeshError> {
 /// Every segment lies inside the region. Segments joined through a vertex off the boundary lie
 /// on one side together (none crosses the boundary), so one of each such group is tested.
 fn check_inside(input: &RegionInput) -> Result<(), TetMeshError> {
-    let mut on_boundary = vec![false; input.vertices.len()];
-    for t in &input.boundary {
-        for &v in t {
-            on_boundary[v as usize] = true;
-        }
-    }
-    // Union-find over the segments, joined at their ends off the boundary.
-    let mut parent: Vec<usize> = (0..input.lines.len()).collect();
-    let find = |parent: &mut Vec<usize>, mut x: usize| {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    };
-    let mut at_vertex: Vec<(u32, usize)> = (input.lines.iter().enumerate())
-        .flat_map(|(k, s)| s.map(|v| (v, k)))
-        .filter(|&(v, _)| !on_boundary[v as usize])
-        .collect();
-    at_vertex.sort_unstable();
-    for w in at_vertex.windows(2) {
-        if w[0].0 == w[1].0 {
-            let (a, b) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));
-            parent[a.max(b)] = a.min(b);
-        }
-    }
     let pts = &input.vertices;
-    for k in 0..input.lines.len() {
-        if find(&mut parent, k) != k {
-            continue;
-        }
+    let on_boundary = boundary_vertices(pts.len(), &input.boundary);
+    for k in one_per_group(&input.lines, &on_boundary) {
         let [u, v] = input.lines[k].map(|v| &pts[v as usize]);
         match segment_inside(u, v, pts, &input.boundary) {
             Some(true) => {}

@@ -474,3 +474,63 @@ fn verify_reports_where_a_removed_boundary_tet_leaves_a_hole() {
     assert!(m.contains("boundary triangle") || m.contains("hole"), "{e}");
     assert!(e.at.is_some(), "{e}");
 }
+
+/// The unit cube with an embedded triangle: corner 0 (the origin) and two points `p`, `q`.
+fn cube_with_triangle(p: [f64; 3], q: [f64; 3]) -> RegionInput {
+    let (mut vertices, boundary) = test_support::shapes::cuboid([0.0; 3], [1.0; 3]);
+    vertices.extend([p, q]);
+    RegionInput {
+        name: "cube".into(),
+        vertices,
+        boundary,
+        embedded: vec![[0, 8, 9]],
+        lines: vec![],
+    }
+}
+
+#[test]
+fn an_embedded_triangle_touching_the_boundary_at_a_corner_from_inside_is_meshed() {
+    let input = cube_with_triangle([0.5, 0.3, 0.2], [0.3, 0.5, 0.4]);
+    check_input(&input).expect("inside");
+    let out = mesh_region(&input, &SizeField::default(), &TetMeshOptions::default()).unwrap();
+    verify(&input, &out).unwrap();
+}
+
+#[test]
+fn an_embedded_triangle_outside_the_region_is_refused_at_once_by_either_method() {
+    // Touching the cube at its corner from outside, then wholly apart from it.
+    for (p, q) in [
+        ([-0.5, -0.3, -0.2], [-0.3, -0.5, -0.4]),
+        ([2.0, 0.5, 0.5], [2.5, 0.6, 0.5]),
+    ] {
+        let mut input = cube_with_triangle(p, q);
+        if p[0] > 1.0 {
+            input.vertices.push([2.2, 0.8, 0.6]);
+            input.embedded = vec![[8, 9, 10]];
+        }
+        for method in [Method::Delaunay, Method::Front] {
+            let opts = TetMeshOptions {
+                method,
+                ..Default::default()
+            };
+            let e = mesh_region(&input, &SizeField::default(), &opts).unwrap_err();
+            assert!(e.message.contains("lies outside the region"), "{e}");
+            assert!(e.message.contains("embedded triangle 0"), "{e}");
+        }
+    }
+}
+
+#[test]
+fn an_embedded_triangle_crossing_the_boundary_from_outside_is_refused_for_the_crossing() {
+    let (mut vertices, boundary) = test_support::shapes::cuboid([0.0; 3], [1.0; 3]);
+    vertices.extend([[-0.5, 0.5, 0.5], [0.5, 0.4, 0.5], [0.5, 0.6, 0.6]]);
+    let input = RegionInput {
+        name: "cube".into(),
+        vertices,
+        boundary,
+        embedded: vec![[8, 9, 10]],
+        lines: vec![],
+    };
+    let e = mesh_region(&input, &SizeField::default(), &TetMeshOptions::default()).unwrap_err();
+    assert!(e.message.contains("intersects embedded triangle 0"), "{e}");
+}
