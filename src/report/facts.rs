@@ -1,6 +1,6 @@
 //! What a report shows of the final mesh, computed from the mesh once: its counts and groups,
 //! the seed's Tables 1 and 2, the histograms, the element counts and volumes per group, the
-//! edges and length of every line group (well), and the two pictures.
+//! edges and length of every line group (well), the named points' names, and the two pictures.
 //!
 //! These are the report's only costly parts (a measure per element, a sort of every tet face,
 //! the painter's algorithm), and they depend on the mesh and the model's name alone (the
@@ -18,7 +18,7 @@ use geom::mesh::{LineGroup, RegionGroup, SurfaceGroup, VolumeMesh};
 use serde::{Deserialize, Serialize};
 
 /// The version of what [`MeshFacts::of`] computes, for caches of it.
-pub const FACTS_VERSION: u32 = 2;
+pub const FACTS_VERSION: u32 = 3;
 
 /// Everything a report shows of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -44,6 +44,8 @@ pub struct MeshFacts {
     pub group_triangles: Vec<usize>,
     /// The mesh's line groups (the wells), index order.
     pub lines: Vec<LineFacts>,
+    /// The names of the mesh's named points (the wells' crossings of the surfaces), index order.
+    pub points: Vec<String>,
     pub pictures: Pictures,
 }
 
@@ -114,6 +116,7 @@ impl MeshFacts {
             region_volume,
             group_triangles,
             lines: mesh.lines.iter().map(|g| LineFacts::of(mesh, g)).collect(),
+            points: mesh.points.iter().map(|p| p.name.clone()).collect(),
             pictures: Pictures {
                 model,
                 cutaway,

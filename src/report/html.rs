@@ -391,8 +391,8 @@ fn well_markers_table(h: &mut String, input: &ReportInput, w: &WellSummary) {
 }
 
 /// One quality table from its shared layout; the last ("all") row is set apart.
-/// The id table: how every region, surface group, fault side, material and well is numbered in
-/// each output format (the README's table, filled in for this mesh).
+/// The id table: how every region, surface group, fault side, material, well and named point is
+/// numbered in each output format (the README's table, filled in for this mesh).
 fn ids_section(h: &mut String, input: &ReportInput) {
     let rows = super::ids(&input.mesh);
     if rows.is_empty() {

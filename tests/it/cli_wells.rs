@@ -257,6 +257,28 @@ fn each_crossing_is_a_named_point_at_a_node_of_the_crossed_surface_on_the_well()
 }
 
 #[test]
+fn the_reports_id_table_numbers_each_named_point_as_the_msh_and_exodus_writers_do() {
+    let s = built();
+    let mesh = mesh_of(&s);
+    let text = std::fs::read_to_string(s.path("out/didactic_wells/report.json")).unwrap();
+    let report: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let rows = report["ids"].as_array().expect("an ids table");
+    let points: Vec<&serde_json::Value> = rows.iter().filter(|r| r["kind"] == "point").collect();
+    assert_eq!(points.len(), mesh.points.len());
+    // Exodus node sets: one per surface group, then per well, then per named point.
+    let first_set = mesh.surface_groups.len() + mesh.lines.len() + 1;
+    for (i, (row, p)) in points.iter().zip(&mesh.points).enumerate() {
+        assert_eq!(row["name"], p.name.as_str());
+        assert_eq!(row["msh"], format!("0D group {}", i + 1));
+        assert_eq!(row["exodus"], format!("node set {}", first_set + i));
+    }
+    assert!(
+        rows.iter()
+            .any(|r| r["kind"] == "well" && r["name"] == "W1")
+    );
+}
+
+#[test]
 fn the_example_with_wells_passes_the_independent_checker() {
     let s = built();
     let Some(check) = checker() else { return };

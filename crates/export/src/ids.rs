@@ -1,5 +1,6 @@
 //! The one id scheme every writer follows, as a table a report can show: per region, surface
-//! group, fault side, material and well, what it is called and numbered in each format. The
+//! group, fault side, material, well and named point, what it is called and numbered in each
+//! format. The
 //! numbers come from the same functions the writers use (`sides::fault_sides_of`,
 //! [`materials`]), so the table cannot drift from the files; it depends only on the mesh's
 //! groups (names, kinds, materials), not on its elements.
@@ -15,7 +16,7 @@ use std::collections::BTreeSet;
 /// One thing a format names or numbers, and how each format does it.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct IdRow {
-    /// `region`, `surface`, `fault side`, `material` or `well`.
+    /// `region`, `surface`, `fault side`, `material`, `well` or `point`.
     pub kind: &'static str,
     /// Its name (`material:<id>` for a material).
     pub name: String,
@@ -38,8 +39,14 @@ pub fn materials(regions: &[RegionGroup]) -> Vec<i64> {
     set.into_iter().collect()
 }
 
-/// The id table of a mesh with these regions, surface groups and line groups (wells' names).
-pub fn table(regions: &[RegionGroup], groups: &[SurfaceGroup], wells: &[String]) -> Vec<IdRow> {
+/// The id table of a mesh with these regions, surface groups, line groups (wells' names) and
+/// named points (their names).
+pub fn table(
+    regions: &[RegionGroup],
+    groups: &[SurfaceGroup],
+    wells: &[String],
+    points: &[String],
+) -> Vec<IdRow> {
     let mut rows: Vec<IdRow> = (regions.iter().enumerate())
         .map(|(r, g)| region(r + 1, g))
         .collect();
@@ -52,6 +59,8 @@ pub fn table(regions: &[RegionGroup], groups: &[SurfaceGroup], wells: &[String])
     rows.extend((materials(regions).into_iter().enumerate()).map(|(k, m)| material(first + k, m)));
     let (n, r) = (groups.len(), regions.len());
     rows.extend((wells.iter().enumerate()).map(|(w, name)| well(w + 1, name, r, n)));
+    let first_set = n + wells.len() + 1;
+    rows.extend((points.iter().enumerate()).map(|(i, name)| point(i + 1, name, first_set + i)));
     rows
 }
 
@@ -128,6 +137,20 @@ fn well(id: usize, name: &str, regions: usize, groups: usize) -> IdRow {
     row("well", name.to_string(), cells)
 }
 
+/// Named point `id` (1-based, the msh's 0D group), Exodus node set `set` (after the wells'):
+/// VTU names it in field data by its node's index, Abaqus by a one-node `*Nset`; MEDIT and TetGen
+/// do not write it.
+fn point(id: usize, name: &str, set: usize) -> IdRow {
+    let cells = [
+        format!("0D group {id}"),
+        format!("node set {set}"),
+        format!("point:{name} (node index)"),
+        "—".into(),
+        "—".into(),
+    ];
+    row("point", name.to_string(), cells)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -153,7 +176,7 @@ mod tests {
             group("H1", SurfaceKind::Horizon),
             group("F1", SurfaceKind::Fault),
         ];
-        let rows = table(&regions, &groups, &["W".to_string()]);
+        let rows = table(&regions, &groups, &["W".to_string()], &["W:H1".to_string()]);
         let got: Vec<(&str, &str, &str)> = (rows.iter())
             .map(|r| (r.name.as_str(), r.msh.as_str(), r.exodus.as_str()))
             .collect();
@@ -170,6 +193,7 @@ mod tests {
                 ("material:2", "3D group 4", "MATERIAL_ID 2"),
                 ("material:7", "3D group 5", "MATERIAL_ID 7"),
                 ("W", "1D group 1", "element block 4, node set 3"),
+                ("W:H1", "0D group 1", "node set 4"),
             ]
         );
         assert_eq!(rows[5].vtu, "fault_side 3");
