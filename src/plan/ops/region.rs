@@ -78,7 +78,8 @@ impl Operation for TetMeshOp {
         // 14: the wells' edges in the output.
         // 15: recovery holes filled by their own Delaunay tetrahedralization or a cone first.
         // 16: hole pieces with embedded triangles filled apart, each with its own.
-        16
+        // 17: a hole's embedded triangles peeled off by a tet each before the cone.
+        17
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -16,6 +16,7 @@
 mod flips;
 mod holes;
 mod kernel;
+mod peel;
 mod segments;
 
 use std::collections::HashSet;

@@ -11,7 +11,7 @@ use super::super::super::advance::advance_front;
 use super::super::super::check::check_input;
 use super::super::super::{RegionInput, SizeField, TetMeshError};
 use super::super::tri::{NONE, P, Tri};
-use super::{Holders, MAX_GROWTH, Side, kernel, meets, same_turn, sorted, star};
+use super::{Holders, MAX_GROWTH, Side, kernel, meets, peel, same_turn, sorted, star};
 
 /// The holes' inner surface: its boundary triangles, and the embedded triangles inside it.
 type HoleSurface = (Vec<[u32; 3]>, Vec<[u32; 3]>);
@@ -272,24 +272,27 @@ fn mesh_hole<D: Fn(&RegionInput) -> Option<Filled>>(
             e.at,
         )
     })?;
-    let cone =
-        || kernel::cone(&sub.vertices, &sub.boundary, fill.segments).filter(|_| sub_e.is_empty());
-    let (nodes, tets) = match (fill.delaunay)(&sub) {
+    // Without embedded triangles: the hole's own Delaunay mesh, else the cone.
+    let plain = |h: &RegionInput| -> Option<Filled> {
+        (fill.delaunay)(h).or_else(|| {
+            let cone = kernel::cone(&h.vertices, &h.boundary, fill.segments)
+                .filter(|_| h.embedded.is_empty())?;
+            Some((vec![cone.0], cone.1))
+        })
+    };
+    let (nodes, tets) = match plain(&sub).or_else(|| peel::peel(&sub, &plain)) {
         Some(filled) => filled,
-        None => match cone() {
-            Some((apex, tets)) => (vec![apex], tets),
-            None if !front => {
-                return Err(TetMeshError::new(
-                    name,
-                    "a recovery hole is not star-shaped",
-                    Some(centre(&sub.vertices)),
-                ));
-            }
-            None => {
-                let raw = advance_front(&sub, fill.size)?;
-                (raw.nodes[sub.vertices.len()..].to_vec(), raw.tets)
-            }
-        },
+        None if !front => {
+            return Err(TetMeshError::new(
+                name,
+                "a recovery hole is not star-shaped",
+                Some(centre(&sub.vertices)),
+            ));
+        }
+        None => {
+            let raw = advance_front(&sub, fill.size)?;
+            (raw.nodes[sub.vertices.len()..].to_vec(), raw.tets)
+        }
     };
     // The new nodes follow the hole's vertices.
     let mut map = back;
