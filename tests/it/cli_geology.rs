@@ -2,9 +2,9 @@
 //! case meshes into its regions, every region's worst tet is within the quality bars (normalised
 //! mean ratio at least 0.2, dihedral angles at least the case's bar: 8°, or 6° for the
 //! erosional unconformity, whose gap to 8° is still open, 7° for the lens, whose rim's needle
-//! triangles bound it, and 7° for horizons touching at a point, whose thin wedge round the touch
-//! does), and, when the independent checker is available, the msh passes `check_mesh.py` with
-//! that region count. Cases over the SCEC fault model in `../shared` skip when it is absent.
+//! triangles bound it, 7° for horizons touching at a point, whose thin wedge round the touch
+//! does, and 6° for the Tejon Pass faults at 2 km), and, when the independent checker is
+//! available, the msh passes `check_mesh.py` with that region count. Cases over the SCEC fault model in `../shared` skip when it is absent.
 
 use crate::common_cli::checker;
 use std::process::Command;
@@ -258,6 +258,15 @@ fn the_tejon_pass_faults_of_the_scec_cfm_with_white_wolfs_crossing_strands_mesh(
     };
     let (_dir, report) = builds_and_meshes_reporting(&case);
     // White Wolf's strands cross along non-manifold edges inside the box: more than one patch.
+    assert!(count_named(&report, "surface_mesh:whitewolf#") >= 3);
+}
+
+#[test]
+fn the_tejon_pass_faults_at_two_kilometres_mesh_with_a_white_wolf_fin_in_a_recovery_hole() {
+    let Some(case) = scec_case("scec_tejon_pass_coarse") else {
+        return;
+    };
+    let (_dir, report) = builds_and_meshes_reporting(&case);
     assert!(count_named(&report, "surface_mesh:whitewolf#") >= 3);
 }
 
