@@ -20,3 +20,21 @@ pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
         .collect();
     (corners, triangles)
 }
+
+/// The unit octahedron as six corners, ±x (0, 1), ±y (2, 3), ±z (4, 5), and eight triangles with
+/// normals pointing out of it.
+pub fn octahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let corners = vec![
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let triangles = [(0, 2), (2, 1), (1, 3), (3, 0)]
+        .into_iter()
+        .flat_map(|(x, y)| [[x, y, 4], [y, x, 5]])
+        .collect();
+    (corners, triangles)
+}

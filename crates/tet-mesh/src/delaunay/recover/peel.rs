@@ -117,19 +117,7 @@ mod tests {
     /// The octahedron with corners ±x (0, 1), ±y (2, 3), ±z (4, 5), faces outward, and the fin
     /// from +z to ±x inside it: hinged on two of its edges, its third edge through the centre.
     fn octahedron_with_fin() -> RegionInput {
-        let vertices = vec![
-            [1.0, 0.0, 0.0],
-            [-1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, -1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, -1.0],
-        ];
-        let mut boundary = Vec::new();
-        for (x, y) in [(0, 2), (2, 1), (1, 3), (3, 0)] {
-            boundary.push([x, y, 4]);
-            boundary.push([y, x, 5]);
-        }
+        let (vertices, boundary) = test_support::shapes::octahedron();
         RegionInput {
             name: "octahedron".into(),
             vertices,
