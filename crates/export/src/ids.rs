@@ -1,7 +1,6 @@
 //! The one id scheme every writer follows, as a table a report can show: per region, surface
 //! group, fault side, material, well and named point, what it is called and numbered in each
-//! format. The
-//! numbers come from the same functions the writers use (`sides::fault_sides_of`,
+//! format. The numbers come from the same functions the writers use (`sides::fault_sides_of`,
 //! [`materials`]), so the table cannot drift from the files; it depends only on the mesh's
 //! groups (names, kinds, materials), not on its elements.
 //!

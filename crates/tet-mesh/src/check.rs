@@ -86,7 +86,7 @@ pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
 /// Every embedded triangle lies inside the region, decided exactly for one triangle of each
 /// group joined at vertices off the boundary (`inside::one_per_group`): the ray parity from a
 /// point of the triangle next to its first corner, towards its centroid. A surface that lies
-/// wholly outside (another region's fault, or a cavity's body given as embedded) once sent the
+/// wholly outside (another region's fault, or a cavity's body given as embedded) would send the
 /// mesher searching for minutes. A triangle crossing the boundary is the intersection test's
 /// to report (run first when a test point lies outside); one whose test point lies on the
 /// boundary is left to it too.
