@@ -79,7 +79,8 @@ impl Operation for TetMeshOp {
         // 15: recovery holes filled by their own Delaunay tetrahedralization or a cone first.
         // 16: hole pieces with embedded triangles filled apart, each with its own.
         // 17: a hole's embedded triangles peeled off by a tet each before the cone.
-        17
+        // 18: at most 16 apexes tried per peeled triangle.
+        18
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -12,7 +12,8 @@
 //!   triangle left inside, all exact): then the tet lies inside the hole, since a tet poking out
 //!   would cross the wall it pokes through.
 //! - Apexes are tried best shape first (ties by index), embedded triangles in their order: the
-//!   same mesh on every machine. At most `MAX_PEELED` triangles, each trying every hole vertex.
+//!   same mesh on every machine. At most `MAX_PEELED` triangles, each trying its `MAX_APEXES`
+//!   best-shaped apexes.
 
 use super::super::super::RegionInput;
 use super::super::super::check::check_input;
@@ -24,6 +25,9 @@ use geom::predicates::Orientation;
 
 /// More embedded triangles than this in one hole are left to the other fillers.
 const MAX_PEELED: usize = 8;
+/// Apexes tried per triangle, best shape first: each costs a check of the whole hole, and a
+/// widened hole has hundreds of vertices.
+const MAX_APEXES: usize = 16;
 
 /// The tets of `hole` (a recovery hole with embedded triangles): each embedded triangle cut off
 /// with a tet of its own, then the rest filled by `fill` (no embedded triangle left in it).
@@ -65,7 +69,7 @@ fn peel_one(hole: &RegionInput, k: usize) -> Option<([u32; 4], RegionInput)> {
         })
         .collect();
     apexes.sort_by(|p, q| p.0.total_cmp(&q.0).then(p.1.cmp(&q.1)));
-    apexes.into_iter().find_map(|(_, x)| {
+    apexes.into_iter().take(MAX_APEXES).find_map(|(_, x)| {
         let [a, b, c] = e;
         let tet = match orient3d(
             &pts[a as usize],
