@@ -270,6 +270,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         surface_groups,
         lines: line_groups,
         points: Vec::new(),
+        face_sets: Vec::new(),
     };
     let stem = a
         .output

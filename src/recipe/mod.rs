@@ -27,6 +27,7 @@
 mod curves;
 mod diagnostic;
 mod files;
+mod groups;
 mod reader;
 mod sections;
 pub mod selector;
@@ -40,8 +41,9 @@ use toml::de::DeTable;
 
 pub use diagnostic::{Diagnostic, Span};
 pub use files::{FileKind, check_files, check_files_with_listing};
+pub use groups::GroupPatches;
 pub use sections::regions::MAX_PROPERTY_NAMES;
-pub use selector::{CurveSelector, SurfaceSelector, glob_match};
+pub use selector::{CurveSelector, PatchSelector, SurfaceSelector, glob_match};
 pub use spec::*;
 
 use diagnostic::{SourceText, suggest};
@@ -60,6 +62,7 @@ const ROOT_KEYS: &[&str] = &[
     "mesh",
     "regions",
     "wells",
+    "groups",
     "output",
 ];
 
@@ -85,6 +88,8 @@ pub struct Recipe {
     pub regions: BTreeMap<String, RegionSpec>,
     /// `[wells]`, by name.
     pub wells: BTreeMap<String, WellSpec>,
+    /// `[groups]`, by name.
+    pub groups: BTreeMap<String, GroupSpec>,
     pub output: OutputSpec,
     src: SourceText,
 }
@@ -196,6 +201,10 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
         &names.surfaces,
         &region_names,
     );
+    let taken: Vec<(&str, &str)> = (region_names.iter().map(|r| (r.as_str(), "region")))
+        .chain(wells.keys().map(|w| (w.as_str(), "well")))
+        .collect();
+    let groups = sections::groups::read(&mut ctx, root.get("groups"), &names, &taken);
 
     let mut diags = ctx.diags;
     if let (true, Some(model), Some(mesh), Some(output)) =
@@ -215,6 +224,7 @@ pub fn parse(path_label: &Path, text: &str) -> Result<Recipe, Vec<Diagnostic>> {
             mesh,
             regions,
             wells,
+            groups,
             output,
             src,
         });

@@ -232,6 +232,51 @@ fn valid_pattern_char(c: char) -> bool {
     valid_name_char(c) || matches!(c, '*' | '?')
 }
 
+/// A patch selector: a surface name or glob, with an optional `#k` for patch `k` of each
+/// surface it matches (the model's patch names are `surface#k`). `H1` selects every patch of
+/// `H1`, `H1#2` one of them, `box.*` every box side.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub struct PatchSelector {
+    /// The selector as written.
+    pub text: String,
+    pub surface: SurfaceSelector,
+    /// The `#k` patch number, if given.
+    pub patch: Option<u32>,
+}
+
+impl PatchSelector {
+    /// Parses `surface#k`. Errors are worded for users; the caller adds the recipe location.
+    pub fn parse(text: &str) -> Result<PatchSelector, SelectorError> {
+        let (surface, patch) = split_component(text);
+        if text.matches('#').count() > 1 {
+            return Err(SelectorError::TwoComponents);
+        }
+        if let Some((_, k)) = text.split_once('#')
+            && patch.is_none()
+        {
+            return Err(SelectorError::Component(k.to_string()));
+        }
+        if surface.is_empty() {
+            return Err(SelectorError::EmptySide);
+        }
+        if let Some(c) = surface.chars().find(|c| !valid_pattern_char(*c)) {
+            return Err(SelectorError::Character(c));
+        }
+        Ok(PatchSelector {
+            text: text.to_string(),
+            surface: SurfaceSelector::new(surface),
+            patch,
+        })
+    }
+
+    /// Whether the patch named `patch_name` (`surface#k`, as the model names patches) is
+    /// selected.
+    pub fn matches(&self, patch_name: &str) -> bool {
+        let (surface, k) = split_component(patch_name);
+        self.surface.matches(surface) && self.patch.is_none_or(|p| k == Some(p))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -284,5 +329,17 @@ mod tests {
         assert!(CurveSelector::parse("a/").is_err());
         assert!(CurveSelector::parse("a#x").is_err());
         assert!(CurveSelector::parse("a b").is_err());
+    }
+
+    #[test]
+    fn a_patch_selector_takes_every_patch_of_its_surfaces_or_only_the_numbered_one() {
+        let all = PatchSelector::parse("box.x*").unwrap();
+        assert!(all.matches("box.xmin#1") && all.matches("box.xmax#3"));
+        assert!(!all.matches("box.ymin#1"));
+        let one = PatchSelector::parse("H1#2").unwrap();
+        assert!(one.matches("H1#2") && !one.matches("H1#12") && !one.matches("H10#2"));
+        for bad in ["H1#x", "H1#2#3", "#2", "H1/F1", "H 1"] {
+            assert!(PatchSelector::parse(bad).is_err(), "{bad}");
+        }
     }
 }

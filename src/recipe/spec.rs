@@ -123,6 +123,22 @@ pub struct WellSpec {
     pub file_span: Span,
 }
 
+/// One `[groups]` entry: a named set of patches, written as a boundary group by every format
+/// that can carry overlapping groups.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GroupSpec {
+    /// The group name (the key).
+    pub name: String,
+    /// What it gathers, as written (one or more); a patch is in the group when any matches.
+    pub selectors: Vec<crate::recipe::selector::PatchSelector>,
+    /// Span of each selector, as `selectors`.
+    #[serde(skip)]
+    pub selector_spans: Vec<Span>,
+    /// Span of the name (the key).
+    #[serde(skip)]
+    pub span: Span,
+}
+
 /// How the bounding box is given.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum BoxExtent {

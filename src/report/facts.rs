@@ -1,6 +1,7 @@
 //! What a report shows of the final mesh, computed from the mesh once: its counts and groups,
 //! the seed's Tables 1 and 2, the histograms, the element counts and volumes per group, the
-//! edges and length of every line group (well), the named points' names, and the two pictures.
+//! edges and length of every line group (well), the named points' and face sets' names, and
+//! the two pictures.
 //!
 //! These are the report's only costly parts (a measure per element, a sort of every tet face,
 //! the painter's algorithm), and they depend on the mesh and the model's name alone (the
@@ -18,7 +19,7 @@ use geom::mesh::{LineGroup, RegionGroup, SurfaceGroup, VolumeMesh};
 use serde::{Deserialize, Serialize};
 
 /// The version of what [`MeshFacts::of`] computes, for caches of it.
-pub const FACTS_VERSION: u32 = 3;
+pub const FACTS_VERSION: u32 = 4;
 
 /// Everything a report shows of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -46,6 +47,8 @@ pub struct MeshFacts {
     pub lines: Vec<LineFacts>,
     /// The names of the mesh's named points (the wells' crossings of the surfaces), index order.
     pub points: Vec<String>,
+    /// The names of the mesh's face sets (the recipe's `[groups]`), index order.
+    pub face_sets: Vec<String>,
     pub pictures: Pictures,
 }
 
@@ -117,6 +120,7 @@ impl MeshFacts {
             group_triangles,
             lines: mesh.lines.iter().map(|g| LineFacts::of(mesh, g)).collect(),
             points: mesh.points.iter().map(|p| p.name.clone()).collect(),
+            face_sets: mesh.face_sets.iter().map(|s| s.name.clone()).collect(),
             pictures: Pictures {
                 model,
                 cutaway,

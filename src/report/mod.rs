@@ -45,10 +45,16 @@ pub use pictures::FACE_CAP;
 pub use view::Picture;
 
 /// The id table of the mesh (`export::ids`), shown by both documents: what each region, surface
-/// group, fault side, material, well and named point is called and numbered in every format.
+/// group, fault side, material, well, named point and face set is called and numbered in every
+/// format.
 fn ids(mesh: &MeshFacts) -> Vec<export::ids::IdRow> {
     let wells: Vec<String> = mesh.lines.iter().map(|l| l.name.clone()).collect();
-    export::ids::table(&mesh.regions, &mesh.surface_groups, &wells, &mesh.points)
+    let named = export::ids::Named {
+        wells: &wells,
+        points: &mesh.points,
+        face_sets: &mesh.face_sets,
+    };
+    export::ids::table(&mesh.regions, &mesh.surface_groups, named)
 }
 
 /// The warnings both documents show, in a fixed order: the build's own, then what the mesh's

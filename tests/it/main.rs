@@ -6,6 +6,7 @@ mod cli_cache;
 mod cli_errors;
 mod cli_exodus;
 mod cli_geology;
+mod cli_groups;
 mod cli_incremental;
 mod cli_mesh;
 mod cli_msh_groups;

@@ -862,3 +862,49 @@ fn an_import_that_is_a_directory_or_a_fifo_says_what_it_is_not_that_it_is_missin
         ]
     );
 }
+
+#[test]
+fn groups_take_a_selector_or_a_list_of_them_over_surfaces_patches_and_box_sides() {
+    let text = format!("{BASE}[groups]\nseafloor = \"box.zmax\"\nfaults = [\"f*\", \"top#2\"]\n");
+    let r = ok(&text);
+    let texts: Vec<Vec<&str>> = (r.groups.values())
+        .map(|g| g.selectors.iter().map(|s| s.text.as_str()).collect())
+        .collect();
+    assert_eq!(texts, [vec!["f*", "top#2"], vec!["box.zmax"]]);
+    let faults = &r.groups["faults"].selectors;
+    assert!(faults[1].matches("top#2") && !faults[1].matches("top#21"));
+    assert!(faults[0].matches("f1#3") && !faults[0].matches("top#1"));
+}
+
+#[test]
+fn a_group_named_like_a_surface_region_or_box_side_is_refused_at_its_name() {
+    for (name, what) in [
+        ("top", "surface"),
+        ("box.zmin", "surface"),
+        ("r0", "region"),
+    ] {
+        let text = format!(
+            "{BASE}[regions]\nr0 = {{ point = [1.0, 1.0, -1.0] }}\n[groups]\n\"{name}\" = \"f1\"\n"
+        );
+        let (d, r) = single_at(&text, &format!("\"{name}\" = \"f1\""), 0);
+        assert!(
+            d.message
+                .contains(&format!("group name `{name}` is also a {what} name")),
+            "{r}"
+        );
+    }
+}
+
+#[test]
+fn a_group_selector_with_an_unknown_surface_or_a_bad_patch_number_is_refused_where_written() {
+    let text = format!("{BASE}[groups]\nbc = [\"f1\", \"topp#2\"]\n");
+    let (d, r) = single_at(&text, "topp", 0);
+    assert!(d.message.contains("matches no surface"), "{r}");
+    assert_eq!(d.help.as_deref(), Some("did you mean `top`?"), "{r}");
+    let text = format!("{BASE}[groups]\nbc = \"top#x\"\n");
+    let (d, r) = single_at(&text, "\"top#x\"", 0);
+    assert!(d.message.contains("bad group selector `top#x`"), "{r}");
+    let text = format!("{BASE}[groups]\nbc = []\n");
+    let (d, r) = single_at(&text, "[]", 0);
+    assert!(d.message.contains("the group would hold no face"), "{r}");
+}

@@ -1,6 +1,6 @@
 //! The one id scheme every writer follows, as a table a report can show: per region, surface
-//! group, fault side, material, well and named point, what it is called and numbered in each
-//! format. The numbers come from the same functions the writers use (`sides::fault_sides_of`,
+//! group, fault side, material, well, named point and face set, what it is called and numbered
+//! in each format. The numbers come from the same functions the writers use (`sides::fault_sides_of`,
 //! [`materials`]), so the table cannot drift from the files; it depends only on the mesh's
 //! groups (names, kinds, materials), not on its elements.
 //!
@@ -15,7 +15,7 @@ use std::collections::BTreeSet;
 /// One thing a format names or numbers, and how each format does it.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct IdRow {
-    /// `region`, `surface`, `fault side`, `material`, `well` or `point`.
+    /// `region`, `surface`, `fault side`, `material`, `well`, `point` or `group`.
     pub kind: &'static str,
     /// Its name (`material:<id>` for a material).
     pub name: String,
@@ -38,14 +38,22 @@ pub fn materials(regions: &[RegionGroup]) -> Vec<i64> {
     set.into_iter().collect()
 }
 
-/// The id table of a mesh with these regions, surface groups, line groups (wells' names) and
-/// named points (their names).
-pub fn table(
-    regions: &[RegionGroup],
-    groups: &[SurfaceGroup],
-    wells: &[String],
-    points: &[String],
-) -> Vec<IdRow> {
+/// The names of a mesh's line groups (wells), named points and face sets.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Named<'a> {
+    pub wells: &'a [String],
+    pub points: &'a [String],
+    pub face_sets: &'a [String],
+}
+
+/// The id table of a mesh with these regions, surface groups, and `named` wells, points and
+/// face sets.
+pub fn table(regions: &[RegionGroup], groups: &[SurfaceGroup], named: Named) -> Vec<IdRow> {
+    let Named {
+        wells,
+        points,
+        face_sets,
+    } = named;
     let mut rows: Vec<IdRow> = (regions.iter().enumerate())
         .map(|(r, g)| region(r + 1, g))
         .collect();
@@ -60,6 +68,12 @@ pub fn table(
     rows.extend((wells.iter().enumerate()).map(|(w, name)| well(w + 1, name, r, n)));
     let first_set = n + wells.len() + 1;
     rows.extend((points.iter().enumerate()).map(|(i, name)| point(i + 1, name, first_set + i)));
+    let first = crate::face_sets::first_id(groups);
+    let first_node_set = crate::face_sets::first_node_set(n, wells.len(), points.len());
+    rows.extend(
+        (face_sets.iter().enumerate())
+            .map(|(k, name)| face_set(first + k, first_node_set + k, name)),
+    );
     rows
 }
 
@@ -150,6 +164,19 @@ fn point(id: usize, name: &str, set: usize) -> IdRow {
     row("point", name.to_string(), cells)
 }
 
+/// Face set `id` (2D group, side set and VTU value), Exodus node set `node_set`: MEDIT and
+/// TetGen give each triangle one tag and cannot carry overlapping sets.
+fn face_set(id: usize, node_set: usize, name: &str) -> IdRow {
+    let cells = [
+        format!("2D group {id}"),
+        format!("side set {id}, node set {node_set}"),
+        format!("group:{name} {id}"),
+        "—".into(),
+        "—".into(),
+    ];
+    row("group", name.to_string(), cells)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,7 +202,12 @@ mod tests {
             group("H1", SurfaceKind::Horizon),
             group("F1", SurfaceKind::Fault),
         ];
-        let rows = table(&regions, &groups, &["W".to_string()], &["W:H1".to_string()]);
+        let named = Named {
+            wells: &["W".to_string()],
+            points: &["W:H1".to_string()],
+            face_sets: &["seafloor".to_string()],
+        };
+        let rows = table(&regions, &groups, named);
         let got: Vec<(&str, &str, &str)> = (rows.iter())
             .map(|r| (r.name.as_str(), r.msh.as_str(), r.exodus.as_str()))
             .collect();
@@ -193,6 +225,7 @@ mod tests {
                 ("material:7", "3D group 5", "MATERIAL_ID 7"),
                 ("W", "1D group 1", "element block 4, node set 3"),
                 ("W:H1", "0D group 1", "node set 4"),
+                ("seafloor", "2D group 5", "side set 5, node set 5"),
             ]
         );
         assert_eq!(rows[5].vtu, "fault_side 3");

@@ -15,6 +15,7 @@
 
 pub mod curves;
 mod exodus;
+mod face_sets;
 pub mod ids;
 mod inp;
 mod medit;

@@ -10,7 +10,7 @@
 use super::{ModelError, PatchBoundary, point_key};
 use crate::regions::{FaceUse, Side};
 use geom::TriMesh;
-use geom::mesh::{RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
+use geom::mesh::{FaceSet, RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use std::collections::HashMap;
 use surface_mesh::PatchInput;
 use tet_mesh::RegionInput;
@@ -77,6 +77,30 @@ pub fn patch_input<'a>(
         constraints,
         points: Vec::new(),
     })
+}
+
+/// The face sets, each the triangles of its patches (`ranges[p]` are patch `p`'s), ascending.
+fn face_sets(
+    sets: &[(String, Vec<usize>)],
+    ranges: &[std::ops::Range<u32>],
+) -> Result<Vec<FaceSet>, ModelError> {
+    let mut out = Vec::with_capacity(sets.len());
+    for (name, patches) in sets {
+        let mut triangles = Vec::new();
+        for &p in patches {
+            let range = ranges.get(p).ok_or_else(|| {
+                ModelError::new(format!("face set `{name}`: there is no patch {p}"), None)
+            })?;
+            triangles.extend(range.clone());
+        }
+        triangles.sort_unstable();
+        triangles.dedup();
+        out.push(FaceSet {
+            name: name.clone(),
+            triangles,
+        });
+    }
+    Ok(out)
 }
 
 /// Welds points by exact coordinates, in order of first appearance.
@@ -175,10 +199,12 @@ pub struct VolumeAssembly<'a> {
     pub regions: Vec<RegionPart<'a>>,
     /// Per patch: the surface it belongs to, that surface's kind, and its FE triangles.
     pub patches: Vec<(&'a str, SurfaceKind, &'a TriMesh)>,
+    /// Named face sets, in name order: each a name and the indices into `patches` it gathers.
+    pub face_sets: Vec<(String, Vec<usize>)>,
 }
 
 /// Welds the regions' tets into one [`VolumeMesh`]; every patch triangle joins the 2D group of
-/// its surface (groups in name order).
+/// its surface (groups in name order) and the face sets that gather its patch.
 pub fn assemble_volume(parts: &VolumeAssembly) -> Result<VolumeMesh, ModelError> {
     let mut w = Welder::default();
     let mut out = VolumeMesh::default();
@@ -202,8 +228,11 @@ pub fn assemble_volume(parts: &VolumeAssembly) -> Result<VolumeMesh, ModelError>
         })
         .collect();
     let n_volume_nodes = w.points.len();
+    let mut ranges = Vec::with_capacity(parts.patches.len());
     for (surface, _, mesh) in &parts.patches {
         let g = names.partition_point(|(s, _)| s < surface) as u32;
+        let first = out.triangles.len() as u32;
+        ranges.push(first..first + mesh.triangles.len() as u32);
         for t in &mesh.triangles {
             let tri = t.map(|v| w.id(&mesh.vertices[v as usize]));
             out.triangles.push(tri);
@@ -218,6 +247,7 @@ pub fn assemble_volume(parts: &VolumeAssembly) -> Result<VolumeMesh, ModelError>
         ));
     }
     out.nodes = w.points;
+    out.face_sets = face_sets(&parts.face_sets, &ranges)?;
     out.check_indices().map_err(|e| ModelError::new(e, None))?;
     Ok(out)
 }

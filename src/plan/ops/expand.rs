@@ -109,6 +109,11 @@ impl Expander for ModelExpander {
         if !unmatched.is_empty() {
             return Err(recipe::render(&unmatched).into());
         }
+        let patch_names: Vec<String> = model.patches.iter().map(|p| p.name.clone()).collect();
+        let face_sets = self
+            .recipe
+            .group_patches(&patch_names)
+            .map_err(|d| recipe::render(&d))?;
         let model_node = x.node("model").ok_or("no `model` node")?;
         let min_segments = min_segments(topo);
         let region_sizes = sizes::region_sizes(&self.recipe, &model);
@@ -248,6 +253,14 @@ impl Expander for ModelExpander {
         let (mesh_inputs, inputs) = wiring.finish();
         let assemble = AssembleOp {
             regions: groups,
+            face_sets: (face_sets.into_iter())
+                .map(|(name, patches)| {
+                    (
+                        name,
+                        patches.iter().map(|&p| patch_names[p].clone()).collect(),
+                    )
+                })
+                .collect(),
             inputs,
         };
         let mesh = x

@@ -180,6 +180,8 @@ fn well_edges(
 pub struct AssembleOp {
     /// Each region's group: name and the recipe's attributes.
     pub regions: Vec<RegionGroup>,
+    /// The recipe's `[groups]`, in name order: each name and its patches' names, in model order.
+    pub face_sets: Vec<(String, Vec<String>)>,
     /// `regions` (every `tet_mesh:<r>`, in the order of `regions`), `patches` (every
     /// `surface_mesh:<p>`, in model order) and, only when the recipe has wells, `wells` (every
     /// `well_cut:<w>`, in name order).
@@ -198,7 +200,8 @@ impl Operation for AssembleOp {
     fn version(&self) -> u32 {
         // 2: the wells' line elements.
         // 3: the wells' crossings of the surfaces as named points.
-        3
+        // 4: the recipe's named face sets.
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -213,6 +216,10 @@ impl Operation for AssembleOp {
                     .expect("validated finite");
             }
         }
+        for (name, patches) in &self.face_sets {
+            p.set(&format!("groups.{name}"), patches.clone())
+                .expect("strings");
+        }
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -221,6 +228,7 @@ impl Operation for AssembleOp {
             return Err("mesh needs one tet mesh per region".into());
         }
         let patches: Vec<PatchMesh> = self.inputs.decode("patches", inputs)?;
+        let face_sets = face_set_patches(&self.face_sets, &patches)?;
         let parts = VolumeAssembly {
             regions: self
                 .regions
@@ -232,6 +240,7 @@ impl Operation for AssembleOp {
                 .iter()
                 .map(|p| (p.surface.as_str(), p.kind, &p.mesh))
                 .collect(),
+            face_sets,
         };
         let mut mesh: VolumeMesh =
             assemble_volume(&parts).map_err(|e| OpError::from(e.to_string()))?;
@@ -250,6 +259,31 @@ impl Operation for AssembleOp {
             .count("tets", nt)
             .count("triangles", nf))
     }
+}
+
+/// The face sets with their patches as indices into `patches` (found by name).
+fn face_set_patches(
+    sets: &[(String, Vec<String>)],
+    patches: &[PatchMesh],
+) -> Result<Vec<(String, Vec<usize>)>, OpError> {
+    let index: BTreeMap<&str, usize> = (patches.iter().enumerate())
+        .map(|(i, p)| (p.name.as_str(), i))
+        .collect();
+    let find = |set: &str, p: &String| {
+        index.get(p.as_str()).copied().ok_or_else(|| {
+            OpError::from(format!(
+                "mesh: group `{set}` names patch `{p}`, which has no mesh"
+            ))
+        })
+    };
+    (sets.iter())
+        .map(|(name, ps)| {
+            Ok((
+                name.clone(),
+                ps.iter().map(|p| find(name, p)).collect::<Result<_, _>>()?,
+            ))
+        })
+        .collect()
 }
 
 /// A point's bits as a map key, -0.0 taken as 0.0.

@@ -4,6 +4,7 @@
 //! and `[box]` first.
 
 pub(crate) mod bbox;
+pub(crate) mod groups;
 pub(crate) mod intersect;
 pub(crate) mod mesh;
 pub(crate) mod model;

@@ -14,6 +14,7 @@
 //!   ids after the wells' node sets ([`sets`]);
 //! - a side set and a node set per surface group, and a front and a back side set per fault
 //!   ([`sets`], [`crate::sides`] for the TETRA4 side numbering);
+//! - a side set and a node set per face set (the recipe's `[groups]`), after those ([`sets`]);
 //! - QA and info records naming the program and the model, and, given a [`Provenance`], the
 //!   recipe and the key that identifies the build inputs ([`globals`]).
 //!
@@ -53,13 +54,15 @@ pub(super) fn write(
     let mut node_sets = sets::node_sets(mesh);
     node_sets.extend(sets::well_node_sets(mesh));
     node_sets.extend(sets::point_node_sets(mesh));
+    node_sets.extend(sets::face_set_node_sets(mesh));
     let names = mesh
         .regions
         .iter()
         .flat_map(|r| std::iter::once(&r.name).chain(r.properties.keys()))
         .chain(side_sets.iter().map(|s| &s.name))
         .chain(mesh.lines.iter().map(|g| &g.name))
-        .chain(mesh.points.iter().map(|p| &p.name));
+        .chain(mesh.points.iter().map(|p| &p.name))
+        .chain(mesh.face_sets.iter().map(|s| &s.name));
     let width = names
         .map(|n| n.len() + 1)
         .fold(MIN_NAME_WIDTH, usize::max)
@@ -82,7 +85,11 @@ pub(super) fn write(
 /// Fails when a node id, element number or set id would not fit a 32-bit Exodus integer.
 fn fits_32_bits(mesh: &VolumeMesh) -> Result<(), String> {
     let wells = mesh.lines.len();
-    let ids = mesh.regions.len() + 3 * mesh.surface_groups.len() + wells + mesh.points.len();
+    let ids = mesh.regions.len()
+        + 3 * mesh.surface_groups.len()
+        + wells
+        + mesh.points.len()
+        + 2 * mesh.face_sets.len();
     let lines: usize = mesh.lines.iter().map(|g| g.lines.len()).sum();
     let elements = mesh.tets.len().saturating_add(lines);
     let largest = mesh.nodes.len().max(elements).max(ids);

@@ -19,7 +19,13 @@
 //! name, after the wells' ([`point_node_sets`]), id = the number of surface groups + the number
 //! of line groups + point index + 1: Exodus has no point entity, and a one-node set is what a
 //! solver reading Exodus (MOOSE, PyLith) takes a point source or a point constraint on.
+//!
+//! Each face set (the recipe's `[groups]`) has a side set, named from the tets of the lowest
+//! element number like a group's, with the id every format gives it
+//! ([`crate::face_sets`]: after the fault sides), and a node set, after the named points'
+//! ([`face_set_node_sets`]).
 
+use crate::face_sets;
 use crate::sides::{FaceUse, fault_sides, on_side, side_name};
 use crate::split_by;
 use geom::mesh::VolumeMesh;
@@ -59,6 +65,12 @@ pub(crate) fn side_sets(mesh: &VolumeMesh, uses: &[Vec<FaceUse>]) -> Vec<SideSet
             sets.push((fault.id(front), side_name(name, front), faces));
         }
     }
+    let first = face_sets::first_id(&mesh.surface_groups);
+    for (k, set) in mesh.face_sets.iter().enumerate() {
+        let tris: Vec<usize> = set.triangles.iter().map(|&t| t as usize).collect();
+        let faces = pick(&tris, &|u| u.first().copied());
+        sets.push((first + k, set.name.clone(), faces));
+    }
     sets.into_iter()
         .filter(|(_, _, faces)| !faces.is_empty())
         .map(|(id, name, faces)| SideSet { id, name, faces })
@@ -71,13 +83,10 @@ pub(crate) fn node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
         .iter()
         .enumerate()
         .filter(|(_, tris)| !tris.is_empty())
-        .map(|(g, tris)| {
-            let nodes: BTreeSet<u32> = tris.iter().flat_map(|&t| mesh.triangles[t]).collect();
-            NodeSet {
-                id: g + 1,
-                name: mesh.surface_groups[g].name.clone(),
-                nodes: nodes.into_iter().map(|v| v + 1).collect(),
-            }
+        .map(|(g, tris)| NodeSet {
+            id: g + 1,
+            name: mesh.surface_groups[g].name.clone(),
+            nodes: triangle_nodes(mesh, tris.iter().copied()),
         })
         .collect()
 }
@@ -96,6 +105,30 @@ pub(crate) fn well_node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
             }
         })
         .collect()
+}
+
+/// The node sets of the face sets of `mesh`: each set's triangle nodes, ids after the named
+/// points'.
+pub(crate) fn face_set_node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
+    let first = face_sets::first_node_set(
+        mesh.surface_groups.len(),
+        mesh.lines.len(),
+        mesh.points.len(),
+    );
+    (mesh.face_sets.iter().enumerate())
+        .filter(|(_, s)| !s.triangles.is_empty())
+        .map(|(k, s)| NodeSet {
+            id: first + k,
+            name: s.name.clone(),
+            nodes: triangle_nodes(mesh, s.triangles.iter().map(|&t| t as usize)),
+        })
+        .collect()
+}
+
+/// The 1-based ids of the nodes of these triangles, ascending.
+fn triangle_nodes(mesh: &VolumeMesh, tris: impl Iterator<Item = usize>) -> Vec<u32> {
+    let nodes: BTreeSet<u32> = tris.flat_map(|t| mesh.triangles[t]).collect();
+    nodes.into_iter().map(|v| v + 1).collect()
 }
 
 /// The node sets of the named points of `mesh`: one node each, ids after the wells'.

@@ -2,8 +2,9 @@
 //! `*Element, type=C3D4, elset=<region>` block per region, one `*Element, type=T3D2,
 //! elset=<well>` block per line group (well) with lines, a material and a solid section per
 //! region ([`materials`]), and the boundary groups ([`surfaces`]): a node set and an
-//! element-face surface per surface group, and a surface per side of every fault, then a
-//! one-node `*Nset` per named point (a well's crossing of a surface). The wells get
+//! element-face surface per surface group, a surface per side of every fault, a node set and
+//! a surface per face set (the recipe's `[groups]`), then a one-node `*Nset` per named point
+//! (a well's crossing of a surface). The wells get
 //! no section: a truss section needs the well's cross-section area, which the mesh does not
 //! know, so the analyst adds it (a `**` comment says so) before Abaqus runs the file.
 //!
@@ -31,7 +32,8 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     let uses = sides::face_uses(mesh, &numbering.number);
     sides::every_triangle_a_face(mesh, &uses)?;
     let side_sets = sets::side_sets(mesh, &uses);
-    let node_sets = sets::node_sets(mesh);
+    let mut node_sets = sets::node_sets(mesh);
+    node_sets.extend(face_set_node_sets(mesh));
     let labels = Labels::new(mesh, &side_sets);
     let mut s = String::new();
     let _ = writeln!(s, "*Heading\n georecipe model {model}");
@@ -63,6 +65,21 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     Ok(s.into_bytes())
 }
 
+/// The face sets' node sets under their side sets' ids, so each goes by its surface's label.
+fn face_set_node_sets(mesh: &VolumeMesh) -> Vec<sets::NodeSet> {
+    let exodus_first = crate::face_sets::first_node_set(
+        mesh.surface_groups.len(),
+        mesh.lines.len(),
+        mesh.points.len(),
+    );
+    let first = crate::face_sets::first_id(&mesh.surface_groups);
+    let mut out = sets::face_set_node_sets(mesh);
+    for set in &mut out {
+        set.id = set.id - exodus_first + first;
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -92,6 +109,7 @@ mod tests {
             }],
             lines: Vec::new(),
             points: Vec::new(),
+            face_sets: Vec::new(),
         };
         let e = write(&mesh, "m").unwrap_err();
         assert!(

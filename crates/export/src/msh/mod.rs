@@ -10,9 +10,9 @@
 //!   volume like a dangling fault, so no volume lists it. One discrete volume per region (tag =
 //!   region index + 1). A
 //!   surface group becomes one discrete surface per *piece*: its triangles that have the same
-//!   region in front and the same behind (the outside of the model counted as no region), in
-//!   order of group, region in front and region behind (none first), tags 1, 2, ... in that
-//!   order; a group without triangles keeps one empty surface so that its groups exist. One
+//!   region in front and the same behind (the outside of the model counted as no region) and
+//!   in the same face sets (the recipe's `[groups]`), in order of group, region in front, region
+//!   behind (none first) and face sets, tags 1, 2, ... in that order; a group without triangles keeps one empty surface so that its groups exist. One
 //!   surface per group could not bound a volume: a horizon between two regions here and two
 //!   others there would be the whole horizon in each region's boundary.
 //! - **Topology.** Each volume lists its bounding surfaces with the sign Gmsh's built-in kernel
@@ -27,7 +27,9 @@
 //!   theirs whether or not the mesh has points). 1D: line group `g` has tag `g + 1`, named after the group, on its
 //!   curve. 2D: surface group `g` has tag `g + 1` on its pieces; fault `k` (in group
 //!   order, empty ones counted) of `n` groups has `<fault>:front` = `n + 2k + 1` and
-//!   `<fault>:back` = `n + 2k + 2`, the ids of the Exodus side sets. 3D: region `r` has tag
+//!   `<fault>:back` = `n + 2k + 2`, the ids of the Exodus side sets; face set `j` of the
+//!   recipe's `[groups]` has `n + 2F + j + 1` (`F` faults) on the pieces it holds, which may
+//!   also hold other sets' tags. 3D: region `r` has tag
 //!   `r + 1` on its volume, and each distinct material id, the `k`-th in ascending order of the
 //!   `R` regions' ids, has `R + k + 1`, named `material:<id>`, on the volumes of the regions of
 //!   that material. An entity lists its group's (region's) tag first, which is the one meshio
@@ -199,8 +201,8 @@ fn mesh_format(o: &mut Out) {
 }
 
 /// `$PhysicalNames` (always ASCII): the 0D groups (named points), the 1D ones (line groups), the
-/// 2D ones (surface groups,
-/// then fault sides), then the 3D ones (regions, then materials).
+/// 2D ones (surface groups, then fault sides, then face sets), then the 3D ones (regions, then
+/// materials).
 fn physical_names(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, lines: &[LineGroup]) {
     o.text("$PhysicalNames\n");
     let n = mesh.points.len() + lines.len() + topology.names.len();

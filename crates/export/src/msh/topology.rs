@@ -8,11 +8,12 @@ use geom::mesh::VolumeMesh;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A surface entity: the triangles of one surface group with the same region on their front
-/// and the same behind (`None`: outside the model, or no tet at all).
+/// and the same behind (`None`: outside the model, or no tet at all), in the same face sets.
 struct Piece {
     group: usize,
     front: Option<usize>,
     back: Option<usize>,
+    sets: Vec<usize>,
 }
 
 /// The entities and physical groups of a mesh. Surface entity `k` (0-based) is piece `k`, volume
@@ -52,9 +53,18 @@ impl Topology {
                 extra[fault.group].push(if front { -id } else { id });
             }
         }
+        let first_set = crate::face_sets::first_id(&mesh.surface_groups);
+        for (k, set) in mesh.face_sets.iter().enumerate() {
+            names.push((2, tag(first_set + k - 1), set.name.clone()));
+        }
         let surface_physicals = pieces
             .iter()
-            .map(|p| std::iter::once(tag(p.group)).chain(extra[p.group].iter().copied()))
+            .map(|p| {
+                let sets = p.sets.iter().map(|&k| tag(first_set + k - 1));
+                std::iter::once(tag(p.group))
+                    .chain(extra[p.group].iter().copied())
+                    .chain(sets)
+            })
             .map(Iterator::collect)
             .collect();
         let material_tag: BTreeMap<i64, i32> = (crate::ids::materials(&mesh.regions))
@@ -96,32 +106,50 @@ impl Topology {
     }
 }
 
-/// The pieces of every surface group, in order of group, region in front and region behind
-/// (`None` first); a group without triangles keeps one empty piece, so that its physical groups
-/// have an entity.
+/// What tells pieces apart: group, region in front, region behind, face sets.
+type PieceKey = (usize, Option<usize>, Option<usize>, Vec<usize>);
+
+/// The pieces of every surface group, in order of group, region in front, region behind
+/// (`None` first) and face sets; a group without triangles keeps one empty piece, so that its
+/// physical groups have an entity.
 fn pieces(mesh: &VolumeMesh) -> (Vec<Piece>, Vec<Vec<usize>>) {
     let numbering = Numbering::new(mesh);
     let uses = face_uses(mesh, &numbering.number);
     let region = |front: bool, t: usize| {
         on_side(&uses[t], front).map(|u| mesh.tet_region[u.tet as usize] as usize)
     };
-    let mut by_key: BTreeMap<(usize, Option<usize>, Option<usize>), Vec<usize>> =
-        (0..mesh.surface_groups.len())
-            .map(|g| ((g, None, None), Vec::new()))
-            .collect();
+    let mut sets = crate::face_sets::memberships(mesh);
+    let mut by_key: BTreeMap<PieceKey, Vec<usize>> = (0..mesh.surface_groups.len())
+        .map(|g| ((g, None, None, Vec::new()), Vec::new()))
+        .collect();
     for (t, &g) in mesh.triangle_group.iter().enumerate() {
-        let key = (g as usize, region(true, t), region(false, t));
+        let key = (
+            g as usize,
+            region(true, t),
+            region(false, t),
+            std::mem::take(&mut sets[t]),
+        );
         by_key.entry(key).or_default().push(t);
     }
     // The placeholder of a group that has triangles elsewhere goes.
     let groups_with_triangles: BTreeSet<usize> = (by_key.iter())
         .filter(|(_, tris)| !tris.is_empty())
-        .map(|(&(g, _, _), _)| g)
+        .map(|((g, ..), _)| *g)
         .collect();
     by_key
         .into_iter()
-        .filter(|((g, _, _), tris)| !tris.is_empty() || !groups_with_triangles.contains(g))
-        .map(|((group, front, back), tris)| (Piece { group, front, back }, tris))
+        .filter(|((g, ..), tris)| !tris.is_empty() || !groups_with_triangles.contains(g))
+        .map(|((group, front, back, sets), tris)| {
+            (
+                Piece {
+                    group,
+                    front,
+                    back,
+                    sets,
+                },
+                tris,
+            )
+        })
         .unzip()
 }
 
@@ -166,6 +194,7 @@ pub(super) mod tests {
             ],
             lines: Vec::new(),
             points: Vec::new(),
+            face_sets: Vec::new(),
         }
     }
 
@@ -224,5 +253,35 @@ pub(super) mod tests {
         // The group's own tag first; a fault without triangles keeps an entity for its groups.
         let want: Vec<Vec<i32>> = vec![vec![1], vec![1], vec![2], vec![3, -5, 6], vec![4, -7, 8]];
         assert_eq!(t.surface_physicals, want);
+    }
+
+    #[test]
+    fn face_sets_split_pieces_by_membership_and_tag_them_after_the_fault_sides() {
+        let mut mesh = three_tets();
+        // One box face in `walls`, the other and H in `both`: three sets over two groups.
+        let set = |name: &str, triangles: Vec<u32>| geom::mesh::FaceSet {
+            name: name.into(),
+            triangles,
+        };
+        mesh.face_sets = vec![set("both", vec![0, 3]), set("walls", vec![2])];
+        let t = Topology::new(&mesh);
+        assert_eq!(t.tris, vec![vec![2], vec![3], vec![0], vec![1], vec![]]);
+        let want: Vec<Vec<i32>> = vec![
+            vec![1, 10],
+            vec![1, 9],
+            vec![2, 9],
+            vec![3, -5, 6],
+            vec![4, -7, 8],
+        ];
+        assert_eq!(t.surface_physicals, want);
+        let named: Vec<_> = t.names.iter().filter(|n| n.1 >= 9).cloned().collect();
+        assert_eq!(
+            named,
+            [(2, 9, "both".to_string()), (2, 10, "walls".to_string())]
+        );
+        // The two box faces, in front of different regions, stay apart; a face set joining two
+        // faces of one group with the same regions would not split them.
+        mesh.face_sets = vec![set("all_box", vec![2, 3])];
+        assert_eq!(Topology::new(&mesh).tris.len(), 5);
     }
 }

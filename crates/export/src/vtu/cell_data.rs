@@ -1,6 +1,7 @@
 //! The VTU cell arrays, one value per cell (tets, then triangles, then lines, then the faults'
 //! side cells): `MaterialIDs`, `region`, `surface`, the region properties, when the mesh has
-//! line groups `well`, and when it has faults `fault_side`. -1 stands for "none" in the integer
+//! line groups `well`, when it has faults `fault_side`, and per face set (the recipe's
+//! `[groups]`, which may overlap) `group:<name>`, its id on the triangles it holds. -1 stands for "none" in the integer
 //! arrays (ids start at 1 and material ids may be 0), NaN for a property a region does not have
 //! (and on every cell but a tet).
 
@@ -57,6 +58,15 @@ pub(super) fn put(w: &mut Writer, mesh: &VolumeMesh, materials: &[i32], extra: &
     if !extra.sides.names.is_empty() {
         let sides = extra.sides.cells.iter().map(|&(_, id)| id);
         w.array("fault_side", 1, repeat_n(-1, nt + nf + nl).chain(sides));
+    }
+    let first = crate::face_sets::first_id(&mesh.surface_groups) as i32;
+    for (k, set) in mesh.face_sets.iter().enumerate() {
+        let mut on = vec![-1i32; nf];
+        for &t in &set.triangles {
+            on[t as usize] = first + k as i32;
+        }
+        let cells = repeat_n(-1, nt).chain(on).chain(repeat_n(-1, nl + ns));
+        w.array(&format!("group:{}", set.name), 1, cells);
     }
 }
 

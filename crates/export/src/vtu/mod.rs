@@ -19,7 +19,10 @@
 //! for the sake of a name. A mesh without line groups or points is written as before they
 //! existed. Each fault side is a copy of the fault's triangles after every other cell, marked
 //! by a `fault_side` array and named by `side:<fault>:front` / `side:<fault>:back` field data
-//! ([`sides`]); a mesh without faults is written as before they existed. Connectivity and offsets are Int32 whenever they fit and cell types UInt8, so
+//! ([`sides`]); a mesh without faults is written as before they existed. The recipe's face
+//! sets (`[groups]`) overlap the surface groups and each other, so each is its own cell array,
+//! `group:<name>`, holding the set's id on its triangles and -1 elsewhere, named by
+//! `group:<name>` field data; a mesh without them is written as before. Connectivity and offsets are Int32 whenever they fit and cell types UInt8, so
 //! the binary file is smaller than the ASCII.
 
 mod cell_data;
@@ -74,7 +77,8 @@ pub(super) fn write(mesh: &VolumeMesh, binary: bool) -> Result<Vec<u8>, String> 
 }
 
 /// `<FieldData>`: `region:<name>`, `surface:<name>`, `well:<name>` and `side:<fault side>`,
-/// each holding its id, then `point:<name>` holding the point's 0-based node index.
+/// each holding its id, then `point:<name>` holding the point's 0-based node index, then
+/// `group:<name>` holding each face set's id.
 fn names_table(w: &mut Writer, mesh: &VolumeMesh, sides: &SideCells) {
     w.xml.push_str("<FieldData>\n");
     for (r, rg) in mesh.regions.iter().enumerate() {
@@ -91,6 +95,10 @@ fn names_table(w: &mut Writer, mesh: &VolumeMesh, sides: &SideCells) {
     }
     for p in &mesh.points {
         w.field_int(&format!("point:{}", p.name), p.node as i64);
+    }
+    let first = crate::face_sets::first_id(&mesh.surface_groups);
+    for (k, set) in mesh.face_sets.iter().enumerate() {
+        w.field_int(&format!("group:{}", set.name), (first + k) as i64);
     }
     w.xml.push_str("</FieldData>\n");
 }
@@ -145,8 +153,9 @@ fn raw_capacity(mesh: &VolumeMesh, extra: &Extra) -> usize {
     let n_props = crate::property_names(mesh).len();
     let wells = usize::from(!mesh.lines.is_empty());
     let sides = usize::from(!extra.sides.names.is_empty());
-    let arrays = 7 + n_props + wells + sides;
+    let sets = mesh.face_sets.len();
+    let arrays = 7 + n_props + wells + sides + 2 * sets;
     let points = 3 * 8 * mesh.nodes.len();
-    let cells = (nt + nf + nl + ns) * (4 + 1 + 3 * 4 + 8 * n_props + 4 * (wells + sides));
+    let cells = (nt + nf + nl + ns) * (4 + 1 + 3 * 4 + 8 * n_props + 4 * (wells + sides + sets));
     8 * arrays + points + 4 * (4 * nt + 3 * (nf + ns) + 2 * nl) + cells
 }

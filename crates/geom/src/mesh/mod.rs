@@ -53,6 +53,17 @@ pub struct NamedPoint {
     pub node: u32,
 }
 
+/// A named set of surface triangles that a recipe's `[groups]` entry selected (patches of one or
+/// several surfaces), for a boundary condition to be set on by a stable name. Unlike the surface
+/// groups, which partition the triangles, face sets may overlap each other and the surface
+/// groups: a triangle of `H1#2` is in the group `H1` and in every face set that selects `H1#2`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FaceSet {
+    pub name: String,
+    /// Indices into `triangles`, ascending, without repeats.
+    pub triangles: Vec<u32>,
+}
+
 /// A tetrahedral FE mesh with tagged surface triangles.
 ///
 /// Invariants (checked by `validate`): every index is in range; every tet has positive signed
@@ -74,6 +85,8 @@ pub struct VolumeMesh {
     pub lines: Vec<LineGroup>,
     /// Named nodes (the wells' crossings of the surfaces), in name order; empty without wells.
     pub points: Vec<NamedPoint>,
+    /// The recipe's named groups of surface triangles, in name order; empty without `[groups]`.
+    pub face_sets: Vec<FaceSet>,
 }
 
 impl VolumeMesh {
@@ -133,6 +146,15 @@ impl VolumeMesh {
         }
         if let Some(p) = self.points.iter().find(|p| p.node >= n) {
             return Err(format!("point '{}' is node {}, beyond {n}", p.name, p.node));
+        }
+        let nt = self.triangles.len() as u32;
+        if let Some(s) = (self.face_sets.iter()).find(|s| {
+            s.triangles.windows(2).any(|w| w[0] >= w[1]) || s.triangles.last() >= Some(&nt)
+        }) {
+            return Err(format!(
+                "face set '{}' is not an ascending list of triangles below {nt}",
+                s.name
+            ));
         }
         Ok(())
     }
