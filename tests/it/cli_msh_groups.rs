@@ -350,3 +350,81 @@ fn report_json_ids_are_the_msh_groups_gmsh_reads_and_the_vtu_field_data_meshio_r
     let all = ["fault side", "material", "region", "surface"];
     assert_eq!(kinds, BTreeSet::from(all));
 }
+
+/// Walks the model down from each surface: per surface entity (`SURFACE|tag|curves|whether
+/// every curve's nodes are the surface's|whether every sign follows the surface's triangles`),
+/// per curve (`CURVE|tag|group|points|whether its points are its end nodes|surfaces around`),
+/// then how many volumes Gmsh meshes again from the file's geometry (`REMESHED n`).
+const GMSH_TOPOLOGY: &str = r#"
+import sys, gmsh
+gmsh.initialize()
+gmsh.option.setNumber("General.Terminal", 0)
+gmsh.open(sys.argv[1])
+def segments(c):
+    return gmsh.model.mesh.getElements(1, c)[2][0].reshape(-1, 2).tolist()
+for _, s in gmsh.model.getEntities(2):
+    tris = gmsh.model.mesh.getElements(2, s)[2][0].reshape(-1, 3).tolist()
+    nodes = {n for t in tris for n in t}
+    turns = {(t[k], t[(k + 1) % 3]) for t in tris for k in range(3)}
+    on, signed = True, True
+    curves = gmsh.model.getBoundary([(2, s)], combined=False, oriented=True)
+    for _, c in curves:
+        seg = segments(abs(c))
+        on = on and all(a in nodes and b in nodes for a, b in seg)
+        a, b = seg[0]
+        signed = signed and ((a, b) in turns if c > 0 else (b, a) in turns)
+    print("SURFACE", s, len(curves), on, signed, sep="|")
+for _, c in gmsh.model.getEntities(1):
+    groups = gmsh.model.getPhysicalGroupsForEntity(1, c)
+    name = gmsh.model.getPhysicalName(1, groups[0]) if len(groups) else ""
+    seg = segments(c)
+    ends = {seg[0][0], seg[-1][1]}
+    points = gmsh.model.getBoundary([(1, c)], combined=False, oriented=False)
+    at = {int(gmsh.model.mesh.getNodes(0, p)[0][0]) for _, p in points}
+    up, _ = gmsh.model.getAdjacencies(1, c)
+    print("CURVE", c, name, len(points), at == ends, len(up), sep="|")
+# Gmsh re-meshes the model from the file alone: its geometry from the discrete entities.
+gmsh.model.mesh.createGeometry()
+gmsh.model.mesh.clear()
+gmsh.option.setNumber("Mesh.MeshSizeMax", 400)
+gmsh.model.mesh.generate(3)
+meshed = [v for _, v in gmsh.model.getEntities(3) if len(gmsh.model.mesh.getElements(3, v)[1])]
+print("REMESHED", len(meshed))
+gmsh.finalize()
+"#;
+
+#[test]
+fn gmsh_walks_each_surface_to_its_curves_and_points_and_meshes_the_model_again_from_the_file() {
+    if !python_has("gmsh, numpy") {
+        return;
+    }
+    let (_s, msh, mesh) = built("msh");
+    let out = python(GMSH_TOPOLOGY, &[msh.to_str().expect("utf-8 path")]);
+    let surfaces: Vec<&str> = out.lines().filter(|l| l.starts_with("SURFACE|")).collect();
+    assert!(surfaces.len() >= mesh.surface_groups.len(), "{out}");
+    for line in &surfaces {
+        let f: Vec<&str> = line.split('|').collect();
+        // Every piece of the example ends somewhere (no closed surface), along its own nodes,
+        // each curve signed the way the piece's triangles turn.
+        assert!(f[2].parse::<usize>().unwrap() >= 1, "{line}");
+        assert_eq!(f[3..], ["True", "True"], "{line}");
+    }
+    let curves: Vec<Vec<&str>> = (out.lines())
+        .filter(|l| l.starts_with("CURVE|"))
+        .map(|l| l.split('|').collect())
+        .collect();
+    let names: BTreeSet<&str> = curves.iter().map(|f| f[2]).collect();
+    for want in ["F1/H1", "F1/H2", "F2/H1", "F2:border", "box.xmin/box.zmax"] {
+        assert!(names.contains(want), "no curve group `{want}` in {names:?}");
+    }
+    for f in &curves {
+        // An open curve's two points, or a closed one's one, are the ends of its segments; a
+        // curve of two surfaces lies between at least two surface entities.
+        assert!(f[3] == "2" || f[3] == "1", "{f:?}");
+        assert_eq!(f[4], "True", "{f:?}");
+        let meeting = if f[2].contains('/') { 2 } else { 1 };
+        assert!(f[5].parse::<usize>().unwrap() >= meeting, "{f:?}");
+    }
+    let remeshed = format!("REMESHED {}", mesh.regions.len());
+    assert!(out.lines().any(|l| l == remeshed), "{out}");
+}

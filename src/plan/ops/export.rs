@@ -63,7 +63,8 @@ impl Operation for ExportOp {
         true
     }
     fn version(&self) -> u32 {
-        7
+        // 8: msh curve and corner entities bounding the surfaces.
+        8
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

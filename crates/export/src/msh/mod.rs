@@ -20,12 +20,20 @@
 //!   point into it, so `gmsh.model.getBoundary([(3, r + 1)])` returns the region's pieces. A
 //!   piece with the same region on both sides (where a dangling fault ends inside a region) lies
 //!   inside that volume, not on its boundary, and the format has no documented record for an
-//!   embedded entity, so no volume lists it. Surfaces list no bounding curves: the mesh carries
-//!   no curve entities (the curves file does), so a surface's boundary is empty.
+//!   embedded entity, so no volume lists it. Each surface lists the curves around it
+//!   ([`curves`]: recovered from the pieces, where pieces meet or end), signed `+` where the
+//!   curve runs the way the surface's triangles turn, and each curve its first and last point
+//!   (the end negated, as Gmsh writes them), so `getBoundary` and `getAdjacencies` walk the
+//!   model from regions down to points, and Gmsh meshes the model again from the file
+//!   (`createGeometry`, then `generate`). The curves are discrete curves
+//!   with their line elements (tags after the line groups'), their end points point entities
+//!   without elements (tags after the named points').
 //! - **Physical groups.** 0D: named point `i` has tag `i + 1`, named after the point, on its
 //!   point entity (the tags of each dimension are their own, so volumes, surfaces and curves keep
-//!   theirs whether or not the mesh has points). 1D: line group `g` has tag `g + 1`, named after the group, on its
-//!   curve. 2D: surface group `g` has tag `g + 1` on its pieces; fault `k` (in group
+//!   theirs whether or not the mesh has points). 1D: line group `g` has tag `g + 1`, named after
+//!   the group, on its curve; the curves' groups follow in name order, each named after the
+//!   surface groups meeting there (`F1/H1`, names sorted) or `<group>:border` where the pieces of
+//!   one group end (a dangling fault's free edge), on every curve of that name. 2D: surface group `g` has tag `g + 1` on its pieces; fault `k` (in group
 //!   order, empty ones counted) of `n` groups has `<fault>:front` = `n + 2k + 1` and
 //!   `<fault>:back` = `n + 2k + 2`, the ids of the Exodus side sets; face set `j` of the
 //!   recipe's `[groups]` has `n + 2F + j + 1` (`F` faults) on the pieces it holds, which may
@@ -50,19 +58,23 @@
 //!   reads `<fault>` and `<fault>:back` and leaves `<fault>:front` empty.
 //!
 //! Nodes are classified on the entity of lowest dimension holding them (the first named point at
-//! them, else the first line group among their lines, else the first piece among their triangles, else the region of their first
-//! tet), one block per entity (tags = node index + 1, so the numbering is the mesh's whatever the
-//! blocks); elements go in one block per entity (tets type 4 by region first, then triangles type
-//! 2 by piece, then lines type 1 by group, then one point element type 15 per named point, last so
-//! that the other elements keep their tags), numbered consecutively from 1. The recipe's surface kinds (horizon, fault, box, other) go in a
-//! `$GeorecipeSurfaceKinds` section, which other readers skip as the format prescribes for
-//! unknown sections. The recipe's attributes follow as `$ElementData` views over every element:
+//! them, else the curves' end point there, else the first line group among their lines, else
+//! the first curve through them, else the first piece among their triangles, else the region of
+//! their first tet), one block per entity (tags = node index + 1, so the numbering is the mesh's
+//! whatever the blocks); elements go in one block per entity (tets type 4 by region first, then
+//! triangles type 2 by piece, then lines type 1 by group, then by curve, then one point element
+//! type 15 per named point, last so that the other elements keep their tags), numbered
+//! consecutively from 1. The recipe's surface kinds (horizon, fault, box, other) and which 1D
+//! groups are curves go in a `$GeorecipeSurfaceKinds` section, which other readers skip as the
+//! format prescribes for unknown sections. The recipe's attributes follow as `$ElementData` views over every element:
 //! "material" (the material id, -1 where none, and -1 on triangles, lines and points) and one per region
 //! property (NaN where undefined).
 
+mod curves;
 mod topology;
 
 use super::{bbox_of, property_names, split_by};
+use curves::Curves;
 use geom::mesh::{LineGroup, SurfaceKind, VolumeMesh};
 use std::collections::BTreeMap;
 use std::io::Write as _;
@@ -164,27 +176,78 @@ pub(super) fn write(mesh: &VolumeMesh, lines: &[LineGroup], binary: bool) -> Vec
     };
     let topology = Topology::new(mesh);
     let tris_by_piece = &topology.tris;
+    let curves = curves::curves(mesh, tris_by_piece);
     let tets_by_region = split_by(&mesh.tet_region, mesh.regions.len());
+    let model = Model {
+        topology: &topology,
+        curves: &curves,
+        curve_groups: curve_groups(mesh, &curves, lines.len()),
+        lines,
+    };
     mesh_format(&mut o);
-    physical_names(&mut o, mesh, &topology, lines);
-    surface_kinds(&mut o, mesh);
-    entities(&mut o, mesh, &topology, &tets_by_region, lines);
-    nodes(&mut o, mesh, tris_by_piece, lines);
-    let total = elements(&mut o, mesh, tris_by_piece, &tets_by_region, lines);
+    physical_names(&mut o, mesh, &model);
+    surface_kinds(&mut o, mesh, &model);
+    entities(&mut o, mesh, &model, &tets_by_region);
+    nodes(&mut o, mesh, &model);
+    let total = elements(&mut o, mesh, &model, &tets_by_region);
     // Attributes as element data, in element-tag order: the order the elements were written
-    // in (tets by region, then triangles by piece, then lines by group), so the tags are 1, 2,
-    // ... again.
+    // in (tets by region, then triangles by piece, then lines by group and by curve, then
+    // points), so the tags are 1, 2, ... again.
     if total > 0 && !mesh.regions.is_empty() {
+        let segments: usize = curves.chains.iter().map(|c| c.len() - 1).sum();
         let order = Order {
             tets: &tets_by_region,
             tris: tris_by_piece,
-            lines: lines.iter().map(|g| g.lines.len()).sum::<usize>() + mesh.points.len(),
+            lines: lines.iter().map(|g| g.lines.len()).sum::<usize>()
+                + mesh.points.len()
+                + segments,
             total: total as usize,
         };
         attributes(&mut o, mesh, &order);
     }
     o.buf.shrink_to_fit();
     o.buf
+}
+
+/// The entities besides the regions: the surface pieces, the curves bounding them and the line
+/// groups. Point entities are the named points, then the curves' corners; curve entities the
+/// line groups, then the curves.
+struct Model<'a> {
+    topology: &'a Topology,
+    curves: &'a Curves,
+    /// The curves' 1D physical groups, (tag, name), and per curve its tag.
+    curve_groups: (Vec<(i32, String)>, Vec<i32>),
+    lines: &'a [LineGroup],
+}
+
+/// The curves' 1D physical groups, tagged after the `wells` line groups' in name order, and per
+/// curve its group's tag.
+fn curve_groups(
+    mesh: &VolumeMesh,
+    curves: &Curves,
+    wells: usize,
+) -> (Vec<(i32, String)>, Vec<i32>) {
+    let mut of_curve = vec![0; curves.chains.len()];
+    let mut names = Vec::new();
+    for (j, (name, cs)) in curves.named(mesh).into_iter().enumerate() {
+        let t = tag(wells + j);
+        for c in cs {
+            of_curve[c] = t;
+        }
+        names.push((t, name));
+    }
+    (names, of_curve)
+}
+
+impl Model<'_> {
+    /// The entity index (tag - 1) of curve `c`.
+    fn curve(&self, c: usize) -> usize {
+        self.lines.len() + c
+    }
+    /// The entity index (tag - 1) of corner `k`, after the `points` named points.
+    fn corner(&self, points: usize, k: usize) -> usize {
+        points + k
+    }
 }
 
 /// `$MeshFormat`: version 4.1, ASCII or binary, 8-byte `size_t` (binary adds the endianness int).
@@ -200,12 +263,13 @@ fn mesh_format(o: &mut Out) {
     o.text("$EndMeshFormat\n");
 }
 
-/// `$PhysicalNames` (always ASCII): the 0D groups (named points), the 1D ones (line groups), the
+/// `$PhysicalNames` (always ASCII): the 0D groups (named points), the 1D ones (line groups, then curves), the
 /// 2D ones (surface groups, then fault sides, then face sets), then the 3D ones (regions, then
 /// materials).
-fn physical_names(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, lines: &[LineGroup]) {
+fn physical_names(o: &mut Out, mesh: &VolumeMesh, model: &Model) {
+    let (topology, lines, curves) = (model.topology, model.lines, &model.curve_groups.0);
     o.text("$PhysicalNames\n");
-    let n = mesh.points.len() + lines.len() + topology.names.len();
+    let n = mesh.points.len() + lines.len() + curves.len() + topology.names.len();
     o.text(&format!("{n}\n"));
     for (i, p) in mesh.points.iter().enumerate() {
         o.text(&format!("0 {} {}\n", tag(i), quoted(&p.name)));
@@ -213,21 +277,29 @@ fn physical_names(o: &mut Out, mesh: &VolumeMesh, topology: &Topology, lines: &[
     for (g, group) in lines.iter().enumerate() {
         o.text(&format!("1 {} {}\n", tag(g), quoted(&group.name)));
     }
+    for (t, name) in curves {
+        o.text(&format!("1 {t} {}\n", quoted(name)));
+    }
     for (dim, tag, name) in &topology.names {
         o.text(&format!("{dim} {tag} {}\n", quoted(name)));
     }
     o.text("$EndPhysicalNames\n");
 }
 
-/// `$GeorecipeSurfaceKinds`: what each 2D group is, geologically (a section Gmsh and meshio skip,
-/// as the format allows; our reader uses it to restore the surface kinds).
-fn surface_kinds(o: &mut Out, mesh: &VolumeMesh) {
+/// `$GeorecipeSurfaceKinds`: what each 2D group is, geologically, then which 1D groups are the
+/// model's curves, `curve` (a section Gmsh and meshio skip, as the format allows; our reader
+/// uses it to restore the surface kinds and to tell the curves from line groups).
+fn surface_kinds(o: &mut Out, mesh: &VolumeMesh, model: &Model) {
+    let curves = &model.curve_groups.0;
     o.text(&format!(
         "$GeorecipeSurfaceKinds\n{}\n",
-        mesh.surface_groups.len()
+        mesh.surface_groups.len() + curves.len()
     ));
     for (g, sg) in mesh.surface_groups.iter().enumerate() {
         o.text(&format!("2 {} {}\n", tag(g), kind_name(sg.kind)));
+    }
+    for (t, _) in curves {
+        o.text(&format!("1 {t} curve\n"));
     }
     o.text("$EndGeorecipeSurfaceKinds\n");
 }
@@ -236,17 +308,12 @@ fn surface_kinds(o: &mut Out, mesh: &VolumeMesh) {
 /// line group, the surface pieces, then one volume per region, each
 /// with its bounding box, its physical tags and its bounding entities (none for the curves and
 /// surfaces).
-fn entities(
-    o: &mut Out,
-    mesh: &VolumeMesh,
-    topology: &Topology,
-    tets_by_region: &[Vec<usize>],
-    lines: &[LineGroup],
-) {
+fn entities(o: &mut Out, mesh: &VolumeMesh, model: &Model, tets_by_region: &[Vec<usize>]) {
+    let (topology, curves, lines) = (model.topology, model.curves, model.lines);
     o.text("$Entities\n");
     o.rec(&[
-        F::S(mesh.points.len() as u64),
-        F::S(lines.len() as u64),
+        F::S((mesh.points.len() + curves.corners.len()) as u64),
+        F::S((lines.len() + curves.chains.len()) as u64),
         F::S(topology.tris.len() as u64),
         F::S(mesh.regions.len() as u64),
     ]);
@@ -266,13 +333,33 @@ fn entities(
         rec.extend([F::S(1), F::I(tag(i))]);
         o.rec(&rec);
     }
+    for (k, &v) in curves.corners.iter().enumerate() {
+        let mut rec = vec![F::I(tag(model.corner(mesh.points.len(), k)))];
+        rec.extend(mesh.nodes[v as usize].map(F::D));
+        rec.push(F::S(0));
+        o.rec(&rec);
+    }
     for (g, group) in lines.iter().enumerate() {
         let bb = bbox_of(mesh, group.lines.iter().map(|l| &l[..]));
         entity(o, g, bb, &[tag(g)], &[]);
     }
+    for (c, chain) in curves.chains.iter().enumerate() {
+        let bb = bbox_of(mesh, std::iter::once(&chain[..]));
+        let [a, b] = curves.ends[c].map(|k| tag(model.corner(mesh.points.len(), k)));
+        entity(o, model.curve(c), bb, &[model.curve_groups.1[c]], &[a, -b]);
+    }
     for (k, tris) in topology.tris.iter().enumerate() {
         let bb = bbox_of(mesh, tris.iter().map(|&t| &mesh.triangles[t][..]));
-        entity(o, k, bb, &topology.surface_physicals[k], &[]);
+        let bounds: Vec<i32> = (curves.bounds[k].iter())
+            .map(|&(c, along)| {
+                if along {
+                    tag(model.curve(c))
+                } else {
+                    -tag(model.curve(c))
+                }
+            })
+            .collect();
+        entity(o, k, bb, &topology.surface_physicals[k], &bounds);
     }
     for (r, sel) in tets_by_region.iter().enumerate() {
         let bb = bbox_of(mesh, sel.iter().map(|&t| &mesh.tets[t][..]));
@@ -283,28 +370,34 @@ fn entities(
 }
 
 /// The entity each node is classified on, as (dimension, index) → its nodes in index order: the
-/// entity of lowest dimension that holds it (the first named point at it, else the first line
-/// group among its lines, else the
+/// entity of lowest dimension that holds it (the first named point at it, else the corner at
+/// it, else the first line group among its lines, else the first curve through it, else the
 /// first piece among its triangles, else the region of its first tet; unused nodes on the first
 /// entity).
-fn node_blocks(
-    mesh: &VolumeMesh,
-    tris_by_piece: &[Vec<usize>],
-    lines: &[LineGroup],
-) -> BTreeMap<(i32, usize), Vec<usize>> {
+fn node_blocks(mesh: &VolumeMesh, model: &Model) -> BTreeMap<(i32, usize), Vec<usize>> {
+    let (tris_by_piece, curves) = (&model.topology.tris, model.curves);
     let n = mesh.nodes.len();
     let mut home: Vec<Option<(i32, usize)>> = vec![None; n];
-    for (i, p) in mesh.points.iter().enumerate() {
-        let h = &mut home[p.node as usize];
+    let points = mesh.points.iter().map(|p| p.node);
+    for (i, v) in points.chain(curves.corners.iter().copied()).enumerate() {
+        let h = &mut home[v as usize];
         if h.is_none() {
             *h = Some((0, i));
         }
     }
-    for (g, group) in lines.iter().enumerate() {
+    for (g, group) in model.lines.iter().enumerate() {
         for &v in group.lines.iter().flatten() {
             let h = &mut home[v as usize];
             if h.is_none() {
                 *h = Some((1, g));
+            }
+        }
+    }
+    for (c, chain) in curves.chains.iter().enumerate() {
+        for &v in chain {
+            let h = &mut home[v as usize];
+            if h.is_none() {
+                *h = Some((1, model.curve(c)));
             }
         }
     }
@@ -345,8 +438,8 @@ fn node_blocks(
 
 /// `$Nodes`: one block per entity, points, curves, surfaces then volumes. Tags stay node index + 1
 /// (sparse per block).
-fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>], lines: &[LineGroup]) {
-    let blocks = node_blocks(mesh, tris_by_piece, lines);
+fn nodes(o: &mut Out, mesh: &VolumeMesh, model: &Model) {
+    let blocks = node_blocks(mesh, model);
     let written: usize = blocks.values().map(Vec::len).sum();
     o.text("$Nodes\n");
     let (lo, hi) = (
@@ -372,21 +465,20 @@ fn nodes(o: &mut Out, mesh: &VolumeMesh, tris_by_piece: &[Vec<usize>], lines: &[
     o.end("Nodes");
 }
 
-/// `$Elements`: tets per region, then triangles per piece, then lines (type 1) per group, then a
-/// point (type 15) per named point; tags 1.. in that order. Returns the number of elements.
-fn elements(
-    o: &mut Out,
-    mesh: &VolumeMesh,
-    tris_by_piece: &[Vec<usize>],
-    tets_by_region: &[Vec<usize>],
-    lines: &[LineGroup],
-) -> u64 {
+/// `$Elements`: tets per region, then triangles per piece, then lines (type 1) per group, then
+/// lines per curve, then a point (type 15) per named point; tags 1.. in that order. Returns the
+/// number of elements.
+fn elements(o: &mut Out, mesh: &VolumeMesh, model: &Model, tets_by_region: &[Vec<usize>]) -> u64 {
+    let (tris_by_piece, lines, chains) = (&model.topology.tris, model.lines, &model.curves.chains);
     let blocks = tets_by_region.iter().filter(|s| !s.is_empty()).count()
         + tris_by_piece.iter().filter(|s| !s.is_empty()).count()
         + lines.iter().filter(|g| !g.lines.is_empty()).count()
-        + mesh.points.len();
+        + mesh.points.len()
+        + chains.len();
     let n_lines: usize = lines.iter().map(|g| g.lines.len()).sum();
-    let total = (mesh.tets.len() + mesh.triangles.len() + n_lines + mesh.points.len()) as u64;
+    let segments: usize = chains.iter().map(|c| c.len() - 1).sum();
+    let total =
+        (mesh.tets.len() + mesh.triangles.len() + n_lines + mesh.points.len() + segments) as u64;
     o.text("$Elements\n");
     o.rec(&[
         F::S(blocks as u64),
@@ -446,6 +538,14 @@ fn elements(
             next += 1;
         }
     }
+    for (c, chain) in chains.iter().enumerate() {
+        let n = chain.len() as u64 - 1;
+        o.rec(&[F::I(1), F::I(tag(model.curve(c))), F::I(1), F::S(n)]);
+        for w in chain.windows(2) {
+            o.rec(&[F::S(next), F::S(w[0] as u64 + 1), F::S(w[1] as u64 + 1)]);
+            next += 1;
+        }
+    }
     for (i, p) in mesh.points.iter().enumerate() {
         o.rec(&[F::I(0), F::I(tag(i)), F::I(15), F::S(1)]);
         o.rec(&[F::S(next), F::S(p.node as u64 + 1)]);
@@ -474,11 +574,11 @@ fn attributes(o: &mut Out, mesh: &VolumeMesh, order: &Order) {
 }
 
 /// The elements in tag order: `Some(tet)` for each tet by region, then `None` per triangle (by
-/// piece), per line and per point.
+/// piece), per line, per curve segment and per point.
 struct Order<'a> {
     tets: &'a [Vec<usize>],
     tris: &'a [Vec<usize>],
-    /// Lines and point elements.
+    /// Lines, the curves' lines and point elements.
     lines: usize,
     total: usize,
 }
@@ -527,12 +627,27 @@ mod tests {
     fn each_entity_lists_its_physical_tags_and_each_volume_its_signed_bounding_surfaces() {
         let lines = section(&three_tets(), "Entities");
         let want = [
-            "0 0 5 3",
-            // Surfaces: tag, bounding box, physical tags, no bounding curves.
-            "1 0 0 0 1 0 1 1 1 0",
-            "2 0 0 -1 1 0 0 1 1 0",
-            "3 0 0 0 1 1 0 1 2 0",
-            "4 0 0 0 1 1 1 3 3 -5 6 0",
+            "4 7 5 3",
+            // Points: the corners, nodes 1 to 4, where three or more curve edges meet.
+            "1 0 0 0 0",
+            "2 1 0 0 0",
+            "3 0 1 0 0",
+            "4 0 0 1 0",
+            // Curves: tag, bounding box, their 1D group (named after the surfaces meeting
+            // there), start and end point (the end negated, as Gmsh writes it).
+            "1 0 0 0 1 0 0 1 4 2 1 -2",
+            "2 0 0 0 0 1 0 1 5 2 1 -3",
+            "3 0 0 0 0 0 1 1 6 2 1 -4",
+            "4 0 0 -1 1 0 0 1 6 2 1 -2",
+            "5 0 0 0 1 1 0 1 1 2 2 -3",
+            "6 0 0 0 1 0 1 1 2 2 2 -4",
+            "7 0 0 0 0 1 1 1 3 2 3 -4",
+            // Surfaces: tag, bounding box, physical tags, bounding curves (negative where the
+            // curve runs against the way the surface's triangles turn).
+            "1 0 0 0 1 0 1 1 1 3 -1 3 -6",
+            "2 0 0 -1 1 0 0 1 1 2 1 -4",
+            "3 0 0 0 1 1 0 1 2 3 1 -2 5",
+            "4 0 0 0 1 1 1 3 3 -5 6 3 5 -6 7",
             "5 0 0 0 0 0 0 3 4 -7 8 0",
             // Volumes: tag, bounding box, region and material, bounding surfaces.
             "1 0 0 0 1 1 1 2 1 5 2 -1 -3",
@@ -552,15 +667,17 @@ mod tests {
         // Per piece (entity, type 2, one triangle): box/a, box/b, H, F; G's piece is empty.
         assert_eq!(blocks, ["2 1 2 1", "2 2 2 1", "2 3 2 1", "2 4 2 1"]);
         let nodes = section(&three_tets(), "Nodes");
-        // Nodes 1, 2, 4 (the box face of a) on piece 1, node 5 on piece 2, node 3 on piece 3
-        // (H), node 6 only in a tet.
+        // Every triangle node lies on a curve: nodes 1 to 4 on the corners, node 5 on curve 4
+        // (the free edges of b's box face); node 6 only in a tet.
         let headers: Vec<&str> = (nodes.iter())
             .filter(|l| l.split(' ').count() == 4)
             .map(String::as_str)
             .collect();
         assert_eq!(
             headers,
-            ["4 6 1 6", "2 1 0 3", "2 2 0 1", "2 3 0 1", "3 1 0 1"]
+            [
+                "6 6 1 6", "0 1 0 1", "0 2 0 1", "0 3 0 1", "0 4 0 1", "1 4 0 1", "3 1 0 1"
+            ]
         );
     }
 
@@ -577,17 +694,23 @@ mod tests {
             let (body, _) = rest.split_once(&format!("$End{name}")).unwrap();
             body.lines().map(str::to_string).collect()
         };
-        assert_eq!(section("PhysicalNames")[1], "1 1 \"well\"");
+        // The well's group comes first among the 1D groups, the curves' after it.
+        assert_eq!(
+            section("PhysicalNames")[1..3],
+            ["1 1 \"well\"", "1 2 \"F/H\""]
+        );
         let entities = section("Entities");
-        assert_eq!(entities[0], "0 1 5 3");
-        assert_eq!(entities[1], "1 0 0 -1 0 0 1 1 1 0");
+        // Four corners, the well's curve and the seven curves of the surfaces.
+        assert_eq!(entities[0], "4 8 5 3");
+        assert_eq!(entities[5], "1 0 0 -1 0 0 1 1 1 0");
         let elements = section("Elements");
-        // Seven blocks: tets of two regions, four pieces of triangles, then the two lines.
-        assert_eq!(elements[0], "7 9 1 9");
+        // Fourteen blocks: tets of two regions, four pieces of triangles, the well's two lines
+        // and the surfaces' seven curves.
+        assert_eq!(elements[0], "14 17 1 17");
         let at = elements.iter().position(|l| l == "1 1 1 2").unwrap();
         assert_eq!(elements[at + 1..at + 3], ["8 4 1", "9 1 5"]);
-        // Nodes 1, 4 and 5 lie on the curve.
-        assert_eq!(section("Nodes")[1], "1 1 0 3");
+        // Of the well's nodes 4, 1 and 5, the first two are corners; node 5 lies on the well.
+        assert!(section("Nodes").contains(&"1 1 0 1".to_string()));
         let lines = geom::mesh::read::read_msh_lines(text.as_bytes(), "w.msh").unwrap();
         assert_eq!(lines.lines, well.lines);
         let back = geom::mesh::read::read_volume_msh(text.as_bytes(), "w.msh").unwrap();

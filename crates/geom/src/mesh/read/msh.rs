@@ -76,6 +76,12 @@ fn phys_of(m: &Msh, e: &Elem) -> Option<i32> {
     })
 }
 
+/// Whether a line element lies on one of the model's curves, as our `$GeorecipeSurfaceKinds`
+/// section marks their 1D physical groups.
+fn is_curve(m: &Msh, e: &Elem) -> bool {
+    phys_of(m, e).is_some_and(|p| m.curves.contains(&p))
+}
+
 /// Reads the triangles of a Gmsh msh file (4.1 ASCII/binary, 2.2 ASCII).
 pub fn read_msh(bytes: &[u8], label: &str) -> Result<BoundaryMesh, ReadError> {
     let m = parse(bytes, label)?;
@@ -103,13 +109,14 @@ pub fn read_msh(bytes: &[u8], label: &str) -> Result<BoundaryMesh, ReadError> {
     Ok(out)
 }
 
-/// Reads the line elements (type 1: two nodes each) of a Gmsh msh file as segments.
+/// Reads the line elements (type 1: two nodes each) of a Gmsh msh file as segments, but for the
+/// model's curves bounding the surfaces of one of our volume meshes.
 pub fn read_msh_lines(bytes: &[u8], label: &str) -> Result<LineMesh, ReadError> {
     let m = parse(bytes, label)?;
     let c = Cursor::new(bytes, label);
     let idx = resolve(&m, &c)?;
     let lines: Vec<[u32; 2]> = (m.elems.iter().zip(&idx))
-        .filter(|(e, _)| e.n == 2)
+        .filter(|(e, _)| e.n == 2 && !is_curve(&m, e))
         .map(|(_, ix)| [ix[0], ix[1]])
         .collect();
     if lines.is_empty() {
@@ -123,7 +130,8 @@ pub fn read_msh_lines(bytes: &[u8], label: &str) -> Result<LineMesh, ReadError> 
 
 /// Reads a tet mesh (tets type 4, triangles type 2, lines type 1, points type 15) back into a
 /// [`VolumeMesh`]: regions are the 3D physical groups in tag order (an element without one goes
-/// to a group named after its entity), line groups the 1D ones, named points the point elements
+/// to a group named after its entity), line groups the 1D ones (but the model's curves, which
+/// our writer marks), named points the point elements
 /// of named 0D ones (sorted by name; unnamed or group-less points, such as the geometry points
 /// Gmsh saves, are skipped), surface groups the 2D ones (kinds from our `$GeorecipeSurfaceKinds` section, else `Other`). Region attributes come from
 /// scalar `$ElementData`: "material" (negative or NaN = none) and every other view as a property,
@@ -141,11 +149,13 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
     let mut reg_keys: BTreeMap<Result<i32, i32>, u32> = BTreeMap::new();
     let mut grp_keys: BTreeMap<Result<i32, i32>, u32> = BTreeMap::new();
     let mut line_keys: BTreeMap<Result<i32, i32>, u32> = BTreeMap::new();
+    // Line elements of the model's curves are not line groups.
+    let grouped_line = |e: &Elem| e.n == 2 && !is_curve(&m, e);
     for e in &m.elems {
         match e.n {
             4 => reg_keys.insert(key(e), 0),
             3 => grp_keys.insert(key(e), 0),
-            2 => line_keys.insert(key(e), 0),
+            2 if grouped_line(e) => line_keys.insert(key(e), 0),
             _ => None,
         };
     }
@@ -192,7 +202,7 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
                     node: ix[0],
                 });
             }
-        } else if e.n == 2 {
+        } else if grouped_line(e) {
             out.lines[line_keys[&key(e)] as usize]
                 .lines
                 .push([ix[0], ix[1]]);

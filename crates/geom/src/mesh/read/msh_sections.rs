@@ -31,6 +31,9 @@ pub(super) struct Msh {
     pub data: BTreeMap<String, BTreeMap<u64, f64>>,
     /// Surface kinds by 2D physical tag (our own `$GeorecipeSurfaceKinds` section).
     pub kinds: BTreeMap<i32, SurfaceKind>,
+    /// The 1D physical tags that section marks as the model's curves (where surfaces meet), not
+    /// line groups.
+    pub curves: std::collections::BTreeSet<i32>,
 }
 
 /// The element types kept: points (15), lines (1), triangles (2) and tets (4); the others are
@@ -234,14 +237,18 @@ fn physical_names(r: &mut Rd<'_>, m: &mut Msh) -> Result<(), ReadError> {
     r.expect_end("PhysicalNames")
 }
 
-/// `$GeorecipeSurfaceKinds`: the surface kind of each 2D physical tag (other dimensions are
-/// read past).
+/// `$GeorecipeSurfaceKinds`: the surface kind of each 2D physical tag, and which 1D ones are the
+/// model's curves (`1 <tag> curve`); other dimensions are read past.
 fn surface_kinds(r: &mut Rd<'_>, m: &mut Msh) -> Result<(), ReadError> {
     let n = r.c.u64("the number of surface kinds")?;
     for _ in 0..n {
         let dim = r.c.i64("a dimension")?;
         let tag = r.c.i64("a physical tag")?;
         let (k, kat) = r.c.tok("a surface kind")?;
+        if (dim, k) == (1, "curve") {
+            m.curves.insert(tag as i32);
+            continue;
+        }
         let kind = match k {
             "horizon" => SurfaceKind::Horizon,
             "fault" => SurfaceKind::Fault,
