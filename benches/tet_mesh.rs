@@ -141,5 +141,37 @@ fn criterion_selects(label: &str) -> bool {
         .any(|a| !a.starts_with('-') && a.contains("cube"))
 }
 
-criterion_group!(benches, bench);
+/// `cube(30, 100.0)` (10,800 boundary triangles) with `n` small triangles embedded apart from
+/// each other on a lattice inside it (a fault imported as loose pieces).
+fn cube_with_loose_pieces(n: usize) -> RegionInput {
+    let mut input = cube(30, 100.0);
+    let side = (n as f64).cbrt().ceil() as usize;
+    for k in 0..n {
+        let [i, j, l] = [k % side, (k / side) % side, k / (side * side)];
+        let at = [i, j, l].map(|c| 150.0 + c as f64 * 2700.0 / side as f64);
+        let first = input.vertices.len() as u32;
+        input.vertices.extend([
+            at,
+            [at[0] + 10.0, at[1], at[2]],
+            [at[0], at[1] + 10.0, at[2] + 3.0],
+        ]);
+        input.embedded.push([first, first + 1, first + 2]);
+    }
+    input
+}
+
+/// The input check alone on many loose embedded pieces: each is tested for lying inside the
+/// region, which must not cost a scan of the whole boundary per piece.
+fn check(c: &mut Criterion) {
+    let input = cube_with_loose_pieces(5000);
+    tet_mesh::check_input(&input).expect("a valid input");
+    let mut g = c.benchmark_group("tet_mesh_check");
+    g.sample_size(10);
+    g.bench_function("5000 loose embedded triangles in a cube of 10800", |b| {
+        b.iter(|| tet_mesh::check_input(&input))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench, check);
 criterion_main!(benches);

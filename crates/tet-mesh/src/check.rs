@@ -6,7 +6,7 @@
 //! pairwise intersection test only when some triangle is not a face of the boundary's Delaunay
 //! tetrahedralization (`check_shape`): on the peer model it was a fifth of a thin layer's time.
 
-use super::inside::{boundary_vertices, one_per_group, segment_inside};
+use super::inside::{Rays, boundary_vertices, one_per_group};
 use super::{RegionInput, TetMeshError};
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
@@ -93,11 +93,12 @@ pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
 pub(crate) fn check_embedded_inside(input: &RegionInput) -> Result<(), TetMeshError> {
     let pts = &input.vertices;
     let on_boundary = boundary_vertices(pts.len(), &input.boundary);
+    let rays = Rays::new(pts, &input.boundary);
     for k in one_per_group(&input.embedded, &on_boundary) {
         let t = input.embedded[k];
         let [a, b, c] = t.map(|v| pts[v as usize]);
         let centroid = [0, 1, 2].map(|i| (a[i] + b[i] + c[i]) / 3.0);
-        if segment_inside(&a, &centroid, pts, &input.boundary) == Some(false) {
+        if rays.segment_inside(&a, &centroid) == Some(false) {
             // Part of a triangle crossing the boundary is outside too: that crossing is the
             // cause to name.
             check_intersections(input)?;

@@ -41,10 +41,103 @@ fn turn(x: &P, y: &P, u: &P, v: &P) -> i32 {
 
 /// Whether the segment `uv` (its open part, next to `u`) lies inside the region the closed,
 /// outward `boundary` encloses; `None` when the perturbed point lies on a boundary triangle
-/// (the segment runs in it, which the caller's intersection test rules out).
+/// (the segment runs in it, which the caller's intersection test rules out). Scans every
+/// triangle: the reference [`Rays`] is tested against.
+#[cfg(test)]
 pub fn segment_inside(u: &P, v: &P, pts: &[P], boundary: &[[u32; 3]]) -> Option<bool> {
+    parity(u, v, pts, boundary.iter())
+}
+
+/// A closed boundary indexed for many parity queries: its triangles bucketed by their closed
+/// (y, z) bounding boxes on a grid of about one cell per triangle. The perturbed ray of a query
+/// stays infinitely close to the (y, z) of its start `u`, so it can only cross a triangle whose
+/// closed box contains that point, and every such triangle is in the point's cell: cells are
+/// found by one monotone float formula, so a box edge at the point's coordinate lands in the
+/// point's cell. Each query then costs its cell, not the whole boundary.
+pub struct Rays<'a> {
+    pts: &'a [P],
+    boundary: &'a [[u32; 3]],
+    lo: [f64; 2],
+    step: [f64; 2],
+    cells: [usize; 2],
+    /// Per cell (row-major in y, then z), the triangles whose box meets it.
+    grid: Vec<Vec<u32>>,
+}
+
+impl<'a> Rays<'a> {
+    pub fn new(pts: &'a [P], boundary: &'a [[u32; 3]]) -> Rays<'a> {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in boundary.iter().flatten().map(|&i| yz(&pts[i as usize])) {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let side = ((boundary.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+        let step = [0, 1].map(|k| {
+            let span = hi[k] - lo[k];
+            if span > 0.0 { span / side as f64 } else { 1.0 }
+        });
+        let mut rays = Rays {
+            pts,
+            boundary,
+            lo,
+            step,
+            cells: [side, side],
+            grid: vec![Vec::new(); side * side],
+        };
+        for (i, t) in boundary.iter().enumerate() {
+            let corners = t.map(|v| yz(&pts[v as usize]));
+            let (mut a, mut b) = ([usize::MAX; 2], [0; 2]);
+            for c in &corners {
+                let cell = rays.cell(c);
+                for k in 0..2 {
+                    a[k] = a[k].min(cell[k]);
+                    b[k] = b[k].max(cell[k]);
+                }
+            }
+            for y in a[0]..=b[0] {
+                for z in a[1]..=b[1] {
+                    rays.grid[y * side + z].push(i as u32);
+                }
+            }
+        }
+        rays
+    }
+
+    /// The cell of a (y, z) point, clamped to the grid.
+    fn cell(&self, p: &[f64; 2]) -> [usize; 2] {
+        [0, 1].map(|k| {
+            let x = ((p[k] - self.lo[k]) / self.step[k]).floor();
+            (x.max(0.0) as usize).min(self.cells[k] - 1)
+        })
+    }
+
+    /// [`segment_inside`] against the indexed boundary.
+    pub fn segment_inside(&self, u: &P, v: &P) -> Option<bool> {
+        if self.boundary.is_empty() {
+            return Some(false);
+        }
+        let [y, z] = self.cell(&yz(u));
+        let near = &self.grid[y * self.cells[1] + z];
+        parity(
+            u,
+            v,
+            self.pts,
+            near.iter().map(|&i| &self.boundary[i as usize]),
+        )
+    }
+}
+
+/// The parity of the crossings of the perturbed ray from `u` (towards `v`) with `triangles`.
+fn parity<'t>(
+    u: &P,
+    v: &P,
+    pts: &[P],
+    triangles: impl Iterator<Item = &'t [u32; 3]>,
+) -> Option<bool> {
     let mut crossings = 0usize;
-    for t in boundary {
+    for t in triangles {
         let [a, b, c] = t.map(|i| &pts[i as usize]);
         // The x component of the right-hand normal: zero for a triangle parallel to the ray,
         // which the perturbed ray never meets.
@@ -139,5 +232,31 @@ mod tests {
         assert_eq!(inside(1, far), Some(false));
         assert_eq!(inside(0, away), Some(false));
         assert_eq!(inside(far, away), Some(false));
+    }
+
+    #[test]
+    fn the_indexed_rays_agree_with_the_scan_of_every_triangle() {
+        let (mut pts, tris) = test_support::shapes::octahedron();
+        // Points on a lattice of sixths through the octahedron's vertices, edges and faces and
+        // the grid's cell edges (thirds), so that many rays start on a cell edge or run through
+        // an edge or a vertex.
+        let n = pts.len();
+        for i in 0..13 {
+            for j in 0..13 {
+                for k in 0..13 {
+                    pts.push([i, j, k].map(|c| -1.0 + c as f64 / 6.0));
+                }
+            }
+        }
+        let rays = Rays::new(&pts, &tris);
+        for a in n..pts.len() {
+            let b = n + (a * 7919) % (pts.len() - n);
+            let (u, v) = (&pts[a], &pts[b]);
+            assert_eq!(
+                rays.segment_inside(u, v),
+                segment_inside(u, v, &pts, &tris),
+                "{u:?} {v:?}"
+            );
+        }
     }
 }

@@ -16,7 +16,7 @@
 //! `ROUNDING_ULPS` units in the last place of the segment's coordinates around the node (well
 //! over the construction's error), and the nodes advance strictly along the segment's main axis.
 
-use super::inside::{boundary_vertices, one_per_group, segment_inside};
+use super::inside::{Rays, boundary_vertices, one_per_group};
 use super::{RegionInput, TetMeshError, TetMeshOutput};
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
@@ -141,9 +141,10 @@ fn check_crossings(input: &RegionInput) -> Result<(), TetMeshError> {
 fn check_inside(input: &RegionInput) -> Result<(), TetMeshError> {
     let pts = &input.vertices;
     let on_boundary = boundary_vertices(pts.len(), &input.boundary);
+    let rays = Rays::new(pts, &input.boundary);
     for k in one_per_group(&input.lines, &on_boundary) {
         let [u, v] = input.lines[k].map(|v| &pts[v as usize]);
-        match segment_inside(u, v, pts, &input.boundary) {
+        match rays.segment_inside(u, v) {
             Some(true) => {}
             Some(false) => {
                 return Err(segment_error(input, k, "lies outside the region".into()));
