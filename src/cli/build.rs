@@ -110,6 +110,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         print_findings(&report);
         print_crossings(&report);
         print_thin_regions(&recipe, &report);
+        print_close_curves(&recipe, &report);
     }
     let count = |s: NodeState| report.count(s);
     let summary = format!(
@@ -299,6 +300,24 @@ fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
         if ran {
             errln!("{:>12} {warning}", "Warning");
         }
+    }
+}
+
+/// Where the model's curves come closer than their mesh can resolve, when the model was built in
+/// this build (the report keeps the warnings).
+fn print_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
+    let ran = report
+        .node("model")
+        .is_some_and(|n| n.state == NodeState::Ran);
+    let Some(model) = report
+        .artifact("model")
+        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
+        .filter(|_| ran)
+    else {
+        return;
+    };
+    for warning in plan::ops::close_curve_warnings(recipe, &model) {
+        errln!("{:>12} {warning}", "Warning");
     }
 }
 

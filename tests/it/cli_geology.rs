@@ -8,7 +8,7 @@
 
 use crate::common_cli::checker;
 use std::process::Command;
-use test_support::geology::{Case, cases, scec_cases};
+use test_support::geology::{Case, cases, scec_big_bend, scec_cases};
 use test_support::paths;
 
 /// Builds `case` in a scratch folder (kept for the caller's checks); asserts the build
@@ -268,6 +268,36 @@ fn the_tejon_pass_faults_at_two_kilometres_mesh_with_a_white_wolf_fin_in_a_recov
     };
     let (_dir, report) = builds_and_meshes_reporting(&case);
     assert!(count_named(&report, "surface_mesh:whitewolf#") >= 3);
+}
+
+#[test]
+fn the_big_bend_faults_build_and_the_report_names_the_slit_between_two_san_andreas_strands() {
+    let Some(cfm) = paths::shared("data/gocad/SCECcode__CFM") else {
+        return;
+    };
+    let case = scec_big_bend(&cfm);
+    let (dir, _) = build(&case);
+    let report: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(dir.path().join("out/report.json")).expect("report.json"),
+    )
+    .expect("json");
+    let warnings: Vec<&str> = (report["warnings"].as_array().expect("warnings").iter())
+        .filter_map(|w| w.as_str())
+        .filter(|w| w.contains("come within"))
+        .collect();
+    // The strands' free edges, 2 m apart at x = 362.4 km; Lockwood Valley's end 11 m from the
+    // San Andreas at the box floor; both told, closest first.
+    let slit = warnings
+        .first()
+        .unwrap_or_else(|| panic!("no close curves in {report}"));
+    for needle in [
+        "`saf#3`",
+        "`saf#4`",
+        "(362412.4, 3840390.6",
+        "(316474.3, 3854918.9",
+    ] {
+        assert!(slit.contains(needle), "`{needle}` not in {slit}");
+    }
 }
 
 #[test]

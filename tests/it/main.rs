@@ -13,6 +13,7 @@ mod cli_msh_groups;
 mod cli_noop;
 mod cli_output;
 mod cli_progress;
+mod cli_proximity;
 mod cli_real_data;
 mod cli_ringmesh;
 mod cli_sizes;

@@ -12,11 +12,13 @@ mod import;
 mod inputs;
 mod model;
 mod patch;
+mod proximity;
 mod refine;
 mod region;
 mod sizes;
 mod wells;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
+pub use proximity::close_curve_warnings;
 pub use refine::RefineOp;
 pub use sizes::thin_region_warnings;
 

@@ -1,0 +1,326 @@
+//! Where the model's curves come closer to each other than their mesh can resolve: two strands
+//! of one fault whose free edges run a few metres apart, a curve folding back on itself, two
+//! curves meeting at a sliver of an angle. The tets between such curves span a gap far thinner
+//! than their edges and come out flat, whatever the mesher does; the build says where, so the
+//! user can refine there or mend the data.
+//!
+//! Two points of the curves are *close* when they are nearer than [`FRACTION`] of the finer of
+//! the two curves' mesh sizes, and *unexplained* when nothing in the model's layout makes them
+//! so: along one curve, the arc between them is long against their distance (a straight run of
+//! short segments is not a fold); on two curves meeting at a vertex, the two points are far from
+//! it against their distance (they meet at more than [`MIN_ANGLE_DEG`]). Distances are measures,
+//! not decisions: nothing in the mesh depends on them.
+
+use super::ModelData;
+use super::sizes;
+use crate::recipe::{Recipe, Subdivision};
+use geom::BBox;
+use geom::broad_phase::overlapping_pairs;
+use geom::predicates::{dist, dot, sub};
+use sizes::short;
+use std::collections::BTreeMap;
+
+/// Curves nearer than this share of their mesh size are warned about (the tets between them
+/// have dihedral angles of about this many radians).
+pub const FRACTION: f64 = 0.1;
+/// Curves meeting at a vertex at less than this angle are close near it.
+pub const MIN_ANGLE_DEG: f64 = 10.0;
+/// At most this many curves are named per place; the rest are counted.
+const NAMES_PER_PLACE: usize = 4;
+/// At most this many places are named; the rest are counted.
+const MAX_NAMED: usize = 8;
+
+/// One segment of a curve: the curve, the arc length at its start, its ends.
+struct Segment {
+    curve: usize,
+    arc: f64,
+    ends: [[f64; 3]; 2],
+}
+
+/// The closest unexplained approach of two curves (`a <= b`, indices into the model's curves).
+#[derive(Clone, Debug)]
+struct Approach {
+    distance: f64,
+    at: [f64; 3],
+    size: f64,
+}
+
+/// One sentence per place where curves come unexplainedly close, closest first, at most
+/// eight and a count of the rest.
+pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
+    let topo = &model.topology;
+    let regions = sizes::region_sizes(recipe, model);
+    let patches = sizes::patch_sizes(recipe, model, &regions);
+    let size: Vec<f64> = (topo.curves.iter())
+        .zip(sizes::curve_sizes(recipe, topo, &patches))
+        .map(|(c, fallback)| curve_size(recipe, c, fallback.size))
+        .collect();
+    let segments = segments(model);
+    let boxes: Vec<BBox> = (segments.iter())
+        .map(|s| grown(&s.ends, FRACTION * size[s.curve] / 2.0))
+        .collect();
+    let found = overlapping_pairs(&boxes, |i, j| {
+        approach(model, &size, &segments[i as usize], &segments[j as usize])
+    });
+    let mut closest: BTreeMap<(usize, usize), Approach> = BTreeMap::new();
+    for (i, j, a) in found {
+        let (c, d) = (segments[i as usize].curve, segments[j as usize].curve);
+        let key = (c.min(d), c.max(d));
+        let best = closest.entry(key).or_insert_with(|| a.clone());
+        if a.distance < best.distance {
+            *best = a;
+        }
+    }
+    let mut pairs: Vec<((usize, usize), Approach)> = closest.into_iter().collect();
+    pairs.sort_by(|x, y| x.1.distance.total_cmp(&y.1.distance).then(x.0.cmp(&y.0)));
+    let sites = sites(pairs);
+    let mut out: Vec<String> = (sites.iter().take(MAX_NAMED))
+        .map(|site| sentence(model, site))
+        .collect();
+    if sites.len() > MAX_NAMED {
+        out.push(format!(
+            "curves come as close at {} more places (the closest are named above)",
+            sites.len() - MAX_NAMED
+        ));
+    }
+    out
+}
+
+/// The length of a curve's mesh segments: its `[mesh.curves]` rule's, else `fallback` (the finest
+/// of its patches' sizes, as the expander gives it).
+fn curve_size(recipe: &Recipe, curve: &model::Curve, fallback: f64) -> f64 {
+    match recipe.mesh.curve_rule(&curve.name).map(|r| &r.subdivision) {
+        Some(Subdivision::Size { size, .. }) => *size,
+        Some(Subdivision::Count(n)) => polyline_length(&curve.points) / f64::from((*n).max(1)),
+        None => fallback,
+    }
+}
+
+/// Curves that come close, joined by their close pairs: the closest approach, the curves
+/// involved, and the approaches far apart from each other (the closest first).
+struct Site {
+    first: Approach,
+    curves: Vec<usize>,
+    places: Vec<Approach>,
+}
+
+/// Approaches of one site nearer than this many mesh sizes to a closer one are not told apart.
+const PLACE_SPACING: f64 = 10.0;
+/// At most this many places are told per site.
+const PLACES_PER_SITE: usize = 3;
+
+/// `pairs` (closest first) gathered into places: the curves joined by close pairs (two sheets
+/// running side by side for kilometres are one place, told at its closest point), in order of
+/// their closest approach.
+fn sites(pairs: Vec<((usize, usize), Approach)>) -> Vec<Site> {
+    let mut root: BTreeMap<usize, usize> = BTreeMap::new();
+    fn find(root: &mut BTreeMap<usize, usize>, c: usize) -> usize {
+        let up = *root.entry(c).or_insert(c);
+        if up == c {
+            return c;
+        }
+        let top = find(root, up);
+        root.insert(c, top);
+        top
+    }
+    for &((c, d), _) in &pairs {
+        let (a, b) = (find(&mut root, c), find(&mut root, d));
+        root.insert(a.max(b), a.min(b));
+    }
+    let mut out: Vec<Site> = Vec::new();
+    let mut site_of: BTreeMap<usize, usize> = BTreeMap::new();
+    for ((c, d), a) in pairs {
+        let r = find(&mut root, c);
+        let k = *site_of.entry(r).or_insert_with(|| {
+            out.push(Site {
+                first: a.clone(),
+                curves: Vec::new(),
+                places: Vec::new(),
+            });
+            out.len() - 1
+        });
+        let site = &mut out[k];
+        let apart = |p: &Approach| dist(&p.at, &a.at) > PLACE_SPACING * p.size;
+        if site.places.len() < PLACES_PER_SITE && site.places.iter().all(apart) {
+            site.places.push(a);
+        }
+        for c in [c, d] {
+            if !out[k].curves.contains(&c) {
+                out[k].curves.push(c);
+            }
+        }
+    }
+    out
+}
+
+fn sentence(model: &ModelData, site: &Site) -> String {
+    let curves = &model.topology.curves;
+    let mut names: Vec<String> = (site.curves.iter().take(NAMES_PER_PLACE))
+        .map(|&c| format!("`{}`", curves[c].name))
+        .collect();
+    if site.curves.len() > NAMES_PER_PLACE {
+        names.push(format!("{} more", site.curves.len() - NAMES_PER_PLACE));
+    }
+    let gap = short(site.first.distance);
+    let which = match names.as_slice() {
+        [one] => format!("curve {one} comes within {gap} of itself"),
+        [rest @ .., last] => {
+            format!(
+                "curves {} and {last} come within {gap} of each other",
+                rest.join(", ")
+            )
+        }
+        [] => String::new(),
+    };
+    let places: Vec<String> = (site.places.iter())
+        .map(|p| {
+            let [x, y, z] = p.at.map(|v| format!("{v:.1}"));
+            format!("({x}, {y}, {z}) ({})", short(p.distance))
+        })
+        .collect();
+    let first = &curves[site.curves[0]].name;
+    format!(
+        "{which} near {}, under a tenth of their mesh size {}: the elements \
+         between them will be flat; mend the surfaces there in the data (join or part them), or \
+         refine along them (`[[mesh.refine]]` with `curve = \"{first}\"` and a `size` a few \
+         times the gap; fine and slow when the gap is long)",
+        places.join(", "),
+        short(site.first.size),
+    )
+}
+
+/// Every segment of every curve, with its arc length.
+fn segments(model: &ModelData) -> Vec<Segment> {
+    let mut out = Vec::new();
+    for (c, curve) in model.topology.curves.iter().enumerate() {
+        let mut arc = 0.0;
+        for w in curve.points.windows(2) {
+            out.push(Segment {
+                curve: c,
+                arc,
+                ends: [w[0], w[1]],
+            });
+            arc += dist(&w[0], &w[1]);
+        }
+    }
+    out
+}
+
+/// The approach of two segments when it is close and unexplained.
+fn approach(model: &ModelData, size: &[f64], s: &Segment, t: &Segment) -> Option<Approach> {
+    let shared = |p: &[f64; 3]| t.ends.iter().any(|q| q == p);
+    if s.ends.iter().any(shared) {
+        return None;
+    }
+    let limit = FRACTION * size[s.curve].min(size[t.curve]);
+    let (p, q, u, v) = closest_points(&s.ends, &t.ends);
+    let d = dist(&p, &q);
+    if d >= limit {
+        return None;
+    }
+    let sin_min = MIN_ANGLE_DEG.to_radians().sin();
+    let explained = if s.curve == t.curve {
+        let curve = &model.topology.curves[s.curve];
+        let (a, b) = (s.arc + u * seg_len(s), t.arc + v * seg_len(t));
+        let mut between = (a - b).abs();
+        if curve.closed {
+            let total = polyline_length(&curve.points);
+            between = between.min(total - between);
+        }
+        d >= sin_min * between
+    } else {
+        let ends = |c: usize| {
+            let pts = &model.topology.curves[c].points;
+            [pts[0], pts[pts.len() - 1]]
+        };
+        let (es, et) = (ends(s.curve), ends(t.curve));
+        (es.iter())
+            .filter(|e| et.contains(e))
+            .any(|e| d >= sin_min * dist(&p, e).max(dist(&q, e)))
+    };
+    (!explained).then(|| Approach {
+        distance: d,
+        at: [0, 1, 2].map(|k| (p[k] + q[k]) / 2.0),
+        size: size[s.curve].min(size[t.curve]),
+    })
+}
+
+/// The closest points of segments `ab` and `cd`, and their parameters along each.
+fn closest_points(s: &[[f64; 3]; 2], t: &[[f64; 3]; 2]) -> ([f64; 3], [f64; 3], f64, f64) {
+    let (a, b, c, d) = (s[0], s[1], t[0], t[1]);
+    let d1 = sub(&b, &a);
+    let d2 = sub(&d, &c);
+    let r = sub(&a, &c);
+    let (aa, ee, f) = (dot(&d1, &d1), dot(&d2, &d2), dot(&d2, &r));
+    let (mut u, mut v);
+    if aa <= 0.0 && ee <= 0.0 {
+        (u, v) = (0.0, 0.0);
+    } else if aa <= 0.0 {
+        u = 0.0;
+        v = (f / ee).clamp(0.0, 1.0);
+    } else {
+        let cc = dot(&d1, &r);
+        if ee <= 0.0 {
+            v = 0.0;
+            u = (-cc / aa).clamp(0.0, 1.0);
+        } else {
+            let bb = dot(&d1, &d2);
+            let denom = aa * ee - bb * bb;
+            u = if denom > 0.0 {
+                ((bb * f - cc * ee) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            v = (bb * u + f) / ee;
+            if v < 0.0 {
+                v = 0.0;
+                u = (-cc / aa).clamp(0.0, 1.0);
+            } else if v > 1.0 {
+                v = 1.0;
+                u = ((bb - cc) / aa).clamp(0.0, 1.0);
+            }
+        }
+    }
+    let at = |o: &[f64; 3], dir: &[f64; 3], w: f64| [0, 1, 2].map(|k| o[k] + w * dir[k]);
+    (at(&a, &d1, u), at(&c, &d2, v), u, v)
+}
+
+fn grown(ends: &[[f64; 3]; 2], by: f64) -> BBox {
+    let lo = [0, 1, 2].map(|k| ends[0][k].min(ends[1][k]) - by);
+    let hi = [0, 1, 2].map(|k| ends[0][k].max(ends[1][k]) + by);
+    BBox { min: lo, max: hi }
+}
+
+fn seg_len(s: &Segment) -> f64 {
+    dist(&s.ends[0], &s.ends[1])
+}
+
+fn polyline_length(pts: &[[f64; 3]]) -> f64 {
+    pts.windows(2).map(|w| dist(&w[0], &w[1])).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_closest_points_of_crossing_parallel_and_skew_segments() {
+        let (p, q, u, v) = closest_points(
+            &[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
+            &[[1.0, -1.0, 3.0], [1.0, 1.0, 3.0]],
+        );
+        assert_eq!((p, q, u, v), ([1.0, 0.0, 0.0], [1.0, 0.0, 3.0], 0.5, 0.5));
+        // Parallel: the start of the first against the second.
+        let (p, q, ..) = closest_points(
+            &[[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
+            &[[1.0, 0.5, 0.0], [3.0, 0.5, 0.0]],
+        );
+        assert!((dist(&p, &q) - 0.5).abs() < 1e-12, "{p:?} {q:?}");
+        // Apart along their line: end to start.
+        let (p, q, ..) = closest_points(
+            &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
+            &[[3.0, 0.0, 0.0], [5.0, 0.0, 0.0]],
+        );
+        assert_eq!((p, q), ([1.0, 0.0, 0.0], [3.0, 0.0, 0.0]));
+    }
+}
