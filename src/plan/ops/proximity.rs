@@ -37,7 +37,8 @@ struct Segment {
     ends: [[f64; 3]; 2],
 }
 
-/// The closest unexplained approach of two curves (`a <= b`, indices into the model's curves).
+/// An unexplained approach of two curves: how near, the midpoint of the two nearest points,
+/// and the finer of the two curves' mesh sizes.
 #[derive(Clone, Debug)]
 struct Approach {
     distance: f64,
