@@ -33,6 +33,7 @@ use crate::report::{
 use engine::{BuildReport, Derivations, NodeReport, NodeState};
 use geom::mesh::SurfaceKind;
 use geom::mesh::VolumeMesh;
+use geom::predicates::polyline_length;
 use std::path::{Path, PathBuf};
 
 fn count(report: &BuildReport, node: &str, key: &str) -> usize {
@@ -40,15 +41,6 @@ fn count(report: &BuildReport, node: &str, key: &str) -> usize {
         .node(node)
         .and_then(|n| n.counts.get(key))
         .map_or(0, |&c| c as usize)
-}
-
-fn polyline_length(p: &[[f64; 3]]) -> f64 {
-    p.windows(2)
-        .map(|w| {
-            let d = [w[1][0] - w[0][0], w[1][1] - w[0][1], w[1][2] - w[0][2]];
-            (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
-        })
-        .sum()
 }
 
 /// The artifact of node `name` decoded as `T`: `None` when the build has none (the node failed or

@@ -5,12 +5,13 @@
 
 use super::Recipe;
 use super::diagnostic::Diagnostic;
+use super::selector::PatchSelector;
 
 /// How many patch names a help line lists at most.
 const LIST_MAX: usize = 8;
 
-/// A group's name and the indices (into the model's patch list, ascending) of its patches.
-pub type GroupPatches = (String, Vec<usize>);
+/// A group's name and the names of its patches, in the model's order.
+pub type GroupPatches = (String, Vec<String>);
 
 impl Recipe {
     /// Every group's patches among `patch_names` (the model's, in model order), in name order;
@@ -40,7 +41,8 @@ impl Recipe {
             }
             patches.sort_unstable();
             patches.dedup();
-            out.push((name.clone(), patches));
+            let names = patches.iter().map(|&p| patch_names[p].clone()).collect();
+            out.push((name.clone(), names));
         }
         if errors.is_empty() {
             Ok(out)
@@ -52,12 +54,13 @@ impl Recipe {
 }
 
 /// The patches the selector's surfaces have (the likely intended ones), or why there are none.
-fn help(s: &super::selector::PatchSelector, patch_names: &[String]) -> String {
+fn help(s: &PatchSelector, patch_names: &[String]) -> String {
+    let any_patch = PatchSelector {
+        patch: None,
+        ..s.clone()
+    };
     let of_surface: Vec<String> = (patch_names.iter())
-        .filter(|p| {
-            s.surface
-                .matches(p.rsplit_once('#').map_or(p.as_str(), |(b, _)| b))
-        })
+        .filter(|p| any_patch.matches(p))
         .map(|p| format!("`{p}`"))
         .collect();
     if of_surface.is_empty() {

@@ -196,6 +196,10 @@ pub fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     let d = sub(a, b);
     dot(&d, &d).sqrt()
 }
+/// The length of a polyline: its segments' [`dist`] summed in order.
+pub fn polyline_length(points: &[[f64; 3]]) -> f64 {
+    points.windows(2).map(|w| dist(&w[0], &w[1])).sum()
+}
 #[inline]
 pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     [

@@ -38,3 +38,12 @@ pub fn octahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
         .collect();
     (corners, triangles)
 }
+
+/// The [`octahedron`] filled by eight positive tets around one more node, `centre` (node 6, which
+/// must lie inside it), one per face in the face order.
+pub fn octahedron_ball(centre: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
+    let (mut nodes, faces) = octahedron();
+    nodes.push(centre);
+    let tets = faces.iter().map(|&[a, b, c]| [b, a, c, 6]).collect();
+    (nodes, tets)
+}

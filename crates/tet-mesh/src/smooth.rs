@@ -341,21 +341,8 @@ mod tests {
     #[test]
     fn a_badly_placed_free_node_moves_to_a_better_ball_and_fixed_nodes_never_move() {
         // An octahedron around node 6, pushed towards one corner.
-        let nodes = vec![
-            [1.0, 0.0, 0.0],
-            [-1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, -1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, -1.0],
-            [0.6, 0.1, 0.05],
-        ];
+        let (nodes, tets) = test_support::shapes::octahedron_ball([0.6, 0.1, 0.05]);
         let c = 6;
-        let mut tets = Vec::new();
-        for (x, y) in [(0, 2), (2, 1), (1, 3), (3, 0)] {
-            tets.push([y, x, 4, c]);
-            tets.push([x, y, 5, c]);
-        }
         let mut cx = Complex::new(nodes, tets.clone(), 6, std::iter::empty());
         for &t in &tets {
             assert!(cx.positive(t), "{t:?}");

@@ -16,7 +16,7 @@ use super::sizes;
 use crate::recipe::{Recipe, Subdivision};
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
-use geom::predicates::{dist, dot, sub};
+use geom::predicates::{dist, dot, polyline_length, sub};
 use sizes::short;
 use std::collections::BTreeMap;
 
@@ -58,7 +58,7 @@ pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
         .collect();
     let segments = segments(model);
     let boxes: Vec<BBox> = (segments.iter())
-        .map(|s| grown(&s.ends, FRACTION * size[s.curve] / 2.0))
+        .map(|s| BBox::from_points(&s.ends).inflate(FRACTION * size[s.curve] / 2.0))
         .collect();
     let found = overlapping_pairs(&boxes, |i, j| {
         approach(model, &size, &segments[i as usize], &segments[j as usize])
@@ -286,18 +286,8 @@ fn closest_points(s: &[[f64; 3]; 2], t: &[[f64; 3]; 2]) -> ([f64; 3], [f64; 3], 
     (at(&a, &d1, u), at(&c, &d2, v), u, v)
 }
 
-fn grown(ends: &[[f64; 3]; 2], by: f64) -> BBox {
-    let lo = [0, 1, 2].map(|k| ends[0][k].min(ends[1][k]) - by);
-    let hi = [0, 1, 2].map(|k| ends[0][k].max(ends[1][k]) + by);
-    BBox { min: lo, max: hi }
-}
-
 fn seg_len(s: &Segment) -> f64 {
     dist(&s.ends[0], &s.ends[1])
-}
-
-fn polyline_length(pts: &[[f64; 3]]) -> f64 {
-    pts.windows(2).map(|w| dist(&w[0], &w[1])).sum()
 }
 
 #[cfg(test)]

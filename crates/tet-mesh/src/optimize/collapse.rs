@@ -92,20 +92,7 @@ mod tests {
     /// crowding node leaves the eight good tets of the octahedron.
     #[test]
     fn a_free_node_crowding_its_neighbour_is_contracted_and_every_tet_stays_positive() {
-        let mut nodes = vec![
-            [1.0, 0.0, 0.0],
-            [-1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, -1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, -1.0],
-            [0.0, 0.0, 0.0],
-        ];
-        let mut tets: Vec<[u32; 4]> = Vec::new();
-        for (x, y) in [(0, 2), (2, 1), (1, 3), (3, 0)] {
-            tets.push([y, x, 4, 6]);
-            tets.push([x, y, 5, 6]);
-        }
+        let (mut nodes, mut tets) = test_support::shapes::octahedron_ball([0.0; 3]);
         // Split the tet [2, 0, 4, 6] by a node 7 close to node 6 inside it.
         nodes.push([0.1, 0.1, 0.08]);
         let split = tets.remove(0);
