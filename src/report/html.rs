@@ -390,9 +390,8 @@ fn well_markers_table(h: &mut String, input: &ReportInput, w: &WellSummary) {
     h.push_str("</table>");
 }
 
-/// One quality table from its shared layout; the last ("all") row is set apart.
-/// The id table: how every region, surface group, fault side, material, well and named point is
-/// numbered in each output format (the README's table, filled in for this mesh).
+/// The id table: how every region, surface group, fault side, material, well, named point and
+/// face set is numbered in each output format (the README's table, filled in for this mesh).
 fn ids_section(h: &mut String, input: &ReportInput) {
     let rows = super::ids(&input.mesh);
     if rows.is_empty() {
@@ -411,6 +410,7 @@ fn ids_section(h: &mut String, input: &ReportInput) {
     h.push_str("</table><p class=\"small\">Abaqus labels are these names made Abaqus-safe; the <code>.inp</code>'s <code>**</code> comments pair each with its name and id.</p>\n");
 }
 
+/// One quality table from its shared layout; the last ("all") row is set apart.
 fn quality_table(h: &mut String, table: &Table) {
     let _ = write!(h, "<h3>{}</h3><table><tr>", esc(table.title));
     for (i, c) in table.columns.iter().enumerate() {

@@ -253,14 +253,7 @@ impl Expander for ModelExpander {
         let (mesh_inputs, inputs) = wiring.finish();
         let assemble = AssembleOp {
             regions: groups,
-            face_sets: (face_sets.into_iter())
-                .map(|(name, patches)| {
-                    (
-                        name,
-                        patches.iter().map(|&p| patch_names[p].clone()).collect(),
-                    )
-                })
-                .collect(),
+            face_sets,
             inputs,
         };
         let mesh = x

@@ -54,7 +54,12 @@ pub(super) fn write(
     let mut node_sets = sets::node_sets(mesh);
     node_sets.extend(sets::well_node_sets(mesh));
     node_sets.extend(sets::point_node_sets(mesh));
-    node_sets.extend(sets::face_set_node_sets(mesh));
+    let first = crate::face_sets::first_node_set(
+        mesh.surface_groups.len(),
+        mesh.lines.len(),
+        mesh.points.len(),
+    );
+    node_sets.extend(sets::face_set_node_sets(mesh, first));
     let names = mesh
         .regions
         .iter()

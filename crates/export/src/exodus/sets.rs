@@ -107,14 +107,9 @@ pub(crate) fn well_node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
         .collect()
 }
 
-/// The node sets of the face sets of `mesh`: each set's triangle nodes, ids after the named
-/// points'.
-pub(crate) fn face_set_node_sets(mesh: &VolumeMesh) -> Vec<NodeSet> {
-    let first = face_sets::first_node_set(
-        mesh.surface_groups.len(),
-        mesh.lines.len(),
-        mesh.points.len(),
-    );
+/// The node sets of the face sets of `mesh`: each set's triangle nodes, ids from `first` (the
+/// Exodus ids follow the named points', [`face_sets::first_node_set`]).
+pub(crate) fn face_set_node_sets(mesh: &VolumeMesh, first: usize) -> Vec<NodeSet> {
     (mesh.face_sets.iter().enumerate())
         .filter(|(_, s)| !s.triangles.is_empty())
         .map(|(k, s)| NodeSet {

@@ -33,7 +33,9 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     sides::every_triangle_a_face(mesh, &uses)?;
     let side_sets = sets::side_sets(mesh, &uses);
     let mut node_sets = sets::node_sets(mesh);
-    node_sets.extend(face_set_node_sets(mesh));
+    // A face set's node set goes by its surface's label: under its side set's id.
+    let first = crate::face_sets::first_id(&mesh.surface_groups);
+    node_sets.extend(sets::face_set_node_sets(mesh, first));
     let labels = Labels::new(mesh, &side_sets);
     let mut s = String::new();
     let _ = writeln!(s, "*Heading\n georecipe model {model}");
@@ -63,21 +65,6 @@ pub(super) fn write(mesh: &VolumeMesh, model: &str) -> Result<Vec<u8>, String> {
     }
     s.shrink_to_fit();
     Ok(s.into_bytes())
-}
-
-/// The face sets' node sets under their side sets' ids, so each goes by its surface's label.
-fn face_set_node_sets(mesh: &VolumeMesh) -> Vec<sets::NodeSet> {
-    let exodus_first = crate::face_sets::first_node_set(
-        mesh.surface_groups.len(),
-        mesh.lines.len(),
-        mesh.points.len(),
-    );
-    let first = crate::face_sets::first_id(&mesh.surface_groups);
-    let mut out = sets::face_set_node_sets(mesh);
-    for set in &mut out {
-        set.id = set.id - exodus_first + first;
-    }
-    out
 }
 
 #[cfg(test)]

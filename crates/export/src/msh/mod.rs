@@ -183,6 +183,7 @@ pub(super) fn write(mesh: &VolumeMesh, lines: &[LineGroup], binary: bool) -> Vec
         curves: &curves,
         curve_groups: curve_groups(mesh, &curves, lines.len()),
         lines,
+        points: mesh.points.len(),
     };
     mesh_format(&mut o);
     physical_names(&mut o, mesh, &model);
@@ -218,6 +219,8 @@ struct Model<'a> {
     /// The curves' 1D physical groups, (tag, name), and per curve its tag.
     curve_groups: (Vec<(i32, String)>, Vec<i32>),
     lines: &'a [LineGroup],
+    /// How many named points come before the corners.
+    points: usize,
 }
 
 /// The curves' 1D physical groups, tagged after the `wells` line groups' in name order, and per
@@ -244,9 +247,9 @@ impl Model<'_> {
     fn curve(&self, c: usize) -> usize {
         self.lines.len() + c
     }
-    /// The entity index (tag - 1) of corner `k`, after the `points` named points.
-    fn corner(&self, points: usize, k: usize) -> usize {
-        points + k
+    /// The entity index (tag - 1) of corner `k`, after the named points.
+    fn corner(&self, k: usize) -> usize {
+        self.points + k
     }
 }
 
@@ -334,7 +337,7 @@ fn entities(o: &mut Out, mesh: &VolumeMesh, model: &Model, tets_by_region: &[Vec
         o.rec(&rec);
     }
     for (k, &v) in curves.corners.iter().enumerate() {
-        let mut rec = vec![F::I(tag(model.corner(mesh.points.len(), k)))];
+        let mut rec = vec![F::I(tag(model.corner(k)))];
         rec.extend(mesh.nodes[v as usize].map(F::D));
         rec.push(F::S(0));
         o.rec(&rec);
@@ -345,7 +348,7 @@ fn entities(o: &mut Out, mesh: &VolumeMesh, model: &Model, tets_by_region: &[Vec
     }
     for (c, chain) in curves.chains.iter().enumerate() {
         let bb = bbox_of(mesh, std::iter::once(&chain[..]));
-        let [a, b] = curves.ends[c].map(|k| tag(model.corner(mesh.points.len(), k)));
+        let [a, b] = curves.ends[c].map(|k| tag(model.corner(k)));
         entity(o, model.curve(c), bb, &[model.curve_groups.1[c]], &[a, -b]);
     }
     for (k, tris) in topology.tris.iter().enumerate() {

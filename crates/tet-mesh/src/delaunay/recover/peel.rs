@@ -53,33 +53,24 @@ pub(super) fn peel(
 /// Embedded triangle `k` of `hole` cut off by the best-shaped valid tet on either side: the tet
 /// and the hole left.
 fn peel_one(hole: &RegionInput, k: usize) -> Option<([u32; 4], RegionInput)> {
-    let e = hole.embedded[k];
+    let [a, b, c] = hole.embedded[k];
     let pts = &hole.vertices;
-    let mut apexes: Vec<(f64, u32)> = (0..pts.len() as u32)
-        .filter(|x| !e.contains(x))
+    let at = |v: u32| &pts[v as usize];
+    // Each apex off the triangle's plane with the positive tet it makes.
+    let mut apexes: Vec<(f64, [u32; 4])> = (0..pts.len() as u32)
+        .filter(|x| ![a, b, c].contains(x))
         .filter_map(|x| {
-            let [a, b, c] = e.map(|v| &pts[v as usize]);
-            match orient3d(a, b, c, &pts[x as usize]) {
-                Orientation::Zero => None,
-                _ => {
-                    let [p, q, r, s] = [e[0], e[1], e[2], x].map(|v| &pts[v as usize]);
-                    Some((-mean_ratio(p, q, r, s).abs(), x))
-                }
-            }
+            let tet = match orient3d(at(a), at(b), at(c), at(x)) {
+                Orientation::Zero => return None,
+                Orientation::Positive => [a, b, c, x],
+                Orientation::Negative => [a, c, b, x],
+            };
+            let [p, q, r, s] = tet.map(at);
+            Some((-mean_ratio(p, q, r, s).abs(), tet))
         })
         .collect();
-    apexes.sort_by(|p, q| p.0.total_cmp(&q.0).then(p.1.cmp(&q.1)));
-    apexes.into_iter().take(MAX_APEXES).find_map(|(_, x)| {
-        let [a, b, c] = e;
-        let tet = match orient3d(
-            &pts[a as usize],
-            &pts[b as usize],
-            &pts[c as usize],
-            &pts[x as usize],
-        ) {
-            Orientation::Positive => [a, b, c, x],
-            _ => [a, c, b, x],
-        };
+    apexes.sort_by(|p, q| p.0.total_cmp(&q.0).then(p.1[3].cmp(&q.1[3])));
+    apexes.into_iter().take(MAX_APEXES).find_map(|(_, tet)| {
         let rest = cut_off(hole, k, tet)?;
         check_input(&rest).ok()?;
         Some((tet, rest))
