@@ -120,7 +120,9 @@ fn well_summaries(
             stations: data.as_ref().map(|d| d.stations.len()),
             regions,
             length: cut_data.as_ref().map_or(f64::NAN, |c| {
-                c.pieces.iter().map(|(_, p)| polyline_length(p)).sum()
+                (c.pieces.iter().chain(&c.runs))
+                    .map(|(_, p)| polyline_length(p))
+                    .sum()
             }),
             edges: mesh.lines.iter().find(|l| l.name == *name).map(|l| l.edges),
             markers: well_markers(crossings, file_markers, box_side),

@@ -85,10 +85,8 @@ fn chain(lines: &[[u32; 2]]) -> Vec<u32> {
     path
 }
 
-#[test]
-fn every_well_segment_is_a_chain_of_tet_edges_through_nodes_of_the_surfaces_it_crosses() {
-    let s = built();
-    let mesh = mesh_of(&s);
+/// Every edge of a tet, its smaller node first.
+fn tet_edges(mesh: &VolumeMesh) -> BTreeSet<(u32, u32)> {
     let mut edges = BTreeSet::new();
     for t in &mesh.tets {
         for i in 0..4 {
@@ -97,9 +95,11 @@ fn every_well_segment_is_a_chain_of_tet_edges_through_nodes_of_the_surfaces_it_c
             }
         }
     }
-    let names: Vec<&str> = mesh.lines.iter().map(|g| g.name.as_str()).collect();
-    assert_eq!(names, ["W1", "W2"]);
-    // Which surface groups each node is on.
+    edges
+}
+
+/// The surface groups each node is on.
+fn surfaces_at_nodes(mesh: &VolumeMesh) -> BTreeMap<u32, BTreeSet<&str>> {
     let mut on: BTreeMap<u32, BTreeSet<&str>> = BTreeMap::new();
     for (t, &g) in mesh.triangles.iter().zip(&mesh.triangle_group) {
         for &v in t {
@@ -108,6 +108,17 @@ fn every_well_segment_is_a_chain_of_tet_edges_through_nodes_of_the_surfaces_it_c
                 .insert(&mesh.surface_groups[g as usize].name);
         }
     }
+    on
+}
+
+#[test]
+fn every_well_segment_is_a_chain_of_tet_edges_through_nodes_of_the_surfaces_it_crosses() {
+    let s = built();
+    let mesh = mesh_of(&s);
+    let edges = tet_edges(&mesh);
+    let names: Vec<&str> = mesh.lines.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(names, ["W1", "W2"]);
+    let on = surfaces_at_nodes(&mesh);
     let crosses = |w: &str, want: &[&str]| {
         let g = mesh.lines.iter().find(|g| g.name == w).unwrap();
         for &[a, b] in &g.lines {
@@ -388,6 +399,91 @@ fn a_well_restricted_to_the_reservoir_is_embedded_there_only() {
     );
     let w1 = mesh.lines.iter().find(|g| g.name == "W1").expect("W1");
     assert_eq!(w1.lines.len(), 11, "W1 keeps every region");
+}
+
+#[test]
+fn a_line_running_along_the_seafloor_then_down_is_edges_of_the_seafloor_mesh_then_of_tets() {
+    let s = built();
+    // A flowline on the box top from (503500, 7003000) to (504200, 7003600), then a vertical
+    // well down to 1800 m: a gOcad PLine.
+    let pline = "GOCAD PLine 1\nHEADER {\nname:W3\n}\nILINE\n\
+                 VRTX 1 503500 7003000 0\nVRTX 2 504200 7003600 0\nVRTX 3 504200 7003600 -1800\n\
+                 SEG 1 2\nSEG 2 3\nEND\n";
+    std::fs::write(s.path("data/didactic/W3_flowline.pl"), pline).unwrap();
+    edit(
+        &s,
+        "W2 = { file",
+        "W3 = { file = \"data/didactic/W3_flowline.pl\", size = 100.0 }\nW2 = { file",
+    );
+    let (ran, r) = rebuilt(&s);
+    assert_ran(&ran, &["well_cut:W3", "surface_mesh:box.zmax#2", "mesh"]);
+    let cut = r["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["name"] == "well_cut:W3");
+    assert_eq!(
+        cut.unwrap()["counts"]["runs"],
+        1,
+        "one stretch on the seafloor"
+    );
+    let mesh = mesh_of(&s);
+    let edges = tet_edges(&mesh);
+    let on = surfaces_at_nodes(&mesh);
+    let g = mesh
+        .lines
+        .iter()
+        .find(|g| g.name == "W3")
+        .expect("W3's group");
+    let path = chain(&g.lines);
+    let mut top_edges = BTreeSet::new();
+    for (t, &grp) in mesh.triangles.iter().zip(&mesh.triangle_group) {
+        if mesh.surface_groups[grp as usize].name == "box.zmax" {
+            for k in 0..3 {
+                top_edges.insert((t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])));
+            }
+        }
+    }
+    let mut along_top = 0;
+    for &[a, b] in &g.lines {
+        let e = (a.min(b), a.max(b));
+        assert!(edges.contains(&e), "[{a}, {b}] is no tet edge");
+        if mesh.nodes[a as usize][2] == 0.0 && mesh.nodes[b as usize][2] == 0.0 {
+            assert!(
+                top_edges.contains(&e),
+                "[{a}, {b}] on the seafloor is no seafloor edge"
+            );
+            along_top += 1;
+        }
+    }
+    // 922 m along the top at size 100: about 9 edges, each a seafloor mesh edge.
+    assert!(
+        (8..=10).contains(&along_top),
+        "{along_top} edges along the top"
+    );
+    let met: BTreeSet<&str> = path
+        .iter()
+        .flat_map(|v| on.get(v).into_iter().flatten())
+        .copied()
+        .collect();
+    assert_eq!(met, BTreeSet::from(["box.zmax", "H1", "H2"]));
+    // Where it leaves the seafloor is a marker; the run's start, the path's, is not.
+    let p = mesh
+        .points
+        .iter()
+        .find(|p| p.name == "W3:box.zmax")
+        .expect("W3:box.zmax");
+    assert_eq!(mesh.nodes[p.node as usize], [504200.0, 7003600.0, 0.0]);
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(s.path("out/didactic_wells/report.json")).unwrap())
+            .unwrap();
+    let w3 = &report["wells"].as_array().unwrap()[2];
+    assert_eq!(w3["name"], "W3");
+    let length = w3["length"].as_f64().unwrap();
+    assert!(
+        (length - (922.0 + 1800.0)).abs() < 2.0,
+        "W3 is {length} m long"
+    );
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! its dependents off early), and its FE surface mesh from the discretizations of its curves,
 //! with every crossing a node.
 
-use super::wells::{WellCutData, patch_crossings, wells_within_reach};
+use super::wells::{WellCutData, patch_crossings, patch_runs, wells_within_reach};
 use super::{CurveNodes, ModelData};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::SurfaceKind;
@@ -26,6 +26,9 @@ pub struct PatchPiece {
     pub curves: Vec<String>,
     /// Where wells cross the patch (nodes its mesh must have), in well order then path order.
     pub crossings: Vec<PatchCrossing>,
+    /// Where wells lie on the patch (polylines its mesh must have as edges), in well order then
+    /// path order.
+    pub runs: Vec<PatchRun>,
     /// The sizes near the wells that come within reach of the patch, in well order.
     pub well_refine: Vec<Refinement>,
 }
@@ -34,6 +37,13 @@ pub struct PatchPiece {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PatchCrossing {
     pub point: [f64; 3],
+    pub well: String,
+}
+
+/// A stretch of a well lying on a patch: constraint edges of its mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PatchRun {
+    pub points: Vec<[f64; 3]>,
     pub well: String,
 }
 
@@ -63,7 +73,8 @@ impl Operation for PatchExtractOp {
     }
     fn version(&self) -> u32 {
         // 3: the wells' crossings of the patch and their sizes within reach.
-        3
+        // 4: the wells' stretches lying on the patch.
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new()
@@ -105,6 +116,7 @@ impl Operation for PatchExtractOp {
                 .map(|&c| model.topology.curves[c as usize].name.clone())
                 .collect(),
             crossings: patch_crossings(&p.name, &cuts),
+            runs: patch_runs(&p.name, &cuts),
             well_refine: match self.reach {
                 Some(r) => wells_within_reach(&cuts, &p.mesh, r.size, r.slope),
                 None => Vec::new(),
@@ -185,6 +197,7 @@ impl Operation for SurfaceMeshOp {
         let mut input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
             .map_err(|e| OpError::from(e.to_string()))?;
         input.points = piece.crossings.iter().map(|c| c.point).collect();
+        (input.constraints).extend(piece.runs.iter().map(|r| r.points.clone()));
         let refine: Vec<Refinement> = (refine.into_iter())
             .chain(piece.well_refine.iter().cloned())
             .collect();
@@ -205,12 +218,19 @@ impl Operation for SurfaceMeshOp {
     }
 }
 
-/// A surface-mesh error, naming the well whose crossing it is at, if any.
+/// A surface-mesh error, naming the well whose crossing or stretch on the patch it is at, if
+/// any.
 fn well_context(e: surface_mesh::SurfaceMeshError, piece: &PatchPiece) -> String {
-    match piece.crossings.iter().find(|c| Some(c.point) == e.at) {
-        Some(c) => format!(
+    if let Some(c) = piece.crossings.iter().find(|c| Some(c.point) == e.at) {
+        return format!(
             "{e} (where well `{}` crosses the patch; move the well path a little if the crossing is too close to a curve)",
             c.well
+        );
+    }
+    match (piece.runs.iter()).find(|r| e.at.is_some_and(|a| r.points.contains(&a))) {
+        Some(r) => format!(
+            "{e} (where well `{}` runs along the patch; move that stretch of its path away from the patch's curves)",
+            r.well
         ),
         None => e.to_string(),
     }

@@ -201,7 +201,8 @@ impl Operation for AssembleOp {
         // 2: the wells' line elements.
         // 3: the wells' crossings of the surfaces as named points.
         // 4: the recipe's named face sets.
-        4
+        // 5: the wells' stretches lying on a surface, among their edges.
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -244,9 +245,9 @@ impl Operation for AssembleOp {
         };
         let mut mesh: VolumeMesh =
             assemble_volume(&parts).map_err(|e| OpError::from(e.to_string()))?;
-        mesh.lines = well_lines(&mesh.nodes, &regions)?;
         if self.inputs.len("wells") > 0 {
             let cuts: Vec<WellCutData> = self.inputs.decode("wells", inputs)?;
+            mesh.lines = well_lines(&mesh.nodes, &regions, &cuts)?;
             mesh.points = well_points(&mesh.nodes, &cuts)?;
         }
         let (nn, nt, nf) = (
@@ -323,9 +324,14 @@ fn well_points(nodes: &[[f64; 3]], cuts: &[WellCutData]) -> Result<Vec<NamedPoin
 }
 
 /// The wells' edges in the welded mesh's numbering (nodes joined by exact coordinates), one
-/// group per well in name order, its edges in region order then path order.
-fn well_lines(nodes: &[[f64; 3]], regions: &[RegionMesh]) -> Result<Vec<LineGroup>, OpError> {
-    if regions.iter().all(|r| r.wells.is_empty()) {
+/// group per well in name order, its edges in region order then path order, then those of its
+/// stretches lying on a surface (edges of that surface's mesh) in path order.
+fn well_lines(
+    nodes: &[[f64; 3]],
+    regions: &[RegionMesh],
+    cuts: &[WellCutData],
+) -> Result<Vec<LineGroup>, OpError> {
+    if regions.iter().all(|r| r.wells.is_empty()) && cuts.iter().all(|c| c.runs.is_empty()) {
         return Ok(Vec::new());
     }
     let key = coordinate_key;
@@ -347,6 +353,23 @@ fn well_lines(nodes: &[[f64; 3]], regions: &[RegionMesh]) -> Result<Vec<LineGrou
             let g = groups.entry(name).or_default();
             for e in edges {
                 g.push([global(e[0])?, global(e[1])?]);
+            }
+        }
+    }
+    for cut in cuts {
+        for (patch, points) in &cut.runs {
+            let node = |p: &[f64; 3]| {
+                ids.get(&key(p)).copied().ok_or_else(|| {
+                    OpError::from(format!(
+                        "mesh: well `{}` runs along patch `{patch}` through ({}, {}, {}), which is \
+                         not a node of the mesh",
+                        cut.name, p[0], p[1], p[2]
+                    ))
+                })
+            };
+            let g = groups.entry(&cut.name).or_default();
+            for w in points.windows(2) {
+                g.push([node(&w[0])?, node(&w[1])?]);
             }
         }
     }
@@ -379,6 +402,7 @@ mod tests {
             size: 1.0,
             markers,
             pieces: Vec::new(),
+            runs: Vec::new(),
         }
     }
 
@@ -408,6 +432,14 @@ mod tests {
             got,
             [("W1:H1", 0), ("W2:F1", 3), ("W2:H1", 2), ("W2:H1:2", 1)]
         );
+    }
+
+    #[test]
+    fn a_run_through_a_point_that_is_not_a_node_is_an_error_naming_the_well_and_the_patch() {
+        let mut c = cut("W1", Vec::new());
+        c.runs = vec![("H1#2".into(), vec![[0.0; 3], [0.5, 0.0, 0.0]])];
+        let e = well_lines(&[[0.0; 3]], &[], &[c]).unwrap_err().to_string();
+        assert!(e.contains("well `W1`") && e.contains("patch `H1#2`"), "{e}");
     }
 
     #[test]

@@ -246,6 +246,8 @@ struct Walk<'a> {
     along: Vec<f64>,
     borders: BTreeMap<u32, Border>,
     found: BTreeMap<(u32, Spot), Found>,
+    /// Per path segment, the patch it lies on, if any.
+    on: Vec<Option<u32>>,
 }
 
 impl Walk<'_> {
@@ -291,6 +293,39 @@ impl Walk<'_> {
         Ok(())
     }
 
+    fn border(&mut self, pi: u32) -> &Border {
+        let patch = &self.patches[pi as usize];
+        self.borders.entry(pi).or_insert_with(|| Border::of(patch))
+    }
+
+    /// Records station `j`, lying in the plane of triangle `ti` (corner ids `ids`, corners `t`)
+    /// of patch `pi`, as a crossing when it lies on the triangle.
+    fn station(
+        &mut self,
+        pi: u32,
+        ti: u32,
+        (ids, t): ([u32; 3], &[P3; 3]),
+        j: usize,
+    ) -> Result<(), WellError> {
+        let s = self.stations[j];
+        let place = place_in_plane(&s, t);
+        if place == Place::Outside {
+            return Ok(());
+        }
+        let along = self.along[j];
+        let f = feature(ti, &ids, place);
+        let segment = j.min(self.stations.len() - 2);
+        self.record(pi, Spot::Station(j), f, || Found {
+            crossing: WellCrossing {
+                patch: pi,
+                point: s,
+                along,
+            },
+            segment,
+            station: Some(j),
+        })
+    }
+
     fn segment(&mut self, i: usize, tree: &RTree<Entry>) -> Result<(), WellError> {
         let (p, q) = (self.stations[i], self.stations[i + 1]);
         let lo = [0, 1, 2].map(|k| p[k].min(q[k]));
@@ -300,6 +335,9 @@ impl Walk<'_> {
             .map(|e| e.data)
             .collect();
         near.sort_unstable();
+        // The triangles the segment lies in the plane of and meets, per patch; then the others.
+        let mut flat: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+        let mut across = Vec::new();
         for (pi, ti) in near {
             let patch = &self.patches[pi as usize];
             let ids = patch.mesh.triangles[ti as usize];
@@ -313,71 +351,249 @@ impl Walk<'_> {
                 orient3d(&t[0], &t[1], &t[2], &p),
                 orient3d(&t[0], &t[1], &t[2], &q),
             );
-            let zero = Orientation::Zero;
-            if op == zero && oq == zero {
+            if op == Orientation::Zero && oq == Orientation::Zero {
                 if coplanar_meets(&p, &q, &t) {
-                    return Err(self.fail(
-                        format!(
-                            "the well runs along surface `{}` (patch `{}`): a segment of its path lies in the surface",
-                            patch.surface, patch.name
-                        ),
-                        i,
-                        p,
-                    ));
+                    flat.entry(pi).or_default().push(ti);
                 }
                 continue;
             }
-            if op == zero || oq == zero {
-                let (j, s) = if op == zero { (i, p) } else { (i + 1, q) };
-                let place = place_in_plane(&s, &t);
-                if place == Place::Outside {
-                    continue;
-                }
-                let along = self.along[j];
-                let f = feature(ti, &ids, place);
-                self.record(pi, Spot::Station(j), f, || Found {
-                    crossing: WellCrossing {
-                        patch: pi,
-                        point: s,
-                        along,
-                    },
-                    segment: j.min(self.stations.len() - 2),
-                    station: Some(j),
-                })?;
+            across.push((pi, ti, ids, t, op, oq));
+        }
+        for (pi, tris) in flat {
+            self.in_plane(i, pi, &tris)?;
+        }
+        for (pi, ti, ids, t, op, oq) in across {
+            if self.on[i] == Some(pi) {
                 continue;
             }
-            if op == oq {
-                continue;
-            }
-            let place = place_through(&p, &q, &t);
-            if place == Place::Outside {
-                continue;
-            }
-            let f = feature(ti, &ids, place);
-            let point = match place {
-                Place::Corner(k) => t[k],
-                _ => crossing_point(&p, &q, &t, place),
-            };
-            let s = (dist(&p, &point) / dist(&p, &q)).clamp(0.0, 1.0);
-            let along = self.along[i] + s * (self.along[i + 1] - self.along[i]);
-            self.record(pi, Spot::Segment(i, f), f, || Found {
-                crossing: WellCrossing {
-                    patch: pi,
-                    point,
-                    along,
-                },
-                segment: i,
-                station: None,
-            })?;
+            self.through(i, (pi, ti), (ids, &t), (op, oq))?;
         }
         Ok(())
     }
+
+    /// Segment `i` in the plane of the triangles `tris` of patch `pi`, meeting each: it lies on
+    /// the patch when they cover it whole; it touches the patch when they meet it at points only
+    /// (its stations there are crossings); running along the patch for part of it, or meeting
+    /// the patch's border (a curve) while on it, is refused.
+    fn in_plane(&mut self, i: usize, pi: u32, tris: &[u32]) -> Result<(), WellError> {
+        let (p, q) = (self.stations[i], self.stations[i + 1]);
+        let patch = &self.patches[pi as usize];
+        let tri = |ti: u32| {
+            let ids = patch.mesh.triangles[ti as usize];
+            (
+                ids,
+                corners(patch, &ids).expect("indexed triangles have corners"),
+            )
+        };
+        let spans: Vec<(f64, f64)> = tris
+            .iter()
+            .map(|&ti| {
+                let (ids, t) = tri(ti);
+                span(&p, &q, &t, ids)
+            })
+            .collect();
+        let coverage = coverage(&spans);
+        if coverage == Coverage::Points {
+            for &ti in tris {
+                let (ids, t) = tri(ti);
+                self.station(pi, ti, (ids, &t), i)?;
+                self.station(pi, ti, (ids, &t), i + 1)?;
+            }
+            return Ok(());
+        }
+        let (surface, name) = (patch.surface.clone(), patch.name.clone());
+        for &ti in tris {
+            let (ids, t) = tri(ti);
+            if let Some(at) = self.meets_border(pi, &p, &q, (ids, &t)) {
+                return Err(self.fail(
+                    format!(
+                        "the well runs along surface `{surface}` (patch `{name}`) onto the patch's border (a curve, where surfaces meet or a fault ends); a path lying on a surface must leave it inside the patch"
+                    ),
+                    i,
+                    at,
+                ));
+            }
+        }
+        if coverage == Coverage::Part {
+            return Err(self.fail(
+                format!(
+                    "the well runs along surface `{surface}` (patch `{name}`) for part of a segment and leaves it between two stations; a path lying on a surface must have a station where it leaves it"
+                ),
+                i,
+                p,
+            ));
+        }
+        if let Some(other) = self.on[i].filter(|&o| o != pi) {
+            let o = &self.patches[other as usize];
+            return Err(self.fail(
+                format!(
+                    "the well runs along patches `{}` and `{name}` at once",
+                    o.name
+                ),
+                i,
+                p,
+            ));
+        }
+        self.on[i] = Some(pi);
+        Ok(())
+    }
+
+    /// A corner of a border edge of the triangle (corner ids `ids`, corners `t`) of patch `pi`
+    /// that segment `pq`, in the triangle's plane, meets, if it meets one.
+    fn meets_border(
+        &mut self,
+        pi: u32,
+        p: &P3,
+        q: &P3,
+        (ids, t): ([u32; 3], &[P3; 3]),
+    ) -> Option<P3> {
+        let (k, _) = projection(t)?;
+        let border = self.border(pi);
+        (0..3).find_map(|e| {
+            let (a, b) = (ids[e], ids[(e + 1) % 3]);
+            let on = border.edges.contains(&(a.min(b), a.max(b)));
+            let (u, v) = (t[e], t[(e + 1) % 3]);
+            let meets = segments_meet(
+                drop_axis(p, k),
+                drop_axis(q, k),
+                drop_axis(&u, k),
+                drop_axis(&v, k),
+            );
+            (on && meets).then_some(u)
+        })
+    }
+
+    /// Segment `i` against triangle `ti` of patch `pi` whose plane it is not in (`op`, `oq`: the
+    /// sides of its plane its ends are on).
+    fn through(
+        &mut self,
+        i: usize,
+        (pi, ti): (u32, u32),
+        (ids, t): ([u32; 3], &[P3; 3]),
+        (op, oq): (Orientation, Orientation),
+    ) -> Result<(), WellError> {
+        let (p, q) = (self.stations[i], self.stations[i + 1]);
+        if op == Orientation::Zero || oq == Orientation::Zero {
+            let j = if op == Orientation::Zero { i } else { i + 1 };
+            return self.station(pi, ti, (ids, t), j);
+        }
+        if op == oq {
+            return Ok(());
+        }
+        let place = place_through(&p, &q, t);
+        if place == Place::Outside {
+            return Ok(());
+        }
+        let f = feature(ti, &ids, place);
+        let point = match place {
+            Place::Corner(k) => t[k],
+            _ => crossing_point(&p, &q, t, place),
+        };
+        let s = (dist(&p, &point) / dist(&p, &q)).clamp(0.0, 1.0);
+        let along = self.along[i] + s * (self.along[i + 1] - self.along[i]);
+        self.record(pi, Spot::Segment(i, f), f, || Found {
+            crossing: WellCrossing {
+                patch: pi,
+                point,
+                along,
+            },
+            segment: i,
+            station: None,
+        })
+    }
+}
+
+/// How the triangles a segment lies in the plane of cover it.
+#[derive(Debug, PartialEq)]
+enum Coverage {
+    /// At points only.
+    Points,
+    /// Along part of it.
+    Part,
+    /// From end to end.
+    Whole,
+}
+
+/// Whether the spans (parameters along the segment, 0 to 1) cover it: their ends are computed
+/// the same way from the same support edge or vertex by every triangle that shares it, so two
+/// spans that meet there meet bit for bit.
+fn coverage(spans: &[(f64, f64)]) -> Coverage {
+    let mut open: Vec<(f64, f64)> = spans.iter().copied().filter(|(a, b)| a < b).collect();
+    if open.is_empty() {
+        return Coverage::Points;
+    }
+    open.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    if open[0].0 > 0.0 {
+        return Coverage::Part;
+    }
+    let mut reach = 0.0f64;
+    for (a, b) in open {
+        if a > reach {
+            return Coverage::Part;
+        }
+        reach = reach.max(b);
+    }
+    if reach >= 1.0 {
+        Coverage::Whole
+    } else {
+        Coverage::Part
+    }
+}
+
+/// The parameters (0 at `p`, 1 at `q`) of the part of segment `pq` inside triangle `t` (corner
+/// ids `ids`), both in its plane: the ends of the segment inside it, its corners on the segment
+/// and the points where the segment crosses its edges. Exact tests decide which; an edge's
+/// parameter is computed from its corners in id order and a corner's from the corner alone, so
+/// every triangle sharing them gets the same bits.
+fn span(p: &P3, q: &P3, t: &[P3; 3], ids: [u32; 3]) -> (f64, f64) {
+    let Some((k, _)) = projection(t) else {
+        return (1.0, 0.0);
+    };
+    let (p2, q2) = (drop_axis(p, k), drop_axis(q, k));
+    let d = sub(q, p);
+    let dd = dot(&d, &d);
+    let mut ts = Vec::with_capacity(4);
+    if place_in_plane(p, t) != Place::Outside {
+        ts.push(0.0);
+    }
+    if place_in_plane(q, t) != Place::Outside {
+        ts.push(1.0);
+    }
+    for c in 0..3 {
+        let v = t[c];
+        let between = (0..3).all(|a| p[a].min(q[a]) <= v[a] && v[a] <= p[a].max(q[a]));
+        if between && orient2d(&p2, &q2, &drop_axis(&v, k)) == Orientation::Zero {
+            ts.push(dot(&sub(&v, p), &d) / dd);
+        }
+        let (a, b) = if ids[c] < ids[(c + 1) % 3] {
+            (t[c], t[(c + 1) % 3])
+        } else {
+            (t[(c + 1) % 3], t[c])
+        };
+        let (a2, b2) = (drop_axis(&a, k), drop_axis(&b, k));
+        let strict = |x: Orientation, y: Orientation| {
+            x != Orientation::Zero && y != Orientation::Zero && x != y
+        };
+        if strict(orient2d(&p2, &q2, &a2), orient2d(&p2, &q2, &b2))
+            && strict(orient2d(&a2, &b2, &p2), orient2d(&a2, &b2, &q2))
+        {
+            let e = sub(&b, &a);
+            let n = cross(&d, &e);
+            ts.push(dot(&cross(&sub(&a, p), &e), &n) / dot(&n, &n));
+        }
+    }
+    let ts = ts.into_iter().map(|x| x.clamp(0.0, 1.0));
+    ts.fold((1.0f64, 0.0f64), |(lo, hi), x| (lo.min(x), hi.max(x)))
 }
 
 /// Every crossing of the path `stations` with `patches`, in path order (at a station, then
-/// inside the segment that starts there, by length along it); two patches crossed at one point
-/// are refused.
-pub(super) fn crossings(stations: &[P3], patches: &[PatchIn]) -> Result<Vec<Found>, WellError> {
+/// inside the segment that starts there, by length along it), and per segment the patch it lies
+/// on; two patches crossed at one point, and a crossing where the path lies on a patch, are
+/// refused.
+pub(super) fn crossings(
+    stations: &[P3],
+    patches: &[PatchIn],
+) -> Result<(Vec<Found>, Vec<Option<u32>>), WellError> {
     let along = lengths_along(stations);
     let tree = index(patches);
     let mut walk = Walk {
@@ -386,6 +602,7 @@ pub(super) fn crossings(stations: &[P3], patches: &[PatchIn]) -> Result<Vec<Foun
         along,
         borders: BTreeMap::new(),
         found: BTreeMap::new(),
+        on: vec![None; stations.len() - 1],
     };
     for i in 0..stations.len() - 1 {
         walk.segment(i, &tree)?;
@@ -412,5 +629,97 @@ pub(super) fn crossings(stations: &[P3], patches: &[PatchIn]) -> Result<Vec<Foun
             });
         }
     }
-    Ok(found)
+    let on = walk.on;
+    if let Some(f) = found.iter().find(|f| lies_on_at(&on, f).is_some()) {
+        let (c, lying) = (&f.crossing, lies_on_at(&on, f).expect("found"));
+        return Err(WellError {
+            message: format!(
+                "the well meets surface `{}` (patch `{}`) where it runs along patch `{}`; the crossing would have to be a node of their curve",
+                patches[c.patch as usize].surface,
+                patches[c.patch as usize].name,
+                patches[lying as usize].name
+            ),
+            segment: Some(f.segment),
+            at: Some(c.point),
+        });
+    }
+    Ok((found, on))
+}
+
+/// The patch the path lies on at crossing `f` when the crossing is inside a segment lying on
+/// a patch, or at a station between two segments lying on one.
+fn lies_on_at(on: &[Option<u32>], f: &Found) -> Option<u32> {
+    match f.station {
+        None => on[f.segment],
+        Some(j) if j > 0 && j < on.len() && on[j - 1] == on[j] => on[j],
+        Some(_) => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geom::TriMesh;
+
+    /// A flat square at z = 0 (x in 0..1) bent up along x = 1 into a slope reaching z = 1 at
+    /// x = 2.
+    fn bent() -> Vec<PatchIn> {
+        let v = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 1.0],
+            [2.0, 1.0, 1.0],
+        ];
+        let t = vec![[0, 1, 2], [0, 2, 3], [1, 4, 5], [1, 5, 2]];
+        vec![PatchIn {
+            name: "s#1".into(),
+            surface: "s".into(),
+            mesh: TriMesh::new(v, t),
+            chart_of: None,
+        }]
+    }
+
+    #[test]
+    fn spans_that_meet_or_overlap_cover_a_segment_and_a_gap_or_a_short_end_does_not() {
+        assert_eq!(coverage(&[(0.0, 0.5), (0.5, 1.0)]), Coverage::Whole);
+        assert_eq!(
+            coverage(&[(0.3, 1.0), (0.0, 0.6), (0.2, 0.2)]),
+            Coverage::Whole
+        );
+        assert_eq!(coverage(&[(0.0, 0.5), (0.6, 1.0)]), Coverage::Part);
+        assert_eq!(coverage(&[(0.0, 0.9)]), Coverage::Part);
+        assert_eq!(coverage(&[(0.1, 1.0)]), Coverage::Part);
+        assert_eq!(coverage(&[(0.0, 0.0), (1.0, 1.0)]), Coverage::Points);
+    }
+
+    #[test]
+    fn a_path_lying_on_the_flat_part_of_a_bent_patch_is_a_run_and_one_going_on_past_the_bend_is_refused()
+     {
+        let patches = bent();
+        let (found, on) = crossings(&[[0.2, 0.5, 0.0], [0.9, 0.5, 0.0]], &patches).expect("a run");
+        assert!(found.is_empty());
+        assert_eq!(on, [Some(0)]);
+        let e = crossings(&[[0.2, 0.5, 0.0], [1.5, 0.5, 0.0]], &patches)
+            .err()
+            .expect("it leaves the surface at the bend, between stations");
+        assert!(e.message.contains("for part of a segment"), "{e}");
+        // With a station at the bend it lies on the flat part, then leaves the surface there.
+        let (found, on) = crossings(
+            &[[0.2, 0.5, 0.0], [1.0, 0.5, 0.0], [1.5, 0.5, 0.0]],
+            &patches,
+        )
+        .expect("a run, then off");
+        assert_eq!(on, [Some(0), None]);
+        assert_eq!(found.len(), 1);
+        assert_eq!(found[0].crossing.point, [1.0, 0.5, 0.0]);
+        // Up the slope and on along the flat part, the other way round.
+        let (_, on) = crossings(
+            &[[1.5, 0.5, 0.5], [1.0, 0.5, 0.0], [0.3, 0.5, 0.0]],
+            &patches,
+        )
+        .expect("two runs");
+        assert_eq!(on, [Some(0), Some(0)]);
+    }
 }

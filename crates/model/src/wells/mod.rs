@@ -9,12 +9,19 @@
 //!   vertex, bit for bit; a station lying on a patch is the crossing itself. Each crossing
 //!   becomes a node of that patch's surface mesh, so the well is cut there and its pieces end on
 //!   the surfaces exactly.
+//! * the **runs**: a path segment in the plane of a patch's support triangles lies on the patch
+//!   when those triangles cover it from end to end (exact tests decide which triangles it meets
+//!   and crosses the edges of; the parameters where it enters and leaves each are computed from
+//!   the shared edge or corner alone, so neighbours' spans meet bit for bit). Consecutive such
+//!   segments are a run: it becomes constraint edges of the patch's surface mesh, and its ends
+//!   are crossings (where the well reaches and leaves the surface) or path ends.
 //! * what is refused, with the well, the place and the surface: a path that runs along a patch
-//!   (a segment in a support triangle's plane meeting it), and a crossing on a curve (a patch's
-//!   border edge or vertex, where surfaces meet or a fault ends), which would need the curve's
-//!   discretization to hold the point.
-//! * the **pieces** (`pieces`): the path cut at every crossing, each piece located exactly in the
-//!   region that strictly contains it (`regions::Locator` on a point of its longest segment);
+//!   for part of a segment only (it must have a station where it leaves the surface), or onto
+//!   the patch's border, and a crossing on a curve (a patch's border edge or vertex, where
+//!   surfaces meet or a fault ends), which would need the curve's discretization to hold the
+//!   point, or of another surface where the path runs along a patch.
+//! * the **pieces** (`pieces`): the path cut at every crossing, each piece not lying on a patch
+//!   located exactly in the region that strictly contains it (`regions::Locator` on a point of its longest segment);
 //!   pieces outside every region (above the box, say) are left out.
 //! * the **resampling** of a piece to a target segment length (`resample`): the tet mesher makes
 //!   every well segment a chain of tet edges, so a path surveyed every metre would force
@@ -47,6 +54,17 @@ pub struct WellPiece {
     pub points: Vec<[f64; 3]>,
 }
 
+/// A stretch of a well lying on one patch: its segments are in the patch's support, so they
+/// become edges of that patch's surface mesh, not of a region's tet mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WellRun {
+    /// Index of the patch in the slice given to [`cut_well`].
+    pub patch: u32,
+    /// The path's stations from the end where it reaches the patch to the end where it leaves
+    /// it (each a crossing or a path end), bit for bit.
+    pub points: Vec<[f64; 3]>,
+}
+
 /// A well cut by the model.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct WellCut {
@@ -54,6 +72,8 @@ pub struct WellCut {
     pub crossings: Vec<WellCrossing>,
     /// In order along the path.
     pub pieces: Vec<WellPiece>,
+    /// The stretches lying on a patch, in order along the path.
+    pub runs: Vec<WellRun>,
 }
 
 /// Why a well cannot be cut: what happened, at which path segment (index of its first station)
@@ -74,10 +94,11 @@ pub fn cut_well(
     locator: &Locator,
 ) -> Result<WellCut, WellError> {
     pieces::check_path(stations)?;
-    let crossings = cross::crossings(stations, patches)?;
-    let pieces = pieces::split(stations, &crossings, locator)?;
+    let (crossings, on) = cross::crossings(stations, patches)?;
+    let (pieces, runs) = pieces::split(stations, &crossings, &on, locator);
     Ok(WellCut {
         crossings: crossings.into_iter().map(|c| c.crossing).collect(),
         pieces,
+        runs,
     })
 }

@@ -2,7 +2,7 @@
 //! a piece.
 
 use super::cross::Found;
-use super::{WellError, WellPiece};
+use super::{WellError, WellPiece, WellRun};
 use crate::regions::Locator;
 use geom::predicates::dist;
 
@@ -40,9 +40,11 @@ pub(super) fn check_path(stations: &[P3]) -> Result<(), WellError> {
     Ok(())
 }
 
-/// A piece being gathered: points without consecutive repeats.
+/// A piece being gathered: points without consecutive repeats, and the path segment it
+/// starts in.
 struct Gather {
     points: Vec<P3>,
+    segment: usize,
 }
 
 impl Gather {
@@ -52,48 +54,55 @@ impl Gather {
         }
     }
 
-    /// Ends the piece at `p` and starts the next one there.
-    fn cut(&mut self, p: P3, done: &mut Vec<Vec<P3>>) {
+    /// Ends the piece at `p` and starts the next one there, in segment `segment`.
+    fn cut(&mut self, p: P3, segment: usize, done: &mut Vec<(usize, Vec<P3>)>) {
         self.push(p);
         let piece = std::mem::replace(&mut self.points, vec![p]);
+        let first = std::mem::replace(&mut self.segment, segment);
         if piece.len() >= 2 {
-            done.push(piece);
+            done.push((first, piece));
         }
     }
 }
 
-/// The pieces of the path between its crossings (sorted along it), each in the region that
-/// strictly contains it; pieces in no region are left out.
+/// The pieces of the path between its crossings (sorted along it): those whose segments lie on
+/// a patch (`on`, per segment) are runs, the others each in the region that strictly contains
+/// it; pieces in no region are left out. Crossings never fall inside a run (refused before), so
+/// every piece lies on one patch or on none.
 pub(super) fn split(
     stations: &[P3],
     found: &[Found],
+    on: &[Option<u32>],
     locator: &Locator,
-) -> Result<Vec<WellPiece>, WellError> {
+) -> (Vec<WellPiece>, Vec<WellRun>) {
     let mut done = Vec::new();
     let mut g = Gather {
         points: vec![stations[0]],
+        segment: 0,
     };
     let mut next = found.iter().peekable();
     for (j, s) in stations.iter().enumerate() {
         g.push(*s);
         // `found` is in path order: the crossings at station j, then those inside segment j.
         while let Some(f) = next.next_if(|f| f.station.unwrap_or(f.segment) == j) {
-            g.cut(f.crossing.point, &mut done);
+            g.cut(f.crossing.point, f.segment, &mut done);
         }
     }
     if g.points.len() >= 2 {
-        done.push(g.points);
+        done.push((g.segment, g.points));
     }
-    let mut pieces = Vec::new();
-    for points in done {
-        if let Some(region) = locator.locate(inner_point(&points)) {
+    let (mut pieces, mut runs) = (Vec::new(), Vec::new());
+    for (segment, points) in done {
+        if let Some(patch) = on[segment] {
+            runs.push(WellRun { patch, points });
+        } else if let Some(region) = locator.locate(inner_point(&points)) {
             pieces.push(WellPiece {
                 region: region as u32,
                 points,
             });
         }
     }
-    Ok(pieces)
+    (pieces, runs)
 }
 
 /// The midpoint of the piece's longest segment: off every patch, since crossings cut the path.

@@ -1,6 +1,7 @@
 //! Wells cut by hand-built models: a cube split by a horizon, a dangling fault, a lens — each at
 //! UTM offsets too — with crossings through support faces, edges, vertices and stations, the
-//! pieces' regions, and the refusals (a path along a surface, a crossing on a curve).
+//! pieces' regions, paths lying on a surface (runs), and the refusals (a path along a surface onto
+//! its border, a crossing on a curve).
 
 use super::regions_cases::{OFFSETS, cube, octahedron, rect, shifted, split_cube};
 use model::regions::{Locator, PatchIn, RegionOptions, find_regions_with, locate};
@@ -221,12 +222,71 @@ fn a_reversed_path_crosses_the_same_patches_in_reverse_order() {
 }
 
 #[test]
-fn a_well_running_along_a_horizon_is_refused_with_the_surface_and_the_segment() {
+fn a_well_landing_on_a_horizon_running_along_it_and_leaving_has_a_run_between_two_pieces() {
+    for d in OFFSETS {
+        let patches = shifted(split_cube(), d);
+        // Along y = 0.4 it crosses the support's grid and diagonal edges; along x = y it runs
+        // on support edges and through support vertices.
+        for (a, b) in [([0.3, 0.4], [0.7, 0.4]), ([0.25, 0.25], [0.75, 0.75])] {
+            let path = [
+                add([a[0], a[1], 0.9], d),
+                add([a[0], a[1], 0.5], d),
+                add([b[0], b[1], 0.5], d),
+                add([b[0], b[1], 0.1], d),
+            ];
+            let c = cut(&patches, &[], &path).expect("cut");
+            assert_eq!(surfaces(&c, &patches), ["h1#1", "h1#1"], "{path:?}");
+            assert_eq!(c.crossings[0].point, path[1]);
+            assert_eq!(c.crossings[1].point, path[2]);
+            assert_eq!(c.runs.len(), 1);
+            assert_eq!(c.runs[0].points, [path[1], path[2]]);
+            assert_eq!(patches[c.runs[0].patch as usize].name, "h1#1");
+            assert_eq!(c.pieces.len(), 2);
+            assert_eq!(c.pieces[0].points, [path[0], path[1]]);
+            assert_eq!(c.pieces[1].points, [path[2], path[3]]);
+            assert_ne!(c.pieces[0].region, c.pieces[1].region);
+        }
+    }
+}
+
+#[test]
+fn a_well_ending_on_a_horizon_after_running_along_it_ends_its_run_at_its_last_station() {
     let patches = split_cube();
-    let path = [[0.3, 0.4, 0.9], [0.3, 0.4, 0.5], [0.7, 0.4, 0.5]];
-    let e = cut(&patches, &[], &path).expect_err("along h1");
+    let path = [
+        [0.3, 0.4, 0.9],
+        [0.3, 0.4, 0.5],
+        [0.5, 0.4, 0.5],
+        [0.7, 0.6, 0.5],
+    ];
+    let c = cut(&patches, &[], &path).expect("cut");
+    assert_eq!(surfaces(&c, &patches), ["h1#1"]);
+    assert_eq!(c.runs.len(), 1);
+    assert_eq!(c.runs[0].points, path[1..]);
+    assert_eq!(c.pieces.len(), 1);
+}
+
+#[test]
+fn a_well_running_along_a_horizon_onto_a_box_side_is_refused_as_meeting_a_curve() {
+    let patches = split_cube();
+    let path = [[0.3, 0.4, 0.9], [0.3, 0.4, 0.5], [1.5, 0.4, 0.5]];
+    let e = cut(&patches, &[], &path).expect_err("along h1 onto the east side");
     assert!(e.message.contains("runs along surface `h1`"), "{e}");
+    assert!(e.message.contains("border"), "{e}");
     assert_eq!(e.segment, Some(1));
+}
+
+#[test]
+fn a_vertical_well_running_down_a_box_side_lies_on_it_and_crosses_nothing_inside() {
+    let patches = split_cube();
+    // Down the west side from the top edge's middle to the bottom: on `west1`, then the curve
+    // where h1 meets the side.
+    let path = [[0.0, 0.4, 0.9], [0.0, 0.4, 0.7]];
+    let c = cut(&patches, &[], &path).expect("cut");
+    assert!(c.crossings.is_empty() && c.pieces.is_empty());
+    assert_eq!(c.runs.len(), 1);
+    assert_eq!(patches[c.runs[0].patch as usize].name, "west1");
+    let e = cut(&patches, &[], &[[0.0, 0.4, 0.9], [0.0, 0.4, 0.1]]).expect_err("onto h1's curve");
+    assert!(e.message.contains("border"), "{e}");
 }
 
 #[test]

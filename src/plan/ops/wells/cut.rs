@@ -30,6 +30,9 @@ pub struct WellCutData {
     pub markers: Vec<WellMarker>,
     /// In path order: the region's name and the piece, resampled (its ends kept bit for bit).
     pub pieces: Vec<(String, Vec<[f64; 3]>)>,
+    /// In path order: the patch's name and the stretch lying on it, resampled (its ends kept
+    /// bit for bit); its segments become edges of that patch's surface mesh.
+    pub runs: Vec<(String, Vec<[f64; 3]>)>,
 }
 
 /// `well_cut:<w>`: inputs `model`, `well:<w>`.
@@ -47,7 +50,8 @@ impl Operation for WellCutOp {
         "well_cut"
     }
     fn version(&self) -> u32 {
-        1
+        // 2: the stretches lying on a patch (runs), no longer refused.
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -78,7 +82,7 @@ impl Operation for WellCutOp {
         let locator = Locator::new(&model.regions, &patches);
         let cut = cut_well(&well.stations, &patches, &locator)
             .map_err(|e| OpError::from(describe(&well, &e)))?;
-        if cut.pieces.is_empty() {
+        if cut.pieces.is_empty() && cut.runs.is_empty() {
             return Err(format!(
                 "well `{}` ({}) has no part inside the model: its path from ({}) to ({}) lies outside every region; check the file's coordinates and units against the [box]",
                 well.name,
@@ -89,7 +93,7 @@ impl Operation for WellCutOp {
             .into());
         }
         let cut = self.within_regions(cut, &model);
-        if cut.pieces.is_empty() {
+        if cut.pieces.is_empty() && cut.runs.is_empty() {
             return Err(format!(
                 "well `{}` ({}) crosses none of the regions its `regions` names ({})",
                 well.name,
@@ -120,22 +124,33 @@ impl Operation for WellCutOp {
                 (region, resample(&p.points, self.size))
             })
             .collect();
-        let (nm, np) = (markers.len() as u64, pieces.len() as u64);
-        let segments: usize = pieces.iter().map(|(_, p)| p.len() - 1).sum();
-        Ok(Output::new(Artifact::encode(&WellCutData {
+        let runs: Vec<(String, Vec<[f64; 3]>)> = (cut.runs.iter())
+            .map(|r| {
+                let patch = model.patches[r.patch as usize].name.clone();
+                (patch, resample(&r.points, self.size))
+            })
+            .collect();
+        let (nm, np, nr) = (markers.len() as u64, pieces.len() as u64, runs.len() as u64);
+        let segments: usize = (pieces.iter().chain(&runs)).map(|(_, p)| p.len() - 1).sum();
+        let mut out = Output::new(Artifact::encode(&WellCutData {
             name: self.name.clone(),
             size: self.size,
             markers,
             pieces,
+            runs,
         })?)
         .count("markers", nm)
-        .count("pieces", np)
-        .count("segments", segments as u64))
+        .count("pieces", np);
+        if nr > 0 {
+            out = out.count("runs", nr);
+        }
+        Ok(out.count("segments", segments as u64))
     }
 }
 
 impl WellCutOp {
-    /// The cut restricted to the recipe's regions: their pieces, and the crossings that end one.
+    /// The cut restricted to the recipe's regions: their pieces, the runs on their boundaries
+    /// that join one of them, and the crossings that end a piece or such a run.
     fn within_regions(&self, cut: WellCut, model: &ModelData) -> WellCut {
         let Some(keep) = &self.regions else {
             return cut;
@@ -144,14 +159,22 @@ impl WellCutOp {
         let pieces: Vec<_> = (cut.pieces.into_iter())
             .filter(|p| keep.iter().any(|k| k == name(p.region)))
             .collect();
-        let ends: Vec<[f64; 3]> = pieces
-            .iter()
-            .flat_map(|p| [p.points[0], p.points[p.points.len() - 1]])
+        let ends = |points: &[[f64; 3]]| [points[0], points[points.len() - 1]];
+        let piece_ends: Vec<[f64; 3]> = pieces.iter().flat_map(|p| ends(&p.points)).collect();
+        let runs: Vec<_> = (cut.runs.into_iter())
+            .filter(|r| ends(&r.points).iter().any(|e| piece_ends.contains(e)))
+            .collect();
+        let all_ends: Vec<[f64; 3]> = (runs.iter().flat_map(|r| ends(&r.points)))
+            .chain(piece_ends)
             .collect();
         let crossings = (cut.crossings.into_iter())
-            .filter(|c| ends.contains(&c.point))
+            .filter(|c| all_ends.contains(&c.point))
             .collect();
-        WellCut { crossings, pieces }
+        WellCut {
+            crossings,
+            pieces,
+            runs,
+        }
     }
 }
 

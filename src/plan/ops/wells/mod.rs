@@ -1,6 +1,7 @@
 //! The wells in the build graph: `well:<w>` reads a well path from its file (`import`),
 //! `well_cut:<w>` cuts it by the model's patches (`cut`: its crossings become nodes of those
-//! patches' surface meshes, which `patch:<p>` gathers with the sizes of the wells within reach),
+//! patches' surface meshes and its stretches lying on a patch edges of it, which `patch:<p>`
+//! gathers with the sizes of the wells within reach),
 //! and `wells_in:<r>` hands each region its pieces of every well for its tet mesh (`region`). A
 //! well is its own chain of nodes: moving one re-runs its cut, the cheap extractions (only the
 //! patches whose crossings or sizes changed mesh again) and the regions whose pieces changed.
@@ -13,7 +14,7 @@ pub use cut::{WellCutData, WellCutOp, WellMarker};
 pub use import::{WellData, WellImportOp};
 pub use region::{RegionWells, RegionWellsOp};
 
-use super::patch::PatchCrossing;
+use super::patch::{PatchCrossing, PatchRun};
 use geom::TriMesh;
 use geom::refine::{Refinement, boxes_meet};
 
@@ -46,6 +47,18 @@ pub fn patch_crossings(patch: &str, cuts: &[WellCutData]) -> Vec<PatchCrossing> 
         .collect()
 }
 
+/// The stretches of the wells `cuts` lying on the patch `patch`, in well order then path order.
+pub fn patch_runs(patch: &str, cuts: &[WellCutData]) -> Vec<PatchRun> {
+    cuts.iter()
+        .flat_map(|c| c.runs.iter().map(move |r| (r, c)))
+        .filter(|((p, _), _)| p == patch)
+        .map(|((_, points), c)| PatchRun {
+            points: points.clone(),
+            well: c.name.clone(),
+        })
+        .collect()
+}
+
 /// The sizes near the wells `cuts` that reach the support `support` of a patch meshed at `size`
 /// growing at `slope`: one refinement per well finer than the patch with a piece within
 /// `(size - well size) / slope` of the support's box.
@@ -64,7 +77,9 @@ pub fn wells_within_reach(
     };
     let mut out = Vec::new();
     for c in cuts.iter().filter(|c| c.size < size && slope > 0.0) {
-        let pieces: Vec<Vec<[f64; 3]>> = c.pieces.iter().map(|(_, p)| p.clone()).collect();
+        let pieces: Vec<Vec<[f64; 3]>> = (c.pieces.iter().chain(&c.runs))
+            .map(|(_, p)| p.clone())
+            .collect();
         let r = Refinement {
             points: samples(&pieces, c.size),
             size: c.size,
