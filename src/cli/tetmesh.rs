@@ -252,6 +252,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
             out.stats.line_nodes
         );
         vec![LineGroup {
+            area: None,
             name: line_group,
             lines: steps.collect(),
         }]

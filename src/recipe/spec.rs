@@ -115,6 +115,9 @@ pub struct WellSpec {
     /// The regions the well is embedded in (sorted `[regions]` names); `None` = every region it
     /// crosses.
     pub regions: Option<Vec<String>>,
+    /// Cross-section area of the well's line elements (model units squared, > 0), written where
+    /// a format's line elements need a section (Abaqus); `None` = none written.
+    pub area: Option<f64>,
     /// Span of the name (the key).
     #[serde(skip)]
     pub span: Span,

@@ -244,6 +244,7 @@ mod tests {
         let m = geom::mesh::VolumeMesh {
             nodes: vec![[0.0, 0.0, 0.0], [0.0, 0.0, -3.0], [0.0, 4.0, -3.0]],
             lines: vec![geom::mesh::LineGroup {
+                area: None,
                 name: "W1".into(),
                 lines: vec![[0, 1], [1, 2], [2, 7]],
             }],

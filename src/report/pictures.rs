@@ -367,10 +367,12 @@ mod tests {
         // W<1>: 4 (1, 0, 0) up to 5 (1, 0, 1), on to 9 (2, 0, 1) and 11 (2, 1, 1), its edges out
         // of order; W2: 0 (0, 0, 0) to 2 (0, 1, 0) up to 3 (0, 1, 1).
         m.lines.push(LineGroup {
+            area: None,
             name: "W<1>".into(),
             lines: vec![[9, 11], [5, 4], [9, 5]],
         });
         m.lines.push(LineGroup {
+            area: None,
             name: "W2".into(),
             lines: vec![[2, 0], [3, 2]],
         });

@@ -487,6 +487,25 @@ fn a_line_running_along_the_seafloor_then_down_is_edges_of_the_seafloor_mesh_the
 }
 
 #[test]
+fn giving_a_well_an_area_reruns_only_mesh_and_export_and_writes_its_abaqus_section() {
+    let s = built();
+    edit(&s, "size = 50.0 }", "size = 50.0, area = 0.05 }");
+    edit(
+        &s,
+        "formats = [\"msh\", \"vtu\"]",
+        "formats = [\"msh\", \"vtu\", \"inp\"]",
+    );
+    let (ran, _) = rebuilt(&s);
+    assert_eq!(ran, ["export", "mesh"]);
+    let inp = std::fs::read_to_string(s.path("out/didactic_wells/didactic_wells.inp")).unwrap();
+    assert!(
+        inp.contains("*Solid Section, elset=W2, material=WELL_W2\n0.05,\n"),
+        "no section for W2"
+    );
+    assert!(!inp.contains("elset=W1, material"), "W1 has no area");
+}
+
+#[test]
 fn a_well_outside_the_model_is_an_error_naming_the_well_and_its_file() {
     let s = built();
     let f = s.path("data/didactic/W1_vertical.wl");

@@ -724,19 +724,26 @@ fn a_refinement_names_exactly_one_feature_and_grows_to_a_larger_size() {
 #[test]
 fn wells_are_read_with_their_options_and_bad_entries_point_at_the_value() {
     let named = format!(
-        "{BASE}\n[regions]\nres = {{ point = [5.0, 5.0, -5.0] }}\n\n[wells]\nW1 = \"data/w1.wl\"\nW2 = {{ file = \"data/w2.pl\", size = 2.5, object = 2, regions = [\"res\"] }}\n"
+        "{BASE}\n[regions]\nres = {{ point = [5.0, 5.0, -5.0] }}\n\n[wells]\nW1 = \"data/w1.wl\"\nW2 = {{ file = \"data/w2.pl\", size = 2.5, object = 2, regions = [\"res\"], area = 0.03 }}\n"
     );
     let r = ok(&named);
     let w2 = &r.wells["W2"];
     assert_eq!(
-        (w2.size, w2.regions.clone(), w2.path.clone()),
+        (w2.size, w2.regions.clone(), w2.path.clone(), w2.area),
         (
             Some(2.5),
             Some(vec!["res".to_string()]),
-            Path::new("recipes/data/w2.pl").to_path_buf()
+            Path::new("recipes/data/w2.pl").to_path_buf(),
+            Some(0.03)
         )
     );
-    assert_eq!(r.wells["W1"].size, None);
+    assert_eq!((r.wells["W1"].size, r.wells["W1"].area), (None, None));
+    let (_, rendered) = single_at(&named.replace("0.03", "-1.0"), "-1.0", 0);
+    assert!(rendered.contains("`wells.W2.area`"), "{rendered}");
+    assert!(
+        rendered.contains("cross-section area greater than 0"),
+        "{rendered}"
+    );
     let (_, rendered) = single_at(&named.replace("[\"res\"]", "[\"rez\"]"), "\"rez\"", 0);
     assert!(rendered.contains("unknown region `rez`"), "{rendered}");
     assert!(rendered.contains("did you mean `res`?"), "{rendered}");

@@ -279,6 +279,7 @@ mod tests {
         let well = VolumeMesh {
             nodes: vec![[0.0; 3], [0.0, 0.0, -1.0]],
             lines: vec![geom::mesh::LineGroup {
+                area: None,
                 name: "W".into(),
                 lines: vec![[0, 1]],
             }],

@@ -251,9 +251,13 @@ impl Expander for ModelExpander {
             wiring = wiring.group("wells", cuts);
         }
         let (mesh_inputs, inputs) = wiring.finish();
+        let well_areas = (self.recipe.wells.iter())
+            .filter_map(|(name, w)| w.area.map(|a| (name.clone(), a)))
+            .collect();
         let assemble = AssembleOp {
             regions: groups,
             face_sets,
+            well_areas,
             inputs,
         };
         let mesh = x

@@ -64,7 +64,8 @@ impl Operation for ExportOp {
     }
     fn version(&self) -> u32 {
         // 8: msh curve and corner entities bounding the surfaces.
-        8
+        // 9: Abaqus truss sections of the wells given an area.
+        9
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -182,6 +182,8 @@ pub struct AssembleOp {
     pub regions: Vec<RegionGroup>,
     /// The recipe's `[groups]`, in name order: each name and its patches' names, in model order.
     pub face_sets: Vec<(String, Vec<String>)>,
+    /// The wells given a cross-section area, in name order.
+    pub well_areas: Vec<(String, f64)>,
     /// `regions` (every `tet_mesh:<r>`, in the order of `regions`), `patches` (every
     /// `surface_mesh:<p>`, in model order) and, only when the recipe has wells, `wells` (every
     /// `well_cut:<w>`, in name order).
@@ -202,7 +204,8 @@ impl Operation for AssembleOp {
         // 3: the wells' crossings of the surfaces as named points.
         // 4: the recipe's named face sets.
         // 5: the wells' stretches lying on a surface, among their edges.
-        5
+        // 6: the wells' cross-section areas.
+        6
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -220,6 +223,10 @@ impl Operation for AssembleOp {
         for (name, patches) in &self.face_sets {
             p.set(&format!("groups.{name}"), patches.clone())
                 .expect("strings");
+        }
+        for (name, area) in &self.well_areas {
+            p.set(&format!("wells.{name}.area"), *area)
+                .expect("validated finite");
         }
         p
     }
@@ -248,6 +255,11 @@ impl Operation for AssembleOp {
         if self.inputs.len("wells") > 0 {
             let cuts: Vec<WellCutData> = self.inputs.decode("wells", inputs)?;
             mesh.lines = well_lines(&mesh.nodes, &regions, &cuts)?;
+            for g in &mut mesh.lines {
+                g.area = (self.well_areas.iter())
+                    .find(|(w, _)| *w == g.name)
+                    .map(|(_, a)| *a);
+            }
             mesh.points = well_points(&mesh.nodes, &cuts)?;
         }
         let (nn, nt, nf) = (
@@ -376,6 +388,7 @@ fn well_lines(
     Ok(groups
         .into_iter()
         .map(|(name, lines)| LineGroup {
+            area: None,
             name: name.to_string(),
             lines,
         })

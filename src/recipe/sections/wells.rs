@@ -1,7 +1,8 @@
 //! `[wells]`: well name -> path file. Decides which names are legal (those of surfaces, and not
 //! a surface's own name, so every output group has one meaning), the format from the extension
-//! (`.wl` Well, `.pl` PLine), and the options: `object`, the target edge length `size`, and the
-//! `regions` it is embedded in (names from `[regions]`; by default every region it crosses).
+//! (`.wl` Well, `.pl` PLine), and the options: `object`, the target edge length `size`, the
+//! `regions` it is embedded in (names from `[regions]`; by default every region it crosses), and
+//! the cross-section `area` of its line elements (for the formats that need a section).
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -15,7 +16,7 @@ use crate::recipe::diagnostic::did_you_mean;
 use crate::recipe::reader::{self as rd, Ctx, Value, name_help, path_join};
 use crate::recipe::spec::{WellFormat, WellSpec};
 
-const KEYS: &[&str] = &["file", "object", "size", "regions"];
+const KEYS: &[&str] = &["file", "object", "size", "regions", "area"];
 
 pub(crate) fn read(
     ctx: &mut Ctx<'_>,
@@ -68,13 +69,31 @@ pub(crate) fn read(
             Some(x) => region_list(ctx, x, &path_join(&path, "regions"), regions).map(Some),
             None => Some(None),
         };
-        if let (true, Some((file, format, fspan)), Some(object), Some(size), Some(within)) =
-            (ok, file, object, size, within)
+        let area = match st.get("area") {
+            Some(x) => rd::number_above(
+                ctx,
+                x,
+                &path_join(&path, "area"),
+                0.0,
+                "a cross-section area greater than 0 (model units squared)",
+            )
+            .map(Some),
+            None => Some(None),
+        };
+        if let (
+            true,
+            Some((file, format, fspan)),
+            Some(object),
+            Some(size),
+            Some(within),
+            Some(area),
+        ) = (ok, file, object, size, within, area)
         {
             let mut spec = spec(ctx, base_dir, (name, k.span()), (&file, fspan), format);
             spec.object = object;
             spec.size = size;
             spec.regions = within;
+            spec.area = area;
             out.insert(name.to_string(), spec);
         }
     }
@@ -98,6 +117,7 @@ fn spec(
         object: None,
         size: None,
         regions: None,
+        area: None,
         span: ctx.span(name_span),
         file_span: ctx.span(file_span),
     }

@@ -61,10 +61,15 @@ impl Labels {
             let _ = writeln!(s, "** set {} \"{}\" surface={label}", set.id, set.name);
         }
         for (w, g) in mesh.lines.iter().enumerate() {
+            let section = match g.area {
+                Some(a) => format!("T3D2, section area {a}"),
+                None => "T3D2 without a section: give the well an `area` in the recipe, or \
+                         add a section, to run it"
+                    .to_string(),
+            };
             let _ = writeln!(
                 s,
-                "** well {} \"{}\" elset={} (T3D2 without a section: add one, with the well's \
-                 cross-section area, to run it)",
+                "** well {} \"{}\" elset={} ({section})",
                 w + 1,
                 g.name,
                 self.wells[w]

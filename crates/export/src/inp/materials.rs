@@ -5,6 +5,9 @@
 //! may differ. A property named `density` becomes `*Density` (the one property keyword every
 //! reader shares); every other property is listed in a `**` comment under the material, since
 //! no standard keyword takes an arbitrary named constant (`*User Material` would demand a UMAT).
+//! A well given a cross-section area gets a material `WELL_<elset>` and a `*Solid Section` whose
+//! data line is that area (a truss element's section); a well without one gets none (its `**`
+//! comment says to add one).
 
 use super::labels::Labels;
 use crate::numbering::Numbering;
@@ -25,6 +28,15 @@ pub(super) fn put(s: &mut String, mesh: &VolumeMesh, labels: &Labels, numbering:
             let _ = writeln!(s, "** property {p} = {v}");
         }
         let _ = writeln!(s, "*Solid Section, elset={elset}, material={name}");
+    }
+    for &(w, _) in &numbering.wells {
+        if let Some(area) = mesh.lines[w].area {
+            let elset = &labels.wells[w];
+            let _ = writeln!(
+                s,
+                "*Material, name=WELL_{elset}\n*Solid Section, elset={elset}, material=WELL_{elset}\n{area},"
+            );
+        }
     }
 }
 

@@ -4,9 +4,9 @@
 //! region ([`materials`]), and the boundary groups ([`surfaces`]): a node set and an
 //! element-face surface per surface group, a surface per side of every fault, a node set and
 //! a surface per face set (the recipe's `[groups]`), then a one-node `*Nset` per named point
-//! (a well's crossing of a surface). The wells get
-//! no section: a truss section needs the well's cross-section area, which the mesh does not
-//! know, so the analyst adds it (a `**` comment says so) before Abaqus runs the file.
+//! (a well's crossing of a surface). A well gets a truss section (`*Solid Section` with its
+//! cross-section area) when the recipe gives it an `area`; otherwise the analyst adds one (a
+//! `**` comment says so) before Abaqus runs the file.
 //!
 //! Element numbers, side sets and fault sides are the Exodus writer's (tets numbered in region
 //! order from 1, then the wells' line elements in group order; a face named from the tet of the

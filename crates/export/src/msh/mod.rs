@@ -688,6 +688,7 @@ mod tests {
     fn a_line_group_is_a_curve_of_line_elements_after_the_triangles_with_its_own_1d_group() {
         let mesh = three_tets();
         let well = LineGroup {
+            area: None,
             name: "well".into(),
             lines: vec![[3, 0], [0, 4]],
         };

@@ -19,10 +19,12 @@ pub(crate) fn with_wells() -> VolumeMesh {
     let chain = |nodes: &[u32]| nodes.windows(2).map(|w| [w[0], w[1]]).collect();
     mesh.lines = vec![
         LineGroup {
+            area: None,
             name: "W1".into(),
             lines: chain(&(0..=6).rev().map(|k| id(2, 2, k)).collect::<Vec<_>>()),
         },
         LineGroup {
+            area: None,
             name: "W2 deviated".into(),
             lines: chain(&[id(3, 3, 3), id(2, 2, 2), id(1, 1, 1), id(1, 1, 0)]),
         },
@@ -380,6 +382,34 @@ fn abaqus_wells_are_t3d2_element_sets_numbered_after_the_tets_and_read_by_meshio
 }
 
 #[test]
+fn an_abaqus_well_with_an_area_gets_a_truss_section_and_one_without_is_told_to_add_one() {
+    let mut mesh = with_wells();
+    mesh.lines[0].area = Some(0.0314);
+    let (_dir, paths) = written(&mesh, Format::Inp);
+    let text = std::fs::read_to_string(&paths[0]).unwrap();
+    assert!(
+        text.contains(
+            "*Material, name=WELL_W1\n*Solid Section, elset=W1, material=WELL_W1\n0.0314,\n"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("** well 1 \"W1\" elset=W1 (T3D2, section area 0.0314)"));
+    assert!(
+        !text.contains("elset=W2_deviated, material"),
+        "W2 has no area"
+    );
+    assert!(text.contains("\"W2 deviated\" elset=W2_deviated (T3D2 without a section"));
+    // Every element set with elements has a section once each: the regions' and W1's.
+    let sections = text.matches("*Solid Section").count();
+    assert_eq!(sections, mesh.regions.len() + 1);
+    if !python_has("meshio") {
+        return;
+    }
+    let out = python(MESHIO_INP, &[paths[0].to_str().unwrap()]);
+    assert!(out.contains("SET W1 6\n"), "{out}");
+}
+
+#[test]
 fn a_mesh_with_wells_exports_in_every_format_with_the_same_bytes_every_time() {
     let (a, b) = (with_wells(), with_wells());
     for f in Format::EVERY {
@@ -396,6 +426,7 @@ fn a_well_group_without_lines_is_named_but_gets_no_elements() {
     mesh.lines.insert(
         0,
         LineGroup {
+            area: None,
             name: "dry".into(),
             lines: vec![],
         },

@@ -111,10 +111,12 @@ fn msh_line_groups_round_trip_by_name_in_both_encodings() {
     let u = mesh.tets[mesh.tets.len() - 1];
     mesh.lines = vec![
         geom::mesh::LineGroup {
+            area: None,
             name: "W1".into(),
             lines: vec![[t[0], t[1]], [t[1], t[2]]],
         },
         geom::mesh::LineGroup {
+            area: None,
             name: "W2".into(),
             lines: vec![[u[0], u[3]]],
         },

@@ -41,6 +41,9 @@ pub struct LineGroup {
     pub name: String,
     /// Segments between mesh nodes, each an edge of a tet.
     pub lines: Vec<[u32; 2]>,
+    /// The cross-section area of its line elements (model units squared), for the formats whose
+    /// line elements need a section to run (Abaqus, CalculiX); `None` when the recipe gives none.
+    pub area: Option<f64>,
 }
 
 /// A named mesh node: where a well crosses a surface (`<well>:<surface>`, `:2`, `:3`, ... for

@@ -189,6 +189,7 @@ pub fn read_volume_msh(bytes: &[u8], label: &str) -> Result<VolumeMesh, ReadErro
     for (i, (k, v)) in line_keys.iter_mut().enumerate() {
         *v = i as u32;
         out.lines.push(LineGroup {
+            area: None,
             name: name(1, k),
             lines: Vec::new(),
         });
