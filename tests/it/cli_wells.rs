@@ -370,6 +370,10 @@ fn moving_a_well_at_the_mesh_size_reruns_the_patches_and_regions_it_crosses_only
     ];
     assert_eq!(meshed, expected, "only what W1 crosses is meshed again");
     assert!(!ran.contains(&"well_cut:W2".to_string()));
+    assert!(
+        !ran.iter().any(|n| n.starts_with("discretize:")),
+        "W1 crosses no curve: {ran:?}"
+    );
 }
 
 #[test]
@@ -483,6 +487,69 @@ fn a_line_running_along_the_seafloor_then_down_is_edges_of_the_seafloor_mesh_the
     assert!(
         (length - (922.0 + 1800.0)).abs() < 2.0,
         "W3 is {length} m long"
+    );
+}
+
+#[test]
+fn a_well_entering_the_box_through_its_edge_crosses_both_sides_at_one_node_of_that_curve() {
+    let s = built();
+    // Down through the edge where the west side meets the top, at y = 7002000, then vertical.
+    let pline = "GOCAD PLine 1\nHEADER {\nname:W4\n}\nILINE\n\
+                 VRTX 1 499900 7002000 100\nVRTX 2 500100 7002000 -100\n\
+                 VRTX 3 500100 7002000 -1800\nSEG 1 2\nSEG 2 3\nEND\n";
+    std::fs::write(s.path("data/didactic/W4_edge.pl"), pline).unwrap();
+    edit(
+        &s,
+        "W2 = { file",
+        "W4 = \"data/didactic/W4_edge.pl\"\nW2 = { file",
+    );
+    let (ran, r) = rebuilt(&s);
+    let pins = r["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|n| n["name"] == "curve_pins");
+    assert_eq!(pins.expect("a curve_pins node")["counts"]["pins"], 1);
+    // Every curve looks for its pins again (cheap); only the crossed one changes, so only
+    // the patches along it or near W4 mesh again.
+    for n in &ran {
+        let far = ["box.xmax#", "box.zmin#", "box.ymin#", "box.ymax#", "F2#"];
+        let far = far
+            .iter()
+            .any(|f| n.starts_with(&format!("surface_mesh:{f}")));
+        assert!(!far, "`{n}` re-ran");
+    }
+    assert_ran(
+        &ran,
+        &["discretize:box.xmin/box.zmax", "surface_mesh:box.zmax#1"],
+    );
+    let mesh = mesh_of(&s);
+    let node = |name: &str| {
+        let p = mesh.points.iter().find(|p| p.name == name);
+        p.unwrap_or_else(|| panic!("no named point {name}")).node
+    };
+    let v = node("W4:box.xmin");
+    assert_eq!(v, node("W4:box.zmax"), "one node for both sides");
+    let x = mesh.nodes[v as usize];
+    assert_eq!((x[0], x[2]), (500000.0, 0.0));
+    assert!((x[1] - 7002000.0).abs() < 1e-6, "{x:?}");
+    let on = surfaces_at_nodes(&mesh);
+    assert_eq!(on[&v], BTreeSet::from(["box.xmin", "box.zmax"]));
+    let g = mesh
+        .lines
+        .iter()
+        .find(|g| g.name == "W4")
+        .expect("W4's group");
+    let path = chain(&g.lines);
+    assert!(
+        path.first() == Some(&v) || path.last() == Some(&v),
+        "W4 starts at the edge"
+    );
+    let edges = tet_edges(&mesh);
+    assert!(
+        g.lines
+            .iter()
+            .all(|&[a, b]| edges.contains(&(a.min(b), a.max(b))))
     );
 }
 

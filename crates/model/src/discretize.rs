@@ -10,6 +10,10 @@
 //!   towards the middle (`Bump`); the segment count is the nearest integer that fits and the first
 //!   length is then rescaled so the segments add up to the curve length exactly.
 //! - A curve's direction is its canonical direction in the model, so "from the start" is stable.
+//! - Pins (where wells cross the curve) are nodes bit for bit: each takes the place of the
+//!   nearest interior node when that is within a third of the segment holding it, else it is
+//!   inserted (a `Count` then gets one segment more), so every patch bounded by the curve, and
+//!   every region meeting it, has the crossing as a node.
 
 use geom::predicates::dist;
 use serde::{Deserialize, Serialize};
@@ -56,6 +60,8 @@ pub enum DiscretizeError {
         "size {size} would give {n} segments on a curve of length {length}: more than {MAX_SEGMENTS}"
     )]
     TooManySegments { size: f64, n: f64, length: f64 },
+    #[error("a point to keep, ({}, {}, {}), names segment {segment}, which the curve does not have", point[0], point[1], point[2])]
+    Pin { segment: u32, point: [f64; 3] },
 }
 
 /// A size field over space: the element size wanted at a point.
@@ -87,6 +93,28 @@ pub fn discretize_within(
     clearance: &[f64],
     size_at: Option<SizeAt<'_>>,
 ) -> Result<Vec<[f64; 3]>, DiscretizeError> {
+    discretize_pinned(polyline, rule, clearance, size_at, &[])
+}
+
+/// A point the curve's nodes must include bit for bit (where a well crosses the curve): on
+/// polyline segment `segment` (from its point `segment` to the next, ends included).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Pin {
+    pub segment: u32,
+    pub point: [f64; 3],
+}
+
+/// As [`discretize_within`], with every pin a node: a pin takes the place of the interior node
+/// nearest it when that node is within a third of the segment holding the pin (so no segment
+/// gets much shorter than the rule's), and is inserted between the two otherwise. A pin at a
+/// curve end, or given twice, is one node; pins are placed in order of arc length.
+pub fn discretize_pinned(
+    polyline: &[[f64; 3]],
+    rule: &Subdivision,
+    clearance: &[f64],
+    size_at: Option<SizeAt<'_>>,
+    pins: &[Pin],
+) -> Result<Vec<[f64; 3]>, DiscretizeError> {
     if polyline.len() < 2 {
         return Err(DiscretizeError::TooFewPoints(polyline.len()));
     }
@@ -110,7 +138,7 @@ pub fn discretize_within(
         }
         _ => segment_lengths(length, rule)?,
     };
-    let mut stations = Vec::with_capacity(lengths.len() + 1);
+    let mut stations = Vec::with_capacity(lengths.len() + 1 + pins.len());
     stations.push(Station::Vertex(0));
     let mut s = 0.0;
     for l in &lengths[..lengths.len() - 1] {
@@ -118,6 +146,8 @@ pub fn discretize_within(
         stations.push(Station::Arc(s));
     }
     stations.push(Station::Vertex(polyline.len() - 1));
+    let pins = pin_arcs(&curve, pins)?;
+    let mut stations = place_pins(&curve, stations, &pins);
     if matches!(rule, Subdivision::Size { .. }) && clearance.len() == polyline.len() {
         stations = follow_bends(&curve, &stations, clearance);
     }
@@ -177,11 +207,68 @@ fn field_lengths(
         .collect())
 }
 
-/// A node's place on the polyline: a vertex (copied bit for bit) or an arc length.
+/// A node's place on the polyline: a vertex (copied bit for bit), an arc length, or a pin
+/// (its point copied bit for bit, at its arc length).
 #[derive(Copy, Clone, Debug, PartialEq)]
 enum Station {
     Vertex(usize),
     Arc(f64),
+    Pin([f64; 3], f64),
+}
+
+/// The pins strictly inside the curve with their arc lengths, in arc order, once each.
+fn pin_arcs(curve: &Polyline<'_>, pins: &[Pin]) -> Result<Vec<([f64; 3], f64)>, DiscretizeError> {
+    let (first, last) = (curve.points[0], curve.points[curve.points.len() - 1]);
+    let mut out = Vec::with_capacity(pins.len());
+    for pin in pins {
+        let k = pin.segment as usize;
+        if k + 1 >= curve.points.len() || pin.point.iter().any(|x| !x.is_finite()) {
+            return Err(DiscretizeError::Pin {
+                segment: pin.segment,
+                point: pin.point,
+            });
+        }
+        if pin.point == first || pin.point == last {
+            continue;
+        }
+        let s = curve.cum[k] + dist(&curve.points[k], &pin.point);
+        out.push((pin.point, s.min(curve.cum[k + 1])));
+    }
+    out.sort_by(|a, b| {
+        a.1.total_cmp(&b.1)
+            .then(a.0.map(f64::to_bits).cmp(&b.0.map(f64::to_bits)))
+    });
+    out.dedup_by(|a, b| a.0 == b.0);
+    Ok(out)
+}
+
+/// `stations` (in arc order, ends first and last) with each pin placed: it replaces the nearer
+/// neighbouring interior station that is not a pin when that lies within a third of the gap
+/// between the two, and is inserted between them otherwise.
+fn place_pins(
+    curve: &Polyline<'_>,
+    mut stations: Vec<Station>,
+    pins: &[([f64; 3], f64)],
+) -> Vec<Station> {
+    for &(point, s) in pins {
+        let j = stations
+            .partition_point(|&st| curve.arc(st) < s)
+            .clamp(1, stations.len() - 1);
+        let (prev, next) = (j - 1, j);
+        let (sp, sn) = (curve.arc(stations[prev]), curve.arc(stations[next]));
+        let movable =
+            |i: usize| i > 0 && i + 1 < stations.len() && !matches!(stations[i], Station::Pin(..));
+        let third = (sn - sp) / 3.0;
+        let pin = Station::Pin(point, s);
+        if movable(prev) && s - sp <= (sn - s).min(third) {
+            stations[prev] = pin;
+        } else if movable(next) && sn - s <= third {
+            stations[next] = pin;
+        } else {
+            stations.insert(next, pin);
+        }
+    }
+    stations
 }
 
 /// A polyline with the arc length at each vertex.
@@ -194,7 +281,7 @@ impl Polyline<'_> {
     fn arc(&self, st: Station) -> f64 {
         match st {
             Station::Vertex(i) => self.cum[i],
-            Station::Arc(s) => s,
+            Station::Arc(s) | Station::Pin(_, s) => s,
         }
     }
 
@@ -202,6 +289,7 @@ impl Polyline<'_> {
     fn point(&self, st: Station) -> [f64; 3] {
         let s = match st {
             Station::Vertex(i) => return self.points[i],
+            Station::Pin(p, _) => return p,
             Station::Arc(s) => s,
         };
         let cum = self.cum;
@@ -365,6 +453,69 @@ mod tests {
             [500_000.0, 7_000_000.0, -1200.0],
             [500_000.0 + len, 7_000_000.0, -1200.0],
         ]
+    }
+
+    fn pinned(polyline: &[[f64; 3]], rule: &Subdivision, pins: &[Pin]) -> Vec<[f64; 3]> {
+        discretize_pinned(polyline, rule, &[], None, pins).expect("discretizes")
+    }
+
+    fn at(x: f64) -> [f64; 3] {
+        [500_000.0 + x, 7_000_000.0, -1200.0]
+    }
+
+    #[test]
+    fn a_pin_near_a_node_takes_its_place_and_one_between_nodes_is_inserted() {
+        let l = line(1000.0);
+        let rule = Subdivision::Count(10);
+        let plain = pinned(&l, &rule, &[]);
+        // 1 m from the node at 300: it moves there, and the count stays 10.
+        let near = Pin {
+            segment: 0,
+            point: at(301.0),
+        };
+        let got = pinned(&l, &rule, std::slice::from_ref(&near));
+        assert_eq!(got.len(), 11);
+        assert_eq!(got[3], near.point);
+        assert_eq!((got[2], got[4]), (plain[2], plain[4]));
+        // Midway between 300 and 400: a node of its own.
+        let mid = Pin {
+            segment: 0,
+            point: at(350.0),
+        };
+        let got = pinned(&l, &rule, std::slice::from_ref(&mid));
+        assert_eq!(got.len(), 12);
+        assert_eq!(got[4], mid.point);
+        assert_eq!((got[3], got[5]), (plain[3], plain[4]));
+    }
+
+    #[test]
+    fn pins_at_the_ends_twice_or_in_reverse_order_give_one_node_each_in_arc_order() {
+        // A bent curve: the pins lie on its second segment.
+        let l = vec![at(0.0), at(500.0), [500_500.0, 7_000_500.0, -1200.0]];
+        let rule = Subdivision::Count(4);
+        let p = |y: f64| Pin {
+            segment: 1,
+            point: [500_500.0, 7_000_000.0 + y, -1200.0],
+        };
+        let end = Pin {
+            segment: 1,
+            point: l[2],
+        };
+        let got = pinned(&l, &rule, &[p(400.0), end.clone(), p(130.0), p(400.0)]);
+        let expected = pinned(&l, &rule, &[p(130.0), p(400.0)]);
+        assert_eq!(got, expected);
+        assert_eq!(got.iter().filter(|q| **q == p(130.0).point).count(), 1);
+        let (i, j) = (
+            got.iter().position(|q| *q == p(130.0).point).unwrap(),
+            got.iter().position(|q| *q == p(400.0).point).unwrap(),
+        );
+        assert!(i < j, "in arc order");
+        assert_eq!((got[0], *got.last().unwrap()), (l[0], l[2]));
+        let bad = Pin {
+            segment: 2,
+            point: at(1.0),
+        };
+        assert!(discretize_pinned(&l, &rule, &[], None, &[bad]).is_err());
     }
 
     #[test]

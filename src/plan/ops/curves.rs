@@ -7,6 +7,7 @@
 //! the intersection curves of the recipe's pairs and the free borders of every imported surface.
 
 use super::sizes::SizeChoice;
+use super::wells::CurvePins;
 use super::{ExportOp, Groups, SurfaceData, Wiring};
 use crate::plan::lower::curve_subdivision;
 use crate::recipe::{self, Recipe};
@@ -14,7 +15,7 @@ use engine::{
     Artifact, Expander, Expansion, NodeId, OpError, Operation, Output, Params, RunContext,
 };
 use geom::Tolerances;
-use model::discretize::{Grading, SizeAt, Subdivision, discretize, discretize_within};
+use model::discretize::{Grading, SizeAt, Subdivision, discretize_pinned};
 use model::features::SizeNear;
 use model::{intersect, topology};
 use serde::{Deserialize, Serialize};
@@ -214,6 +215,9 @@ pub struct DiscretizeOp {
     /// growth of their sizes along it (the surfaces' own).
     pub refinements: usize,
     pub max_slope: f64,
+    /// Whether `curve_pins` follows the curve (the recipe has wells): the points where wells
+    /// cross the curve are then nodes of it.
+    pub pinned: bool,
 }
 
 impl Operation for DiscretizeOp {
@@ -268,15 +272,22 @@ impl Operation for DiscretizeOp {
             .first()
             .ok_or("discretize needs its curve")?
             .decode()?;
+        let all_pins: CurvePins = match (self.pinned, inputs.get(1)) {
+            (true, Some(a)) => a.decode()?,
+            (true, None) => return Err("discretize needs the curve pins".into()),
+            (false, _) => CurvePins::default(),
+        };
+        let pins = all_pins.of(&self.name);
         let fail = |e| OpError::from(format!("curve `{}`: {e}", self.name));
         let near = SizeNear::new(&refine, self.max_slope);
         let field = |x: &[f64; 3]| near.at(x);
         let size_at: Option<SizeAt<'_>> = (!near.is_empty()).then_some(&field);
-        let mut nodes =
-            discretize_within(&c.polyline, &self.rule, &c.clearance, size_at).map_err(fail)?;
+        let mut nodes = discretize_pinned(&c.polyline, &self.rule, &c.clearance, size_at, pins)
+            .map_err(fail)?;
         if nodes.len() < self.min_segments as usize + 1 {
             let count = Subdivision::Count(self.min_segments);
-            nodes = discretize(&c.polyline, &count, &c.clearance).map_err(fail)?;
+            nodes =
+                discretize_pinned(&c.polyline, &count, &c.clearance, None, pins).map_err(fail)?;
         }
         let n = nodes.len() as u64;
         Ok(Output::new(Artifact::encode(&CurveNodes {
@@ -310,6 +321,7 @@ impl Expander for DiscretizeExpander {
                 (curves_node, false),
                 1,
                 CurveSizing::default(),
+                None,
             )?);
         }
         let (export_inputs, groups) = Wiring::new()
@@ -336,7 +348,8 @@ pub(super) struct CurveSizing<'a> {
 /// Adds `curve:<name>` (extracted from `source`: the model, or the curve set) and
 /// `discretize:<name>` under the recipe's rule for that curve (without one, at the fallback's
 /// size when given, else at the global size) and the refinements near it, with at least
-/// `min_segments` segments; returns the discretize node.
+/// `min_segments` segments and the wells' crossings of it (`pins`: the `curve_pins` node, when
+/// the recipe has wells) as nodes; returns the discretize node.
 pub(super) fn add_curve_nodes(
     x: &mut Expansion,
     recipe: &Recipe,
@@ -344,6 +357,7 @@ pub(super) fn add_curve_nodes(
     (source, from_model): (NodeId, bool),
     min_segments: u32,
     sizing: CurveSizing<'_>,
+    pins: Option<NodeId>,
 ) -> Result<NodeId, OpError> {
     let extract = x
         .add_op(
@@ -367,6 +381,7 @@ pub(super) fn add_curve_nodes(
         _ => curve_subdivision(recipe, name),
     };
     let mut inputs = vec![extract];
+    inputs.extend(pins);
     inputs.extend(&sizing.refine);
     x.add_op(
         &format!("discretize:{name}"),
@@ -377,6 +392,7 @@ pub(super) fn add_curve_nodes(
             min_segments,
             refinements: sizing.refine.len(),
             max_slope: sizing.max_slope,
+            pinned: pins.is_some(),
         }),
         &inputs,
     )
@@ -398,6 +414,11 @@ mod tests {
 
     /// The nodes of a 100 m straight curve discretized at 250 m with at least `min` segments.
     fn nodes(min: u32) -> Vec<[f64; 3]> {
+        pinned_nodes(min, None)
+    }
+
+    /// As `nodes`, with `pins` given as the `curve_pins` input.
+    fn pinned_nodes(min: u32, pins: Option<CurvePins>) -> Vec<[f64; 3]> {
         let op = DiscretizeOp {
             name: "c".into(),
             rule_path: "mesh.size".into(),
@@ -409,6 +430,7 @@ mod tests {
             min_segments: min,
             refinements: 0,
             max_slope: 0.15,
+            pinned: pins.is_some(),
         };
         let curve = ModelCurve {
             name: "c".into(),
@@ -417,10 +439,26 @@ mod tests {
             closed: false,
             clearance: Vec::new(),
         };
-        let out = op
-            .run(&Quiet, &[Artifact::encode(&curve).unwrap()])
-            .unwrap();
+        let mut inputs = vec![Artifact::encode(&curve).unwrap()];
+        inputs.extend(pins.map(|p| Artifact::encode(&p).unwrap()));
+        let out = op.run(&Quiet, &inputs).unwrap();
         out.artifact.decode::<CurveNodes>().unwrap().nodes
+    }
+
+    #[test]
+    fn a_wells_crossing_of_the_curve_is_a_node_of_it_and_other_curves_pins_are_not() {
+        let pin = |x: f64| model::discretize::Pin {
+            segment: 0,
+            point: [x, 0.0, 0.0],
+        };
+        let pins = CurvePins {
+            curves: vec![("b".into(), vec![pin(10.0)]), ("c".into(), vec![pin(37.5)])],
+        };
+        assert_eq!(
+            pinned_nodes(1, Some(pins)),
+            [[0.0; 3], [37.5, 0.0, 0.0], [100.0, 0.0, 0.0]]
+        );
+        assert_eq!(pinned_nodes(1, Some(CurvePins::default())), nodes(1));
     }
 
     #[test]
@@ -447,6 +485,7 @@ mod tests {
             min_segments,
             refinements: 0,
             max_slope: 0.15,
+            pinned: false,
         };
         assert!(op(1).params().get("model.min_segments").is_none());
         assert!(op(2).params().get("model.min_segments").is_some());

@@ -14,7 +14,7 @@ use super::curves::{CurveSizing, add_curve_nodes, graph_error};
 use super::patch::WellReach;
 use super::refine;
 use super::sizes::{self, SizeChoice};
-use super::wells::{RegionWellsOp, WellCutOp};
+use super::wells::{CurvePinsOp, RegionWellsOp, WellCutOp};
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
 use engine::{Artifact, Expander, Expansion, NodeId, OpError};
@@ -121,6 +121,13 @@ impl Expander for ModelExpander {
         let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
         let placed = refine::place(&self.recipe, &model, x);
         let surface_slope = self.recipe.mesh.growth.min(MAX_SURFACE_GROWTH) - 1.0;
+        let cuts = self.add_well_cuts(x, model_node)?;
+        let pins = if cuts.is_empty() {
+            None
+        } else {
+            let id = x.add_op("curve_pins", Arc::new(CurvePinsOp), &cuts);
+            Some(id.map_err(graph_error)?)
+        };
         let mut discretized = Vec::with_capacity(topo.curves.len());
         for ((c, &min), size) in topo.curves.iter().zip(&min_segments).zip(&curve_sizes) {
             let near = refine::bounds_of(&c.points);
@@ -136,10 +143,10 @@ impl Expander for ModelExpander {
                 (model_node, true),
                 min,
                 sizing,
+                pins,
             )?);
         }
 
-        let cuts = self.add_well_cuts(x, model_node)?;
         let mut piece_inputs = vec![model_node];
         piece_inputs.extend(&cuts);
         let mut meshed = Vec::with_capacity(model.patches.len());

@@ -35,7 +35,8 @@ pub use model::{ModelData, ModelOp, ModelPatch};
 pub use patch::{PatchExtractOp, PatchMesh, PatchPiece, SurfaceMeshOp};
 pub use region::{AssembleOp, RegionMesh, TetMeshOp};
 pub use wells::{
-    RegionWells, RegionWellsOp, WellCutData, WellCutOp, WellData, WellImportOp, WellMarker,
+    CurvePins, CurvePinsOp, RegionWells, RegionWellsOp, WellCutData, WellCutOp, WellData,
+    WellImportOp, WellMarker,
 };
 
 use geom::TriMesh;

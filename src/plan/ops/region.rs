@@ -416,6 +416,7 @@ mod tests {
             markers,
             pieces: Vec::new(),
             runs: Vec::new(),
+            pins: Vec::new(),
         }
     }
 

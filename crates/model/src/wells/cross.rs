@@ -3,8 +3,9 @@
 //! a triangle's plane), one crossing per patch and place, and the refusals (a path along a patch,
 //! a crossing on a patch's border).
 
+use super::curves::{CurveIndex, on_segment};
 use super::pieces::lengths_along;
-use super::{WellCrossing, WellError};
+use super::{CurvePin, WellCrossing, WellError};
 use crate::regions::PatchIn;
 use geom::predicates::{cross, dist, dot, sub};
 use geom::{Orientation, orient2d, orient3d};
@@ -243,6 +244,7 @@ fn feature(ti: u32, t: &[u32; 3], place: Place) -> Feature {
 struct Walk<'a> {
     stations: &'a [P3],
     patches: &'a [PatchIn],
+    curves: &'a CurveIndex,
     along: Vec<f64>,
     borders: BTreeMap<u32, Border>,
     found: BTreeMap<(u32, Spot), Found>,
@@ -260,7 +262,7 @@ impl Walk<'_> {
     }
 
     /// Records a crossing of patch `pi` at `spot` unless it is already known; refuses one on the
-    /// patch's border.
+    /// patch's border but on no curve (a border is made of curves, so that is a broken model).
     fn record(
         &mut self,
         pi: u32,
@@ -272,13 +274,14 @@ impl Walk<'_> {
             return Ok(());
         }
         let patch = &self.patches[pi as usize];
-        let on_border = !matches!(f, Feature::Face(_))
+        let found = make();
+        let on_border = found.crossing.curve.is_none()
+            && !matches!(f, Feature::Face(_))
             && self
                 .borders
                 .entry(pi)
                 .or_insert_with(|| Border::of(patch))
                 .holds(f);
-        let found = make();
         if on_border {
             return Err(self.fail(
                 format!(
@@ -291,6 +294,16 @@ impl Walk<'_> {
         }
         self.found.insert((pi, spot), found);
         Ok(())
+    }
+
+    /// The model curve through `place` of the support triangle `t`: the curve segment that is
+    /// its edge there, or the curve point that is its corner.
+    fn curve_at(&self, t: &[P3; 3], place: Place) -> Option<CurvePin> {
+        match place {
+            Place::Edge(k) => self.curves.segment(&t[k], &t[(k + 1) % 3]).map(|s| s.0),
+            Place::Corner(k) => self.curves.point(&t[k]),
+            _ => None,
+        }
     }
 
     fn border(&mut self, pi: u32) -> &Border {
@@ -315,11 +328,13 @@ impl Walk<'_> {
         let along = self.along[j];
         let f = feature(ti, &ids, place);
         let segment = j.min(self.stations.len() - 2);
+        let curve = self.curve_at(t, place);
         self.record(pi, Spot::Station(j), f, || Found {
             crossing: WellCrossing {
                 patch: pi,
                 point: s,
                 along,
+                curve,
             },
             segment,
             station: Some(j),
@@ -485,8 +500,13 @@ impl Walk<'_> {
             return Ok(());
         }
         let f = feature(ti, &ids, place);
+        let curve = self.curve_at(t, place);
         let point = match place {
             Place::Corner(k) => t[k],
+            Place::Edge(k) => match self.curves.segment(&t[k], &t[(k + 1) % 3]) {
+                Some((_, a, b)) => on_segment(&p, &q, &a, &b),
+                None => crossing_point(&p, &q, t, place),
+            },
             _ => crossing_point(&p, &q, t, place),
         };
         let s = (dist(&p, &point) / dist(&p, &q)).clamp(0.0, 1.0);
@@ -496,6 +516,7 @@ impl Walk<'_> {
                 patch: pi,
                 point,
                 along,
+                curve,
             },
             segment: i,
             station: None,
@@ -593,12 +614,14 @@ fn span(p: &P3, q: &P3, t: &[P3; 3], ids: [u32; 3]) -> (f64, f64) {
 pub(super) fn crossings(
     stations: &[P3],
     patches: &[PatchIn],
+    curves: &CurveIndex,
 ) -> Result<(Vec<Found>, Vec<Option<u32>>), WellError> {
     let along = lengths_along(stations);
     let tree = index(patches);
     let mut walk = Walk {
         stations,
         patches,
+        curves,
         along,
         borders: BTreeMap::new(),
         found: BTreeMap::new(),
@@ -617,7 +640,7 @@ pub(super) fn crossings(
     });
     for w in found.windows(2) {
         let (a, b) = (&w[0].crossing, &w[1].crossing);
-        if a.point == b.point {
+        if a.point == b.point && (a.curve.is_none() || b.curve.is_none()) {
             let (pa, pb) = (&patches[a.patch as usize], &patches[b.patch as usize]);
             return Err(WellError {
                 message: format!(
@@ -698,17 +721,27 @@ mod tests {
     fn a_path_lying_on_the_flat_part_of_a_bent_patch_is_a_run_and_one_going_on_past_the_bend_is_refused()
      {
         let patches = bent();
-        let (found, on) = crossings(&[[0.2, 0.5, 0.0], [0.9, 0.5, 0.0]], &patches).expect("a run");
+        let (found, on) = crossings(
+            &[[0.2, 0.5, 0.0], [0.9, 0.5, 0.0]],
+            &patches,
+            &CurveIndex::default(),
+        )
+        .expect("a run");
         assert!(found.is_empty());
         assert_eq!(on, [Some(0)]);
-        let e = crossings(&[[0.2, 0.5, 0.0], [1.5, 0.5, 0.0]], &patches)
-            .err()
-            .expect("it leaves the surface at the bend, between stations");
+        let e = crossings(
+            &[[0.2, 0.5, 0.0], [1.5, 0.5, 0.0]],
+            &patches,
+            &CurveIndex::default(),
+        )
+        .err()
+        .expect("it leaves the surface at the bend, between stations");
         assert!(e.message.contains("for part of a segment"), "{e}");
         // With a station at the bend it lies on the flat part, then leaves the surface there.
         let (found, on) = crossings(
             &[[0.2, 0.5, 0.0], [1.0, 0.5, 0.0], [1.5, 0.5, 0.0]],
             &patches,
+            &CurveIndex::default(),
         )
         .expect("a run, then off");
         assert_eq!(on, [Some(0), None]);
@@ -718,6 +751,7 @@ mod tests {
         let (_, on) = crossings(
             &[[1.5, 0.5, 0.5], [1.0, 0.5, 0.0], [0.3, 0.5, 0.0]],
             &patches,
+            &CurveIndex::default(),
         )
         .expect("two runs");
         assert_eq!(on, [Some(0), Some(0)]);

@@ -15,11 +15,14 @@
 //!   the shared edge or corner alone, so neighbours' spans meet bit for bit). Consecutive such
 //!   segments are a run: it becomes constraint edges of the patch's surface mesh, and its ends
 //!   are crossings (where the well reaches and leaves the surface) or path ends.
+//! * crossings **on a curve** (through a support edge that is a curve segment, or a support
+//!   vertex that is a curve point: where surfaces meet, a fault ends or a chart seam runs): the
+//!   point is computed from the curve segment alone (`curves`), so every patch meeting there
+//!   gets the same bits, and it is kept as a pin of that curve (`CurvePin`): the curve's
+//!   discretization holds it, so all those patches and the regions between them share the node.
 //! * what is refused, with the well, the place and the surface: a path that runs along a patch
 //!   for part of a segment only (it must have a station where it leaves the surface), or onto
-//!   the patch's border, and a crossing on a curve (a patch's border edge or vertex, where
-//!   surfaces meet or a fault ends), which would need the curve's discretization to hold the
-//!   point, or of another surface where the path runs along a patch.
+//!   the patch's border, and a crossing of another surface where the path runs along a patch.
 //! * the **pieces** (`pieces`): the path cut at every crossing, each piece not lying on a patch
 //!   located exactly in the region that strictly contains it (`regions::Locator` on a point of its longest segment);
 //!   pieces outside every region (above the box, say) are left out.
@@ -28,8 +31,10 @@
 //!   metre-sized elements; the resampled piece keeps its two ends bit for bit.
 
 mod cross;
+mod curves;
 mod pieces;
 
+pub use curves::CurveIndex;
 pub use pieces::{lengths_along, resample};
 
 use crate::regions::{Locator, PatchIn};
@@ -43,6 +48,18 @@ pub struct WellCrossing {
     pub point: [f64; 3],
     /// Length along the path from its first station.
     pub along: f64,
+    /// The model curve the crossing lies on, if any: the point must be a node of that curve's
+    /// discretization (a pin), which every patch and region meeting there then shares.
+    pub curve: Option<CurvePin>,
+}
+
+/// A place on a model curve: on segment `segment` of the polyline of curve `curve` (the index
+/// given to [`CurveIndex::new`]), its ends included, so possibly a curve end (a model vertex,
+/// a node already).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct CurvePin {
+    pub curve: u32,
+    pub segment: u32,
 }
 
 /// A piece of a well inside one region, between two crossings or a crossing and a path end.
@@ -86,15 +103,17 @@ pub struct WellError {
     pub at: Option<[f64; 3]>,
 }
 
-/// Cuts the well path `stations` (at least two, no two consecutive equal) by `patches` and
-/// locates its pieces with `locator` (built from the same patches).
+/// Cuts the well path `stations` (at least two, no two consecutive equal) by `patches`, whose
+/// borders and inner curves are `curves`, and locates its pieces with `locator` (built from the
+/// same patches).
 pub fn cut_well(
     stations: &[[f64; 3]],
     patches: &[PatchIn],
+    curves: &CurveIndex,
     locator: &Locator,
 ) -> Result<WellCut, WellError> {
     pieces::check_path(stations)?;
-    let (crossings, on) = cross::crossings(stations, patches)?;
+    let (crossings, on) = cross::crossings(stations, patches, curves)?;
     let (pieces, runs) = pieces::split(stations, &crossings, &on, locator);
     Ok(WellCut {
         crossings: crossings.into_iter().map(|c| c.crossing).collect(),

@@ -5,7 +5,8 @@
 
 use super::regions_cases::{OFFSETS, cube, octahedron, rect, shifted, split_cube};
 use model::regions::{Locator, PatchIn, RegionOptions, find_regions_with, locate};
-use model::wells::{WellCut, WellError, cut_well, resample};
+use model::wells::{CurveIndex, WellCut, WellError, cut_well, resample};
+use std::collections::BTreeMap;
 
 fn add(p: [f64; 3], d: [f64; 3]) -> [f64; 3] {
     [p[0] + d[0], p[1] + d[1], p[2] + d[2]]
@@ -18,7 +19,28 @@ fn cut(patches: &[PatchIn], faults: &[&str], path: &[[f64; 3]]) -> Result<WellCu
         &RegionOptions::with_faults(faults.iter().copied()),
     )
     .expect("regions");
-    cut_well(path, patches, &Locator::new(&m, patches))
+    cut_well(path, patches, &borders(patches), &Locator::new(&m, patches))
+}
+
+/// The patches' border edges, each a curve of its own (the models here have no topology).
+fn borders(patches: &[PatchIn]) -> CurveIndex {
+    let mut curves = Vec::new();
+    for p in patches {
+        let mut uses: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+        for t in &p.mesh.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        let v = &p.mesh.vertices;
+        curves.extend(
+            (uses.into_iter())
+                .filter(|&(_, n)| n == 1)
+                .map(|((a, b), _)| vec![v[a as usize], v[b as usize]]),
+        );
+    }
+    CurveIndex::new(curves)
 }
 
 fn region_at(patches: &[PatchIn], faults: &[&str], p: [f64; 3]) -> u32 {
@@ -290,16 +312,49 @@ fn a_vertical_well_running_down_a_box_side_lies_on_it_and_crosses_nothing_inside
 }
 
 #[test]
-fn a_well_crossing_where_a_horizon_meets_a_box_side_is_refused_as_on_a_curve() {
+fn a_well_crossing_where_a_horizon_meets_a_box_side_crosses_every_patch_there_at_one_curve_point() {
+    for d in OFFSETS {
+        let patches = shifted(split_cube(), d);
+        let path = [add([-0.1, 0.4, 0.6], d), add([0.1, 0.4, 0.4], d)];
+        let c = cut(&patches, &[], &path).expect("through the curve h1/west");
+        let mut names = surfaces(&c, &patches);
+        names.sort();
+        assert_eq!(names, ["h1#1", "west0", "west1"]);
+        let at = c.crossings[0].point;
+        assert!(
+            c.crossings
+                .iter()
+                .all(|x| x.point == at && x.curve.is_some())
+        );
+        assert_eq!(
+            (at[0], (at[1] - 0.4 - d[1]).abs() < 1e-9, at[2]),
+            (d[0], true, 0.5)
+        );
+        // The part outside the box is left out; the rest is in the lower layer.
+        assert_eq!(c.pieces.len(), 1);
+        assert_eq!(c.pieces[0].points, [at, path[1]]);
+        assert_eq!(c.pieces[0].region, region_at(&patches, &[], path[1]));
+    }
+}
+
+#[test]
+fn a_crossing_on_a_border_that_is_no_curve_is_refused_as_on_a_border() {
     let patches = split_cube();
     let path = [[-0.1, 0.4, 0.6], [0.1, 0.4, 0.4]];
-    let e = cut(&patches, &[], &path).expect_err("through the curve h1/west");
+    let m = find_regions_with(
+        &patches,
+        &[],
+        &RegionOptions::with_faults::<[&str; 0], &str>([]),
+    )
+    .expect("regions");
+    let e = cut_well(
+        &path,
+        &patches,
+        &CurveIndex::default(),
+        &Locator::new(&m, &patches),
+    )
+    .expect_err("no curves given");
     assert!(e.message.contains("border of its patch"), "{e}");
-    let at = e.at.expect("a place");
-    assert!(
-        (at[0], (at[1] - 0.4).abs() < 1e-12, at[2]) == (0.0, true, 0.5),
-        "{at:?}"
-    );
 }
 
 #[test]

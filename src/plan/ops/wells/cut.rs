@@ -6,8 +6,9 @@
 use super::import::WellData;
 use crate::plan::ops::ModelData;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
+use model::discretize::Pin;
 use model::regions::{Locator, PatchIn};
-use model::wells::{WellCut, WellError, cut_well, lengths_along, resample};
+use model::wells::{CurveIndex, WellCut, WellError, cut_well, lengths_along, resample};
 use serde::{Deserialize, Serialize};
 
 /// Where a well crosses a patch: a node of that patch's mesh and a marker of the well.
@@ -33,6 +34,9 @@ pub struct WellCutData {
     /// In path order: the patch's name and the stretch lying on it, resampled (its ends kept
     /// bit for bit); its segments become edges of that patch's surface mesh.
     pub runs: Vec<(String, Vec<[f64; 3]>)>,
+    /// Where the well crosses a model curve: the curve's name and the point its discretization
+    /// must hold; by curve name, then along the curve, once each.
+    pub pins: Vec<(String, Pin)>,
 }
 
 /// `well_cut:<w>`: inputs `model`, `well:<w>`.
@@ -51,7 +55,8 @@ impl Operation for WellCutOp {
     }
     fn version(&self) -> u32 {
         // 2: the stretches lying on a patch (runs), no longer refused.
-        2
+        // 3: crossings on a curve, pins of its discretization, no longer refused.
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -80,7 +85,12 @@ impl Operation for WellCutOp {
             })
             .collect();
         let locator = Locator::new(&model.regions, &patches);
-        let cut = cut_well(&well.stations, &patches, &locator)
+        let curves = CurveIndex::new(
+            (model.topology.curves.iter())
+                .map(|c| c.points.clone())
+                .collect(),
+        );
+        let cut = cut_well(&well.stations, &patches, &curves, &locator)
             .map_err(|e| OpError::from(describe(&well, &e)))?;
         if cut.pieces.is_empty() && cut.runs.is_empty() {
             return Err(format!(
@@ -103,7 +113,7 @@ impl Operation for WellCutOp {
             .into());
         }
         let md = MeasuredDepth::new(&well);
-        let markers: Vec<WellMarker> = cut
+        let mut markers: Vec<WellMarker> = cut
             .crossings
             .iter()
             .map(|c| {
@@ -116,6 +126,28 @@ impl Operation for WellCutOp {
                 }
             })
             .collect();
+        // On a curve the well meets every patch there at one point: one marker per surface.
+        let mut seen = std::collections::BTreeSet::new();
+        markers.retain(|m| seen.insert((m.surface.clone(), m.point.map(f64::to_bits))));
+        let mut pins: Vec<(String, Pin)> = (cut.crossings.iter())
+            .filter_map(|c| {
+                let pin = c.curve?;
+                let curve = &model.topology.curves[pin.curve as usize];
+                let pin = Pin {
+                    segment: pin.segment,
+                    point: c.point,
+                };
+                Some((curve.name.clone(), pin))
+            })
+            .collect();
+        pins.sort_by(|a, b| {
+            (a.0.cmp(&b.0)).then(a.1.segment.cmp(&b.1.segment)).then(
+                a.1.point
+                    .map(f64::to_bits)
+                    .cmp(&b.1.point.map(f64::to_bits)),
+            )
+        });
+        pins.dedup_by(|a, b| a.0 == b.0 && a.1.point == b.1.point);
         let pieces: Vec<(String, Vec<[f64; 3]>)> = cut
             .pieces
             .iter()
@@ -138,6 +170,7 @@ impl Operation for WellCutOp {
             markers,
             pieces,
             runs,
+            pins,
         })?)
         .count("markers", nm)
         .count("pieces", np);

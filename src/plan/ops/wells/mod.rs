@@ -12,7 +12,7 @@ mod region;
 
 pub use cut::{WellCutData, WellCutOp, WellMarker};
 pub use import::{WellData, WellImportOp};
-pub use region::{RegionWells, RegionWellsOp};
+pub use region::{CurvePins, CurvePinsOp, RegionWells, RegionWellsOp};
 
 use super::patch::{PatchCrossing, PatchRun};
 use geom::TriMesh;

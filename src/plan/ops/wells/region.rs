@@ -1,9 +1,11 @@
-//! `wells_in:<r>`: every well's pieces in one region, with the size near them, for its tet mesh.
+//! `wells_in:<r>`: every well's pieces in one region, with the size near them, for its tet mesh;
+//! `curve_pins`: every well's crossings of the model's curves, for their discretizations.
 
 use super::cut::WellCutData;
 use super::samples;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::refine::Refinement;
+use model::discretize::Pin;
 use serde::{Deserialize, Serialize};
 
 /// The output of `wells_in:<r>`: every well's pieces in one region.
@@ -55,5 +57,51 @@ impl Operation for RegionWellsOp {
         }
         let n = wells.len() as u64;
         Ok(Output::new(Artifact::encode(&RegionWells { wells, refine })?).count("wells", n))
+    }
+}
+
+/// The output of `curve_pins`: per curve crossed by a well (by name), the points its
+/// discretization must hold, in the order the cuts give them, once each.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CurvePins {
+    pub curves: Vec<(String, Vec<Pin>)>,
+}
+
+impl CurvePins {
+    /// The pins of curve `name`.
+    pub fn of(&self, name: &str) -> &[Pin] {
+        (self.curves.binary_search_by(|(c, _)| c.as_str().cmp(name)))
+            .map_or(&[], |i| self.curves[i].1.as_slice())
+    }
+}
+
+/// `curve_pins`: inputs every `well_cut:<w>`, in well-name order. One node gathers them, so a
+/// well crossing no curve re-runs it alone and leaves every curve's discretization cached.
+pub struct CurvePinsOp;
+
+impl Operation for CurvePinsOp {
+    fn kind(&self) -> &'static str {
+        "curve_pins"
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        Params::new()
+    }
+    fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
+        let mut by_curve: std::collections::BTreeMap<String, Vec<Pin>> = Default::default();
+        for a in inputs {
+            let cut: WellCutData = a.decode()?;
+            for (curve, pin) in cut.pins {
+                let pins = by_curve.entry(curve).or_default();
+                if !pins.iter().any(|p| p.point == pin.point) {
+                    pins.push(pin);
+                }
+            }
+        }
+        let n = by_curve.values().map(Vec::len).sum::<usize>() as u64;
+        let curves = by_curve.into_iter().collect();
+        Ok(Output::new(Artifact::encode(&CurvePins { curves })?).count("pins", n))
     }
 }
