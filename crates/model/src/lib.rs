@@ -40,6 +40,7 @@ pub mod patches;
 pub mod regions;
 pub mod thickness;
 pub mod topology;
+pub mod touches;
 pub mod trims;
 pub mod wells;
 

@@ -11,6 +11,7 @@ use geom::mesh::SurfaceKind;
 use geom::{BBox, Tolerances, TriMesh};
 use model::intersect::{Intersection, split};
 use model::thickness::region_thickness;
+use model::touches::touch_points;
 use model::trims::{TrimPatch, TrimSpec, apply_trims, describe};
 use model::{ModelTopology, build_topology};
 use model::{patches, regions};
@@ -36,6 +37,10 @@ pub struct ModelData {
     /// Per region (same order), its thickness (`model::thickness`); 0 where no ray crosses it.
     #[serde(default)]
     pub thickness: Vec<f64>,
+    /// Where two surfaces touch at an isolated point: (patch index, point), one per patch
+    /// holding it (`model::touches`); each becomes a node of that patch's mesh.
+    #[serde(default)]
+    pub touches: Vec<(u32, [f64; 3])>,
 }
 
 pub struct ModelOp {
@@ -67,7 +72,8 @@ impl Operation for ModelOp {
         //     lips, a curve coming back along itself), not only curves sharing no end.
         // 13: a crossing of two curves that rounds onto a corner or curve end of its face is
         //     that vertex.
-        13
+        // 14: the points where surfaces touch, per patch holding them.
+        14
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -189,6 +195,10 @@ impl Operation for ModelOp {
             .iter()
             .map(|r| region_thickness(&input, &r.sides).unwrap_or(0.0))
             .collect();
+        let touch_xyz: Vec<[f64; 3]> = (intersections.iter())
+            .flat_map(|x| x.touches.iter().map(|t| t.xyz))
+            .collect();
+        let touches = touch_points(&input, &touch_xyz);
         let n_curves = topology.curves.len() as u64;
         let n_vertices = topology.vertices.len() as u64;
         let out = Output::new(Artifact::encode(&ModelData {
@@ -196,6 +206,7 @@ impl Operation for ModelOp {
             regions: model.clone(),
             topology,
             thickness,
+            touches,
         })?)
         .count("vertices", n_vertices)
         .count("curves", n_curves)

@@ -29,6 +29,8 @@ pub struct PatchPiece {
     /// Where wells lie on the patch (polylines its mesh must have as edges), in well order then
     /// path order.
     pub runs: Vec<PatchRun>,
+    /// Where another surface touches the patch at an isolated point (nodes its mesh must have).
+    pub touches: Vec<[f64; 3]>,
     /// The sizes near the wells that come within reach of the patch, in well order.
     pub well_refine: Vec<Refinement>,
 }
@@ -74,7 +76,8 @@ impl Operation for PatchExtractOp {
     fn version(&self) -> u32 {
         // 3: the wells' crossings of the patch and their sizes within reach.
         // 4: the wells' stretches lying on the patch.
-        4
+        // 5: the points where other surfaces touch the patch.
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new()
@@ -117,6 +120,10 @@ impl Operation for PatchExtractOp {
                 .collect(),
             crossings: patch_crossings(&p.name, &cuts),
             runs: patch_runs(&p.name, &cuts),
+            touches: (model.touches.iter())
+                .filter(|(pi, _)| *pi as usize == i)
+                .map(|(_, x)| *x)
+                .collect(),
             well_refine: match self.reach {
                 Some(r) => wells_within_reach(&cuts, &p.mesh, r.size, r.slope),
                 None => Vec::new(),
@@ -196,7 +203,9 @@ impl Operation for SurfaceMeshOp {
         let nodes = |c: u32| curves.get(c as usize).map(|c| c.nodes.as_slice());
         let mut input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
             .map_err(|e| OpError::from(e.to_string()))?;
-        input.points = piece.crossings.iter().map(|c| c.point).collect();
+        input.points = (piece.crossings.iter().map(|c| c.point))
+            .chain(piece.touches.iter().copied())
+            .collect();
         (input.constraints).extend(piece.runs.iter().map(|r| r.points.clone()));
         let refine: Vec<Refinement> = (refine.into_iter())
             .chain(piece.well_refine.iter().cloned())

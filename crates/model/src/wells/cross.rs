@@ -200,6 +200,32 @@ impl Border {
     }
 }
 
+/// Whether `p` lies on the support of `patch` away from its border (inside a triangle, or on
+/// an edge or vertex that is not on the border), decided exactly.
+pub(crate) fn inside_patch(p: &P3, patch: &PatchIn) -> bool {
+    let mut border = None;
+    for (ti, ids) in patch.mesh.triangles.iter().enumerate() {
+        let Some(t) = corners(patch, ids) else {
+            continue;
+        };
+        let lo = [0, 1, 2].map(|k| t[0][k].min(t[1][k]).min(t[2][k]));
+        let hi = [0, 1, 2].map(|k| t[0][k].max(t[1][k]).max(t[2][k]));
+        if (0..3).any(|k| p[k] < lo[k] || p[k] > hi[k]) || projection(&t).is_none() {
+            continue;
+        }
+        if orient3d(&t[0], &t[1], &t[2], p) != Orientation::Zero {
+            continue;
+        }
+        let place = place_in_plane(p, &t);
+        if place == Place::Outside {
+            continue;
+        }
+        let f = feature(ti as u32, ids, place);
+        return !border.get_or_insert_with(|| Border::of(patch)).holds(f);
+    }
+    false
+}
+
 type Entry = GeomWithData<Rectangle<P3>, (u32, u32)>;
 
 /// Every support triangle of every patch in an R-tree of bounding boxes.

@@ -34,6 +34,7 @@ mod cross;
 mod curves;
 mod pieces;
 
+pub(crate) use cross::inside_patch;
 pub use curves::CurveIndex;
 pub use pieces::{lengths_along, resample};
 
