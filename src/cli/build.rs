@@ -303,8 +303,9 @@ fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     }
 }
 
-/// Where the model's curves come closer than their mesh can resolve, when the model was built in
-/// this build (the report keeps the warnings).
+/// Where the imported surfaces almost share vertices (a non-conformal contact) and where the
+/// model's curves come closer than their mesh can resolve, when the model was built in this
+/// build (the report keeps the warnings).
 fn print_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     let ran = report
         .node("model")
@@ -316,7 +317,11 @@ fn print_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     else {
         return;
     };
-    for warning in plan::ops::close_curve_warnings(recipe, &model) {
+    let close = plan::ops::close_curve_warnings(recipe, &model);
+    for warning in plan::ops::non_conformity_warnings(&model)
+        .into_iter()
+        .chain(close)
+    {
         errln!("{:>12} {warning}", "Warning");
     }
 }

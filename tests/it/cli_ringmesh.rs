@@ -125,6 +125,10 @@ fn build(file: &str) -> Option<(tempfile::TempDir, serde_json::Value, usize)> {
         failed.join("\n"),
         model.recipe
     );
+    assert!(
+        !err.contains("not conformal"),
+        "{file}: its surfaces share their contact vertices:\n{err}"
+    );
     let report: serde_json::Value =
         serde_json::from_slice(&out.stdout).expect("the JSON report parses");
     Some((scratch, report, model.regions))
@@ -195,6 +199,38 @@ fn model_a5_whose_horizon_turns_round_a_fault_tip_meshes_into_its_twelve_regions
     // Horizon h1 ends in a sliver 1.5 m wide between two faults, round whose tip it turns 360.2°:
     // the coarse surface mesh's triangles there fold until they are split.
     sealed_model_meshes_into_its_regions("modelA5.ml");
+}
+
+#[test]
+fn a_contact_vertex_written_a_hair_off_its_neighbours_is_reported_as_not_conformal() {
+    let Some(dir) = data_dir() else { return };
+    let text = std::fs::read_to_string(dir.join("split_cube.ml")).expect("read the Model3d");
+    // The horizon's first corner, on the box's edge at z = 0.3, moved up by 1e-8.
+    let horizon = text.find("name:horizon").expect("the horizon TSurf");
+    let at = horizon
+        + text[horizon..]
+            .find("VRTX 1 0.0 0.0 0.3")
+            .expect("its first corner");
+    let moved = format!(
+        "{}VRTX 1 0.0 0.0 0.30000001{}",
+        &text[..at],
+        &text[at + 18..]
+    );
+    let model = recipe_for(moved.as_bytes(), "split_cube.ml");
+    let scratch = tempfile::tempdir().expect("a scratch directory");
+    std::fs::write(scratch.path().join("model.ml"), &moved).expect("write the Model3d");
+    std::fs::write(scratch.path().join("sealed.toml"), &model.recipe).expect("write the recipe");
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(scratch.path())
+        .args(["build", "sealed.toml"])
+        .output()
+        .expect("the recipe binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = err.lines().find(|l| l.contains("not conformal"));
+    let line = line.unwrap_or_else(|| panic!("no warning:\n{err}"));
+    assert!(line.contains("`horizon` and `s_box`"), "{line}");
+    // The file is in depth: z = -0.3 in the model.
+    assert!(line.contains("(0, 0, -0.3"), "{line}");
 }
 
 // Not tested here: CloudSpin_fixed, whose patches' boundary loops touch.

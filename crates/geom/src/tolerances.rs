@@ -31,6 +31,11 @@ pub struct Tolerances {
     /// Largest distance (model units, relative to the local element size) a generated mesh node
     /// may lie from its support surface, as a fraction of the local element size. Default 1e-6.
     pub support_distance_rel: f64,
+    /// Vertices of two different surfaces closer than this fraction of the model's bounding
+    /// box diagonal, but not at the same coordinates, are reported as a non-conformal contact
+    /// (surfaces meant to meet there, as a sealed model's must, share their vertices bit for
+    /// bit). Default 1e-7 (2 mm across a 20 km model). A report only: nothing is moved.
+    pub conformity_rel: f64,
 }
 
 impl Default for Tolerances {
@@ -41,19 +46,21 @@ impl Default for Tolerances {
             chart_angle_deg: 60.0,
             merge_distance: 0.0,
             support_distance_rel: 1e-6,
+            conformity_rel: 1e-7,
         }
     }
 }
 
 impl Tolerances {
     /// The fields as (name, value) pairs in a fixed order, for cache keys and reports.
-    pub fn fields(&self) -> [(&'static str, f64); 5] {
+    pub fn fields(&self) -> [(&'static str, f64); 6] {
         [
             ("kink_angle_deg", self.kink_angle_deg),
             ("crease_angle_deg", self.crease_angle_deg),
             ("chart_angle_deg", self.chart_angle_deg),
             ("merge_distance", self.merge_distance),
             ("support_distance_rel", self.support_distance_rel),
+            ("conformity_rel", self.conformity_rel),
         ]
     }
 }

@@ -32,6 +32,7 @@
 mod assemble;
 pub mod charts;
 pub mod clearance;
+pub mod conformity;
 mod curves;
 pub mod discretize;
 pub mod features;

@@ -2,6 +2,7 @@
 //! pure stage functions, plus the artifact types they exchange. Each operation declares exactly
 //! the parameters it reads; its `version` is bumped whenever its output for the same inputs changes.
 
+mod conformity;
 mod crossings;
 mod curves;
 mod expand;
@@ -17,6 +18,7 @@ mod refine;
 mod region;
 mod sizes;
 mod wells;
+pub use conformity::non_conformity_warnings;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
 pub use proximity::close_curve_warnings;
 pub use refine::RefineOp;

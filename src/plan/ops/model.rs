@@ -9,6 +9,7 @@ use super::{Groups, SurfaceData};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::SurfaceKind;
 use geom::{BBox, Tolerances, TriMesh};
+use model::conformity::{NearMiss, near_misses};
 use model::intersect::{Intersection, split};
 use model::thickness::region_thickness;
 use model::touches::touch_points;
@@ -41,6 +42,9 @@ pub struct ModelData {
     /// holding it (`model::touches`); each becomes a node of that patch's mesh.
     #[serde(default)]
     pub touches: Vec<(u32, [f64; 3])>,
+    /// Where the imported surfaces almost share a vertex (`model::conformity`), for a warning.
+    #[serde(default)]
+    pub near_misses: Vec<NearMiss>,
 }
 
 pub struct ModelOp {
@@ -73,7 +77,8 @@ impl Operation for ModelOp {
         // 13: a crossing of two curves that rounds onto a corner or curve end of its face is
         //     that vertex.
         // 14: the points where surfaces touch, per patch holding them.
-        14
+        // 15: where the imported surfaces almost share a vertex.
+        15
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -199,6 +204,9 @@ impl Operation for ModelOp {
             .flat_map(|x| x.touches.iter().map(|t| t.xyz))
             .collect();
         let touches = touch_points(&input, &touch_xyz);
+        let e = bbox.extent();
+        let diagonal = (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+        let near_misses = near_misses(&named, self.tolerances.conformity_rel * diagonal);
         let n_curves = topology.curves.len() as u64;
         let n_vertices = topology.vertices.len() as u64;
         let out = Output::new(Artifact::encode(&ModelData {
@@ -207,6 +215,7 @@ impl Operation for ModelOp {
             topology,
             thickness,
             touches,
+            near_misses,
         })?)
         .count("vertices", n_vertices)
         .count("curves", n_curves)

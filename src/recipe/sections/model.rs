@@ -93,6 +93,7 @@ fn range(field: &str) -> Option<(f64, bool, f64)> {
         "chart_angle_deg" => Some((0.0, false, 90.0)),
         "merge_distance" => Some((0.0, true, f64::INFINITY)),
         "support_distance_rel" => Some((0.0, false, f64::INFINITY)),
+        "conformity_rel" => Some((0.0, true, 1.0)),
         _ => None,
     }
 }

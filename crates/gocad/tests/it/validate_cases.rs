@@ -407,3 +407,41 @@ fn the_closed_kimberlite_pipe_is_clean() {
     let r = validate(&s, &Tolerances::default());
     assert!(r.is_clean(), "{}", r.render_text());
 }
+
+/// Duplicate-vertex findings of TSurf `object` of RINGMesh's `file`, each with its two file
+/// lines, or `None` without `../shared`.
+fn ringmesh_duplicates(file: &str, object: &str) -> Option<Vec<Vec<usize>>> {
+    let path = paths::shared(&format!("data/gocad/ringmesh__RINGMesh/tests/data/{file}"))?;
+    let bytes = std::fs::read(path).expect("read");
+    let opts = ImportOptions {
+        object: Some(gocad::import::ObjectRef::Name(object.into())),
+        skip_other_types: true,
+        ..ImportOptions::default()
+    };
+    let s = import_surface(&bytes, file, &opts).expect("imports");
+    let r = validate(&s, &Tolerances::default());
+    Some(
+        (r.findings.iter())
+            .filter(|f| f.kind == FindingKind::DuplicateVertex)
+            .map(|f| f.lines.clone())
+            .collect(),
+    )
+}
+
+#[test]
+fn cloudspins_non_conformal_cracks_are_found_with_their_file_lines_and_the_fixed_file_has_none() {
+    // CloudSpin.ml's KOBE horizon is cracked along a line: its triangles on either side do
+    // not share the vertices there (14 pairs at one place each). The fixed file has none.
+    let Some(cracked) = ringmesh_duplicates("CloudSpin.ml", "KOBE") else {
+        return;
+    };
+    assert_eq!(cracked.len(), 14);
+    assert!(
+        cracked
+            .iter()
+            .all(|lines| lines.len() == 2 && lines[0] < lines[1])
+    );
+    assert_eq!(cracked[0], [30731, 31010]);
+    let fixed = ringmesh_duplicates("CloudSpin_fixed.ml", "KOBE").expect("beside it");
+    assert!(fixed.is_empty(), "{fixed:?}");
+}
