@@ -283,8 +283,14 @@ fn print_crossings(report: &BuildReport) {
     }
 }
 
-/// The sizes' warnings for the regions whose tet mesh ran in this build (a cached region was
-/// warned about when it ran; the report keeps every warning).
+/// Whether node `name` ran in this build.
+fn ran(report: &BuildReport, name: &str) -> bool {
+    (report.nodes.iter()).any(|n| n.name == name && n.state == NodeState::Ran)
+}
+
+/// The sizes' warnings for the regions whose tet mesh ran and the curves whose discretization
+/// ran in this build (a cached one was warned about when it ran; the report keeps every
+/// warning).
 fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     let Some(model) = report
         .artifact("model")
@@ -293,11 +299,15 @@ fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
         return;
     };
     for (region, warning) in plan::ops::thin_region_warnings(recipe, &model) {
-        let ran = report
-            .nodes
+        if ran(report, &format!("tet_mesh:{region}")) {
+            errln!("{:>12} {warning}", "Warning");
+        }
+    }
+    for (curves, warning) in plan::ops::short_curve_warnings(recipe, &model) {
+        if curves
             .iter()
-            .any(|n| n.name == format!("tet_mesh:{region}") && n.state == NodeState::Ran);
-        if ran {
+            .any(|c| ran(report, &format!("discretize:{c}")))
+        {
             errln!("{:>12} {warning}", "Warning");
         }
     }

@@ -240,6 +240,11 @@ fn report_input<'a>(
                 .map(|(_, w)| w),
         );
         warnings.extend(crate::plan::ops::non_conformity_warnings(m));
+        warnings.extend(
+            crate::plan::ops::short_curve_warnings(recipe, m)
+                .into_iter()
+                .map(|(_, w)| w),
+        );
         warnings.extend(crate::plan::ops::close_curve_warnings(recipe, m));
         for p in &mut patches {
             p.triangles = count(report, &format!("surface_mesh:{}", p.name), "triangles");

@@ -216,3 +216,27 @@ fn editing_a_refinement_reruns_it_and_what_it_reaches_and_a_far_point_touches_no
         "a finer reach re-runs only what the first one reached: {again:?} (first: {ran:?})"
     );
 }
+
+#[test]
+fn a_curve_rule_whose_size_exceeds_its_curves_is_warned_about_at_the_rule_with_their_lengths() {
+    let s = Scratch::didactic_built();
+    // The box's top edges along x and y are 5 km long: none fits a 6 km segment.
+    s.edit(
+        "[mesh.curves]\n",
+        "[mesh.curves]\n\"box.zmax/box.x*\" = { size = 6000.0 }\n",
+    );
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let line = err
+        .lines()
+        .find(|l| l.contains("asks for segments of 6000"));
+    let line = line.unwrap_or_else(|| panic!("no warning:\n{err}"));
+    assert!(line.contains("didactic.toml:"), "{line}");
+    assert!(line.contains("rule `box.zmax/box.x*`"), "{line}");
+    assert!(line.contains("its 2 curves are all shorter"), "{line}");
+    assert!(line.contains("(5000)"), "{line}");
+    // The shipped rules fit some of their curves (`F2`'s pieces of 40 m between the horizons
+    // excepted): no such warning.
+    let (ok, _, err) = Scratch::didactic().build(&[]);
+    assert!(ok && !err.contains("asks for segments of"), "{err}");
+}

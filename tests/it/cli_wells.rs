@@ -85,6 +85,28 @@ fn chain(lines: &[[u32; 2]]) -> Vec<u32> {
     path
 }
 
+/// Writes `path` as the gOcad PLine `data/didactic/<name>.pl`, adds it to the recipe as well
+/// `name` with `options` (`", size = 100.0"`), and builds again.
+fn add_pline_well(
+    s: &Scratch,
+    name: &str,
+    path: &[[f64; 3]],
+    options: &str,
+) -> (Vec<String>, serde_json::Value) {
+    let mut pline = format!("GOCAD PLine 1\nHEADER {{\nname:{name}\n}}\nILINE\n");
+    for (i, p) in path.iter().enumerate() {
+        pline += &format!("VRTX {} {} {} {}\n", i + 1, p[0], p[1], p[2]);
+    }
+    for i in 1..path.len() {
+        pline += &format!("SEG {i} {}\n", i + 1);
+    }
+    pline += "END\n";
+    std::fs::write(s.path(&format!("data/didactic/{name}.pl")), pline).unwrap();
+    let entry = format!("{name} = {{ file = \"data/didactic/{name}.pl\"{options} }}\nW2 = {{ file");
+    edit(s, "W2 = { file", &entry);
+    rebuilt(s)
+}
+
 /// Every edge of a tet, its smaller node first.
 fn tet_edges(mesh: &VolumeMesh) -> BTreeSet<(u32, u32)> {
     let mut edges = BTreeSet::new();
@@ -410,16 +432,12 @@ fn a_line_running_along_the_seafloor_then_down_is_edges_of_the_seafloor_mesh_the
     let s = built();
     // A flowline on the box top from (503500, 7003000) to (504200, 7003600), then a vertical
     // well down to 1800 m: a gOcad PLine.
-    let pline = "GOCAD PLine 1\nHEADER {\nname:W3\n}\nILINE\n\
-                 VRTX 1 503500 7003000 0\nVRTX 2 504200 7003600 0\nVRTX 3 504200 7003600 -1800\n\
-                 SEG 1 2\nSEG 2 3\nEND\n";
-    std::fs::write(s.path("data/didactic/W3_flowline.pl"), pline).unwrap();
-    edit(
-        &s,
-        "W2 = { file",
-        "W3 = { file = \"data/didactic/W3_flowline.pl\", size = 100.0 }\nW2 = { file",
-    );
-    let (ran, r) = rebuilt(&s);
+    let path = [
+        [503500.0, 7003000.0, 0.0],
+        [504200.0, 7003600.0, 0.0],
+        [504200.0, 7003600.0, -1800.0],
+    ];
+    let (ran, r) = add_pline_well(&s, "W3", &path, ", size = 100.0");
     assert_ran(&ran, &["well_cut:W3", "surface_mesh:box.zmax#2", "mesh"]);
     let cut = r["nodes"]
         .as_array()
@@ -494,16 +512,12 @@ fn a_line_running_along_the_seafloor_then_down_is_edges_of_the_seafloor_mesh_the
 fn a_well_entering_the_box_through_its_edge_crosses_both_sides_at_one_node_of_that_curve() {
     let s = built();
     // Down through the edge where the west side meets the top, at y = 7002000, then vertical.
-    let pline = "GOCAD PLine 1\nHEADER {\nname:W4\n}\nILINE\n\
-                 VRTX 1 499900 7002000 100\nVRTX 2 500100 7002000 -100\n\
-                 VRTX 3 500100 7002000 -1800\nSEG 1 2\nSEG 2 3\nEND\n";
-    std::fs::write(s.path("data/didactic/W4_edge.pl"), pline).unwrap();
-    edit(
-        &s,
-        "W2 = { file",
-        "W4 = \"data/didactic/W4_edge.pl\"\nW2 = { file",
-    );
-    let (ran, r) = rebuilt(&s);
+    let path = [
+        [499900.0, 7002000.0, 100.0],
+        [500100.0, 7002000.0, -100.0],
+        [500100.0, 7002000.0, -1800.0],
+    ];
+    let (ran, r) = add_pline_well(&s, "W4", &path, "");
     let pins = r["nodes"]
         .as_array()
         .unwrap()

@@ -22,7 +22,7 @@ pub use conformity::non_conformity_warnings;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
 pub use proximity::close_curve_warnings;
 pub use refine::RefineOp;
-pub use sizes::thin_region_warnings;
+pub use sizes::{short_curve_warnings, thin_region_warnings};
 
 pub use curves::{
     CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,

@@ -20,7 +20,8 @@
 //! key: a model whose choices are all the global size keeps the keys it had without this step.
 
 use super::ModelData;
-use crate::recipe::Recipe;
+use crate::recipe::{Recipe, Subdivision};
+use geom::predicates::polyline_length;
 use model::ModelTopology;
 
 /// A size and the recipe path of the rule it comes from (`mesh`, `mesh.surfaces."H1"`,
@@ -202,6 +203,52 @@ pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, 
             )),
             _ => {}
         }
+    }
+    out
+}
+
+/// The `[mesh.curves]` size rules that cannot be honoured anywhere: a rule asking for segments
+/// of `size` (any ratio) whose curves are all shorter than that, so each is one segment as long
+/// as the curve and the rule changes nothing. (A rule for a whole surface that some short
+/// pieces of it cannot follow is honoured elsewhere, and not warned about.) One sentence per
+/// rule, in recipe order, naming the rule by its place and at most four curves with their
+/// lengths, with the curves' names. Counts are always honoured.
+pub fn short_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(Vec<String>, String)> {
+    let mut out = Vec::new();
+    for rule in &recipe.mesh.curves {
+        let Subdivision::Size { size, .. } = rule.subdivision else {
+            continue;
+        };
+        let governed: Vec<(&str, f64)> = (model.topology.curves.iter())
+            .filter(|c| {
+                recipe
+                    .mesh
+                    .curve_rule(&c.name)
+                    .is_some_and(|r| std::ptr::eq(r, rule))
+            })
+            .map(|c| (c.name.as_str(), polyline_length(&c.points)))
+            .collect();
+        if governed.is_empty() || governed.iter().any(|&(_, len)| len >= size) {
+            continue;
+        }
+        let short_ones = governed;
+        let named: Vec<String> = (short_ones.iter().take(4))
+            .map(|(n, len)| format!("`{n}` ({})", short(*len)))
+            .collect();
+        let more = match short_ones.len() {
+            n if n > 4 => format!(" and {} more", n - 4),
+            _ => String::new(),
+        };
+        let curves = short_ones.iter().map(|(n, _)| n.to_string()).collect();
+        out.push((curves, format!(
+            "{}: `[mesh.curves]` rule `{}` asks for segments of {}, but its {} {} shorter: {}{more}; each is one segment as long as the curve, so the rule changes nothing: give a smaller size or a `count`",
+            recipe.place(rule.span),
+            rule.selector.text,
+            short(size),
+            if short_ones.len() == 1 { "curve".to_string() } else { format!("{} curves", short_ones.len()) },
+            if short_ones.len() == 1 { "is" } else { "are all" },
+            named.join(", ")
+        )));
     }
     out
 }
