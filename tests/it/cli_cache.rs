@@ -562,3 +562,46 @@ fn the_next_build_removes_what_killed_builds_left_and_nothing_of_the_users() {
         assert_eq!(left, Vec::<String>::new(), "after a kill at {delay_ms} ms");
     }
 }
+
+#[test]
+fn running_out_of_file_descriptors_fails_the_build_saying_so_and_damages_no_cache_entry() {
+    let s = Scratch::didactic_built();
+    let (_, before, _) = s.build(&[]);
+    let all = all_nodes(&before).len();
+    s.edit("size = 200.0", "size = 210.0");
+    // Five descriptors: the standard three, the cache lock and one more (EMFILE soon after).
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -n 5 && exec '{}' build --json didactic.toml",
+            env!("CARGO_BIN_EXE_recipe")
+        ))
+        .current_dir(s.dir.path())
+        .env_remove("RECIPE_CACHE_DIR")
+        .output()
+        .expect("sh runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{err}");
+    assert!(err.contains("Too many open files"), "{err}");
+    for word in ["corrupt", "damaged", "panicked"] {
+        assert!(!err.contains(word), "`{word}` in:\n{err}");
+    }
+    // With descriptors again, the entries written before are used, none rebuilt as damaged.
+    let (ok, after, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert!(
+        !err.contains("damaged") && !err.contains("corrupt"),
+        "{err}"
+    );
+    let cached = nodes_in_state(&after, "cached").len();
+    assert_eq!(all_nodes(&after).len(), all);
+    // At least what the same edit finds cached without the failed run in between.
+    let control = Scratch::didactic_built();
+    control.edit("size = 200.0", "size = 210.0");
+    let (_, plain, _) = control.build(&[]);
+    let unchanged = nodes_in_state(&plain, "cached").len();
+    assert!(
+        cached >= unchanged && unchanged > 0,
+        "{cached} < {unchanged}"
+    );
+}
