@@ -331,14 +331,19 @@ impl MeshSpec {
     /// The rule for the curve `curve_name`: among matching rules, the most specific (see
     /// [`CurveSelector::specificity`]); among equally specific ones, the one written last.
     pub fn curve_rule(&self, curve_name: &str) -> Option<&CurveRule> {
-        let mut best: Option<&CurveRule> = None;
-        for r in self
-            .curves
-            .iter()
-            .filter(|r| r.selector.matches(curve_name))
+        self.curve_rule_index(curve_name).map(|i| &self.curves[i])
+    }
+
+    /// The position in `curves` of [`Self::curve_rule`]'s rule.
+    pub fn curve_rule_index(&self, curve_name: &str) -> Option<usize> {
+        let mut best: Option<usize> = None;
+        for (i, r) in
+            (self.curves.iter().enumerate()).filter(|(_, r)| r.selector.matches(curve_name))
         {
-            if best.is_none_or(|b| r.selector.specificity() >= b.selector.specificity()) {
-                best = Some(r);
+            let beats =
+                |b: usize| r.selector.specificity() >= self.curves[b].selector.specificity();
+            if best.is_none_or(beats) {
+                best = Some(i);
             }
         }
         best

@@ -20,7 +20,7 @@ pub mod units;
 pub use bbox::BBox;
 pub use predicates::{Orientation, insphere, orient2d, orient3d};
 pub use tolerances::Tolerances;
-pub use trimesh::TriMesh;
+pub use trimesh::{TriMesh, point_key};
 pub use units::Units;
 
 /// A point in model coordinates (metres, or the recipe's units), as read from the input.

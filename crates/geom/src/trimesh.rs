@@ -2,6 +2,12 @@
 //! patch, and the exchange type between import, intersection, splitting and surface meshing.
 
 use super::BBox;
+
+/// A point's coordinates as bits, -0.0 taken as 0.0: a map key under which two points are one
+/// exactly when their coordinates are equal.
+pub fn point_key(p: &[f64; 3]) -> [u64; 3] {
+    p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })
+}
 use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -30,6 +36,20 @@ impl TriMesh {
     }
     pub fn triangle_bbox(&self, t: usize) -> BBox {
         BBox::from_points(self.corners(t))
+    }
+    /// The border edges (used by exactly one triangle), each as (smaller id, larger id).
+    pub fn border_edges(&self) -> std::collections::BTreeSet<(u32, u32)> {
+        let mut uses: std::collections::BTreeMap<(u32, u32), u32> = Default::default();
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        (uses.into_iter())
+            .filter(|&(_, n)| n == 1)
+            .map(|(e, _)| e)
+            .collect()
     }
     /// Sum of triangle areas (floating point, for measures).
     pub fn area(&self) -> f64 {

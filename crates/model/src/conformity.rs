@@ -81,16 +81,8 @@ pub fn near_misses(surfaces: &[(&str, &TriMesh)], within: f64) -> Vec<NearMiss> 
 
 /// The vertices on an edge that one triangle uses, ascending.
 fn border_vertices(mesh: &TriMesh) -> Vec<usize> {
-    let mut uses: BTreeMap<(u32, u32), u32> = BTreeMap::new();
-    for t in &mesh.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *uses.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let mut out: Vec<usize> = (uses.into_iter())
-        .filter(|&(_, n)| n == 1)
-        .flat_map(|((a, b), _)| [a as usize, b as usize])
+    let mut out: Vec<usize> = (mesh.border_edges().into_iter())
+        .flat_map(|(a, b)| [a as usize, b as usize])
         .filter(|&v| v < mesh.vertices.len())
         .collect();
     out.sort_unstable();

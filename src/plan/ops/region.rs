@@ -14,6 +14,7 @@ use super::wells::{RegionWells, WellCutData};
 use super::{Groups, PatchMesh};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::{LineGroup, NamedPoint, RegionGroup, VolumeMesh};
+use geom::point_key;
 use model::regions::{FaceUse, Side};
 use model::{VolumeAssembly, assemble_volume, embed_polylines, region_input};
 use serde::{Deserialize, Serialize};
@@ -299,17 +300,12 @@ fn face_set_patches(
         .collect()
 }
 
-/// A point's bits as a map key, -0.0 taken as 0.0.
-fn coordinate_key(p: &[f64; 3]) -> [u64; 3] {
-    p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })
-}
-
 /// The wells' crossings of the surfaces as named points of the welded mesh (nodes found by
 /// exact coordinates), `<well>:<surface>` then `:2`, `:3`, ... for the same well crossing the
 /// same surface again in path order; sorted by name.
 fn well_points(nodes: &[[f64; 3]], cuts: &[WellCutData]) -> Result<Vec<NamedPoint>, OpError> {
     let ids: BTreeMap<[u64; 3], u32> = (nodes.iter().enumerate())
-        .map(|(i, p)| (coordinate_key(p), i as u32))
+        .map(|(i, p)| (point_key(p), i as u32))
         .collect();
     let mut points = Vec::new();
     for cut in cuts {
@@ -321,7 +317,7 @@ fn well_points(nodes: &[[f64; 3]], cuts: &[WellCutData]) -> Result<Vec<NamedPoin
                 1 => format!("{}:{}", cut.name, m.surface),
                 k => format!("{}:{}:{k}", cut.name, m.surface),
             };
-            let node = ids.get(&coordinate_key(&m.point)).copied().ok_or_else(|| {
+            let node = ids.get(&point_key(&m.point)).copied().ok_or_else(|| {
                 OpError::from(format!(
                     "mesh: well `{}` crosses surface `{}` (patch `{}`) at ({}, {}, {}), which is \
                      not a node of the mesh",
@@ -346,7 +342,7 @@ fn well_lines(
     if regions.iter().all(|r| r.wells.is_empty()) && cuts.iter().all(|c| c.runs.is_empty()) {
         return Ok(Vec::new());
     }
-    let key = coordinate_key;
+    let key = point_key;
     let ids: BTreeMap<[u64; 3], u32> = (nodes.iter().enumerate())
         .map(|(i, p)| (key(p), i as u32))
         .collect();

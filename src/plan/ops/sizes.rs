@@ -214,24 +214,21 @@ pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, 
 /// rule, in recipe order, naming the rule by its place and at most four curves with their
 /// lengths, with the curves' names. Counts are always honoured.
 pub fn short_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(Vec<String>, String)> {
+    // Each curve's rule found once: per rule, the curves it governs and their lengths.
+    let mut by_rule: Vec<Vec<(&str, f64)>> = vec![Vec::new(); recipe.mesh.curves.len()];
+    for c in &model.topology.curves {
+        if let Some(i) = recipe.mesh.curve_rule_index(&c.name) {
+            by_rule[i].push((c.name.as_str(), polyline_length(&c.points)));
+        }
+    }
     let mut out = Vec::new();
-    for rule in &recipe.mesh.curves {
+    for (rule, short_ones) in recipe.mesh.curves.iter().zip(by_rule) {
         let Subdivision::Size { size, .. } = rule.subdivision else {
             continue;
         };
-        let governed: Vec<(&str, f64)> = (model.topology.curves.iter())
-            .filter(|c| {
-                recipe
-                    .mesh
-                    .curve_rule(&c.name)
-                    .is_some_and(|r| std::ptr::eq(r, rule))
-            })
-            .map(|c| (c.name.as_str(), polyline_length(&c.points)))
-            .collect();
-        if governed.is_empty() || governed.iter().any(|&(_, len)| len >= size) {
+        if short_ones.is_empty() || short_ones.iter().any(|&(_, len)| len >= size) {
             continue;
         }
-        let short_ones = governed;
         let named: Vec<String> = (short_ones.iter().take(4))
             .map(|(n, len)| format!("`{n}` ({})", short(*len)))
             .collect();
@@ -240,15 +237,20 @@ pub fn short_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(Vec<Stri
             _ => String::new(),
         };
         let curves = short_ones.iter().map(|(n, _)| n.to_string()).collect();
-        out.push((curves, format!(
-            "{}: `[mesh.curves]` rule `{}` asks for segments of {}, but its {} {} shorter: {}{more}; each is one segment as long as the curve, so the rule changes nothing: give a smaller size or a `count`",
+        let which = match short_ones.len() {
+            1 => "curve is".to_string(),
+            n => format!("{n} curves are all"),
+        };
+        let warning = format!(
+            "{}: `[mesh.curves]` rule `{}` asks for segments of {}, but its {which} shorter: \
+             {}{more}; each is one segment as long as the curve, so the rule changes nothing: \
+             give a smaller size or a `count`",
             recipe.place(rule.span),
             rule.selector.text,
             short(size),
-            if short_ones.len() == 1 { "curve".to_string() } else { format!("{} curves", short_ones.len()) },
-            if short_ones.len() == 1 { "is" } else { "are all" },
             named.join(", ")
-        )));
+        );
+        out.push((curves, warning));
     }
     out
 }

@@ -175,18 +175,7 @@ struct Border {
 
 impl Border {
     fn of(patch: &PatchIn) -> Border {
-        let mut uses: BTreeMap<(u32, u32), u32> = BTreeMap::new();
-        for t in &patch.mesh.triangles {
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                *uses.entry((a.min(b), a.max(b))).or_default() += 1;
-            }
-        }
-        let edges: BTreeSet<(u32, u32)> = uses
-            .into_iter()
-            .filter(|&(_, n)| n == 1)
-            .map(|(e, _)| e)
-            .collect();
+        let edges = patch.mesh.border_edges();
         let vertices = edges.iter().flat_map(|&(a, b)| [a, b]).collect();
         Border { edges, vertices }
     }
@@ -526,14 +515,13 @@ impl Walk<'_> {
             return Ok(());
         }
         let f = feature(ti, &ids, place);
-        let curve = self.curve_at(t, place);
-        let point = match place {
-            Place::Corner(k) => t[k],
+        let (point, curve) = match place {
+            Place::Corner(k) => (t[k], self.curves.point(&t[k])),
             Place::Edge(k) => match self.curves.segment(&t[k], &t[(k + 1) % 3]) {
-                Some((_, a, b)) => on_segment(&p, &q, &a, &b),
-                None => crossing_point(&p, &q, t, place),
+                Some((pin, a, b)) => (on_segment(&p, &q, &a, &b), Some(pin)),
+                None => (crossing_point(&p, &q, t, place), None),
             },
-            _ => crossing_point(&p, &q, t, place),
+            _ => (crossing_point(&p, &q, t, place), None),
         };
         let s = (dist(&p, &point) / dist(&p, &q)).clamp(0.0, 1.0);
         let along = self.along[i] + s * (self.along[i + 1] - self.along[i]);
@@ -563,7 +551,10 @@ enum Coverage {
 
 /// Whether the spans (parameters along the segment, 0 to 1) cover it: their ends are computed
 /// the same way from the same support edge or vertex by every triangle that shares it, so two
-/// spans that meet there meet bit for bit.
+/// spans that meet there meet bit for bit, and which triangles and edges the segment meets is
+/// decided exactly before. Only on a support with a T-junction (a corner on a neighbour's edge)
+/// may two meeting spans differ by rounding; the gap is then refused as `Part`, never a path
+/// accepted that leaves the surface.
 fn coverage(spans: &[(f64, f64)]) -> Coverage {
     let mut open: Vec<(f64, f64)> = spans.iter().copied().filter(|(a, b)| a < b).collect();
     if open.is_empty() {

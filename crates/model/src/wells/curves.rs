@@ -4,14 +4,10 @@
 //! that curve's discretization instead of a refusal.
 
 use super::CurvePin;
+use geom::point_key as key;
 use std::collections::BTreeMap;
 
 type P3 = [f64; 3];
-
-/// A point's bits as a key, -0.0 taken as 0.0.
-fn key(p: &P3) -> [u64; 3] {
-    p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })
-}
 
 /// The curves' segments and points, by coordinates.
 #[derive(Default)]

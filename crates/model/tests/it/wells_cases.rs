@@ -6,7 +6,6 @@
 use super::regions_cases::{OFFSETS, cube, octahedron, rect, shifted, split_cube};
 use model::regions::{Locator, PatchIn, RegionOptions, find_regions_with, locate};
 use model::wells::{CurveIndex, WellCut, WellError, cut_well, resample};
-use std::collections::BTreeMap;
 
 fn add(p: [f64; 3], d: [f64; 3]) -> [f64; 3] {
     [p[0] + d[0], p[1] + d[1], p[2] + d[2]]
@@ -26,18 +25,9 @@ fn cut(patches: &[PatchIn], faults: &[&str], path: &[[f64; 3]]) -> Result<WellCu
 fn borders(patches: &[PatchIn]) -> CurveIndex {
     let mut curves = Vec::new();
     for p in patches {
-        let mut uses: BTreeMap<(u32, u32), u32> = BTreeMap::new();
-        for t in &p.mesh.triangles {
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                *uses.entry((a.min(b), a.max(b))).or_default() += 1;
-            }
-        }
         let v = &p.mesh.vertices;
         curves.extend(
-            (uses.into_iter())
-                .filter(|&(_, n)| n == 1)
-                .map(|((a, b), _)| vec![v[a as usize], v[b as usize]]),
+            (p.mesh.border_edges().into_iter()).map(|(a, b)| vec![v[a as usize], v[b as usize]]),
         );
     }
     CurveIndex::new(curves)
