@@ -1,11 +1,15 @@
 //! Background size field of a region (the seed's background octree, here a uniform grid): each
-//! cell starts at the mean edge length of the boundary/embedded triangles crossing it and the
-//! sizes are propagated inwards growing linearly at rate `growth - 1` per unit distance (along
+//! cell stores the size at its centre, starting from the boundary/embedded triangles crossing it
+//! (each one's mean edge length, grown at the rate below over the distance from the triangle's
+//! bounding box to the centre), and the sizes are propagated inwards growing linearly at rate `growth - 1` per unit distance (along
 //! shortest paths through the 26-neighbourhood, found by two raster sweeps), capped by the
 //! interior target and by the largest boundary cell — so no interior element is larger than the largest boundary
 //! one and neighbouring cells differ smoothly (at most the growth rate, finer than 2:1 balance).
 //! The advancing front reads its target size here rather than from the front's own faces, so
-//! sizes cannot drift down as the front advances.
+//! sizes cannot drift down as the front advances. A cell holds the size at its centre, not the
+//! least size anywhere in it: with the least, one sliver a few centimetres across in a cell of
+//! a hundred metres set the whole cell to centimetres, and the mesher filled it with centimetre
+//! tets (millions, for minutes). Near a small triangle the front's own faces keep sizes small.
 
 use super::SizeField;
 
@@ -86,21 +90,21 @@ impl Background {
             dims,
             h: vec![f64::INFINITY; n],
         };
+        let rate = (field.growth - 1.0).clamp(0.0, 1.0);
         for (t, &le) in tris.iter().zip(&les) {
             let (a, b) = bbox(t, pts);
             let (ca, cb) = (bg.cell_of(&a), bg.cell_of(&b));
+            let h = le.clamp(field.min_size.max(0.0), field.max_size.max(field.min_size));
             for x in ca[0]..=cb[0] {
                 for y in ca[1]..=cb[1] {
                     for z in ca[2]..=cb[2] {
                         let i = bg.index([x, y, z]);
-                        bg.h[i] = bg.h[i].min(
-                            le.clamp(field.min_size.max(0.0), field.max_size.max(field.min_size)),
-                        );
+                        let d = box_distance(&bg.centre([x, y, z]), &a, &b);
+                        bg.h[i] = bg.h[i].min(h + rate * d);
                     }
                 }
             }
         }
-        let rate = (field.growth - 1.0).clamp(0.0, 1.0);
         bg.propagate(rate, goal);
         for r in &field.refine {
             bg.bound_by(r, r.slope.clamp(0.0, rate));
@@ -212,6 +216,11 @@ impl Background {
         c
     }
 
+    /// The centre of cell `c`: the point whose size the cell stores.
+    fn centre(&self, c: [usize; 3]) -> P {
+        [0, 1, 2].map(|k| self.origin[k] + (c[k] as f64 + 0.5) * self.cell)
+    }
+
     #[inline]
     fn index(&self, c: [usize; 3]) -> usize {
         c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
@@ -229,6 +238,12 @@ fn mean_edge(t: &[u32; 3], pts: &[P]) -> f64 {
         ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
     };
     (d(&a, &b) + d(&b, &c) + d(&c, &a)) / 3.0
+}
+
+/// Distance from `p` to the box `[lo, hi]` (0 inside).
+fn box_distance(p: &P, lo: &P, hi: &P) -> f64 {
+    let g = [0, 1, 2].map(|k| (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0));
+    (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt()
 }
 
 fn bbox(t: &[u32; 3], pts: &[P]) -> (P, P) {
@@ -349,11 +364,42 @@ mod tests {
         let bg = Background::new(&pts, &tris, &f);
         let near = bg.size_at(&[0.2, 0.2, 0.0]);
         let mid = bg.size_at(&[5.0, 5.0, 5.0]);
-        assert!(near < 1.2, "{near}");
+        // The small triangle's size (1.14) grown over the way to its cell's centre (1.54).
+        assert!((near - (1.138 + 0.2 * 1.54)).abs() < 0.01, "{near}");
         assert!(
             mid > near && mid <= 4.0 * (1.0 + 2.0 / 3.0) / 3.0 * 3.0,
             "{mid}"
         );
+    }
+
+    #[test]
+    fn a_tiny_boundary_triangle_sets_the_size_at_its_cells_centre_not_across_the_cell() {
+        // A 1 cm triangle in a grid of 100 m cells (the big triangle's): its cell stores the
+        // size grown from 1 cm to the cell's centre, not 1 cm, which would fill the whole
+        // cell with centimetre tets.
+        let pts = vec![
+            [0.0, 0.0, 0.0],
+            [0.01, 0.0, 0.0],
+            [0.0, 0.01, 0.0],
+            [0.0, 0.0, 300.0],
+            [100.0, 0.0, 300.0],
+            [0.0, 100.0, 300.0],
+        ];
+        let tris = vec![[0, 1, 2], [3, 4, 5]];
+        let f = SizeField {
+            size: f64::INFINITY,
+            min_size: 0.0,
+            max_size: f64::INFINITY,
+            growth: 1.2,
+            refine: Vec::new(),
+        };
+        let bg = Background::new(&pts, &tris, &f);
+        let cell = bg.cell;
+        let centre = 0.2 * (3.0f64).sqrt() * cell / 2.0;
+        let at = bg.size_at(&[0.001, 0.001, 0.0]);
+        assert!((at - (0.01 / 3.0 * (2.0 + 2f64.sqrt()) + centre)).abs() < 0.02 * centre);
+        // Still far below the big triangle's size: the small one is honoured around it.
+        assert!(at < 0.25 * cell, "{at} in cells of {cell}");
     }
 
     #[test]

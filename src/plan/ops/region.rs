@@ -81,7 +81,8 @@ impl Operation for TetMeshOp {
         // 16: hole pieces with embedded triangles filled apart, each with its own.
         // 17: a hole's embedded triangles peeled off by a tet each before the cone.
         // 18: at most 16 apexes tried per peeled triangle.
-        18
+        // 19: background size cells hold the size at their centre, not the least in them.
+        19
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
