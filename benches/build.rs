@@ -17,6 +17,7 @@ fn build_once(recipe_path: &Path, text: &str, cache: &Path, out: &Path) -> engin
         jobs: 1,
         keep_going: true,
         record: engine::DEFAULT_RECORD.to_string(),
+        read_only: false,
     };
     let report = engine::build(g, &opts, &|_| {}).expect("builds");
     assert!(report.ok);

@@ -24,6 +24,7 @@ fn build(recipe_path: &Path, text: &str, dir: &Path) -> (BuildReport, f64) {
         jobs: 1,
         keep_going: false,
         record: engine::DEFAULT_RECORD.to_string(),
+        read_only: false,
     };
     let t = Instant::now();
     let report = engine::build(g, &opts, &|_| {}).expect("builds");

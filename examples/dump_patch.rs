@@ -48,6 +48,7 @@ fn dump(recipe_path: &Path, patch: &str, out: &Path) -> Result<(), String> {
         jobs: 2,
         keep_going: true,
         record: engine::DEFAULT_RECORD.to_string(),
+        read_only: false,
     };
     let report = engine::build(graph, &opts, &|_| {}).map_err(|e| e.to_string())?;
     let piece: PatchPiece = report

@@ -45,6 +45,7 @@ fn main() -> Result<(), String> {
         jobs: 2,
         keep_going: true,
         record: engine::DEFAULT_RECORD.to_string(),
+        read_only: false,
     };
     let report = engine::build(graph, &opts, &|_| {}).map_err(|e| e.to_string())?;
     let model: ModelData = report

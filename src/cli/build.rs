@@ -41,11 +41,23 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let cache_lock = engine::lock_cache(
         &BuildOptions {
             record: record.name.clone(),
+            read_only: args.read_only_cache,
             ..BuildOptions::new(&cache, &output_dir)
         },
         &|e| renderer.event(e),
     )?;
-    super::debris::sweep_recipe(&lock_file, &output_dir, &record.dir(&cache));
+    // A cache the build may only read gets nothing written into it: no entries, no record.
+    let read_only = cache_lock.read_only();
+    if read_only && verbosity >= Verbosity::Normal {
+        errln!(
+            "{:>12} the cache {} is read-only: this build reads it and stores nothing in it",
+            "Warning",
+            cache.display()
+        );
+    }
+    let record_dir = record.dir(&cache);
+    let sweep_record = (!read_only).then_some(record_dir.as_path());
+    super::debris::sweep_recipe(&lock_file, &output_dir, sweep_record);
     let (locked, staging) = if args.locked {
         (
             Some(read_lock(&lock_file)?),
@@ -71,6 +83,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         jobs,
         keep_going: true,
         record: record.name.clone(),
+        read_only,
     };
     let report = engine::build_holding(graph, &opts, &cache_lock, &|e| renderer.event(e))?;
     let cached = report.count(NodeState::Cached) + report.count(NodeState::CutOff);
@@ -85,13 +98,14 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     }
 
     // This recipe's record: where it is (for `gc`), its last report and graph.
-    let record_dir = record.dir(&cache);
-    record.save(&cache)?;
-    write_record(
-        &last_report_path(&record_dir),
-        report.to_json().to_string().as_bytes(),
-    )?;
-    write_record(&last_graph_path(&record_dir), report.to_dot().as_bytes())?;
+    if !read_only {
+        record.save(&cache)?;
+        write_record(
+            &last_report_path(&record_dir),
+            report.to_json().to_string().as_bytes(),
+        )?;
+        write_record(&last_graph_path(&record_dir), report.to_dot().as_bytes())?;
+    }
     if args.json {
         let mut json = report.to_json();
         if let Some(model) = report
@@ -133,8 +147,8 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     super::report::write_validation(&report, write_dir)?;
     // The record describes the report in the output directory: a staged one once published.
     let save_state = |state: Option<ReportState>| match state {
-        Some(s) => s.save(&record_dir),
-        None => Ok(()),
+        Some(s) if !read_only => s.save(&record_dir),
+        _ => Ok(()),
     };
     let report_state = match staging {
         None => save_state(report_state).map(|()| None)?,

@@ -325,7 +325,7 @@ pub fn gc(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let swept = std::cell::Cell::new(0);
     let stats = engine::gc_and(&dir, &keep, &|| {
         for (lock, output, record) in &places {
-            swept.set(swept.get() + super::debris::sweep_recipe(lock, output, record));
+            swept.set(swept.get() + super::debris::sweep_recipe(lock, output, Some(record)));
         }
     })?;
     if swept.get() > 0 {

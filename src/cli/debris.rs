@@ -32,13 +32,14 @@ pub fn is_temporary(name: &str) -> bool {
 }
 
 /// Removes what killed builds of one recipe left: temporaries beside its lock file, in its
-/// output directory and in its record, and its dead staging directories; returns how many. Run
-/// under the cache's lock (by the recipe's next build, and by `gc`).
-pub fn sweep_recipe(lock_file: &Path, output_dir: &Path, record_dir: &Path) -> usize {
+/// output directory and in its record (unless the cache is only read: `None`), and its dead
+/// staging directories; returns how many. Run under the cache's lock (by the recipe's next
+/// build, and by `gc`).
+pub fn sweep_recipe(lock_file: &Path, output_dir: &Path, record_dir: Option<&Path>) -> usize {
     engine::store::sweep_temporaries_of(lock_file).unwrap_or(0)
         + sweep_temporaries(output_dir)
         + sweep_staging(output_dir)
-        + sweep_temporaries(record_dir)
+        + record_dir.map_or(0, sweep_temporaries)
 }
 
 /// Removes the temporaries in `dir` (not below it); returns how many.

@@ -79,6 +79,9 @@ pub struct BuildArgs {
     /// Fail if any node key, output hash or output file differs from the lock file; a locked build that fails writes nothing, and none updates the lock file
     #[arg(long)]
     pub locked: bool,
+    /// Use the cache for reading only and write nothing into it (a shared or archived cache); a cache that cannot be written (a read-only disk) is used this way without the flag
+    #[arg(long)]
+    pub read_only_cache: bool,
     /// Rebuild on every save of the recipe or an imported file
     #[arg(long)]
     pub watch: bool,

@@ -605,3 +605,121 @@ fn running_out_of_file_descriptors_fails_the_build_saying_so_and_damages_no_cach
         "{cached} < {unchanged}"
     );
 }
+
+/// Every file under the scratch folder's default cache, with its bytes.
+fn cache_tree(s: &Scratch) -> std::collections::BTreeMap<String, Vec<u8>> {
+    read_tree(&s.path(".recipe"))
+}
+
+#[test]
+fn a_read_only_cache_serves_a_warm_build_and_is_left_byte_for_byte_as_it_was() {
+    let s = Scratch::didactic_built();
+    let outputs = read_tree(&s.path("out/didactic"));
+    std::fs::remove_dir_all(s.path("out/didactic")).unwrap();
+    let before = cache_tree(&s);
+    let (ok, report, err) = s.build(&["--read-only-cache", "--locked"]);
+    assert!(ok, "{err}");
+    assert!(err.contains("is read-only"), "{err}");
+    assert!(nodes_in_state(&report, "ran").is_empty(), "{err}");
+    assert_eq!(
+        cache_tree(&s),
+        before,
+        "the read-only build wrote into the cache"
+    );
+    let again = read_tree(&s.path("out/didactic"));
+    for (name, bytes) in &outputs {
+        if name.ends_with(".msh") || name.ends_with(".vtu") {
+            assert_eq!(again.get(name), Some(bytes), "{name} differs");
+        }
+    }
+}
+
+#[test]
+fn a_read_only_cache_runs_what_it_lacks_and_stores_none_of_it() {
+    let s = Scratch::didactic_built();
+    s.edit("size = 200.0", "size = 210.0");
+    let before = cache_tree(&s);
+    let (ok, report, err) = s.build(&["--read-only-cache"]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&report, "ran");
+    assert!(ran.iter().any(|n| n.starts_with("tet_mesh:")), "{ran:?}");
+    assert!(!nodes_in_state(&report, "cached").is_empty());
+    assert_eq!(
+        cache_tree(&s),
+        before,
+        "the read-only build wrote into the cache"
+    );
+    // Nothing was stored, so a writing build runs the same nodes again (and stores them).
+    let (ok, again, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert_eq!(nodes_in_state(&again, "ran"), ran);
+    let (_, third, _) = s.build(&[]);
+    assert!(nodes_in_state(&third, "ran").is_empty());
+}
+
+#[test]
+fn a_read_only_build_refuses_a_directory_that_is_not_a_cache_and_creates_none() {
+    let s = Scratch::didactic();
+    let before = snapshot(&s);
+    for dir in ["data", "missing"] {
+        let out = s.recipe_cmd(&[
+            "build",
+            "--read-only-cache",
+            "--cache-dir",
+            dir,
+            "didactic.toml",
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{dir}: {err}");
+        let why = if dir == "data" {
+            "is not a recipe cache"
+        } else {
+            "there is no cache to read"
+        };
+        assert!(err.contains(why), "{dir}: {err}");
+        assert_eq!(snapshot(&s), before, "{dir}: the build wrote something");
+    }
+}
+
+#[test]
+fn a_cache_the_user_cannot_write_is_read_without_the_flag_and_gc_refuses_it() {
+    use std::os::unix::fs::PermissionsExt;
+    let s = Scratch::didactic_built();
+    let cache = s.path(".recipe");
+    let set = |mode: u32| {
+        for (rel, _) in cache_tree(&s) {
+            let p = cache.join(rel);
+            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(mode & 0o444)).unwrap();
+        }
+        let mut dirs = vec![cache.clone()];
+        while let Some(d) = dirs.pop() {
+            for e in std::fs::read_dir(&d).unwrap().flatten() {
+                if e.file_type().unwrap().is_dir() {
+                    dirs.push(e.path());
+                }
+            }
+            std::fs::set_permissions(&d, std::fs::Permissions::from_mode(mode)).unwrap();
+        }
+    };
+    set(0o555);
+    // Permissions do not bind the superuser: there the flag's tests cover the read-only path.
+    if std::fs::write(cache.join("probe"), b"x").is_ok() {
+        eprintln!("note: running as a user that can write a read-only directory; skipped");
+        std::fs::remove_file(cache.join("probe")).unwrap();
+        set(0o755);
+        return;
+    }
+    let before = cache_tree(&s);
+    let (ok, report, err) = s.build(&["--locked"]);
+    set(0o755);
+    assert!(ok, "{err}");
+    assert!(err.contains("is read-only"), "{err}");
+    assert!(nodes_in_state(&report, "ran").is_empty());
+    assert_eq!(cache_tree(&s), before);
+    set(0o555);
+    let out = s.recipe_cmd(&["gc", "didactic.toml"]);
+    set(0o755);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{err}");
+    assert!(err.contains("cannot be written"), "{err}");
+}

@@ -13,7 +13,7 @@
 //! coordinator (dispatch, expansion, bookkeeping) waits on the calling thread.
 
 use crate::artifact::Hash;
-use crate::dirlock::DirLock;
+use crate::dirlock::{Access, DirLock};
 use crate::emitted::Emitted;
 use crate::error::EngineError;
 use crate::executor::Coordinator;
@@ -48,6 +48,10 @@ pub struct BuildOptions {
     /// builds of other graphs never become this one's baseline. A plain path component
     /// ([`crate::manifest::is_record_name`]); `BuildOptions::new` says `default`.
     pub record: String,
+    /// Use the cache for reading only: nothing is written into it (no entries, no manifest).
+    /// [`lock_cache`] then takes a shared lock; a build whose lock came back read-only (a
+    /// cache that cannot be written) is read-only too, whatever this says.
+    pub read_only: bool,
 }
 
 impl BuildOptions {
@@ -59,6 +63,7 @@ impl BuildOptions {
             jobs: 1,
             keep_going: true,
             record: DEFAULT_RECORD.to_string(),
+            read_only: false,
         }
     }
 
@@ -118,7 +123,8 @@ pub fn build(
 /// Claims `opts.cache_dir` as a cache (see `marker`) and takes its lock, telling `on_event` when
 /// another build holds it first. A caller that writes files of its own after the build (a lock
 /// file, a report) holds the guard until they are written, so that a build racing it cannot
-/// interleave its outputs with them.
+/// interleave its outputs with them. A read-only build (or a cache that cannot be written) gets
+/// a shared lock on an existing cache ([`DirLock::read_only`]).
 pub fn lock_cache(
     opts: &BuildOptions,
     on_event: &(dyn Fn(&Event) + Sync),
@@ -132,8 +138,22 @@ pub fn lock_cache(
             ),
         });
     }
-    crate::marker::claim(&opts.cache_dir)?;
-    DirLock::acquire(&opts.cache_dir, |p| {
+    let access = if opts.read_only {
+        if !opts.cache_dir.is_dir() {
+            return Err(EngineError::Invalid {
+                path: opts.cache_dir.clone(),
+                message: "there is no cache to read here: a read-only build reads a cache that \
+                          a writing build made"
+                    .into(),
+            });
+        }
+        crate::marker::require(&opts.cache_dir)?;
+        Access::Read
+    } else {
+        crate::marker::claim(&opts.cache_dir)?;
+        Access::Write
+    };
+    DirLock::acquire_for(&opts.cache_dir, access, |p| {
         on_event(&Event::WaitingForLock {
             path: p.to_path_buf(),
         })
@@ -158,7 +178,8 @@ pub fn build_holding(
     }
     let mut graph = graph;
     let t0 = Instant::now();
-    let store = Store::open(&opts.cache_dir)?;
+    let read_only = opts.read_only || lock.read_only();
+    let store = Store::open_for(&opts.cache_dir, read_only)?;
     store.sweep_temporaries()?;
     let record_dir = opts.record_dir();
     let prev = Manifest::load(&record_dir).unwrap_or_default();
@@ -207,14 +228,16 @@ pub fn build_holding(
 
     // A build that changed nothing leaves its record as it was.
     let manifest = co.manifest(&graph);
-    if manifest != prev {
+    if manifest != prev && !read_only {
         manifest
             .save(&record_dir)
             .map_err(|e| EngineError::io(crate::manifest::manifest_path(&record_dir), e))?;
     }
-    co.emitted
-        .save_over(&prev_emitted, &record_dir)
-        .map_err(|e| EngineError::io(&record_dir, e))?;
+    if !read_only {
+        co.emitted
+            .save_over(&prev_emitted, &record_dir)
+            .map_err(|e| EngineError::io(&record_dir, e))?;
+    }
     let output_files = co.output_files.clone();
     let results = co.into_results(&graph);
 

@@ -50,7 +50,7 @@ impl Derivations {
     pub fn open(opts: &BuildOptions) -> Result<Derivations, EngineError> {
         let record_dir = opts.record_dir();
         Ok(Derivations {
-            store: Store::open(&opts.cache_dir)?,
+            store: Store::open_for(&opts.cache_dir, opts.read_only)?,
             before: recorded(&record_dir),
             record_dir,
             used: Mutex::new(Entries::new()),
@@ -110,7 +110,7 @@ impl Derivations {
     /// already.
     pub fn save(&self) -> Result<(), EngineError> {
         let used = self.used.lock().unwrap_or_else(|p| p.into_inner());
-        if *used == self.before {
+        if *used == self.before || self.store.read_only() {
             return Ok(());
         }
         let path = list_path(&self.record_dir);

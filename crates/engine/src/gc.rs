@@ -23,9 +23,16 @@ pub struct GcStats {
 }
 
 fn lock_now(cache_dir: &Path) -> Result<DirLock, EngineError> {
-    DirLock::try_acquire(cache_dir)?.ok_or_else(|| EngineError::Locked {
+    let lock = DirLock::try_acquire(cache_dir)?.ok_or_else(|| EngineError::Locked {
         path: cache_dir.to_path_buf(),
-    })
+    })?;
+    if lock.read_only() {
+        return Err(EngineError::Invalid {
+            path: cache_dir.to_path_buf(),
+            message: "the cache cannot be written (a read-only disk or no permission): nothing was removed".into(),
+        });
+    }
+    Ok(lock)
 }
 
 /// Remove every object and action referenced neither by a lock file of `keep` nor by the last

@@ -44,6 +44,8 @@ struct ActionFile {
 #[derive(Debug, Clone)]
 pub struct Store {
     root: PathBuf,
+    /// Entries are read, never written nor removed (a cache the build may only read).
+    read_only: bool,
 }
 
 impl Store {
@@ -55,7 +57,30 @@ impl Store {
         }
         Ok(Store {
             root: root.to_path_buf(),
+            read_only: false,
         })
+    }
+
+    /// Open the cache at `root` for reading only: what is missing stays missing, and the puts
+    /// store nothing (what a build makes then lives as long as the build).
+    pub fn open_read_only(root: &Path) -> Store {
+        Store {
+            root: root.to_path_buf(),
+            read_only: true,
+        }
+    }
+
+    /// [`Store::open`], or [`Store::open_read_only`] when `read_only`.
+    pub fn open_for(root: &Path, read_only: bool) -> Result<Store, EngineError> {
+        if read_only {
+            Ok(Store::open_read_only(root))
+        } else {
+            Store::open(root)
+        }
+    }
+
+    pub fn read_only(&self) -> bool {
+        self.read_only
     }
 
     /// Removes the temporaries of atomic writes (`.tmp-*`) left in `objects/` and `actions/` by
@@ -65,6 +90,9 @@ impl Store {
     /// command line writes its files into its record after the lock is released.
     pub fn sweep_temporaries(&self) -> Result<usize, EngineError> {
         let mut removed = 0;
+        if self.read_only {
+            return Ok(0);
+        }
         for sub in ["objects", "actions"] {
             let d = self.root.join(sub);
             let entries = std::fs::read_dir(&d).map_err(|e| EngineError::io(&d, e))?;
@@ -123,6 +151,9 @@ impl Store {
     }
 
     pub fn put_object(&self, a: &Artifact) -> std::io::Result<()> {
+        if self.read_only {
+            return Ok(());
+        }
         let bytes = a.bytes().map_err(|e| std::io::Error::other(e.message))?;
         write_atomic(&self.object_path(a.hash()), bytes, false)
     }
@@ -161,6 +192,9 @@ impl Store {
     }
 
     pub fn put_action(&self, key: Hash, record: &ActionRecord) -> std::io::Result<()> {
+        if self.read_only {
+            return Ok(());
+        }
         let payload = postcard::to_stdvec(&ActionFile {
             key,
             record: record.clone(),

@@ -229,6 +229,7 @@ pub fn opts(dir: &Path, jobs: usize) -> BuildOptions {
         jobs,
         keep_going: true,
         record: DEFAULT_RECORD.to_string(),
+        read_only: false,
     }
 }
 
