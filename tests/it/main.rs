@@ -12,6 +12,7 @@ mod cli_mesh;
 mod cli_msh_groups;
 mod cli_noop;
 mod cli_output;
+mod cli_perturbed;
 mod cli_progress;
 mod cli_proximity;
 mod cli_real_data;

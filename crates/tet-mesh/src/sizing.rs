@@ -343,6 +343,18 @@ mod tests {
         }
     }
 
+    /// The field of the triangles `pts[0..3]` and `pts[3..6]`, growing at 1.2 without a cap.
+    fn two_triangles(pts: &[P]) -> Background {
+        let f = SizeField {
+            size: f64::INFINITY,
+            min_size: 0.0,
+            max_size: f64::INFINITY,
+            growth: 1.2,
+            refine: Vec::new(),
+        };
+        Background::new(pts, &[[0, 1, 2], [3, 4, 5]], &f)
+    }
+
     #[test]
     fn sizes_grow_away_from_small_boundary_triangles_up_to_the_cap() {
         let pts = vec![
@@ -353,15 +365,7 @@ mod tests {
             [14.0, 10.0, 10.0],
             [10.0, 14.0, 10.0],
         ];
-        let tris = vec![[0, 1, 2], [3, 4, 5]];
-        let f = SizeField {
-            size: f64::INFINITY,
-            min_size: 0.0,
-            max_size: f64::INFINITY,
-            growth: 1.2,
-            refine: Vec::new(),
-        };
-        let bg = Background::new(&pts, &tris, &f);
+        let bg = two_triangles(&pts);
         let near = bg.size_at(&[0.2, 0.2, 0.0]);
         let mid = bg.size_at(&[5.0, 5.0, 5.0]);
         // The small triangle's size (1.14) grown over the way to its cell's centre (1.54).
@@ -385,15 +389,7 @@ mod tests {
             [100.0, 0.0, 300.0],
             [0.0, 100.0, 300.0],
         ];
-        let tris = vec![[0, 1, 2], [3, 4, 5]];
-        let f = SizeField {
-            size: f64::INFINITY,
-            min_size: 0.0,
-            max_size: f64::INFINITY,
-            growth: 1.2,
-            refine: Vec::new(),
-        };
-        let bg = Background::new(&pts, &tris, &f);
+        let bg = two_triangles(&pts);
         let cell = bg.cell;
         let centre = 0.2 * (3.0f64).sqrt() * cell / 2.0;
         let at = bg.size_at(&[0.001, 0.001, 0.0]);
