@@ -17,7 +17,6 @@ use geom::predicates::{Orientation, orient3d};
 
 use super::front::WordHasher;
 use super::quality::{shape, shape_above, shape_and_mean_ratio};
-use super::verify::outward_faces;
 
 /// Sets of sorted node tuples, hashed word by word (the optimizer asks them at every flip).
 type WordSet<K> = HashSet<K, BuildHasherDefault<WordHasher>>;
@@ -330,11 +329,13 @@ impl Complex {
         ring.len() == n
     }
 
-    /// The faces of the tet set `set` that no other tet of the set shares, oriented outward.
+    /// The faces of the tet set `set` that no other tet of the set shares, oriented outward (the
+    /// reference the sliver removal's incrementally grown hull is tested against).
+    #[cfg(test)]
     pub fn hull_of(&self, set: &[u32]) -> Vec<[u32; 3]> {
         let mut faces: Vec<([u32; 3], [u32; 3])> = Vec::with_capacity(set.len() * 4);
         for &t in set {
-            for f in outward_faces(self.tets[t as usize]) {
+            for f in super::verify::outward_faces(self.tets[t as usize]) {
                 faces.push((sorted3(f), f));
             }
         }

@@ -159,16 +159,16 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
         return Attempt::Failed;
     }
     let mut cavity = seed.to_vec();
+    let mut hull = Hull::of(cx, &cavity);
     let hull = loop {
-        let hull = cx.hull_of(&cavity);
-        let blocked = hull.iter().find(|f| {
+        let blocked = hull.faces().find(|f| {
             let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
             orient3d(&a, &c, &b, &p) != Orientation::Positive
         });
         // Once `p` sees the hull, unprotected faces that would make a poor cone tet are
         // opened too, to give the new node room.
         let poor = || {
-            hull.iter().find(|f| {
+            hull.faces().find(|f| {
                 let [a, b, c] = f.map(|i| cx.nodes[i as usize]);
                 !cx.face_protected(**f)
                     && cavity.len() < ROOMY_CAVITY
@@ -176,7 +176,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
             })
         };
         let Some(&f) = blocked.or_else(poor) else {
-            break hull;
+            break hull.into_faces();
         };
         if cx.face_protected(f) {
             return Attempt::Behind(f);
@@ -191,6 +191,7 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
             return Attempt::Failed;
         };
         cavity.push(u);
+        hull.add(cx, u);
     };
     // No protected face inside the cavity, no fixed node swallowed.
     let mut faces: Vec<[u32; 3]> = cavity
@@ -254,6 +255,44 @@ fn try_insert(cx: &mut Complex, seed: &[u32], p: P) -> Attempt {
     Attempt::Failed
 }
 
+/// The hull of a growing cavity, kept as [`Complex::hull_of`] makes it (outward faces ordered by
+/// their sorted nodes): a tet added toggles its faces, since in a tet complex a face belongs to
+/// at most two tets. Recomputing the hull after each added tet sorted every face again.
+struct Hull {
+    /// (sorted nodes, outward face), ordered by the first.
+    faces: Vec<([u32; 3], [u32; 3])>,
+}
+
+impl Hull {
+    fn of(cx: &Complex, set: &[u32]) -> Hull {
+        let mut hull = Hull { faces: Vec::new() };
+        for &t in set {
+            hull.add(cx, t);
+        }
+        hull
+    }
+
+    fn add(&mut self, cx: &Complex, t: u32) {
+        for f in outward_faces(cx.tets[t as usize]) {
+            let key = sorted3(f);
+            match self.faces.binary_search_by(|(k, _)| k.cmp(&key)) {
+                Ok(i) => {
+                    self.faces.remove(i);
+                }
+                Err(i) => self.faces.insert(i, (key, f)),
+            }
+        }
+    }
+
+    fn faces(&self) -> impl Iterator<Item = &[u32; 3]> {
+        self.faces.iter().map(|(_, f)| f)
+    }
+
+    fn into_faces(self) -> Vec<[u32; 3]> {
+        self.faces.into_iter().map(|(_, f)| f).collect()
+    }
+}
+
 /// Whether a protected edge of the cavity's tets is not an edge of its hull: the cone would
 /// remove it (a piece of a segment, which no protected face holds and keeps).
 fn swallows_protected_edge(cx: &Complex, cavity: &[u32], hull: &[[u32; 3]]) -> bool {
@@ -277,6 +316,61 @@ fn swallows_protected_edge(cx: &Complex, cavity: &[u32], hull: &[[u32; 3]]) -> b
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A cavity's hull grown tet by tet is the hull `Complex::hull_of` computes, in its order.
+    #[test]
+    fn a_hull_grown_tet_by_tet_is_the_complexs_hull_of_the_same_tets() {
+        // A 3 × 3 × 3 grid of cubes, each cut into six tets round its main diagonal.
+        let n = 3usize;
+        let id = |i: usize, j: usize, k: usize| (i + (n + 1) * (j + (n + 1) * k)) as u32;
+        let mut nodes = Vec::new();
+        for k in 0..=n {
+            for j in 0..=n {
+                for i in 0..=n {
+                    nodes.push([i as f64, j as f64, k as f64 * 1.1]);
+                }
+            }
+        }
+        let cx0 = Complex::new(nodes.clone(), vec![], 0, std::iter::empty());
+        let mut tets = Vec::new();
+        for k in 0..n {
+            for j in 0..n {
+                for i in 0..n {
+                    let c = |d: [usize; 3]| id(i + d[0], j + d[1], k + d[2]);
+                    let (a, h) = (c([0, 0, 0]), c([1, 1, 1]));
+                    let ring = [
+                        [1, 0, 0],
+                        [1, 1, 0],
+                        [0, 1, 0],
+                        [0, 1, 1],
+                        [0, 0, 1],
+                        [1, 0, 1],
+                    ];
+                    for r in 0..6 {
+                        let (b, d) = (c(ring[r]), c(ring[(r + 1) % 6]));
+                        let t = if cx0.positive([a, b, d, h]) {
+                            [a, b, d, h]
+                        } else {
+                            [a, d, b, h]
+                        };
+                        tets.push(t);
+                    }
+                }
+            }
+        }
+        let cx = Complex::new(nodes, tets.clone(), 0, std::iter::empty());
+        // Growing sets in a scattered order, checked after every tet.
+        let order: Vec<u32> = (0..tets.len() as u32)
+            .map(|i| (i * 37) % tets.len() as u32)
+            .collect();
+        let mut hull = Hull::of(&cx, &order[..1]);
+        for m in 2..=order.len() {
+            hull.add(&cx, order[m - 1]);
+            let faces: Vec<[u32; 3]> = hull.faces().copied().collect();
+            assert_eq!(faces, cx.hull_of(&order[..m]), "after {m} tets");
+        }
+        assert_eq!(hull.into_faces().len(), 2 * 6 * n * n);
+    }
 
     /// A flat tet of four fixed nodes inside a box of fixed nodes: only a new node can fix it.
     #[test]
