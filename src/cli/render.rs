@@ -41,6 +41,8 @@ pub struct Renderer {
     bars: Option<MultiProgress>,
     delay: Duration,
     active: Mutex<BTreeMap<String, Running>>,
+    /// The recipe's surfaces, imported when a meshing failure first needs them (`culprit`).
+    surfaces: std::sync::OnceLock<Vec<(String, gocad::import::ImportedSurface)>>,
 }
 
 /// A node that runs, when bars are drawn: since when, and its bar once it has one.
@@ -68,6 +70,7 @@ impl Renderer {
             bars,
             delay,
             active: Mutex::new(BTreeMap::new()),
+            surfaces: std::sync::OnceLock::new(),
         }
     }
 
@@ -195,8 +198,30 @@ impl Renderer {
                 d.message = format!("`{node}` failed: {}", d.message);
                 d.to_string()
             }
-            None => format!("       error `{node}` failed: {error}"),
+            None => {
+                let mut line = format!("       error `{node}` failed: {error}");
+                if let Some(near) = self.nearest_input(node, error) {
+                    line.push_str(&format!("\n{:>12} {near}", "note"));
+                }
+                line
+            }
         }
+    }
+
+    /// For a surface or tet mesh failure at coordinates: the input triangle nearest to them.
+    fn nearest_input(&self, node: &str, error: &str) -> Option<String> {
+        // A patch is named `<surface>#<k>`: its own surface's triangles are the ones to edit.
+        let only = match node.split_once(':') {
+            Some(("surface_mesh", patch)) => Some(patch.split('#').next().unwrap_or(patch)),
+            Some(("tet_mesh", _)) => None,
+            _ => return None,
+        };
+        let at = super::culprit::failure_place(error)?;
+        let surfaces = self
+            .surfaces
+            .get_or_init(|| super::culprit::import_all(&self.recipe));
+        let units = self.recipe.model.units.as_str();
+        super::culprit::nearest_triangle(surfaces, only, at, units)
     }
 }
 
@@ -222,5 +247,37 @@ fn verb(kind: &str) -> &'static str {
         "discretize" => "Discretized",
         "export" => "Exported",
         _ => "Ran",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shipped() -> Renderer {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("recipes");
+        let recipe = crate::cli::load::load(&dir.join("didactic.toml"))
+            .unwrap_or_else(|e| panic!("the example loads: {}", e.0));
+        Renderer::new(&recipe, Verbosity::Quiet, false)
+    }
+
+    #[test]
+    fn a_mesh_failure_at_coordinates_names_the_nearest_input_triangles_file_line() {
+        let r = shipped();
+        // On H2 near the box's y-min side, where F1 also passes: a patch's failure names its
+        // own surface's triangle, a region's the nearest of any.
+        let at = "at (501500.0, 7000010.0, -1180.0)";
+        let patch = r.failure("surface_mesh:H2#1", &format!("triangle 3 folds {at}"));
+        assert!(
+            patch
+                .contains("note the nearest input triangle is data/didactic/H2_base_reservoir.ts:"),
+            "{patch}"
+        );
+        assert!(patch.contains("(surface `H2`)") && patch.ends_with(" m from there"));
+        let region = r.failure("tet_mesh:reservoir_E", &format!("the front is stuck {at}"));
+        assert!(region.contains("note the nearest input triangle is data/didactic/"));
+        // Without coordinates, or from another stage, the error stays on its own.
+        assert!(!r.failure("tet_mesh:x", "no place").contains("note"));
+        assert!(!r.failure("export", &format!("oops {at}")).contains("note"));
     }
 }
