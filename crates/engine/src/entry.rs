@@ -5,8 +5,9 @@
 //! every build, block forever while the cache lock is held, or never end. So the path is looked
 //! at without following links, only a regular file is opened, and the read is bounded by the
 //! size the open file has. A wrong kind of file is removed, so that the entry can be written
-//! again. An I/O error (too many open files, a failing disk) says nothing about the entry: it is
-//! told as such, never as damage, and the entry is left alone.
+//! again (left in place when the cache is only read). An I/O error (too many open files, a
+//! failing disk) says nothing about the entry: it is told as such, never as damage, and the
+//! entry is left alone.
 //!
 //! Between the look and the open nobody else writes: only builds holding the cache's lock write
 //! entries.
@@ -20,14 +21,31 @@ pub(crate) enum Read {
     Bytes(Vec<u8>),
     Missing,
     /// Not a regular file, or it changed while read; the text says what it was. A wrong kind of
-    /// file has been removed.
+    /// file has been removed, unless it was to be kept.
     Damaged(String),
     /// The entry could not be read; the text is the I/O error.
     Failed(String),
 }
 
-/// Reads the entry at `path` (see the module docs).
+/// What to do with a wrong kind of file in place of an entry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Wrong {
+    /// Remove it, so that the entry can be written again.
+    Remove,
+    /// Leave it (a cache only read): it is still damage.
+    Keep,
+}
+
+/// Reads the entry at `path` (see the module docs), removing a wrong kind of file.
+#[cfg(test)]
 pub(crate) fn read(path: &Path) -> Read {
+    read_as(path, Wrong::Remove)
+}
+
+/// Reads the entry at `path` (see the module docs); `wrong` says what becomes of a wrong kind
+/// of file.
+pub(crate) fn read_as(path: &Path, wrong: Wrong) -> Read {
+    let remove_wrong = |path: &Path, kind| handle_wrong(path, kind, wrong);
     let meta = match std::fs::symlink_metadata(path) {
         Ok(m) => m,
         Err(e) if e.kind() == ErrorKind::NotFound => return Read::Missing,
@@ -56,20 +74,27 @@ pub(crate) fn read(path: &Path) -> Read {
     }
 }
 
-/// Whether a regular file is at `path`, without reading it; a wrong kind of file is removed.
-pub(crate) fn present(path: &Path) -> bool {
+/// Whether a regular file is at `path`, without reading it; `wrong` says what becomes of a
+/// wrong kind of file.
+pub(crate) fn present(path: &Path, wrong: Wrong) -> bool {
     match std::fs::symlink_metadata(path) {
         Ok(m) if m.file_type().is_file() => true,
         Ok(m) => {
-            remove_wrong(path, kind_of(&m.file_type()));
+            handle_wrong(path, kind_of(&m.file_type()), wrong);
             false
         }
         Err(_) => false,
     }
 }
 
-/// Removes what is at `path` in place of an entry, and says what it was.
-fn remove_wrong(path: &Path, kind: &str) -> Read {
+/// Removes what is at `path` in place of an entry (unless told to keep it), and says what it
+/// was.
+fn handle_wrong(path: &Path, kind: &str, wrong: Wrong) -> Read {
+    if wrong == Wrong::Keep {
+        return Read::Damaged(format!(
+            "{kind}, not a file: left in place (the cache is only read)"
+        ));
+    }
     let removed = if kind == "a directory" {
         std::fs::remove_dir_all(path)
     } else {
@@ -151,8 +176,20 @@ mod tests {
         std::fs::write(&file, b"kept").unwrap();
         // A path through a regular file fails with "not a directory", as EMFILE or EIO would.
         assert!(matches!(read(&file.join("entry")), Read::Failed(_)));
-        assert!(!present(&file.join("entry")));
+        assert!(!present(&file.join("entry"), Wrong::Remove));
         assert_eq!(std::fs::read(&file).unwrap(), b"kept");
+    }
+
+    #[test]
+    fn a_cache_only_read_keeps_a_wrong_kind_of_file_and_still_calls_it_damage() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path().join("d");
+        std::fs::create_dir_all(&d).unwrap();
+        assert!(
+            matches!(read_as(&d, Wrong::Keep), Read::Damaged(w) if w.contains("left in place"))
+        );
+        assert!(!present(&d, Wrong::Keep));
+        assert!(d.is_dir());
     }
 
     #[cfg(unix)]

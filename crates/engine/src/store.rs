@@ -83,6 +83,15 @@ impl Store {
         self.read_only
     }
 
+    /// What a read does with a wrong kind of file in place of an entry: a cache only read keeps it.
+    fn wrong(&self) -> entry::Wrong {
+        if self.read_only {
+            entry::Wrong::Keep
+        } else {
+            entry::Wrong::Remove
+        }
+    }
+
     /// Removes the temporaries of atomic writes (`.tmp-*`) left in `objects/` and `actions/` by
     /// a process killed mid-write; returns how many. Only the engine writes there, and only
     /// under the cache lock, so with the lock held every such file is debris (`gc` removes them
@@ -123,7 +132,7 @@ impl Store {
 
     /// Read and verify the object named `h`.
     pub fn load_object(&self, h: Hash) -> Load<Artifact> {
-        let bytes = match entry::read(&self.object_path(h)) {
+        let bytes = match entry::read_as(&self.object_path(h), self.wrong()) {
             entry::Read::Bytes(b) => b,
             entry::Read::Missing => return Load::Missing,
             entry::Read::Damaged(d) => return Load::Corrupt(format!("object {}: {d}", h.short())),
@@ -147,7 +156,7 @@ impl Store {
     /// Whether the object named `h` is in the store, without reading it.
     /// Something other than a regular file at its path is removed, as a read would.
     pub fn has_object(&self, h: Hash) -> bool {
-        entry::present(&self.object_path(h))
+        entry::present(&self.object_path(h), self.wrong())
     }
 
     pub fn put_object(&self, a: &Artifact) -> std::io::Result<()> {
@@ -160,7 +169,7 @@ impl Store {
 
     /// Read and verify the action record for `key`.
     pub fn load_action(&self, key: Hash) -> Load<ActionRecord> {
-        let bytes = match entry::read(&self.action_path(key)) {
+        let bytes = match entry::read_as(&self.action_path(key), self.wrong()) {
             entry::Read::Bytes(b) => b,
             entry::Read::Missing => return Load::Missing,
             entry::Read::Damaged(d) => {
