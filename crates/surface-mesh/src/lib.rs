@@ -50,7 +50,9 @@ mod retriangulate;
 mod segments;
 mod size;
 mod smooth;
+mod sparse;
 mod support;
+mod tutte;
 mod unfold;
 mod verify;
 

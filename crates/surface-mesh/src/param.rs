@@ -15,8 +15,10 @@
 //!   the surface, not z).
 //! - The border is traced edge by edge around each vertex's fan, so a support pinched at a
 //!   vertex (two faults meeting its border at one point) has that vertex once per fan in its
-//!   loops; a projection handles it like any border, a Tutte embedding cannot pin it twice and
-//!   refuses it.
+//!   loops; a projection handles it like any border. A Tutte embedding splits each loop at its
+//!   pinches into simple cycles and pins or cones each cycle on its own, so the pinch stays one
+//!   point with the support's fans and the cones' holes in turn around it (a hole touching the
+//!   outer border, two holes touching, a reverse fault's overlapping lips meeting a border).
 //! - Otherwise (recumbent folds, caps down to their equator...): a Tutte embedding with positive
 //!   symmetric weights (inverse edge lengths). The longest border loop is pinned to a circle by
 //!   arc length (same perimeter as in 3D, so sizes keep their scale); every other border loop is
@@ -26,7 +28,7 @@
 //!   recursion, deterministic summation order).
 
 use super::segments::first_crossing;
-use geom::predicates::{cross, dist, dot, sub};
+use geom::predicates::{cross, dot, sub};
 use geom::{Orientation, TriMesh, orient2d};
 use std::collections::BTreeMap;
 
@@ -161,7 +163,7 @@ pub fn flatten(s: &TriMesh) -> Result<Param, ParamError> {
             method: "plane",
         });
     }
-    let uv = tutte(s, &loops)?;
+    let uv = super::tutte::embed(s, &loops)?;
     Ok(Param {
         uv,
         method: "tutte",
@@ -216,7 +218,9 @@ pub fn plane_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     (e1, e2)
 }
 
-fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
+/// Every support vertex projected onto the plane normal to the area-weighted mean normal (about
+/// the bounding box's centre); `None` when the normals cancel out.
+pub fn mean_plane_uv(s: &TriMesh) -> Option<Vec<[f64; 2]>> {
     let mut n = [0.0; 3];
     for t in 0..s.triangles.len() {
         let [a, b, c] = s.corners(t);
@@ -228,16 +232,26 @@ fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
     }
     let (e1, e2) = plane_basis(n);
     let o = centre(s);
-    let uv: Vec<[f64; 2]> = s
-        .vertices
-        .iter()
-        .map(|p| {
-            let d = sub(p, &o);
-            [dot(&d, &e1), dot(&d, &e2)]
-        })
-        .collect();
-    if !all_positive(s, &uv) {
-        return None;
+    Some(
+        s.vertices
+            .iter()
+            .map(|p| {
+                let d = sub(p, &o);
+                [dot(&d, &e1), dot(&d, &e2)]
+            })
+            .collect(),
+    )
+}
+
+fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
+    mean_plane_uv(s).filter(|uv| injective(s, loops, uv))
+}
+
+/// Whether `uv` maps the support one to one (exact): every triangle counter-clockwise, the border
+/// `loops` free of crossings and exactly one of them (the outer one) counter-clockwise.
+pub fn injective(s: &TriMesh, loops: &[Vec<u32>], uv: &[[f64; 2]]) -> bool {
+    if !all_positive(s, uv) {
+        return false;
     }
     let segs: Vec<([f64; 2], [f64; 2])> = loops
         .iter()
@@ -245,20 +259,17 @@ fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
         .map(|(a, b)| (uv[a as usize], uv[b as usize]))
         .collect();
     if first_crossing(&segs).is_some() {
-        return None;
+        return false;
     }
     let outer = loops
         .iter()
-        .filter(|l| counter_clockwise(l, &uv) == Some(true));
-    if outer.count() != 1 {
-        return None;
-    }
-    Some(uv)
+        .filter(|l| counter_clockwise(l, uv) == Some(true));
+    outer.count() == 1
 }
 
 /// The orientation of a simple polygon (exact): at its lowest-leftmost vertex the polygon turns
 /// the way it runs. `None` when the turn there is degenerate.
-fn counter_clockwise(polygon: &[u32], uv: &[[f64; 2]]) -> Option<bool> {
+pub fn counter_clockwise(polygon: &[u32], uv: &[[f64; 2]]) -> Option<bool> {
     let n = polygon.len();
     let at = |i: usize| uv[polygon[i % n] as usize];
     let low = (0..n).min_by(|&i, &j| {
@@ -291,256 +302,4 @@ pub fn first_non_positive(s: &TriMesh, uv: &[[f64; 2]]) -> Option<usize> {
         orient2d(&uv[t[0] as usize], &uv[t[1] as usize], &uv[t[2] as usize])
             != Orientation::Positive
     })
-}
-
-fn tutte(s: &TriMesh, loops: &[Vec<u32>]) -> Result<Vec<[f64; 2]>, ParamError> {
-    let nv = s.vertices.len();
-    // A border vertex met twice (a pinch) cannot be pinned or coned once.
-    let mut met = vec![false; nv];
-    for &v in loops.iter().flatten() {
-        if std::mem::replace(&mut met[v as usize], true) {
-            return Err(err(
-                format!(
-                    "support vertex {v} is pinched (two border loops touch there) and the support does not project onto a plane without folding"
-                ),
-                Some(s.vertices[v as usize]),
-            ));
-        }
-    }
-    // Outer loop: the longest one.
-    let lens = loop_lengths(s, loops);
-    let mut outer = 0;
-    for (i, &l) in lens.iter().enumerate() {
-        if l > lens[outer] {
-            outer = i;
-        }
-    }
-    let total = lens[outer];
-    if !(total > 0.0) {
-        return Err(err("the support border has zero length".into(), None));
-    }
-    // Unknowns: support vertices not on the outer loop, plus one cone vertex per other loop.
-    let ncone = loops.len() - 1;
-    let n = nv + ncone;
-    let mut pinned = vec![false; n];
-    let mut uv = vec![[0.0f64; 2]; n];
-    pin_outer(s, &loops[outer], total, &mut uv, &mut pinned);
-    let (edges, used) = weights(s, loops, outer, &lens);
-    for (v, u) in used.iter().enumerate() {
-        if !u {
-            pinned[v] = true;
-        }
-    }
-    let lap = Laplacian::new(&edges, n);
-    for k in 0..2 {
-        let x = lap.solve(&pinned, &uv, k);
-        for i in 0..n {
-            if !pinned[i] {
-                uv[i][k] = x[i];
-            }
-        }
-    }
-    uv.truncate(nv);
-    if let Some(t) = first_non_positive(s, &uv) {
-        let [a, b, c] = s.corners(t);
-        return Err(err(
-            "the support cannot be flattened without folding (a triangle inverts in its Tutte embedding)".into(),
-            Some([(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0]),
-        ));
-    }
-    Ok(uv)
-}
-
-/// The 3D length of each border loop.
-fn loop_lengths(s: &TriMesh, loops: &[Vec<u32>]) -> Vec<f64> {
-    loops
-        .iter()
-        .map(|l| {
-            (0..l.len())
-                .map(|i| {
-                    dist(
-                        &s.vertices[l[i] as usize],
-                        &s.vertices[l[(i + 1) % l.len()] as usize],
-                    )
-                })
-                .sum()
-        })
-        .collect()
-}
-
-/// Pins the outer loop to a circle of perimeter `total`, by arc length from its first vertex.
-fn pin_outer(s: &TriMesh, l: &[u32], total: f64, uv: &mut [[f64; 2]], pinned: &mut [bool]) {
-    let radius = total / (2.0 * std::f64::consts::PI);
-    let mut acc = 0.0;
-    for i in 0..l.len() {
-        let ang = 2.0 * std::f64::consts::PI * acc / total;
-        uv[l[i] as usize] = [radius * ang.cos(), radius * ang.sin()];
-        pinned[l[i] as usize] = true;
-        acc += dist(
-            &s.vertices[l[i] as usize],
-            &s.vertices[l[(i + 1) % l.len()] as usize],
-        );
-    }
-}
-
-/// Symmetric weights per undirected edge (inverse lengths; each inner loop's vertices tied to
-/// its cone vertex by the inverse mean edge length), and which support vertices triangles use.
-fn weights(
-    s: &TriMesh,
-    loops: &[Vec<u32>],
-    outer: usize,
-    lens: &[f64],
-) -> (BTreeMap<(u32, u32), f64>, Vec<bool>) {
-    let nv = s.vertices.len();
-    let mut edges: BTreeMap<(u32, u32), f64> = BTreeMap::new();
-    let mut used = vec![false; nv];
-    for t in &s.triangles {
-        for i in 0..3 {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            used[a as usize] = true;
-            let key = (a.min(b), a.max(b));
-            let d = dist(&s.vertices[a as usize], &s.vertices[b as usize]);
-            edges.insert(key, 1.0 / d.max(f64::MIN_POSITIVE.sqrt()));
-        }
-    }
-    let mut c = 0;
-    for (li, l) in loops.iter().enumerate() {
-        if li == outer {
-            continue;
-        }
-        let cone = (nv + c) as u32;
-        c += 1;
-        let w = 1.0 / (lens[li] / l.len() as f64).max(f64::MIN_POSITIVE.sqrt());
-        for &v in l {
-            edges.insert((v, cone), w);
-        }
-    }
-    (edges, used)
-}
-
-/// The weighted graph Laplacian in CSR form (rows in vertex order, entries in edge-key order).
-struct Laplacian {
-    n: usize,
-    deg: Vec<usize>,
-    col: Vec<u32>,
-    val: Vec<f64>,
-    diag: Vec<f64>,
-}
-
-impl Laplacian {
-    /// Builds the adjacency of `n` vertices from the weighted edges.
-    fn new(edges: &BTreeMap<(u32, u32), f64>, n: usize) -> Self {
-        let mut deg = vec![0usize; n + 1];
-        for &(a, b) in edges.keys() {
-            deg[a as usize + 1] += 1;
-            deg[b as usize + 1] += 1;
-        }
-        for i in 0..n {
-            deg[i + 1] += deg[i];
-        }
-        let mut fill = deg.clone();
-        let mut col = vec![0u32; deg[n]];
-        let mut val = vec![0.0; deg[n]];
-        for (&(a, b), &w) in edges {
-            col[fill[a as usize]] = b;
-            val[fill[a as usize]] = w;
-            fill[a as usize] += 1;
-            col[fill[b as usize]] = a;
-            val[fill[b as usize]] = w;
-            fill[b as usize] += 1;
-        }
-        let diag: Vec<f64> = (0..n)
-            .map(|i| val[deg[i]..deg[i + 1]].iter().sum())
-            .collect();
-        Laplacian {
-            n,
-            deg,
-            col,
-            val,
-            diag,
-        }
-    }
-
-    /// The right-hand side for coordinate `k`: b = W * pinned values, on free vertices.
-    fn rhs(&self, pinned: &[bool], uv: &[[f64; 2]], k: usize) -> Vec<f64> {
-        let (deg, col, val) = (&self.deg, &self.col, &self.val);
-        let mut b = vec![0.0; self.n];
-        for i in 0..self.n {
-            if pinned[i] {
-                continue;
-            }
-            for e in deg[i]..deg[i + 1] {
-                let j = col[e] as usize;
-                if pinned[j] {
-                    b[i] += val[e] * uv[j][k];
-                }
-            }
-        }
-        b
-    }
-
-    /// y = A x with A = D - W restricted to free vertices (0 on pinned ones).
-    fn apply(&self, pinned: &[bool], x: &[f64], y: &mut [f64]) {
-        let (deg, col, val, diag) = (&self.deg, &self.col, &self.val, &self.diag);
-        for i in 0..self.n {
-            if pinned[i] {
-                y[i] = 0.0;
-                continue;
-            }
-            let mut s = diag[i] * x[i];
-            for e in deg[i]..deg[i + 1] {
-                let j = col[e] as usize;
-                if !pinned[j] {
-                    s -= val[e] * x[j];
-                }
-            }
-            y[i] = s;
-        }
-    }
-
-    /// Solves A x = b for coordinate `k` on the free vertices by Jacobi-preconditioned conjugate
-    /// gradients (fixed iteration cap, stops on a small residual or a non-positive curvature).
-    fn solve(&self, pinned: &[bool], uv: &[[f64; 2]], k: usize) -> Vec<f64> {
-        let (n, diag) = (self.n, &self.diag);
-        let b = self.rhs(pinned, uv, k);
-        let mut x = vec![0.0; n];
-        let mut r = b.clone();
-        let mut z: Vec<f64> = (0..n)
-            .map(|i| if pinned[i] { 0.0 } else { r[i] / diag[i] })
-            .collect();
-        let mut p = z.clone();
-        let mut rz: f64 = (0..n).map(|i| r[i] * z[i]).sum();
-        let bnorm = (0..n)
-            .map(|i| b[i] * b[i])
-            .sum::<f64>()
-            .sqrt()
-            .max(f64::MIN_POSITIVE);
-        let mut ap = vec![0.0; n];
-        for _ in 0..(20 * n + 100) {
-            let rn = (0..n).map(|i| r[i] * r[i]).sum::<f64>().sqrt();
-            if rn <= 1e-14 * bnorm {
-                break;
-            }
-            self.apply(pinned, &p, &mut ap);
-            let pap: f64 = (0..n).map(|i| p[i] * ap[i]).sum();
-            if !(pap > 0.0) {
-                break;
-            }
-            let alpha = rz / pap;
-            for i in 0..n {
-                x[i] += alpha * p[i];
-                r[i] -= alpha * ap[i];
-            }
-            for i in 0..n {
-                z[i] = if pinned[i] { 0.0 } else { r[i] / diag[i] };
-            }
-            let rz2: f64 = (0..n).map(|i| r[i] * z[i]).sum();
-            let beta = rz2 / rz;
-            rz = rz2;
-            for i in 0..n {
-                p[i] = z[i] + beta * p[i];
-            }
-        }
-        x
-    }
 }

@@ -166,7 +166,9 @@ impl Operation for SurfaceMeshOp {
     }
     fn version(&self) -> u32 {
         // 4: triangles that fold on the support (a fan turning more than 360°) are split.
-        4
+        // 5: supports no plane projects one to one get mean value Tutte embeddings, pinched
+        //    ones too.
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

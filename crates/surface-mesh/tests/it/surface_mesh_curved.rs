@@ -6,6 +6,7 @@ use surface_mesh_common::*;
 use test_support::surface_mesh_common;
 
 use geom::TriMesh;
+use geom::predicates::dist;
 use std::f64::consts::PI;
 use surface_mesh::PatchInput;
 
@@ -92,17 +93,7 @@ pub(crate) fn z_curve(u: f64) -> [f64; 2] {
 #[test]
 fn a_recumbent_fold_that_is_no_height_field_meshes_without_folds() {
     for off in [[0.0; 3], UTM] {
-        let g = Grid {
-            nx: 100,
-            ny: 8,
-            u: (0.0, 5.0),
-            v: (0.0, 1200.0),
-            f: |u, y| {
-                let c = z_curve(u);
-                [c[0], y, c[1] - 2000.0]
-            },
-            offset: off,
-        };
+        let g = fold_grid(off);
         let input = PatchInput {
             name: "recumbent fold".into(),
             support: g.support(),
@@ -233,18 +224,10 @@ fn a_coarse_support_of_long_thin_triangles_is_meshed_finely_on_it() {
 #[test]
 fn the_recumbent_fold_support_needs_and_gets_a_fold_free_tutte_flattening() {
     use surface_mesh::flattening_method;
-    let fold = Grid {
-        nx: 50,
-        ny: 4,
-        u: (0.0, 5.0),
-        v: (0.0, 1200.0),
-        f: |s, y| {
-            let c = z_curve(s);
-            [c[0], y, c[1]]
-        },
-        offset: UTM,
-    };
-    assert_eq!(flattening_method(&fold.support()).unwrap(), "tutte");
+    assert_eq!(
+        flattening_method(&fold_grid(UTM).support()).unwrap(),
+        "tutte"
+    );
     let horizon = Grid {
         nx: 10,
         ny: 10,
@@ -358,5 +341,76 @@ fn a_horizon_whose_lips_overlap_round_a_reverse_fault_tip_meshes_without_folds()
         let out = surface_mesh::mesh_patch(&input, &uniform(600.0))
             .unwrap_or_else(|e| panic!("turn {turn}: {e}"));
         assert!(out.triangles.len() > 8, "turn {turn}");
+    }
+}
+
+/// The recumbent fold of `a_recumbent_fold_that_is_no_height_field_meshes_without_folds` on a
+/// 100 × 8 grid.
+fn fold_grid(off: [f64; 3]) -> Grid<impl Fn(f64, f64) -> [f64; 3]> {
+    Grid {
+        nx: 100,
+        ny: 8,
+        u: (0.0, 5.0),
+        v: (0.0, 1200.0),
+        f: |u, y| {
+            let c = z_curve(u);
+            [c[0], y, c[1] - 2000.0]
+        },
+        offset: off,
+    }
+}
+
+/// The fold's support with a hole cut out of its middle (flat) limb that touches the border at
+/// one vertex, cell corner (50, 0): the triangle of cell (50, 0) away from the border and the
+/// cells (50..54, 1..4) are removed. Returns the support and the hole's loop, along the removed
+/// triangles' edges in steps of at most 50 m.
+fn fold_with_a_hole_touching_its_border(off: [f64; 3]) -> (TriMesh, Vec<[f64; 3]>) {
+    let fold = fold_grid(off);
+    let mut support = fold.support();
+    let cell = |i: usize, j: usize| 2 * (j * 100 + i);
+    let mut cut = vec![cell(50, 0) + 1];
+    for j in 1..4 {
+        for i in 50..54 {
+            cut.extend([cell(i, j), cell(i, j) + 1]);
+        }
+    }
+    support.triangles = (0..support.triangles.len())
+        .filter(|t| !cut.contains(t))
+        .map(|t| support.triangles[t])
+        .collect();
+    // Corners of the hole in grid units, round from the pinch.
+    let corners = [(50, 0), (51, 1), (54, 1), (54, 4), (50, 4), (50, 1)];
+    let mut hole = Vec::new();
+    for k in 0..corners.len() {
+        let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+        let param = |(i, j): (i32, i32)| (0.05 * f64::from(i), 150.0 * f64::from(j));
+        let ((u0, v0), (u1, v1)) = (param(a), param(b));
+        let steps = (dist(&fold.at(u0, v0), &fold.at(u1, v1)) / 50.0).ceil() as usize;
+        for s in 0..steps {
+            let t = s as f64 / steps as f64;
+            hole.push(fold.at(u0 + t * (u1 - u0), v0 + t * (v1 - v0)));
+        }
+    }
+    (support, hole)
+}
+
+#[test]
+fn a_recumbent_fold_with_a_hole_touching_its_border_flattens_and_meshes() {
+    for off in [[0.0; 3], UTM] {
+        let (support, hole) = fold_with_a_hole_touching_its_border(off);
+        let border = fold_grid(off).border_loop(60, 24);
+        assert_eq!(border[30], hole[0], "the loops touch at the pinch, u = 2.5");
+        // No plane projection is one to one, and a Tutte embedding must keep the pinch one point.
+        assert_eq!(surface_mesh::flattening_method(&support).unwrap(), "tutte");
+        let input = PatchInput {
+            name: "fold with a hole touching its border".into(),
+            support,
+            loops: vec![border, hole.clone()],
+            constraints: vec![],
+            points: Vec::new(),
+        };
+        let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.05, 1.8);
+        assert!(q.triangles > 1500);
+        assert_eq!(out.nodes.iter().filter(|n| **n == hole[0]).count(), 1);
     }
 }
