@@ -6,11 +6,15 @@
 //! - First choice: orthogonal projection onto the plane normal to the area-weighted mean normal.
 //!   It is accepted only if every support triangle is strictly counter-clockwise in the plane
 //!   (exact `orient2d` on the projected coordinates), the projected support border has no
-//!   crossing (exact segment tests) and exactly one border loop runs counter-clockwise (the outer
-//!   one; exact, at each loop's lowest vertex): a locally injective, orientation-preserving map of
-//!   a disk-with-holes whose border stays simple and whose holes keep their orientation is
+//!   crossing (exact segment tests) and only the outer borders run counter-clockwise (exact, at
+//!   each simple cycle's lowest vertex: as many counter-clockwise cycles as the support has
+//!   pieces connected across edges): a locally injective, orientation-preserving map of a
+//!   disk-with-holes whose border stays simple and whose holes keep their orientation is
 //!   injective. (A hole whose image turns the wrong way is a fold the triangles alone do not
-//!   show: a sliver standing up in a dome flattens to a hole that overlaps its neighbours.) This
+//!   show: a sliver standing up in a dome flattens to a hole that overlaps its neighbours, and a
+//!   reverse fault's slit whose lips overlap in map view does too. Orientation is judged per
+//!   simple cycle, the loops split at their pinches: a slit pinched to another hole is a loop of
+//!   two lobes, and the lowest vertex of the loop sees only one of them.) This
 //!   keeps the geometry nearly isometric for horizons and steep faults alike (the plane follows
 //!   the surface, not z).
 //! - The border is traced edge by edge around each vertex's fan, so a support pinched at a
@@ -248,7 +252,8 @@ fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
 }
 
 /// Whether `uv` maps the support one to one (exact): every triangle counter-clockwise, the border
-/// `loops` free of crossings and exactly one of them (the outer one) counter-clockwise.
+/// `loops` free of crossings and, of their simple cycles, only the outer borders (one per piece
+/// connected across edges) counter-clockwise.
 pub fn injective(s: &TriMesh, loops: &[Vec<u32>], uv: &[[f64; 2]]) -> bool {
     if !all_positive(s, uv) {
         return false;
@@ -263,8 +268,52 @@ pub fn injective(s: &TriMesh, loops: &[Vec<u32>], uv: &[[f64; 2]]) -> bool {
     }
     let outer = loops
         .iter()
-        .filter(|l| counter_clockwise(l, uv) == Some(true));
-    outer.count() == 1
+        .flat_map(|l| simple_cycles(l))
+        .filter(|c| counter_clockwise(c, uv) == Some(true));
+    outer.count() == edge_connected_pieces(s)
+}
+
+/// A closed walk split into simple cycles at its repeated vertices, in the order they close (the
+/// remainder last): `a b c b d` gives `b c` and `a b d`.
+pub fn simple_cycles(walk: &[u32]) -> Vec<Vec<u32>> {
+    let mut cycles = Vec::new();
+    let mut path: Vec<u32> = Vec::with_capacity(walk.len());
+    for &v in walk {
+        if let Some(k) = path.iter().rposition(|&u| u == v) {
+            cycles.push(path.split_off(k));
+        }
+        path.push(v);
+    }
+    cycles.push(path);
+    cycles
+}
+
+/// The number of pieces of the support whose triangles connect across edges (pieces touching
+/// at a vertex only, a pinch, count apart: each has its own outer border).
+fn edge_connected_pieces(s: &TriMesh) -> usize {
+    let mut parent: Vec<u32> = (0..s.triangles.len() as u32).collect();
+    fn find(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            let g = p[p[x as usize] as usize];
+            p[x as usize] = g;
+            x = g;
+        }
+        x
+    }
+    let mut by_edge: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+    for (t, tri) in s.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            if let Some(&u) = by_edge.get(&(b, a)) {
+                let (x, y) = (find(&mut parent, u), find(&mut parent, t as u32));
+                parent[x.max(y) as usize] = x.min(y);
+            }
+            by_edge.insert((a, b), t as u32);
+        }
+    }
+    (0..s.triangles.len() as u32)
+        .filter(|&t| find(&mut parent, t) == t)
+        .count()
 }
 
 /// The orientation of a simple polygon (exact): at its lowest-leftmost vertex the polygon turns
@@ -302,4 +351,57 @@ pub fn first_non_positive(s: &TriMesh, uv: &[[f64; 2]]) -> Option<usize> {
         orient2d(&uv[t[0] as usize], &uv[t[1] as usize], &uv[t[2] as usize])
             != Orientation::Positive
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat(vertices: &[[f64; 2]], triangles: Vec<[u32; 3]>) -> TriMesh {
+        TriMesh::new(
+            vertices.iter().map(|p| [p[0], p[1], 0.0]).collect(),
+            triangles,
+        )
+    }
+
+    #[test]
+    fn two_pieces_touching_at_a_vertex_each_have_their_outer_border() {
+        // A bowtie: two triangles sharing vertex 0, one border loop through it twice.
+        let s = flat(
+            &[
+                [0.0, 0.0],
+                [1.0, -1.0],
+                [1.0, 1.0],
+                [-1.0, 1.0],
+                [-1.0, -1.0],
+            ],
+            vec![[0, 1, 2], [0, 3, 4]],
+        );
+        let loops = border_loops(&s).unwrap_or_else(|e| panic!("{}", e.message));
+        assert_eq!(edge_connected_pieces(&s), 2);
+        assert!(injective(&s, &loops, &mean_plane_uv(&s).expect("a plane")));
+    }
+
+    #[test]
+    fn a_pinched_loop_with_a_lobe_turning_the_wrong_way_is_not_one_to_one() {
+        // One piece (a square fan round its centre 5) and a border walk through its corner 0
+        // twice, with a lobe 0 6 7 inside that runs counter-clockwise like the outer border and
+        // crosses nothing: the walk's lowest vertex, 0, sees only the outer turn.
+        let s = flat(
+            &[
+                [0.0, 0.0],
+                [2.0, 0.0],
+                [2.0, 2.0],
+                [0.0, 2.0],
+                [-1.0, -1.0],
+                [1.0, 1.0],
+                [1.0, 0.3],
+                [0.3, 1.0],
+            ],
+            vec![[0, 1, 5], [1, 2, 5], [2, 3, 5], [3, 0, 5]],
+        );
+        let uv = mean_plane_uv(&s).expect("a plane");
+        assert!(!injective(&s, &[vec![0, 1, 2, 3, 0, 6, 7]], &uv));
+        assert!(injective(&s, &[vec![0, 1, 2, 3]], &uv));
+    }
 }

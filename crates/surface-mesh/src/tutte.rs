@@ -22,7 +22,9 @@
 //!   the pinch stays one point with the support's fans and the cones in turn round it.
 //! - The weights are not symmetric: the system is solved by BiCGSTAB (`sparse`).
 
-use super::param::{ParamError, counter_clockwise, first_non_positive, injective, mean_plane_uv};
+use super::param::{
+    ParamError, counter_clockwise, first_non_positive, injective, mean_plane_uv, simple_cycles,
+};
 use super::segments::first_crossing;
 use super::sparse::Rows;
 use geom::TriMesh;
@@ -72,21 +74,6 @@ fn simple_and_counter_clockwise(cycle: &[u32], uv: &[[f64; 2]]) -> bool {
         .map(|i| (uv[cycle[i] as usize], uv[cycle[(i + 1) % n] as usize]))
         .collect();
     first_crossing(&segs).is_none() && counter_clockwise(cycle, uv) == Some(true)
-}
-
-/// A closed walk split into simple cycles at its repeated vertices, in the order they close (the
-/// remainder last): `a b c b d` gives `b c` and `a b d`.
-fn simple_cycles(walk: &[u32]) -> Vec<Vec<u32>> {
-    let mut cycles = Vec::new();
-    let mut path: Vec<u32> = Vec::with_capacity(walk.len());
-    for &v in walk {
-        if let Some(k) = path.iter().rposition(|&u| u == v) {
-            cycles.push(path.split_off(k));
-        }
-        path.push(v);
-    }
-    cycles.push(path);
-    cycles
 }
 
 /// The 3D length of each border cycle.

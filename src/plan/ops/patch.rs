@@ -168,7 +168,9 @@ impl Operation for SurfaceMeshOp {
         // 4: triangles that fold on the support (a fan turning more than 360°) are split.
         // 5: supports no plane projects one to one get mean value Tutte embeddings, pinched
         //    ones too.
-        5
+        // 6: a projection is refused when any simple cycle of a pinched border loop turns the
+        //    wrong way (a reverse fault's slit pinched to another hole).
+        6
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
