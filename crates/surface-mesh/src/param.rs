@@ -23,13 +23,9 @@
 //!   pinches into simple cycles and pins or cones each cycle on its own, so the pinch stays one
 //!   point with the support's fans and the cones' holes in turn around it (a hole touching the
 //!   outer border, two holes touching, a reverse fault's overlapping lips meeting a border).
-//! - Otherwise (recumbent folds, caps down to their equator...): a Tutte embedding with positive
-//!   symmetric weights (inverse edge lengths). The longest border loop is pinned to a circle by
-//!   arc length (same perimeter as in 3D, so sizes keep their scale); every other border loop is
-//!   closed by a virtual cone vertex. Tutte's theorem makes this a bijection for a disk; the
+//! - Otherwise (recumbent folds, caps down to their equator, overlapping lips): a Tutte
+//!   embedding with mean value weights (`tutte`, which says how its border is pinned); the
 //!   solution is still checked triangle by triangle with `orient2d`, and a failure is an error.
-//! - The linear system is solved by Jacobi-preconditioned conjugate gradients (iterative, no
-//!   recursion, deterministic summation order).
 
 use super::segments::first_crossing;
 use geom::predicates::{cross, dot, sub};
@@ -177,14 +173,6 @@ pub fn flatten(s: &TriMesh) -> Result<Param, ParamError> {
 fn check_connected(s: &TriMesh) -> Result<(), ParamError> {
     let nv = s.vertices.len();
     let mut parent: Vec<u32> = (0..nv as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            let g = p[p[x as usize] as usize];
-            p[x as usize] = g;
-            x = g;
-        }
-        x
-    }
     for t in &s.triangles {
         for i in 0..3 {
             let a = find(&mut parent, t[i]);
@@ -204,6 +192,16 @@ fn check_connected(s: &TriMesh) -> Result<(), ParamError> {
         }
     }
     Ok(())
+}
+
+/// The root of `x` in the union-find forest `p`, halving the path on the way.
+fn find(p: &mut [u32], mut x: u32) -> u32 {
+    while p[x as usize] != x {
+        let g = p[p[x as usize] as usize];
+        p[x as usize] = g;
+        x = g;
+    }
+    x
 }
 
 /// An orthonormal basis (e1, e2) of the plane normal to `n`, with e1 × e2 = n / |n|.
@@ -292,14 +290,6 @@ pub fn simple_cycles(walk: &[u32]) -> Vec<Vec<u32>> {
 /// at a vertex only, a pinch, count apart: each has its own outer border).
 fn edge_connected_pieces(s: &TriMesh) -> usize {
     let mut parent: Vec<u32> = (0..s.triangles.len() as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            let g = p[p[x as usize] as usize];
-            p[x as usize] = g;
-            x = g;
-        }
-        x
-    }
     let mut by_edge: BTreeMap<(u32, u32), u32> = BTreeMap::new();
     for (t, tri) in s.triangles.iter().enumerate() {
         for i in 0..3 {
