@@ -103,20 +103,33 @@ fn recipe_for(bytes: &[u8], file: &str) -> Model {
     Model { recipe, regions }
 }
 
+/// Writes `bytes` as `model.ml` and its recipe as `sealed.toml` in a scratch directory and runs
+/// `recipe build` there with `flags` before the recipe.
+fn build_in_scratch(
+    bytes: &[u8],
+    recipe: &str,
+    flags: &[&str],
+) -> (tempfile::TempDir, std::process::Output) {
+    let scratch = tempfile::tempdir().expect("a scratch directory");
+    std::fs::write(scratch.path().join("model.ml"), bytes).expect("write the Model3d");
+    std::fs::write(scratch.path().join("sealed.toml"), recipe).expect("write the recipe");
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(scratch.path())
+        .arg("build")
+        .args(flags)
+        .arg("sealed.toml")
+        .output()
+        .expect("the recipe binary runs");
+    (scratch, out)
+}
+
 /// Builds the recipe for `file`; returns the scratch directory, the build's JSON report and the
 /// number of REGION records; panics with the build's stderr when it fails.
 fn build(file: &str) -> Option<(tempfile::TempDir, serde_json::Value, usize)> {
     let dir = data_dir()?;
     let bytes = std::fs::read(dir.join(file)).expect("read the Model3d");
     let model = recipe_for(&bytes, file);
-    let scratch = tempfile::tempdir().expect("a scratch directory");
-    std::fs::write(scratch.path().join("model.ml"), &bytes).expect("copy the Model3d");
-    std::fs::write(scratch.path().join("sealed.toml"), &model.recipe).expect("write the recipe");
-    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .current_dir(scratch.path())
-        .args(["build", "--json", "sealed.toml"])
-        .output()
-        .expect("the recipe binary runs");
+    let (scratch, out) = build_in_scratch(&bytes, &model.recipe, &["--json"]);
     let err = String::from_utf8_lossy(&out.stderr);
     let failed: Vec<&str> = err.lines().filter(|l| l.contains("error")).collect();
     assert!(
@@ -217,14 +230,7 @@ fn a_contact_vertex_written_a_hair_off_its_neighbours_is_reported_as_not_conform
         &text[at + 18..]
     );
     let model = recipe_for(moved.as_bytes(), "split_cube.ml");
-    let scratch = tempfile::tempdir().expect("a scratch directory");
-    std::fs::write(scratch.path().join("model.ml"), &moved).expect("write the Model3d");
-    std::fs::write(scratch.path().join("sealed.toml"), &model.recipe).expect("write the recipe");
-    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .current_dir(scratch.path())
-        .args(["build", "sealed.toml"])
-        .output()
-        .expect("the recipe binary runs");
+    let (_scratch, out) = build_in_scratch(moved.as_bytes(), &model.recipe, &[]);
     let err = String::from_utf8_lossy(&out.stderr);
     let line = err.lines().find(|l| l.contains("not conformal"));
     let line = line.unwrap_or_else(|| panic!("no warning:\n{err}"));
@@ -241,14 +247,7 @@ fn every_patch_of_cloud_spin_fixed_gets_a_surface_mesh_on_the_right_side_of_its_
     let Some(dir) = data_dir() else { return };
     let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
     let model = recipe_for(&bytes, "CloudSpin_fixed.ml");
-    let scratch = tempfile::tempdir().expect("a scratch directory");
-    std::fs::write(scratch.path().join("model.ml"), &bytes).expect("copy the Model3d");
-    std::fs::write(scratch.path().join("sealed.toml"), &model.recipe).expect("write the recipe");
-    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .current_dir(scratch.path())
-        .args(["build", "sealed.toml"])
-        .output()
-        .expect("the recipe binary runs");
+    let (_scratch, out) = build_in_scratch(&bytes, &model.recipe, &[]);
     let err = String::from_utf8_lossy(&out.stderr);
     let patch_failures: Vec<&str> = err
         .lines()
