@@ -3,10 +3,11 @@
 //!
 //! ```text
 //! cargo run --release --example dump_region -- recipes/didactic.toml reservoir_E /tmp/res_E
-//! cargo run --release -- tetmesh /tmp/res_E/reservoir_E.off --embed /tmp/res_E/reservoir_E.embedded.off -o /tmp/res_E.msh
+//! cargo run --release -- tetmesh /tmp/res_E/boundary.off --embed /tmp/res_E/embedded.off -o /tmp/res_E.msh
 //! ```
 //!
-//! The build runs with a cache in `OUT_DIR/cache` (the tet meshing nodes may fail: only the model
+//! The files are `OUT_DIR/boundary.off` and `OUT_DIR/embedded.off` (a region's name can be longer
+//! than a file name may be). The build runs with a cache in `OUT_DIR/cache` (the tet meshing nodes may fail: only the model
 //! and the surface meshes are needed).
 
 use engine::{self, BuildOptions};
@@ -70,7 +71,7 @@ fn main() -> Result<(), String> {
         .collect();
     let get = |p: u32| meshes.get(p as usize)?.as_ref().map(|m| &m.mesh);
     let input = region_input(region, &r.sides, &get).map_err(|e| e.to_string())?;
-    let b = out.join(format!("{region}.off"));
+    let b = out.join("boundary.off");
     std::fs::write(&b, off(&input.vertices, &input.boundary)).map_err(|e| e.to_string())?;
     println!(
         "{} ({} boundary triangles)",
@@ -78,7 +79,7 @@ fn main() -> Result<(), String> {
         input.boundary.len()
     );
     if !input.embedded.is_empty() {
-        let e = out.join(format!("{region}.embedded.off"));
+        let e = out.join("embedded.off");
         std::fs::write(&e, off(&input.vertices, &input.embedded)).map_err(|e| e.to_string())?;
         println!(
             "{} ({} embedded triangles)",
