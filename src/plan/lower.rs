@@ -51,7 +51,16 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
             },
             tolerances: recipe.tolerances.clone(),
         };
-        let id = g.add_op(&format!("import:{name}"), Arc::new(op), &[file])?;
+        let mut id = g.add_op(&format!("import:{name}"), Arc::new(op), &[file])?;
+        if spec.retriangulate.is_some() || spec.smooth.is_some() {
+            let op = SupportOp {
+                surface: name.clone(),
+                retriangulate: spec.retriangulate,
+                smooth: spec.smooth,
+                tolerances: recipe.tolerances.clone(),
+            };
+            id = g.add_op(&format!("support:{name}"), Arc::new(op), &[id])?;
+        }
         surface_nodes.insert(name.clone(), id);
     }
     let import_ids: Vec<NodeId> = surface_nodes.values().copied().collect();

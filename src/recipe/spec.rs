@@ -76,6 +76,8 @@ pub struct SurfaceSpec {
     pub object: Option<gocad::import::ObjectRef>,
     /// Re-triangulate the support with this target edge length (> 0); `None` = keep as read.
     pub retriangulate: Option<f64>,
+    /// Refine the support with Taubin smoothing before intersection; `None` = keep as read.
+    pub smooth: Option<surface_mesh::SupportSmoothing>,
     /// Default `Repair`.
     pub on_invalid: OnInvalid,
     /// Skip objects of other gOcad types in the file instead of failing. Default `false`.

@@ -32,6 +32,7 @@ mod recipe_samples;
 mod recipe_scale;
 mod recipe_sealed;
 mod recipe_selectors;
+mod recipe_smooth;
 mod report_documents;
 mod report_peers;
 mod report_size;

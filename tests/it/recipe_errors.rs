@@ -319,6 +319,55 @@ fn a_negative_retriangulation_size_is_rejected() {
 }
 
 #[test]
+fn smoothing_levels_out_of_range_and_a_smooth_of_the_wrong_type_are_rejected_at_the_value() {
+    let text = BASE.replace(
+        "kind = \"fault\"",
+        "kind = \"fault\", smooth = { levels = 9 }",
+    );
+    let (d, r) = single_at(&text, "9", 0);
+    assert!(
+        d.message
+            .contains("`surfaces.f1.smooth.levels` = 9 is out of range"),
+        "{r}"
+    );
+    assert!(
+        d.help.as_deref().is_some_and(|h| h.contains("1 to 4")),
+        "{r}"
+    );
+    let text = BASE.replace("kind = \"fault\"", "kind = \"fault\", smooth = \"yes\"");
+    let (d, r) = single_at(&text, "\"yes\"", 0);
+    assert!(d.message.contains("surfaces.f1.smooth"), "{r}");
+    let text = BASE.replace(
+        "kind = \"fault\"",
+        "kind = \"fault\", smooth = { level = 2 }",
+    );
+    let (d, r) = single_at(&text, "level", 0);
+    assert!(d.message.contains("level"), "{r}");
+}
+
+#[test]
+fn smooth_true_takes_the_default_levels_and_passes_and_false_turns_it_off() {
+    let on = ok(&BASE.replace("kind = \"fault\"", "kind = \"fault\", smooth = true"));
+    assert_eq!(
+        on.surfaces["f1"].smooth,
+        Some(surface_mesh::SupportSmoothing::default())
+    );
+    let off = ok(&BASE.replace("kind = \"fault\"", "kind = \"fault\", smooth = false"));
+    assert_eq!(off.surfaces["f1"].smooth, None);
+    let some = ok(&BASE.replace(
+        "kind = \"fault\"",
+        "kind = \"fault\", smooth = { passes = 0 }",
+    ));
+    assert_eq!(
+        some.surfaces["f1"].smooth,
+        Some(surface_mesh::SupportSmoothing {
+            levels: 2,
+            passes: 0
+        })
+    );
+}
+
+#[test]
 fn a_surface_named_like_a_box_side_is_reserved() {
     let text = BASE.replace("f1 = {", "\"box.x\" = {");
     let (d, r) = single_at(&text, "\"box.x\"", 0);

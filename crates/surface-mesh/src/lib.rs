@@ -46,6 +46,7 @@ mod param;
 mod points;
 pub mod quality;
 mod refine;
+mod refine_support;
 mod retriangulate;
 mod segments;
 mod size;
@@ -65,7 +66,8 @@ use input::{GivenNodes, given_nodes};
 use size::SizeField;
 use support::Support;
 
-pub use retriangulate::retriangulate;
+pub use refine_support::{MAX_LEVELS, MAX_PASSES, Smoothed, SupportSmoothing, refine_smooth};
+pub use retriangulate::{retriangulate, retriangulate_keeping};
 
 /// One patch to mesh.
 #[derive(Clone, Debug, PartialEq)]

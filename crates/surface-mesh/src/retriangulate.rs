@@ -13,6 +13,16 @@ use geom::{Tolerances, TriMesh};
 /// the border between them is resampled at about `size` (new border nodes lie on the old border
 /// edges), and the inside is meshed by `mesh_patch` on the old support.
 pub fn retriangulate(support: &TriMesh, size: f64) -> Result<TriMesh, SurfaceMeshError> {
+    retriangulate_keeping(support, size, &[])
+}
+
+/// [`retriangulate`], keeping the support vertices `keep` (a file's corner marks) bit for bit
+/// too: on the border as corners, inside as fixed nodes.
+pub fn retriangulate_keeping(
+    support: &TriMesh,
+    size: f64,
+    keep: &[u32],
+) -> Result<TriMesh, SurfaceMeshError> {
     let name = "support retriangulation".to_string();
     let fail = |message: String, at: Option<[f64; 3]>| SurfaceMeshError {
         patch: name.clone(),
@@ -24,17 +34,26 @@ pub fn retriangulate(support: &TriMesh, size: f64) -> Result<TriMesh, SurfaceMes
     }
     let loops = param::border_loops(support).map_err(|e| fail(e.message, e.at))?;
     let kink = Tolerances::default().kink_angle_deg.to_radians().cos();
+    let mut keep: Vec<u32> = keep.to_vec();
+    keep.sort_unstable();
+    keep.dedup();
     let mut out_loops = Vec::new();
     for l in &loops {
         let pts: Vec<[f64; 3]> = l.iter().map(|&v| support.vertices[v as usize]).collect();
-        out_loops.push(resample_loop(&pts, size, kink));
+        let kept: Vec<bool> = l.iter().map(|v| keep.binary_search(v).is_ok()).collect();
+        out_loops.push(resample_loop(&pts, &kept, size, kink));
     }
+    let on_border: std::collections::BTreeSet<u32> = loops.iter().flatten().copied().collect();
+    let points = (keep.iter())
+        .filter(|v| !on_border.contains(v))
+        .filter_map(|&v| support.vertices.get(v as usize).copied())
+        .collect();
     let input = PatchInput {
         name: name.clone(),
         support: support.clone(),
         loops: out_loops,
         constraints: vec![],
-        points: Vec::new(),
+        points,
     };
     let out = mesh_patch(
         &input,
@@ -48,12 +67,15 @@ pub fn retriangulate(support: &TriMesh, size: f64) -> Result<TriMesh, SurfaceMes
     Ok(TriMesh::new(out.nodes, out.triangles))
 }
 
-/// Keeps the corners (turn cosine below `kink_cos`) of a closed border polyline and resamples
-/// the pieces between them at about `size` by arc length.
-fn resample_loop(pts: &[[f64; 3]], size: f64, kink_cos: f64) -> Vec<[f64; 3]> {
+/// Keeps the corners (turn cosine below `kink_cos`, or `kept`) of a closed border polyline and
+/// resamples the pieces between them at about `size` by arc length.
+fn resample_loop(pts: &[[f64; 3]], kept: &[bool], size: f64, kink_cos: f64) -> Vec<[f64; 3]> {
     let n = pts.len();
     let mut corners: Vec<usize> = (0..n)
         .filter(|&i| {
+            if kept[i] {
+                return true;
+            }
             let a = sub(&pts[i], &pts[(i + n - 1) % n]);
             let b = sub(&pts[(i + 1) % n], &pts[i]);
             let la = dot(&a, &a).sqrt();

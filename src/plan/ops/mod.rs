@@ -17,6 +17,7 @@ mod proximity;
 mod refine;
 mod region;
 mod sizes;
+mod support;
 mod wells;
 pub use conformity::non_conformity_warnings;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
@@ -36,6 +37,7 @@ pub use inputs::{Groups, Wiring};
 pub use model::{ModelData, ModelOp, ModelPatch};
 pub use patch::{PatchExtractOp, PatchMesh, PatchPiece, SurfaceMeshOp};
 pub use region::{AssembleOp, RegionMesh, TetMeshOp};
+pub use support::SupportOp;
 pub use wells::{
     CurvePins, CurvePinsOp, RegionWells, RegionWellsOp, WellCutData, WellCutOp, WellData,
     WellImportOp, WellMarker,

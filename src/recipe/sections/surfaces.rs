@@ -15,12 +15,14 @@ use crate::recipe::selector::valid_name_char;
 use crate::recipe::spec::{ImportFormat, OnInvalid, SurfaceSpec};
 use geom::mesh::SurfaceKind;
 use gocad::import::ObjectRef;
+use surface_mesh::{MAX_LEVELS, MAX_PASSES, SupportSmoothing};
 
 const KEYS: &[&str] = &[
     "file",
     "kind",
     "object",
     "retriangulate",
+    "smooth",
     "on_invalid",
     "skip_other_types",
 ];
@@ -116,6 +118,10 @@ pub(crate) fn read(
             Some(x) => rd::size(ctx, x, &path_join(&path, "retriangulate")).map(Some),
             None => Some(None),
         };
+        let smooth = match st.get("smooth") {
+            Some(x) => smoothing(ctx, x, &path_join(&path, "smooth")),
+            None => Some(None),
+        };
         let on_invalid = match st.get("on_invalid") {
             Some(x) => rd::choice(
                 ctx,
@@ -135,14 +141,24 @@ pub(crate) fn read(
             Some(kind),
             Some(object),
             Some(retriangulate),
+            Some(smooth),
             Some(on_invalid),
             Some(skip_other_types),
-        ) = (ok, file, kind, object, retriangulate, on_invalid, skip)
-        {
+        ) = (
+            ok,
+            file,
+            kind,
+            object,
+            retriangulate,
+            smooth,
+            on_invalid,
+            skip,
+        ) {
             let mut spec = spec(ctx, base_dir, (name, k.span()), (&file, fspan), format);
             spec.kind = kind;
             spec.object = object;
             spec.retriangulate = retriangulate;
+            spec.smooth = smooth;
             spec.on_invalid = on_invalid;
             spec.skip_other_types = skip_other_types;
             out.insert(name.to_string(), spec);
@@ -195,6 +211,43 @@ pub(crate) fn object(ctx: &mut Ctx<'_>, x: &Value<'_>, path: &str) -> Option<Obj
     Some(ObjectRef::Name(s.to_string()))
 }
 
+/// `smooth`: `true` (the default levels and passes), `false` (off), or a table
+/// `{ levels = 1..=4, passes = 0..=200 }` whose missing keys take the defaults.
+fn smoothing(ctx: &mut Ctx<'_>, x: &Value<'_>, path: &str) -> Option<Option<SupportSmoothing>> {
+    if let DeValue::Boolean(on) = x.get_ref() {
+        return Some(on.then(SupportSmoothing::default));
+    }
+    let t = rd::as_table(
+        ctx,
+        x,
+        path,
+        Some("e.g. `smooth = { levels = 2, passes = 10 }`"),
+    )?;
+    rd::check_keys(ctx, t, path, &["levels", "passes"], &|_| None);
+    let mut how = SupportSmoothing::default();
+    let mut ok = true;
+    for (key, max, slot, min) in [
+        ("levels", MAX_LEVELS, &mut how.levels, 1),
+        ("passes", MAX_PASSES, &mut how.passes, 0),
+    ] {
+        let Some(v) = t.get(key) else { continue };
+        let p = path_join(path, key);
+        match rd::int(ctx, v, &p) {
+            Some(n) if (i64::from(min)..=i64::from(max)).contains(&n) => *slot = n as u32,
+            Some(n) => {
+                ctx.error(
+                    v.span(),
+                    format!("`{p}` = {n} is out of range"),
+                    Some(format!("use {min} to {max}")),
+                );
+                ok = false;
+            }
+            None => ok = false,
+        }
+    }
+    ok.then_some(Some(how))
+}
+
 /// A spec with every option at its default.
 fn spec(
     ctx: &Ctx<'_>,
@@ -212,6 +265,7 @@ fn spec(
         kind: SurfaceKind::Other,
         object: None,
         retriangulate: None,
+        smooth: None,
         on_invalid: OnInvalid::Repair,
         skip_other_types: false,
         span: ctx.span(name_span),
