@@ -12,13 +12,13 @@ fn dome(x: f64, y: f64) -> f64 {
     -600.0 + 200.0 * (-r2 / (500.0 * 500.0)).exp()
 }
 
-/// A TSurf of `dome` on a `step` grid from -200 to 1200 m (past the box on every side).
-fn dome_tsurf(step: f64) -> String {
+/// A TSurf of `dome` on a `step` grid from (x0, y0) over 1400 m (past the box on every side).
+fn dome_tsurf(step: f64, [x0, y0]: [f64; 2]) -> String {
     let n = (1400.0 / step) as usize + 1;
     let mut s = String::from("GOCAD TSurf 1\nHEADER {\nname:dome\n}\nTFACE\n");
     for j in 0..n {
         for i in 0..n {
-            let (x, y) = (-190.0 + i as f64 * step, -170.0 + j as f64 * step);
+            let (x, y) = (x0 + i as f64 * step, y0 + j as f64 * step);
             s += &format!("VRTX {} {x} {y} {}\n", j * n + i + 1, dome(x, y));
         }
     }
@@ -88,10 +88,15 @@ fn build_in(dir: &std::path::Path, text: &str) -> Result<engine::BuildReport, St
     }
 }
 
-/// A temp dir holding the coarse dome's file.
+/// A temp dir holding the coarse dome's file, its grid from (-190, -170).
 fn dome_dir() -> tempfile::TempDir {
+    dome_dir_from([-190.0, -170.0])
+}
+
+fn dome_dir_from(origin: [f64; 2]) -> tempfile::TempDir {
     let dir = tempfile::tempdir().expect("a temp dir");
-    std::fs::write(dir.path().join("dome.ts"), dome_tsurf(200.0)).expect("write the dome");
+    let text = dome_tsurf(200.0, origin);
+    std::fs::write(dir.path().join("dome.ts"), text).expect("write the dome");
     dir
 }
 
@@ -231,4 +236,17 @@ fn retriangulating_a_surface_of_two_tfaces_is_refused_naming_the_recipe_entry() 
     assert!(e.contains("2 parts (TFACEs)"), "{e}");
     // Smoothing keeps the border between the TFACEs and builds.
     build_in(dir.path(), &recipe(", smooth = true")).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn a_smoothed_support_edge_passing_a_box_edge_a_rounding_error_away_still_meshes() {
+    // The grid's diagonals run along x = y, through the box's corner edge x = y = 0; smoothed,
+    // one passes it some 1e-14 m away, so the box side gets two curve points that close and a
+    // support triangle whose rotated projection rounds the wrong way.
+    let dir = dome_dir_from([-190.0, -190.0]);
+    build_in(
+        dir.path(),
+        &recipe(", smooth = { levels = 1, passes = 10 }"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
 }

@@ -23,6 +23,11 @@
 //!   pinches into simple cycles and pins or cones each cycle on its own, so the pinch stays one
 //!   point with the support's fans and the cones' holes in turn around it (a hole touching the
 //!   outer border, two holes touching, a reverse fault's overlapping lips meeting a border).
+//! - Second choice: the exact projection onto the axis plane the mean normal points along most
+//!   (`axis_uv`: one coordinate dropped, nothing computed), under the same test. The mean plane's
+//!   rotation rounds each coordinate, which can turn a triangle with a sub-nanometre edge (two
+//!   curve points a rounding error apart, where a surface's edge passes a box edge) the wrong way
+//!   on a plane that a box side is exactly.
 //! - Otherwise (recumbent folds, caps down to their equator, overlapping lips): a Tutte
 //!   embedding with mean value weights (`tutte`, which says how its border is pinned); the
 //!   solution is still checked triangle by triangle with `orient2d`, and a failure is an error.
@@ -246,7 +251,30 @@ pub fn mean_plane_uv(s: &TriMesh) -> Option<Vec<[f64; 2]>> {
 }
 
 fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
-    mean_plane_uv(s).filter(|uv| injective(s, loops, uv))
+    (mean_plane_uv(s).filter(|uv| injective(s, loops, uv)))
+        .or_else(|| axis_uv(s).filter(|uv| injective(s, loops, uv)))
+}
+
+/// Every support vertex with the coordinate along the mean normal's largest component dropped,
+/// the other two ordered so that the support keeps its orientation: an exact projection (no
+/// coordinate is computed), so a support lying in an axis plane, as a box side does, projects
+/// with every triangle's orientation as the exact predicates see it in 3D, even beside a curve
+/// point a rounding error away from another. `None` when the normals cancel out.
+pub fn axis_uv(s: &TriMesh) -> Option<Vec<[f64; 2]>> {
+    let mut n = [0.0f64; 3];
+    for t in 0..s.triangles.len() {
+        let [a, b, c] = s.corners(t);
+        let c = cross(&sub(b, a), &sub(c, a));
+        n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+    }
+    let k = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))?;
+    if !(n[k].abs() > 0.0) {
+        return None;
+    }
+    // (k + 1, k + 2) is right-handed about axis k; swapped when the normal points down it.
+    let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+    let (u, v) = if n[k] > 0.0 { (u, v) } else { (v, u) };
+    Some(s.vertices.iter().map(|p| [p[u], p[v]]).collect())
 }
 
 /// Whether `uv` maps the support one to one (exact): every triangle counter-clockwise, the border
@@ -352,6 +380,26 @@ mod tests {
             vertices.iter().map(|p| [p[0], p[1], 0.0]).collect(),
             triangles,
         )
+    }
+
+    #[test]
+    fn the_axis_projection_keeps_the_orientation_whichever_way_the_normal_points() {
+        for k in 0..3 {
+            for sign in [1.0, -1.0] {
+                // A triangle in the plane normal to axis k, turning about +k or -k.
+                let mut p = [[0.0; 3]; 3];
+                p[1][(k + 1) % 3] = 1.0;
+                p[2][(k + 2) % 3] = sign;
+                let s = TriMesh::new(p.to_vec(), vec![[0, 1, 2]]);
+                let uv = axis_uv(&s).expect("a plane");
+                assert!(all_positive(&s, &uv), "axis {k}, sign {sign}");
+                assert!(
+                    uv.iter()
+                        .zip(&p)
+                        .all(|(q, x)| q.iter().all(|c| x.contains(c)))
+                );
+            }
+        }
     }
 
     #[test]

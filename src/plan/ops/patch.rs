@@ -170,7 +170,9 @@ impl Operation for SurfaceMeshOp {
         //    ones too.
         // 6: a projection is refused when any simple cycle of a pinched border loop turns the
         //    wrong way (a reverse fault's slit pinched to another hole).
-        6
+        // 7: a support the mean plane does not project one to one tries the exact axis-plane
+        //    projection before a Tutte embedding.
+        7
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
