@@ -356,13 +356,13 @@ fn smooth_true_takes_the_default_levels_and_passes_and_false_turns_it_off() {
     assert_eq!(off.surfaces["f1"].smooth, None);
     let some = ok(&BASE.replace(
         "kind = \"fault\"",
-        "kind = \"fault\", smooth = { passes = 0 }",
+        "kind = \"fault\", smooth = { passes = 5 }",
     ));
     assert_eq!(
         some.surfaces["f1"].smooth,
         Some(surface_mesh::SupportSmoothing {
             levels: 2,
-            passes: 0
+            passes: 5
         })
     );
 }

@@ -14,10 +14,13 @@
 //!   crease does not tilt them). This interpolates the file's
 //!   vertices; split at chord midpoints instead, a dome sampled at 200 m and meshed at 25 m
 //!   stayed 6 m (mean 3 m) from the surface it samples however it was smoothed afterwards.
-//! - Then Taubin's λ|μ filter (λ = [`LAMBDA`], μ = [`MU`], pass-band kPB = 1/λ + 1/μ ≈ 0.11):
-//!   a Laplacian step that shrinks and a negative one that inflates back, which evens the bends
-//!   the curved split leaves along the old edges. Few passes: on that dome 3 passes lower the
-//!   largest distance from 4.4 to 2.9 m, while 30 or more flatten the dome's top (5-14 m).
+//! - Then, if asked, Taubin's λ|μ filter (λ = [`LAMBDA`], μ = [`MU`], pass-band kPB = 1/λ + 1/μ
+//!   ≈ 0.11): a Laplacian step that shrinks and a negative one that inflates back, which evens
+//!   the bends the curved split leaves along the old edges. On that dome 3 passes lower the
+//!   largest distance from 4.4 to 2.9 m, while 30 or more flatten the dome's top (5-14 m). None
+//!   by default: the passes move the file's vertices (1.5 m on the dome), and on four SCEC faults
+//!   ending on the box top they left a box side's curve node millimetres off its support, while
+//!   the split alone builds.
 //!   Uniform (umbrella) weights, as in Taubin's paper; a pass is Jacobi (all vertices from the
 //!   previous positions, neighbours summed in index order), so the result is deterministic.
 //! - Fixed vertices: the border (edges with one triangle, or more than two), part borders (two
@@ -25,8 +28,8 @@
 //!   and the vertices the caller keeps (BSTONEs). A fixed edge is split at its chord midpoint,
 //!   which stays fixed, so borders, part borders and creases stay exactly the polylines they
 //!   were, and the curves cut on them later are cut on the same lines.
-//! - The file's vertices move only under the passes (about the facet-scale bend: 1.5 m on that
-//!   dome); [`refine_smooth`] reports how far the farthest moved.
+//! - The file's vertices move only under the passes; [`refine_smooth`] reports how far the
+//!   farthest moved.
 //! - A smoothed support that crosses itself (a fold tighter than the filter's reach) is refused
 //!   with the place, decided exactly by `geom::contact`.
 
@@ -60,7 +63,7 @@ impl Default for SupportSmoothing {
     fn default() -> Self {
         SupportSmoothing {
             levels: 2,
-            passes: 3,
+            passes: 0,
         }
     }
 }
