@@ -225,15 +225,21 @@ pub fn plane_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
     (e1, e2)
 }
 
-/// Every support vertex projected onto the plane normal to the area-weighted mean normal (about
-/// the bounding box's centre); `None` when the normals cancel out.
-pub fn mean_plane_uv(s: &TriMesh) -> Option<Vec<[f64; 2]>> {
+/// The sum of the support triangles' normals, each as long as twice its area.
+fn area_normal(s: &TriMesh) -> [f64; 3] {
     let mut n = [0.0; 3];
     for t in 0..s.triangles.len() {
         let [a, b, c] = s.corners(t);
         let c = cross(&sub(b, a), &sub(c, a));
         n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
     }
+    n
+}
+
+/// Every support vertex projected onto the plane normal to the area-weighted mean normal (about
+/// the bounding box's centre); `None` when the normals cancel out.
+pub fn mean_plane_uv(s: &TriMesh) -> Option<Vec<[f64; 2]>> {
+    let n = area_normal(s);
     if !(dot(&n, &n) > 0.0) {
         return None;
     }
@@ -261,12 +267,7 @@ fn plane_projection(s: &TriMesh, loops: &[Vec<u32>]) -> Option<Vec<[f64; 2]>> {
 /// with every triangle's orientation as the exact predicates see it in 3D, even beside a curve
 /// point a rounding error away from another. `None` when the normals cancel out.
 pub fn axis_uv(s: &TriMesh) -> Option<Vec<[f64; 2]>> {
-    let mut n = [0.0f64; 3];
-    for t in 0..s.triangles.len() {
-        let [a, b, c] = s.corners(t);
-        let c = cross(&sub(b, a), &sub(c, a));
-        n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
-    }
+    let n = area_normal(s);
     let k = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))?;
     if !(n[k].abs() > 0.0) {
         return None;
