@@ -1,6 +1,7 @@
 //! `support:<surface>`: an imported surface's support made over as the recipe asks before anything
-//! is cut on it: re-triangulated at a size (`retriangulate`), then refined with Taubin smoothing
-//! (`smooth`), so an FE mesh finer than the file's facets follows a smooth surface.
+//! is cut on it: re-triangulated at a size (`retriangulate`), then refined on curves through its
+//! vertices with any Taubin passes (`smooth`), so an FE mesh finer than the file's facets follows
+//! a smooth surface.
 //!
 //! Decisions and why:
 //! - Only a surface with either key gets this node, and every later stage reads it in place of
@@ -96,7 +97,7 @@ impl SupportOp {
             self.fail(
                 "retriangulate",
                 &format!(
-                    "the corner (BSTONE) at ({}, {}, {}) was lost",
+                    "the corner (BSTONE) at ({}, {}, {}) was lost; remove `retriangulate`",
                     p[0], p[1], p[2]
                 ),
             )
@@ -115,7 +116,11 @@ fn renumbered(old: &TriMesh, old_ids: &[u32], new: &TriMesh) -> Result<Vec<u32>,
         .collect();
     (old_ids.iter())
         .map(|&v| {
-            let p = old.vertices[v as usize];
+            let p = old
+                .vertices
+                .get(v as usize)
+                .copied()
+                .unwrap_or([f64::NAN; 3]);
             at.get(&p.map(f64::to_bits)).copied().ok_or(p)
         })
         .collect()
