@@ -171,6 +171,12 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .filter(|s| s.kind == recipe::SurfaceKind::Fault)
                 .map(|s| s.name.clone())
                 .collect(),
+            smoothed: recipe
+                .surfaces
+                .values()
+                .filter(|s| s.smooth.is_some())
+                .map(|s| s.name.clone())
+                .collect(),
             names: recipe
                 .regions
                 .iter()

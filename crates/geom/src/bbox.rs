@@ -69,6 +69,14 @@ impl BBox {
             self.max[2] - self.min[2],
         ]
     }
+    /// Length of the box's diagonal (0 for an empty box).
+    pub fn diagonal(&self) -> f64 {
+        if self.is_empty() {
+            return 0.0;
+        }
+        let e = self.extent();
+        (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
+    }
     pub fn volume(&self) -> f64 {
         let e = self.extent();
         e[0] * e[1] * e[2]

@@ -51,6 +51,21 @@ impl TriMesh {
             .map(|(e, _)| e)
             .collect()
     }
+    /// The unit normal of every triangle (zero where a triangle has none or names a vertex the
+    /// mesh does not have).
+    pub fn unit_normals(&self) -> Vec<[f64; 3]> {
+        use super::predicates::{cross, dot, sub};
+        let normal = |tri: &[u32; 3]| {
+            let p = |k: usize| self.vertices.get(tri[k] as usize);
+            let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) else {
+                return [0.0; 3];
+            };
+            let n = cross(&sub(b, a), &sub(c, a));
+            let l = dot(&n, &n).sqrt();
+            if l > 0.0 { n.map(|x| x / l) } else { [0.0; 3] }
+        };
+        self.triangles.iter().map(normal).collect()
+    }
     /// Sum of triangle areas (floating point, for measures).
     pub fn area(&self) -> f64 {
         (0..self.triangles.len())

@@ -225,6 +225,7 @@ mod tests {
             points,
             closed: false,
             clearance: Vec::new(),
+            curvature_size: Vec::new(),
         }
     }
 

@@ -380,6 +380,7 @@ fn name_curves(
                 points: vs.iter().map(|&v| points[v as usize]).collect(),
                 closed: *closed,
                 clearance: Vec::new(),
+                curvature_size: Vec::new(),
             });
         }
         g = h;

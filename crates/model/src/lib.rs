@@ -1,7 +1,8 @@
 //! From imported surfaces to the model a mesher can take: exact intersection and splitting
 //! (`intersect`), the patches of each split surface (`patches`), which patches the recipe's trims
 //! discard (`trims`), the regions the patches bound (`regions`), the half-edge structure of one
-//! surface (`topology`), curve subdivision (`discretize`) and the room it has (`clearance`), how
+//! surface (`topology`), curve subdivision (`discretize`), the room it has (`clearance`) and the
+//! sizes the patches' curvature asks of it (`curvature`), how
 //! thick each region is (`thickness`), and, at the crate root, the model's topology and the FE
 //! assembly along it.
 //!
@@ -33,6 +34,7 @@ mod assemble;
 pub mod charts;
 pub mod clearance;
 pub mod conformity;
+pub mod curvature;
 mod curves;
 pub mod discretize;
 pub mod features;
@@ -66,6 +68,10 @@ pub struct Curve {
     /// ([`clearance`]): its FE chords keep within half of it.
     #[serde(default)]
     pub clearance: Vec<f64>,
+    /// Per point of `points`, the size the curvature of its patches asks for there
+    /// ([`curvature`]; infinite where none does): its FE segments are no longer.
+    #[serde(default)]
+    pub curvature_size: Vec<f64>,
 }
 
 /// A curve as it appears in a patch's boundary loop.

@@ -15,7 +15,7 @@
 //! of different surfaces meeting along a curve share identical vertices there.
 
 use crate::intersect::split::SplitSurface;
-use geom::predicates::{cross, dot, sub};
+use geom::predicates::dot;
 use geom::{BBox, TriMesh};
 use std::cmp::Ordering;
 
@@ -277,23 +277,7 @@ impl<'a> Charting<'a> {
 /// The unit normal of every triangle of `mesh` (zero where a triangle has none): computed once
 /// per imported surface, for creases and charts alike.
 pub fn unit_normals(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    (0..mesh.triangles.len())
-        .map(|t| unit_normal(mesh, t))
-        .collect()
-}
-
-/// The unit normal of `mesh`'s triangle `t` (zero when it has none or does not exist).
-fn unit_normal(mesh: &TriMesh, t: usize) -> [f64; 3] {
-    let Some(tri) = mesh.triangles.get(t) else {
-        return [0.0; 3];
-    };
-    let p = |k: usize| mesh.vertices.get(tri[k] as usize).copied();
-    let (Some(a), Some(b), Some(c)) = (p(0), p(1), p(2)) else {
-        return [0.0; 3];
-    };
-    let n = cross(&sub(&b, &a), &sub(&c, &a));
-    let l = dot(&n, &n).sqrt();
-    if l > 0.0 { n.map(|x| x / l) } else { [0.0; 3] }
+    mesh.unit_normals()
 }
 
 /// Whether every vertex of `patch` lies within the closed box (exact coordinate comparisons).

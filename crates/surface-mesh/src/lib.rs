@@ -68,6 +68,7 @@ use support::Support;
 
 pub use refine_support::{MAX_LEVELS, MAX_PASSES, Smoothed, SupportSmoothing, refine_smooth};
 pub use retriangulate::{retriangulate, retriangulate_keeping};
+pub use size::CurvatureSizes;
 
 /// One patch to mesh.
 #[derive(Clone, Debug, PartialEq)]

@@ -272,6 +272,36 @@ impl SizeField {
     }
 }
 
+/// The sizes a support's curvature alone asks for, graded at the steepest growth a surface
+/// mesh allows ([`crate::MAX_SURFACE_GROWTH`]): what a patch's mesh would refine to near a
+/// point of its border, for the curves that are that border and are discretized before it.
+pub struct CurvatureSizes {
+    field: Option<SizeField>,
+    cap: f64,
+}
+
+impl CurvatureSizes {
+    /// The curvature sizes of `support` below `cap` (larger ones are not computed).
+    pub fn new(support: &TriMesh, cap: f64) -> CurvatureSizes {
+        let nodes = curvature_nodes(support, &support.unit_normals(), cap);
+        let origin = support.vertices.first().copied().unwrap_or([0.0; 3]);
+        let growth = crate::MAX_SURFACE_GROWTH;
+        let field =
+            (!nodes.is_empty()).then(|| SizeField::new(&[], &nodes, origin, cap, 0.0, cap, growth));
+        CurvatureSizes { field, cap }
+    }
+
+    /// The size at `x`; infinite where the curvature asks for none below the cap.
+    pub fn at(&self, x: &[f64; 3]) -> f64 {
+        match &self.field {
+            Some(f) => Some(f.at(x))
+                .filter(|&h| h < self.cap)
+                .unwrap_or(f64::INFINITY),
+            None => f64::INFINITY,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -300,17 +330,6 @@ mod tests {
         TriMesh::new(vs, ts)
     }
 
-    fn normals_of(m: &TriMesh) -> Vec<[f64; 3]> {
-        (0..m.triangles.len())
-            .map(|t| {
-                let [a, b, c] = m.corners(t);
-                let n = geom::predicates::cross(&sub(b, a), &sub(c, a));
-                let l = dot(&n, &n).sqrt();
-                [n[0] / l, n[1] / l, n[2] / l]
-            })
-            .collect()
-    }
-
     #[test]
     fn a_sliver_with_a_shallow_kink_asks_for_no_refinement() {
         // A 1000 m square, flat except a 5 cm wide sliver strip along x = 500 whose far side is
@@ -334,7 +353,7 @@ mod tests {
             [2, 7, 6],
         ];
         let m = TriMesh::new(vs, ts);
-        let nodes = curvature_nodes(&m, &normals_of(&m), 200.0);
+        let nodes = curvature_nodes(&m, &m.unit_normals(), 200.0);
         assert!(
             nodes.is_empty(),
             "{} nodes, h = {:?}",
@@ -347,7 +366,7 @@ mod tests {
     fn a_finely_faceted_bend_still_bounds_the_size() {
         // A half cylinder of radius 150 m faceted every 1° (2.6 m facets): same bound as 9°.
         let m = half_cylinder_with(180);
-        let nodes = curvature_nodes(&m, &normals_of(&m), 200.0);
+        let nodes = curvature_nodes(&m, &m.unit_normals(), 200.0);
         assert!(!nodes.is_empty());
         for (_, h) in &nodes {
             assert!(*h > 40.0 && *h < 80.0, "h = {h}");
@@ -357,14 +376,7 @@ mod tests {
     #[test]
     fn a_tight_hinge_bounds_the_size_by_its_curvature() {
         let m = half_cylinder();
-        let normals: Vec<[f64; 3]> = (0..m.triangles.len())
-            .map(|t| {
-                let [a, b, c] = m.corners(t);
-                let n = geom::predicates::cross(&sub(b, a), &sub(c, a));
-                let l = dot(&n, &n).sqrt();
-                [n[0] / l, n[1] / l, n[2] / l]
-            })
-            .collect();
+        let normals = m.unit_normals();
         let nodes = curvature_nodes(&m, &normals, 200.0);
         assert!(!nodes.is_empty());
         // Radius 150 m: h = 0.35 × 150 ≈ 52 m (facets make it a little coarser).
@@ -382,5 +394,31 @@ mod tests {
             1.2,
         );
         assert!(f.at(&[0.0, 300.0, 150.0]) < 80.0);
+    }
+
+    #[test]
+    fn curvature_sizes_follow_a_bend_and_grade_away_from_it_but_ask_nothing_of_a_plane() {
+        let bend = CurvatureSizes::new(&half_cylinder(), 1000.0);
+        // On the cylinder (radius 150 m): about 0.35 × 150 m, as the surface mesher refines.
+        for y in [0.0, 300.0, 600.0] {
+            let h = bend.at(&[0.0, y, 150.0]);
+            assert!(h > 40.0 && h < 80.0, "h = {h} at y = {y}");
+        }
+        // 1 km off along its axis: graded at 0.15 per metre from the nearest bend.
+        let far = bend.at(&[0.0, 1600.0, 150.0]);
+        assert!(far > 150.0 && far < 240.0, "h = {far}");
+        // Beyond the cap: no bound.
+        assert_eq!(bend.at(&[0.0, 1.0e5, 150.0]), f64::INFINITY);
+        let flat = TriMesh::new(
+            vec![
+                [0.0; 3],
+                [1000.0, 0.0, 0.0],
+                [1000.0, 1000.0, 0.0],
+                [0.0, 1000.0, 0.0],
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let plane = CurvatureSizes::new(&flat, 1000.0);
+        assert_eq!(plane.at(&[500.0, 500.0, 0.0]), f64::INFINITY);
     }
 }

@@ -5,7 +5,7 @@
 //! A node built by `to_3d` lies on the support up to the rounding of one barycentric combination.
 
 use super::param::{Param, ParamError, flatten};
-use geom::predicates::{cross, dot, sub};
+use geom::predicates::{dot, sub};
 use geom::{Orientation, TriMesh, orient2d};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, PointDistance, RTree, RTreeObject};
@@ -91,18 +91,7 @@ impl Support {
                 GeomWithData::new(Rectangle::from_corners(lo, hi), i as u32)
             })
             .collect();
-        let normals = (0..mesh.triangles.len())
-            .map(|t| {
-                let [a, b, c] = mesh.corners(t);
-                let n = cross(&sub(b, a), &sub(c, a));
-                let l = dot(&n, &n).sqrt();
-                if l > 0.0 {
-                    [n[0] / l, n[1] / l, n[2] / l]
-                } else {
-                    [0.0; 3]
-                }
-            })
-            .collect();
+        let normals = mesh.unit_normals();
         let mut edges: std::collections::BTreeMap<(u32, u32), u32> =
             std::collections::BTreeMap::new();
         for (t, tri) in mesh.triangles.iter().enumerate() {

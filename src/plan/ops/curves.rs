@@ -18,6 +18,8 @@ use geom::Tolerances;
 use model::discretize::{Grading, SizeAt, Subdivision, discretize_pinned};
 use model::features::SizeNear;
 use model::{intersect, topology};
+use rstar::RTree;
+use rstar::primitives::GeomWithData;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -34,6 +36,10 @@ pub struct ModelCurve {
     /// curves found without a model.
     #[serde(default)]
     pub clearance: Vec<f64>,
+    /// Per point of `polyline`, the size its patches' curvature asks for
+    /// (`model::Curve::curvature_size`); empty for curves found without a model.
+    #[serde(default)]
+    pub curvature_size: Vec<f64>,
 }
 
 /// The output of `curves`: every curve, sorted by name.
@@ -54,7 +60,8 @@ impl Operation for CurvesOp {
         "curves"
     }
     fn version(&self) -> u32 {
-        1
+        // 2: curves carry curvature sizes (none without a model).
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -89,6 +96,7 @@ impl Operation for CurvesOp {
                     polyline,
                     closed,
                     clearance: Vec::new(),
+                    curvature_size: Vec::new(),
                 });
             }
         }
@@ -111,6 +119,7 @@ impl Operation for CurvesOp {
                     polyline,
                     closed: c.closed,
                     clearance: Vec::new(),
+                    curvature_size: Vec::new(),
                 });
             }
         }
@@ -158,7 +167,8 @@ impl Operation for CurveExtractOp {
         true
     }
     fn version(&self) -> u32 {
-        2
+        // 3: the curvature sizes along the curve.
+        3
     }
     fn params(&self) -> Params {
         Params::new()
@@ -184,6 +194,7 @@ impl Operation for CurveExtractOp {
                 polyline: c.points.clone(),
                 closed: c.closed,
                 clearance: c.clearance.clone(),
+                curvature_size: c.curvature_size.clone(),
             }
         } else {
             let set = input.decode_shared::<CurveSet>()?;
@@ -218,6 +229,8 @@ pub struct DiscretizeOp {
     /// Whether `curve_pins` follows the curve (the recipe has wells): the points where wells
     /// cross the curve are then nodes of it.
     pub pinned: bool,
+    /// The global `min_size`: the patches' curvature asks for no less, as their meshes do not.
+    pub min_size: f64,
 }
 
 impl Operation for DiscretizeOp {
@@ -229,7 +242,8 @@ impl Operation for DiscretizeOp {
         true
     }
     fn version(&self) -> u32 {
-        2
+        // 3: no segment longer than the patches' curvature asks for.
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -260,6 +274,8 @@ impl Operation for DiscretizeOp {
             // Derived from the model's loops, not written in the recipe.
             p.set("model.min_segments", self.min_segments).expect("int");
         }
+        p.set("mesh.min_size", self.min_size)
+            .expect("validated finite");
         if self.refinements > 0 {
             p.set("mesh.growth.surface_slope", self.max_slope)
                 .expect("validated finite");
@@ -280,8 +296,9 @@ impl Operation for DiscretizeOp {
         let pins = all_pins.of(&self.name);
         let fail = |e| OpError::from(format!("curve `{}`: {e}", self.name));
         let near = SizeNear::new(&refine, self.max_slope);
-        let field = |x: &[f64; 3]| near.at(x);
-        let size_at: Option<SizeAt<'_>> = (!near.is_empty()).then_some(&field);
+        let bends = CurvatureAlong::new(&c, &self.rule, self.min_size);
+        let field = |x: &[f64; 3]| near.at(x).min(bends.at(x));
+        let size_at: Option<SizeAt<'_>> = (!near.is_empty() || !bends.is_empty()).then_some(&field);
         let mut nodes = discretize_pinned(&c.polyline, &self.rule, &c.clearance, size_at, pins)
             .map_err(fail)?;
         if nodes.len() < self.min_segments as usize + 1 {
@@ -295,6 +312,42 @@ impl Operation for DiscretizeOp {
             nodes,
         })?)
         .count("nodes", n))
+    }
+}
+
+/// The curvature sizes of a curve's points that are below its rule's size (raised to
+/// `min_size`), as a size field
+/// along it: at a point, the least over them of `h + g · d`, with `g` the steepest growth of a
+/// surface mesh (the sizes were graded so on the patches already; between two points this
+/// bounds the size by its neighbours').
+struct CurvatureAlong {
+    points: RTree<GeomWithData<[f64; 3], f64>>,
+}
+
+impl CurvatureAlong {
+    fn new(c: &ModelCurve, rule: &Subdivision, min_size: f64) -> CurvatureAlong {
+        let below = match rule {
+            Subdivision::Size { size, .. } => *size,
+            Subdivision::Count(_) => 0.0,
+        };
+        let points = (c.polyline.iter().zip(&c.curvature_size))
+            .filter(|&(_, &h)| h < below)
+            .map(|(p, &h)| GeomWithData::new(*p, h.max(min_size)))
+            .collect();
+        CurvatureAlong {
+            points: RTree::bulk_load(points),
+        }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.points.size() == 0
+    }
+
+    fn at(&self, x: &[f64; 3]) -> f64 {
+        let g = surface_mesh::MAX_SURFACE_GROWTH - 1.0;
+        (self.points.nearest_neighbor(*x)).map_or(f64::INFINITY, |p| {
+            p.data + g * geom::predicates::dist(p.geom(), x)
+        })
     }
 }
 
@@ -393,6 +446,7 @@ pub(super) fn add_curve_nodes(
             refinements: sizing.refine.len(),
             max_slope: sizing.max_slope,
             pinned: pins.is_some(),
+            min_size: recipe.mesh.min_size,
         }),
         &inputs,
     )
@@ -419,6 +473,31 @@ mod tests {
 
     /// As `nodes`, with `pins` given as the `curve_pins` input.
     fn pinned_nodes(min: u32, pins: Option<CurvePins>) -> Vec<[f64; 3]> {
+        discretized(straight(100.0, Vec::new()), min, pins)
+    }
+
+    /// A straight curve along x of `length`, with these curvature sizes at its points (one
+    /// every 10 m; empty: none).
+    fn straight(length: f64, curvature_size: Vec<f64>) -> ModelCurve {
+        let n = if curvature_size.is_empty() {
+            2
+        } else {
+            curvature_size.len()
+        };
+        ModelCurve {
+            name: "c".into(),
+            surfaces: vec!["s".into()],
+            polyline: (0..n)
+                .map(|k| [length * k as f64 / (n - 1) as f64, 0.0, 0.0])
+                .collect(),
+            closed: false,
+            clearance: Vec::new(),
+            curvature_size,
+        }
+    }
+
+    /// `curve`'s nodes at 250 m, `min_size` 2.5 m, with at least `min` segments.
+    fn discretized(curve: ModelCurve, min: u32, pins: Option<CurvePins>) -> Vec<[f64; 3]> {
         let op = DiscretizeOp {
             name: "c".into(),
             rule_path: "mesh.size".into(),
@@ -431,18 +510,29 @@ mod tests {
             refinements: 0,
             max_slope: 0.15,
             pinned: pins.is_some(),
-        };
-        let curve = ModelCurve {
-            name: "c".into(),
-            surfaces: vec!["s".into()],
-            polyline: vec![[0.0, 0.0, 0.0], [100.0, 0.0, 0.0]],
-            closed: false,
-            clearance: Vec::new(),
+            min_size: 2.5,
         };
         let mut inputs = vec![Artifact::encode(&curve).unwrap()];
         inputs.extend(pins.map(|p| Artifact::encode(&p).unwrap()));
         let out = op.run(&Quiet, &inputs).unwrap();
         out.artifact.decode::<CurveNodes>().unwrap().nodes
+    }
+
+    #[test]
+    fn a_curve_is_no_coarser_than_its_patches_curvature_asks_and_no_finer_than_min_size() {
+        let segments = |sizes: Vec<f64>| discretized(straight(1000.0, sizes), 1, None).len() - 1;
+        assert_eq!(segments(vec![f64::INFINITY; 101]), 4, "the rule's 250 m");
+        assert_eq!(segments(vec![50.0; 101]), 20);
+        // Raised to min_size at the points (2.5 m; up to 5 m between them, at 0.15 per metre).
+        let tiny = segments(vec![0.01; 101]);
+        assert!((300..=400).contains(&tiny), "{tiny}");
+        // Bent near its start only: fine there, growing away at 0.15 per metre.
+        let mut near_start = vec![f64::INFINITY; 101];
+        near_start[0] = 20.0;
+        let nodes = discretized(straight(1000.0, near_start), 1, None);
+        let first = nodes[1][0] - nodes[0][0];
+        let last = nodes[nodes.len() - 1][0] - nodes[nodes.len() - 2][0];
+        assert!(first < 30.0 && last > 100.0, "{first} {last}: {nodes:?}");
     }
 
     #[test]
@@ -486,6 +576,7 @@ mod tests {
             refinements: 0,
             max_slope: 0.15,
             pinned: false,
+            min_size: 2.5,
         };
         assert!(op(1).params().get("model.min_segments").is_none());
         assert!(op(2).params().get("model.min_segments").is_some());

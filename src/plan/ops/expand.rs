@@ -315,6 +315,7 @@ mod tests {
             points: vec![[k as f64, 0.0, 0.0], [k as f64 + 1.0, 0.0, 0.0]],
             closed: false,
             clearance: Vec::new(),
+            curvature_size: Vec::new(),
         }
     }
 

@@ -10,6 +10,7 @@ use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::SurfaceKind;
 use geom::{BBox, Tolerances, TriMesh};
 use model::conformity::{NearMiss, near_misses};
+use model::curvature::curvature_sizes;
 use model::intersect::{Intersection, split};
 use model::thickness::region_thickness;
 use model::touches::touch_points;
@@ -54,6 +55,8 @@ pub struct ModelOp {
     pub inputs: Groups,
     /// Surfaces that may end inside the model (the recipe's faults).
     pub faults: Vec<String>,
+    /// Surfaces with `smooth`: their patches' curvature bounds their curves' sizes.
+    pub smoothed: Vec<String>,
     /// Region names by point, from the recipe's `[regions]`.
     pub names: Vec<(String, [f64; 3])>,
     /// The recipe location (`file:line:col`) of each of `names`, same order, for error
@@ -78,7 +81,8 @@ impl Operation for ModelOp {
         //     that vertex.
         // 14: the points where surfaces touch, per patch holding them.
         // 15: where the imported surfaces almost share a vertex.
-        15
+        // 16: curves' curvature sizes on smoothed surfaces.
+        16
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -89,6 +93,10 @@ impl Operation for ModelOp {
         }
         p.set("surfaces.faults", self.faults.clone())
             .expect("strings");
+        if !self.smoothed.is_empty() {
+            p.set("surfaces.smooth", self.smoothed.clone())
+                .expect("strings");
+        }
         for (name, at) in &self.names {
             p.set(&format!("regions.{name}.point"), *at)
                 .expect("validated finite");
@@ -193,8 +201,12 @@ impl Operation for ModelOp {
         let opts = regions::RegionOptions::with_faults(self.faults.iter().cloned());
         let model = regions::find_regions_with(&input, &self.names, &opts)
             .map_err(|e| self.region_error(e))?;
-        let topology =
+        let mut topology =
             build_topology(&input, &self.tolerances).map_err(|e| OpError::from(e.to_string()))?;
+        let bends = curvature_sizes(&topology.curves, &input, &self.smoothed);
+        for (c, b) in topology.curves.iter_mut().zip(bends) {
+            c.curvature_size = b;
+        }
         let thickness = model
             .regions
             .iter()
