@@ -13,15 +13,17 @@ use geom::{Tolerances, TriMesh};
 /// the border between them is resampled at about `size` (new border nodes lie on the old border
 /// edges), and the inside is meshed by `mesh_patch` on the old support.
 pub fn retriangulate(support: &TriMesh, size: f64) -> Result<TriMesh, SurfaceMeshError> {
-    retriangulate_keeping(support, size, &[])
+    retriangulate_keeping(support, size, &[], Tolerances::default().kink_angle_deg)
 }
 
 /// [`retriangulate`], keeping the support vertices `keep` (a file's corner marks) bit for bit
-/// too: on the border as corners, inside as fixed nodes.
+/// too: on the border as corners, inside as fixed nodes; a border turn above `kink_angle_deg`
+/// (the recipe's `Tolerances::kink_angle_deg`) is a corner.
 pub fn retriangulate_keeping(
     support: &TriMesh,
     size: f64,
     keep: &[u32],
+    kink_angle_deg: f64,
 ) -> Result<TriMesh, SurfaceMeshError> {
     let name = "support retriangulation".to_string();
     let fail = |message: String, at: Option<[f64; 3]>| SurfaceMeshError {
@@ -33,7 +35,7 @@ pub fn retriangulate_keeping(
         return Err(fail(format!("invalid size {size}"), None));
     }
     let loops = param::border_loops(support).map_err(|e| fail(e.message, e.at))?;
-    let kink = Tolerances::default().kink_angle_deg.to_radians().cos();
+    let kink = kink_angle_deg.to_radians().cos();
     let mut keep: Vec<u32> = keep.to_vec();
     keep.sort_unstable();
     keep.dedup();

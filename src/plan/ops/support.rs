@@ -31,7 +31,8 @@ impl Operation for SupportOp {
         "support"
     }
     fn version(&self) -> u32 {
-        1
+        // 2: re-triangulation keeps the corners of the recipe's kink angle, not the default's.
+        2
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -43,9 +44,10 @@ impl Operation for SupportOp {
         if let Some(s) = self.smooth {
             p.set(&key("smooth.levels"), s.levels).expect("finite");
             p.set(&key("smooth.passes"), s.passes).expect("finite");
-            p.set("tolerances.kink_angle_deg", self.tolerances.kink_angle_deg)
-                .expect("validated finite");
         }
+        // Both keep the support's corners: turns above the kink angle.
+        p.set("tolerances.kink_angle_deg", self.tolerances.kink_angle_deg)
+            .expect("validated finite");
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -91,7 +93,8 @@ impl SupportOp {
                 ),
             ));
         }
-        let mesh = retriangulate_keeping(&s.mesh, size, &s.bstones)
+        let kink = self.tolerances.kink_angle_deg;
+        let mesh = retriangulate_keeping(&s.mesh, size, &s.bstones, kink)
             .map_err(|e| self.fail("retriangulate", &e.to_string()))?;
         s.bstones = renumbered(&s.mesh, &s.bstones, &mesh).map_err(|p| {
             self.fail(

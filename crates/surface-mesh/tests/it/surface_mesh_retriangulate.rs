@@ -151,3 +151,30 @@ fn the_merged_san_andreas_1857_fault_with_opposite_patches_is_refused_with_the_p
     assert!(old.vertices.contains(&at), "{e}");
     assert!(e.to_string().contains("same direction"), "{e}");
 }
+
+#[test]
+fn a_border_turn_is_kept_as_a_corner_only_above_the_kink_angle_given() {
+    // A square whose top border bends up by 16° at (300, 1060).
+    let apex = [300.0, 1060.0, 0.0];
+    let m = TriMesh::new(
+        vec![
+            [500.0, 500.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [1000.0, 0.0, 0.0],
+            [1000.0, 1000.0, 0.0],
+            apex,
+            [0.0, 1000.0, 0.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5], [0, 5, 1]],
+    );
+    let has_apex = |kink: f64| {
+        let new = surface_mesh::retriangulate_keeping(&m, 130.0, &[], kink)
+            .unwrap_or_else(|e| panic!("{e}"));
+        new.vertices.contains(&apex)
+    };
+    assert!(has_apex(10.0), "a 16° turn is a corner at a 10° kink angle");
+    assert!(
+        !has_apex(30.0),
+        "and not at 30°: the border is resampled through it"
+    );
+}
