@@ -365,7 +365,6 @@ impl Pieces {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::patches::unit_normals;
 
     /// A closed octahedron-like sphere: a UV sphere of `rings` × `segs` with two poles.
     fn sphere(rings: usize, segs: usize) -> TriMesh {
@@ -428,13 +427,13 @@ mod tests {
             ],
             vec![[0, 1, 2], [0, 2, 3]],
         );
-        assert_eq!(charts(&m, &unit_normals(&m), 60.0), vec![vec![0, 1]]);
+        assert_eq!(charts(&m, &m.unit_normals(), 60.0), vec![vec![0, 1]]);
     }
 
     #[test]
     fn a_sphere_is_cut_into_six_charts_that_each_face_one_way() {
         let m = sphere(24, 48);
-        let ns = unit_normals(&m);
+        let ns = m.unit_normals();
         let groups = charts(&m, &ns, 60.0);
         assert_eq!(
             groups.len(),
@@ -468,7 +467,7 @@ mod tests {
             }
         }
         let m = TriMesh::new(v, t);
-        let ns = unit_normals(&m);
+        let ns = m.unit_normals();
         let groups = charts(&m, &ns, 60.0);
         assert_eq!(groups.len(), 4);
         each_faces_one_way(&m, &ns, &groups, 60.0);

@@ -54,19 +54,9 @@ mod tests {
     use super::*;
     use geom::TriMesh;
 
-    /// A half cylinder of radius 150 m about the y axis, 600 m long, faceted every 9°.
+    /// A half cylinder of radius 150 m, faceted every 9°.
     fn half_cylinder() -> TriMesh {
-        let (r, n) = (150.0, 20u32);
-        let mut vs = Vec::new();
-        for y in [0.0, 600.0] {
-            for i in 0..=n {
-                let a = std::f64::consts::PI * f64::from(i) / f64::from(n);
-                vs.push([r * a.cos(), y, r * a.sin()]);
-            }
-        }
-        let ts = (0..n)
-            .flat_map(|i| [[i, i + n + 2, i + 1], [i, i + n + 1, i + n + 2]])
-            .collect();
+        let (vs, ts) = test_support::shapes::half_cylinder(20);
         TriMesh::new(vs, ts)
     }
 

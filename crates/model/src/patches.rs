@@ -45,7 +45,7 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
 }
 
 /// The patches of `split` (surface `surface`, split from an original surface whose triangles'
-/// unit normals are `normals`, see [`unit_normals`]): connected components of its triangles,
+/// unit normals are `normals`, see `TriMesh::unit_normals`): connected components of its triangles,
 /// where two triangles connect through a shared edge that is not a curve edge and whose original
 /// triangles bend by at most `kink_deg`. Ordered by their smallest vertex (lexicographic, total
 /// f64 order), ties broken by the sorted list of their vertices.
@@ -216,7 +216,7 @@ pub struct Charting<'a> {
 
 impl<'a> Charting<'a> {
     /// For the patches split from `original`, whose triangles' unit normals are `normals`
-    /// ([`unit_normals`]), with `Tolerances::chart_angle_deg` = `max_deg`.
+    /// (`TriMesh::unit_normals`), with `Tolerances::chart_angle_deg` = `max_deg`.
     pub fn new(original: &'a TriMesh, normals: &'a [[f64; 3]], max_deg: f64) -> Self {
         Charting {
             original,
@@ -272,12 +272,6 @@ impl<'a> Charting<'a> {
         }
         out
     }
-}
-
-/// The unit normal of every triangle of `mesh` (zero where a triangle has none): computed once
-/// per imported surface, for creases and charts alike.
-pub fn unit_normals(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    mesh.unit_normals()
 }
 
 /// Whether every vertex of `patch` lies within the closed box (exact coordinate comparisons).
@@ -347,7 +341,7 @@ mod tests {
     fn a_bend_sharper_than_the_kink_angle_is_a_crease_between_two_patches() {
         for (deg, patches_wanted) in [(10.0, 1), (29.0, 1), (31.0, 2), (90.0, 2), (150.0, 2)] {
             let (split, original) = bent(deg, false);
-            let ps = patches_at_creases("s", &split, &unit_normals(&original), 30.0);
+            let ps = patches_at_creases("s", &split, &original.unit_normals(), 30.0);
             assert_eq!(ps.len(), patches_wanted, "bent by {deg} degrees");
             assert_eq!(patches("s", &split).len(), 1, "without creases");
         }
@@ -358,11 +352,11 @@ mod tests {
         // The sliver's own normal is ill-conditioned; its parent's is not.
         let (split, original) = bent(10.0, true);
         assert_eq!(
-            patches_at_creases("s", &split, &unit_normals(&original), 30.0).len(),
+            patches_at_creases("s", &split, &original.unit_normals(), 30.0).len(),
             1
         );
         let (split, original) = bent(60.0, true);
-        let ps = patches_at_creases("s", &split, &unit_normals(&original), 30.0);
+        let ps = patches_at_creases("s", &split, &original.unit_normals(), 30.0);
         assert_eq!(ps.len(), 2);
         assert_eq!(ps.iter().map(|p| p.triangles.len()).sum::<usize>(), 3);
     }

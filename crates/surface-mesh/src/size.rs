@@ -312,21 +312,8 @@ mod tests {
     }
 
     /// A half cylinder of radius 150 m in `n` facets, 600 m long.
-    fn half_cylinder_with(n: usize) -> TriMesh {
-        let r = 150.0;
-        let mut vs = Vec::new();
-        for j in 0..=1 {
-            for i in 0..=n {
-                let a = std::f64::consts::PI * i as f64 / n as f64;
-                vs.push([r * a.cos(), 600.0 * j as f64, r * a.sin()]);
-            }
-        }
-        let mut ts = Vec::new();
-        for i in 0..n as u32 {
-            let (a, b, c, d) = (i, i + 1, i + 1 + n as u32 + 1, i + n as u32 + 1);
-            ts.push([a, c, b]);
-            ts.push([a, d, c]);
-        }
+    fn half_cylinder_with(n: u32) -> TriMesh {
+        let (vs, ts) = test_support::shapes::half_cylinder(n);
         TriMesh::new(vs, ts)
     }
 

@@ -21,6 +21,23 @@ pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     (corners, triangles)
 }
 
+/// Half a cylinder of radius 150 m about the y axis, 600 m long, from y = 0, in `n` facets
+/// round (two triangles each): an open sheet bent by 180°.
+pub fn half_cylinder(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let r = 150.0;
+    let mut corners = Vec::new();
+    for y in [0.0, 600.0] {
+        for i in 0..=n {
+            let a = std::f64::consts::PI * f64::from(i) / f64::from(n);
+            corners.push([r * a.cos(), y, r * a.sin()]);
+        }
+    }
+    let triangles = (0..n)
+        .flat_map(|i| [[i, i + n + 2, i + 1], [i, i + n + 1, i + n + 2]])
+        .collect();
+    (corners, triangles)
+}
+
 /// The unit octahedron as six corners, ±x (0, 1), ±y (2, 3), ±z (4, 5), and eight triangles with
 /// normals pointing out of it.
 pub fn octahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {

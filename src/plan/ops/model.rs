@@ -128,10 +128,7 @@ impl Operation for ModelOp {
             .collect();
         let split =
             split::split_model(&named, &intersections).map_err(|e| OpError::from(e.to_string()))?;
-        let normals: Vec<Vec<[f64; 3]>> = surfaces
-            .iter()
-            .map(|s| patches::unit_normals(&s.mesh))
-            .collect();
+        let normals: Vec<Vec<[f64; 3]>> = surfaces.iter().map(|s| s.mesh.unit_normals()).collect();
         let all: Vec<(usize, patches::Patch)> = split
             .iter()
             .enumerate()
