@@ -82,7 +82,8 @@ impl Operation for ModelOp {
         // 14: the points where surfaces touch, per patch holding them.
         // 15: where the imported surfaces almost share a vertex.
         // 16: curves' curvature sizes on smoothed surfaces.
-        16
+        // 17: those sizes graded over every curve by distance.
+        17
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
