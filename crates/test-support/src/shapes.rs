@@ -21,6 +21,38 @@ pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     (corners, triangles)
 }
 
+/// The cube `[0, side]³`, each side split into `n` × `n` squares of two triangles, normals
+/// pointing out; each vertex once.
+pub fn gridded_cube(n: u32, side: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let mut ids = std::collections::BTreeMap::new();
+    let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+    let step = side / n as f64;
+    for k in 0..3 {
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        for at in [0, n] {
+            for i in 0..n {
+                for j in 0..n {
+                    let mut id = |a: u32, b: u32| {
+                        let mut p = [0u32; 3];
+                        (p[k], p[u], p[v]) = (at, a, b);
+                        *ids.entry(p).or_insert_with(|| {
+                            vertices.push(p.map(|c| c as f64 * step));
+                            vertices.len() as u32 - 1
+                        })
+                    };
+                    let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                    if at > 0 {
+                        triangles.extend([[a, b, c], [a, c, d]]);
+                    } else {
+                        triangles.extend([[a, c, b], [a, d, c]]);
+                    }
+                }
+            }
+        }
+    }
+    (vertices, triangles)
+}
+
 /// Half a cylinder of radius 150 m about the y axis, 600 m long, from y = 0, in `n` facets
 /// round (two triangles each): an open sheet bent by 180°.
 pub fn half_cylinder(n: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {

@@ -6,7 +6,7 @@
 //! loop, never recursion. A flat pocket (a front face within rounding of the boundary
 //! triangles behind it, which back-tracking keeps re-creating) is closed by an exactly positive
 //! sliver that the optimizer's flips later remove. Gives up with an error naming the region and
-//! the stuck face.
+//! the stuck face, when a face stays stuck or when the region's work (`work`) is spent.
 //!
 //! Cost: a face tests at most `MAX_TRIES` candidates per pass before it is deferred (all of them
 //! on its last attempt), the wide second pass scans the front's node grid rather than its face
@@ -32,6 +32,7 @@ use super::front::{FaceMap, Front, bbox_of};
 use super::sides::{SideCache, orientation_of};
 use super::sizing::Background;
 use super::verify::outward_faces;
+use super::work::{self, FrontWork};
 use super::{RegionInput, SizeField, TetMeshError};
 use geom::contact::{Contact, Tri, triangle_contact_with};
 
@@ -80,6 +81,7 @@ const CLOSING_AT: f64 = 0.95;
 /// The share of the front's progress bar that follows the volume filled.
 const FILLING_SHARE: f64 = 0.8;
 
+#[derive(Debug)]
 pub struct RawMesh {
     pub nodes: Vec<P>,
     pub tets: Vec<[u32; 4]>,
@@ -91,6 +93,10 @@ struct State<'a> {
     nodes: Vec<P>,
     tets: Vec<[u32; 4]>,
     tet_alive: Vec<bool>,
+    /// Live tets now, and the most there have been.
+    alive: usize,
+    fullest: usize,
+    work: &'a FrontWork,
     node_tets: Vec<Vec<u32>>,
     front: Front,
     bg: Background,
@@ -110,8 +116,13 @@ enum Cand {
     New(P),
 }
 
-pub fn advance_front(input: &RegionInput, size: &SizeField) -> Result<RawMesh, TetMeshError> {
-    advance_front_reporting(input, size, Span::none())
+/// The front's mesh of `input`, spending at most what `work` allows (see `work`).
+pub fn advance_front(
+    input: &RegionInput,
+    size: &SizeField,
+    work: &FrontWork,
+) -> Result<RawMesh, TetMeshError> {
+    advance_front_reporting(input, size, Span::none(), work)
 }
 
 /// [`advance_front`], reporting on `bar` the share of the region's volume meshed.
@@ -119,6 +130,7 @@ pub fn advance_front_reporting(
     input: &RegionInput,
     size: &SizeField,
     bar: Span<'_>,
+    work: &FrontWork,
 ) -> Result<RawMesh, TetMeshError> {
     let volume = super::progress::enclosed_volume(input);
     // Tets built so far whose volume is counted, and that volume.
@@ -140,6 +152,9 @@ pub fn advance_front_reporting(
         nodes: pts.clone(),
         tets: Vec::new(),
         tet_alive: Vec::new(),
+        alive: 0,
+        fullest: 0,
+        work,
         node_tets: vec![Vec::new(); pts.len()],
         front: Front::new(lo, hi, FRONT_CELL * avg),
         bg: {
@@ -179,10 +194,12 @@ pub fn advance_front_reporting(
     let mut defers: FaceMap<u32> = FaceMap::default();
     let mut backtracks = 0usize;
     let max_backtracks = 100 + input.boundary.len() / 8;
-    let max_steps = 400 * (input.boundary.len() + input.embedded.len()) + 100_000;
+    // Where the front was last stuck: the place a front that runs out of work names.
+    let mut stuck_at = None;
     let mut steps = 0usize;
     while let Some(fid) = st.front.pop() {
         steps += 1;
+        work.spend(work::FACE_TAKEN);
         if steps.is_multiple_of(MEASURE_EVERY) {
             for t in &st.tets[built.0..] {
                 built.1 += tet_volume(t, &st.nodes);
@@ -195,15 +212,12 @@ pub fn advance_front_reporting(
             let closed = closing.map_or(0.0, |at| 1.0 - st.front.n_alive as f64 / at as f64);
             bar.reach(FILLING_SHARE * filled + (1.0 - FILLING_SHARE) * closed);
         }
-        if steps > max_steps {
+        if work.exhausted(st.fullest) {
             let f = st.front.faces[fid as usize];
-            return Err(TetMeshError::new(
-                st.name,
-                format!(
-                    "the front did not close after {max_steps} steps ({} faces left)",
-                    st.front.n_alive
-                ),
-                Some(st.nodes[f[0] as usize]),
+            return Err(gave_up(
+                &st,
+                backtracks,
+                stuck_at.unwrap_or_else(|| centroid(&f, &st.nodes)),
             ));
         }
         let f = st.front.faces[fid as usize];
@@ -237,6 +251,7 @@ pub fn advance_front_reporting(
         *level += 1;
         backtracks += 1;
         let at = centroid(&f, &st.nodes);
+        stuck_at = Some(at);
         if *level > MAX_LEVEL || backtracks > max_backtracks {
             // Last resort before giving up: a Steiner point low over the stuck face.
             let m = centroid(&f, &st.nodes);
@@ -278,6 +293,30 @@ pub fn advance_front_reporting(
         tets,
         backtracks,
     })
+}
+
+/// The error of a front that spent its region's work (`work`) without closing; `at` is where it
+/// was last stuck, else where it stood.
+fn gave_up(st: &State<'_>, backtracks: usize, at: P) -> TetMeshError {
+    let why = if backtracks > 0 {
+        format!(
+            "{backtracks} back-tracks, the last here; the region is probably pinched here, where \
+             its boundary surfaces come closer than their triangles are wide"
+        )
+    } else {
+        "no back-track: the candidate apexes here are many and few are valid".to_string()
+    };
+    TetMeshError::new(
+        st.name,
+        format!(
+            "the front gave up after {} units of work (a meshing front spends under 1,000 per \
+             tetrahedron; it holds {}, with {} faces left open): {why}",
+            st.work.spent(),
+            st.alive,
+            st.front.n_alive
+        ),
+        Some(at),
+    )
 }
 
 fn tet_volume(t: &[u32; 4], pts: &[P]) -> f64 {
@@ -385,6 +424,7 @@ impl State<'_> {
                     &mut near,
                 );
             }
+            self.work.spend((cand_nodes.len() + near.len()) as u64);
             self.scratch = near;
             let mut cands: Vec<(f64, u32, Cand, f64)> = Vec::new();
             // Squared distances throughout (same comparisons, no roots).
@@ -641,6 +681,7 @@ impl State<'_> {
                 (self.nodes.len() - 1) as u32
             }
         };
+        self.work.spend(work::APEX_TEST);
         let ok = self.valid_with(fid, f, d);
         if let Cand::New(_) = cand {
             self.nodes.pop();
@@ -742,6 +783,8 @@ impl State<'_> {
         let t = self.tets.len() as u32;
         self.tets.push([a, b, c, d]);
         self.tet_alive.push(true);
+        self.alive += 1;
+        self.fullest = self.fullest.max(self.alive);
         for v in [a, b, c, d] {
             self.node_tets[v as usize].push(t);
         }
@@ -787,6 +830,7 @@ impl State<'_> {
     fn delete_tet(&mut self, t: u32) {
         let tet = self.tets[t as usize];
         self.tet_alive[t as usize] = false;
+        self.alive -= 1;
         for fo in outward_faces(tet) {
             let mut k = fo;
             k.sort_unstable();
@@ -910,4 +954,44 @@ fn unit_normal(a: &P, b: &P, c: &P) -> Option<P> {
         return None;
     }
     Some(n.map(|x| x / nl))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cube of side 10 split into 5 x 5 squares per side, two triangles each, outward.
+    fn cube() -> RegionInput {
+        let (vertices, boundary) = test_support::shapes::gridded_cube(5, 10.0);
+        RegionInput {
+            name: "cube".into(),
+            vertices,
+            boundary,
+            ..RegionInput::default()
+        }
+    }
+
+    #[test]
+    fn a_meshing_front_spends_well_under_its_budget_per_tetrahedron() {
+        let input = cube();
+        let work = FrontWork::for_region(&input);
+        let m = advance_front(&input, &SizeField::default(), &work).expect("the cube meshes");
+        assert!(m.tets.len() > 500, "{} tets", m.tets.len());
+        let per_tet = work.spent() / m.tets.len() as u64;
+        assert!(per_tet < work::PER_TET / 2, "{per_tet} units per tet");
+    }
+
+    #[test]
+    fn a_front_out_of_work_gives_up_at_the_same_place_every_time() {
+        let input = cube();
+        let fail = || {
+            let work = FrontWork::with(5_000, 0);
+            advance_front(&input, &SizeField::default(), &work).expect_err("no work to mesh")
+        };
+        let e = fail();
+        assert!(e.message.starts_with("the front gave up after"), "{e}");
+        let at = e.at.expect("a place");
+        assert!(at.iter().all(|x| (0.0..=10.0).contains(x)), "{at:?}");
+        assert_eq!(fail(), e);
+    }
 }

@@ -39,7 +39,8 @@
 //! validation, on the pairs `geom::broad_phase` proposes), `lines` and `inside` (the segments' checks and the check of their chains),
 //! `delaunay` (kernel, insertion order, recovery, refinement), `front` (front faces, their spatial
 //! grid, and grids of front nodes and of all nodes), `advance` (the front loop and back-tracking), `sides` (exact
-//! sides of nearby front nodes against a candidate's planes), `optimize` (the optimization
+//! sides of nearby front nodes against a candidate's planes), `work` (what the fronts of a region
+//! may spend before they give up), `optimize` (the optimization
 //! driver) with `complex`, `smooth`, `flips` and `slivers`, `verify` (exact output check),
 //! `progress` (how the phases share a progress bar, for [`mesh_region_with_progress`]).
 //!
@@ -66,6 +67,7 @@ mod sizing;
 mod slivers;
 mod smooth;
 mod verify;
+mod work;
 
 pub use check::check_input;
 pub use verify::verify;
@@ -256,7 +258,8 @@ pub fn mesh_region_with_progress(
             lines::check_lines(input)?;
             bar.reach(progress::CHECKS);
             let rest = bar.part(progress::CHECKS, 1.0);
-            match delaunay::mesh(input, size, rest, opts.optimize) {
+            let work = work::FrontWork::for_region(input);
+            match delaunay::mesh(input, size, rest, opts.optimize, &work) {
                 Ok(done) => done,
                 Err(why) => {
                     // The Delaunay path tests intersections only where a triangle is not one
@@ -268,13 +271,16 @@ pub fn mesh_region_with_progress(
                     }
                     let [front, optimize, finish] =
                         meter.rest().split(progress::front(opts.optimize));
-                    // The front meshes the region; if it fails too, its error says why both did.
-                    let m =
-                        advance::advance_front_reporting(input, size, front).map_err(|mut e| {
+                    // The front meshes the region, with a budget of its own (another method);
+                    // if it fails too, its error says why both did.
+                    let work = work::FrontWork::for_region(input);
+                    let m = advance::advance_front_reporting(input, size, front, &work).map_err(
+                        |mut e| {
                             e.message =
                                 format!("{} (after Delaunay gave way: {})", e.message, why.message);
                             e
-                        })?;
+                        },
+                    )?;
                     fallback = Some(why.to_string());
                     (m, delaunay::Figures::default(), Tail { optimize, finish })
                 }
@@ -290,7 +296,8 @@ pub fn mesh_region_with_progress(
             let [front, optimize, finish] = bar
                 .part(progress::FRONT_CHECKS, 1.0)
                 .split(progress::front(opts.optimize));
-            let m = advance::advance_front_reporting(input, size, front)?;
+            let work = work::FrontWork::for_region(input);
+            let m = advance::advance_front_reporting(input, size, front, &work)?;
             (m, Default::default(), Tail { optimize, finish })
         }
     };

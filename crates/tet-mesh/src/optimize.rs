@@ -276,53 +276,25 @@ fn smooth_pass(cx: &mut Complex, below: f64, memo: &mut Memo) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use std::collections::BTreeMap;
-
     use super::super::{RegionInput, SizeField, TetMeshOutput, advance, stats_of, verify};
     use super::*;
 
     /// The cube [0,3]^3, each side split into 3x3 quads of two triangles (outward), with a
     /// dangling square at z = 1.5 (two triangles) inside.
     fn cube_with_embedded_square() -> RegionInput {
-        let mut ids: BTreeMap<[i64; 3], u32> = BTreeMap::new();
-        let mut vertices = Vec::new();
-        let mut id = |p: [i64; 3], vertices: &mut Vec<[f64; 3]>| {
-            *ids.entry(p).or_insert_with(|| {
-                vertices.push(p.map(|c| c as f64 * 0.5));
-                (vertices.len() - 1) as u32
-            })
-        };
-        let mut boundary = Vec::new();
-        for k in 0..3 {
-            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-            for side in [0i64, 6] {
-                for i in 0..3i64 {
-                    for j in 0..3i64 {
-                        let mut q = |a: i64, b: i64| {
-                            let mut p = [0i64; 3];
-                            p[k] = side;
-                            p[u] = 2 * a;
-                            p[v] = 2 * b;
-                            id(p, &mut vertices)
-                        };
-                        let (a, b, c, d) = (q(i, j), q(i + 1, j), q(i + 1, j + 1), q(i, j + 1));
-                        if side > 0 {
-                            boundary.push([a, b, c]);
-                            boundary.push([a, c, d]);
-                        } else {
-                            boundary.push([a, c, b]);
-                            boundary.push([a, d, c]);
-                        }
-                    }
-                }
-            }
-        }
-        let sq = [[2, 2, 3], [4, 2, 3], [4, 4, 3], [2, 4, 3]].map(|p| id(p, &mut vertices));
+        let (mut vertices, boundary) = test_support::shapes::gridded_cube(3, 3.0);
+        let n = vertices.len() as u32;
+        vertices.extend([
+            [1.0, 1.0, 1.5],
+            [2.0, 1.0, 1.5],
+            [2.0, 2.0, 1.5],
+            [1.0, 2.0, 1.5],
+        ]);
         RegionInput {
             name: "cube".into(),
             vertices,
             boundary,
-            embedded: vec![[sq[0], sq[1], sq[2]], [sq[0], sq[2], sq[3]]],
+            embedded: vec![[n, n + 1, n + 2], [n, n + 2, n + 3]],
             lines: Vec::new(),
         }
     }
@@ -330,7 +302,8 @@ mod tests {
     #[test]
     fn the_optimizer_keeps_every_protected_face_and_input_vertex_and_never_inverts_a_tet() {
         let input = cube_with_embedded_square();
-        let raw = advance::advance_front(&input, &SizeField::default()).expect("meshes");
+        let work = crate::work::FrontWork::for_region(&input);
+        let raw = advance::advance_front(&input, &SizeField::default(), &work).expect("meshes");
         let n_in = input.vertices.len();
         let before = TetMeshOutput {
             nodes: raw.nodes.clone(),

@@ -47,6 +47,7 @@ use geom::progress::Span;
 use super::advance::RawMesh;
 use super::progress;
 use super::sizing::Background;
+use super::work::FrontWork;
 use super::{RegionInput, SizeField, Tail, TetMeshError};
 
 /// Cells of the background size field. The field grows smoothly (at most the growth rate per
@@ -82,11 +83,13 @@ pub fn mesh<'m>(
     size: &SizeField,
     bar: Span<'m>,
     optimize: bool,
+    work: &FrontWork,
 ) -> Result<(RawMesh, Figures, Tail<'m>), TetMeshError> {
     let guess = progress::guessed_new_nodes(input);
     let (conforming, inserting) = progress::conforming_share(input.vertices.len(), guess, optimize);
     let [conforming, rest] = bar.split([conforming, 1.0 - conforming]);
-    let conf = recover::conforming(input, size, conforming.split([inserting, 1.0 - inserting]))?;
+    let bars = conforming.split([inserting, 1.0 - inserting]);
+    let conf = recover::conforming(input, size, bars, work)?;
     let mut tri = conf.tri;
     let mut all = input.boundary.clone();
     all.extend_from_slice(&input.embedded);

@@ -27,6 +27,7 @@ use geom::progress::Span;
 use super::super::check::check_intersections;
 use super::super::exact::orient3d;
 use super::super::front::FaceMap;
+use super::super::work::FrontWork;
 use super::super::{RegionInput, SizeField, TetMeshError};
 use super::flip::coplanar;
 use super::order::brio;
@@ -104,16 +105,18 @@ fn same_turn(f: [u32; 3], g: [u32; 3]) -> bool {
     f == g || f == [g[1], g[2], g[0]] || f == [g[2], g[0], g[1]]
 }
 
-/// `bar`: the shares of the region's progress bar of the insertion and of the recovery.
+/// `bar`: the shares of the region's progress bar of the insertion and of the recovery; `work`:
+/// what the fronts filling recovery holes may spend, all together.
 pub fn conforming(
     input: &RegionInput,
     size: &SizeField,
     bar: [Span<'_>; 2],
+    work: &FrontWork,
 ) -> Result<Conforming, TetMeshError> {
     let segments: Vec<[P; 2]> = (input.lines.iter())
         .map(|l| l.map(|v| input.vertices[v as usize]))
         .collect();
-    conforming_at(input, size, bar, &segments, 0)
+    conforming_at(input, size, bar, &segments, work, 0)
 }
 
 /// [`conforming`] of a region (`depth` 0) or of a recovery hole inside one (`depth` > 0: the
@@ -123,6 +126,7 @@ fn conforming_at(
     size: &SizeField,
     bar: [Span<'_>; 2],
     segments: &[[P; 2]],
+    work: &FrontWork,
     depth: u32,
 ) -> Result<Conforming, TetMeshError> {
     let [inserting, recovering] = bar;
@@ -162,7 +166,7 @@ fn conforming_at(
     // The holes' inner part, filled.
     let extra: Vec<[u32; 4]> = if side.contains(&Side::Hole) {
         fill_holes(
-            &mut tri, &mut side, &all, &holders, &vtet, name, size, segments, depth,
+            &mut tri, &mut side, &all, &holders, &vtet, name, size, segments, work, depth,
         )?
     } else {
         Vec::new()
@@ -207,16 +211,19 @@ fn fill_holes(
     name: &str,
     size: &SizeField,
     segments: &[[P; 2]],
+    work: &FrontWork,
     depth: u32,
 ) -> Result<Vec<[u32; 4]>, TetMeshError> {
     let fill = Filler {
         name,
         size,
         segments,
+        work,
         delaunay: |sub: &RegionInput| {
             (depth < MAX_DEPTH)
                 .then(|| {
-                    conforming_at(sub, size, [Span::none(), Span::none()], segments, depth + 1).ok()
+                    let bars = [Span::none(), Span::none()];
+                    conforming_at(sub, size, bars, segments, work, depth + 1).ok()
                 })
                 .flatten()
                 .map(|c| inner_tets(&c))
@@ -230,18 +237,25 @@ fn fill_holes(
         Err(e) if depth > 0 => return Err(e),
         Err(_) => {}
     }
-    if let Ok((sub_b, sub_e)) = unpinched_hole_surface(tri, side, all, holders, vtet, name)
-        && let Ok(tets) = mesh_holes(tri, &sub_b, &sub_e, true, &fill)
-    {
-        return Ok(tets);
+    // Once the fronts have spent the region's work (`work`), the last front's error is the
+    // answer: another widening would only fail at once.
+    let mut last = None;
+    if let Ok((sub_b, sub_e)) = unpinched_hole_surface(tri, side, all, holders, vtet, name) {
+        match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
+            Ok(tets) => return Ok(tets),
+            Err((e, _)) => last = Some(e),
+        }
     }
     side.copy_from_slice(&before);
     let mut widened = 0;
     loop {
+        if let Some(e) = last.take().filter(|_| work.exhausted(0)) {
+            return Err(e);
+        }
         let (sub_b, sub_e) = unpinched_hole_surface(tri, side, all, holders, vtet, name)?;
         match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
             Ok(tets) => return Ok(tets),
-            Err((e, _)) if widened < MAX_WIDENING => {
+            Err((e, _)) if widened < MAX_WIDENING && !work.exhausted(0) => {
                 let Some(at) = e.at else { return Err(e) };
                 widened += 1;
                 if widen_hole(tri, side, &sub_b, at) == 0 {

@@ -9,6 +9,7 @@ use std::collections::HashMap;
 
 use super::super::super::advance::advance_front;
 use super::super::super::check::check_input;
+use super::super::super::work::FrontWork;
 use super::super::super::{RegionInput, SizeField, TetMeshError};
 use super::super::tri::{NONE, P, Tri};
 use super::{Holders, MAX_GROWTH, Side, kernel, meets, peel, same_turn, sorted, star};
@@ -216,6 +217,8 @@ pub(super) struct Filler<'a, D: Fn(&RegionInput) -> Option<Filled>> {
     pub name: &'a str,
     pub size: &'a SizeField,
     pub segments: &'a [[P; 2]],
+    /// What the fronts filling the holes may spend, all together.
+    pub work: &'a FrontWork,
     pub delaunay: D,
 }
 
@@ -290,7 +293,7 @@ fn mesh_hole<D: Fn(&RegionInput) -> Option<Filled>>(
             ));
         }
         None => {
-            let raw = advance_front(&sub, fill.size)?;
+            let raw = advance_front(&sub, fill.size, fill.work)?;
             (raw.nodes[sub.vertices.len()..].to_vec(), raw.tets)
         }
     };

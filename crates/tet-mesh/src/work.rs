@@ -1,0 +1,100 @@
+//! How much work the advancing front may spend on one region before it gives up.
+//!
+//! Where the front cannot fill a place (a recovery hole pinned between walls, two sheets nearly
+//! touching), it back-tracks and re-meshes around it again and again. The back-track limits of
+//! one front run (per face, and per run) bounded the count, not the cost: each try at a higher
+//! level deletes and re-meshes a wider ball, and the Delaunay recovery runs the front once per
+//! hole and per widening, then the whole region once more as its fallback. A region that could
+//! not be meshed took 15 minutes to say so.
+//!
+//! So the work is counted, in units of about 0.1 µs: a node or face the apex search scans is
+//! one, a face taken from the front [`FACE_TAKEN`], a candidate apex tested exactly
+//! [`APEX_TEST`]. A region's fronts may spend [`BASE`] units (about 5 s), [`PER_FACE`] more per
+//! input face, and [`PER_TET`] more per tetrahedron the running front holds at its fullest (so a
+//! region whose interior is far finer than its boundary is not cut short). Fronts that meshed
+//! spent 570 to 710 units per tet (the peer model's L1 blocks, up to 83 back-tracks); fronts
+//! that failed, 4,000 to 6,000, and far more in total (the recovery runs the front once per
+//! hole and per widening). The Delaunay recovery's fronts share one budget, and stop widening
+//! holes once it is spent; the whole-region fallback gets a fresh one, being another method.
+//! Counting, not timing: the same input gives up at the same place on every machine.
+
+use std::cell::Cell;
+
+use super::RegionInput;
+
+/// Units of a face taken from the front.
+pub const FACE_TAKEN: u64 = 10;
+/// Units of one exact test of a candidate apex.
+pub const APEX_TEST: u64 = 30;
+/// Units per boundary or embedded triangle of the region.
+pub const PER_FACE: u64 = 500;
+/// Units every region may spend whatever its size.
+pub const BASE: u64 = 50_000_000;
+/// Units per tetrahedron of the running front, at its fullest.
+pub const PER_TET: u64 = 2_000;
+
+/// The work the fronts of one region have spent, against what they may.
+#[derive(Debug)]
+pub struct FrontWork {
+    spent: Cell<u64>,
+    allowed: u64,
+    per_tet: u64,
+}
+
+impl FrontWork {
+    /// The budget of `input`'s fronts.
+    pub fn for_region(input: &RegionInput) -> FrontWork {
+        let faces = (input.boundary.len() + input.embedded.len()) as u64;
+        FrontWork::with(BASE + PER_FACE * faces, PER_TET)
+    }
+
+    /// A budget of `allowed` units plus `per_tet` per tet of the running front at its fullest.
+    pub fn with(allowed: u64, per_tet: u64) -> FrontWork {
+        FrontWork {
+            spent: Cell::new(0),
+            allowed,
+            per_tet,
+        }
+    }
+
+    /// Count `n` units.
+    pub fn spend(&self, n: u64) {
+        self.spent.set(self.spent.get().saturating_add(n));
+    }
+
+    pub fn spent(&self) -> u64 {
+        self.spent.get()
+    }
+
+    /// Whether the fronts have spent more than they may, the running one holding at most
+    /// `fullest` tetrahedra so far.
+    pub fn exhausted(&self, fullest: usize) -> bool {
+        self.spent.get()
+            > self
+                .allowed
+                .saturating_add(self.per_tet.saturating_mul(fullest as u64))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_budget_grows_with_the_faces_and_with_the_tets_the_front_holds() {
+        let input = RegionInput {
+            boundary: vec![[0, 1, 2]; 10],
+            embedded: vec![[0, 1, 3]; 5],
+            ..RegionInput::default()
+        };
+        let w = FrontWork::for_region(&input);
+        w.spend(BASE + 15 * PER_FACE);
+        assert!(!w.exhausted(0));
+        w.spend(1);
+        assert!(w.exhausted(0));
+        assert!(!w.exhausted(1));
+        w.spend(PER_TET);
+        assert!(w.exhausted(1));
+        assert_eq!(w.spent(), BASE + 15 * PER_FACE + 1 + PER_TET);
+    }
+}
