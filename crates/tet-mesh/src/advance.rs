@@ -309,8 +309,8 @@ fn gave_up(st: &State<'_>, backtracks: usize, at: P) -> TetMeshError {
     TetMeshError::new(
         st.name,
         format!(
-            "the front gave up after {} units of work (a meshing front spends under 1,000 per \
-             tetrahedron; it holds {}, with {} faces left open): {why}",
+            "the front gave up after {} units of work, about a minute's (it holds {} tets, with \
+             {} faces left open): {why}",
             st.work.spent(),
             st.alive,
             st.front.n_alive

@@ -7,16 +7,17 @@
 //! hole and per widening, then the whole region once more as its fallback. A region that could
 //! not be meshed took 15 minutes to say so.
 //!
-//! So the work is counted, in units of about 0.1 µs: a node or face the apex search scans is
+//! So the work is counted, in units of 0.05 to 0.1 µs: a node or face the apex search scans is
 //! one, a face taken from the front [`FACE_TAKEN`], a candidate apex tested exactly
-//! [`APEX_TEST`]. A region's fronts may spend [`BASE`] units (about 5 s), [`PER_FACE`] more per
-//! input face, and [`PER_TET`] more per tetrahedron the running front holds at its fullest (so a
-//! region whose interior is far finer than its boundary is not cut short). Fronts that meshed
-//! spent 570 to 710 units per tet (the peer model's L1 blocks, up to 83 back-tracks); fronts
-//! that failed, 4,000 to 6,000, and far more in total (the recovery runs the front once per
-//! hole and per widening). The Delaunay recovery's fronts share one budget, and stop widening
-//! holes once it is spent; the whole-region fallback gets a fresh one, being another method.
-//! Counting, not timing: the same input gives up at the same place on every machine.
+//! [`APEX_TEST`]. A region's fronts may spend [`BASE`] units (about a minute), [`PER_FACE`] more
+//! per input face, and [`PER_TET`] more per tetrahedron the running front holds at its fullest
+//! (so a region whose interior is far finer than its boundary is not cut short). Fronts that
+//! meshed the peer model's L1 blocks spent 570 to 710 units per tet; but a front may also close
+//! a small hole only after testing every node of it as the apex of every stuck face: one of
+//! RINGMesh modelA4's recovery holes (208 faces, 1,388 tets) takes 561 million units, 30 s,
+//! hence the base. The Delaunay recovery's fronts share one budget, and stop widening holes once
+//! it is spent; the whole-region fallback gets a fresh one, being another method. Counting, not
+//! timing: the same input gives up at the same place on every machine.
 
 use std::cell::Cell;
 
@@ -29,7 +30,7 @@ pub const APEX_TEST: u64 = 30;
 /// Units per boundary or embedded triangle of the region.
 pub const PER_FACE: u64 = 500;
 /// Units every region may spend whatever its size.
-pub const BASE: u64 = 50_000_000;
+pub const BASE: u64 = 1_000_000_000;
 /// Units per tetrahedron of the running front, at its fullest.
 pub const PER_TET: u64 = 2_000;
 
