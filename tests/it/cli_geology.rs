@@ -34,6 +34,16 @@ fn build(case: &Case) -> (tempfile::TempDir, serde_json::Value) {
     (dir, report)
 }
 
+/// Runs `recipe build --quiet recipe` in `dir`.
+fn build_quietly(dir: &std::path::Path, recipe: &std::path::Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(dir)
+        .args(["build", "--quiet"])
+        .arg(recipe)
+        .output()
+        .expect("the recipe binary runs")
+}
+
 /// Builds `case` in a scratch folder and checks its model, mesh and quality.
 fn builds_and_meshes(case: &Case) -> tempfile::TempDir {
     builds_and_meshes_reporting(case).0
@@ -212,6 +222,27 @@ fn a_smoothed_lens_meshes_its_rim_with_the_curves_of_its_narrow_rim_patches_grad
     );
     assert!(!case.recipe.contains("min_size"), "{}", case.recipe);
     builds_and_meshes(&case);
+}
+
+#[test]
+fn smoothed_horizons_touching_along_a_line_are_refused_naming_the_patches_that_lie_on_each_other() {
+    // Smoothing the ridge that touches H1 along its crest bulges it through H1 between the
+    // file's crest vertices: thin regions whose two sides are one and the same triangles.
+    let mut case = case("horizons_touching_along_a_line");
+    case.recipe = case.recipe.replace("\" }", "\", smooth = true }");
+    assert!(case.recipe.contains("smooth = true"), "{}", case.recipe);
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let recipe = case.write(dir.path());
+    let out = build_quietly(dir.path(), &recipe);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{err}");
+    let line = (err.lines())
+        .find(|l| l.contains("lie on each other"))
+        .unwrap_or_else(|| panic!("no face-to-face error:\n{err}"));
+    assert!(
+        line.contains("`H1#") && line.contains("`H2#") && line.contains("`smooth`"),
+        "{line}"
+    );
 }
 
 #[test]
@@ -398,12 +429,7 @@ fn a_thin_region_the_recipe_does_not_name_is_warned_about_with_a_point_to_name_i
         std::fs::read_to_string(&recipe).unwrap()
     );
     std::fs::write(&recipe, named).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .current_dir(dir.path())
-        .args(["build", "--quiet"])
-        .arg(&recipe)
-        .output()
-        .expect("the recipe binary runs");
+    let out = build_quietly(dir.path(), &recipe);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
     assert!(!err.contains("region `L` is about"), "{err}");

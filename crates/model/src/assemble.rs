@@ -164,6 +164,46 @@ pub fn region_input<'a>(
     })
 }
 
+/// Two patches of a region whose meshes hold the same triangle (`at`: its centroid): the
+/// region has no thickness there, the two surfaces lie on each other.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceToFace {
+    pub patches: [u32; 2],
+    pub at: [f64; 3],
+}
+
+/// The first triangle (in `sides` order) that the meshes of two of the region's patches both
+/// hold, if any; compared by exact coordinates, as [`region_input`] welds them.
+pub fn face_to_face<'a>(
+    sides: &[FaceUse],
+    patch_mesh: &dyn Fn(u32) -> Option<&'a TriMesh>,
+) -> Option<FaceToFace> {
+    let mut owner: HashMap<[[u64; 3]; 3], u32> = HashMap::new();
+    let mut patches: Vec<u32> = sides.iter().map(|s| s.patch).collect();
+    patches.dedup();
+    for p in patches {
+        let Some(mesh) = patch_mesh(p) else { continue };
+        for t in &mesh.triangles {
+            let corners = t.map(|v| mesh.vertices[v as usize]);
+            let mut key = corners.map(|c| point_key(&c));
+            key.sort_unstable();
+            match owner.get(&key) {
+                Some(&q) if q != p => {
+                    let at = [0, 1, 2].map(|k| corners.iter().map(|c| c[k]).sum::<f64>() / 3.0);
+                    return Some(FaceToFace {
+                        patches: [q, p],
+                        at,
+                    });
+                }
+                _ => {
+                    owner.insert(key, p);
+                }
+            }
+        }
+    }
+    None
+}
+
 /// Adds polylines (well pieces inside the region) to a region's input as embedded segments. A
 /// polyline node bit-identical to a boundary node (a well's crossing, a node of the patch mesh)
 /// is that node; the others are new vertices. Returns, per polyline, the range of its segments
@@ -250,4 +290,42 @@ pub fn assemble_volume(parts: &VolumeAssembly) -> Result<VolumeMesh, ModelError>
     out.face_sets = face_sets(&parts.face_sets, &ranges)?;
     out.check_indices().map_err(|e| ModelError::new(e, None))?;
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn face(patch: u32, side: Side) -> FaceUse {
+        FaceUse { patch, side }
+    }
+
+    #[test]
+    fn two_patches_holding_the_same_triangle_either_way_round_lie_face_to_face() {
+        let v = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let lower = TriMesh::new(v.clone(), vec![[0, 1, 2], [0, 1, 3]]);
+        // The same triangle with its corners in another order and numbering.
+        let upper = TriMesh::new(vec![v[2], v[0], v[1]], vec![[0, 2, 1]]);
+        let apart = TriMesh::new(v, vec![[1, 2, 3]]);
+        let meshes = [lower, upper, apart];
+        let get = |p: u32| meshes.get(p as usize);
+        for (sides, patches) in [
+            (vec![face(0, Side::Back), face(1, Side::Front)], [0, 1]),
+            (vec![face(1, Side::Back), face(0, Side::Front)], [1, 0]),
+        ] {
+            let f = face_to_face(&sides, &get).expect("they share a triangle");
+            assert_eq!(f.patches, patches);
+            assert_eq!(f.at, [1.0 / 3.0, 1.0 / 3.0, 0.0]);
+        }
+        let sides = [face(0, Side::Back), face(2, Side::Front)];
+        assert_eq!(face_to_face(&sides, &get), None);
+        // A dangling patch's two sides are one patch, not two.
+        let sides = [face(0, Side::Back), face(0, Side::Front)];
+        assert_eq!(face_to_face(&sides, &get), None);
+    }
 }

@@ -47,7 +47,10 @@ pub mod touches;
 pub mod trims;
 pub mod wells;
 
-pub use assemble::{VolumeAssembly, assemble_volume, embed_polylines, patch_input, region_input};
+pub use assemble::{
+    FaceToFace, VolumeAssembly, assemble_volume, embed_polylines, face_to_face, patch_input,
+    region_input,
+};
 pub use curves::build_topology;
 
 use serde::{Deserialize, Serialize};

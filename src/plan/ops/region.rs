@@ -16,7 +16,9 @@ use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::mesh::{LineGroup, NamedPoint, RegionGroup, VolumeMesh};
 use geom::point_key;
 use model::regions::{FaceUse, Side};
-use model::{VolumeAssembly, assemble_volume, embed_polylines, region_input};
+use model::{
+    FaceToFace, VolumeAssembly, assemble_volume, embed_polylines, face_to_face, region_input,
+};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region_with_progress};
@@ -52,6 +54,23 @@ pub struct TetMeshOp {
     pub refinements: usize,
     /// Whether `wells_in:<r>` follows the patch meshes.
     pub wells: bool,
+}
+
+impl TetMeshOp {
+    /// Says in recipe terms that two of the region's patches lie on each other.
+    fn face_to_face_error(&self, f: &FaceToFace) -> String {
+        let [a, b] = f
+            .patches
+            .map(|p| self.patches.get(p as usize).map_or("?", String::as_str));
+        let [x, y, z] = f.at;
+        format!(
+            "region `{}`: patches `{a}` and `{b}` lie on each other near ({x:.1}, {y:.1}, {z:.1}) \
+             (their meshes share a triangle), so the region has no thickness there; two surfaces \
+             that touch in the files can cross once `smooth` refines them between the files' \
+             vertices: smooth neither of the two surfaces, or part them in the data",
+            self.name
+        )
+    }
 }
 
 impl Operation for TetMeshOp {
@@ -129,6 +148,9 @@ impl Operation for TetMeshOp {
             return Err(format!("tet_mesh:{} needs the meshes of its patches", self.name).into());
         }
         let get = |p: u32| meshes.get(p as usize).map(|m| &m.mesh);
+        if let Some(f) = face_to_face(&self.sides, &get) {
+            return Err(self.face_to_face_error(&f).into());
+        }
         let mut input = region_input(&self.name, &self.sides, &get)
             .map_err(|e| OpError::from(e.to_string()))?;
         let pieces: Vec<Vec<[f64; 3]>> = wells.wells.iter().flat_map(|(_, p)| p.clone()).collect();
