@@ -160,13 +160,8 @@ mod tests {
     #[test]
     fn the_grading_is_the_least_over_every_source_of_its_size_plus_slope_times_distance() {
         // Scattered points with sizes over five orders of magnitude, against the brute force.
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = test_support::didactic::Rng(0x6772_6164_6564);
+        let mut next = || 0.5 * (rng.unit() + 1.0);
         let mut curves = Vec::new();
         let mut own = Vec::new();
         for _ in 0..12 {

@@ -18,9 +18,9 @@ pub(crate) const ORIGIN_X: f64 = 500_000.0;
 pub(crate) const ORIGIN_Y: f64 = 7_000_000.0;
 
 /// A small deterministic generator (SplitMix64): no unseeded randomness anywhere.
-pub(crate) struct Rng(pub(crate) u64);
+pub struct Rng(pub u64);
 impl Rng {
-    pub(crate) fn next_u64(&mut self) -> u64 {
+    pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -28,7 +28,7 @@ impl Rng {
         z ^ (z >> 31)
     }
     /// Uniform in [-1, 1).
-    pub(crate) fn unit(&mut self) -> f64 {
+    pub fn unit(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 }

@@ -12,7 +12,7 @@
 //! [`APEX_TEST`]. A region's fronts may spend [`BASE`] units (about a minute), [`PER_FACE`] more
 //! per input face, and [`PER_TET`] more per tetrahedron the running front holds at its fullest
 //! (so a region whose interior is far finer than its boundary is not cut short). Fronts that
-//! meshed the peer model's L1 blocks spent 570 to 710 units per tet; but a front may also close
+//! meshed the peer model's L1 blocks spent 90 to 710 units per tet; but a front may also close
 //! a small hole only after testing every node of it as the apex of every stuck face: one of
 //! RINGMesh modelA4's recovery holes (208 faces, 1,388 tets) takes 561 million units, 30 s,
 //! hence the base. The Delaunay recovery's fronts share one budget, and stop widening holes once

@@ -148,9 +148,6 @@ impl Operation for TetMeshOp {
             return Err(format!("tet_mesh:{} needs the meshes of its patches", self.name).into());
         }
         let get = |p: u32| meshes.get(p as usize).map(|m| &m.mesh);
-        if let Some(f) = face_to_face(&self.sides, &get) {
-            return Err(self.face_to_face_error(&f).into());
-        }
         let mut input = region_input(&self.name, &self.sides, &get)
             .map_err(|e| OpError::from(e.to_string()))?;
         let pieces: Vec<Vec<[f64; 3]>> = wells.wells.iter().flat_map(|(_, p)| p.clone()).collect();
@@ -164,8 +161,12 @@ impl Operation for TetMeshOp {
             ..self.size.clone()
         };
         let progress = |done, total| ctx.progress(done, total);
-        let out = mesh_region_with_progress(&input, &size, &opts, &progress)
-            .map_err(|e| OpError::from(e.to_string()))?;
+        // Two patches lying on each other fail the mesher's input check; only then is it worth
+        // finding which, to say so in recipe terms.
+        let out = mesh_region_with_progress(&input, &size, &opts, &progress).map_err(|e| {
+            let said = face_to_face(&self.sides, &get).map(|f| self.face_to_face_error(&f));
+            OpError::from(said.unwrap_or_else(|| e.to_string()))
+        })?;
         let well_edges = well_edges(&wells, &ranges, &out.lines);
         let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
         Ok(Output::new(Artifact::encode(&RegionMesh {

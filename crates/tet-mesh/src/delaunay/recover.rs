@@ -239,19 +239,16 @@ fn fill_holes(
     }
     // Once the fronts have spent the region's work (`work`), the last front's error is the
     // answer: another widening would only fail at once.
-    let mut last = None;
     if let Ok((sub_b, sub_e)) = unpinched_hole_surface(tri, side, all, holders, vtet, name) {
         match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
             Ok(tets) => return Ok(tets),
-            Err((e, _)) => last = Some(e),
+            Err((e, _)) if work.exhausted(0) => return Err(e),
+            Err(_) => {}
         }
     }
     side.copy_from_slice(&before);
     let mut widened = 0;
     loop {
-        if let Some(e) = last.take().filter(|_| work.exhausted(0)) {
-            return Err(e);
-        }
         let (sub_b, sub_e) = unpinched_hole_surface(tri, side, all, holders, vtet, name)?;
         match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
             Ok(tets) => return Ok(tets),
