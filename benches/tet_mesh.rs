@@ -16,8 +16,6 @@
 //!
 //! Skips with a note when ../shared is absent.
 
-use std::collections::BTreeMap;
-
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use tet_mesh::{RegionInput, SizeField, TetMeshOptions, mesh_region};
 
@@ -36,34 +34,7 @@ const REGIONS: [&str; 6] = [
 /// The cube `[0, n·step]^3`, each side split into `n x n` squares of two triangles, oriented
 /// outward (a boundary any checkout can rebuild; `n = 62` gives about a million tets).
 fn cube(n: u32, step: f64) -> RegionInput {
-    let mut ids: BTreeMap<[u32; 3], u32> = BTreeMap::new();
-    let mut vertices: Vec<[f64; 3]> = Vec::new();
-    let mut boundary = Vec::new();
-    for k in 0..3 {
-        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-        for side in [0, n] {
-            for i in 0..n {
-                for j in 0..n {
-                    let mut q = |a: u32, b: u32| {
-                        let mut p = [0u32; 3];
-                        p[k] = side;
-                        p[u] = a;
-                        p[v] = b;
-                        *ids.entry(p).or_insert_with(|| {
-                            vertices.push(p.map(|c| c as f64 * step));
-                            (vertices.len() - 1) as u32
-                        })
-                    };
-                    let (a, b, c, d) = (q(i, j), q(i + 1, j), q(i + 1, j + 1), q(i, j + 1));
-                    if side > 0 {
-                        boundary.extend([[a, b, c], [a, c, d]]);
-                    } else {
-                        boundary.extend([[a, c, b], [a, d, c]]);
-                    }
-                }
-            }
-        }
-    }
+    let (vertices, boundary) = test_support::shapes::gridded_cube(n, n as f64 * step);
     RegionInput {
         name: format!("cube{n}"),
         vertices,

@@ -166,33 +166,7 @@ fn delaunay_and_front_meshes_of_the_fanned_box_have_comparable_quality() {
 /// A cube of side `s` with `n` squares per side edge, two triangles per square, and a dangling
 /// rectangle inside it with `m` columns, triangulated as two needle fans (not Delaunay either).
 fn cube_with_fanned_fault(n: u32, s: f64, m: usize) -> RegionInput {
-    let mut pts: Vec<P> = Vec::new();
-    let mut ids = std::collections::BTreeMap::new();
-    let mut tris = Vec::new();
-    let step = s / n as f64;
-    for axis in 0..3 {
-        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-        for side in [0, n] {
-            for i in 0..n {
-                for j in 0..n {
-                    let mut q = |a: u32, b: u32| {
-                        let mut g = [0u32; 3];
-                        g[axis] = side;
-                        g[u] = a;
-                        g[v] = b;
-                        *ids.entry(g).or_insert_with(|| {
-                            pts.push(g.map(|c| c as f64 * step));
-                            (pts.len() - 1) as u32
-                        })
-                    };
-                    let (a, b, c, d) = (q(i, j), q(i + 1, j), q(i + 1, j + 1), q(i, j + 1));
-                    tris.push([a, b, c]);
-                    tris.push([a, c, d]);
-                }
-            }
-        }
-    }
-    outward(&pts, &mut tris, [s / 2.0; 3]);
+    let (mut pts, tris) = test_support::shapes::gridded_cube(n, s);
     // The fault: the rectangle x in [0.2 s, 0.8 s], y = 0.5 s, z in [0.3 s, 0.6 s] (tips inside).
     let mut row = |z: f64| {
         (0..=m)
