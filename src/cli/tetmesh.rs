@@ -291,7 +291,7 @@ pub fn run(a: &TetmeshArgs) -> Result<(), Failure> {
         errln!("       Wrote {}", dir.join(&file).display());
     }
     errln!(
-        "    Finished {}: {} tets, {} nodes in {:.2}s ({:.0} tets/s; {how})",
+        "    Finished {}: {} tets, {} nodes in {:.3}s ({:.0} tets/s; {how})",
         name,
         mesh.tets.len(),
         mesh.nodes.len(),
