@@ -42,10 +42,22 @@ pub(crate) fn face_uses(mesh: &VolumeMesh, number: &[u32]) -> Vec<Vec<FaceUse>> 
     for (i, t) in mesh.triangles.iter().enumerate() {
         by_key.entry(sorted(*t)).or_default().push(i);
     }
+    // Most tets have no node on a triangle: their faces are not looked up at all.
+    let mut on_triangle = vec![false; mesh.nodes.len()];
+    for &v in mesh.triangles.iter().flatten() {
+        if let Some(x) = on_triangle.get_mut(v as usize) {
+            *x = true;
+        }
+    }
+    let on = |v: u32| on_triangle.get(v as usize).copied().unwrap_or(false);
     let mut uses = vec![Vec::new(); mesh.triangles.len()];
     for (t, tet) in mesh.tets.iter().enumerate() {
         for (s, local) in TETRA4_SIDES.iter().enumerate() {
-            let Some(tris) = by_key.get(&sorted(local.map(|k| tet[k]))) else {
+            let face = local.map(|k| tet[k]);
+            if !face.iter().all(|&v| on(v)) {
+                continue;
+            }
+            let Some(tris) = by_key.get(&sorted(face)) else {
                 continue;
             };
             let apex = tet[6 - local.iter().sum::<usize>()];
