@@ -142,7 +142,13 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         output_dir: &output_dir,
         record_dir: &record_dir,
     };
-    let report_state = write_report(&recipe, &args.recipe, &report, &derivations, &place)?;
+    // The report's figures of a large mesh take seconds: measured on the build's `-j` threads.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| Failure(format!("error: report: no threads for it: {e}")))?;
+    let report_state =
+        pool.install(|| write_report(&recipe, &args.recipe, &report, &derivations, &place))?;
     derivations.save()?;
     super::report::write_validation(&report, write_dir)?;
     // The record describes the report in the output directory: a staged one once published.

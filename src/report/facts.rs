@@ -102,9 +102,16 @@ impl MeshFacts {
                 *c += 1;
             }
         }
-        let (model, _) = pictures::model(mesh, &format!("{model_name} surfaces"));
-        let (cutaway, kept, _) =
-            pictures::cutaway(mesh, &format!("{model_name} tetrahedra, cut away"));
+        // The pictures and the measures are independent: drawn and measured side by side.
+        let (((model, _), (cutaway, kept, _)), (quality, mean_ratio)) = rayon::join(
+            || {
+                rayon::join(
+                    || pictures::model(mesh, &format!("{model_name} surfaces")),
+                    || pictures::cutaway(mesh, &format!("{model_name} tetrahedra, cut away")),
+                )
+            },
+            || rayon::join(|| quality::report(mesh), || histogram::mean_ratio(mesh)),
+        );
         MeshFacts {
             nodes: mesh.nodes.len(),
             triangles: mesh.triangles.len(),
@@ -112,8 +119,8 @@ impl MeshFacts {
             regions: mesh.regions.clone(),
             surface_groups: mesh.surface_groups.clone(),
             inconsistent: mesh.check_indices().err(),
-            quality: quality::report(mesh),
-            mean_ratio: histogram::mean_ratio(mesh),
+            quality,
+            mean_ratio,
             c_ratio: histogram::c_ratio(mesh),
             region_tets,
             region_volume,
