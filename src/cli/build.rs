@@ -125,6 +125,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         print_crossings(&report);
         print_thin_regions(&recipe, &report);
         print_close_curves(&recipe, &report);
+        print_failures_near_close_curves(&recipe, &report);
     }
     let count = |s: NodeState| report.count(s);
     let summary = format!(
@@ -353,6 +354,35 @@ fn print_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
         .chain(close)
     {
         errln!("{:>12} {warning}", "Warning");
+    }
+}
+
+/// For each surface or tet mesh that failed at coordinates near where curves come closer than
+/// their mesh can resolve: that place, as the likely cause.
+fn print_failures_near_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
+    let failed_at: Vec<(&str, [f64; 3])> = (report.nodes.iter())
+        .filter(|n| n.state == NodeState::Failed)
+        .filter(|n| n.kind == "tet_mesh" || n.kind == "surface_mesh")
+        .filter_map(|n| {
+            Some((
+                n.name.as_str(),
+                super::culprit::failure_place(n.error.as_deref()?)?,
+            ))
+        })
+        .collect();
+    if failed_at.is_empty() {
+        return;
+    }
+    let Some(model) = report
+        .artifact("model")
+        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
+    else {
+        return;
+    };
+    for (node, at) in failed_at {
+        if let Some(cause) = plan::ops::close_curves_near(recipe, &model, at) {
+            errln!("{:>12} `{node}` failed {cause}", "note");
+        }
     }
 }
 

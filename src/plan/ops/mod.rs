@@ -21,7 +21,7 @@ mod support;
 mod wells;
 pub use conformity::non_conformity_warnings;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
-pub use proximity::close_curve_warnings;
+pub use proximity::{close_curve_warnings, close_curves_near};
 pub use refine::RefineOp;
 pub use sizes::{short_curve_warnings, thin_region_warnings};
 

@@ -2,7 +2,8 @@
 //! of one fault whose free edges run a few metres apart, a curve folding back on itself, two
 //! curves meeting at a sliver of an angle. The tets between such curves span a gap far thinner
 //! than their edges and come out flat, whatever the mesher does; the build says where, so the
-//! user can refine there or mend the data.
+//! user can refine there or mend the data. When a surface or tet mesh then fails within the
+//! curves' mesh size of such a place, the build puts the failure down to it.
 //!
 //! Two points of the curves are *close* when they are nearer than [`FRACTION`] of the finer of
 //! the two curves' mesh sizes, and *unexplained* when nothing in the model's layout makes them
@@ -49,25 +50,10 @@ struct Approach {
 /// One sentence per place where curves come unexplainedly close, closest first, at most
 /// eight and a count of the rest.
 pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
-    let topo = &model.topology;
-    let regions = sizes::region_sizes(recipe, model);
-    let patches = sizes::patch_sizes(recipe, model, &regions);
-    let size: Vec<f64> = (topo.curves.iter())
-        .zip(sizes::curve_sizes(recipe, topo, &patches))
-        .map(|(c, fallback)| curve_size(recipe, c, fallback.size))
-        .collect();
-    let segments = segments(model);
-    let boxes: Vec<BBox> = (segments.iter())
-        .map(|s| BBox::from_points(&s.ends).inflate(FRACTION * size[s.curve] / 2.0))
-        .collect();
-    let found = overlapping_pairs(&boxes, |i, j| {
-        approach(model, &size, &segments[i as usize], &segments[j as usize])
-    });
+    let found = approaches(recipe, model);
     let mut closest: BTreeMap<(usize, usize), Approach> = BTreeMap::new();
-    for (i, j, a) in found {
-        let (c, d) = (segments[i as usize].curve, segments[j as usize].curve);
-        let key = (c.min(d), c.max(d));
-        let best = closest.entry(key).or_insert_with(|| a.clone());
+    for (c, d, a) in found {
+        let best = closest.entry((c, d)).or_insert_with(|| a.clone());
         if a.distance < best.distance {
             *best = a;
         }
@@ -85,6 +71,79 @@ pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
         ));
     }
     out
+}
+
+/// For a mesh that failed at `at`: the unexplained approach of two curves within their mesh
+/// size of it, told as the likely cause (the elements between such curves are flat, and a
+/// mesher stalls or folds among them); `None` when no curves come close near there.
+pub fn close_curves_near(recipe: &Recipe, model: &ModelData, at: [f64; 3]) -> Option<String> {
+    let found = approaches(recipe, model);
+    let (&(c, d, ref a), from) = nearest_within_size(&found, at)?;
+    let curves = &model.topology.curves;
+    let which = if c == d {
+        format!(
+            "curve `{}` comes within {} of itself",
+            curves[c].name,
+            short(a.distance)
+        )
+    } else {
+        format!(
+            "curves `{}` and `{}` come within {} of each other",
+            curves[c].name,
+            curves[d].name,
+            short(a.distance)
+        )
+    };
+    let [x, y, z] = a.at.map(|v| format!("{v:.1}"));
+    Some(format!(
+        "{} from ({x}, {y}, {z}), where {which}, under a tenth of their mesh size {}: the \
+         likely cause; mend the surfaces there in the data (join or part them), or refine along \
+         them (`[[mesh.refine]]` with `curve = \"{}\"` and a `size` a few times the gap)",
+        short(from),
+        short(a.size),
+        curves[c].name,
+    ))
+}
+
+/// The approach nearest to `at` among those within their mesh size of it, and how far it is
+/// (ties to the lower pair of curves, then the closer approach).
+fn nearest_within_size(
+    found: &[(usize, usize, Approach)],
+    at: [f64; 3],
+) -> Option<(&(usize, usize, Approach), f64)> {
+    found
+        .iter()
+        .map(|f| (f, dist(&f.2.at, &at)))
+        .filter(|(f, d)| *d <= f.2.size)
+        .min_by(|(f, d), (g, e)| {
+            d.total_cmp(e)
+                .then((f.0, f.1).cmp(&(g.0, g.1)))
+                .then(f.2.distance.total_cmp(&g.2.distance))
+        })
+}
+
+/// Every unexplained approach of two segments, with its two curves (lower first).
+fn approaches(recipe: &Recipe, model: &ModelData) -> Vec<(usize, usize, Approach)> {
+    let topo = &model.topology;
+    let regions = sizes::region_sizes(recipe, model);
+    let patches = sizes::patch_sizes(recipe, model, &regions);
+    let size: Vec<f64> = (topo.curves.iter())
+        .zip(sizes::curve_sizes(recipe, topo, &patches))
+        .map(|(c, fallback)| curve_size(recipe, c, fallback.size))
+        .collect();
+    let segments = segments(model);
+    let boxes: Vec<BBox> = (segments.iter())
+        .map(|s| BBox::from_points(&s.ends).inflate(FRACTION * size[s.curve] / 2.0))
+        .collect();
+    let found = overlapping_pairs(&boxes, |i, j| {
+        approach(model, &size, &segments[i as usize], &segments[j as usize])
+    });
+    (found.into_iter())
+        .map(|(i, j, a)| {
+            let (c, d) = (segments[i as usize].curve, segments[j as usize].curve);
+            (c.min(d), c.max(d), a)
+        })
+        .collect()
 }
 
 /// The length of a curve's mesh segments: its `[mesh.curves]` rule's, else `fallback` (the finest
@@ -293,6 +352,27 @@ fn seg_len(s: &Segment) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_failure_is_put_down_to_the_nearest_approach_within_its_mesh_size() {
+        let near = |distance: f64, at: [f64; 3], size: f64| Approach { distance, at, size };
+        let found = vec![
+            (0, 1, near(0.1, [0.0, 0.0, 0.0], 100.0)),
+            (2, 3, near(0.5, [50.0, 0.0, 0.0], 100.0)),
+            (2, 3, near(0.2, [60.0, 0.0, 0.0], 100.0)),
+            (4, 5, near(1.0, [500.0, 0.0, 0.0], 20.0)),
+        ];
+        let at = |x: f64| [x, 0.0, 0.0];
+        let pick = |x: f64| nearest_within_size(&found, at(x)).map(|(f, d)| (f.0, f.2.at[0], d));
+        // Nearest first, whichever gap is the smallest.
+        assert_eq!(pick(40.0), Some((2, 50.0, 10.0)));
+        assert_eq!(pick(5.0), Some((0, 0.0, 5.0)));
+        // Only within the curves' own mesh size: 30 from a 20 m curve pair is too far.
+        assert_eq!(pick(470.0), None);
+        assert_eq!(pick(485.0), Some((4, 500.0, 15.0)));
+        assert_eq!(pick(-150.0), None);
+        assert_eq!(nearest_within_size(&[], at(0.0)).map(|(_, d)| d), None);
+    }
 
     #[test]
     fn the_closest_points_of_crossing_parallel_and_skew_segments() {
