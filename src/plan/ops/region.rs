@@ -101,7 +101,8 @@ impl Operation for TetMeshOp {
         // 17: a hole's embedded triangles peeled off by a tet each before the cone.
         // 18: at most 16 apexes tried per peeled triangle.
         // 19: background size cells hold the size at their centre, not the least in them.
-        19
+        // 20: the optimizer inserts nodes for tets below shape 0.5 (was 0.35).
+        20
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
