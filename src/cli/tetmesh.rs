@@ -46,8 +46,8 @@ pub struct TetmeshArgs {
     /// Interior target element size [default: sizes grow from the boundary's, at --growth]
     #[arg(long)]
     pub size: Option<f64>,
-    /// Size growth away from the boundary
-    #[arg(long, default_value_t = 1.2)]
+    /// Size growth away from the boundary (a recipe's `[mesh] growth` default)
+    #[arg(long, default_value_t = 1.3)]
     pub growth: f64,
     /// Skip quality optimization
     #[arg(long)]
