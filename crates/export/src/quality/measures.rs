@@ -70,19 +70,16 @@ pub fn tet_min_dihedral_deg(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 
         let v = [v0[0] - sv * e[0], v0[1] - sv * e[1], v0[2] - sv * e[2]];
         *slot = (norm2(&cross(&u, &v)).sqrt(), dot(&u, &v));
     }
-    let cosine = |(s, c): (f64, f64)| {
+    let cosines = sc.map(|(s, c)| {
         let r = (s * s + c * c).sqrt();
         if r > 0.0 { c / r } else { 1.0 }
-    };
-    let largest = sc
-        .iter()
-        .map(|&x| cosine(x))
-        .fold(f64::NEG_INFINITY, f64::max);
+    });
+    let largest = cosines.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let mut best = 180.0f64;
-    for &x in &sc {
+    for (&(s, c), &cosine) in sc.iter().zip(&cosines) {
         // A NaN angle is passed over, as `f64::min` would.
-        if cosine(x) >= largest - COS_SLACK {
-            best = best.min(x.0.atan2(x.1).to_degrees());
+        if cosine >= largest - COS_SLACK {
+            best = best.min(s.atan2(c).to_degrees());
         }
     }
     best
