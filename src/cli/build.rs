@@ -379,8 +379,10 @@ fn print_failures_near_close_curves(recipe: &crate::recipe::Recipe, report: &Bui
     else {
         return;
     };
-    for (node, at) in failed_at {
-        if let Some(cause) = plan::ops::close_curves_near(recipe, &model, at) {
+    let places: Vec<[f64; 3]> = failed_at.iter().map(|&(_, at)| at).collect();
+    let causes = plan::ops::close_curves_near(recipe, &model, &places);
+    for ((node, _), cause) in failed_at.iter().zip(causes) {
+        if let Some(cause) = cause {
             errln!("{:>12} `{node}` failed {cause}", "note");
         }
     }

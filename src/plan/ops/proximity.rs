@@ -73,12 +73,28 @@ pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
     out
 }
 
-/// For a mesh that failed at `at`: the unexplained approach of two curves within their mesh
-/// size of it, told as the likely cause (the elements between such curves are flat, and a
-/// mesher stalls or folds among them); `None` when no curves come close near there.
-pub fn close_curves_near(recipe: &Recipe, model: &ModelData, at: [f64; 3]) -> Option<String> {
+/// For meshes that failed at `places`: for each, the unexplained approach of two curves within
+/// their mesh size of it, told as the likely cause (the elements between such curves are flat,
+/// and a mesher stalls or folds among them); `None` where no curves come close. The model's
+/// approaches are found once for all the places.
+pub fn close_curves_near(
+    recipe: &Recipe,
+    model: &ModelData,
+    places: &[[f64; 3]],
+) -> Vec<Option<String>> {
     let found = approaches(recipe, model);
-    let (&(c, d, ref a), from) = nearest_within_size(&found, at)?;
+    (places.iter())
+        .map(|&at| cause_sentence(model, &found, at))
+        .collect()
+}
+
+/// The sentence for a failure at `at`, from the model's approaches `found`.
+fn cause_sentence(
+    model: &ModelData,
+    found: &[(usize, usize, Approach)],
+    at: [f64; 3],
+) -> Option<String> {
+    let (&(c, d, ref a), from) = nearest_within_size(found, at)?;
     let curves = &model.topology.curves;
     let which = if c == d {
         format!(
