@@ -3,11 +3,15 @@
 //! so the command line adds the file line of the closest triangle of the recipe's surfaces.
 //!
 //! Only failures pay for it: the surfaces are imported again (as their `import` nodes do, in the
-//! model's units) the first time a failure needs them, and searched triangle by triangle. A
-//! surface whose file cannot be read or imported is left out; its own node says why.
+//! model's units) the first time a failure needs them, and each gets an R-tree (rstar) of its
+//! triangles, so a failure costs a logarithmic search, not a scan of the model, however many
+//! meshes fail. A surface whose file cannot be read or imported is left out; its own node says
+//! why. Of triangles equally near, the first in the recipe's surface order and the file's
+//! triangle order is named, so the note is the same on every run.
 
 use crate::recipe::Recipe;
 use gocad::import::{ImportOptions, ImportedSurface, import_surface};
+use rstar::{AABB, PointDistance, RTree, RTreeObject};
 
 /// The last `at (x, y, z)` of an error message: where the stage failed.
 pub fn failure_place(error: &str) -> Option<[f64; 3]> {
@@ -23,8 +27,67 @@ pub fn failure_place(error: &str) -> Option<[f64; 3]> {
     }
 }
 
-/// The recipe's surfaces, imported, with their names.
-pub fn import_all(recipe: &Recipe) -> Vec<(String, ImportedSurface)> {
+/// An input triangle in a surface's R-tree: its corners and its number in the surface.
+struct Tri {
+    p: [[f64; 3]; 3],
+    index: u32,
+}
+
+impl RTreeObject for Tri {
+    type Envelope = AABB<[f64; 3]>;
+    fn envelope(&self) -> Self::Envelope {
+        let lo = [0, 1, 2].map(|k| self.p.iter().map(|q| q[k]).fold(f64::INFINITY, f64::min));
+        let hi = [0, 1, 2].map(|k| {
+            self.p
+                .iter()
+                .map(|q| q[k])
+                .fold(f64::NEG_INFINITY, f64::max)
+        });
+        AABB::from_corners(lo, hi)
+    }
+}
+
+impl PointDistance for Tri {
+    fn distance_2(&self, at: &[f64; 3]) -> f64 {
+        let [a, b, c] = &self.p;
+        model::trims::triangle_distance(at, a, b, c).powi(2)
+    }
+}
+
+/// A surface of the recipe, imported, with its name and its triangles indexed.
+pub struct Indexed {
+    name: String,
+    surface: ImportedSurface,
+    tree: RTree<Tri>,
+}
+
+impl Indexed {
+    fn new(name: String, surface: ImportedSurface) -> Indexed {
+        let v = &surface.mesh.vertices;
+        let tris = (surface.mesh.triangles.iter().enumerate())
+            .map(|(i, t)| Tri {
+                p: t.map(|k| v[k as usize]),
+                index: i as u32,
+            })
+            .collect();
+        Indexed {
+            name,
+            tree: RTree::bulk_load(tris),
+            surface,
+        }
+    }
+
+    /// The nearest triangle to `at` and its squared distance; the lowest number among ties.
+    fn nearest(&self, at: [f64; 3]) -> Option<(f64, u32)> {
+        let mut near = self.tree.nearest_neighbor_iter_with_distance_2(at);
+        let (first, d2) = near.next()?;
+        let tied = near.take_while(|&(_, e2)| e2 == d2).map(|(t, _)| t.index);
+        Some((d2, tied.fold(first.index, u32::min)))
+    }
+}
+
+/// The recipe's surfaces, imported and indexed, with their names.
+pub fn import_all(recipe: &Recipe) -> Vec<Indexed> {
     recipe
         .surfaces
         .iter()
@@ -37,7 +100,7 @@ pub fn import_all(recipe: &Recipe) -> Vec<(String, ImportedSurface)> {
             };
             let label = spec.file.display().to_string();
             let s = import_surface(&bytes, &label, &opts).ok()?;
-            Some((name.clone(), s))
+            Some(Indexed::new(name.clone(), s))
         })
         .collect()
 }
@@ -46,27 +109,26 @@ pub fn import_all(recipe: &Recipe) -> Vec<(String, ImportedSurface)> {
 /// as a sentence; among the surface `only` when given (the surface of a failed patch: its
 /// neighbours along a curve are as near). `None` when no such surface has a triangle.
 pub fn nearest_triangle(
-    surfaces: &[(String, ImportedSurface)],
+    surfaces: &[Indexed],
     only: Option<&str>,
     at: [f64; 3],
     units: &str,
 ) -> Option<String> {
-    let mut best: Option<(f64, &str, &ImportedSurface, u32)> = None;
-    for (name, s) in surfaces.iter().filter(|(n, _)| only.is_none_or(|o| o == n)) {
-        let v = &s.mesh.vertices;
-        for (t, tri) in s.mesh.triangles.iter().enumerate() {
-            let [a, b, c] = tri.map(|i| v[i as usize]);
-            let d = model::trims::triangle_distance(&at, &a, &b, &c);
-            if best.is_none_or(|(bd, ..)| d < bd) {
-                best = Some((d, name, s, t as u32));
-            }
+    let mut best: Option<(f64, &Indexed, u32)> = None;
+    for s in surfaces.iter().filter(|s| only.is_none_or(|o| o == s.name)) {
+        if let Some((d2, t)) = s.nearest(at)
+            && best.is_none_or(|(bd2, ..)| d2 < bd2)
+        {
+            best = Some((d2, s, t));
         }
     }
-    let (d, name, s, t) = best?;
+    let (d2, s, t) = best?;
     Some(format!(
-        "the nearest input triangle is {}:{} (surface `{name}`), {d:.3} {units} from there",
-        s.source.file,
-        s.source.triangle_line(t)
+        "the nearest input triangle is {}:{} (surface `{}`), {:.3} {units} from there",
+        s.surface.source.file,
+        s.surface.source.triangle_line(t),
+        s.name,
+        d2.sqrt()
     ))
 }
 
@@ -92,7 +154,7 @@ mod tests {
         let surfaces = import_all(&recipe);
         assert_eq!(surfaces.len(), 4);
         // A point 2 m above the centroid of one of H1's triangles.
-        let (_, h1) = surfaces.iter().find(|(n, _)| n == "H1").unwrap();
+        let h1 = &surfaces.iter().find(|s| s.name == "H1").unwrap().surface;
         let k = h1.mesh.triangles.len() / 3;
         let [a, b, c] = h1.mesh.triangles[k].map(|i| h1.mesh.vertices[i as usize]);
         let at = [0, 1, 2].map(|m| (a[m] + b[m] + c[m]) / 3.0 + if m == 2 { 2.0 } else { 0.0 });
@@ -116,5 +178,47 @@ mod tests {
         );
         let text = std::fs::read_to_string(dir.join("data/didactic/H1_top_reservoir.ts")).unwrap();
         assert!(text.lines().nth(line - 1).unwrap().starts_with("TRGL"));
+    }
+
+    /// The nearest triangle by looking at every one: what the index must agree with.
+    fn scanned(surfaces: &[Indexed], at: [f64; 3]) -> (f64, usize, u32) {
+        let mut best = (f64::INFINITY, 0, 0);
+        for (k, s) in surfaces.iter().enumerate() {
+            let v = &s.surface.mesh.vertices;
+            for (t, tri) in s.surface.mesh.triangles.iter().enumerate() {
+                let [a, b, c] = tri.map(|i| v[i as usize]);
+                let d = model::trims::triangle_distance(&at, &a, &b, &c).powi(2);
+                if d < best.0 {
+                    best = (d, k, t as u32);
+                }
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn the_indexed_search_names_the_triangle_a_scan_of_every_triangle_names() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("recipes");
+        let recipe = crate::cli::load::load(&dir.join("didactic.toml"))
+            .unwrap_or_else(|e| panic!("the example loads: {}", e.0));
+        let surfaces = import_all(&recipe);
+        // Points over the box and beyond it, on a lattice that falls on no symmetry of the data.
+        for i in 0..7 {
+            for j in 0..7 {
+                for k in 0..5 {
+                    let at = [
+                        499_000.0 + 1_123.7 * i as f64,
+                        6_999_000.0 + 1_049.3 * j as f64,
+                        -2_600.0 + 610.9 * k as f64,
+                    ];
+                    let (d2, k, t) = scanned(&surfaces, at);
+                    let s = &surfaces[k];
+                    let said = nearest_triangle(&surfaces, None, at, "m").expect("a triangle");
+                    let line = s.surface.source.triangle_line(t);
+                    let want = format!(":{line} (surface `{}`), {:.3} m", s.name, d2.sqrt());
+                    assert!(said.contains(&want), "{at:?}: {said} (scan: {want})");
+                }
+            }
+        }
     }
 }

@@ -42,7 +42,7 @@ pub struct Renderer {
     delay: Duration,
     active: Mutex<BTreeMap<String, Running>>,
     /// The recipe's surfaces, imported when a meshing failure first needs them (`culprit`).
-    surfaces: std::sync::OnceLock<Vec<(String, gocad::import::ImportedSurface)>>,
+    surfaces: std::sync::OnceLock<Vec<super::culprit::Indexed>>,
 }
 
 /// A node that runs, when bars are drawn: since when, and its bar once it has one.
