@@ -71,6 +71,7 @@ fn a_tet_mesh_node_built_by_the_engine_emits_progress_events_that_make_a_good_ba
     let op = TetMeshOp {
         name: "overburden_E".into(),
         patches: vec!["boundary".into(), "F2".into()],
+        smoothed: vec![false, false],
         sides: vec![
             FaceUse {
                 patch: 0,

@@ -43,6 +43,12 @@ impl ModelExpander {
         )
     }
 
+    /// Whether the surface of the patch named `patch` (`<surface>#<k>`) is smoothed.
+    fn smoothed(&self, patch: &str) -> bool {
+        let surface = patch.rsplit_once('#').map_or(patch, |(s, _)| s);
+        (self.recipe.surfaces.get(surface)).is_some_and(|s| s.smooth.is_some())
+    }
+
     /// The recipe path of the region's mesh settings, its size field and its tet method.
     fn region_settings(&self, region: &str) -> (String, SizeField, Method) {
         let m = &self.recipe.mesh;
@@ -231,6 +237,10 @@ impl Expander for ModelExpander {
                         patches: patches
                             .iter()
                             .map(|&p| model.patches[p as usize].name.clone())
+                            .collect(),
+                        smoothed: patches
+                            .iter()
+                            .map(|&p| self.smoothed(&model.patches[p as usize].name))
                             .collect(),
                         sides,
                         size_path,

@@ -42,6 +42,8 @@ pub struct TetMeshOp {
     pub name: String,
     /// The distinct patches bounding the region, in model order.
     pub patches: Vec<String>,
+    /// Per patch, whether its surface is smoothed (`smooth`): for the advice of an error only.
+    pub smoothed: Vec<bool>,
     /// Face-uses, `patch` indexing `patches`; a dangling patch appears with both sides.
     pub sides: Vec<FaceUse>,
     /// Recipe path of the size rule (`mesh.regions.<r>` or `mesh`).
@@ -62,12 +64,18 @@ impl TetMeshOp {
         let [a, b] = f
             .patches
             .map(|p| self.patches.get(p as usize).map_or("?", String::as_str));
+        let smoothed = (f.patches.iter()).any(|&p| self.smoothed.get(p as usize) == Some(&true));
         let [x, y, z] = f.at;
+        let cause = if smoothed {
+            "two surfaces that touch in the files can cross once `smooth` refines them between \
+             the files' vertices: smooth neither of the two surfaces, or part them in the data"
+        } else {
+            "the two surfaces touch over an area there in the files (or come closer than their \
+             meshes can part): part them in the data there"
+        };
         format!(
             "region `{}`: patches `{a}` and `{b}` lie on each other near ({x:.1}, {y:.1}, {z:.1}) \
-             (their meshes share a triangle), so the region has no thickness there; two surfaces \
-             that touch in the files can cross once `smooth` refines them between the files' \
-             vertices: smooth neither of the two surfaces, or part them in the data",
+             (their meshes share a triangle), so the region has no thickness there; {cause}",
             self.name
         )
     }
@@ -482,5 +490,30 @@ mod tests {
         let cuts = [cut("W1", vec![marker("H2", [0.5, 0.0, 0.0])])];
         let e = well_points(&[[0.0; 3]], &cuts).unwrap_err().to_string();
         assert!(e.contains("well `W1`") && e.contains("surface `H2`"), "{e}");
+    }
+
+    #[test]
+    fn patches_lying_on_each_other_are_put_down_to_smoothing_only_when_a_surface_is_smoothed() {
+        let op = |smoothed: Vec<bool>| TetMeshOp {
+            name: "r".into(),
+            patches: vec!["H1#3".into(), "H2#4".into(), "F1#1".into()],
+            smoothed,
+            sides: Vec::new(),
+            size_path: "mesh".into(),
+            size: SizeField::default(),
+            method: Method::default(),
+            refinements: 0,
+            wells: false,
+        };
+        let f = FaceToFace {
+            patches: [0, 1],
+            at: [1.0, 2.0, 3.0],
+        };
+        let plain = op(vec![false, false, true]).face_to_face_error(&f);
+        assert!(plain.contains("`H1#3` and `H2#4` lie on each other near (1.0, 2.0, 3.0)"));
+        assert!(!plain.contains("smooth"), "{plain}");
+        assert!(plain.contains("part them in the data"), "{plain}");
+        let smoothed = op(vec![false, true, false]).face_to_face_error(&f);
+        assert!(smoothed.contains("smooth neither"), "{smoothed}");
     }
 }
