@@ -67,7 +67,8 @@ impl Operation for ImportOp {
         // 3: coordinates beyond ±1e12 (no-data markers, damaged numbers) are refused.
         // 4: validation's exact contact test also sees a triangle that merging collapsed onto a
         //    line as a coplanar overlap.
-        4
+        // 5: names and other text from a line are cut at 4096 bytes (a damaged giant line).
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

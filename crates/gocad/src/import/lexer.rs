@@ -5,6 +5,11 @@
 //! works on `&[u8]` and never assumes UTF-8; only tokens that must be numbers are converted. Numbers
 //! are parsed with the standard library's correctly rounded parser, so the coordinates are exactly
 //! the binary64 values the text denotes.
+//!
+//! A line can be any length (a damaged file may hold one of a gigabyte), so nothing here copies a
+//! line whole: a name or other text kept from a line is at most [`MAX_TEXT`] bytes (longer text
+//! is cut and says how long it was), and a list of tokens stops at the count its caller can use.
+//! Memory then stays about the size of the file, whatever its lines.
 
 /// One line of the input: its 1-based number and its bytes without the line terminator.
 #[derive(Clone, Copy, Debug)]
@@ -122,12 +127,16 @@ impl<'a> Iterator for Tokens<'a> {
     }
 }
 
+/// The longest text kept from a line, in bytes: names, units, values in messages.
+pub const MAX_TEXT: usize = 4096;
+
 /// Tokens of a line where a double-quoted run (which may hold blanks) is one token, quotes removed.
-/// An unterminated quote runs to the end of the line.
-pub fn quoted_tokens(s: &[u8]) -> Vec<String> {
+/// An unterminated quote runs to the end of the line. At most `limit` tokens are returned, so a
+/// caller that can use `n` asks for `n + 1` to tell a line that holds more.
+pub fn quoted_tokens(s: &[u8], limit: usize) -> Vec<String> {
     let mut out = Vec::new();
     let mut i = 0;
-    while i < s.len() {
+    while i < s.len() && out.len() < limit {
         if is_space(s[i]) {
             i += 1;
             continue;
@@ -151,9 +160,17 @@ pub fn quoted_tokens(s: &[u8]) -> Vec<String> {
     out
 }
 
-/// Bytes as text, replacing invalid UTF-8 (names in messages and outputs).
+/// Bytes as text, replacing invalid UTF-8 (names in messages and outputs); text longer than
+/// [`MAX_TEXT`] bytes is cut there and ends with how long it was.
 pub fn text(s: &[u8]) -> String {
-    String::from_utf8_lossy(s).into_owned()
+    if s.len() <= MAX_TEXT {
+        return String::from_utf8_lossy(s).into_owned();
+    }
+    let mut cut = String::from_utf8_lossy(&s[..MAX_TEXT]).into_owned();
+    // A character split at the cut reads as a replacement character: drop it.
+    cut = cut.trim_end_matches('\u{fffd}').to_string();
+    cut.push_str(&format!("… ({} bytes in all)", s.len()));
+    cut
 }
 
 /// Why a token is not a usable number.
@@ -297,7 +314,7 @@ mod tests {
     #[test]
     fn a_quoted_name_with_spaces_is_one_token() {
         assert_eq!(
-            quoted_tokens(br#"PROPERTIES " default property"  def-prop"#),
+            quoted_tokens(br#"PROPERTIES " default property"  def-prop"#, 10),
             vec!["PROPERTIES", " default property", "def-prop"]
         );
     }
@@ -362,5 +379,32 @@ mod tests {
         assert_eq!(parse_id(b"1a"), None);
         assert_eq!(parse_signed(b"-18"), Some(-18));
         assert_eq!(parse_signed(b"+3"), Some(3));
+    }
+
+    #[test]
+    fn a_list_of_tokens_stops_at_its_limit() {
+        assert_eq!(quoted_tokens(b"a b \"c d\" e", 2), vec!["a", "b"]);
+        assert_eq!(
+            quoted_tokens(b"a b \"c d\" e", 9),
+            vec!["a", "b", "c d", "e"]
+        );
+    }
+
+    #[test]
+    fn text_longer_than_its_bound_is_cut_and_says_how_long_it_was() {
+        let long = vec![b'x'; MAX_TEXT * 3];
+        let t = text(&long);
+        assert!(t.starts_with(&"x".repeat(MAX_TEXT)), "{}", &t[..20]);
+        assert!(
+            t.ends_with(&format!("… ({} bytes in all)", MAX_TEXT * 3)),
+            "{t}"
+        );
+        assert!(t.len() < MAX_TEXT + 40);
+        // A two-byte character across the cut is not half kept.
+        let mut accented = vec![b'a'; MAX_TEXT - 1];
+        accented.extend("é".repeat(10).as_bytes());
+        let t = text(&accented);
+        assert!(!t.contains('\u{fffd}'), "{}", &t[MAX_TEXT - 4..]);
+        assert_eq!(text("é".as_bytes()), "é");
     }
 }

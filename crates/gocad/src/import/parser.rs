@@ -245,7 +245,7 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
                     if eq_ci(kw, "END_ORIGINAL_COORDINATE_SYSTEM") {
                         mode = Mode::Body;
                     } else if eq_ci(kw, "AXIS_UNIT") {
-                        let q = quoted_tokens(toks.rest());
+                        let q = quoted_tokens(toks.rest(), 3);
                         let u = |k: usize| q.get(k).cloned().unwrap_or_default();
                         b.obj.crs.axis_units = Some(([u(0), u(1), u(2)], n));
                     } else if eq_ci(kw, "ZPOSITIVE") {
@@ -325,7 +325,7 @@ pub fn parse_gocad(bytes: &[u8], file_label: &str) -> Result<GocadFile, ImportEr
                 cur = None;
             }
             _ if eq_ci(kw, "PROPERTIES") => {
-                b.obj.property_names = quoted_tokens(toks.rest());
+                b.obj.property_names = quoted_tokens(toks.rest(), MAX_STRIDE + 1);
                 if b.obj.property_names.len() > MAX_STRIDE {
                     return Err(err(n, format!("more than {MAX_STRIDE} PROPERTIES")));
                 }

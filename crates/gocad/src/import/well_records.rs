@@ -194,7 +194,7 @@ fn station_vertex(toks: &mut Tokens<'_>, n: usize, file: &str) -> Result<[f64; 3
 
 /// `MRKR name flag md` (the name may be quoted).
 fn marker(toks: &mut Tokens<'_>, n: usize, file: &str) -> Result<RawMarker, ImportError> {
-    let words = quoted_tokens(toks.rest());
+    let words = quoted_tokens(toks.rest(), 3);
     let [name, _flag, md, ..] = words.as_slice() else {
         return Err(ImportError::new(
             file,

@@ -426,3 +426,26 @@ fn objects_sharing_a_name_are_told_apart_by_their_position_in_the_file() {
         );
     }
 }
+
+#[test]
+fn a_giant_name_line_is_cut_to_a_few_kilobytes_and_the_surface_imports() {
+    // 64 MB of name: a file whose newlines were lost. The mesh is what it would be, and the name
+    // kept is short and says how long the line was.
+    let giant = "n".repeat(64 << 20);
+    let t = TRI.replace("name: t", &format!("name: {giant}"));
+    let s = import_surface(t.as_bytes(), "t.ts", &opts()).unwrap();
+    let r = import_surface(TRI.as_bytes(), "t.ts", &opts()).unwrap();
+    assert_eq!(s.mesh, r.mesh);
+    assert!(s.name.len() < 4200, "{} bytes kept", s.name.len());
+    assert!(s.name.ends_with(&format!("({} bytes in all)", 64 << 20)));
+}
+
+#[test]
+fn a_giant_properties_line_is_refused_at_its_line_without_reading_every_name() {
+    // Eight million property names on one line: refused at the 4097th, naming the line.
+    let names = "p ".repeat(8 << 20);
+    let t = TRI.replace("TFACE\n", &format!("PROPERTIES {names}\nTFACE\n"));
+    let e = import_surface(t.as_bytes(), "t.ts", &opts()).unwrap_err();
+    assert_eq!(e.line, 5, "{e}");
+    assert!(e.to_string().contains("more than 4096 PROPERTIES"), "{e}");
+}

@@ -38,7 +38,8 @@ impl Operation for WellImportOp {
     }
     fn version(&self) -> u32 {
         // 2: values beyond ±1e12 (no-data markers, damaged numbers) are refused.
-        2
+        // 3: names and other text from a line are cut at 4096 bytes (a damaged giant line).
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
