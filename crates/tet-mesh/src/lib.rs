@@ -269,11 +269,14 @@ pub fn mesh_region_with_progress(
                     if !input.lines.is_empty() {
                         return Err(no_front_for_lines(input, Some(&why)));
                     }
+                    // The front meshes the region with what the recovery's fronts left of the
+                    // region's budget; none left, the recovery's failure is the region's.
+                    if work.exhausted(0) {
+                        return Err(why);
+                    }
                     let [front, optimize, finish] =
                         meter.rest().split(progress::front(opts.optimize));
-                    // The front meshes the region, with a budget of its own (another method);
-                    // if it fails too, its error says why both did.
-                    let work = work::FrontWork::for_region(input);
+                    // If the front fails too, its error says why both did.
                     let m = advance::advance_front_reporting(input, size, front, &work).map_err(
                         |mut e| {
                             e.message =
