@@ -270,8 +270,9 @@ pub fn mesh_region_with_progress(
                         return Err(no_front_for_lines(input, Some(&why)));
                     }
                     // The front meshes the region with what the recovery's fronts left of the
-                    // region's budget; none left, the recovery's failure is the region's.
-                    if work.exhausted(0) {
+                    // region's budget; none left, or the recovery's own front failed on the
+                    // whole region already, the recovery's failure is the region's.
+                    if work.exhausted(0) || work.failed_on_whole_region() {
                         return Err(why);
                     }
                     let [front, optimize, finish] =

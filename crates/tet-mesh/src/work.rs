@@ -12,15 +12,18 @@
 //! [`APEX_TEST`]. A region's fronts may spend [`BASE`] units (about a minute), [`PER_FACE`] more
 //! per input face, and [`PER_TET`] more per tetrahedron the running front holds at its fullest
 //! (so a region whose interior is far finer than its boundary is not cut short). Fronts that
-//! meshed the peer model's L1 blocks spent 90 to 710 units per tet; but a front may also close
-//! a small hole only after testing every node of it as the apex of every stuck face: one of
-//! RINGMesh modelA4's recovery holes (208 faces, 1,388 tets) takes 561 million units, 30 s,
-//! hence the base. The Delaunay recovery's fronts and the whole-region fallback share one
-//! budget: the recovery stops widening holes once it is spent, and the fallback meshes with what
-//! is left, or does not start. Across the corpus (RINGMesh models, the geology corpus, the SCEC
-//! systems, smoothed supports: 158 regions) the fallback never meshed a region whose recovery
-//! failed, and each time it spent 25 to 53 s failing; sharing halves the time a region takes to
-//! fail. Counting, not timing: the same input gives up at the same place on every machine.
+//! meshed the peer model's L1 blocks spent 90 to 710 units per tet, but the heaviest front that
+//! succeeded in the test corpus (a recovery hole of 4,283 faces, 26,422 tets) spent 296 million
+//! units, 11,000 per tet; and a front that fails may spend 500 million (RINGMesh modelA4, a hole
+//! widened to 10,360 faces, before a 210-face hole closes in 5 million): hence the base. The
+//! Delaunay recovery's fronts and the whole-region fallback share one budget: the recovery stops
+//! widening holes once it is spent, and the fallback meshes with what is left, or does not start
+//! (nor where the recovery's own front already failed on exactly the region's triangles: it
+//! would repeat it). Across the suite's RINGMesh models, geology corpus, SCEC systems and
+//! smoothed supports (158 regions) the fallback never meshed a region whose recovery failed,
+//! and spent 124 to 376 million units each time failing, three times of four repeating the
+//! recovery's front on the whole region; sharing and not repeating bring down the time a region
+//! takes to fail. Counting, not timing: the same input gives up at the same place on every machine.
 
 use std::cell::Cell;
 
@@ -43,6 +46,8 @@ pub struct FrontWork {
     spent: Cell<u64>,
     allowed: u64,
     per_tet: u64,
+    /// Whether a front already failed on exactly the region's own triangles.
+    whole_failed: Cell<bool>,
 }
 
 impl FrontWork {
@@ -58,6 +63,7 @@ impl FrontWork {
             spent: Cell::new(0),
             allowed,
             per_tet,
+            whole_failed: Cell::new(false),
         }
     }
 
@@ -68,6 +74,17 @@ impl FrontWork {
 
     pub fn spent(&self) -> u64 {
         self.spent.get()
+    }
+
+    /// Records that a front failed on the region's own triangles, no other: the Delaunay
+    /// recovery's hole had become the whole region.
+    pub fn whole_region_failed(&self) {
+        self.whole_failed.set(true);
+    }
+
+    /// Whether a front failed on the whole region already: the fallback would run it again.
+    pub fn failed_on_whole_region(&self) -> bool {
+        self.whole_failed.get()
     }
 
     /// Whether the fronts have spent more than they may, the running one holding at most

@@ -242,8 +242,14 @@ fn fill_holes(
     if let Ok((sub_b, sub_e)) = unpinched_hole_surface(tri, side, all, holders, vtet, name) {
         match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
             Ok(tets) => return Ok(tets),
-            Err((e, _)) if work.exhausted(0) => return Err(e),
-            Err(_) => {}
+            Err((e, hole)) => {
+                if is_whole_region(&hole, &sub_e, all) {
+                    work.whole_region_failed();
+                }
+                if work.exhausted(0) {
+                    return Err(e);
+                }
+            }
         }
     }
     side.copy_from_slice(&before);
@@ -262,6 +268,25 @@ fn fill_holes(
             Err((e, _)) => return Err(e),
         }
     }
+}
+
+/// Whether a hole (`boundary`, with `embedded` inside) is made of exactly the region's own
+/// triangles `all` (compared as vertex sets, each once): the front that failed on it failed on
+/// the whole region.
+fn is_whole_region(boundary: &[[u32; 3]], embedded: &[[u32; 3]], all: &[([u32; 3], bool)]) -> bool {
+    if boundary.len() + embedded.len() != all.len() {
+        return false;
+    }
+    let sorted = |t: &[u32; 3]| {
+        let mut t = *t;
+        t.sort_unstable();
+        t
+    };
+    let mut hole: Vec<[u32; 3]> = boundary.iter().chain(embedded).map(sorted).collect();
+    let mut region: Vec<[u32; 3]> = all.iter().map(|(t, _)| sorted(t)).collect();
+    hole.sort_unstable();
+    region.sort_unstable();
+    hole == region
 }
 
 /// The holes filled without the front, each that cannot be taking the inner tets round it, at
@@ -597,4 +622,28 @@ fn meets(tri: &Tri, t: u32, f: [u32; 3]) -> bool {
         }
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_whole_region;
+
+    #[test]
+    fn a_hole_is_the_whole_region_only_when_it_is_made_of_exactly_the_regions_triangles() {
+        let all = [([0, 1, 2], false), ([0, 2, 3], false), ([1, 2, 4], true)];
+        // The same triangles, turned and in another order: the whole region.
+        assert!(is_whole_region(&[[3, 0, 2], [2, 1, 0]], &[[4, 2, 1]], &all));
+        // One triangle swapped for a face of a kept tet, one missing, one repeated: not.
+        assert!(!is_whole_region(
+            &[[0, 1, 2], [0, 2, 5]],
+            &[[1, 2, 4]],
+            &all
+        ));
+        assert!(!is_whole_region(&[[0, 1, 2]], &[[1, 2, 4]], &all));
+        assert!(!is_whole_region(
+            &[[0, 1, 2], [0, 1, 2]],
+            &[[1, 2, 4]],
+            &all
+        ));
+    }
 }
