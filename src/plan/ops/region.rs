@@ -110,7 +110,8 @@ impl Operation for TetMeshOp {
         // 18: at most 16 apexes tried per peeled triangle.
         // 19: background size cells hold the size at their centre, not the least in them.
         // 20: the optimizer inserts nodes for tets below shape 0.5 (was 0.35).
-        20
+        // 21: the front on a recovery hole smaller than the region has a budget of its own.
+        21
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

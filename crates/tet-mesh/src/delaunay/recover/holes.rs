@@ -293,7 +293,12 @@ fn mesh_hole<D: Fn(&RegionInput) -> Option<Filled>>(
             ));
         }
         None => {
-            let raw = advance_front(&sub, fill.size, fill.work)?;
+            // The hole's front has a budget of its own (within the region's): one that cannot
+            // close its hole gives way to a wider hole, or to the front on the whole region.
+            let own = fill.work.for_hole(sub.boundary.len() + sub.embedded.len());
+            let raw = advance_front(&sub, fill.size, &own);
+            fill.work.spend(own.spent());
+            let raw = raw?;
             (raw.nodes[sub.vertices.len()..].to_vec(), raw.tets)
         }
     };
