@@ -28,7 +28,9 @@
 //! corpus every front on such a hole that closed it spent under 11 million units, while modelA4's
 //! front on a hole widened to 10,360 faces spent 500 million failing before a smaller hole
 //! closed; capped at 41 million it gives way sooner, and that region meshes in 13 s instead of
-//! 30, to the same bytes. A hole as large as the region is the region's own front, uncapped.
+//! 30, to the same bytes. A hole with at least as many faces as the region (its own front, or
+//! one widened nearly as far; told by the count, which errs towards the old, uncapped budget)
+//! keeps all the region has left.
 //! Counting, not timing: the same input gives up at the same place on every machine.
 
 use std::cell::Cell;
@@ -73,8 +75,8 @@ impl FrontWork {
     }
 
     /// The budget of the front on one recovery hole of `faces` faces: [`HOLE_BASE`] and
-    /// [`HOLE_PER_FACE`] per face at most, within what the region has left; a hole with as many
-    /// faces as the region is the region's front, and gets all that is left. The caller
+    /// [`HOLE_PER_FACE`] per face at most, within what the region has left; a hole with at least
+    /// as many faces as the region (its own front, or nearly) gets all that is left. The caller
     /// [`spend`](Self::spend)s here what the hole's front spent.
     pub fn for_hole(&self, faces: usize) -> FrontWork {
         let own = HOLE_BASE.saturating_add(HOLE_PER_FACE.saturating_mul(faces as u64));
