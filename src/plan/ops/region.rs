@@ -111,7 +111,8 @@ impl Operation for TetMeshOp {
         // 19: background size cells hold the size at their centre, not the least in them.
         // 20: the optimizer inserts nodes for tets below shape 0.5 (was 0.35).
         // 21: the front on a recovery hole smaller than the region has a budget of its own.
-        21
+        // 22: holes widened over half the region (not all of it) get no front of their own.
+        22
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
