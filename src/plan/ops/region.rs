@@ -112,7 +112,8 @@ impl Operation for TetMeshOp {
         // 20: the optimizer inserts nodes for tets below shape 0.5 (was 0.35).
         // 21: the front on a recovery hole smaller than the region has a budget of its own.
         // 22: holes widened over half the region (not all of it) get no front of their own.
-        22
+        // 23: the optimizer's insertions share tries set by its first round's list.
+        23
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
