@@ -2,12 +2,13 @@
 //! inside/outside decisions are taken), the one `Tolerances` struct, bounding boxes and
 //! triangle meshes with f64 coordinates as read (never rescaled), the exact contact tests
 //! between triangles and segments (`contact`) with the broad phase that proposes their pairs
-//! (`broad_phase`), and the FE mesh types the meshing stages exchange (`mesh`, with readers for
-//! the formats meshes come in); and `progress`, how a long stage reports how far it got without
-//! knowing who watches.
+//! (`broad_phase`), the closest point of a triangle (`closest`), and the FE mesh types the
+//! meshing stages exchange (`mesh`, with readers for the formats meshes come in); and
+//! `progress`, how a long stage reports how far it got without knowing who watches.
 
 pub mod bbox;
 pub mod broad_phase;
+pub mod closest;
 pub mod contact;
 pub mod mesh;
 pub mod predicates;
