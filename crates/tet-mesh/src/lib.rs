@@ -60,6 +60,7 @@ mod front;
 mod inside;
 mod lines;
 mod optimize;
+mod pinch;
 mod progress;
 pub mod quality;
 mod sides;
@@ -208,6 +209,18 @@ pub struct TetMeshOutput {
     pub stats: TetMeshStats,
 }
 
+/// The Delaunay method's error `why`, saying that the front was not tried on the whole region for
+/// the pinch `p`.
+fn pinched(mut why: TetMeshError, p: &pinch::Pinch) -> TetMeshError {
+    why.message = format!(
+        "{}; the advancing front was not tried on the whole region: its boundary is pinched near \
+         ({}, {}, {}), where surfaces come {:.3} apart with triangles {:.3} wide round them, a gap \
+         the front cannot close (part the surfaces there, or mesh them finer)",
+        why.message, p.at[0], p.at[1], p.at[2], p.gap, p.width
+    );
+    why
+}
+
 /// Why a region could not be meshed (or a mesh is not valid): names the region and the place.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("region '{region}': {message}{}", geom::at_suffix(.at))]
@@ -274,6 +287,10 @@ pub fn mesh_region_with_progress(
                     // whole region already, the recovery's failure is the region's.
                     if work.exhausted(0) || work.failed_on_whole_region() {
                         return Err(why);
+                    }
+                    // Nor where the boundary is pinched: the front cannot close the gap.
+                    if let Some(p) = pinch::narrowest(input) {
+                        return Err(pinched(why, &p));
                     }
                     let [front, optimize, finish] =
                         meter.rest().split(progress::front(opts.optimize));

@@ -113,7 +113,8 @@ impl Operation for TetMeshOp {
         // 21: the front on a recovery hole smaller than the region has a budget of its own.
         // 22: holes widened over half the region (not all of it) get no front of their own.
         // 23: the optimizer's insertions share tries set by its first round's list.
-        23
+        // 24: no front on the whole region after Delaunay gave way where the boundary is pinched.
+        24
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
