@@ -36,7 +36,7 @@ macro_rules! err {
 
 mod build;
 mod cache;
-mod culprit;
+pub(crate) mod culprit;
 mod debris;
 mod load;
 mod output;

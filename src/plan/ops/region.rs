@@ -74,7 +74,7 @@ impl TetMeshOp {
              meshes can part): part them in the data there"
         };
         format!(
-            "region `{}`: patches `{a}` and `{b}` lie on each other near ({x:.1}, {y:.1}, {z:.1}) \
+            "region `{}`: patches `{a}` and `{b}` lie on each other at ({x:.1}, {y:.1}, {z:.1}) \
              (their meshes share a triangle), so the region has no thickness there; {cause}",
             self.name
         )
@@ -514,7 +514,12 @@ mod tests {
             at: [1.0, 2.0, 3.0],
         };
         let plain = op(vec![false, false, true]).face_to_face_error(&f);
-        assert!(plain.contains("`H1#3` and `H2#4` lie on each other near (1.0, 2.0, 3.0)"));
+        assert!(plain.contains("`H1#3` and `H2#4` lie on each other at (1.0, 2.0, 3.0)"));
+        // The place the command line looks up the nearest input triangle of.
+        assert_eq!(
+            crate::cli::culprit::failure_place(&plain),
+            Some([1.0, 2.0, 3.0])
+        );
         assert!(!plain.contains("smooth"), "{plain}");
         assert!(plain.contains("part them in the data"), "{plain}");
         let smoothed = op(vec![false, true, false]).face_to_face_error(&f);
