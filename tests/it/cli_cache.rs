@@ -570,10 +570,12 @@ fn running_out_of_file_descriptors_fails_the_build_saying_so_and_damages_no_cach
     let all = all_nodes(&before).len();
     s.edit("size = 200.0", "size = 210.0");
     // Five descriptors: the standard three, the cache lock and one more (EMFILE soon after).
+    // Eight jobs, so that two of them hold a file at once whatever the machine's load: with
+    // one job per core, a busy machine could run them one after the other to the end.
     let out = std::process::Command::new("sh")
         .arg("-c")
         .arg(format!(
-            "ulimit -n 5 && exec '{}' build --json didactic.toml",
+            "ulimit -n 5 && exec '{}' build -j 8 --json didactic.toml",
             env!("CARGO_BIN_EXE_recipe")
         ))
         .current_dir(s.dir.path())
