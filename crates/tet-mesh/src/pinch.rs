@@ -142,20 +142,15 @@ impl Ring {
     fn widths(&self, pts: &[[f64; 3]]) -> Vec<f64> {
         (0..pts.len() as u32)
             .map(|v| {
-                let others: Vec<u32> = self
-                    .of_vertex(v)
-                    .iter()
-                    .copied()
-                    .filter(|&w| w != v)
-                    .collect();
-                let sum: f64 = others
-                    .iter()
+                // The ring holds the vertex itself, at distance 0.
+                let ring = self.of_vertex(v);
+                let sum: f64 = (ring.iter())
                     .map(|&w| dist(&pts[v as usize], &pts[w as usize]))
                     .sum();
-                if others.is_empty() {
-                    0.0
+                if ring.len() > 1 {
+                    sum / (ring.len() - 1) as f64
                 } else {
-                    sum / others.len() as f64
+                    0.0
                 }
             })
             .collect()
