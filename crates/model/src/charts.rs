@@ -21,7 +21,9 @@
 //!   crosses a seam, the charts of the patches on both sides then end at the same point of it
 //!   (per patch, seam ends a metre apart made metre-long curve pieces and elements).
 //! - A chart never touches itself at a vertex only (`unpinch` gives the smaller fans there to a
-//!   neighbouring chart): its boundary loops must not touch.
+//!   neighbouring chart): its boundary loops must not touch. Nor does a seam cut off a lobe of
+//!   it behind a sliver of a neck (`widen_necks` gives the lobe to the chart across the seam):
+//!   its surface mesh would hold a needle across the neck.
 //! - Seams run along support edges: no point is constructed, and the triangles are the patch's
 //!   own. Seam curves are not features, so the topology does not end curves at their kinks.
 //! - Normals are those of the original (imported) triangles each split triangle lies in, as for
@@ -29,8 +31,11 @@
 //!   are measures steering where seams go, not orientation decisions; ties go to the lower axis
 //!   and the lower triangle index, so the result is the same on every machine.
 
+mod necks;
+
 use geom::TriMesh;
 use geom::predicates::{cross, dot, sub};
+pub use necks::widen_necks;
 
 /// The six axis directions, in label order.
 const AXES: [[f64; 3]; 6] = [

@@ -83,7 +83,8 @@ impl Operation for ModelOp {
         // 15: where the imported surfaces almost share a vertex.
         // 16: curves' curvature sizes on smoothed surfaces.
         // 17: those sizes graded over every curve by distance.
-        17
+        // 18: no chart keeps a lobe behind a sliver of a neck.
+        18
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
