@@ -73,14 +73,38 @@ pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
     check_closed(input)?;
     let vol = enclosed_volume(&input.vertices, &input.boundary);
     if vol.is_nan() || vol <= 0.0 {
+        let (lo, hi, at) = extent(&input.vertices, &input.boundary);
         return err(
             format!(
-                "the boundary encloses a non-positive volume ({vol}): it must be oriented with normals pointing out of the region"
+                "the boundary encloses a non-positive volume ({vol}) within ({}, {}, {}) to \
+                 ({}, {}, {}): it must be oriented with normals pointing out of the region; a \
+                 region this small between two surfaces is most often a pocket where one \
+                 crosses the other and back (noisy data: smooth or mend the surface there)",
+                lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
             ),
-            None,
+            Some(at),
         );
     }
     Ok(())
+}
+
+/// The box of the vertices of `tris` (low and high corners) and the vertex of theirs nearest
+/// its centre (the first on ties): a place on the boundary to name.
+fn extent(pts: &[P], tris: &[[u32; 3]]) -> (P, P, P) {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for &v in tris.iter().flatten() {
+        for k in 0..3 {
+            lo[k] = lo[k].min(pts[v as usize][k]);
+            hi[k] = hi[k].max(pts[v as usize][k]);
+        }
+    }
+    let centre = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+    let d2 = |p: &P| (0..3).map(|k| (p[k] - centre[k]).powi(2)).sum::<f64>();
+    let at = (tris.iter().flatten())
+        .map(|&v| pts[v as usize])
+        .min_by(|a, b| d2(a).total_cmp(&d2(b)))
+        .unwrap_or(centre);
+    (lo, hi, at)
 }
 
 /// Every embedded triangle lies inside the region, decided exactly for one triangle of each

@@ -385,13 +385,17 @@ fn an_embedded_triangle_through_the_boundary_is_a_self_intersection_for_both_met
 }
 
 #[test]
-fn an_inward_oriented_boundary_is_rejected() {
+fn an_inward_oriented_boundary_is_rejected_naming_a_place_on_it_and_its_box() {
     let mut input = region("inverted", &[[0, 0, 0]], 1, 1.0, [0.0; 3]);
     for t in &mut input.boundary {
         t.swap(1, 2);
     }
     let e = check_input(&input).unwrap_err();
     assert!(e.to_string().contains("oriented"), "{e}");
+    // The place is a vertex of the boundary, and the message gives the boundary's box.
+    let at = e.at.expect("a place");
+    assert!(input.vertices.contains(&at), "{e}");
+    assert!(e.message.contains("within ("), "{e}");
 }
 
 #[test]
