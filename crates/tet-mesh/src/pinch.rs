@@ -6,7 +6,8 @@
 //! thinner than the faces on either side of it: it back-tracks there until its work runs out. The
 //! Delaunay method can (its flat tets are left to the optimizer), so only the front's run on the
 //! whole region, after the Delaunay method gave way, is skipped where the boundary is pinched,
-//! and the region's error then says where.
+//! and the region's error then says where; and the recovery stops widening its holes for the
+//! front once its fronts have spent more than one closing a hole of a pinched region does.
 //!
 //! Each vertex is compared with every triangle within [`PINCH_RATIO`] of its mean edge length,
 //! but those that touch its neighbours (so the edges and faces round a sharp edge or corner do

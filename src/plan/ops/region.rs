@@ -114,7 +114,8 @@ impl Operation for TetMeshOp {
         // 22: holes widened over half the region (not all of it) get no front of their own.
         // 23: the optimizer's insertions share tries set by its first round's list.
         // 24: no front on the whole region after Delaunay gave way where the boundary is pinched.
-        24
+        // 25: the recovery of a pinched region stops widening its holes past a bound of work.
+        25
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
