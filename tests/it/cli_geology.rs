@@ -1,9 +1,10 @@
 //! The corpus of geological situations (`test_support::geology`) built through a recipe: each
 //! case meshes into its regions, every region's worst tet is within the quality bars (normalised
 //! mean ratio at least 0.2, dihedral angles at least the case's bar: 8°, or 6° for the
-//! erosional unconformity, whose gap to 8° is still open, 7° for the lens, whose rim's needle
-//! triangles bound it, and 6° for the Tejon Pass faults at 2 km), and, when the independent checker is
-//! available, the msh passes `check_mesh.py` with that region count. Cases over the SCEC fault model in `../shared` skip when it is absent.
+//! erosional unconformity, whose wedge's surface meshes meet at 7.1° at its tip, 7° for the
+//! lens, whose rim's needle triangles bound it, and 6° for the Tejon Pass faults at 2 km), and,
+//! when the independent checker is available, the msh passes `check_mesh.py` with that region
+//! count. Cases over the SCEC fault model in `../shared` skip when it is absent.
 
 use crate::common_cli::checker;
 use geom::mesh::read::read_volume_msh;
