@@ -110,7 +110,11 @@ impl MeshFacts {
                     || pictures::cutaway(mesh, &format!("{model_name} tetrahedra, cut away")),
                 )
             },
-            || rayon::join(|| quality::report(mesh), || histogram::mean_ratio(mesh)),
+            || {
+                let (quality, measures) =
+                    quality::report_with(mesh, || quality::tet_measures(mesh));
+                (quality, histogram::mean_ratio_from(mesh, &measures))
+            },
         );
         MeshFacts {
             nodes: mesh.nodes.len(),

@@ -10,7 +10,7 @@
 use super::input::{tet_points, tri_points};
 use super::palette::Rgb;
 use super::text::{coord, count, esc, num};
-use export::quality::{tet_mean_ratio, triangle_ratio};
+use export::quality::triangle_ratio;
 use geom::mesh::VolumeMesh;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -72,17 +72,20 @@ impl Histogram {
     }
 }
 
-/// Mean ratio histograms, one per region (index order). Tets with an out-of-range region or
-/// node are left out.
-pub fn mean_ratio(mesh: &VolumeMesh) -> Vec<Histogram> {
+/// Mean ratio histograms, one per region (index order), from the tets' measures
+/// (`export::quality::tet_measures`, measured once for the quality tables and these). Tets with
+/// an out-of-range region or node are left out.
+pub fn mean_ratio_from(mesh: &VolumeMesh, measures: &[(f64, f64)]) -> Vec<Histogram> {
     let mut h: Vec<Histogram> = mesh
         .regions
         .iter()
         .map(|r| Histogram::new(&r.name, 0.0, 1.0))
         .collect();
-    for (t, &r) in mesh.tets.iter().zip(&mesh.tet_region) {
-        if let (Some(h), Some([a, b, c, d])) = (h.get_mut(r as usize), tet_points(mesh, t)) {
-            h.add(tet_mean_ratio(&a, &b, &c, &d), true);
+    for (i, (t, &r)) in mesh.tets.iter().zip(&mesh.tet_region).enumerate() {
+        if let (Some(h), Some(_), Some(m)) =
+            (h.get_mut(r as usize), tet_points(mesh, t), measures.get(i))
+        {
+            h.add(m.0, true);
         }
     }
     h

@@ -115,8 +115,9 @@ fn tri_row(mesh: &VolumeMesh, name: &str, sel: &[usize]) -> TriQuality {
 const MEASURE_CHUNK: usize = 8192;
 
 /// Each tet's mean ratio and smallest dihedral angle, measured once for all of Table 2's rows
-/// (in parallel: each tet's pair depends on it alone, and they are collected in tet order).
-fn tet_measures(mesh: &VolumeMesh) -> Vec<(f64, f64)> {
+/// and the report's histograms (in parallel: each tet's pair depends on it alone, and they are
+/// collected in tet order).
+pub fn tet_measures(mesh: &VolumeMesh) -> Vec<(f64, f64)> {
     use rayon::prelude::*;
     mesh.tets
         .par_iter()
@@ -185,17 +186,21 @@ pub fn table1(mesh: &VolumeMesh) -> Vec<TriQuality> {
 
 /// Table 2: one row per region (index order), then "all".
 pub fn table2(mesh: &VolumeMesh) -> Vec<TetQuality> {
+    table2_with(mesh, &tet_measures(mesh))
+}
+
+/// [`table2`] from the tets' `measures` ([`tet_measures`]).
+fn table2_with(mesh: &VolumeMesh, measures: &[(f64, f64)]) -> Vec<TetQuality> {
     let n = mesh.tets.len().min(mesh.tet_region.len());
     let groups = by_group(&mesh.tet_region[..n], mesh.regions.len());
-    let measures = tet_measures(mesh);
     let mut rows: Vec<TetQuality> = mesh
         .regions
         .iter()
         .zip(&groups)
-        .map(|(r, sel)| tet_row(mesh, &measures, &r.name, sel))
+        .map(|(r, sel)| tet_row(mesh, measures, &r.name, sel))
         .collect();
     let all: Vec<usize> = (0..mesh.tets.len()).collect();
-    rows.push(tet_row(mesh, &measures, "all", &all));
+    rows.push(tet_row(mesh, measures, "all", &all));
     rows
 }
 
@@ -208,8 +213,18 @@ pub struct QualityReport {
 
 /// Computes both tables (side by side: neither depends on the other).
 pub fn report(mesh: &VolumeMesh) -> QualityReport {
-    let (table1, table2) = rayon::join(|| table1(mesh), || table2(mesh));
-    QualityReport { table1, table2 }
+    report_with(mesh, || tet_measures(mesh)).0
+}
+
+/// [`report`], with the tets' measures ([`tet_measures`], made by `measure` beside Table 1)
+/// returned for other uses of them.
+pub fn report_with(
+    mesh: &VolumeMesh,
+    measure: impl FnOnce() -> Vec<(f64, f64)> + Send,
+) -> (QualityReport, Vec<(f64, f64)>) {
+    let (table1, measures) = rayon::join(|| table1(mesh), measure);
+    let table2 = table2_with(mesh, &measures);
+    (QualityReport { table1, table2 }, measures)
 }
 
 impl QualityReport {
