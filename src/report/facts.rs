@@ -111,8 +111,7 @@ impl MeshFacts {
                 )
             },
             || {
-                let (quality, measures) =
-                    quality::report_with(mesh, || quality::tet_measures(mesh));
+                let (quality, measures) = quality::report_and_measures(mesh);
                 (quality, histogram::mean_ratio_from(mesh, &measures))
             },
         );

@@ -213,16 +213,13 @@ pub struct QualityReport {
 
 /// Computes both tables (side by side: neither depends on the other).
 pub fn report(mesh: &VolumeMesh) -> QualityReport {
-    report_with(mesh, || tet_measures(mesh)).0
+    report_and_measures(mesh).0
 }
 
-/// [`report`], with the tets' measures ([`tet_measures`], made by `measure` beside Table 1)
-/// returned for other uses of them.
-pub fn report_with(
-    mesh: &VolumeMesh,
-    measure: impl FnOnce() -> Vec<(f64, f64)> + Send,
-) -> (QualityReport, Vec<(f64, f64)>) {
-    let (table1, measures) = rayon::join(|| table1(mesh), measure);
+/// [`report`], and the tets' measures it was made from ([`tet_measures`], measured beside
+/// Table 1) for other uses of them.
+pub fn report_and_measures(mesh: &VolumeMesh) -> (QualityReport, Vec<(f64, f64)>) {
+    let (table1, measures) = rayon::join(|| table1(mesh), || tet_measures(mesh));
     let table2 = table2_with(mesh, &measures);
     (QualityReport { table1, table2 }, measures)
 }
