@@ -77,9 +77,9 @@ pub(crate) fn check_shape(input: &RegionInput) -> Result<(), TetMeshError> {
         return err(
             format!(
                 "the boundary encloses a non-positive volume ({vol}) within ({}, {}, {}) to \
-                 ({}, {}, {}): it must be oriented with normals pointing out of the region; a \
-                 region this small between two surfaces is most often a pocket where one \
-                 crosses the other and back (noisy data: smooth or mend the surface there)",
+                 ({}, {}, {}): it must be oriented with normals pointing out of the region; \
+                 where the region is a thin pocket between two surfaces, one most likely \
+                 crosses the other and back there (noisy data: smooth or mend the surface)",
                 lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
             ),
             Some(at),
