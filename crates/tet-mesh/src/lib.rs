@@ -289,7 +289,7 @@ pub fn mesh_region_with_progress(
                         return Err(why);
                     }
                     // Nor where the boundary is pinched: the front cannot close the gap.
-                    if let Some(p) = pinch::narrowest(input) {
+                    if let Some(p) = work.pinch(input) {
                         return Err(pinched(why, &p));
                     }
                     let [front, optimize, finish] =

@@ -33,9 +33,10 @@
 //! keeps all the region has left.
 //! Counting, not timing: the same input gives up at the same place on every machine.
 
-use std::cell::Cell;
+use std::cell::{Cell, OnceCell};
 
 use super::RegionInput;
+use super::pinch::{Pinch, narrowest};
 
 /// Units of a face taken from the front.
 pub const FACE_TAKEN: u64 = 10;
@@ -62,6 +63,8 @@ pub struct FrontWork {
     faces: usize,
     /// Whether a front already failed on exactly the region's own triangles.
     whole_failed: Cell<bool>,
+    /// The region's narrowest pinch, once measured.
+    pinch: OnceCell<Option<Pinch>>,
 }
 
 impl FrontWork {
@@ -97,6 +100,7 @@ impl FrontWork {
             per_tet,
             faces: 0,
             whole_failed: Cell::new(false),
+            pinch: OnceCell::new(),
         }
     }
 
@@ -113,6 +117,13 @@ impl FrontWork {
     /// recovery's hole had become the whole region.
     pub fn whole_region_failed(&self) {
         self.whole_failed.set(true);
+    }
+
+    /// The narrowest pinch of `input`, the region this budget is for (`pinch::narrowest`):
+    /// measured the first time it is asked for, since it costs a twentieth to a fifth of the
+    /// region's meshing, and only recoveries and fallbacks that fail need it.
+    pub fn pinch(&self, input: &RegionInput) -> Option<Pinch> {
+        *self.pinch.get_or_init(|| narrowest(input))
     }
 
     /// Whether a front failed on the whole region already: the fallback would run it again.
