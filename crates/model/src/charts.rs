@@ -246,27 +246,40 @@ fn shared_label(adj: &[u32], label: &[usize]) -> Option<usize> {
 /// The triangles across each triangle's manifold edges (edges that exactly two triangles of the
 /// patch share), ascending.
 fn neighbours(mesh: &TriMesh) -> Vec<Vec<u32>> {
-    let mut uses: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * mesh.triangles.len());
+    across_edges(mesh)
+        .into_iter()
+        .map(|across| {
+            let mut adj: Vec<u32> = across.into_iter().filter(|&u| u != NONE).collect();
+            adj.sort_unstable();
+            adj
+        })
+        .collect()
+}
+
+/// No triangle across an edge (see [`across_edges`]).
+const NONE: u32 = u32::MAX;
+
+/// Per triangle, per edge `k` (from corner `k` to corner `k + 1`), the triangle across it when
+/// exactly two triangles share the edge, else [`NONE`].
+fn across_edges(mesh: &TriMesh) -> Vec<[u32; 3]> {
+    let mut uses: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(3 * mesh.triangles.len());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            uses.push(([a.min(b), a.max(b)], t as u32));
+            uses.push(([a.min(b), a.max(b)], t as u32, k as u8));
         }
     }
     uses.sort_unstable();
-    let mut adj = vec![Vec::new(); mesh.triangles.len()];
+    let mut out = vec![[NONE; 3]; mesh.triangles.len()];
     for run in uses.chunk_by(|x, y| x.0 == y.0) {
         if let [x, y] = run
             && x.1 != y.1
         {
-            adj[x.1 as usize].push(y.1);
-            adj[y.1 as usize].push(x.1);
+            out[x.1 as usize][x.2 as usize] = y.1;
+            out[y.1 as usize][y.2 as usize] = x.1;
         }
     }
-    for a in &mut adj {
-        a.sort_unstable();
-    }
-    adj
+    out
 }
 
 /// Connected pieces of one label, as a union-find over triangles with, per piece root, its axis,

@@ -23,7 +23,7 @@
 //!   the longest seam (the lowest on ties). Triangles and edges are visited in index order, so
 //!   the result is the same on every machine.
 
-use super::area;
+use super::{NONE, across_edges, area};
 use geom::TriMesh;
 use geom::predicates::{dist, dot};
 
@@ -36,9 +36,6 @@ const MAX_LOBE: usize = 256;
 const DETOUR: f64 = 100.0;
 /// Most rounds: each moves the lobes it finds.
 const ROUNDS: usize = 8;
-
-/// No triangle across an edge.
-const NONE: u32 = u32::MAX;
 
 /// Moves every lobe behind a narrow neck to the chart across its seam (see the module doc);
 /// `group` is the chart of each of `mesh`'s triangles, `normals` their unit (or zero) normals.
@@ -147,29 +144,6 @@ fn sizes(group: &[u32], groups: usize) -> Vec<usize> {
         size[g as usize] += 1;
     }
     size
-}
-
-/// Per triangle, per edge `k` (from corner `k` to corner `k + 1`), the triangle across it when
-/// exactly two triangles share the edge, else [`NONE`].
-fn across_edges(mesh: &TriMesh) -> Vec<[u32; 3]> {
-    let mut uses: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(3 * mesh.triangles.len());
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            uses.push(([a.min(b), a.max(b)], t as u32, k as u8));
-        }
-    }
-    uses.sort_unstable();
-    let mut out = vec![[NONE; 3]; mesh.triangles.len()];
-    for run in uses.chunk_by(|x, y| x.0 == y.0) {
-        if let [x, y] = run
-            && x.1 != y.1
-        {
-            out[x.1 as usize][x.2 as usize] = y.1;
-            out[y.1 as usize][y.2 as usize] = x.1;
-        }
-    }
-    out
 }
 
 /// The smaller side of the chart of `t` cut along `t`'s edge `k`, when the edge cuts it in two
