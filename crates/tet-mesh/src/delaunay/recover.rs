@@ -560,9 +560,8 @@ fn flip_diagonals(
                     continue;
                 }
                 // A tet holding the wrong diagonal wz, found round w.
-                let Some(start) = star(tri, w, vtet[w as usize])
-                    .into_iter()
-                    .find(|&s| tri.t[s as usize].v.contains(&z))
+                let Some(start) =
+                    star(tri, w, vtet[w as usize]).find(|&s| tri.t[s as usize].v.contains(&z))
                 else {
                     continue;
                 };
@@ -580,24 +579,58 @@ fn flip_diagonals(
     flips
 }
 
-/// Tets around vertex `v`, starting from one of them.
-fn star(tri: &Tri, v: u32, start: u32) -> Vec<u32> {
-    let mut out = vec![start];
-    let mut k = 0;
-    while k < out.len() {
-        let t = out[k];
-        k += 1;
-        for (i, &w) in tri.t[t as usize].v.iter().enumerate() {
-            if w == v {
+/// Star sizes up to which [`Star`] scans its list for a tet already met.
+const STAR_SCAN: usize = 64;
+
+/// Tets around vertex `v`, starting from one of them, in breadth-first order.
+fn star(tri: &Tri, v: u32, start: u32) -> Star<'_> {
+    Star {
+        tri,
+        v,
+        out: vec![start],
+        seen: HashSet::new(),
+        k: 0,
+    }
+}
+
+/// The tets round a vertex, met breadth-first and handed out as met: a search for one tet of
+/// the star stops there. A vertex's star holds a few dozen tets, where a scan of the list is
+/// fastest; a hole's own Delaunay mesh can give a hull vertex thousands, where scanning, and
+/// gathering the whole star to find one tet, made the recovery of each edge quadratic.
+struct Star<'a> {
+    tri: &'a Tri,
+    v: u32,
+    out: Vec<u32>,
+    seen: HashSet<u32>,
+    k: usize,
+}
+
+impl Iterator for Star<'_> {
+    type Item = u32;
+
+    fn next(&mut self) -> Option<u32> {
+        let t = *self.out.get(self.k)?;
+        self.k += 1;
+        let tet = &self.tri.t[t as usize];
+        for (i, &w) in tet.v.iter().enumerate() {
+            let a = tet.adj[i];
+            if w == self.v || a == NONE {
                 continue;
             }
-            let a = tri.t[t as usize].adj[i];
-            if a != NONE && !out.contains(&(a >> 2)) {
-                out.push(a >> 2);
+            let new = if self.out.len() < STAR_SCAN {
+                !self.out.contains(&(a >> 2))
+            } else {
+                if self.seen.is_empty() {
+                    self.seen.extend(&self.out);
+                }
+                self.seen.insert(a >> 2)
+            };
+            if new {
+                self.out.push(a >> 2);
             }
         }
+        Some(t)
     }
-    out
 }
 
 /// Whether the closed tet `t` may meet the open triangle `f` (conservative: `false` only when a
@@ -665,7 +698,10 @@ fn meets(tri: &Tri, t: u32, f: [u32; 3]) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::{PINCHED_FRONT_WORK, gives_up, is_whole_region, worth_a_front};
+    use super::{
+        PINCHED_FRONT_WORK, RegionInput, STAR_SCAN, Span, enclosing_tet, gives_up,
+        insert_boundary_vertices, is_whole_region, star, vertex_tets, worth_a_front,
+    };
 
     #[test]
     fn a_hole_is_the_whole_region_only_when_it_is_made_of_exactly_the_regions_triangles() {
@@ -722,5 +758,48 @@ mod tests {
         assert!(worth_a_front(&own, &[], &all));
         // Half of them as embedded triangles count the same.
         assert!(!worth_a_front(&kept(2), &kept(2), &all));
+    }
+
+    #[test]
+    fn a_star_hands_out_every_tet_at_its_vertex_once_however_many_there_are() {
+        // A 7 x 7 x 7 lattice, slightly sheared so no five points are cospherical.
+        let mut vertices = Vec::new();
+        for i in 0..7 {
+            for j in 0..7 {
+                for k in 0..7 {
+                    let (x, y, z) = (i as f64, j as f64, k as f64);
+                    vertices.push([x + 0.013 * y * y, y + 0.007 * z * x, z + 0.011 * x * y]);
+                }
+            }
+        }
+        let input = RegionInput {
+            boundary: (0..341).map(|v| [v, v + 1, v + 2]).collect(),
+            vertices,
+            ..RegionInput::default()
+        };
+        let mut tri = enclosing_tet(&input);
+        insert_boundary_vertices(&mut tri, &input, Span::none()).unwrap();
+        let vtet = vertex_tets(&tri);
+        // Inner lattice points have a few dozen tets; the enclosing tet's corners, past
+        // `STAR_SCAN`, take the set instead of the scan.
+        let corner = input.vertices.len() as u32;
+        let mut big = false;
+        for v in (0..corner).chain(corner..corner + 4) {
+            let mut expected: Vec<u32> = tri
+                .live_tets()
+                .filter(|&t| tri.t[t as usize].v.contains(&v))
+                .collect();
+            let mut got: Vec<u32> = star(&tri, v, vtet[v as usize]).collect();
+            assert_eq!(got[0], vtet[v as usize]);
+            big |= got.len() > STAR_SCAN;
+            got.sort_unstable();
+            expected.sort_unstable();
+            assert_eq!(got, expected, "the star of vertex {v}");
+        }
+        assert!(big, "some star is past the scan's size");
+        // A search stops at the first tet that answers: no further tet is visited.
+        let mut it = star(&tri, corner, vtet[corner as usize]);
+        assert_eq!(it.next(), Some(vtet[corner as usize]));
+        assert!(it.k == 1);
     }
 }

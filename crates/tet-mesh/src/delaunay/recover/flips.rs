@@ -221,18 +221,14 @@ fn tet_with_edge(tri: &Tri, p: u32, q: u32, vtet: &[u32]) -> Option<u32> {
     if vtet[p as usize] == NONE {
         return None;
     }
-    star(tri, p, vtet[p as usize])
-        .into_iter()
-        .find(|&t| tri.t[t as usize].v.contains(&q))
+    star(tri, p, vtet[p as usize]).find(|&t| tri.t[t as usize].v.contains(&q))
 }
 
 fn holds_face(tri: &Tri, f: [u32; 3], vtet: &[u32]) -> bool {
     if vtet[f[0] as usize] == NONE {
         return false;
     }
-    star(tri, f[0], vtet[f[0] as usize])
-        .into_iter()
-        .any(|t| f.iter().all(|v| tri.t[t as usize].v.contains(v)))
+    star(tri, f[0], vtet[f[0] as usize]).any(|t| f.iter().all(|v| tri.t[t as usize].v.contains(v)))
 }
 
 /// The edges (sorted pairs, ascending) of the tets meeting `f` that cross its open interior

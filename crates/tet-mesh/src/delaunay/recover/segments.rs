@@ -160,10 +160,7 @@ impl Work<'_> {
 
     fn is_edge(&self, u: u32, v: u32) -> bool {
         let t = self.vtet[u as usize];
-        t != NONE
-            && star(self.tri, u, t)
-                .into_iter()
-                .any(|s| self.tri.t[s as usize].v.contains(&v))
+        t != NONE && star(self.tri, u, t).any(|s| self.tri.t[s as usize].v.contains(&v))
     }
 
     fn protect(&mut self, u: u32, v: u32) {

@@ -140,10 +140,7 @@ fn vertices_round(tri: &Tri, vtet: &[u32], u: u32, v: u32) -> Vec<u32> {
     let crossed = crossed_faces(tri, u, v, vtet);
     let mut out: Vec<u32> = if crossed.is_empty() {
         match vtet.get(u as usize) {
-            Some(&t) if t != NONE => star(tri, u, t)
-                .into_iter()
-                .flat_map(|s| tri.t[s as usize].v)
-                .collect(),
+            Some(&t) if t != NONE => star(tri, u, t).flat_map(|s| tri.t[s as usize].v).collect(),
             _ => Vec::new(),
         }
     } else {
