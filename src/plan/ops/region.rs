@@ -115,7 +115,8 @@ impl Operation for TetMeshOp {
         // 23: the optimizer's insertions share tries set by its first round's list.
         // 24: no front on the whole region after Delaunay gave way where the boundary is pinched.
         // 25: the recovery of a pinched region stops widening its holes past a bound of work.
-        25
+        // 26: widened holes are tried again once grown by half, while under half the region.
+        26
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

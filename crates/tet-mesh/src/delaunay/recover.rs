@@ -58,6 +58,12 @@ pub struct Conforming {
 /// then span the region: the front meshes it directly and faster.
 const MAX_MISSING: usize = 500;
 const MAX_MISSING_SHARE: usize = 50;
+/// Growth (numerator, denominator) of widened holes' faces between two tries to fill them
+/// (`worth_a_try`). On the example with a horizon jittered by 35 or 50 m, recoveries tried
+/// every ring of widening, holes of up to 29,000 faces, 16 times each, for 3 to 9 s before the
+/// front; every widened hole that any recovery filled in the test suite, the geology corpus and
+/// RINGMesh modelA4 was filled within 5 rings.
+const TRY_GROWTH: (usize, usize) = (3, 2);
 /// Rounds of hole growth before recovery gives up.
 const MAX_GROWTH: usize = 8;
 /// Times a hole is widened round the place where the front got stuck before recovery gives up.
@@ -212,8 +218,8 @@ fn conforming_at(
 /// region, as in a closed body, this is the front's mesh of it inside this method, which still
 /// recovers the segments), else on the holes as they were. Where the front gets stuck, the hole
 /// is widened round the stuck place (the inner tets there join it, in rings of growing radius)
-/// and meshed again: the walls of kept tets that pinned the front there are gone. A hole's own
-/// holes (`depth` > 0) never go to the front.
+/// and meshed again once it has grown by half (`worth_a_try`): the walls of kept tets that
+/// pinned the front there are gone. A hole's own holes (`depth` > 0) never go to the front.
 #[allow(clippy::too_many_arguments)]
 fn fill_holes(
     tri: &mut Tri,
@@ -272,20 +278,44 @@ fn fill_holes(
     }
     side.copy_from_slice(&before);
     let mut widened = 0;
+    let mut tried = 0;
+    let mut at = None;
     loop {
         let (sub_b, sub_e) = unpinched_hole_surface(tri, side, all, holders, vtet, name)?;
-        match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
-            Ok(tets) => return Ok(tets),
-            Err((e, _)) if widened < MAX_WIDENING && !work.exhausted(0) && !give_up() => {
-                let Some(at) = e.at else { return Err(e) };
-                widened += 1;
-                if widen_hole(tri, side, &sub_b, at) == 0 {
-                    return Err(e);
+        let faces = sub_b.len() + sub_e.len();
+        let mut failed = None;
+        if widened == MAX_WIDENING || worth_a_try(faces, tried, all.len()) {
+            match mesh_holes(tri, &sub_b, &sub_e, true, &fill) {
+                Ok(tets) => return Ok(tets),
+                Err((e, _)) if widened < MAX_WIDENING && !work.exhausted(0) && !give_up() => {
+                    let Some(p) = e.at else { return Err(e) };
+                    (at, tried, failed) = (Some(p), faces, Some(e));
                 }
+                Err((e, _)) => return Err(e),
             }
-            Err((e, _)) => return Err(e),
+        }
+        widened += 1;
+        // Nothing left to take round the stuck place: the last try's error, or a last try.
+        if at.is_none_or(|p| widen_hole(tri, side, &sub_b, p) == 0) {
+            match failed {
+                Some(e) => return Err(e),
+                None => widened = MAX_WIDENING,
+            }
         }
     }
+}
+
+/// Whether holes widened to `faces` faces are tried again, the last try having been on `tried`
+/// faces (none yet: 0), in a region of `region` triangles: once they have grown by
+/// [`TRY_GROWTH`], while they are under [`MAX_WIDENED_SHARE`] of the region. A try costs about
+/// what its holes' size does, so the tries up to a given size cost a few times the last one,
+/// where a try at each ring of widening cost the sum of every ring's size. Holes wider than that
+/// share get no front of their own (`worth_a_front`): they are tried only when they can widen
+/// no further (the whole region, in a closed body) or after the last ring.
+fn worth_a_try(faces: usize, tried: usize, region: usize) -> bool {
+    tried == 0
+        || (faces * TRY_GROWTH.1 >= tried * TRY_GROWTH.0
+            && faces * MAX_WIDENED_SHARE.1 < region * MAX_WIDENED_SHARE.0)
 }
 
 /// Whether the recovery of a region whose fronts have spent `spent` units gives up widening its
@@ -328,8 +358,9 @@ fn is_whole_region(boundary: &[[u32; 3]], embedded: &[[u32; 3]], all: &[([u32; 3
     hole == region
 }
 
-/// The holes filled without the front, each that cannot be taking the inner tets round it, at
-/// most `widenings` times; the error is the last hole's.
+/// The holes filled without the front, each that cannot be taking the inner tets round it, ring
+/// by ring, at most `widenings` rings, and tried again once grown by half (`worth_a_try`); the
+/// error is the last hole's.
 fn without_front<D: Fn(&RegionInput) -> Option<holes::Filled>>(
     tri: &mut Tri,
     side: &mut [Side],
@@ -340,17 +371,34 @@ fn without_front<D: Fn(&RegionInput) -> Option<holes::Filled>>(
     widenings: usize,
 ) -> Result<Vec<[u32; 4]>, TetMeshError> {
     let mut widened = 0;
+    let mut tried = 0;
+    // The vertices whose inner tets join the holes next: the failed hole's after a try, the
+    // last ring's after a widening not tried.
+    let mut wall = Vec::new();
     loop {
         let (sub_b, sub_e) = unpinched_hole_surface(tri, side, all, holders, vtet, fill.name)?;
-        match mesh_holes(tri, &sub_b, &sub_e, false, fill) {
-            Ok(tets) => return Ok(tets),
-            Err((e, hole)) => {
-                if widened == widenings || widen_around(tri, side, &hole) == 0 {
-                    return Err(e);
+        let faces = sub_b.len() + sub_e.len();
+        let mut failed = None;
+        if widened == widenings || worth_a_try(faces, tried, all.len()) {
+            match mesh_holes(tri, &sub_b, &sub_e, false, fill) {
+                Ok(tets) => return Ok(tets),
+                Err((e, _)) if widened == widenings => return Err(e),
+                Err((e, hole)) => {
+                    (tried, failed) = (faces, Some(e));
+                    wall = hole.into_iter().flatten().collect();
                 }
-                widened += 1;
             }
         }
+        widened += 1;
+        let ring = widen_around(tri, side, std::mem::take(&mut wall));
+        if ring.is_empty() {
+            // Nothing left to take: the last try's error, or a last try.
+            match failed {
+                Some(e) => return Err(e),
+                None => widened = widenings,
+            }
+        }
+        wall = ring.iter().flat_map(|&t| tri.t[t as usize].v).collect();
     }
 }
 
@@ -700,7 +748,7 @@ fn meets(tri: &Tri, t: u32, f: [u32; 3]) -> bool {
 mod tests {
     use super::{
         PINCHED_FRONT_WORK, RegionInput, STAR_SCAN, Span, enclosing_tet, gives_up,
-        insert_boundary_vertices, is_whole_region, star, vertex_tets, worth_a_front,
+        insert_boundary_vertices, is_whole_region, star, vertex_tets, worth_a_front, worth_a_try,
     };
 
     #[test]
@@ -801,5 +849,17 @@ mod tests {
         let mut it = star(&tri, corner, vtet[corner as usize]);
         assert_eq!(it.next(), Some(vtet[corner as usize]));
         assert!(it.k == 1);
+    }
+
+    #[test]
+    fn widened_holes_are_tried_again_once_half_as_wide_again_and_only_under_half_the_region() {
+        // The first try is always made.
+        assert!(worth_a_try(10, 0, 1000));
+        // Then only once the holes have grown by half.
+        assert!(!worth_a_try(149, 100, 1000));
+        assert!(worth_a_try(150, 100, 1000));
+        // Holes over half the region wait for the last ring, however much they grew.
+        assert!(worth_a_try(499, 100, 1000));
+        assert!(!worth_a_try(500, 100, 1000));
     }
 }

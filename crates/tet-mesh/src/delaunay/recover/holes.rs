@@ -197,7 +197,7 @@ pub(super) fn widen_hole(tri: &Tri, side: &mut [Side], sub_b: &[[u32; 3]], at: [
             .copied()
             .filter(|&v| d2(v) <= reach * near)
             .collect();
-        let joined = join_at(tri, side, wall);
+        let joined = join_at(tri, side, wall).len();
         if joined > 0 {
             return joined;
         }
@@ -404,13 +404,14 @@ fn sorted2(a: u32, b: u32) -> [u32; 2] {
     [a.min(b), a.max(b)]
 }
 
-/// Widens a hole by every inner tet at one of its vertices; returns how many joined.
-pub(super) fn widen_around(tri: &Tri, side: &mut [Side], hole: &[[u32; 3]]) -> usize {
-    join_at(tri, side, hole.iter().flatten().copied().collect())
+/// Widens the holes by every inner tet at one of the vertices `wall` (a failed hole's, or the
+/// last ring's); returns the tets that joined.
+pub(super) fn widen_around(tri: &Tri, side: &mut [Side], wall: Vec<u32>) -> Vec<u32> {
+    join_at(tri, side, wall)
 }
 
-/// Every inner tet at one of the `wall` vertices joins the holes; returns how many did.
-fn join_at(tri: &Tri, side: &mut [Side], mut wall: Vec<u32>) -> usize {
+/// Every inner tet at one of the `wall` vertices joins the holes; returns those tets.
+fn join_at(tri: &Tri, side: &mut [Side], mut wall: Vec<u32>) -> Vec<u32> {
     wall.sort_unstable();
     wall.dedup();
     let joining: Vec<u32> = tri
@@ -426,7 +427,7 @@ fn join_at(tri: &Tri, side: &mut [Side], mut wall: Vec<u32>) -> usize {
     for &t in &joining {
         side[t as usize] = Side::Hole;
     }
-    joining.len()
+    joining
 }
 
 /// The faces holes share with inner tets (by sorted vertices), each with the inner tet's side.
