@@ -106,7 +106,10 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         )?;
         write_record(&last_graph_path(&record_dir), report.to_dot().as_bytes())?;
     }
-    if args.json {
+    // Printed once the report and the lock file are written, or as the build fails: a reader
+    // that closes standard output early (`| head`) ends the command where it is printed, which
+    // must not leave the report and the lock file as the last build's.
+    let json = args.json.then(|| {
         let mut json = report.to_json();
         if let Some(model) = report
             .artifact("model")
@@ -115,11 +118,14 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         {
             obj.insert("model".to_string(), model.summary());
         }
-        outln!(
-            "{}",
-            serde_json::to_string_pretty(&json).unwrap_or_default()
-        );
-    }
+        serde_json::to_string_pretty(&json).unwrap_or_default()
+    });
+    let print_json = || -> Result<(), Failure> {
+        if let Some(text) = &json {
+            outln!("{text}");
+        }
+        Ok(())
+    };
     if verbosity >= Verbosity::Normal {
         print_findings(&report);
         print_crossings(&report);
@@ -162,6 +168,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         Some(_) => report_state,
     };
     if !report.ok {
+        print_json()?;
         return Err(Failure(format!(
             "error: build of {} failed: {summary}, {} failed, {} skipped",
             args.recipe.display(),
@@ -182,6 +189,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
                 msg.push_str("\n  ");
                 msg.push_str(d);
             }
+            print_json()?;
             return Err(Failure(msg));
         }
         if let Some(staging) = staging {
@@ -200,6 +208,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
                     msg.push_str("\n  ");
                     msg.push_str(d);
                 }
+                print_json()?;
                 return Err(Failure(msg));
             }
         }
@@ -207,6 +216,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
             write_atomic(&lock_file, text.as_bytes())?;
         }
     }
+    print_json()?;
     if verbosity >= Verbosity::Normal {
         let model = &recipe.model.name;
         if verbosity == Verbosity::Verbose

@@ -139,6 +139,26 @@ fn a_reader_that_closed_standard_output_ends_the_command_quietly() {
 }
 
 #[test]
+fn a_json_build_whose_reader_closed_standard_output_leaves_its_report_and_lock_current() {
+    let s = Scratch::didactic_built();
+    let tets = || {
+        let text = std::fs::read(s.path("out/didactic/report.json")).expect("the report");
+        let report: serde_json::Value = serde_json::from_slice(&text).expect("JSON");
+        report["counts"]["tets"].as_u64().expect("a tet count")
+    };
+    let before = tets();
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 50.0 }");
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    let (code, err) = run_with_stdout(&s, &["build", "--json", "didactic.toml"], writer.into());
+    assert_eq!(code, Some(141), "{err}");
+    // The report and the lock file were written before the JSON: they are the edited build's.
+    assert_ne!(tets(), before, "the report is the edited recipe's");
+    let (ok, _, err) = s.build(&["--locked"]);
+    assert!(ok, "the lock file is the edited recipe's: {err}");
+}
+
+#[test]
 fn a_full_standard_output_is_an_error_message_not_a_panic() {
     let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
         eprintln!("note: no /dev/full here; skipped");
