@@ -113,11 +113,7 @@ fn list_files(root: &Path, dir: &Path, out: &mut Vec<PathBuf>) -> Result<(), Fai
 fn move_file(from: &Path, to: &Path) -> std::io::Result<()> {
     match std::fs::rename(from, to) {
         Err(e) if e.kind() == std::io::ErrorKind::CrossesDevices => {
-            let dir = to.parent().unwrap_or(Path::new("."));
-            let mut tmp = tempfile::Builder::new()
-                .prefix(engine::store::TEMP_PREFIX)
-                .permissions(std::fs::metadata(from)?.permissions())
-                .tempfile_in(dir)?;
+            let mut tmp = temporary_beside(to, std::fs::metadata(from)?.permissions())?;
             std::io::copy(&mut std::fs::File::open(from)?, tmp.as_file_mut())?;
             tmp.as_file().sync_data()?;
             tmp.persist(to).map_err(|e| e.error)?;
@@ -127,9 +123,37 @@ fn move_file(from: &Path, to: &Path) -> std::io::Result<()> {
     }
 }
 
+/// A temporary beside `to`, named as every atomic write's temporaries are, so that one a killed
+/// copy left is swept (`debris`).
+fn temporary_beside(
+    to: &Path,
+    permissions: std::fs::Permissions,
+) -> std::io::Result<tempfile::NamedTempFile> {
+    let dir = to.parent().unwrap_or(Path::new("."));
+    tempfile::Builder::new()
+        .prefix(&engine::store::temp_prefix_of(to))
+        .permissions(permissions)
+        .tempfile_in(dir)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_temporary_of_a_copy_across_filesystems_is_one_that_sweeping_removes() {
+        let dir = tempfile::tempdir().unwrap();
+        let to = dir.path().join("model.msh");
+        let perms = std::fs::metadata(dir.path()).unwrap().permissions();
+        let tmp = temporary_beside(&to, perms).unwrap();
+        let name = tmp
+            .path()
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        assert!(super::super::debris::is_temporary(&name), "{name}");
+    }
 
     #[test]
     fn publishing_moves_every_staged_file_into_the_output_directory() {
