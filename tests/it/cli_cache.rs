@@ -450,6 +450,72 @@ fn a_build_that_finds_the_cache_locked_waits_and_writes_nothing_until_it_has_the
     assert!(ok, "{err}");
 }
 
+/// The files a build leaves that must agree: its lock file, its mesh and its report's tet count.
+fn build_state(s: &Scratch) -> (Vec<u8>, Vec<u8>, u64) {
+    let report = std::fs::read(s.path("out/didactic/report.json")).expect("the report");
+    let report: serde_json::Value = serde_json::from_slice(&report).expect("JSON");
+    (
+        std::fs::read(s.path("didactic.toml.lock")).expect("the lock file"),
+        std::fs::read(s.path("out/didactic/didactic.msh")).expect("the mesh"),
+        report["counts"]["tets"].as_u64().expect("a tet count"),
+    )
+}
+
+#[test]
+fn two_builds_of_two_versions_racing_leave_the_outputs_lock_and_report_of_one_of_them() {
+    let old = "\"F2\" = { size = 100.0 }";
+    let new = ["60.0", "70.0", "80.0"].map(|v| format!("\"F2\" = {{ size = {v} }}"));
+    // Each version's files, built alone.
+    let alone = |version: &str| {
+        let s = Scratch::didactic_built();
+        s.edit(old, version);
+        let (ok, _, err) = s.build(&[]);
+        assert!(ok, "{err}");
+        build_state(&s)
+    };
+    let before = build_state(&Scratch::didactic_built());
+    let s = Scratch::didactic_built();
+    let spawn = || {
+        std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+            .args(["build", "--quiet", "didactic.toml"])
+            .current_dir(s.path(""))
+            .env_remove("RECIPE_CACHE_DIR")
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("run recipe")
+    };
+    // Each round: the slow build of a new version, then, while it runs, the cached build of the
+    // old one, which waits for the lock and finishes fast, just as the first one writes its last
+    // files. Which one wins is the lock's to say, and may differ between rounds.
+    for version in &new {
+        let states = [before.clone(), alone(version)];
+        assert_ne!(states[0].2, states[1].2, "the versions differ");
+        s.edit(old, version);
+        let slow = spawn();
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        s.edit(version, old);
+        let fast = spawn();
+        for child in [slow, fast] {
+            let out = child.wait_with_output().expect("the build ends");
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(out.status.success(), "{err}");
+        }
+        let now = build_state(&s);
+        let won = states
+            .iter()
+            .position(|st| st.1 == now.1)
+            .expect("the mesh is one version's");
+        assert!(
+            now.0 == states[won].0,
+            "{version}: the lock is the mesh's version's"
+        );
+        assert_eq!(
+            now.2, states[won].2,
+            "{version}: the report is the mesh's version's"
+        );
+    }
+}
+
 /// Every name under the scratch folder (outside the cache's objects) that a killed write could
 /// have left.
 fn debris(s: &Scratch) -> Vec<String> {
