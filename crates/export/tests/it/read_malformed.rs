@@ -32,7 +32,11 @@ fn damage(mut bytes: Vec<u8>, edits: &[(usize, u8)], cut: usize) -> Vec<u8> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+    // FUZZ_CASES sets the count (`.ci/run` runs a longer, bounded hunt).
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(96),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn damaged_off_and_obj_never_panic(edits in prop::collection::vec((0usize..200, any::<u8>()), 0..6), cut in 0usize..200) {
