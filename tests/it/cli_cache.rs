@@ -194,8 +194,18 @@ fn an_unreadable_last_build_record_is_not_reported_as_missing() {
     let out = s.recipe_cmd(&["explain", "didactic.toml"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
-    assert!(err.contains("cannot read the last build's record"), "{err}");
+    assert!(err.contains("is damaged: a directory, not a file"), "{err}");
+    assert!(err.contains("run `recipe build didactic.toml`"), "{err}");
     assert!(!err.contains("no build recorded"), "{err}");
+    // The next build writes the record in its place.
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let out = s.recipe_cmd(&["explain", "didactic.toml"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]

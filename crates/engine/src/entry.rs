@@ -34,6 +34,8 @@ pub(crate) enum Wrong {
     Remove,
     /// Leave it (a cache only read): it is still damage.
     Keep,
+    /// Leave it for the next write to replace, and say only what it is (a build's record).
+    Leave,
 }
 
 /// Reads the entry at `path` (see the module docs), removing a wrong kind of file.
@@ -90,10 +92,14 @@ pub(crate) fn present(path: &Path, wrong: Wrong) -> bool {
 /// Removes what is at `path` in place of an entry (unless told to keep it), and says what it
 /// was.
 fn handle_wrong(path: &Path, kind: &str, wrong: Wrong) -> Read {
-    if wrong == Wrong::Keep {
-        return Read::Damaged(format!(
-            "{kind}, not a file: left in place (the cache is only read)"
-        ));
+    match wrong {
+        Wrong::Keep => {
+            return Read::Damaged(format!(
+                "{kind}, not a file: left in place (the cache is only read)"
+            ));
+        }
+        Wrong::Leave => return Read::Damaged(format!("{kind}, not a file")),
+        Wrong::Remove => {}
     }
     let removed = if kind == "a directory" {
         std::fs::remove_dir_all(path)
