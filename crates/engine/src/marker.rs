@@ -48,8 +48,12 @@ pub fn claim(dir: &Path) -> Result<(), EngineError> {
     }
     std::fs::create_dir_all(dir).map_err(|e| EngineError::io(dir, e))?;
     refuse_foreign(dir)?;
-    crate::store::write_atomic(&dir.join(MARKER), TEXT.as_bytes(), true)
-        .map_err(|e| EngineError::io(dir.join(MARKER), e))
+    match crate::store::write_atomic(&dir.join(MARKER), TEXT.as_bytes(), true) {
+        // A build that claimed it at the same moment, and swept this write's temporary as a
+        // killed write's under its lock, marked it.
+        Err(_) if is_cache(dir) => Ok(()),
+        done => done.map_err(|e| EngineError::io(dir.join(MARKER), e)),
+    }
 }
 
 /// An error naming the first entries of `dir` that are not cache entries, if there are any.

@@ -92,11 +92,12 @@ impl Store {
         }
     }
 
-    /// Removes the temporaries of atomic writes (`.tmp-*`) left in `objects/` and `actions/` by
-    /// a process killed mid-write; returns how many. Only the engine writes there, and only
-    /// under the cache lock, so with the lock held every such file is debris (`gc` removes them
-    /// too, as unreferenced entries). Neither the cache root nor the records are swept: the
-    /// command line writes its files into its record after the lock is released.
+    /// Removes the temporaries of atomic writes (`.tmp-*`) left in `objects/` and `actions/`, and
+    /// beside the cache's marker, by a process killed mid-write; returns how many. Only the
+    /// engine writes there, and only under the cache lock (the marker before it, by a build that
+    /// finds it written if its own write fails), so with the lock held every such file is debris
+    /// (`gc` removes them too, as unreferenced entries). The records are the command line's to
+    /// sweep, each for its own recipe.
     pub fn sweep_temporaries(&self) -> Result<usize, EngineError> {
         let mut removed = 0;
         if self.read_only {
@@ -115,6 +116,8 @@ impl Store {
                 }
             }
         }
+        let marker = self.root.join(crate::marker::MARKER);
+        removed += sweep_temporaries_of(&marker).map_err(|e| EngineError::io(&self.root, e))?;
         Ok(removed)
     }
 

@@ -405,8 +405,12 @@ fn a_build_removes_the_temporaries_a_killed_write_left_in_the_cache() {
     for sub in ["objects", "actions"] {
         std::fs::write(o.cache_dir.join(sub).join(".tmp-killed"), b"half a write").unwrap();
     }
+    // A build killed while it marked the folder as a cache.
+    let marker = o.cache_dir.join(".tmp-CACHEDIR.TAG.Ab12Cd");
+    std::fs::write(&marker, b"half a marker").unwrap();
     runs.reset();
     run(chain(1, &runs), &o);
     assert_eq!(entries(&o.cache_dir), before, "debris gone, entries kept");
+    assert!(!marker.exists(), "the marker's temporary is gone");
     assert_eq!(runs.total(), 0, "nothing re-ran");
 }
