@@ -640,6 +640,54 @@ fn the_next_build_removes_what_killed_builds_left_and_nothing_of_the_users() {
 }
 
 #[test]
+fn a_build_killed_at_any_moment_leaves_nothing_that_the_next_build_does_not_clear() {
+    let s = Scratch::didactic_built();
+    let build = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+            .args(["build", "--quiet"])
+            .args(args)
+            .arg("didactic.toml")
+            .current_dir(s.path(""))
+            .env_remove("RECIPE_CACHE_DIR")
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("run recipe")
+    };
+    // How long a build from an empty cache takes here, to spread the kills over one.
+    let started = std::time::Instant::now();
+    let status = build(&["--cache-dir", "timed"])
+        .wait()
+        .expect("the build ends");
+    assert!(status.success());
+    let whole = started.elapsed();
+    // Two versions in turn, so that every round writes outputs, a report and a lock file anew;
+    // each round from an empty cache, so that early kills hit the cache's entries; plain builds
+    // write into the output directory, --locked ones into a staging directory first.
+    let sizes = ["\"F2\" = { size = 100.0 }", "\"F2\" = { size = 90.0 }"];
+    let moments = 6;
+    for (round, locked) in (0..2 * moments).map(|r| (r, r >= moments)) {
+        s.edit(sizes[round % 2], sizes[(round + 1) % 2]);
+        let cache = format!("cache{round}");
+        let mut args = vec!["--cache-dir", cache.as_str()];
+        if locked {
+            args.push("--locked");
+        }
+        let mut child = build(&args);
+        let at = whole.mul_f64(((round % moments) as f64 + 0.5) / moments as f64);
+        std::thread::sleep(at);
+        let _ = child.kill();
+        let _ = child.wait();
+        let (ok, _, err) = s.build(&["--cache-dir", cache.as_str()]);
+        assert!(ok, "{err}");
+        assert_eq!(
+            debris(&s),
+            Vec::<String>::new(),
+            "after a kill at {at:?} of {whole:?} (locked: {locked})"
+        );
+    }
+}
+
+#[test]
 fn running_out_of_file_descriptors_fails_the_build_saying_so_and_damages_no_cache_entry() {
     let s = Scratch::didactic_built();
     let (_, before, _) = s.build(&[]);
