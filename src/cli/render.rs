@@ -208,12 +208,16 @@ impl Renderer {
         }
     }
 
-    /// For a surface or tet mesh failure at coordinates: the input triangle nearest to them.
+    /// For a surface mesh, tet mesh or intersection failure at coordinates: the input triangle
+    /// nearest to them (one line each).
     fn nearest_input(&self, node: &str, error: &str) -> Option<String> {
-        // A patch is named `<surface>#<k>`: its own surface's triangles are the ones to edit.
-        let only = match node.split_once(':') {
-            Some(("surface_mesh", patch)) => Some(patch.split('#').next().unwrap_or(patch)),
-            Some(("tet_mesh", _)) => None,
+        let only: Vec<Option<&str>> = match node.split_once(':') {
+            // A patch is named `<surface>#<k>`: its own surface's triangles are the ones to edit.
+            Some(("surface_mesh", patch)) => vec![Some(patch.split('#').next().unwrap_or(patch))],
+            Some(("tet_mesh", _)) => vec![None],
+            // An intersection `<a>/<b>` fails on both its surfaces: the nearest triangle of each
+            // (a box side has no input triangles).
+            Some(("intersect", pair)) => pair.split('/').map(Some).collect(),
             _ => return None,
         };
         let at = super::culprit::failure_place(error)?;
@@ -221,7 +225,11 @@ impl Renderer {
             .surfaces
             .get_or_init(|| super::culprit::import_all(&self.recipe));
         let units = self.recipe.model.units.as_str();
-        super::culprit::nearest_triangle(surfaces, only, at, units)
+        let notes: Vec<String> = only
+            .into_iter()
+            .filter_map(|o| super::culprit::nearest_triangle(surfaces, o, at, units))
+            .collect();
+        (!notes.is_empty()).then(|| notes.join(&format!("\n{:>12} ", "note")))
     }
 }
 
@@ -262,7 +270,7 @@ mod tests {
     }
 
     #[test]
-    fn a_mesh_failure_at_coordinates_names_the_nearest_input_triangles_file_line() {
+    fn a_failure_at_coordinates_names_the_nearest_input_triangles_file_line() {
         let r = shipped();
         // On H2 near the box's y-min side, where F1 also passes: a patch's failure names its
         // own surface's triangle, a region's the nearest of any.
@@ -276,6 +284,19 @@ mod tests {
         assert!(patch.contains("(surface `H2`)") && patch.ends_with(" m from there"));
         let region = r.failure("tet_mesh:reservoir_E", &format!("the front is stuck {at}"));
         assert!(region.contains("note the nearest input triangle is data/didactic/"));
+        // An intersection's failure names the nearest triangle of each of its surfaces.
+        let pair = r.failure(
+            "intersect:F1/H2",
+            &format!("surfaces `F1` and `H2` overlap where they are coplanar: triangle 1 × triangle 2 {at}"),
+        );
+        for file in ["F1_through.ts:", "H2_base_reservoir.ts:"] {
+            assert!(pair.contains(&format!("is data/didactic/{file}")), "{pair}");
+        }
+        assert_eq!(
+            pair.matches("note the nearest input triangle").count(),
+            2,
+            "{pair}"
+        );
         // Without coordinates, or from another stage, the error stays on its own.
         assert!(!r.failure("tet_mesh:x", "no place").contains("note"));
         assert!(!r.failure("export", &format!("oops {at}")).contains("note"));
