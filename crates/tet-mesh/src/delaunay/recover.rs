@@ -60,9 +60,9 @@ const MAX_MISSING: usize = 500;
 const MAX_MISSING_SHARE: usize = 50;
 /// Growth (numerator, denominator) of widened holes' faces between two tries to fill them
 /// (`worth_a_try`). On the example with a horizon jittered by 35 or 50 m, recoveries tried
-/// every ring of widening, holes of up to 29,000 faces, 16 times each, for 3 to 9 s before the
-/// front; every widened hole that any recovery filled in the test suite, the geology corpus and
-/// RINGMesh modelA4 was filled within 5 rings.
+/// every ring of widening, holes of up to 29,000 faces, 16 times each: 1 to 9 s of a region's
+/// tries without the front, and up to 7 s more with it; every widened hole that any recovery
+/// filled in the test suite, the geology corpus and RINGMesh modelA4 was filled within 5 rings.
 const TRY_GROWTH: (usize, usize) = (3, 2);
 /// Rounds of hole growth before recovery gives up.
 const MAX_GROWTH: usize = 8;

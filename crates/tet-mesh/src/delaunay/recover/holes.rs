@@ -197,7 +197,7 @@ pub(super) fn widen_hole(tri: &Tri, side: &mut [Side], sub_b: &[[u32; 3]], at: [
             .copied()
             .filter(|&v| d2(v) <= reach * near)
             .collect();
-        let joined = join_at(tri, side, wall).len();
+        let joined = widen_around(tri, side, wall).len();
         if joined > 0 {
             return joined;
         }
@@ -406,12 +406,7 @@ fn sorted2(a: u32, b: u32) -> [u32; 2] {
 
 /// Widens the holes by every inner tet at one of the vertices `wall` (a failed hole's, or the
 /// last ring's); returns the tets that joined.
-pub(super) fn widen_around(tri: &Tri, side: &mut [Side], wall: Vec<u32>) -> Vec<u32> {
-    join_at(tri, side, wall)
-}
-
-/// Every inner tet at one of the `wall` vertices joins the holes; returns those tets.
-fn join_at(tri: &Tri, side: &mut [Side], mut wall: Vec<u32>) -> Vec<u32> {
+pub(super) fn widen_around(tri: &Tri, side: &mut [Side], mut wall: Vec<u32>) -> Vec<u32> {
     wall.sort_unstable();
     wall.dedup();
     let joining: Vec<u32> = tri
