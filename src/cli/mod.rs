@@ -152,9 +152,21 @@ pub enum Command {
 pub fn main() -> i32 {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
-        Err(e) => {
+        // A usage error goes to standard error (status 2); help and version to standard output,
+        // which may be closed or full like any other.
+        Err(e) if e.use_stderr() => {
             let _ = e.print();
-            return if e.use_stderr() { 2 } else { 0 };
+            return 2;
+        }
+        Err(e) => {
+            return match e.print() {
+                Ok(()) => 0,
+                Err(w) if w.kind() == std::io::ErrorKind::BrokenPipe => output::BROKEN_PIPE_STATUS,
+                Err(w) => {
+                    errln!("error: cannot write to standard output: {w}");
+                    1
+                }
+            };
         }
     };
     let result = match cli.command {

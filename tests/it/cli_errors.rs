@@ -169,6 +169,24 @@ fn a_full_standard_output_is_an_error_message_not_a_panic() {
     assert_eq!(code, Some(1), "{err}");
     assert!(!err.contains("panicked"), "{err}");
     assert!(err.contains("cannot write to standard output"), "{err}");
+    // The help and the version are output too: a full stream is an error, a closed one quiet.
+    for flag in ["--help", "--version"] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let (code, err) = run_with_stdout(&s, &[flag], full.into());
+        assert_eq!(code, Some(1), "{flag}: {err}");
+        assert!(
+            err.contains("cannot write to standard output"),
+            "{flag}: {err}"
+        );
+        let (reader, writer) = std::io::pipe().expect("a pipe");
+        drop(reader);
+        let (code, err) = run_with_stdout(&s, &[flag], writer.into());
+        assert_eq!(code, Some(141), "{flag}: {err}");
+        assert!(err.is_empty(), "{flag}: {err}");
+    }
 }
 
 #[test]
