@@ -13,9 +13,12 @@ use crate::recipe::Recipe;
 use gocad::import::{ImportOptions, ImportedSurface, import_surface};
 use rstar::{AABB, PointDistance, RTree, RTreeObject};
 
-/// The last `at (x, y, z)` of an error message: where the stage failed.
+/// The last `at (x, y, z)` or `near (x, y, z)` of an error message: where the stage failed.
 pub fn failure_place(error: &str) -> Option<[f64; 3]> {
-    let start = error.rfind("at (")? + 4;
+    let start = ["at (", "near ("]
+        .iter()
+        .filter_map(|w| error.rfind(w).map(|i| i + w.len()))
+        .max()?;
     let end = start + error[start..].find(')')?;
     let xs: Vec<f64> = error[start..end]
         .split(',')
@@ -142,6 +145,9 @@ mod tests {
                  6.0)) (after Delaunay gave way: at (7, 8, 9)) at (500000.5, 7000000.25, -1200)";
         assert_eq!(failure_place(e), Some([500000.5, 7000000.25, -1200.0]));
         assert_eq!(failure_place("no place here"), None);
+        let split =
+            "splitting `H1`: triangle 12 near (1.5, 2, 3): two curve points are at one place";
+        assert_eq!(failure_place(split), Some([1.5, 2.0, 3.0]));
         assert_eq!(failure_place("at (1, 2)"), None);
         assert_eq!(failure_place("at (1, NaN, 2)"), None);
     }

@@ -208,18 +208,12 @@ impl Renderer {
         }
     }
 
-    /// For a surface mesh, tet mesh or intersection failure at coordinates: the input triangle
-    /// nearest to them (one line each).
+    /// For a failure at coordinates in any stage after import: the input triangle nearest to
+    /// them (one line each). A node named after surfaces (a patch `<surface>#<k>`, a curve or an
+    /// intersection `<a>/<b>`) looks among those surfaces, one note each, since those are the
+    /// triangles to edit; a node of the whole model or of a region looks among all of them.
     fn nearest_input(&self, node: &str, error: &str) -> Option<String> {
-        let only: Vec<Option<&str>> = match node.split_once(':') {
-            // A patch is named `<surface>#<k>`: its own surface's triangles are the ones to edit.
-            Some(("surface_mesh", patch)) => vec![Some(patch.split('#').next().unwrap_or(patch))],
-            Some(("tet_mesh", _)) => vec![None],
-            // An intersection `<a>/<b>` fails on both its surfaces: the nearest triangle of each
-            // (a box side has no input triangles).
-            Some(("intersect", pair)) => pair.split('/').map(Some).collect(),
-            _ => return None,
-        };
+        let only = self.surfaces_named_by(node)?;
         let at = super::culprit::failure_place(error)?;
         let surfaces = self
             .surfaces
@@ -230,6 +224,25 @@ impl Renderer {
             .filter_map(|o| super::culprit::nearest_triangle(surfaces, o, at, units))
             .collect();
         (!notes.is_empty()).then(|| notes.join(&format!("\n{:>12} ", "note")))
+    }
+
+    /// The recipe's surfaces a node's name speaks of (`None` in the list: any surface); `None`
+    /// for the nodes before the geometry (files, imports, whose errors name their line) and
+    /// after it (exports).
+    fn surfaces_named_by<'a>(&self, node: &'a str) -> Option<Vec<Option<&'a str>>> {
+        let (kind, subject) = node.split_once(':').unwrap_or((node, ""));
+        if matches!(kind, "file" | "import" | "export") {
+            return None;
+        }
+        let named: Vec<Option<&str>> = subject
+            .split('#')
+            .next()
+            .unwrap_or("")
+            .split('/')
+            .filter(|n| self.recipe.surfaces.contains_key(*n))
+            .map(Some)
+            .collect();
+        Some(if named.is_empty() { vec![None] } else { named })
     }
 }
 
@@ -297,8 +310,23 @@ mod tests {
             2,
             "{pair}"
         );
-        // Without coordinates, or from another stage, the error stays on its own.
+        // A curve's failure looks on its surfaces only (a box side has no input triangles); the
+        // model's among every surface.
+        let curve = r.failure("discretize:F1/box.ymin#1", &format!("two nodes meet {at}"));
+        assert!(curve.contains("(surface `F1`)"), "{curve}");
+        assert_eq!(curve.matches("note").count(), 1, "{curve}");
+        let model = r.failure("model", &format!("two curve points are at one place {at}"));
+        assert!(
+            model.contains("note the nearest input triangle is data/didactic/"),
+            "{model}"
+        );
+        // Without coordinates, or from a stage whose errors are not at a place in the model, the
+        // error stays on its own.
         assert!(!r.failure("tet_mesh:x", "no place").contains("note"));
         assert!(!r.failure("export", &format!("oops {at}")).contains("note"));
+        assert!(
+            !r.failure("import:H1", &format!("oops {at}"))
+                .contains("note")
+        );
     }
 }
