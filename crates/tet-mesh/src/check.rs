@@ -252,13 +252,55 @@ fn check_closed(input: &RegionInput) -> Result<(), TetMeshError> {
 /// Signed volume enclosed by outward triangles (float measure, reference point at the centroid of
 /// the vertices to limit cancellation at UTM magnitudes).
 pub(crate) fn enclosed_volume(pts: &[P], tris: &[[u32; 3]]) -> f64 {
+    enclosed_volume_bounded(pts, tris).0
+}
+
+/// [`enclosed_volume`] and a bound on its rounding error: the sum of the triangles' cones from
+/// the reference point, each with [`Rounded::add`]'s bound.
+pub(crate) fn enclosed_volume_bounded(pts: &[P], tris: &[[u32; 3]]) -> (f64, f64) {
     let o = reference_point(pts);
-    let mut v = 0.0;
+    let mut sum = Rounded::default();
     for t in tris {
         let [a, b, c] = t.map(|i| pts[i as usize]);
-        v += geom::predicates::signed_volume(&o, &a, &b, &c);
+        sum.add(&o, &a, &b, &c);
     }
-    v
+    (sum.volume, sum.bound())
+}
+
+/// A running sum of tets' signed volumes with a bound on its floating-point error: each
+/// volume's determinant is off by at most a few units in the last place of its permanent (the
+/// determinant with every product taken positive, as in Shewchuk's error bounds), and the sum of
+/// `n` terms by at most `n` units in the last place of the sum of their magnitudes. Two volume
+/// sums of one region that must agree exactly in real arithmetic are compared within their
+/// bounds, so a thin region far smaller than its coordinates does not fail on rounding alone.
+#[derive(Default)]
+pub(crate) struct Rounded {
+    pub volume: f64,
+    magnitude: f64,
+    permanent: f64,
+    terms: f64,
+}
+
+impl Rounded {
+    /// Adds the signed volume of tet `abcd`, as [`geom::predicates::signed_volume`] takes it.
+    pub fn add(&mut self, a: &P, b: &P, c: &P, d: &P) {
+        let v = geom::predicates::signed_volume(a, b, c, d);
+        let [u, w, x] = [b, c, d].map(|q| [q[0] - a[0], q[1] - a[1], q[2] - a[2]]);
+        let abs = |p: [f64; 3]| p.map(f64::abs);
+        let [u, w, x] = [abs(u), abs(w), abs(x)];
+        let perm = u[0] * (w[1] * x[2] + w[2] * x[1])
+            + u[1] * (w[0] * x[2] + w[2] * x[0])
+            + u[2] * (w[0] * x[1] + w[1] * x[0]);
+        self.volume += v;
+        self.magnitude += v.abs();
+        self.permanent += perm / 6.0;
+        self.terms += 1.0;
+    }
+
+    /// The bound on the error of [`Rounded::volume`].
+    pub fn bound(&self) -> f64 {
+        f64::EPSILON * (8.0 * self.permanent + self.terms * self.magnitude)
+    }
 }
 
 pub(crate) fn reference_point(pts: &[P]) -> P {

@@ -3,9 +3,9 @@
 //! Orientation is decided by `orient3d`; face conformity is combinatorial; only the volume
 //! balance is a float comparison (relative 1e-9), as specified.
 
-use geom::predicates::{Orientation, orient3d, signed_volume};
+use geom::predicates::{Orientation, orient3d};
 
-use super::check::{enclosed_volume, reference_point};
+use super::check::{Rounded, enclosed_volume_bounded, reference_point};
 use super::lines::verify_chains;
 use super::{RegionInput, TetMeshError, TetMeshOutput};
 
@@ -116,7 +116,7 @@ fn for_each_face_run<E>(
 /// Every tet positive (exact), each boundary triangle the outward face of exactly one tet and of
 /// none reversed, each embedded triangle a face of exactly two tets (one per side), every other
 /// face shared by exactly two tets with opposite orientations, the tets' total volume equal
-/// to the enclosed volume (relative 1e-9), and each embedded segment a chain of tet edges on it
+/// to the enclosed volume (relative 1e-9, beyond the sums' rounding), and each embedded segment a chain of tet edges on it
 /// (`lines::verify_chains`).
 pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshError> {
     let name = &input.name;
@@ -147,7 +147,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     // One pass over the tets for their orientation and their total volume (taken about a point
     // of the input, so that the products stay small at UTM coordinates).
     let o = reference_point(&input.vertices);
-    let mut total = 0.0;
+    let mut total = Rounded::default();
     for (ti, t) in out.tets.iter().enumerate() {
         if let Some(&v) = t.iter().find(|&&v| v as usize >= nodes.len()) {
             return Err(TetMeshError::new(
@@ -165,7 +165,7 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
             ));
         }
         let [a, b, c, d] = [a, b, c, d].map(|p| [p[0] - o[0], p[1] - o[1], p[2] - o[2]]);
-        total += signed_volume(&a, &b, &c, &d);
+        total.add(&a, &b, &c, &d);
     }
     // Every tet's outward faces, sorted by their sorted nodes: a face's tets form a run, and the
     // runs are read once alongside the sorted input triangles (bucket by bucket, a linear scan).
@@ -274,9 +274,12 @@ pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshErr
     if ie < emb.len() {
         return Err(embedded_error(emb[ie].1, 0, 0));
     }
-    let expect = enclosed_volume(&input.vertices, &input.boundary);
-    // Written so that a NaN volume fails too.
-    let balanced = (total - expect).abs() <= 1e-9 * expect.abs();
+    // The two sums agree exactly in real arithmetic once the faces match as checked above (the
+    // tets' interior faces cancel), so they may differ by their rounding only. Written so that a
+    // NaN volume fails too.
+    let (expect, rounding) = enclosed_volume_bounded(&input.vertices, &input.boundary);
+    let (total, rounding) = (total.volume, rounding + total.bound());
+    let balanced = (total - expect).abs() <= 1e-9 * expect.abs() + rounding;
     if !balanced {
         return Err(TetMeshError::new(
             name,

@@ -116,7 +116,8 @@ impl Operation for TetMeshOp {
         // 24: no front on the whole region after Delaunay gave way where the boundary is pinched.
         // 25: the recovery of a pinched region stops widening its holes past a bound of work.
         // 26: widened holes are tried again once grown by half, while under half the region.
-        26
+        // 27: the check of the tets' volume allows the sums' rounding (thin regions).
+        27
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

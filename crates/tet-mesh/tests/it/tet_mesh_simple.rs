@@ -538,3 +538,93 @@ fn an_embedded_triangle_crossing_the_boundary_from_outside_is_refused_for_the_cr
     let e = mesh_region(&input, &SizeField::default(), &TetMeshOptions::default()).unwrap_err();
     assert!(e.message.contains("intersects embedded triangle 0"), "{e}");
 }
+
+/// A tilted slab `size` wide and `thickness` thick at UTM coordinates, `n`×`n` cells each cut
+/// into Freudenthal's six tets: the region (its boundary the faces of one tet only) and its mesh.
+fn thin_slab(n: i64, size: f64, thickness: f64) -> (RegionInput, TetMeshOutput) {
+    let (cos, sin) = (0.7f64.cos(), 0.7f64.sin());
+    let at = |l: [i64; 3]| {
+        let [x, y, z] = [
+            l[0] as f64 * size / n as f64,
+            l[1] as f64 * size / n as f64,
+            l[2] as f64 * thickness,
+        ];
+        let (y, z) = (cos * y - sin * z, sin * y + cos * z);
+        let (x, y) = (0.8 * x - 0.6 * y, 0.6 * x + 0.8 * y);
+        [
+            x + 504_513.313_596_812_4,
+            y + 7_001_391.367_725_062,
+            z - 1_257.773_422_558_924,
+        ]
+    };
+    let mut ids: BTreeMap<[i64; 3], u32> = BTreeMap::new();
+    let mut nodes = Vec::new();
+    let mut tets = Vec::new();
+    let axes = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    for (i, j, order) in (0..n).flat_map(|i| (0..n).flat_map(move |j| axes.map(|o| (i, j, o)))) {
+        let mut corner = [i, j, 0];
+        let mut t = [0u32; 4];
+        for k in 0..4 {
+            if k > 0 {
+                corner[order[k - 1]] += 1;
+            }
+            t[k] = *ids.entry(corner).or_insert_with(|| {
+                nodes.push(at(corner));
+                nodes.len() as u32 - 1
+            });
+        }
+        let [a, b, c, d] = t.map(|v| nodes[v as usize]);
+        if geom::predicates::orient3d(&a, &b, &c, &d) != geom::predicates::Orientation::Positive {
+            t.swap(0, 1);
+        }
+        tets.push(t);
+    }
+    let faces = |[a, b, c, d]: [u32; 4]| [[b, c, d], [a, d, c], [a, b, d], [a, c, b]];
+    let mut seen: BTreeMap<[u32; 3], usize> = BTreeMap::new();
+    for f in tets.iter().flat_map(|&t| faces(t)) {
+        let mut key = f;
+        key.sort();
+        *seen.entry(key).or_default() += 1;
+    }
+    let boundary = (tets.iter().flat_map(|&t| faces(t)))
+        .filter(|f| {
+            let mut key = *f;
+            key.sort();
+            seen[&key] == 1
+        })
+        .collect();
+    let input = RegionInput {
+        name: "thin slab".into(),
+        vertices: nodes.clone(),
+        boundary,
+        embedded: vec![],
+        lines: Vec::new(),
+    };
+    let out = TetMeshOutput {
+        nodes,
+        tets,
+        lines: Vec::new(),
+        stats: Default::default(),
+    };
+    (input, out)
+}
+
+#[test]
+fn verify_accepts_a_region_far_thinner_than_its_coordinates_whose_volumes_differ_by_rounding() {
+    // Ten metres wide and ten nanometres thick: the tets' volume and the volume their boundary
+    // encloses agree in real arithmetic, but differ in floating point by more than a relative
+    // 1e-9 (by cancellation in the sum of the boundary's cones).
+    let (input, out) = thin_slab(8, 10.0, 1e-8);
+    verify(&input, &out).unwrap_or_else(|e| panic!("{e}"));
+    // A tet missing from it is still found, however thin the region.
+    let mut missing = out.clone();
+    missing.tets.remove(40);
+    assert!(verify(&input, &missing).is_err());
+}
