@@ -1,17 +1,19 @@
-//! A geometric fuzzer: the shipped example with one of its surfaces perturbed the ways real data
-//! is (vertices jittered, a triangle collapsed, one flipped, a vertex dragged across the next
-//! surface, a surface given as a triangle soup), built through the command line.
+//! A geometric fuzzer: the shipped example and cases of the geology corpus (a closed salt body, a
+//! lens, a recumbent fold, crossing faults) with one of their surfaces perturbed the ways real
+//! data is (vertices jittered, a triangle collapsed, one flipped, a vertex dragged across the
+//! next surface, a surface given as a triangle soup), built through the command line.
 //!
 //! Each build finishes within ten times the unperturbed build's time (plus a margin for a
-//! machine busy with the other tests), and either writes a mesh that the independent checker
-//! passes with the regions its quality tables list, or fails with a message that points at a
-//! line of the recipe or of a surface file. The perturbations are seeded: every run builds the
+//! machine busy with the other tests) and peak memory, and either writes a mesh that the
+//! independent checker passes with the regions its quality tables list, or fails with a message
+//! that points at a line of the recipe or of a surface file. The perturbations are seeded: every run builds the
 //! same files.
 
 use crate::common_cli::*;
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Command, Stdio};
-use std::sync::OnceLock;
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 /// A deterministic generator (xorshift64*), uniform in `[-1, 1)`.
@@ -145,19 +147,21 @@ fn soup(s: &mut TSurf) {
     s.lines.push("END".into());
 }
 
-/// How a build ended: whether it succeeded, its stderr, and its time.
+/// How a build ended: whether it succeeded, its stderr, its time and its peak resident memory
+/// as last sampled (kilobytes; `None` where the system does not say).
 struct Ended {
     ok: bool,
     stderr: String,
     took: Duration,
+    peak_kb: Option<u64>,
 }
 
-/// `recipe build --quiet didactic.toml` in `s`, killed (and the test failed) past `limit`.
-fn build_within(s: &Scratch, limit: Duration, what: &str) -> Ended {
+/// `recipe build --quiet <recipe>` in `m`'s folder, killed (and the test failed) past `limit`.
+fn build_within(m: &Model, limit: Duration, what: &str) -> Ended {
     let started = Instant::now();
     let mut child = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .args(["build", "--quiet", "didactic.toml"])
-        .current_dir(s.dir.path())
+        .args(["build", "--quiet", &m.recipe])
+        .current_dir(m.dir.path())
         .env_remove("RECIPE_CACHE_DIR")
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -170,67 +174,151 @@ fn build_within(s: &Scratch, limit: Duration, what: &str) -> Ended {
         let _ = std::io::Read::read_to_string(&mut pipe, &mut text);
         text
     });
-    let status = loop {
+    let mut peak = None;
+    let ok = loop {
+        peak = peak.max(peak_kb(child.id()));
         if let Some(status) = child.try_wait().expect("wait") {
-            break status;
+            break status.success();
         }
         if started.elapsed() > limit {
             let _ = child.kill();
             let _ = child.wait();
             panic!("{what}: the build ran longer than {limit:?}");
         }
-        std::thread::sleep(Duration::from_millis(20));
+        std::thread::sleep(Duration::from_millis(10));
     };
     Ended {
-        ok: status.success(),
+        ok,
         stderr: reader.join().expect("stderr read"),
         took: started.elapsed(),
+        peak_kb: peak,
     }
 }
 
-/// The unperturbed example's build time (a cold cache), measured once per test binary.
-fn unperturbed() -> Duration {
-    static TIME: OnceLock<Duration> = OnceLock::new();
-    *TIME.get_or_init(|| {
-        let s = Scratch::didactic();
-        let e = build_within(&s, Duration::from_secs(600), "the unperturbed example");
-        assert!(e.ok, "{}", e.stderr);
-        e.took
+/// The child's peak resident memory so far (kilobytes), from `/proc` where there is one. The
+/// kernel's own record of a child's peak (`wait4`) counts the test process's memory too, which
+/// the child shares until it starts the build, so the peak is sampled while the build runs.
+fn peak_kb(pid: u32) -> Option<u64> {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// A model to perturb, copied into a scratch folder: its recipe, the folder of its surface
+/// files, the path of its outputs without the extension, and the regions it meshes into.
+struct Model {
+    name: &'static str,
+    dir: tempfile::TempDir,
+    recipe: String,
+    data: &'static str,
+    outputs: String,
+    regions: usize,
+}
+
+impl Model {
+    /// The shipped example.
+    fn didactic() -> Model {
+        Model {
+            name: "didactic",
+            dir: Scratch::didactic().dir,
+            recipe: "didactic.toml".into(),
+            data: "data/didactic",
+            outputs: "out/didactic/didactic".into(),
+            regions: 6,
+        }
+    }
+
+    /// A case of the geology corpus.
+    fn case(name: &'static str) -> Model {
+        let case = (test_support::geology::cases().into_iter())
+            .find(|c| c.name == name)
+            .unwrap_or_else(|| panic!("no case `{name}`"));
+        let dir = tempfile::tempdir().expect("a scratch folder");
+        case.write(dir.path());
+        Model {
+            name,
+            dir,
+            recipe: format!("{name}.toml"),
+            data: "data",
+            outputs: format!("out/{name}"),
+            regions: case.regions,
+        }
+    }
+
+    fn path(&self, rel: &str) -> std::path::PathBuf {
+        self.dir.path().join(rel)
+    }
+
+    /// The recipe's box: its low corner, then its high corner.
+    fn bounds(&self) -> [f64; 6] {
+        let text = std::fs::read_to_string(self.path(&self.recipe)).expect("the recipe");
+        let recipe: toml::Table = text.parse().expect("TOML");
+        let corner = |k: &str| -> Vec<f64> {
+            (recipe["box"][k].as_array().expect("a corner").iter())
+                .map(|v| {
+                    v.as_float()
+                        .or(v.as_integer().map(|i| i as f64))
+                        .expect("a number")
+                })
+                .collect()
+        };
+        let (lo, hi) = (corner("min"), corner("max"));
+        [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]
+    }
+
+    /// The regions the quality tables list (every row of Table 2 but the total).
+    fn regions_listed(&self) -> usize {
+        let tables = self.path(&format!("{}.quality.json", self.outputs));
+        let q: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(tables).expect("quality tables"))
+                .expect("quality JSON");
+        q["table2"]
+            .as_array()
+            .expect("table 2")
+            .iter()
+            .filter(|r| r["name"].as_str() != Some("all"))
+            .count()
+    }
+}
+
+/// The unperturbed build of the model `name` (a cold cache), measured once per test binary.
+fn unperturbed(name: &'static str, fresh: fn() -> Model) -> (Duration, Option<u64>) {
+    static BUILT: Mutex<BTreeMap<&str, (Duration, Option<u64>)>> = Mutex::new(BTreeMap::new());
+    let mut built = BUILT.lock().unwrap_or_else(|e| e.into_inner());
+    *built.entry(name).or_insert_with(|| {
+        let e = build_within(&fresh(), Duration::from_secs(600), name);
+        assert!(e.ok, "the unperturbed {name}: {}", e.stderr);
+        (e.took, e.peak_kb)
     })
 }
 
-/// The regions the quality tables list (every row of Table 2 but the total).
-fn regions_listed(s: &Scratch) -> usize {
-    let q: serde_json::Value = serde_json::from_slice(
-        &std::fs::read(s.path("out/didactic/didactic.quality.json")).expect("quality tables"),
-    )
-    .expect("quality JSON");
-    q["table2"]
-        .as_array()
-        .expect("table 2")
-        .iter()
-        .filter(|r| r["name"].as_str() != Some("all"))
-        .count()
-}
-
-/// Builds the example with `file` perturbed by `p` and checks the outcome; returns whether the
-/// build succeeded.
-fn builds_or_fails_at_a_place(file: &str, p: Perturbation) -> bool {
-    let base = unperturbed();
-    let s = Scratch::didactic();
-    perturb(&s.path(&format!("data/didactic/{file}")), p);
-    let what = format!("{file} {p:?}");
-    let limit = 10 * base + Duration::from_secs(30);
-    let e = build_within(&s, limit, &what);
+/// Builds the model `fresh` makes with `file` perturbed by `p` and checks the outcome; returns
+/// whether the build succeeded.
+fn builds_or_fails_at_a_place(fresh: fn() -> Model, file: &str, p: Perturbation) -> bool {
+    let m = fresh();
+    let (took, peak) = unperturbed(m.name, fresh);
+    perturb(&m.path(&format!("{}/{file}", m.data)), p);
+    let what = format!("{} {file} {p:?}", m.name);
+    let limit = 10 * took + Duration::from_secs(30);
+    let e = build_within(&m, limit, &what);
     eprintln!(
-        "{what}: {} in {:.2} s (unperturbed {:.2} s)",
+        "{what}: {} in {:.2} s, {} KB (unperturbed {:.2} s, {} KB)",
         if e.ok { "built" } else { "failed" },
         e.took.as_secs_f64(),
-        base.as_secs_f64()
+        e.peak_kb.unwrap_or(0),
+        took.as_secs_f64(),
+        peak.unwrap_or(0)
     );
     assert!(!e.stderr.contains("panicked"), "{what}: {}", e.stderr);
+    // Memory is not shared with the other tests' load, so the bound is the plain ten times.
+    if let (Some(peak), Some(clean)) = (e.peak_kb, peak) {
+        assert!(
+            peak <= 10 * clean,
+            "{what}: peak {peak} KB, unperturbed {clean} KB"
+        );
+    }
     if !e.ok {
-        let at_recipe_line = e.stderr.contains("didactic.toml:");
+        let at_recipe_line = e.stderr.contains(&format!("{}:", m.recipe));
         let at_file_line = e.stderr.contains(&format!("{file}:"));
         assert!(
             at_recipe_line || at_file_line,
@@ -239,62 +327,144 @@ fn builds_or_fails_at_a_place(file: &str, p: Perturbation) -> bool {
         );
         return false;
     }
-    let regions = regions_listed(&s);
-    assert!(regions >= 6, "{what}: {regions} regions");
+    let regions = m.regions_listed();
+    assert!(regions >= m.regions, "{what}: {regions} regions");
     if let Some(tool) = checker() {
-        let msh = s.path("out/didactic/didactic.msh");
-        let (ok, out) = test_support::export_support::run_checker(&tool, &msh, regions, None);
+        let msh = m.path(&format!("{}.msh", m.outputs));
+        let (ok, out) =
+            test_support::export_support::run_checker_in(&tool, &msh, regions, None, m.bounds());
         assert!(ok && out.contains("\"fail\": []"), "{what}: {out}");
     }
     true
 }
 
 /// [`builds_or_fails_at_a_place`], which must build.
-fn meshes(file: &str, p: Perturbation) {
+fn meshes(fresh: fn() -> Model, file: &str, p: Perturbation) {
     assert!(
-        builds_or_fails_at_a_place(file, p),
+        builds_or_fails_at_a_place(fresh, file, p),
         "{file} {p:?} did not build"
     );
 }
 
 #[test]
 fn a_horizon_jittered_by_a_metre_meshes_and_passes_the_checker() {
-    meshes("H1_top_reservoir.ts", Perturbation::Jitter(1.0, 1));
+    meshes(
+        Model::didactic,
+        "H1_top_reservoir.ts",
+        Perturbation::Jitter(1.0, 1),
+    );
 }
 
 #[test]
 fn a_horizon_jittered_by_five_metres_meshes_and_passes_the_checker() {
-    meshes("H1_top_reservoir.ts", Perturbation::Jitter(5.0, 2));
+    meshes(
+        Model::didactic,
+        "H1_top_reservoir.ts",
+        Perturbation::Jitter(5.0, 2),
+    );
 }
 
 #[test]
 fn a_horizon_jittered_by_fifteen_metres_meshes_and_passes_the_checker() {
-    meshes("H1_top_reservoir.ts", Perturbation::Jitter(15.0, 3));
+    meshes(
+        Model::didactic,
+        "H1_top_reservoir.ts",
+        Perturbation::Jitter(15.0, 3),
+    );
 }
 
 #[test]
 fn a_horizon_jittered_across_the_reservoir_meshes_or_fails_naming_a_recipe_line() {
     // 25 m on a 35 m reservoir: the horizons cross, and a region's point may fall elsewhere.
-    builds_or_fails_at_a_place("H1_top_reservoir.ts", Perturbation::Jitter(25.0, 4));
+    builds_or_fails_at_a_place(
+        Model::didactic,
+        "H1_top_reservoir.ts",
+        Perturbation::Jitter(25.0, 4),
+    );
 }
 
 #[test]
 fn a_collapsed_triangle_in_a_horizon_meshes_and_passes_the_checker() {
-    meshes("H1_top_reservoir.ts", Perturbation::Collapse);
+    meshes(
+        Model::didactic,
+        "H1_top_reservoir.ts",
+        Perturbation::Collapse,
+    );
 }
 
 #[test]
 fn a_flipped_triangle_in_a_fault_meshes_and_passes_the_checker() {
-    meshes("F1_through.ts", Perturbation::Flip);
+    meshes(Model::didactic, "F1_through.ts", Perturbation::Flip);
 }
 
 #[test]
 fn a_horizon_vertex_dragged_through_the_next_horizon_meshes_and_passes_the_checker() {
-    meshes("H1_top_reservoir.ts", Perturbation::Drag(-100.0));
-    meshes("H2_base_reservoir.ts", Perturbation::Drag(30.0));
+    meshes(
+        Model::didactic,
+        "H1_top_reservoir.ts",
+        Perturbation::Drag(-100.0),
+    );
+    meshes(
+        Model::didactic,
+        "H2_base_reservoir.ts",
+        Perturbation::Drag(30.0),
+    );
 }
 
 #[test]
 fn a_dangling_fault_given_as_a_triangle_soup_meshes_and_passes_the_checker() {
-    meshes("F2_dangling.ts", Perturbation::Soup);
+    meshes(Model::didactic, "F2_dangling.ts", Perturbation::Soup);
+}
+
+#[test]
+fn a_closed_salt_diapir_jittered_by_two_metres_meshes_and_passes_the_checker() {
+    // From 5 m on (seed 7), the salt region's recovery and front fail, naming the place but
+    // after some 30 s: not yet within the ten times.
+    meshes(
+        || Model::case("closed_salt_diapir"),
+        "SALT.ts",
+        Perturbation::Jitter(2.0, 7),
+    );
+}
+
+#[test]
+fn a_flipped_triangle_in_a_closed_salt_body_meshes_and_passes_the_checker() {
+    meshes(
+        || Model::case("closed_salt_diapir"),
+        "SALT.ts",
+        Perturbation::Flip,
+    );
+}
+
+#[test]
+fn a_closed_lens_given_as_a_triangle_soup_meshes_and_passes_the_checker() {
+    meshes(|| Model::case("lens"), "L.ts", Perturbation::Soup);
+}
+
+#[test]
+fn a_recumbent_fold_jittered_by_five_metres_meshes_and_passes_the_checker() {
+    meshes(
+        || Model::case("recumbent_fold"),
+        "H.ts",
+        Perturbation::Jitter(5.0, 8),
+    );
+}
+
+#[test]
+fn a_collapsed_triangle_in_one_of_two_crossing_faults_meshes_and_passes_the_checker() {
+    meshes(
+        || Model::case("x_fault_junction"),
+        "F1.ts",
+        Perturbation::Collapse,
+    );
+}
+
+#[test]
+fn a_horizon_vertex_dragged_four_hundred_metres_at_a_fault_junction_meshes_and_passes_the_checker()
+{
+    meshes(
+        || Model::case("x_fault_junction"),
+        "H.ts",
+        Perturbation::Drag(400.0),
+    );
 }

@@ -212,7 +212,18 @@ pub fn run_checker(
     regions: usize,
     json: Option<&Path>,
 ) -> (bool, String) {
-    let b = box_bounds().map(|v| v.to_string());
+    run_checker_in(tool, file, regions, json, box_bounds())
+}
+
+/// [`run_checker`] on a mesh that must fill the box `bounds` (low corner, then high corner).
+pub fn run_checker_in(
+    tool: &Path,
+    file: &Path,
+    regions: usize,
+    json: Option<&Path>,
+    bounds: [f64; 6],
+) -> (bool, String) {
+    let b = bounds.map(|v| v.to_string());
     let mut cmd = Command::new("python3");
     cmd.arg(tool)
         .arg(file)
