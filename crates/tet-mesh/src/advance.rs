@@ -309,8 +309,8 @@ fn gave_up(st: &State<'_>, backtracks: usize, at: P) -> TetMeshError {
     TetMeshError::new(
         st.name,
         format!(
-            "the front gave up after {} units of work, about a minute's (it holds {} tets, with \
-             {} faces left open): {why}",
+            "the front gave up after {} units of work, all it was allowed (it holds {} tets, \
+             with {} faces left open): {why}",
             st.work.spent(),
             st.alive,
             st.front.n_alive
@@ -990,6 +990,11 @@ mod tests {
         };
         let e = fail();
         assert!(e.message.starts_with("the front gave up after"), "{e}");
+        // The budget is the caller's (a hole's is a second's work, a region's a minute's).
+        assert!(
+            e.message.contains("units of work, all it was allowed"),
+            "{e}"
+        );
         let at = e.at.expect("a place");
         assert!(at.iter().all(|x| (0.0..=10.0).contains(x)), "{at:?}");
         assert_eq!(fail(), e);
