@@ -74,6 +74,7 @@ impl Staging {
                 std::fs::create_dir_all(dir)
                     .map_err(|e| Failure(format!("error: cannot create {}: {e}", dir.display())))?;
             }
+            engine::crash::point(&to);
             move_file(&root.join(rel), &to)
                 .map_err(|e| Failure(format!("error: cannot write {}: {e}", to.display())))?;
         }

@@ -3,6 +3,7 @@
 
 mod cli_build;
 mod cli_cache;
+mod cli_crash;
 mod cli_errors;
 mod cli_exodus;
 mod cli_geology;

@@ -28,6 +28,7 @@
 pub mod artifact;
 pub mod build;
 pub mod checked;
+pub mod crash;
 pub mod derive;
 pub mod dirlock;
 mod emitted;

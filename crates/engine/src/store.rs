@@ -278,6 +278,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8], durable: bool) -> std::io::Result
     if durable {
         tmp.as_file().sync_data()?;
     }
+    crate::crash::point(path);
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
 }

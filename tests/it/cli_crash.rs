@@ -1,0 +1,162 @@
+//! Crash points: a build stopped at each of its writes in turn (`RECIPE_CRASH_AT_WRITE`, see
+//! `engine::crash`), as a power cut would stop it, of every kind the build makes: cache
+//! entries, records, outputs, the report, the lock file, and with `--locked` each staged output
+//! moved into place. After each, the next build succeeds, leaves no temporary behind, and writes
+//! the outputs and lock file a build that was never stopped writes.
+
+use crate::common_cli::*;
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+/// Runs `recipe build --quiet -j 1 <extra> didactic.toml` in a copy of `template` stopped at
+/// write `n`: the path it was writing, or `None` when the build has fewer writes and finished.
+fn stopped_at(template: &Path, n: usize, extra: &[&str]) -> (Scratch, Option<String>) {
+    let s = Scratch {
+        dir: tempfile::tempdir().expect("temp dir"),
+    };
+    copy_dir(template, s.dir.path());
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .args(["build", "--quiet", "-j", "1"])
+        .args(extra)
+        .arg("didactic.toml")
+        .current_dir(s.dir.path())
+        .env_remove("RECIPE_CACHE_DIR")
+        .env(engine::crash::CRASH_AT_WRITE, n.to_string())
+        .stdout(Stdio::null())
+        .output()
+        .expect("run recipe");
+    let err = String::from_utf8_lossy(&out.stderr);
+    if out.status.success() {
+        return (s, None);
+    }
+    assert_eq!(
+        out.status.code(),
+        Some(engine::crash::CRASH_STATUS),
+        "{err}"
+    );
+    let path = err
+        .lines()
+        .find_map(|l| l.strip_prefix(&format!("crash point: write {n}: ")))
+        .unwrap_or_else(|| panic!("the crash point names its path: {err}"));
+    (s, Some(path.to_string()))
+}
+
+/// The files the next build must write as an unstopped one does: the model's outputs (not the
+/// report, which holds timings) and the lock file, by name.
+fn written(s: &Scratch) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(s.path("out/didactic"))
+        .expect("the output directory")
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("didactic."))
+        .map(|n| {
+            let bytes = std::fs::read(s.path(&format!("out/didactic/{n}"))).unwrap();
+            (n, bytes)
+        })
+        .collect();
+    files.sort();
+    files.push((
+        "lock".into(),
+        std::fs::read(s.path("didactic.toml.lock")).unwrap(),
+    ));
+    files
+}
+
+/// Temporaries and staging directories anywhere in the scratch folder.
+fn debris(s: &Scratch) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut stack = vec![s.path("")];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            if e.file_name()
+                .to_string_lossy()
+                .starts_with(engine::store::TEMP_PREFIX)
+            {
+                out.push(e.path().display().to_string());
+            }
+            if e.file_type().unwrap().is_dir() {
+                stack.push(e.path());
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// What a stopped write was: its kind, from where it writes.
+fn kind(path: &str) -> &'static str {
+    match path {
+        p if p.contains("/.recipe/objects/") => "cache object",
+        p if p.contains("/.recipe/actions/") => "cache action",
+        p if p.contains("/.recipe/records/") => "record",
+        p if p.ends_with("didactic.toml.lock") => "lock file",
+        p if p.ends_with("report.json") || p.ends_with("report.html") => "report",
+        p if p.contains(&format!("/out/{}", engine::store::TEMP_PREFIX)) => "staged output",
+        p if p.contains("/out/") => "output",
+        _ => "other",
+    }
+}
+
+/// Stops the build `extra` from `template` at every write in turn; after each, `recover` builds
+/// again, which must succeed cleanly and write `expected`. Returns the kinds of write stopped.
+fn every_write(template: &Path, extra: &[&str], recover: &[&str]) -> BTreeSet<&'static str> {
+    let expected = {
+        let s = Scratch {
+            dir: tempfile::tempdir().expect("temp dir"),
+        };
+        copy_dir(template, s.dir.path());
+        let (ok, _, err) = s.build(recover);
+        assert!(ok, "{err}");
+        written(&s)
+    };
+    let mut kinds = BTreeSet::new();
+    for n in 1.. {
+        let (s, at) = stopped_at(template, n, extra);
+        let Some(path) = at else {
+            assert!(n > 10, "the build wrote only {} files", n - 1);
+            break;
+        };
+        kinds.insert(kind(&path));
+        let (ok, _, err) = s.build(recover);
+        assert!(ok, "after a stop at write {n} ({path}): {err}");
+        assert_eq!(debris(&s), Vec::<String>::new(), "after a stop at {path}");
+        assert!(
+            written(&s) == expected,
+            "after a stop at {path}: outputs differ"
+        );
+    }
+    kinds
+}
+
+#[test]
+fn a_build_stopped_at_any_of_its_writes_is_finished_by_the_next_with_the_same_outputs() {
+    // The example built, then edited: the build re-runs a few nodes and writes each kind of file.
+    let s = Scratch::didactic_built();
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 90.0 }");
+    let kinds = every_write(s.dir.path(), &[], &[]);
+    let all = [
+        "cache object",
+        "cache action",
+        "record",
+        "output",
+        "report",
+        "lock file",
+    ];
+    assert_eq!(kinds, BTreeSet::from(all), "the kinds of write stopped");
+}
+
+#[test]
+fn a_locked_build_stopped_at_any_of_its_writes_or_moves_into_place_is_finished_by_the_next() {
+    // Outputs lost since the last build: --locked writes them into a staging directory, then
+    // moves each into the output directory.
+    let s = Scratch::didactic_built();
+    for f in ["didactic.msh", "didactic.vtu"] {
+        std::fs::remove_file(s.path(&format!("out/didactic/{f}"))).unwrap();
+    }
+    let kinds = every_write(s.dir.path(), &["--locked"], &["--locked"]);
+    assert!(
+        kinds.contains("output") && kinds.contains("record"),
+        "{kinds:?}"
+    );
+}
