@@ -17,6 +17,18 @@ pub fn box_bounds() -> [f64; 6] {
     [OX, OY, -2500.0, OX + 5000.0, OY + 5000.0, 0.0]
 }
 
+/// The orders in which a cube's Kuhn tets step along the axes from its low corner to its high
+/// one: one tet each, six that fill the cube, the same diagonal in every cube (so cubes cut
+/// alike conform).
+pub const KUHN_ORDERS: [[usize; 3]; 6] = [
+    [0, 1, 2],
+    [0, 2, 1],
+    [1, 0, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [2, 1, 0],
+];
+
 /// A box `[0,5000]² × [-2500,0]` (shifted by OX, OY) cut into `n × n × nz` cubes, each into 6 Kuhn
 /// tets around its (0,0,0)–(1,1,1) diagonal (the same diagonal everywhere, so the mesh is
 /// conforming). Three regions by z-layer (`nz` divisible by 3), surface groups: the six box sides,
@@ -39,18 +51,10 @@ pub fn layered_box(n: usize, nz: usize) -> VolumeMesh {
         }
     }
     let layer = |k: usize| (3 * k / nz) as u32;
-    let perms = [
-        [0, 1, 2],
-        [0, 2, 1],
-        [1, 0, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-    ];
     for k in 0..nz {
         for j in 0..n {
             for i in 0..n {
-                for p in perms {
+                for p in KUHN_ORDERS {
                     let mut c = [i, j, k];
                     let mut t = [id(c[0], c[1], c[2]); 4];
                     for (s, &axis) in p.iter().enumerate() {

@@ -1,7 +1,7 @@
 //! Exact verification of a region's tetrahedral mesh against its input: the last gate before a
 //! mesh leaves `mesh_region`, and usable on any mesh (e.g. one read back from a file).
 //! Orientation is decided by `orient3d`; face conformity is combinatorial; only the volume
-//! balance is a float comparison (relative 1e-9), as specified.
+//! balance is a float comparison (relative 1e-9, beyond a bound on the sums' rounding).
 
 use geom::predicates::{Orientation, orient3d};
 
@@ -116,8 +116,8 @@ fn for_each_face_run<E>(
 /// Every tet positive (exact), each boundary triangle the outward face of exactly one tet and of
 /// none reversed, each embedded triangle a face of exactly two tets (one per side), every other
 /// face shared by exactly two tets with opposite orientations, the tets' total volume equal
-/// to the enclosed volume (relative 1e-9, beyond the sums' rounding), and each embedded segment a chain of tet edges on it
-/// (`lines::verify_chains`).
+/// to the enclosed volume (relative 1e-9, beyond the sums' rounding), and each embedded segment
+/// a chain of tet edges on it (`lines::verify_chains`).
 pub fn verify(input: &RegionInput, out: &TetMeshOutput) -> Result<(), TetMeshError> {
     let name = &input.name;
     let n_in = input.vertices.len();

@@ -540,7 +540,7 @@ fn an_embedded_triangle_crossing_the_boundary_from_outside_is_refused_for_the_cr
 }
 
 /// A tilted slab `size` wide and `thickness` thick at UTM coordinates, `n`×`n` cells each cut
-/// into Freudenthal's six tets: the region (its boundary the faces of one tet only) and its mesh.
+/// into its six Kuhn tets: the region (its boundary the faces of one tet only) and its mesh.
 fn thin_slab(n: i64, size: f64, thickness: f64) -> (RegionInput, TetMeshOutput) {
     let (cos, sin) = (0.7f64.cos(), 0.7f64.sin());
     let at = |l: [i64; 3]| {
@@ -560,14 +560,7 @@ fn thin_slab(n: i64, size: f64, thickness: f64) -> (RegionInput, TetMeshOutput) 
     let mut ids: BTreeMap<[i64; 3], u32> = BTreeMap::new();
     let mut nodes = Vec::new();
     let mut tets = Vec::new();
-    let axes = [
-        [0, 1, 2],
-        [0, 2, 1],
-        [1, 0, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-    ];
+    let axes = test_support::export_support::KUHN_ORDERS;
     for (i, j, order) in (0..n).flat_map(|i| (0..n).flat_map(move |j| axes.map(|o| (i, j, o)))) {
         let mut corner = [i, j, 0];
         let mut t = [0u32; 4];
