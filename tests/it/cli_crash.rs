@@ -2,7 +2,8 @@
 //! `engine::crash`), as a power cut would stop it, of every kind the build makes: cache
 //! entries, records, outputs, the report, the lock file, and with `--locked` each staged output
 //! moved into place. After each, the next build succeeds, leaves no temporary behind, and writes
-//! the outputs and lock file a build that was never stopped writes.
+//! the outputs and lock file a build that was never stopped writes. A build paused before its
+//! last write (`RECIPE_PAUSE_AT`) shows that a second build waits for it.
 
 use crate::common_cli::*;
 use std::collections::BTreeSet;
@@ -158,5 +159,72 @@ fn a_locked_build_stopped_at_any_of_its_writes_or_moves_into_place_is_finished_b
     assert!(
         kinds.contains("output") && kinds.contains("record"),
         "{kinds:?}"
+    );
+}
+
+#[test]
+fn a_build_paused_before_its_lock_file_keeps_a_second_build_waiting_until_it_is_done() {
+    // A build of a new version is held just before it writes the lock file, its last write;
+    // meanwhile the old version is built again. The cache stays locked until the lock file and
+    // report are written, so the second build cannot finish first and leave the first one's
+    // lock file beside its own outputs.
+    let old = "\"F2\" = { size = 100.0 }";
+    let new = "\"F2\" = { size = 70.0 }";
+    let s = Scratch::didactic_built();
+    let flag = s.path("paused");
+    let spawn = |pause: bool| {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_recipe"));
+        cmd.args(["build", "--quiet", "didactic.toml"])
+            .current_dir(s.path(""))
+            .env_remove("RECIPE_CACHE_DIR")
+            .stderr(Stdio::piped());
+        if pause {
+            cmd.env(engine::crash::PAUSE_AT, "didactic.toml.lock")
+                .env(engine::crash::PAUSE_FLAG, &flag);
+        }
+        cmd.spawn().expect("run recipe")
+    };
+    s.edit(old, new);
+    let mut first = spawn(true);
+    let started = std::time::Instant::now();
+    while !flag.exists() {
+        assert!(
+            first.try_wait().unwrap().is_none(),
+            "the first build ended unpaused"
+        );
+        assert!(
+            started.elapsed().as_secs() < 120,
+            "the first build never paused"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    s.edit(new, old);
+    let mut second = spawn(false);
+    // A cached build takes a fraction of a second: three seconds on, it is still waiting.
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    assert!(
+        second.try_wait().unwrap().is_none(),
+        "the second build finished while the first held the cache"
+    );
+    std::fs::remove_file(&flag).unwrap();
+    for child in [first, second] {
+        let out = child.wait_with_output().expect("the build ends");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    // The second build's version is the recipe's: its outputs, lock file and report agree.
+    let (ok, _, err) = s.build(&["--locked"]);
+    assert!(ok, "the lock file is the outputs' version's: {err}");
+    let report = std::fs::read(s.path("out/didactic/report.json")).expect("the report");
+    let report: serde_json::Value = serde_json::from_slice(&report).expect("JSON");
+    let alone = Scratch::didactic_built();
+    let expected = std::fs::read(alone.path("out/didactic/report.json")).expect("the report");
+    let expected: serde_json::Value = serde_json::from_slice(&expected).expect("JSON");
+    assert_eq!(
+        report["counts"], expected["counts"],
+        "the report is the old version's"
     );
 }
