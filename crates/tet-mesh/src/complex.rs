@@ -10,16 +10,10 @@
 //! tets over an unchanged boundary cover the old set exactly once (the cone/degree argument), so
 //! exact positivity is the whole validity test.
 
-use std::collections::HashSet;
-use std::hash::BuildHasherDefault;
-
 use geom::predicates::{Orientation, orient3d};
 
-use super::front::WordHasher;
+use super::front::WordSet;
 use super::quality::{shape, shape_above, shape_and_mean_ratio};
-
-/// Sets of sorted node tuples, hashed word by word (the optimizer asks them at every flip).
-type WordSet<K> = HashSet<K, BuildHasherDefault<WordHasher>>;
 
 /// The most tets [`Complex::edge_ring`] gathers round one edge.
 pub const RING_CAP: usize = 16;

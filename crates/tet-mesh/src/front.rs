@@ -13,7 +13,7 @@
 //! bounded number of cells whatever the region's size.
 
 use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::{BinaryHeap, HashMap, HashSet};
 use std::hash::{BuildHasherDefault, Hasher};
 
 use super::verify::canon;
@@ -369,6 +369,10 @@ impl Front {
 /// words: the front's lookups are on the hot path and the keys are not adversarial. Never
 /// iterated, so its order reaches no output.
 pub type FaceMap<V> = HashMap<[u32; 3], V, BuildHasherDefault<WordHasher>>;
+
+/// A set of node ids or tuples hashed as [`FaceMap`] is, for the meshers' hot loops; never
+/// iterated into an output.
+pub type WordSet<K> = HashSet<K, BuildHasherDefault<WordHasher>>;
 
 #[derive(Default)]
 pub struct WordHasher(u64);

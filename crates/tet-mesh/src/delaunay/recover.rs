@@ -28,7 +28,7 @@ use geom::progress::Span;
 
 use super::super::check::check_intersections;
 use super::super::exact::orient3d;
-use super::super::front::FaceMap;
+use super::super::front::{FaceMap, WordSet};
 use super::super::work::FrontWork;
 use super::super::{RegionInput, SizeField, TetMeshError};
 use super::flip::coplanar;
@@ -636,7 +636,7 @@ fn star(tri: &Tri, v: u32, start: u32) -> Star<'_> {
         tri,
         v,
         out: vec![start],
-        seen: HashSet::new(),
+        seen: WordSet::default(),
         k: 0,
     }
 }
@@ -649,7 +649,7 @@ struct Star<'a> {
     tri: &'a Tri,
     v: u32,
     out: Vec<u32>,
-    seen: HashSet<u32>,
+    seen: WordSet<u32>,
     k: usize,
 }
 
