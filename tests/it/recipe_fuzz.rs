@@ -160,7 +160,7 @@ fn token() -> impl Strategy<Value = String> {
 proptest! {
     // FUZZ_CASES sets the count (`.ci/run` runs a longer, bounded hunt).
     #![proptest_config(ProptestConfig {
-        cases: std::env::var("FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(512),
+        cases: test_support::fuzz_cases(512),
         ..ProptestConfig::default()
     })]
 

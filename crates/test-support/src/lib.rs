@@ -17,3 +17,12 @@ pub mod peers;
 pub mod progress;
 pub mod shapes;
 pub mod surface_mesh_common;
+
+/// How many cases a fuzz test (a bounded proptest hunt) runs: `FUZZ_CASES` when set (`.ci/run`
+/// sets 20,000 for a longer hunt after the tests), else the test's own `default`.
+pub fn fuzz_cases(default: u32) -> u32 {
+    std::env::var("FUZZ_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}

@@ -34,7 +34,7 @@ fn damage(mut bytes: Vec<u8>, edits: &[(usize, u8)], cut: usize) -> Vec<u8> {
 proptest! {
     // FUZZ_CASES sets the count (`.ci/run` runs a longer, bounded hunt).
     #![proptest_config(ProptestConfig {
-        cases: std::env::var("FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(96),
+        cases: test_support::fuzz_cases(96),
         ..ProptestConfig::default()
     })]
 

@@ -189,7 +189,7 @@ fn edit_lines(bytes: &[u8], f: impl FnOnce(&mut Vec<Vec<u8>>)) -> Vec<u8> {
 proptest! {
     #![proptest_config(ProptestConfig {
         // FUZZ_CASES=20000 for a longer hunt.
-        cases: std::env::var("FUZZ_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(192),
+        cases: test_support::fuzz_cases(192),
         failure_persistence: None,
         ..ProptestConfig::default()
     })]
