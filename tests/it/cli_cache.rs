@@ -522,26 +522,6 @@ fn two_builds_of_two_versions_racing_leave_the_outputs_lock_and_report_of_one_of
     }
 }
 
-/// Every name under the scratch folder (outside the cache's objects) that a killed write could
-/// have left.
-fn debris(s: &Scratch) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut stack = vec![s.path("")];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap().flatten() {
-            let name = e.file_name().to_string_lossy().into_owned();
-            if name.starts_with(".tmp-") && name != ".tmp-notes" {
-                out.push(e.path().display().to_string());
-            }
-            if e.file_type().unwrap().is_dir() {
-                stack.push(e.path());
-            }
-        }
-    }
-    out.sort();
-    out
-}
-
 /// Plants what a killed build of the example leaves (temporaries beside the output, the lock file
 /// and in the record, a staging directory of a process that is gone) and a user's `.tmp-notes`.
 fn plant_debris(s: &Scratch) {

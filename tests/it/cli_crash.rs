@@ -64,27 +64,6 @@ fn written(s: &Scratch) -> Vec<(String, Vec<u8>)> {
     files
 }
 
-/// Temporaries and staging directories anywhere in the scratch folder.
-fn debris(s: &Scratch) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut stack = vec![s.path("")];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap().flatten() {
-            if e.file_name()
-                .to_string_lossy()
-                .starts_with(engine::store::TEMP_PREFIX)
-            {
-                out.push(e.path().display().to_string());
-            }
-            if e.file_type().unwrap().is_dir() {
-                stack.push(e.path());
-            }
-        }
-    }
-    out.sort();
-    out
-}
-
 /// What a stopped write was: its kind, from where it writes.
 fn kind(path: &str) -> &'static str {
     match path {

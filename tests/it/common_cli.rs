@@ -182,3 +182,23 @@ pub fn checker() -> Option<PathBuf> {
     }
     Some(p)
 }
+
+/// Every temporary or staging directory a killed write could have left anywhere under the
+/// scratch folder (a user's own `.tmp-notes` aside).
+pub fn debris(s: &Scratch) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut stack = vec![s.path("")];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with(engine::store::TEMP_PREFIX) && name != ".tmp-notes" {
+                out.push(e.path().display().to_string());
+            }
+            if e.file_type().unwrap().is_dir() {
+                stack.push(e.path());
+            }
+        }
+    }
+    out.sort();
+    out
+}
