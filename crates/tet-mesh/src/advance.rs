@@ -275,7 +275,8 @@ pub fn advance_front_reporting(
                     st.nodes[f[0] as usize], st.nodes[f[1] as usize], st.nodes[f[2] as usize]
                 ),
                 Some(at),
-            ));
+            )
+            .of_the_front());
         }
         let lvl = *level;
         st.backtrack(fid, lvl);
@@ -299,10 +300,7 @@ pub fn advance_front_reporting(
 /// was last stuck, else where it stood.
 fn gave_up(st: &State<'_>, backtracks: usize, at: P) -> TetMeshError {
     let why = if backtracks > 0 {
-        format!(
-            "{backtracks} back-tracks, the last here; the region is probably pinched here, where \
-             its boundary surfaces come closer than their triangles are wide"
-        )
+        format!("{backtracks} back-tracks, the last here")
     } else {
         "no back-track: the candidate apexes here are many and few are valid".to_string()
     };
@@ -317,6 +315,7 @@ fn gave_up(st: &State<'_>, backtracks: usize, at: P) -> TetMeshError {
         ),
         Some(at),
     )
+    .of_the_front()
 }
 
 fn tet_volume(t: &[u32; 4], pts: &[P]) -> f64 {

@@ -228,6 +228,9 @@ pub struct TetMeshError {
     pub region: String,
     pub message: String,
     pub at: Option<[f64; 3]>,
+    /// Whether an advancing front got stuck or spent its work: the region's error then says
+    /// whether its boundary is pinched ([`explained`]).
+    front: bool,
 }
 
 impl TetMeshError {
@@ -236,8 +239,42 @@ impl TetMeshError {
             region: region.to_string(),
             message: message.into(),
             at,
+            front: false,
         }
     }
+
+    /// This error, as one of an advancing front that could not close.
+    pub(crate) fn of_the_front(self) -> Self {
+        TetMeshError {
+            front: true,
+            ..self
+        }
+    }
+}
+
+/// The region's error `why`, with the likely cause when a front could not close: the pinch of
+/// the boundary (measured now if it was not yet: this is a failure's path), or, where there is
+/// none, that the front's sides met badly, which a coarser interior often avoids.
+fn explained(mut why: TetMeshError, input: &RegionInput, work: &work::FrontWork) -> TetMeshError {
+    if !why.front {
+        return why;
+    }
+    why.message = match work.pinch(input) {
+        Some(p) => format!(
+            "{}; its boundary is pinched near ({}, {}, {}), where surfaces come {:.3} apart with \
+             triangles {:.3} wide round them, a gap the front cannot close (part the surfaces \
+             there, or mesh them finer)",
+            why.message, p.at[0], p.at[1], p.at[2], p.gap, p.width
+        ),
+        None => format!(
+            "{}; its boundary is not pinched (no two of its surfaces come closer than a \
+             twentieth of their triangles' width): the front could not close where its sides \
+             met, which a coarser interior often avoids (a larger `growth` in `[mesh]`, at some cost in \
+             the tets' quality)",
+            why.message
+        ),
+    };
+    why
 }
 
 /// Mesh one region: check the input, mesh it (Delaunay with local recovery, the front as its
@@ -286,7 +323,7 @@ pub fn mesh_region_with_progress(
                     // region's budget; none left, or the recovery's own front failed on the
                     // whole region already, the recovery's failure is the region's.
                     if work.exhausted(0) || work.failed_on_whole_region() {
-                        return Err(why);
+                        return Err(explained(why, input, &work));
                     }
                     // Nor where the boundary is pinched: the front cannot close the gap.
                     if let Some(p) = work.pinch(input) {
@@ -299,7 +336,7 @@ pub fn mesh_region_with_progress(
                         |mut e| {
                             e.message =
                                 format!("{} (after Delaunay gave way: {})", e.message, why.message);
-                            e
+                            explained(e, input, &work)
                         },
                     )?;
                     fallback = Some(why.to_string());
@@ -318,7 +355,8 @@ pub fn mesh_region_with_progress(
                 .part(progress::FRONT_CHECKS, 1.0)
                 .split(progress::front(opts.optimize));
             let work = work::FrontWork::for_region(input);
-            let m = advance::advance_front_reporting(input, size, front, &work)?;
+            let m = advance::advance_front_reporting(input, size, front, &work)
+                .map_err(|e| explained(e, input, &work))?;
             (m, Default::default(), Tail { optimize, finish })
         }
     };
@@ -470,4 +508,58 @@ fn measured_stats(
         s.min_dihedral_deg = 0.0;
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cube [0, 10]³ gridded 5 × 5 per side, its z scaled by `squash`.
+    fn slab(squash: f64) -> RegionInput {
+        let (mut vertices, boundary) = test_support::shapes::gridded_cube(5, 10.0);
+        for v in &mut vertices {
+            v[2] *= squash;
+        }
+        RegionInput {
+            name: "slab".into(),
+            vertices,
+            boundary,
+            ..RegionInput::default()
+        }
+    }
+
+    /// The error of a front on `input` that has next to no work to spend.
+    fn front_out_of_work(input: &RegionInput) -> TetMeshError {
+        let work = work::FrontWork::with(5_000, 0);
+        advance::advance_front(input, &SizeField::default(), &work).expect_err("no work")
+    }
+
+    #[test]
+    fn a_front_that_could_not_close_says_whether_the_boundary_is_pinched() {
+        let cube = slab(1.0);
+        let e = explained(
+            front_out_of_work(&cube),
+            &cube,
+            &work::FrontWork::for_region(&cube),
+        );
+        assert!(e.message.contains("its boundary is not pinched"), "{e}");
+        assert!(e.message.contains("`growth`"), "{e}");
+        // 0.01 thick under edges of 2: a gap no front closes.
+        let thin = slab(0.001);
+        let e = explained(
+            front_out_of_work(&thin),
+            &thin,
+            &work::FrontWork::for_region(&thin),
+        );
+        assert!(e.message.contains("its boundary is pinched near ("), "{e}");
+        assert!(!e.message.contains("not pinched"), "{e}");
+    }
+
+    #[test]
+    fn an_error_that_is_not_a_front_s_is_left_as_it_is() {
+        let cube = slab(1.0);
+        let e = TetMeshError::new("cube", "a boundary vertex is not used", None);
+        let same = explained(e.clone(), &cube, &work::FrontWork::for_region(&cube));
+        assert_eq!(same, e);
+    }
 }
