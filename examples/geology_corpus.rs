@@ -1,6 +1,6 @@
 //! Writes the corpus of geological situations (`test_support::geology`: faults with throw, a
 //! fault dying out in a layer, an erosional unconformity, X and Y fault junctions, a recumbent
-//! fold, a vertical tube, a salt stock, a closed salt diapir, a lens), one folder per case holding its
+//! fold, a vertical tube, a salt stock, a closed salt diapir, a lens, a raft inside salt, a chevron fold), one folder per case holding its
 //! recipe and TSurf files, and under `known_gaps/` any situation that does not mesh yet, to try
 //! or to show: `cargo run --example geology_corpus -- /tmp/corpus`, then
 //! `recipe build /tmp/corpus/<case>/<case>.toml`.

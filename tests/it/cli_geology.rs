@@ -10,7 +10,7 @@ use crate::common_cli::checker;
 use geom::mesh::read::read_volume_msh;
 use std::collections::BTreeSet;
 use std::process::Command;
-use test_support::geology::{Case, cases, scec_big_bend, scec_cases};
+use test_support::geology::{Case, cases, known_gaps, scec_big_bend, scec_cases};
 use test_support::paths;
 
 /// Builds `case` in a scratch folder (kept for the caller's checks); asserts the build
@@ -157,9 +157,44 @@ fn every_case_of_the_corpus_has_a_test() {
         "dangling_faults_crossing",
         "horizons_touching_at_a_point",
         "horizons_touching_along_a_line",
+        "raft_in_salt",
+        "chevron_fold",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
+}
+
+#[test]
+fn every_known_gap_fails_naming_its_place_the_nearest_input_line_and_a_likely_cause() {
+    for case in known_gaps() {
+        let dir = tempfile::tempdir().expect("a scratch folder");
+        let recipe = case.write(dir.path());
+        let out = build_quietly(dir.path(), &recipe);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success(),
+            "{} meshes now: move it into `cases`",
+            case.name
+        );
+        assert_eq!(out.status.code(), Some(1), "{}: {err}", case.name);
+        let failed = (err.lines())
+            .find(|l| l.contains("error `"))
+            .unwrap_or_else(|| panic!("{}: no failing node:\n{err}", case.name));
+        assert!(
+            failed.contains(" at ("),
+            "{}: no place: {failed}",
+            case.name
+        );
+        assert!(
+            err.contains("note the nearest input triangle is data/"),
+            "{}: no input line:\n{err}",
+            case.name
+        );
+        // A front that could not close says whether a pinch is to blame.
+        if failed.contains("the front") {
+            assert!(failed.contains("pinched"), "{}: {failed}", case.name);
+        }
+    }
 }
 
 #[test]
@@ -272,6 +307,50 @@ fn a_closed_salt_diapir_with_a_well_into_its_flank_meshes_with_the_well_embedded
 #[test]
 fn a_closed_lens_inside_a_layer_meshes_as_its_own_region_inside_its_host() {
     builds_and_meshes(&case("lens"));
+}
+
+#[test]
+fn a_raft_inside_a_closed_salt_body_meshes_as_a_region_inside_the_salt() {
+    let case = case("raft_in_salt");
+    let dir = builds_and_meshes(&case);
+    let file = dir.path().join(format!("out/{}.msh", case.name));
+    let mesh = read_volume_msh(&std::fs::read(&file).expect("the msh"), "msh").expect("reads");
+    // The raft's triangles bound the raft on one side and the salt on the other.
+    let region = |name: &str| mesh.regions.iter().position(|r| r.name == name);
+    let (raft, salt) = (
+        region("RAFT").expect("a raft"),
+        region("SALT").expect("a salt"),
+    );
+    let on_raft: BTreeSet<u32> = (mesh.triangles.iter().zip(&mesh.triangle_group))
+        .filter(|(_, g)| mesh.surface_groups[**g as usize].name == "RAFT")
+        .flat_map(|(t, _)| *t)
+        .collect();
+    let touching = |r: usize| {
+        (mesh.tets.iter().zip(&mesh.tet_region))
+            .filter(|(t, g)| {
+                **g as usize == r && t.iter().filter(|v| on_raft.contains(v)).count() == 3
+            })
+            .count()
+    };
+    assert!(
+        touching(raft) > 0 && touching(salt) > 0,
+        "the raft lies in the salt"
+    );
+    for (k, r) in mesh.regions.iter().enumerate() {
+        if k != raft && k != salt {
+            assert_eq!(touching(k), 0, "{} touches the raft", r.name);
+        }
+    }
+}
+
+#[test]
+fn a_chevron_fold_keeps_its_hinge_as_curves_of_each_horizon() {
+    let (_dir, report) = builds_and_meshes_reporting(&case("chevron_fold"));
+    // The hinge's creases are curves of each horizon's own (not where a box side cuts it).
+    for h in ["H1", "H2"] {
+        let own = count_named(&report, &format!("discretize:{h}#"));
+        assert!(own >= 2, "{h}: {own} crease curves");
+    }
 }
 
 #[test]
