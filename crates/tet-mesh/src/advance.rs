@@ -27,6 +27,7 @@ use std::collections::HashMap;
 use geom::predicates::{Orientation, cross, dist, dot, sub};
 use geom::progress::Span;
 
+use super::closing;
 use super::exact::orient3d;
 use super::front::{FaceMap, Front, bbox_of};
 use super::sides::{SideCache, orientation_of};
@@ -74,6 +75,12 @@ const POCKET_LEVEL: u32 = 4;
 const MAX_TRIES: usize = 8;
 /// On the first pass only existing nodes this close (in local sizes) to the ideal apex compete.
 const NEAR_IDEAL: f64 = 1.0;
+/// Times the pieces a front that cannot close leaves, and the Delaunay method cannot fill, are
+/// widened and tried again (`State::close`).
+const CLOSING_ROUNDS: u32 = 3;
+/// Back-tracks between two tries at closing by the Delaunay method once [`CLOSING_AT`] of the
+/// region's volume is filled.
+const CLOSE_EVERY: usize = 16;
 /// Steps of the front between two measures of its progress.
 const MEASURE_EVERY: usize = 64;
 /// The share of the region's volume filled after which progress follows the front's closing.
@@ -213,6 +220,9 @@ pub fn advance_front_reporting(
             bar.reach(FILLING_SHARE * filled + (1.0 - FILLING_SHARE) * closed);
         }
         if work.exhausted(st.fullest) {
+            if st.close(size) {
+                break;
+            }
             let f = st.front.faces[fid as usize];
             return Err(gave_up(
                 &st,
@@ -252,6 +262,11 @@ pub fn advance_front_reporting(
         backtracks += 1;
         let at = centroid(&f, &st.nodes);
         stuck_at = Some(at);
+        // Closing by the Delaunay method once the front is nearly done and keeps back-tracking:
+        // its last gaps are where it fails, and each back-track re-meshes a ball round one.
+        if closing.is_some() && backtracks.is_multiple_of(CLOSE_EVERY) && st.close(size) {
+            break;
+        }
         if *level > MAX_LEVEL || backtracks > max_backtracks {
             // Last resort before giving up: a Steiner point low over the stuck face.
             let m = centroid(&f, &st.nodes);
@@ -267,6 +282,9 @@ pub fn advance_front_reporting(
             if let Some(c) = st.flat_apex(fid, f, false) {
                 st.build(fid, c);
                 continue;
+            }
+            if st.close(size) {
+                break;
             }
             return Err(TetMeshError::new(
                 st.name,
@@ -343,6 +361,41 @@ fn centroid(f: &[u32; 3], pts: &[P]) -> P {
 }
 
 impl State<'_> {
+    /// Fills what is still open by the Delaunay method (`closing`), when the work allows it and
+    /// the front built something: whether it did (the tets are then the mesh's, the front is
+    /// done). A piece it cannot fill (walls at a few degrees to one another, where the front
+    /// gave up) is widened by the tets round its vertices, up to [`CLOSING_ROUNDS`] times: the
+    /// front's own tets there go, and the walls with them. (Wider balls reach the region's own
+    /// triangles, and a piece walled by a curved boundary is what the method cannot fill.)
+    fn close(&mut self, size: &SizeField) -> bool {
+        if !self.work.may_close() || self.alive == 0 {
+            return false;
+        }
+        for round in 0..=CLOSING_ROUNDS {
+            let open: Vec<[u32; 3]> = (0..self.front.faces.len())
+                .filter(|&k| self.front.alive[k])
+                .map(|k| self.front.faces[k])
+                .collect();
+            match closing::fill_open(self.name, &self.nodes, &open, size) {
+                Ok((nodes, tets)) => {
+                    self.nodes.extend(nodes);
+                    self.tet_alive.extend(tets.iter().map(|_| true));
+                    self.tets.extend(tets);
+                    return true;
+                }
+                Err(_) if round == CLOSING_ROUNDS => return false,
+                Err(failed) => {
+                    for f in failed {
+                        if let Some(fid) = self.front.find(f) {
+                            self.backtrack(fid, 1);
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+
     fn add_face(&mut self, f: [u32; 3]) {
         let key = mean_edge(&f, &self.nodes);
         self.front.add(f, key, &self.nodes);

@@ -52,6 +52,7 @@
 
 mod advance;
 mod check;
+mod closing;
 mod complex;
 mod delaunay;
 pub mod exact;

@@ -65,6 +65,9 @@ pub struct FrontWork {
     whole_failed: Cell<bool>,
     /// The region's narrowest pinch, once measured.
     pinch: OnceCell<Option<Pinch>>,
+    /// Whether a front that cannot close may have what it left open filled by the Delaunay
+    /// method (`closing`): a region's fronts and their holes', not the fronts inside that fill.
+    may_close: bool,
 }
 
 impl FrontWork {
@@ -73,6 +76,7 @@ impl FrontWork {
         let faces = input.boundary.len() + input.embedded.len();
         FrontWork {
             faces,
+            may_close: true,
             ..FrontWork::with(BASE + PER_FACE * faces as u64, PER_TET)
         }
     }
@@ -89,10 +93,14 @@ impl FrontWork {
         } else {
             left.min(own)
         };
-        FrontWork::with(allowed, self.per_tet)
+        FrontWork {
+            may_close: self.may_close,
+            ..FrontWork::with(allowed, self.per_tet)
+        }
     }
 
-    /// A budget of `allowed` units plus `per_tet` per tet of the running front at its fullest.
+    /// A budget of `allowed` units plus `per_tet` per tet of the running front at its fullest,
+    /// whose fronts leave what they cannot close open.
     pub fn with(allowed: u64, per_tet: u64) -> FrontWork {
         FrontWork {
             spent: Cell::new(0),
@@ -101,7 +109,13 @@ impl FrontWork {
             faces: 0,
             whole_failed: Cell::new(false),
             pinch: OnceCell::new(),
+            may_close: false,
         }
+    }
+
+    /// Whether a front that cannot close may have the Delaunay method fill what it left open.
+    pub fn may_close(&self) -> bool {
+        self.may_close
     }
 
     /// Count `n` units.

@@ -117,7 +117,8 @@ impl Operation for TetMeshOp {
         // 25: the recovery of a pinched region stops widening its holes past a bound of work.
         // 26: widened holes are tried again once grown by half, while under half the region.
         // 27: the check of the tets' volume allows the sums' rounding (thin regions).
-        27
+        // 28: a front that keeps back-tracking near its end is closed by the Delaunay method.
+        28
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -50,6 +50,17 @@ use super::sizing::Background;
 use super::work::FrontWork;
 use super::{RegionInput, SizeField, Tail, TetMeshError};
 
+pub use recover::connected_pieces;
+
+/// New nodes, and tets on the given vertices and those nodes (numbered after them).
+pub type Filled = (Vec<[f64; 3]>, Vec<[u32; 4]>);
+
+/// The tets filling the closed surfaces `input` bounds without any front (see
+/// `recover::without_any_front`).
+pub fn fill_without_front(input: &RegionInput, size: &SizeField) -> Option<Filled> {
+    recover::without_any_front(input, size)
+}
+
 /// Cells of the background size field. The field grows smoothly (at most the growth rate per
 /// unit length), so a coarser grid than the front's loses nothing, and its set-up (then a
 /// Dijkstra over the cells) was 8 % of a million-tet region at the front's two million cells.

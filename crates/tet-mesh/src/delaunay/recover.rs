@@ -17,6 +17,7 @@
 
 mod flips;
 mod holes;
+pub use holes::connected_pieces;
 mod kernel;
 mod peel;
 mod segments;
@@ -400,6 +401,15 @@ fn without_front<D: Fn(&RegionInput) -> Option<holes::Filled>>(
         }
         wall = ring.iter().flat_map(|&t| tri.t[t as usize].v).collect();
     }
+}
+
+/// The tets filling `input` without the front: its vertices' Delaunay tetrahedralization, its
+/// triangles recovered, its holes filled by their own Delaunay meshes, cones or peeling (a front
+/// given no work gives way at once), with the nodes those added; `None` where that fails.
+pub fn without_any_front(input: &RegionInput, size: &SizeField) -> Option<holes::Filled> {
+    let bars = [Span::none(), Span::none()];
+    let c = conforming(input, size, bars, &FrontWork::with(0, 0)).ok()?;
+    Some(inner_tets(&c))
 }
 
 /// The inner tets of a conforming mesh in its input's numbering, the nodes its holes added

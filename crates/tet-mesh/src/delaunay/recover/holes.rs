@@ -333,8 +333,9 @@ fn enclosed_volume(pts: &[P], tris: &[[u32; 3]]) -> f64 {
         .sum()
 }
 
-/// The pieces of a closed surface that share no edge, each in its input order.
-fn connected_pieces(tris: &[[u32; 3]]) -> Vec<Vec<[u32; 3]>> {
+/// The pieces of a closed surface that share no edge, each in its input order, the pieces in
+/// the order of their first triangle.
+pub fn connected_pieces(tris: &[[u32; 3]]) -> Vec<Vec<[u32; 3]>> {
     let mut by_edge: Vec<([u32; 2], usize)> = tris
         .iter()
         .enumerate()
