@@ -63,24 +63,37 @@ fn builds_and_meshes_reporting(case: &Case) -> (tempfile::TempDir, serde_json::V
         "{}: {model}",
         case.name
     );
-    let quality = dir.path().join(format!("out/{}.quality.json", case.name));
+    let below = below_the_bars(dir.path(), case);
+    assert!(below.is_empty(), "{}: {}", case.name, below.join("\n"));
+    passes_the_checker(dir.path(), case);
+    (dir, report)
+}
+
+/// The quality table rows of the regions of `case`, built in `dir`, under the corpus's bars: a
+/// minimum mean ratio of 0.2 and the case's minimum dihedral angle.
+fn below_the_bars(dir: &std::path::Path, case: &Case) -> Vec<String> {
+    let quality = dir.join(format!("out/{}.quality.json", case.name));
     let q: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&quality).expect("the quality tables")).unwrap();
-    for r in q["table2"].as_array().expect("table 2") {
-        let (mr, dihedral) = (
-            r["min"].as_f64().unwrap(),
-            r["min_dihedral_deg"].as_f64().unwrap(),
-        );
-        assert!(
-            mr >= 0.2 && dihedral >= case.min_dihedral,
-            "{}: {r}",
-            case.name
-        );
-    }
+    (q["table2"].as_array().expect("table 2").iter())
+        .filter(|r| {
+            let (mr, dihedral) = (
+                r["min"].as_f64().unwrap(),
+                r["min_dihedral_deg"].as_f64().unwrap(),
+            );
+            mr < 0.2 || dihedral < case.min_dihedral
+        })
+        .map(|r| r.to_string())
+        .collect()
+}
+
+/// Asserts that `check_mesh.py` passes the mesh of `case`, built in `dir` (skipped, with a
+/// note, where the checker is absent).
+fn passes_the_checker(dir: &std::path::Path, case: &Case) {
     let Some(check) = checker() else {
-        return (dir, report);
+        return;
     };
-    let msh = dir.path().join(format!("out/{}.msh", case.name));
+    let msh = dir.join(format!("out/{}.msh", case.name));
     let out = Command::new("python3")
         .arg(&check)
         .arg(&msh)
@@ -93,7 +106,6 @@ fn builds_and_meshes_reporting(case: &Case) -> (tempfile::TempDir, serde_json::V
         "{}: {text}",
         case.name
     );
-    (dir, report)
 }
 
 fn case(name: &str) -> Case {
@@ -165,17 +177,21 @@ fn every_case_of_the_corpus_has_a_test() {
 }
 
 #[test]
-fn every_known_gap_fails_naming_its_place_the_nearest_input_line_and_a_likely_cause() {
+fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
         let recipe = case.write(dir.path());
         let out = build_quietly(dir.path(), &recipe);
         let err = String::from_utf8_lossy(&out.stderr);
-        assert!(
-            !out.status.success(),
-            "{} meshes now: move it into `cases`",
-            case.name
-        );
+        if out.status.success() {
+            passes_the_checker(dir.path(), &case);
+            assert!(
+                !below_the_bars(dir.path(), &case).is_empty(),
+                "{} meshes within the bars now: move it into `cases`",
+                case.name
+            );
+            continue;
+        }
         assert_eq!(out.status.code(), Some(1), "{}: {err}", case.name);
         let failed = (err.lines())
             .find(|l| l.contains("error `"))

@@ -418,12 +418,21 @@ fn a_dangling_fault_given_as_a_triangle_soup_meshes_and_passes_the_checker() {
 
 #[test]
 fn a_closed_salt_diapir_jittered_by_two_metres_meshes_and_passes_the_checker() {
-    // From 5 m on (seed 7), the salt region's recovery and front fail, naming the place but
-    // after some 30 s: not yet within the ten times.
     meshes(
         || Model::case("closed_salt_diapir"),
         "SALT.ts",
         Perturbation::Jitter(2.0, 7),
+    );
+}
+
+#[test]
+fn a_closed_salt_diapir_jittered_by_five_metres_meshes_and_passes_the_checker() {
+    // Its salt region's front used to back-track until its work ran out, failing after some
+    // 30 s; it is now closed by the Delaunay method once nearly done.
+    meshes(
+        || Model::case("closed_salt_diapir"),
+        "SALT.ts",
+        Perturbation::Jitter(5.0, 7),
     );
 }
 
