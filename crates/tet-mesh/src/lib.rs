@@ -513,21 +513,8 @@ fn measured_stats(
 
 #[cfg(test)]
 mod tests {
+    use super::pinch::tests::slab;
     use super::*;
-
-    /// The cube [0, 10]³ gridded 5 × 5 per side, its z scaled by `squash`.
-    fn slab(squash: f64) -> RegionInput {
-        let (mut vertices, boundary) = test_support::shapes::gridded_cube(5, 10.0);
-        for v in &mut vertices {
-            v[2] *= squash;
-        }
-        RegionInput {
-            name: "slab".into(),
-            vertices,
-            boundary,
-            ..RegionInput::default()
-        }
-    }
 
     /// The error of a front on `input` that has next to no work to spend.
     fn front_out_of_work(input: &RegionInput) -> TetMeshError {
@@ -545,8 +532,8 @@ mod tests {
         );
         assert!(e.message.contains("its boundary is not pinched"), "{e}");
         assert!(e.message.contains("`growth`"), "{e}");
-        // 0.01 thick under edges of 2: a gap no front closes.
-        let thin = slab(0.001);
+        // 0.03 thick under edges of 1: a gap no front closes.
+        let thin = slab(0.01);
         let e = explained(
             front_out_of_work(&thin),
             &thin,

@@ -159,12 +159,12 @@ impl Ring {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The cube [0,3]^3 gridded 3 × 3 per side, its z scaled by `squash`: a slab 3 × 3 × 3
     /// `squash` with edges of 1 on its top and bottom.
-    fn slab(squash: f64) -> RegionInput {
+    pub(crate) fn slab(squash: f64) -> RegionInput {
         let (mut vertices, boundary) = test_support::shapes::gridded_cube(3, 3.0);
         for v in &mut vertices {
             v[2] *= squash;
