@@ -78,8 +78,11 @@ const NEAR_IDEAL: f64 = 1.0;
 /// Times the pieces a front that cannot close leaves, and the Delaunay method cannot fill, are
 /// widened and tried again (`State::close`).
 const CLOSING_ROUNDS: u32 = 3;
-/// Back-tracks between two tries at closing by the Delaunay method once [`CLOSING_AT`] of the
-/// region's volume is filled.
+/// Open faces the pieces that closing could not fill may have in all for it to widen them and
+/// try again: more is no last gap of the front, and widening it would only open the front more.
+const CLOSING_WIDENS: usize = 512;
+/// Back-tracks before the first try at closing by the Delaunay method once [`CLOSING_AT`] of the
+/// region's volume is filled, and between the first two tries (twice as many before each next).
 const CLOSE_EVERY: usize = 16;
 /// Steps of the front between two measures of its progress.
 const MEASURE_EVERY: usize = 64;
@@ -200,6 +203,8 @@ pub fn advance_front_reporting(
     let mut levels: HashMap<[u64; 3], u32> = HashMap::new();
     let mut defers: FaceMap<u32> = FaceMap::default();
     let mut backtracks = 0usize;
+    // The back-tracks after which closing is next tried, and their step (`CLOSE_EVERY` first).
+    let (mut close_at, mut close_every) = (CLOSE_EVERY, CLOSE_EVERY);
     let max_backtracks = 100 + input.boundary.len() / 8;
     // Where the front was last stuck: the place a front that runs out of work names.
     let mut stuck_at = None;
@@ -264,8 +269,14 @@ pub fn advance_front_reporting(
         stuck_at = Some(at);
         // Closing by the Delaunay method once the front is nearly done and keeps back-tracking:
         // its last gaps are where it fails, and each back-track re-meshes a ball round one.
-        if closing.is_some() && backtracks.is_multiple_of(CLOSE_EVERY) && st.close(size) {
-            break;
+        // A failed try waits twice as many back-tracks as the last before the next: tries that
+        // keep failing (a front far from done) cost a bounded share of its work.
+        if closing.is_some() && backtracks >= close_at {
+            if st.close(size) {
+                break;
+            }
+            close_every *= 2;
+            close_at = backtracks + close_every;
         }
         if *level > MAX_LEVEL || backtracks > max_backtracks {
             // Last resort before giving up: a Steiner point low over the stuck face.
@@ -363,10 +374,11 @@ fn centroid(f: &[u32; 3], pts: &[P]) -> P {
 impl State<'_> {
     /// Fills what is still open by the Delaunay method (`closing`), when the work allows it and
     /// the front built something: whether it did (the tets are then the mesh's, the front is
-    /// done). A piece it cannot fill (walls at a few degrees to one another, where the front
-    /// gave up) is widened by the tets round its vertices, up to [`CLOSING_ROUNDS`] times: the
-    /// front's own tets there go, and the walls with them. (Wider balls reach the region's own
-    /// triangles, and a piece walled by a curved boundary is what the method cannot fill.)
+    /// done). Asked as the front gives up, and before, every so many back-tracks, once
+    /// [`CLOSING_AT`] of the volume is filled. A piece it cannot fill (walls at a few degrees to
+    /// one another, where the front gave up) is widened by the tets round its vertices, up to
+    /// [`CLOSING_ROUNDS`] times, while such pieces hold at most [`CLOSING_WIDENS`] faces in all:
+    /// the front's own tets there go, and the walls with them.
     fn close(&mut self, size: &SizeField) -> bool {
         if !self.work.may_close() || self.alive == 0 {
             return false;
@@ -383,7 +395,9 @@ impl State<'_> {
                     self.tets.extend(tets);
                     return true;
                 }
-                Err(_) if round == CLOSING_ROUNDS => return false,
+                Err(failed) if round == CLOSING_ROUNDS || failed.len() > CLOSING_WIDENS => {
+                    return false;
+                }
                 Err(failed) => {
                     for f in failed {
                         if let Some(fid) = self.front.find(f) {

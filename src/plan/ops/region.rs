@@ -118,7 +118,8 @@ impl Operation for TetMeshOp {
         // 26: widened holes are tried again once grown by half, while under half the region.
         // 27: the check of the tets' volume allows the sums' rounding (thin regions).
         // 28: a front that keeps back-tracking near its end is closed by the Delaunay method.
-        28
+        // 29: closing is tried again after twice as many back-tracks, and widens at most 512 faces.
+        29
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
