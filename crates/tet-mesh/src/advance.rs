@@ -32,7 +32,7 @@ use super::exact::orient3d;
 use super::front::{FaceMap, Front, bbox_of};
 use super::sides::{SideCache, orientation_of};
 use super::sizing::Background;
-use super::verify::outward_faces;
+use super::verify::{canon, outward_faces};
 use super::work::{self, FrontWork};
 use super::{RegionInput, SizeField, TetMeshError};
 use geom::contact::{Contact, Tri, triangle_contact_with};
@@ -378,18 +378,27 @@ impl State<'_> {
     /// [`CLOSING_AT`] of the volume is filled. A piece it cannot fill (walls at a few degrees to
     /// one another, where the front gave up) is widened by the tets round its vertices, up to
     /// [`CLOSING_ROUNDS`] times, while such pieces hold at most [`CLOSING_WIDENS`] faces in all:
-    /// the front's own tets there go, and the walls with them.
+    /// the front's own tets there go, and the walls with them (only when the fill succeeds: a
+    /// failed try leaves the front as it was, so a front that would close on its own still
+    /// does).
     fn close(&mut self, size: &SizeField) -> bool {
         if !self.work.may_close() || self.alive == 0 {
             return false;
         }
+        let open: Vec<[u32; 3]> = (0..self.front.faces.len())
+            .filter(|&k| self.front.alive[k])
+            .map(|k| self.front.faces[k])
+            .collect();
+        // The tets the widening takes (sorted, each once): taken only if the fill succeeds, so
+        // a failed try leaves the front as it was.
+        let mut taken: Vec<u32> = Vec::new();
         for round in 0..=CLOSING_ROUNDS {
-            let open: Vec<[u32; 3]> = (0..self.front.faces.len())
-                .filter(|&k| self.front.alive[k])
-                .map(|k| self.front.faces[k])
-                .collect();
-            match closing::fill_open(self.name, &self.nodes, &open, size) {
+            let faces = self.open_without(&open, &taken);
+            match closing::fill_open(self.name, &self.nodes, &faces, size) {
                 Ok((nodes, tets)) => {
+                    for &t in &taken {
+                        self.delete_tet(t);
+                    }
                     self.nodes.extend(nodes);
                     self.tet_alive.extend(tets.iter().map(|_| true));
                     self.tets.extend(tets);
@@ -399,15 +408,42 @@ impl State<'_> {
                     return false;
                 }
                 Err(failed) => {
-                    for f in failed {
-                        if let Some(fid) = self.front.find(f) {
-                            self.backtrack(fid, 1);
-                        }
+                    for &v in failed.iter().flatten() {
+                        let live = self.node_tets[v as usize].iter();
+                        taken.extend(live.filter(|&&t| self.tet_alive[t as usize]));
                     }
+                    taken.sort_unstable();
+                    taken.dedup();
                 }
             }
         }
         false
+    }
+
+    /// The open faces `open` as deleting the tets `taken` would leave them (`delete_tet`: a face
+    /// of a taken tet closes the open face it meets, else opens facing into the tet; an embedded
+    /// face stays open on both sides), in a deterministic order.
+    fn open_without(&self, open: &[[u32; 3]], taken: &[u32]) -> Vec<[u32; 3]> {
+        let mut faces: Vec<Option<[u32; 3]>> = open.iter().map(|&f| Some(f)).collect();
+        let mut at: HashMap<[u32; 3], usize> = (open.iter().enumerate())
+            .map(|(k, &f)| (canon(f), k))
+            .collect();
+        for &t in taken {
+            for fo in outward_faces(self.tets[t as usize]) {
+                let mut k = fo;
+                k.sort_unstable();
+                if !self.constrained.contains(&k)
+                    && let Some(i) = at.remove(&canon(fo))
+                {
+                    faces[i] = None;
+                    continue;
+                }
+                let inward = [fo[0], fo[2], fo[1]];
+                at.insert(canon(inward), faces.len());
+                faces.push(Some(inward));
+            }
+        }
+        faces.into_iter().flatten().collect()
     }
 
     fn add_face(&mut self, f: [u32; 3]) {

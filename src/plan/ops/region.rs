@@ -119,7 +119,8 @@ impl Operation for TetMeshOp {
         // 27: the check of the tets' volume allows the sums' rounding (thin regions).
         // 28: a front that keeps back-tracking near its end is closed by the Delaunay method.
         // 29: closing is tried again after twice as many back-tracks, and widens at most 512 faces.
-        29
+        // 30: a closing try that fails leaves the front as it was.
+        30
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
