@@ -427,8 +427,8 @@ fn a_closed_salt_diapir_jittered_by_two_metres_meshes_and_passes_the_checker() {
 
 #[test]
 fn a_closed_salt_diapir_jittered_by_five_metres_meshes_and_passes_the_checker() {
-    // Its salt region's front used to back-track until its work ran out, failing after some
-    // 30 s; it is now closed by the Delaunay method once nearly done.
+    // The salt region's front back-tracks where its sides meet; the Delaunay method closes
+    // what it leaves open, within the ten times.
     meshes(
         || Model::case("closed_salt_diapir"),
         "SALT.ts",

@@ -68,7 +68,7 @@ pub fn cases() -> Vec<Case> {
 /// - `fault_through_salt`: meshes (the western half of the salt only once the front closes by
 ///   the Delaunay method: its recovery holes have walls at 2° to the curved boundary), but the
 ///   salt wall's surface mesh holds a triangle of c/c* 12 (216 m beside 77 m) and the regions
-///   reach 4.1° to 5.6°.
+///   reach 4.2° to 5.6°.
 /// - `two_lenses`: the surface mesh of a lens 200 m thick folds on its rim, which turns
 ///   through 180° across three rows of support triangles 140 m long.
 pub fn known_gaps() -> Vec<Case> {

@@ -270,8 +270,8 @@ fn explained(mut why: TetMeshError, input: &RegionInput, work: &work::FrontWork)
         None => format!(
             "{}; its boundary is not pinched (no two of its surfaces come closer than a \
              twentieth of their triangles' width): the front could not close where its sides \
-             met, which a coarser interior often avoids (a larger `growth` in `[mesh]`, at some cost in \
-             the tets' quality)",
+             met, which a coarser interior often avoids (a larger `growth` in `[mesh]`, at some \
+             cost in the tets' quality)",
             why.message
         ),
     };
