@@ -178,11 +178,19 @@ fn every_case_of_the_corpus_has_a_test() {
 
 #[test]
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
+    // These mesh now, below the bars: the salt gaps since a front's last gaps are closed by the
+    // Delaunay method, the lenses since no chart's border overlaps itself in map view.
+    let meshing = ["salt_overhang", "two_lenses", "fault_through_salt"];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
         let recipe = case.write(dir.path());
         let out = build_quietly(dir.path(), &recipe);
         let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            out.status.success() || !meshing.contains(&case.name),
+            "{} meshed before: {err}",
+            case.name
+        );
         if out.status.success() {
             passes_the_checker(dir.path(), &case);
             assert!(

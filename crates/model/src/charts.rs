@@ -23,7 +23,9 @@
 //! - A chart never touches itself at a vertex only (`unpinch` gives the smaller fans there to a
 //!   neighbouring chart): its boundary loops must not touch. Nor does a seam cut off a lobe of
 //!   it behind a sliver of a neck (`widen_necks` gives the lobe to the chart across the seam):
-//!   its surface mesh would hold a needle across the neck.
+//!   its surface mesh would hold a needle across the neck. Nor does its border cross itself on
+//!   the chart's own plane (`untwist` moves the triangles on the crossing to a chart beside
+//!   them): it would be flattened by a Tutte embedding that squeezes it, and folds.
 //! - Seams run along support edges: no point is constructed, and the triangles are the patch's
 //!   own. Seam curves are not features, so the topology does not end curves at their kinks.
 //! - Normals are those of the original (imported) triangles each split triangle lies in, as for
@@ -32,10 +34,12 @@
 //!   and the lower triangle index, so the result is the same on every machine.
 
 mod necks;
+mod twists;
 
 use geom::TriMesh;
 use geom::predicates::{cross, dot, sub};
 pub use necks::widen_necks;
+pub use twists::untwist;
 
 /// The six axis directions, in label order.
 const AXES: [[f64; 3]; 6] = [
@@ -221,6 +225,13 @@ fn area(mesh: &TriMesh, t: usize) -> f64 {
     let [a, b, c] = mesh.corners(t);
     let n = cross(&sub(b, a), &sub(c, a));
     0.5 * dot(&n, &n).sqrt()
+}
+
+/// `sum += w * n`.
+fn add(sum: &mut [f64; 3], n: &[f64; 3], w: f64) {
+    for k in 0..3 {
+        sum[k] += w * n[k];
+    }
 }
 
 /// The axis a unit normal faces most (the lowest on ties; axis 0 for a zero normal).

@@ -66,6 +66,7 @@ use input::{GivenNodes, given_nodes};
 use size::SizeField;
 use support::Support;
 
+pub use param::{projected_border_conflict, projects_one_to_one};
 pub use refine_support::{MAX_LEVELS, MAX_PASSES, Smoothed, SupportSmoothing, refine_smooth};
 pub use retriangulate::{retriangulate, retriangulate_keeping};
 pub use size::CurvatureSizes;

@@ -278,6 +278,35 @@ pub fn axis_uv(s: &TriMesh) -> Option<Vec<[f64; 2]>> {
     Some(s.vertices.iter().map(|p| [p[u], p[v]]).collect())
 }
 
+/// The first two border edges of the support (each as its directed vertex pair) that conflict on
+/// the plane of its mean normal, when neither projection that the flattening tries first is one to
+/// one: `None` when a projection is accepted, when the border projects without a crossing (the
+/// projection fails for another reason), or when there is no border to project (no mean normal,
+/// a non-manifold support). Lets whoever cuts a surface into pieces keep each piece flat on its
+/// own plane, as the plane keeps the support's shapes and a Tutte embedding distorts them.
+pub fn projected_border_conflict(s: &TriMesh) -> Option<[[u32; 2]; 2]> {
+    let loops = border_loops(s).ok()?;
+    if plane_projection(s, &loops).is_some() {
+        return None;
+    }
+    let uv = mean_plane_uv(s)?;
+    let edges: Vec<[u32; 2]> = loops
+        .iter()
+        .flat_map(|l| (0..l.len()).map(move |i| [l[i], l[(i + 1) % l.len()]]))
+        .collect();
+    let segs: Vec<([f64; 2], [f64; 2])> = edges
+        .iter()
+        .map(|&[a, b]| (uv[a as usize], uv[b as usize]))
+        .collect();
+    first_crossing(&segs).map(|(i, j)| [edges[i], edges[j]])
+}
+
+/// Whether one of the projections that the flattening tries first maps the support one to one:
+/// then its surface mesh is made on a plane, with the support's shapes kept.
+pub fn projects_one_to_one(s: &TriMesh) -> bool {
+    border_loops(s).is_ok_and(|loops| !loops.is_empty() && plane_projection(s, &loops).is_some())
+}
+
 /// Whether `uv` maps the support one to one (exact): every triangle counter-clockwise, the border
 /// `loops` free of crossings and, of their simple cycles, only the outer borders (one per piece
 /// connected across edges) counter-clockwise.

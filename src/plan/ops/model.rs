@@ -84,7 +84,8 @@ impl Operation for ModelOp {
         // 16: curves' curvature sizes on smoothed surfaces.
         // 17: those sizes graded over every curve by distance.
         // 18: no chart keeps a lobe behind a sliver of a neck.
-        18
+        // 19: no chart's border crosses itself on its plane where the charts can be mended.
+        19
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

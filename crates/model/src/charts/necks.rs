@@ -23,7 +23,7 @@
 //!   the longest seam (the lowest on ties). Triangles and edges are visited in index order, so
 //!   the result is the same on every machine.
 
-use super::{NONE, across_edges, area};
+use super::{NONE, across_edges, add, area};
 use geom::TriMesh;
 use geom::predicates::{dist, dot};
 
@@ -248,13 +248,6 @@ fn edge_length(mesh: &TriMesh, t: u32, k: usize) -> f64 {
         &mesh.vertices[tri[k] as usize],
         &mesh.vertices[tri[(k + 1) % 3] as usize],
     )
-}
-
-/// `sum += w * n`.
-fn add(sum: &mut [f64; 3], n: &[f64; 3], w: f64) {
-    for k in 0..3 {
-        sum[k] += w * n[k];
-    }
 }
 
 #[cfg(test)]
