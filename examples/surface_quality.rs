@@ -30,7 +30,7 @@ fn load(store: &Store, lock: &LockFile, node: &str) -> Result<Artifact, String> 
         .nodes
         .get(node)
         .ok_or_else(|| format!("the lock file has no node `{node}`"))?;
-    match store.load_object(n.output) {
+    match store.load_object(n.output, None) {
         Load::Hit(a) => Ok(a),
         _ => Err(format!("the cache has no output for `{node}`")),
     }

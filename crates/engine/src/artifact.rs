@@ -114,7 +114,7 @@ pub struct Artifact {
 enum Body {
     Bytes(Vec<u8>),
     /// In the cache, not read yet.
-    Stored(Stored),
+    Stored(Box<Stored>),
 }
 
 impl Artifact {
@@ -132,7 +132,7 @@ impl Artifact {
     pub(crate) fn stored(stored: Stored) -> Artifact {
         Artifact {
             hash: stored.hash(),
-            body: Arc::new(Body::Stored(stored)),
+            body: Arc::new(Body::Stored(Box::new(stored))),
             decoded: Arc::default(),
         }
     }

@@ -44,7 +44,7 @@ pub fn write(path: &Path, payload: &[u8]) -> std::io::Result<()> {
 
 /// The payload [`write()`] wrote to `path`, verified.
 pub fn read(path: &Path) -> Result<Vec<u8>, CheckedError> {
-    let mut bytes = match entry::read_as(path, Wrong::Leave) {
+    let mut bytes = match entry::read_as(path, Wrong::Leave, entry::Size::Any) {
         entry::Read::Bytes(b) => b,
         entry::Read::Missing => return Err(CheckedError::Missing),
         entry::Read::Damaged(what) => return Err(CheckedError::Damaged(what)),

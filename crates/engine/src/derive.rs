@@ -84,7 +84,7 @@ impl Derivations {
         let Load::Hit(rec) = self.store.load_action(key) else {
             return None;
         };
-        match self.store.load_object(rec.output) {
+        match self.store.load_object(rec.output, rec.output_len) {
             Load::Hit(a) => Some(a),
             _ => None,
         }
@@ -93,11 +93,7 @@ impl Derivations {
     fn run(&self, key: Hash, op: &dyn Operation, inputs: &[Artifact]) -> Result<Artifact, OpError> {
         let out = catch_unwind(AssertUnwindSafe(|| op.run(&Quiet, inputs)))
             .map_err(|p| format!("operation panicked: {}", panic_text(p.as_ref())))??;
-        let rec = ActionRecord {
-            output: out.artifact.hash(),
-            counts: out.counts,
-            notes: out.notes,
-        };
+        let rec = ActionRecord::of(&out.artifact, out.counts, out.notes);
         // Not cached is only slower next time.
         let _ = self
             .store

@@ -4,7 +4,8 @@
 //! directory, a FIFO, a device, a symlink to `/dev/zero`) is damage: reading it could fail on
 //! every build, block forever while the cache lock is held, or never end. So the path is looked
 //! at without following links, only a regular file is opened, and the read is bounded by the
-//! size the open file has. A wrong kind of file is removed, so that the entry can be written
+//! size the open file has, and by the size its record gives ([`Size`]): a file of another size
+//! is damage found without reading it, however large it is. A wrong kind of file is removed, so that the entry can be written
 //! again (left in place when the cache is only read). An I/O error (too many open files, a
 //! failing disk) says nothing about the entry: it is told as such, never as damage, and the
 //! entry is left alone.
@@ -38,15 +39,26 @@ pub(crate) enum Wrong {
     Leave,
 }
 
+/// How large an entry may be.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Size {
+    /// Exactly this many bytes, as its record says.
+    Recorded(u64),
+    /// At most this many bytes (a record whose size nothing records).
+    AtMost(u64),
+    /// Whatever size the file has.
+    Any,
+}
+
 /// Reads the entry at `path` (see the module docs), removing a wrong kind of file.
 #[cfg(test)]
 pub(crate) fn read(path: &Path) -> Read {
-    read_as(path, Wrong::Remove)
+    read_as(path, Wrong::Remove, Size::Any)
 }
 
 /// Reads the entry at `path` (see the module docs); `wrong` says what becomes of a wrong kind
-/// of file.
-pub(crate) fn read_as(path: &Path, wrong: Wrong) -> Read {
+/// of file, `size` how large it may be.
+pub(crate) fn read_as(path: &Path, wrong: Wrong, size: Size) -> Read {
     let remove_wrong = |path: &Path, kind| handle_wrong(path, kind, wrong);
     let meta = match std::fs::symlink_metadata(path) {
         Ok(m) => m,
@@ -66,6 +78,17 @@ pub(crate) fn read_as(path: &Path, wrong: Wrong) -> Read {
         Ok(m) => return remove_wrong(path, kind_of(&m.file_type())),
         Err(e) => return Read::Failed(e.to_string()),
     };
+    match size {
+        Size::Recorded(n) if len != n => {
+            return Read::Damaged(format!("it is {len} bytes, its record says {n}"));
+        }
+        Size::AtMost(n) if len > n => {
+            return Read::Damaged(format!(
+                "it is {len} bytes, more than the {n} an entry can be"
+            ));
+        }
+        _ => {}
+    }
     let mut bytes = Vec::with_capacity(usize::try_from(len).unwrap_or(0));
     match file.take(len.saturating_add(1)).read_to_end(&mut bytes) {
         Ok(n) if n as u64 > len => {
@@ -192,7 +215,7 @@ mod tests {
         let d = dir.path().join("d");
         std::fs::create_dir_all(&d).unwrap();
         assert!(
-            matches!(read_as(&d, Wrong::Keep), Read::Damaged(w) if w.contains("left in place"))
+            matches!(read_as(&d, Wrong::Keep, Size::Any), Read::Damaged(w) if w.contains("left in place"))
         );
         assert!(!present(&d, Wrong::Keep));
         assert!(d.is_dir());

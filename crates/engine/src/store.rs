@@ -1,7 +1,9 @@
 //! The on-disk, content-addressed cache.
 //!
 //! Layout: `<cache>/objects/<hash>` holds artifact bytes, named by their blake3; `<cache>/actions/<key>`
-//! holds a small record (output hash, counts, notes) prefixed by the blake3 of its payload. Every
+//! holds a small record (output hash and size, counts, notes) prefixed by the blake3 of its
+//! payload; the recorded size bounds the object's read, so a file of any other size in its place
+//! is corrupt before a byte of it is read. Every
 //! read re-hashes what it read, so a truncated, altered or half-written entry is reported as
 //! corrupt and never used (and anything but a regular file is not even read: see `entry`); every write goes to a temporary file in the same directory and is
 //! renamed into place, so readers see either the old entry or the whole new one.
@@ -32,6 +34,21 @@ pub struct ActionRecord {
     pub output: Hash,
     pub counts: BTreeMap<String, u64>,
     pub notes: Vec<String>,
+    /// The output's size in bytes, which bounds its read (unknown in records written before
+    /// sizes were recorded).
+    pub output_len: Option<u64>,
+}
+
+impl ActionRecord {
+    /// The record of an action that produced `output`.
+    pub fn of(output: &Artifact, counts: BTreeMap<String, u64>, notes: Vec<String>) -> Self {
+        ActionRecord {
+            output: output.hash(),
+            counts,
+            notes,
+            output_len: output.bytes().ok().map(|b| b.len() as u64),
+        }
+    }
 }
 
 #[derive(Serialize, Deserialize)]
@@ -39,6 +56,33 @@ struct ActionFile {
     key: Hash,
     record: ActionRecord,
 }
+
+/// An action file as written before outputs' sizes were recorded: still read, so that a cache
+/// outlives the change.
+#[derive(Deserialize)]
+struct ActionFileWithoutSize {
+    key: Hash,
+    output: Hash,
+    counts: BTreeMap<String, u64>,
+    notes: Vec<String>,
+}
+
+impl ActionFileWithoutSize {
+    fn upgraded(self) -> ActionFile {
+        ActionFile {
+            key: self.key,
+            record: ActionRecord {
+                output: self.output,
+                counts: self.counts,
+                notes: self.notes,
+                output_len: None,
+            },
+        }
+    }
+}
+
+/// The most bytes an action file may hold (its record is an output's hash, counts and notes).
+const MAX_ACTION_BYTES: u64 = 64 << 20;
 
 /// A handle on a cache directory.
 #[derive(Debug, Clone)]
@@ -133,9 +177,11 @@ impl Store {
         self.root.join("actions").join(key.to_hex())
     }
 
-    /// Read and verify the object named `h`.
-    pub fn load_object(&self, h: Hash) -> Load<Artifact> {
-        let bytes = match entry::read_as(&self.object_path(h), self.wrong()) {
+    /// Read and verify the object named `h`, of `len` bytes when its record says so (a file of
+    /// another size is corrupt, and is not read).
+    pub fn load_object(&self, h: Hash, len: Option<u64>) -> Load<Artifact> {
+        let size = len.map_or(entry::Size::Any, entry::Size::Recorded);
+        let bytes = match entry::read_as(&self.object_path(h), self.wrong(), size) {
             entry::Read::Bytes(b) => b,
             entry::Read::Missing => return Load::Missing,
             entry::Read::Damaged(d) => return Load::Corrupt(format!("object {}: {d}", h.short())),
@@ -172,7 +218,8 @@ impl Store {
 
     /// Read and verify the action record for `key`.
     pub fn load_action(&self, key: Hash) -> Load<ActionRecord> {
-        let bytes = match entry::read_as(&self.action_path(key), self.wrong()) {
+        let size = entry::Size::AtMost(MAX_ACTION_BYTES);
+        let bytes = match entry::read_as(&self.action_path(key), self.wrong(), size) {
             entry::Read::Bytes(b) => b,
             entry::Read::Missing => return Load::Missing,
             entry::Read::Damaged(d) => {
@@ -192,7 +239,12 @@ impl Store {
         if Hash::of(payload).0 != *sum {
             return Load::Corrupt(format!("action {} has hash mismatch", key.short()));
         }
-        match postcard::from_bytes::<ActionFile>(payload) {
+        let decoded = postcard::from_bytes::<ActionFile>(payload).or_else(|e| {
+            postcard::from_bytes::<ActionFileWithoutSize>(payload)
+                .map(ActionFileWithoutSize::upgraded)
+                .map_err(|_| e)
+        });
+        match decoded {
             Ok(f) if f.key == key => Load::Hit(f.record),
             Ok(f) => Load::Corrupt(format!(
                 "action {} records key {}",
@@ -294,30 +346,35 @@ mod tests {
         let a = Artifact::from_bytes(b"hello world".to_vec());
         s.put_object(&a).unwrap();
         let key = Hash::of(b"key");
-        let rec = ActionRecord {
-            output: a.hash(),
-            counts: BTreeMap::new(),
-            notes: vec![],
-        };
+        let rec = ActionRecord::of(&a, BTreeMap::new(), vec![]);
         s.put_action(key, &rec).unwrap();
-        assert!(matches!(s.load_object(a.hash()), Load::Hit(_)));
+        assert!(matches!(
+            s.load_object(a.hash(), rec.output_len),
+            Load::Hit(_)
+        ));
         assert!(matches!(s.load_action(key), Load::Hit(r) if r == rec));
         std::fs::write(s.object_path(a.hash()), b"hello").unwrap();
         std::fs::write(s.action_path(key), b"short").unwrap();
-        assert!(matches!(s.load_object(a.hash()), Load::Corrupt(_)));
+        assert!(matches!(
+            s.load_object(a.hash(), rec.output_len),
+            Load::Corrupt(_)
+        ));
         assert!(matches!(s.load_action(key), Load::Corrupt(_)));
-        assert!(matches!(s.load_object(Hash::of(b"nothing")), Load::Missing));
+        assert!(matches!(
+            s.load_object(Hash::of(b"nothing"), None),
+            Load::Missing
+        ));
     }
 
     #[test]
     fn an_action_copied_under_another_key_is_corrupt() {
         let dir = tempfile::tempdir().unwrap();
         let s = Store::open(dir.path()).unwrap();
-        let rec = ActionRecord {
-            output: Hash::of(b"o"),
-            counts: BTreeMap::new(),
-            notes: vec![],
-        };
+        let rec = ActionRecord::of(
+            &Artifact::from_bytes(b"o".to_vec()),
+            BTreeMap::new(),
+            vec![],
+        );
         s.put_action(Hash::of(b"k1"), &rec).unwrap();
         std::fs::copy(
             s.action_path(Hash::of(b"k1")),
@@ -325,5 +382,69 @@ mod tests {
         )
         .unwrap();
         assert!(matches!(s.load_action(Hash::of(b"k2")), Load::Corrupt(_)));
+    }
+
+    #[test]
+    fn an_object_of_another_size_than_its_record_is_corrupt_and_not_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let s = Store::open(dir.path()).unwrap();
+        let a = Artifact::from_bytes(b"hello world".to_vec());
+        s.put_object(&a).unwrap();
+        // A sparse file of 64 GiB in its place: reading it would take minutes and all memory.
+        let f = std::fs::File::create(s.object_path(a.hash())).unwrap();
+        f.set_len(64 << 30).unwrap();
+        drop(f);
+        let started = std::time::Instant::now();
+        match s.load_object(a.hash(), Some(11)) {
+            Load::Corrupt(d) => assert!(d.contains("its record says 11"), "{d}"),
+            other => panic!("{other:?}"),
+        }
+        assert!(started.elapsed().as_secs() < 10);
+    }
+
+    #[test]
+    fn an_action_file_larger_than_any_record_is_corrupt_and_not_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let s = Store::open(dir.path()).unwrap();
+        let key = Hash::of(b"k");
+        let f = std::fs::File::create(s.action_path(key)).unwrap();
+        f.set_len(64 << 30).unwrap();
+        drop(f);
+        match s.load_action(key) {
+            Load::Corrupt(d) => assert!(d.contains("more than"), "{d}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn an_action_written_before_sizes_were_recorded_is_still_a_hit() {
+        #[derive(Serialize)]
+        struct Before {
+            key: Hash,
+            output: Hash,
+            counts: BTreeMap<String, u64>,
+            notes: Vec<String>,
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let s = Store::open(dir.path()).unwrap();
+        let (key, output) = (Hash::of(b"k"), Hash::of(b"o"));
+        let counts = BTreeMap::from([("nodes".to_string(), 7)]);
+        let before = Before {
+            key,
+            output,
+            counts: counts.clone(),
+            notes: vec!["a note".into()],
+        };
+        let payload = postcard::to_stdvec(&before).unwrap();
+        let mut bytes = Hash::of(&payload).0.to_vec();
+        bytes.extend_from_slice(&payload);
+        std::fs::write(s.action_path(key), bytes).unwrap();
+        let expected = ActionRecord {
+            output,
+            counts,
+            notes: vec!["a note".into()],
+            output_len: None,
+        };
+        assert!(matches!(s.load_action(key), Load::Hit(r) if r == expected));
     }
 }

@@ -23,6 +23,8 @@ use std::sync::{Arc, OnceLock};
 pub(crate) struct Stored {
     store: Store,
     hash: Hash,
+    /// Its size in bytes, when its record gives it.
+    len: Option<u64>,
     /// The node that made it, for messages.
     node: String,
     /// How to make it again.
@@ -37,10 +39,11 @@ pub(crate) struct Stored {
 }
 
 impl Stored {
-    /// The output `hash` of node `node`, made by `op` from `inputs`.
+    /// The output `hash` (of `len` bytes, when known) of node `node`, made by `op` from
+    /// `inputs`.
     pub(crate) fn new(
         store: &Store,
-        hash: Hash,
+        (hash, len): (Hash, Option<u64>),
         node: &str,
         op: Arc<dyn Operation>,
         inputs: Vec<Artifact>,
@@ -48,6 +51,7 @@ impl Stored {
         Stored {
             store: store.clone(),
             hash,
+            len,
             node: node.to_string(),
             op,
             inputs,
@@ -81,7 +85,7 @@ impl Stored {
     }
 
     fn fetch(&self) -> Result<Artifact, String> {
-        let damage = match self.store.load_object(self.hash) {
+        let damage = match self.store.load_object(self.hash, self.len) {
             Load::Hit(a) => return Ok(a),
             Load::Missing => format!("object {} is missing", self.hash.short()),
             Load::Corrupt(d) => d,

@@ -198,17 +198,23 @@ fn write_files(
 fn load_hit(
     job: &Job,
     op: &Arc<dyn Operation>,
-    output: Hash,
+    (output, len): (Hash, Option<u64>),
     lazy: bool,
     store: &Store,
 ) -> Load<Artifact> {
     if !lazy {
-        return store.load_object(output);
+        return store.load_object(output, len);
     }
     if !store.has_object(output) {
         return Load::Missing;
     }
-    let stored = Stored::new(store, output, &job.name, op.clone(), job.inputs.clone());
+    let stored = Stored::new(
+        store,
+        (output, len),
+        &job.name,
+        op.clone(),
+        job.inputs.clone(),
+    );
     Load::Hit(Artifact::stored(stored))
 }
 
@@ -240,7 +246,7 @@ fn resolve_op(
     corrupt: &mut Option<String>,
 ) -> Result<Produced, String> {
     let hit = match store.load_action(key) {
-        Load::Hit(rec) => match load_hit(job, op, rec.output, lazy, store) {
+        Load::Hit(rec) => match load_hit(job, op, (rec.output, rec.output_len), lazy, store) {
             Load::Hit(a) => Some(Produced {
                 artifact: a,
                 counts: rec.counts,
@@ -284,11 +290,7 @@ fn resolve_op(
         Ok(Err(e)) => return Err(e.message),
         Err(p) => return Err(format!("operation panicked: {}", panic_text(p.as_ref()))),
     };
-    let rec = ActionRecord {
-        output: out.artifact.hash(),
-        counts: out.counts.clone(),
-        notes: out.notes.clone(),
-    };
+    let rec = ActionRecord::of(&out.artifact, out.counts.clone(), out.notes.clone());
     let mut notes = out.notes;
     if let Err(e) = store
         .put_object(&out.artifact)
