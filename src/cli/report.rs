@@ -273,6 +273,7 @@ fn report_input<'a>(
         curves,
         patches,
         regions,
+        geology: model.as_ref().map(crate::plan::ops::geology_counts),
         wells,
         mesh,
         steps,

@@ -187,6 +187,18 @@ fn kind(k: SurfaceKind) -> &'static str {
 fn model_tables(h: &mut String, input: &ReportInput) {
     let m = &input.mesh;
     h.push_str("<section><h2>Model</h2>");
+    if let Some(g) = &input.geology {
+        let _ = write!(
+            h,
+            "<p>As its files draw it: {} corners, {} lines, {} surfaces, {} regions. The mesher cuts surfaces at creases and chart seams, and curves where those end: its {} curves and {} patches are listed below.</p>",
+            count(g.corners),
+            count(g.lines),
+            count(g.surfaces),
+            count(g.regions),
+            count(input.curves.len()),
+            count(input.patches.len())
+        );
+    }
     // Surfaces, with their FE triangles when the mesh has a group of that name.
     let _ = write!(h, "<h3>Surfaces ({})</h3>", input.surfaces.len());
     h.push_str("<table><tr><th class=\"l\">surface</th><th class=\"l\">kind</th><th>imported triangles</th><th>findings</th><th>FE triangles</th></tr>");

@@ -211,6 +211,9 @@ pub struct ReportInput<'a> {
     pub curves: Vec<CurveSummary>,
     pub patches: Vec<PatchSummary>,
     pub regions: Vec<RegionSummary>,
+    /// The model's corners, lines, surfaces and regions as its source files draw them, without
+    /// the mesher's cuts (`plan::ops::geology_counts`); none without a model.
+    pub geology: Option<crate::plan::ops::GeologyCounts>,
     /// The recipe's wells, in name order (none: the report has no wells section).
     pub wells: Vec<WellSummary>,
     /// The figures of the final tet mesh (with its tagged triangles and groups).
@@ -233,6 +236,7 @@ impl Default for ReportInput<'_> {
             curves: Vec::new(),
             patches: Vec::new(),
             regions: Vec::new(),
+            geology: None,
             wells: Vec::new(),
             mesh: MeshFacts::of(&VolumeMesh::default(), ""),
             steps: Vec::new(),
@@ -281,6 +285,7 @@ impl<'a> ReportInput<'a> {
                     volume: volume.get(i).copied().unwrap_or(f64::NAN),
                 })
                 .collect(),
+            geology: None,
             wells: facts
                 .lines
                 .iter()

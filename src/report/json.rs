@@ -106,6 +106,7 @@ pub fn render(input: &ReportInput, warnings: &[String], steps: &[StepSummary]) -
         "curves": curves,
         "patches": input.patches,
         "regions": regions,
+        "geology": input.geology,
         "mesh": {
             "regions": mesh_regions,
             "surface_groups": mesh_groups,

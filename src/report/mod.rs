@@ -214,6 +214,30 @@ mod tests {
     }
 
     #[test]
+    fn the_model_is_counted_as_its_files_draw_it_in_both_documents() {
+        let input = ReportInput {
+            model_name: "drawn",
+            geology: Some(crate::plan::ops::GeologyCounts {
+                corners: 52,
+                lines: 98,
+                surfaces: 55,
+                regions: 8,
+            }),
+            ..Default::default()
+        };
+        let (html, json) = render_both(&input);
+        assert!(
+            html.contains("As its files draw it: 52 corners, 98 lines, 55 surfaces, 8 regions."),
+            "{html}"
+        );
+        let doc: serde_json::Value = serde_json::from_str(&json).unwrap();
+        assert_eq!(doc["geology"]["lines"], 98);
+        let (html, json) = render_both(&ReportInput::default());
+        assert!(!html.contains("As its files draw it"));
+        assert!(json.contains("\"geology\": null") || json.contains("\"geology\":null"));
+    }
+
+    #[test]
     fn the_wells_section_has_a_row_per_well_and_its_markers_in_md_order() {
         let (html, _) = render_both(&with_wells());
         assert!(html.contains("<b>2</b>wells</div>"), "a summary card");

@@ -156,11 +156,17 @@ fn node<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_json::Value 
         .unwrap_or_else(|| panic!("no node `{name}`"))
 }
 
-/// Builds `file`, compares the region count with its REGION records and checks the msh.
-fn sealed_model_meshes_into_its_regions(file: &str) {
-    let Some((scratch, report, regions)) = build(file) else {
-        return;
-    };
+/// The model's corners, lines, surfaces and regions as a geomodeller counts them (the report's
+/// `geology`), from a build's JSON report.
+fn geology(report: &serde_json::Value) -> [u64; 4] {
+    let g = &report["model"]["geology"];
+    ["corners", "lines", "surfaces", "regions"].map(|k| g[k].as_u64().expect("a count"))
+}
+
+/// Builds `file`, compares the region count with its REGION records and checks the msh; returns
+/// the build's JSON report.
+fn sealed_model_meshes_into_its_regions(file: &str) -> Option<serde_json::Value> {
+    let (scratch, report, regions) = build(file)?;
     let model = node(&report, "model");
     assert_eq!(
         model["counts"]["regions"].as_u64(),
@@ -171,7 +177,9 @@ fn sealed_model_meshes_into_its_regions(file: &str) {
     assert_eq!(model["counts"]["trimmed_patches"].as_u64(), Some(0));
     let msh = scratch.path().join("out/sealed.msh");
     assert!(msh.is_file(), "{file}: no msh written");
-    let Some(check) = checker() else { return };
+    let Some(check) = checker() else {
+        return Some(report);
+    };
     let out = Command::new("python3")
         .arg(&check)
         .arg(&msh)
@@ -181,11 +189,17 @@ fn sealed_model_meshes_into_its_regions(file: &str) {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{file}: {text}");
     assert!(text.contains("\"fail\": []"), "{file}: {text}");
+    Some(report)
 }
 
 #[test]
-fn the_layer_cake_model_a1_meshes_into_its_four_regions_without_a_box() {
-    sealed_model_meshes_into_its_regions("modelA1.ml");
+fn the_layer_cake_model_a1_meshes_into_its_four_regions_and_counts_as_opengeode_reads_it() {
+    let Some(report) = sealed_model_meshes_into_its_regions("modelA1.ml") else {
+        return;
+    };
+    // Corners, lines, surfaces and blocks as OpenGeode-GeosciencesIO's first Model3d reader
+    // test asserted them (tests/geosciences/test-ml.cpp, September 2019).
+    assert_eq!(geology(&report), [20, 36, 21, 4]);
 }
 
 #[test]
@@ -196,15 +210,29 @@ fn the_split_cube_whose_box_tsurf_wraps_around_its_edges_meshes_into_two_regions
 }
 
 #[test]
-fn model_a2_with_its_folded_box_and_faults_meshes_into_its_twelve_regions() {
-    sealed_model_meshes_into_its_regions("modelA2.ml");
+fn model_a2_with_its_folded_box_and_faults_meshes_into_twelve_regions_counted_as_opengeode_does() {
+    let Some(report) = sealed_model_meshes_into_its_regions("modelA2.ml") else {
+        return;
+    };
+    // Its box is one TSurf of 25 TFACEs, creased at the box's edges, which are TFACE borders
+    // too: lines of the file, not crease cuts. As OpenGeode-GeosciencesIO's Model3d reader test
+    // asserted them (tests/geosciences/test-ml.cpp, September 2019).
+    assert_eq!(geology(&report), [52, 100, 61, 12]);
 }
 
 #[test]
 fn model_a4_whose_regions_leave_holes_the_front_sticks_in_meshes_into_its_eight_regions() {
     // Its horizons meet the faults in needle triangles: recovery leaves holes whose front gets
     // stuck by their walls until they are widened round the stuck place.
-    sealed_model_meshes_into_its_regions("modelA4.ml");
+    let Some(report) = sealed_model_meshes_into_its_regions("modelA4.ml") else {
+        return;
+    };
+    // One triangle of H3b is a patch of its own, cut out by creases: the file holds 55 TFACEs,
+    // and OpenGeode-GeosciencesIO's Model3d reader test (tests/model/test-ml.cpp) counts 52
+    // corners, 98 lines, 55 surfaces and 8 blocks, as RINGMesh does the same model.
+    assert_eq!(geology(&report), [52, 98, 55, 8]);
+    let model = &report["model"];
+    assert_eq!(model["patches"].as_array().map(Vec::len), Some(56));
 }
 
 #[test]
@@ -247,8 +275,12 @@ fn cloud_spin_fixed_meshes_every_patch_and_puts_each_failing_region_down_to_clos
     let Some(dir) = data_dir() else { return };
     let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
     let model = recipe_for(&bytes, "CloudSpin_fixed.ml");
-    let (_scratch, out) = build_in_scratch(&bytes, &model.recipe, &[]);
+    let (_scratch, out) = build_in_scratch(&bytes, &model.recipe, &["--json"]);
     let err = String::from_utf8_lossy(&out.stderr);
+    // Counted as RINGMesh's load test counted this file when it was added (its
+    // CloudSpin_fixed.ml.txt of 2018-01): charts and creases cut 132 patches out of 115 TFACEs.
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a JSON report");
+    assert_eq!(geology(&report), [138, 239, 115, 7]);
     let patch_failures: Vec<&str> = err
         .lines()
         .filter(|l| l.contains("error `surface_mesh:") || l.contains("error `patch:"))

@@ -127,6 +127,7 @@ fn input(m: &VolumeMesh) -> ReportInput<'static> {
                 volume: 1e6,
             },
         ],
+        geology: None,
         wells: Vec::new(),
         mesh: MeshFacts::of(m, "two <cubes>"),
         steps: vec![

@@ -27,6 +27,10 @@ pub struct ModelPatch {
     pub surface: String,
     pub kind: SurfaceKind,
     pub mesh: TriMesh,
+    /// The part (TFACE) of its surface its first triangle lies in, so that the model can be
+    /// counted as its source file draws it (`geology`).
+    #[serde(default)]
+    pub part: u32,
 }
 
 /// The output of `model`.
@@ -85,7 +89,8 @@ impl Operation for ModelOp {
         // 17: those sizes graded over every curve by distance.
         // 18: no chart keeps a lobe behind a sliver of a neck.
         // 19: no chart's border crosses itself on its plane where the charts can be mended.
-        19
+        // 20: each patch records the part (TFACE) it lies in.
+        20
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -181,6 +186,13 @@ impl Operation for ModelOp {
         let mut input: Vec<regions::PatchIn> = Vec::new();
         for ((i, p), _) in all.into_iter().zip(&outcome.keep).filter(|(_, k)| **k) {
             let whole = p.name.clone();
+            let part = p
+                .triangles
+                .first()
+                .and_then(|&t| split[i].parent.get(t as usize))
+                .and_then(|&o| surfaces[i].triangle_part.get(o as usize))
+                .copied()
+                .unwrap_or(0);
             let charts = charting[i].cut(p, &split[i]);
             let cut = charts.len() > 1;
             for c in charts {
@@ -195,6 +207,7 @@ impl Operation for ModelOp {
                     surface: surfaces[i].name.clone(),
                     kind: surfaces[i].kind,
                     mesh: c.mesh,
+                    part,
                 });
             }
         }
@@ -454,6 +467,7 @@ impl ModelData {
             "curves": curves,
             "patches": patches,
             "regions": regions,
+            "geology": super::geology::counts(self),
         })
     }
 }
