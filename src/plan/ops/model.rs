@@ -90,7 +90,8 @@ impl Operation for ModelOp {
         // 18: no chart keeps a lobe behind a sliver of a neck.
         // 19: no chart's border crosses itself on its plane where the charts can be mended.
         // 20: each patch records the part (TFACE) it lies in.
-        20
+        // 21: charts peeled from an overlap merge on past one that cannot.
+        21
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

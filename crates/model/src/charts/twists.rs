@@ -14,12 +14,16 @@
 //!   chart that no projection flattens one to one, and whose border crosses itself on its mean
 //!   plane, is changed; every chart that projects today keeps its triangles, so its mesh is the
 //!   same.
-//! - At the first crossing, the chart's triangle on one of the two crossing edges moves to the
-//!   chart across that edge, when the edge is a seam (a patch border is the model's own shape)
-//!   and the triangle faces within the chart angle of the receiving chart's mean normal. Of the
-//!   two, the triangle facing furthest from its own chart's mean goes: the steep triangles of a
-//!   doubled-back run are the ones that overlap. Repeating peels the overlapping run away
-//!   triangle by triangle.
+//! - At the first crossing, of the chart's triangles on the two crossing edges, the steepest
+//!   (facing furthest from its chart's mean) that a chart beside it takes moves there: it must
+//!   face within the chart angle of that chart's mean normal. The steep triangles of a
+//!   doubled-back run are the ones that overlap. When no chart beside them takes either, the
+//!   steepest starts a new chart. Repeating peels the overlapping run away triangle by triangle.
+//!   The crossing edges may be the patch's own border (the rim's creases): the triangles stay in
+//!   the patch, only in another chart.
+//! - Once every chart projects without a crossing, each new chart joins the chart beside it with
+//!   which it shares the most edges, where the union still projects one to one and faces within
+//!   the chart angle: the triangles peeled from one overlap end in one chart, not in many.
 //! - A triangle moves at most once, so two charts never trade it back and forth, and there are
 //!   at most `ROUNDS` rounds: a crossing that cannot be mended is left to the Tutte embedding,
 //!   as before. Charts are visited in label order and ties go to the lower triangle index, so
@@ -149,7 +153,7 @@ impl<'a> Untwisting<'a> {
         Some((t, self.mean.len() as u32 - 1))
     }
 
-    /// The chart of `members` whose triangle runs the border edge `[a, b]`.
+    /// The triangle of `members` that runs the border edge `[a, b]`.
     fn runs(&self, members: &[u32], [a, b]: [u32; 2]) -> Option<u32> {
         members.iter().copied().find(|&t| {
             let tri = self.mesh.triangles[t as usize];
@@ -170,26 +174,28 @@ impl<'a> Untwisting<'a> {
             .max_by(|&x, &y| facing(x).total_cmp(&facing(y)).then(y.cmp(&x)))
     }
 
-    /// Merges each chart made since `first_new` (the smallest first) into the chart beside it
-    /// with the longest shared border with which it still projects one to one and faces within
-    /// the chart angle, so the triangles peeled from one overlap end in one chart, not many.
+    /// Merges the charts made since `first_new`, the smallest first, each into the chart beside
+    /// it with the longest shared border with which it still projects one to one and faces
+    /// within the chart angle, until none can merge: the triangles peeled from one overlap end
+    /// in one chart, not many.
     fn gather(&mut self, first_new: usize) {
-        for _ in first_new..self.mean.len() {
+        loop {
             let mut members: Vec<Vec<u32>> = vec![Vec::new(); self.mean.len()];
             for (t, &g) in self.group.iter().enumerate() {
                 members[g as usize].push(t as u32);
             }
-            let merge = (first_new..members.len())
+            let mut order: Vec<usize> = (first_new..members.len())
                 .filter(|&g| !members[g].is_empty())
-                .min_by_key(|&g| (members[g].len(), g))
-                .and_then(|g| self.merge_target(&members, g).map(|h| (g, h)));
+                .collect();
+            order.sort_by_key(|&g| (members[g].len(), g));
+            let merge =
+                (order.into_iter()).find_map(|g| self.merge_target(&members, g).map(|h| (g, h)));
             let Some((g, h)) = merge else { return };
             for &t in &members[g] {
                 self.group[t as usize] = h;
             }
-            let sum = self.mean[g];
+            let sum = std::mem::take(&mut self.mean[g]);
             add(&mut self.mean[h as usize], &sum, 1.0);
-            self.mean[g] = [0.0; 3];
         }
     }
 
