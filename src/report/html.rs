@@ -190,7 +190,7 @@ fn model_tables(h: &mut String, input: &ReportInput) {
     if let Some(g) = &input.geology {
         let _ = write!(
             h,
-            "<p>As its files draw it: {} corners, {} lines, {} surfaces, {} regions. The mesher cuts surfaces at creases and chart seams, and curves where those end: its {} curves and {} patches are listed below.</p>",
+            "<p>As its files draw it: {} corners, {} lines, {} surfaces, {} regions. The mesher cuts surfaces at creases and chart seams, and curves where those end and at kinks: its {} curves and {} patches are listed below.</p>",
             count(g.corners),
             count(g.lines),
             count(g.surfaces),

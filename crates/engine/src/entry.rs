@@ -5,10 +5,10 @@
 //! every build, block forever while the cache lock is held, or never end. So the path is looked
 //! at without following links, only a regular file is opened, and the read is bounded by the
 //! size the open file has, and by the size its record gives ([`Size`]): a file of another size
-//! is damage found without reading it, however large it is. A wrong kind of file is removed, so that the entry can be written
-//! again (left in place when the cache is only read). An I/O error (too many open files, a
-//! failing disk) says nothing about the entry: it is told as such, never as damage, and the
-//! entry is left alone.
+//! is damage found without reading it, however large it is. A wrong kind of file is removed,
+//! so that the entry can be written again (left in place when the cache is only read). An I/O
+//! error (too many open files, a failing disk) says nothing about the entry: it is told as such,
+//! never as damage, and the entry is left alone.
 //!
 //! Between the look and the open nobody else writes: only builds holding the cache's lock write
 //! entries.

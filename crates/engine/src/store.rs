@@ -1,12 +1,13 @@
 //! The on-disk, content-addressed cache.
 //!
-//! Layout: `<cache>/objects/<hash>` holds artifact bytes, named by their blake3; `<cache>/actions/<key>`
-//! holds a small record (output hash and size, counts, notes) prefixed by the blake3 of its
-//! payload; the recorded size bounds the object's read, so a file of any other size in its place
-//! is corrupt before a byte of it is read. Every
-//! read re-hashes what it read, so a truncated, altered or half-written entry is reported as
-//! corrupt and never used (and anything but a regular file is not even read: see `entry`); every write goes to a temporary file in the same directory and is
-//! renamed into place, so readers see either the old entry or the whole new one.
+//! Layout: `<cache>/objects/<hash>` holds artifact bytes, named by their blake3;
+//! `<cache>/actions/<key>` holds a small record (output hash and size, counts, notes) prefixed by
+//! the blake3 of its payload; the recorded size bounds the object's read, so a file of any other
+//! size in its place is corrupt before a byte of it is read. Every read re-hashes what it read,
+//! so a truncated, altered or half-written entry is reported as corrupt and never used (and
+//! anything but a regular file is not even read: see `entry`); every write goes to a temporary
+//! file in the same directory and is renamed into place, so readers see either the old entry or
+//! the whole new one.
 
 use crate::artifact::{Artifact, Hash};
 use crate::entry;

@@ -3,18 +3,19 @@
 //! mesher needs.
 //!
 //! The model cuts more than the geology does: a crease sharper than the crease angle and the
-//! seams between charts are curves of one surface that split one TFACE into several patches,
-//! and where such a curve ends on another, that curve is split in two. Counting them would tell
-//! a user comparing with their modeller of entities the file does not hold.
+//! seams between charts are curves of one surface that split one TFACE into several patches;
+//! where such a curve ends on another, and at a kink, that curve is split in two. Counting
+//! them would tell a user comparing with their modeller of entities the file does not hold.
 //!
 //! Decisions and why:
 //! - Two patches are one surface when a curve of their one surface is all that parts them and
 //!   both lie in the same part (TFACE): a crease or seam. A curve parting two TFACEs of one TSurf
 //!   (a box folded round its edges, one TFACE per side) is a line of the file, and stays one.
 //! - The other curves are lines. Where exactly two of them end at a vertex, bounding the same
-//!   surfaces (counted as above), the vertex is there only because a crease or seam ended on
-//!   them: the two are one line, and the vertex is no corner. A line that closes on itself that
-//!   way keeps one corner, as the modellers count a closed line.
+//!   surfaces (counted as above), the vertex is there only because the mesher cut a line (a
+//!   crease or seam ending on it, a kink sharper than the kink angle): the two are one line,
+//!   and the vertex is no corner. A line that closes on itself that way keeps one corner, as
+//!   the modellers count a closed line.
 //! - Vertices are the curves' end points, matched by exact coordinates, as the topology made
 //!   them.
 
