@@ -472,4 +472,27 @@ mod tests {
         assert!(!injective(&s, &[vec![0, 1, 2, 3, 0, 6, 7]], &uv));
         assert!(injective(&s, &[vec![0, 1, 2, 3]], &uv));
     }
+
+    fn ramp(turn_deg: f64) -> TriMesh {
+        let (v, t) = test_support::shapes::ramp(turn_deg, 5.0);
+        TriMesh::new(v, t)
+    }
+
+    #[test]
+    fn a_ramp_winding_past_a_full_turn_conflicts_on_its_plane_and_one_short_of_it_projects() {
+        let over = ramp(400.0);
+        assert!(!projects_one_to_one(&over));
+        let [a, b] = projected_border_conflict(&over).expect("a crossing");
+        // Both edges are border edges of the ribbon, as its triangles run them.
+        for [p, q] in [a, b] {
+            assert!(
+                over.triangles
+                    .iter()
+                    .any(|t| (0..3).any(|k| t[k] == p && t[(k + 1) % 3] == q))
+            );
+        }
+        let short = ramp(300.0);
+        assert!(projects_one_to_one(&short));
+        assert_eq!(projected_border_conflict(&short), None);
+    }
 }

@@ -1,4 +1,4 @@
-//! Small closed shapes for the tests of every crate.
+//! Small shapes for the tests of every crate.
 
 /// The box `[lo, hi]` as eight corners (corner `i` takes `hi` on axis `k` where bit `k` of `i` is
 /// set) and twelve triangles, two per side, with normals pointing out of the box.
@@ -95,4 +95,25 @@ pub fn octahedron_ball(centre: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
     nodes.push(centre);
     let tets = faces.iter().map(|&[a, b, c]| [b, a, c, 6]).collect();
     (nodes, tets)
+}
+
+/// A ramp: a ribbon between radii 4 and 5 that winds `turn_deg` round the z axis in steps of
+/// `step_deg`, rising 0.5 per turn, its triangles facing up. Past a full turn its border crosses
+/// itself in map view.
+pub fn ramp(turn_deg: f64, step_deg: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let segs = (turn_deg / step_deg).round() as u32;
+    let mut vertices = Vec::new();
+    for i in 0..=segs {
+        let a = (step_deg * i as f64).to_radians();
+        let z = 0.5 * a / std::f64::consts::TAU;
+        vertices.push([4.0 * a.cos(), 4.0 * a.sin(), z]);
+        vertices.push([5.0 * a.cos(), 5.0 * a.sin(), z]);
+    }
+    let triangles = (0..segs)
+        .flat_map(|i| {
+            let (inner, outer) = (2 * i, 2 * i + 1);
+            [[inner, outer, outer + 2], [inner, outer + 2, inner + 2]]
+        })
+        .collect();
+    (vertices, triangles)
 }

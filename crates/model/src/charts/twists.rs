@@ -292,22 +292,9 @@ fn cosine(n: &[f64; 3], mean: &[f64; 3]) -> f64 {
 mod tests {
     use super::*;
 
-    /// A ramp: a ribbon between radii 4 and 5 that winds `turn_deg` round the z axis in `segs`
-    /// steps, rising 0.5 per turn, its triangles facing up.
+    /// A ramp of `turn_deg` in `segs` steps (`test_support::shapes::ramp`).
     fn ramp(turn_deg: f64, segs: usize) -> TriMesh {
-        let mut v = Vec::new();
-        for i in 0..=segs {
-            let a = turn_deg.to_radians() * i as f64 / segs as f64;
-            let z = 0.5 * a / std::f64::consts::TAU;
-            v.push([4.0 * a.cos(), 4.0 * a.sin(), z]);
-            v.push([5.0 * a.cos(), 5.0 * a.sin(), z]);
-        }
-        let t = (0..segs as u32)
-            .flat_map(|i| {
-                let (inner, outer) = (2 * i, 2 * i + 1);
-                [[inner, outer, outer + 2], [inner, outer + 2, inner + 2]]
-            })
-            .collect();
+        let (v, t) = test_support::shapes::ramp(turn_deg, turn_deg / segs as f64);
         TriMesh::new(v, t)
     }
 
