@@ -45,6 +45,7 @@ pub mod thickness;
 pub mod topology;
 pub mod touches;
 pub mod trims;
+pub mod union_find;
 pub mod wells;
 
 pub use assemble::{

@@ -20,6 +20,7 @@
 //!   them.
 
 use super::ModelData;
+use model::union_find::UnionFind;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -35,18 +36,18 @@ pub struct Counts {
 /// Counts `model`'s entities as a geomodeller does (see the module doc).
 pub fn counts(model: &ModelData) -> Counts {
     let curves = &model.topology.curves;
-    let mut surface = Sets::new(model.patches.len());
+    let mut surface = UnionFind::new(model.patches.len());
     let mut internal = vec![false; curves.len()];
     for (k, c) in curves.iter().enumerate() {
         if let ([_], &[a, b]) = (c.surfaces.as_slice(), c.patches.as_slice()) {
             let (pa, pb) = (&model.patches[a as usize], &model.patches[b as usize]);
             if pa.surface == pb.surface && pa.part == pb.part {
-                surface.join(a as usize, b as usize);
+                surface.union(a as usize, b as usize);
                 internal[k] = true;
             }
         }
     }
-    let of_patch: Vec<usize> = (0..model.patches.len()).map(|p| surface.root(p)).collect();
+    let of_patch: Vec<usize> = (0..model.patches.len()).map(|p| surface.find(p)).collect();
     let bounds = |k: usize| {
         let mut s: Vec<usize> = (curves[k].patches.iter())
             .map(|&p| of_patch[p as usize])
@@ -61,12 +62,12 @@ pub fn counts(model: &ModelData) -> Counts {
             ends.entry(p.map(f64::to_bits)).or_default().push(k);
         }
     }
-    let mut line = Sets::new(curves.len());
+    let mut line = UnionFind::new(curves.len());
     let mut cornered = vec![false; curves.len()];
     let mut corners = 0;
     for at in ends.values() {
         match at.as_slice() {
-            &[a, b] if a != b && bounds(a) == bounds(b) => line.join(a, b),
+            &[a, b] if a != b && bounds(a) == bounds(b) => line.union(a, b),
             _ => {
                 corners += 1;
                 for &k in at {
@@ -78,9 +79,9 @@ pub fn counts(model: &ModelData) -> Counts {
     let mut lines = 0;
     let mut has_corner = vec![false; curves.len()];
     for k in (0..curves.len()).filter(|&k| !internal[k]) {
-        has_corner[line.root(k)] |= cornered[k];
+        has_corner[line.find(k)] |= cornered[k];
     }
-    for k in (0..curves.len()).filter(|&k| !internal[k] && line.root(k) == k) {
+    for k in (0..curves.len()).filter(|&k| !internal[k] && line.find(k) == k) {
         lines += 1;
         if !has_corner[k] {
             corners += 1;
@@ -93,27 +94,5 @@ pub fn counts(model: &ModelData) -> Counts {
             .filter(|&p| of_patch[p] == p)
             .count(),
         regions: model.regions.regions.len(),
-    }
-}
-
-/// Disjoint sets over `0..n`, each named by its smallest member.
-struct Sets(Vec<usize>);
-
-impl Sets {
-    fn new(n: usize) -> Self {
-        Sets((0..n).collect())
-    }
-
-    fn root(&mut self, mut x: usize) -> usize {
-        while self.0[x] != x {
-            self.0[x] = self.0[self.0[x]];
-            x = self.0[x];
-        }
-        x
-    }
-
-    fn join(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.root(a), self.root(b));
-        self.0[ra.max(rb)] = ra.min(rb);
     }
 }

@@ -19,33 +19,8 @@ pub(super) fn fu(t: usize, front: bool) -> usize {
     2 * t + usize::from(!front)
 }
 
-/// Union-find over face-uses (iterative, path halving).
-pub(super) struct UnionFind {
-    parent: Vec<u32>,
-}
-
-impl UnionFind {
-    pub fn new(n: usize) -> Self {
-        UnionFind {
-            parent: (0..n as u32).collect(),
-        }
-    }
-    pub fn find(&mut self, mut x: usize) -> usize {
-        while self.parent[x] as usize != x {
-            let gp = self.parent[self.parent[x] as usize];
-            self.parent[x] = gp;
-            x = gp as usize;
-        }
-        x
-    }
-    pub fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-            self.parent[hi] = lo as u32;
-        }
-    }
-}
+/// Union-find over face-uses.
+pub(super) use crate::union_find::UnionFind;
 
 pub(super) struct Links {
     pub uf: UnionFind,
