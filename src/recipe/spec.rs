@@ -325,6 +325,10 @@ pub struct MeshSpec {
     /// `[[mesh.refine]]`, in recipe order.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub refine: Vec<RefineSpec>,
+    /// `refine_close_curves` (default false): refine where the model's curves come closer than
+    /// their mesh can resolve, rather than only warn.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub refine_close_curves: bool,
     #[serde(skip)]
     pub span: Span,
 }

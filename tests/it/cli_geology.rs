@@ -177,6 +177,41 @@ fn every_case_of_the_corpus_has_a_test() {
 }
 
 #[test]
+fn refining_close_curves_lifts_the_salt_overhang_from_under_a_degree_to_over_five() {
+    // The overhang's rim runs metres beside its contact with H1, and a curve ends 0.49 m from
+    // another there: at the case's sizes tets between them reach 0.9°.
+    let case = known_gaps()
+        .into_iter()
+        .find(|c| c.name == "salt_overhang")
+        .expect("the case");
+    let case = Case {
+        recipe: case
+            .recipe
+            .replacen("[mesh]\n", "[mesh]\nrefine_close_curves = true\n", 1),
+        ..case
+    };
+    assert!(case.recipe.contains("refine_close_curves"));
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let out = build_quietly(dir.path(), &case.write(dir.path()));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    passes_the_checker(dir.path(), &case);
+    // Below the corpus's 8° still: the worst tets lie where the overhang's lip runs a few metres
+    // over H1, and elements of one gap instead of two left them as they were.
+    let worst = below_the_bars(dir.path(), &case)
+        .iter()
+        .map(|row| {
+            let r: serde_json::Value = serde_json::from_str(row).expect("a row");
+            r["min_dihedral_deg"].as_f64().expect("an angle")
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!((5.0..8.0).contains(&worst), "{worst}°");
+}
+
+#[test]
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
     // These mesh now, below the bars: the salt gaps since a front's last gaps are closed by the
     // Delaunay method, the lenses since no chart's border overlaps itself in map view.

@@ -746,6 +746,20 @@ fn layers_are_read_per_region_and_globally_and_a_count_out_of_range_is_named() {
 }
 
 #[test]
+fn refining_close_curves_is_off_unless_written_and_only_a_boolean_turns_it_on() {
+    assert!(!ok(BASE).mesh.refine_close_curves);
+    let on = BASE.replace("size = 1.0", "size = 1.0\nrefine_close_curves = true");
+    assert!(ok(&on).mesh.refine_close_curves);
+    let text = BASE.replace("size = 1.0", "size = 1.0\nrefine_close_curves = \"yes\"");
+    let (d, rendered) = single_at(&text, "\"yes\"", 0);
+    assert!(
+        d.message
+            .contains("`mesh.refine_close_curves` must be `true` or `false`"),
+        "{rendered}"
+    );
+}
+
+#[test]
 fn a_refinement_names_exactly_one_feature_and_grows_to_a_larger_size() {
     let r = ok(&format!(
         "{BASE}[[mesh.refine]]\nsurface = \"f1\"\nsize = 0.2\ndistance = 2.0\n"

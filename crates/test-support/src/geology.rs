@@ -64,7 +64,8 @@ pub fn cases() -> Vec<Case> {
 /// they can be reproduced and moved into [`cases`] once they do. Each fails naming the place and
 /// the input line nearest it, or meshes validly below the bars:
 /// - `salt_overhang`: meshes, but the salt's surface mesh holds needles on the overhang (an
-///   edge of 0.56 m beside 98 m near (1249, 2426, -658)), and tets there reach 0.9°.
+///   edge of 0.56 m beside 98 m near (1249, 2426, -658)), and tets there reach 0.9° (6.0° with
+///   `refine_close_curves`, at four times the tets).
 /// - `fault_through_salt`: meshes (the western half of the salt only once the front closes by
 ///   the Delaunay method: its recovery holes have walls at 2° to the curved boundary), but the
 ///   salt wall's surface mesh holds a triangle of c/c* 12 (216 m beside 77 m) and the regions

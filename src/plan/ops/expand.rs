@@ -6,10 +6,12 @@
 //! well cuts when there are wells, for the named points where they cross the surfaces) and
 //! `export`. Sizes come from `sizes`
 //! (a patch at the finest of its surface's and its regions' sizes, a curve at its patches'), and
-//! each `refine:<k>` feature is an extra input of exactly the curves, patches and regions within
-//! its reach. Editing one curve's subdivision therefore re-runs that curve, the patches it
+//! each `refine:<k>` feature, and each `close_curves:<k>` refinement where the model's curves
+//! come closer than their mesh can resolve, is an extra input of exactly the curves, patches and
+//! regions within its reach. Editing one curve's subdivision therefore re-runs that curve, the patches it
 //! bounds, the regions those bound, `mesh` and `export`, and nothing else.
 
+use super::close_refine::{self, CloseCurvesOp};
 use super::curves::{CurveSizing, add_curve_nodes, graph_error};
 use super::patch::WellReach;
 use super::refine;
@@ -125,8 +127,9 @@ impl Expander for ModelExpander {
         let region_sizes = sizes::region_sizes(&self.recipe, &model);
         let patch_sizes = sizes::patch_sizes(&self.recipe, &model, &region_sizes);
         let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
-        let placed = refine::place(&self.recipe, &model, x);
         let surface_slope = self.recipe.mesh.growth.min(MAX_SURFACE_GROWTH) - 1.0;
+        let mut placed = refine::place(&self.recipe, &model, x);
+        placed.extend(add_close_curves(x, &self.recipe, &model, surface_slope)?);
         let cuts = self.add_well_cuts(x, model_node)?;
         let pins = if cuts.is_empty() {
             None
@@ -290,6 +293,32 @@ impl Expander for ModelExpander {
             .map_err(graph_error)?;
         Ok(())
     }
+}
+
+/// A `close_curves:<k>` node for each refinement where the model's curves come close.
+fn add_close_curves(
+    x: &mut Expansion,
+    recipe: &Recipe,
+    model: &ModelData,
+    slope: f64,
+) -> Result<Vec<refine::Placed>, OpError> {
+    let mut out = Vec::new();
+    for (k, refinement) in close_refine::close_refinements(recipe, model, slope)
+        .into_iter()
+        .enumerate()
+    {
+        let name = format!("close_curves:{}", k + 1);
+        let node = (x.add_op(
+            &name,
+            Arc::new(CloseCurvesOp {
+                refinement: refinement.clone(),
+            }),
+            &[],
+        ))
+        .map_err(graph_error)?;
+        out.extend(refine::Placed::known(node, &refinement));
+    }
+    Ok(out)
 }
 
 /// The fewest segments each curve needs so that every patch loop has at least three nodes: two

@@ -2,6 +2,7 @@
 //! pure stage functions, plus the artifact types they exchange. Each operation declares exactly
 //! the parameters it reads; its `version` is bumped whenever its output for the same inputs changes.
 
+mod close_refine;
 mod conformity;
 mod crossings;
 mod curves;
@@ -20,6 +21,7 @@ mod region;
 mod sizes;
 mod support;
 mod wells;
+pub use close_refine::{CloseCurvesOp, refined_size};
 pub use conformity::non_conformity_warnings;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
 pub use geology::{Counts as GeologyCounts, counts as geology_counts};

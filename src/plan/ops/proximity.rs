@@ -2,8 +2,9 @@
 //! of one fault whose free edges run a few metres apart, a curve folding back on itself, two
 //! curves meeting at a sliver of an angle. The tets between such curves span a gap far thinner
 //! than their edges and come out flat, whatever the mesher does; the build says where, so the
-//! user can refine there or mend the data. When a surface or tet mesh then fails within the
-//! curves' mesh size of such a place, the build puts the failure down to it.
+//! user can refine there or mend the data (or says that it refined there, when the recipe asks
+//! it to: `close_refine`). When a surface or tet mesh then fails within the curves' mesh size of
+//! such a place, the build puts the failure down to it.
 //!
 //! Two points of the curves are *close* when they are nearer than [`FRACTION`] of the finer of
 //! the two curves' mesh sizes, and *unexplained* when nothing in the model's layout makes them
@@ -39,12 +40,13 @@ struct Segment {
 }
 
 /// An unexplained approach of two curves: how near, the midpoint of the two nearest points,
-/// and the finer of the two curves' mesh sizes.
+/// the finer of the two curves' mesh sizes, and the two segments that approach.
 #[derive(Clone, Debug)]
-struct Approach {
-    distance: f64,
-    at: [f64; 3],
-    size: f64,
+pub(super) struct Approach {
+    pub distance: f64,
+    pub at: [f64; 3],
+    pub size: f64,
+    pub segments: [[[f64; 3]; 2]; 2],
 }
 
 /// One sentence per place where curves come unexplainedly close, closest first, at most
@@ -62,7 +64,7 @@ pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
     pairs.sort_by(|x, y| x.1.distance.total_cmp(&y.1.distance).then(x.0.cmp(&y.0)));
     let sites = sites(pairs);
     let mut out: Vec<String> = (sites.iter().take(MAX_NAMED))
-        .map(|site| sentence(model, site))
+        .map(|site| sentence(recipe, model, site))
         .collect();
     if sites.len() > MAX_NAMED {
         out.push(format!(
@@ -84,12 +86,13 @@ pub fn close_curves_near(
 ) -> Vec<Option<String>> {
     let found = approaches(recipe, model);
     (places.iter())
-        .map(|&at| cause_sentence(model, &found, at))
+        .map(|&at| cause_sentence(recipe, model, &found, at))
         .collect()
 }
 
 /// The sentence for a failure at `at`, from the model's approaches `found`.
 fn cause_sentence(
+    recipe: &Recipe,
     model: &ModelData,
     found: &[(usize, usize, Approach)],
     at: [f64; 3],
@@ -113,12 +116,40 @@ fn cause_sentence(
     let [x, y, z] = a.at.map(|v| format!("{v:.1}"));
     Some(format!(
         "{} from ({x}, {y}, {z}), where {which}, under a tenth of their mesh size {}: the \
-         likely cause; mend the surfaces there in the data (join or part them), or refine along \
-         them (`[[mesh.refine]]` with `curve = \"{}\"` and a `size` a few times the gap)",
+         likely cause; {}",
         short(from),
         short(a.size),
-        curves[c].name,
+        remedy(recipe, &curves[c].name, a.distance),
     ))
+}
+
+/// What the user can do about curves `gap` apart, one of them `curve`: what the build did when
+/// it refines close curves, else how to make it.
+fn remedy(recipe: &Recipe, curve: &str, gap: f64) -> String {
+    let min_size = recipe.mesh.min_size;
+    let wanted = super::close_refine::refined_size(gap, 0.0);
+    if !recipe.mesh.refine_close_curves {
+        format!(
+            "mend the surfaces there in the data (join or part them), or refine there: \
+             `refine_close_curves = true` in `[mesh]` (elements of {} where the gap is smallest; \
+             finer and slower, the more so the longer the curves run close), or \
+             `[[mesh.refine]]` with `curve = \"{curve}\"` and a `size` a few times the gap",
+            short(wanted.max(min_size))
+        )
+    } else if wanted < min_size {
+        format!(
+            "refined there to `min_size` {}, coarser than the {} the gap asks for: lower \
+             `min_size` in `[mesh]` to resolve it, or mend the surfaces there in the data",
+            short(min_size),
+            short(wanted)
+        )
+    } else {
+        format!(
+            "refined there to {} (`refine_close_curves`); if the gap is a mistake, mend the \
+             surfaces there in the data (join or part them)",
+            short(wanted)
+        )
+    }
 }
 
 /// The approach nearest to `at` among those within their mesh size of it, and how far it is
@@ -139,7 +170,7 @@ fn nearest_within_size(
 }
 
 /// Every unexplained approach of two segments, with its two curves (lower first).
-fn approaches(recipe: &Recipe, model: &ModelData) -> Vec<(usize, usize, Approach)> {
+pub(super) fn approaches(recipe: &Recipe, model: &ModelData) -> Vec<(usize, usize, Approach)> {
     let topo = &model.topology;
     let regions = sizes::region_sizes(recipe, model);
     let patches = sizes::patch_sizes(recipe, model, &regions);
@@ -229,7 +260,7 @@ fn sites(pairs: Vec<((usize, usize), Approach)>) -> Vec<Site> {
     out
 }
 
-fn sentence(model: &ModelData, site: &Site) -> String {
+fn sentence(recipe: &Recipe, model: &ModelData, site: &Site) -> String {
     let curves = &model.topology.curves;
     let mut names: Vec<String> = (site.curves.iter().take(NAMES_PER_PLACE))
         .map(|&c| format!("`{}`", curves[c].name))
@@ -255,13 +286,16 @@ fn sentence(model: &ModelData, site: &Site) -> String {
         })
         .collect();
     let first = &curves[site.curves[0]].name;
+    let flat = if recipe.mesh.refine_close_curves {
+        ""
+    } else {
+        " the elements between them will be flat;"
+    };
     format!(
-        "{which} near {}, under a tenth of their mesh size {}: the elements \
-         between them will be flat; mend the surfaces there in the data (join or part them), or \
-         refine along them (`[[mesh.refine]]` with `curve = \"{first}\"` and a `size` a few \
-         times the gap; fine and slow when the gap is long)",
+        "{which} near {}, under a tenth of their mesh size {}:{flat} {}",
         places.join(", "),
         short(site.first.size),
+        remedy(recipe, first, site.first.distance),
     )
 }
 
@@ -318,11 +352,15 @@ fn approach(model: &ModelData, size: &[f64], s: &Segment, t: &Segment) -> Option
         distance: d,
         at: [0, 1, 2].map(|k| (p[k] + q[k]) / 2.0),
         size: size[s.curve].min(size[t.curve]),
+        segments: [s.ends, t.ends],
     })
 }
 
 /// The closest points of segments `ab` and `cd`, and their parameters along each.
-fn closest_points(s: &[[f64; 3]; 2], t: &[[f64; 3]; 2]) -> ([f64; 3], [f64; 3], f64, f64) {
+pub(super) fn closest_points(
+    s: &[[f64; 3]; 2],
+    t: &[[f64; 3]; 2],
+) -> ([f64; 3], [f64; 3], f64, f64) {
     let (a, b, c, d) = (s[0], s[1], t[0], t[1]);
     let d1 = sub(&b, &a);
     let d2 = sub(&d, &c);
@@ -371,7 +409,12 @@ mod tests {
 
     #[test]
     fn a_failure_is_put_down_to_the_nearest_approach_within_its_mesh_size() {
-        let near = |distance: f64, at: [f64; 3], size: f64| Approach { distance, at, size };
+        let near = |distance: f64, at: [f64; 3], size: f64| Approach {
+            distance,
+            at,
+            size,
+            segments: [[at; 2]; 2],
+        };
         let found = vec![
             (0, 1, near(0.1, [0.0, 0.0, 0.0], 100.0)),
             (2, 3, near(0.5, [50.0, 0.0, 0.0], 100.0)),

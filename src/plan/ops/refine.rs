@@ -180,6 +180,18 @@ pub struct Placed {
     slope: f64,
 }
 
+impl Placed {
+    /// `refinement`, the output of `node`, known before the build runs it.
+    pub fn known(node: engine::NodeId, refinement: &Refinement) -> Option<Placed> {
+        Some(Placed {
+            node,
+            bounds: refinement.bounds(0.0)?,
+            size: refinement.size,
+            slope: refinement.slope,
+        })
+    }
+}
+
 /// The recipe's refinements that name something in `model`, with their nodes in `x`.
 pub fn place(recipe: &Recipe, model: &ModelData, x: &engine::Expansion) -> Vec<Placed> {
     (0..recipe.mesh.refine.len())

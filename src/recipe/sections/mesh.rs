@@ -3,7 +3,9 @@
 //! method (global, overridable per region). Decides the defaults (`min_size = size/100`,
 //! `max_size = size*10`, `growth = 1.3`, curve `ratio = 1`, `grading = "geometric"`,
 //! `tet_method = "delaunay"`), that bounds are ordered, and that every selector side names a
-//! known surface and every region key a `[regions]` name. Rules keep their recipe order, which
+//! known surface and every region key a `[regions]` name. Curves closer than their mesh can
+//! resolve are refined only when `refine_close_curves = true`: that is finer and slower, and
+//! where the gap is a wedge of the model's own it buys little. Rules keep their recipe order, which
 //! breaks precedence ties (see `MeshSpec::curve_rule`).
 
 use std::collections::BTreeMap;
@@ -26,6 +28,7 @@ const KEYS: &[&str] = &[
     "tet_method",
     "min_layers",
     "refine",
+    "refine_close_curves",
     "curves",
     "surfaces",
     "regions",
@@ -166,6 +169,10 @@ pub(crate) fn read(
         .map(|s| surface_rules(ctx, s, names))
         .unwrap_or_default();
     let min_layers = layers(ctx, t, "mesh", "min_layers");
+    let refine_close_curves = match t.get("refine_close_curves") {
+        Some(v) => rd::boolean(ctx, v, "mesh.refine_close_curves"),
+        None => Some(false),
+    };
     let global = global?;
     let refine = t
         .get("refine")
@@ -186,6 +193,7 @@ pub(crate) fn read(
         surfaces,
         regions: region_sizes,
         refine,
+        refine_close_curves: refine_close_curves?,
         span: ctx.span(v.span()),
     })
 }
