@@ -37,6 +37,8 @@ pub fn trim_action(a: &recipe::TrimAction) -> trims::TrimAction {
     let side = |s: recipe::Side| match s {
         recipe::Side::Above => trims::Side::Above,
         recipe::Side::Below => trims::Side::Below,
+        recipe::Side::Inside => trims::Side::Inside,
+        recipe::Side::Outside => trims::Side::Outside,
     };
     match a {
         recipe::TrimAction::Keep { side: s, of } => trims::TrimAction::Keep {

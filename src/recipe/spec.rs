@@ -170,12 +170,15 @@ pub enum Side {
     /// Larger z (towards the surface's upward side).
     Above,
     Below,
+    /// Enclosed by the surface, which must be closed (a salt body, an intrusion).
+    Inside,
+    Outside,
 }
 
 /// What a `[[trim]]` does to the patches of the selected surfaces.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum TrimAction {
-    /// `keep = { above|below = of }`: keep the patches on `side` of surface `of`.
+    /// `keep = { above|below|inside|outside = of }`: keep the patches on `side` of surface `of`.
     Keep { side: Side, of: String },
     /// `discard = { containing = p }`.
     DiscardContaining([f64; 3]),

@@ -211,11 +211,70 @@ fn refining_close_curves_lifts_the_salt_overhang_from_under_a_degree_to_over_fiv
     assert!((5.0..8.0).contains(&worst), "{worst}°");
 }
 
+/// Builds `case` with its recipe's trims replaced by `trims`; returns the scratch folder and the
+/// build's JSON report, after checking the mesh with `regions` regions.
+fn build_with_trims(case: &Case, trims: &str, regions: usize) -> serde_json::Value {
+    let at = case.recipe.find("[[trim]]").expect("the case trims");
+    let end = case.recipe[at..]
+        .find("\n\n")
+        .map_or(case.recipe.len(), |e| at + e + 2);
+    let case = Case {
+        name: case.name,
+        recipe: format!("{}{trims}{}", &case.recipe[..at], &case.recipe[end..]),
+        files: case.files.clone(),
+        regions,
+        min_dihedral: case.min_dihedral,
+    };
+    let (dir, report) = build(&case);
+    passes_the_checker(dir.path(), &case);
+    report
+}
+
+/// The names of the regions the model found, from a build's JSON report.
+fn region_names(report: &serde_json::Value) -> Vec<String> {
+    let regions = report["model"]["regions"].as_array().expect("regions");
+    let mut names: Vec<String> = (regions.iter())
+        .map(|r| r["name"].as_str().expect("a name").to_string())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn an_intrusion_keeps_the_overlap_of_two_bodies_whichever_is_kept_outside_the_other() {
+    let case = known_gaps()
+        .into_iter()
+        .find(|c| c.name == "intrusion_cutting_a_body")
+        .expect("the case");
+    // The regions the bodies bound (the other two are the layers above and below H).
+    let bodies = |report: serde_json::Value| -> Vec<String> {
+        let names = region_names(&report);
+        names.into_iter().filter(|n| !n.starts_with("H+")).collect()
+    };
+    let outside = |a: &str, b: &str| {
+        format!("[[trim]]\nsurface = \"{a}\"\nkeep = {{ outside = \"{b}\" }}\n\n")
+    };
+    // As written, A outside B: the overlap is B's, and what is left of A is bounded by both.
+    let a_cut = build_with_trims(&case, &outside("A", "B"), 4);
+    assert_eq!(bodies(a_cut), ["A+B", "B"]);
+    // Both ways: B outside A leaves A whole.
+    let b_cut = build_with_trims(&case, &outside("B", "A"), 4);
+    assert_eq!(bodies(b_cut), ["A", "A+B"]);
+    // Untrimmed, the overlap is a third region between the two.
+    let both = build_with_trims(&case, "", 5);
+    assert_eq!(bodies(both), ["A+B#1", "A+B#2", "A+B#3"]);
+}
+
 #[test]
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
     // These mesh now, below the bars: the salt gaps since a front's last gaps are closed by the
     // Delaunay method, the lenses since no chart's border overlaps itself in map view.
-    let meshing = ["salt_overhang", "two_lenses", "fault_through_salt"];
+    let meshing = [
+        "salt_overhang",
+        "two_lenses",
+        "fault_through_salt",
+        "intrusion_cutting_a_body",
+    ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
         let recipe = case.write(dir.path());

@@ -119,3 +119,70 @@ fn a_file_whose_tsurf_objects_share_a_name_imports_by_position_and_the_name_says
     assert_eq!(import["counts"]["triangles"], 46);
     assert_eq!(import["counts"]["parts"], 3);
 }
+
+#[test]
+fn the_tkc_kimberlite_pipes_under_till_and_topography_mesh_into_their_regions() {
+    // A GOCAD model of the Tli Kwi Cho kimberlites (Astic 2020): topography and the till's base
+    // as 13 km grids (their no-data vertices, at z = -99999 and -3.3e6, lie on the grids' edges,
+    // outside this box), and two closed pipes that reach up into the till, where the till's base
+    // truncates them. The other three bodies touch each other over areas (within centimetres),
+    // which the model cannot part yet.
+    let Some(shared) = paths::shared("data/gocad/simpeg-research__Astic-2020-JointInversion")
+    else {
+        return;
+    };
+    let s = Scratch::didactic();
+    let d = shared.join("Geology_Surfaces");
+    let d = d.display();
+    let recipe = format!(
+        r#"
+[model]
+name = "tkc"
+
+[surfaces]
+topo = {{ file = "{d}/CDED_Lake_Coarse.ts", kind = "horizon" }}
+till = {{ file = "{d}/Till.ts", kind = "horizon" }}
+PK2 = {{ file = "{d}/PK2.ts" }}
+PK3 = {{ file = "{d}/PK3.ts" }}
+
+[box]
+min = [556900.0, 7133200.0, -200.0]
+max = [557800.0, 7134300.0, 500.0]
+
+[intersect]
+all = ["box", "topo", "till", "PK2", "PK3"]
+
+[[trim]]
+surface = "PK*"
+keep = {{ below = "till" }}
+
+[mesh]
+size = 50.0
+
+[output]
+dir = "out/tkc"
+"#
+    );
+    std::fs::write(s.path("tkc.toml"), recipe).unwrap();
+    let out = s.recipe_cmd(&["build", "--json", "tkc.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The air, the till, the rock below it, and each pipe below the till.
+    let regions: Vec<&str> = (r["model"]["regions"].as_array().expect("regions").iter())
+        .map(|g| g["name"].as_str().expect("a name"))
+        .collect();
+    assert_eq!(regions.len(), 5, "{regions:?}");
+    for pipe in ["PK2+till", "PK3+till"] {
+        assert!(regions.contains(&pipe), "{regions:?}");
+    }
+    let Some(check) = checker() else { return };
+    let out = std::process::Command::new("python3")
+        .arg(&check)
+        .arg(s.path("out/tkc/tkc.msh"))
+        .args(["--regions", "5"])
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("\"fail\": []"), "{text}");
+}

@@ -599,6 +599,29 @@ fn a_misspelled_trim_condition_gets_only_its_did_you_mean() {
 }
 
 #[test]
+fn a_trim_keeps_inside_or_outside_a_named_surface_and_a_misspelling_gets_its_did_you_mean() {
+    use georecipe::recipe::{Side, TrimAction};
+    for (word, side) in [("inside", Side::Inside), ("outside", Side::Outside)] {
+        let text = format!("{BASE}[[trim]]\nsurface = \"f1\"\nkeep = {{ {word} = \"top\" }}\n");
+        let r = ok(&text);
+        assert_eq!(
+            r.trims[0].action,
+            TrimAction::Keep {
+                side,
+                of: "top".into()
+            }
+        );
+    }
+    let text = format!("{BASE}[[trim]]\nsurface = \"f1\"\nkeep = {{ outide = \"top\" }}\n");
+    let d = errors(&text);
+    assert_eq!(
+        d[0].help.as_deref(),
+        Some("did you mean `outside`?"),
+        "{d:#?}"
+    );
+}
+
+#[test]
 fn a_surface_table_header_form_is_accepted_and_checked_like_the_inline_form() {
     let text = format!("{BASE}[surfaces.f2]\nfile = \"data/f2.ts\"\nkind = \"fualt\"\n");
     let (d, _) = single_at(&text, "\"fualt\"", 0);

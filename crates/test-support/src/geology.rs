@@ -73,8 +73,17 @@ pub fn cases() -> Vec<Case> {
 /// - `two_lenses`: meshes (once no chart's border overlaps itself in map view), but the upper
 ///   lens's rim is two crease curves 5.2 m apart under a mesh size of 71 m, which the build warns
 ///   of: tets between them reach 4.3°.
+/// - `intrusion_cutting_a_body`: meshes into its four regions, but the seams that cut the
+///   younger body's patches into charts run 0.16 m beside the curve where the bodies meet, under a
+///   mesh size of 250 m: tets between them reach 6.6° (10.2° with `refine_close_curves`, at five
+///   times the tets).
 pub fn known_gaps() -> Vec<Case> {
-    vec![salt_overhang(), two_lenses(), fault_through_salt()]
+    vec![
+        salt_overhang(),
+        two_lenses(),
+        fault_through_salt(),
+        intrusion_cutting_a_body(),
+    ]
 }
 
 /// Fault systems of the SCEC Community Fault Model (`../shared/data/gocad/SCECcode__CFM`, the
@@ -1045,6 +1054,49 @@ fn two_lenses() -> Case {
         r.surface(name, "other", &l, &PLAIN);
     }
     with_two_layers(r.case(&["box", "H1", "H2"], 5))
+}
+
+/// A younger intrusion `B` cutting an older body `A` below a horizon, modelled as two closed
+/// bodies that overlap (as a geomodeller builds each on its own): `A`'s part inside `B` is
+/// discarded (`keep = { outside = "B" }`), so the overlap belongs to `B` alone. Regions: above
+/// the horizon, the host below it, `B`, and what is left of `A`.
+fn intrusion_cutting_a_body() -> Case {
+    let mut rng = Rng(0x696e_7472_7573_696f);
+    let mut r = Recipe::new("intrusion_cutting_a_body");
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-500.0, 30.0, 0.4, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "A",
+        "other",
+        &body((1700.0, 2000.0), 650.0, (-1100.0, 500.0), &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "B",
+        "other",
+        &body((2450.0, 2100.0), 550.0, (-1000.0, 450.0), &mut rng),
+        &DEPTH,
+    );
+    r.trims
+        .push("[[trim]]\nsurface = \"A\"\nkeep = { outside = \"B\" }\n".to_string());
+    r.case(&["box", "H", "A", "B"], 4)
+}
+
+/// A closed body: an ellipsoid of revolution centred at `c` in plan and `z` in height, of
+/// radius `radius` and half height `half`, faceted in 24 rings of 64 points.
+fn body(c: (f64, f64), radius: f64, (z, half): (f64, f64), rng: &mut Rng) -> Surface {
+    use std::f64::consts::PI;
+    revolution(
+        c,
+        (radius, radius),
+        |t| ((PI * t).sin(), z + half * (PI * t).cos()),
+        (24, 64),
+        rng,
+    )
 }
 
 /// Two horizons folded into a chevron anticline: straight limbs dipping 39° meeting at a sharp

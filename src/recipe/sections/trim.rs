@@ -1,6 +1,7 @@
 //! `[[trim]]`: which patches to discard after splitting, in recipe order (patches outside the box
 //! are always discarded and need no entry). Each entry selects surfaces and gives exactly one
-//! action: keep one side of a named surface, or discard the patch containing / nearest a point,
+//! action: keep one side of a named surface (above or below it, or inside or outside a closed
+//! one), or discard the patch containing / nearest a point,
 //! or every patch below an area.
 
 use super::Names;
@@ -9,7 +10,7 @@ use crate::recipe::selector::SurfaceSelector;
 use crate::recipe::spec::{Side, TrimAction, TrimSpec};
 
 const KEYS: &[&str] = &["surface", "keep", "discard"];
-const KEEP_KEYS: &[&str] = &["above", "below"];
+const KEEP_KEYS: &[&str] = &["above", "below", "inside", "outside"];
 const DISCARD_KEYS: &[&str] = &["containing", "nearest", "area_below"];
 
 pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, names: &Names) -> Vec<TrimSpec> {
@@ -118,10 +119,11 @@ fn keep(
     trimmed: Option<&SurfaceSelector>,
 ) -> Option<TrimAction> {
     let (k, x) = single(ctx, v, path, KEEP_KEYS, "e.g. `keep = { below = \"top\" }`")?;
-    let side = if k == "above" {
-        Side::Above
-    } else {
-        Side::Below
+    let side = match k {
+        "above" => Side::Above,
+        "below" => Side::Below,
+        "inside" => Side::Inside,
+        _ => Side::Outside,
     };
     let of = rd::string(ctx, x, &format!("{path}.{k}"))?;
     if !names.is_known(of) {

@@ -16,6 +16,14 @@
 //!   patch found on both sides of `S` is an error (the pair is probably not intersected), and so
 //!   is a patch none of whose vertices can be placed (it lies on `S`, or `S` does not cover its
 //!   xy). Patches of `S` itself are never judged against `S` (a glob may select them).
+//! * `keep = { inside = "S" }` / `{ outside = "S" }`: `S` must be closed (every edge of its
+//!   split mesh has an even number of triangles, points matched by coordinates), else the trim
+//!   fails naming a point of its border. A vertex is inside when the column above it crosses
+//!   `S` an odd number of times (the same exact cast); vertices on `S` say nothing, the others
+//!   must agree, as for `above` and `below`. A patch whose vertices are all on `S` is judged by
+//!   the centroids of its triangles that `S` does not have; one made only of triangles of `S`
+//!   (bodies modelled sharing a face) is discarded either way: `S`'s own patch bounds both sides
+//!   there, and two coincident patches would leave a region of no thickness.
 //! * `discard = { containing = p }`: the patch on which `p` lies, exactly (on a triangle, by
 //!   `orient3d` and `orient2d`) or within the support tolerance
 //!   `Tolerances::support_distance_rel` × the box diagonal (a point typed in a recipe is rarely
@@ -37,7 +45,7 @@ mod near;
 mod side;
 
 pub use near::{on_triangle, triangle_distance};
-pub use side::{Column, Verdict};
+pub use side::{Column, Enclosure, Verdict, free_border};
 
 use geom::{BBox, Tolerances, TriMesh};
 use serde::Serialize;
@@ -49,6 +57,26 @@ pub enum Side {
     /// Larger z (towards the surface's upward side).
     Above,
     Below,
+    /// Enclosed by the surface, which must be closed.
+    Inside,
+    Outside,
+}
+
+impl Side {
+    /// The recipe's word for it.
+    pub fn word(self) -> &'static str {
+        match self {
+            Side::Above => "above",
+            Side::Below => "below",
+            Side::Inside => "inside",
+            Side::Outside => "outside",
+        }
+    }
+
+    /// Whether it is told by enclosure rather than by height.
+    fn encloses(self) -> bool {
+        matches!(self, Side::Inside | Side::Outside)
+    }
 }
 
 /// What a trim does to the patches of the surfaces it selects.
@@ -130,14 +158,7 @@ fn pt(p: &[f64; 3]) -> String {
 /// The trim as written in the recipe: `[[trim]] #k (surface = "F1", keep = { below = "H1" })`.
 pub fn describe(index: usize, t: &TrimSpec) -> String {
     let action = match &t.action {
-        TrimAction::Keep { side, of } => {
-            let s = if *side == Side::Above {
-                "above"
-            } else {
-                "below"
-            };
-            format!("keep = {{ {s} = \"{of}\" }}")
-        }
+        TrimAction::Keep { side, of } => format!("keep = {{ {} = \"{of}\" }}", side.word()),
         TrimAction::DiscardContaining(p) => format!("discard = {{ containing = {} }}", pt(p)),
         TrimAction::DiscardNearest(p) => format!("discard = {{ nearest = {} }}", pt(p)),
         TrimAction::DiscardAreaBelow(a) => format!("discard = {{ area_below = {a} }}"),
@@ -209,17 +230,30 @@ pub fn apply_trims(
                 let Some(&(name, mesh)) = surfaces.iter().find(|(n, _)| *n == of.as_str()) else {
                     return Err(err(format!("the model has no surface `{of}`"), None, None));
                 };
+                if side.encloses()
+                    && let Some(at) = free_border(mesh)
+                {
+                    return Err(err(
+                        format!(
+                            "`{of}` is not closed (its border runs through {}), so nothing is \
+                             inside or outside it; use `above` or `below`, or close it in the data",
+                            pt(&at)
+                        ),
+                        None,
+                        Some(at),
+                    ));
+                }
                 let column = columns.entry(name).or_insert_with(|| Column::new(mesh));
                 let mut found = Vec::new();
                 for &i in selected.iter().filter(|&&i| patches[i].surface != of) {
-                    let here = place(&patches[i], column, of)
-                        .map_err(|(m, at)| err(m, Some(patches[i].name), Some(at)))?;
-                    if here != *side {
-                        let word = if here == Side::Above {
-                            "above"
-                        } else {
-                            "below"
-                        };
+                    let here = if side.encloses() {
+                        enclosed(&patches[i], column, of)
+                    } else {
+                        place(&patches[i], column, of).map(Some)
+                    };
+                    let here = here.map_err(|(m, at)| err(m, Some(patches[i].name), Some(at)))?;
+                    let word = here.map_or("a face shared with", Side::word);
+                    if here != Some(*side) {
                         found.push((i, format!("{}: {word} {of}", describe(k, t))));
                     }
                 }
@@ -313,16 +347,11 @@ fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Side, (String, [f64
         }
     }
     match (above, below) {
-        (Some(a), Some(b)) => Err((
-            format!(
-                "patch `{}` lies on both sides of `{of}`: {} is above it and {} below; \
-                 intersect `{}` with `{of}` in `[intersect]` so that it is split there",
-                p.name,
-                pt(&a),
-                pt(&b),
-                p.surface
-            ),
-            a,
+        (Some(a), Some(b)) => Err(both_sides(
+            p,
+            of,
+            "on both sides of",
+            [("above", a), ("below", b)],
         )),
         (Some(_), None) => Ok(Side::Above),
         (None, Some(_)) => Ok(Side::Below),
@@ -360,6 +389,78 @@ fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Side, (String, [f64
                 )
             }
         }),
+    }
+}
+
+/// The error of a patch found on two sides of `of`: `how` it lies, and a vertex on each side.
+fn both_sides(
+    p: &TrimPatch,
+    of: &str,
+    how: &str,
+    [(one, a), (other, b)]: [(&str, [f64; 3]); 2],
+) -> (String, [f64; 3]) {
+    (
+        format!(
+            "patch `{}` lies {how} `{of}`: {} is {one} it and {} {other}; intersect `{}` with \
+             `{of}` in `[intersect]` so that it is split there",
+            p.name,
+            pt(&a),
+            pt(&b),
+            p.surface
+        ),
+        a,
+    )
+}
+
+/// Whether the closed surface `of` encloses the patch (`None`: the patch is a face it shares
+/// with `of`), or why it cannot be told (message and a point): its vertices on `of` say nothing,
+/// the others must agree; a patch all of whose vertices are on `of` is judged by the centroids
+/// of its triangles that are not triangles of `of`.
+fn enclosed(p: &TrimPatch, column: &Column, of: &str) -> Result<Option<Side>, (String, [f64; 3])> {
+    let judge = |points: &mut dyn Iterator<Item = [f64; 3]>| {
+        let (mut inside, mut outside) = (None, None);
+        for v in points {
+            match column.enclosure(&v) {
+                Enclosure::Inside => inside = inside.or(Some(v)),
+                Enclosure::Outside => outside = outside.or(Some(v)),
+                Enclosure::On => {}
+            }
+        }
+        (inside, outside)
+    };
+    let (mut inside, mut outside) = judge(&mut p.mesh.vertices.iter().copied());
+    if inside.is_none() && outside.is_none() {
+        let own: Vec<[f64; 3]> = (0..p.mesh.triangles.len())
+            .map(|t| p.mesh.corners(t))
+            .filter(|&c| !column.has_triangle(c))
+            .map(|c| [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0))
+            .collect();
+        if own.is_empty() {
+            return Ok(None);
+        }
+        (inside, outside) = judge(&mut own.into_iter());
+    }
+    match (inside, outside) {
+        (Some(a), Some(b)) => Err(both_sides(
+            p,
+            of,
+            "both inside and outside",
+            [("inside", a), ("outside", b)],
+        )),
+        (Some(_), None) => Ok(Some(Side::Inside)),
+        (None, Some(_)) => Ok(Some(Side::Outside)),
+        (None, None) => {
+            let v = p.mesh.vertices.first().copied().unwrap_or([0.0; 3]);
+            Err((
+                format!(
+                    "cannot tell whether `{of}` encloses patch `{}`: every vertex of it is on \
+                     `{of}` (e.g. {})",
+                    p.name,
+                    pt(&v)
+                ),
+                v,
+            ))
+        }
     }
 }
 
@@ -439,11 +540,7 @@ fn nothing(patches: &[TrimPatch], selected: &[usize], action: &TrimAction) -> St
                 .iter()
                 .filter(|&&i| patches[i].surface != of.as_str())
                 .count();
-            let s = if *side == Side::Above {
-                "above"
-            } else {
-                "below"
-            };
+            let s = side.word();
             if judged == 0 {
                 format!("it selects only patches of `{of}` itself")
             } else {
@@ -494,6 +591,89 @@ mod tests {
             surfaces: vec!["a".into(), "b".into(), "c".into()],
             action: TrimAction::DiscardNearest(p),
         }
+    }
+
+    fn keep(side: Side) -> TrimSpec {
+        TrimSpec {
+            selector: "p".into(),
+            surfaces: vec!["p".into()],
+            action: TrimAction::Keep {
+                side,
+                of: "s".into(),
+            },
+        }
+    }
+
+    /// Trims the patches `p#k` (the meshes given) against `s` with `keep(side)`.
+    fn trim_against(s: &TriMesh, meshes: &[TriMesh], side: Side) -> Result<TrimOutcome, TrimError> {
+        let names: Vec<String> = (1..=meshes.len()).map(|k| format!("p#{k}")).collect();
+        let patches: Vec<TrimPatch> = (meshes.iter().zip(&names))
+            .map(|(mesh, name)| TrimPatch {
+                name,
+                surface: "p",
+                mesh,
+            })
+            .collect();
+        let box_ = unit_box();
+        apply_trims(
+            &patches,
+            &[("s", s)],
+            &[keep(side)],
+            &box_,
+            &Tolerances::default(),
+        )
+    }
+
+    #[test]
+    fn keeping_outside_or_inside_a_closed_surface_discards_the_other_side_and_its_own_faces() {
+        let (v, t) = test_support::shapes::cuboid([0.0; 3], [2.0; 3]);
+        let s = TriMesh::new(v, t);
+        let inside = TriMesh::new(
+            vec![[0.5, 0.5, 1.0], [1.5, 0.5, 1.2], [0.5, 1.5, 0.8]],
+            vec![[0, 1, 2]],
+        );
+        // Outside, with a vertex on `s` (a corner of it), which says nothing.
+        let outside = TriMesh::new(
+            vec![[2.0, 2.0, 2.0], [3.0, 2.0, 2.0], [3.0, 3.0, 1.0]],
+            vec![[0, 1, 2]],
+        );
+        let shared = TriMesh::new(s.vertices.clone(), vec![s.triangles[0]]);
+        let out = trim_against(
+            &s,
+            &[inside.clone(), outside.clone(), shared.clone()],
+            Side::Outside,
+        )
+        .expect("trims");
+        assert_eq!(out.keep, [false, true, false]);
+        assert!(
+            out.discarded[0].reason.ends_with(": inside s"),
+            "{:?}",
+            out.discarded
+        );
+        assert!(out.discarded[1].reason.ends_with(": a face shared with s"));
+        let out = trim_against(&s, &[inside, outside, shared], Side::Inside).expect("trims");
+        assert_eq!(out.keep, [true, false, false]);
+    }
+
+    #[test]
+    fn inside_a_surface_that_is_not_closed_or_across_it_is_an_error_with_a_point() {
+        let (v, mut t) = test_support::shapes::cuboid([0.0; 3], [2.0; 3]);
+        t.pop();
+        let open = TriMesh::new(v.clone(), t);
+        let p = tri(0.5, 1.0);
+        let e = trim_against(&open, &[p], Side::Outside).unwrap_err();
+        assert!(e.message.contains("`s` is not closed"), "{}", e.message);
+        assert!(e.at.is_some());
+        let (_, t) = test_support::shapes::cuboid([0.0; 3], [2.0; 3]);
+        let closed = TriMesh::new(v, t);
+        let across = tri(1.5, 1.0);
+        let e = trim_against(&closed, &[across], Side::Inside).unwrap_err();
+        assert!(
+            e.message.contains("lies both inside and outside `s`"),
+            "{}",
+            e.message
+        );
+        assert_eq!(e.patch.as_deref(), Some("p#1"));
     }
 
     #[test]

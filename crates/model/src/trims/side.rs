@@ -16,6 +16,9 @@
 //! z = +∞ and the part that reaches z = −∞. An even total (a fold that crosses the column twice,
 //! or none: the surface does not cover `q`'s xy) leaves the side undefined. A point that is a
 //! vertex of the surface, or lies on one of its crossed triangles, is on the surface.
+//!
+//! A closed surface encloses `q` when the column above `q` crosses it an odd number of times
+//! (the same count, so the same exact decision).
 
 use geom::{Orientation, TriMesh, orient2d, orient3d};
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -36,6 +39,36 @@ pub enum Verdict {
     Folded(u32),
 }
 
+/// Where a point lies relative to a closed surface.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Enclosure {
+    Inside,
+    Outside,
+    /// A vertex of the surface, or on a triangle the column crosses.
+    On,
+}
+
+/// A point of an edge that an odd number of triangles of `mesh` use (one: a free border; three:
+/// a sheet hanging off), vertices matched by their coordinates so that copies of one point along
+/// a cut count as one, the smallest such edge first; `None` when the surface is closed and the
+/// parity of the column's crossings says inside or outside.
+pub fn free_border(mesh: &TriMesh) -> Option<[f64; 3]> {
+    let nv = mesh.vertices.len();
+    let mut uses: std::collections::BTreeMap<([u64; 3], [u64; 3]), u32> = Default::default();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v as usize >= nv) {
+            continue;
+        }
+        let c = mesh.corners(t);
+        for k in 0..3 {
+            let (a, b) = (bits(c[k]), bits(c[(k + 1) % 3]));
+            *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let odd = uses.into_iter().find(|(_, n)| n % 2 == 1)?;
+    Some(odd.0.0.map(f64::from_bits))
+}
+
 /// A surface prepared for vertical casts.
 pub struct Column<'a> {
     mesh: &'a TriMesh,
@@ -43,6 +76,15 @@ pub struct Column<'a> {
     /// The surface's vertices, by coordinate bits: the curve points shared bit for bit with the
     /// surfaces split along it.
     vertices: BTreeSet<[u64; 3]>,
+    /// The surface's triangles as sorted triples of vertex coordinates' bits.
+    triangles: BTreeSet<[[u64; 3]; 3]>,
+}
+
+/// A triangle as the sorted triple of its corners' coordinate bits.
+fn triangle_key(c: [&[f64; 3]; 3]) -> [[u64; 3]; 3] {
+    let mut k = c.map(bits);
+    k.sort();
+    k
 }
 
 fn xy(p: &[f64; 3]) -> [f64; 2] {
@@ -102,13 +144,47 @@ impl<'a> Column<'a> {
             mesh,
             tree: RTree::bulk_load(items),
             vertices: mesh.vertices.iter().map(bits).collect(),
+            triangles: (0..mesh.triangles.len())
+                .filter(|&t| mesh.triangles[t].iter().all(|&v| (v as usize) < nv))
+                .map(|t| triangle_key(mesh.corners(t)))
+                .collect(),
         }
     }
 
     /// Where `q` lies relative to the surface (see the module doc).
     pub fn locate(&self, q: &[f64; 3]) -> Verdict {
-        if self.vertices.contains(&bits(q)) {
+        let Some((up, down)) = self.crossings(q) else {
             return Verdict::On;
+        };
+        match (up + down, up % 2 == 1) {
+            (0, _) => Verdict::Uncovered,
+            (n, _) if n % 2 == 0 => Verdict::Folded(n),
+            (_, true) => Verdict::Below,
+            (_, false) => Verdict::Above,
+        }
+    }
+
+    /// Whether a closed surface encloses `q`: the column above `q` crosses it an odd number of
+    /// times. Meaningless for a surface that is not closed (see [`free_border`]).
+    pub fn enclosure(&self, q: &[f64; 3]) -> Enclosure {
+        match self.crossings(q) {
+            None => Enclosure::On,
+            Some((up, _)) if up % 2 == 1 => Enclosure::Inside,
+            Some(_) => Enclosure::Outside,
+        }
+    }
+
+    /// Whether the surface has a triangle with exactly these corners (bit for bit, in any
+    /// order): two surfaces that share a face there.
+    pub fn has_triangle(&self, corners: [&[f64; 3]; 3]) -> bool {
+        self.triangles.contains(&triangle_key(corners))
+    }
+
+    /// How many times the column through `q` crosses the surface above and below `q`; `None`
+    /// when `q` is on the surface.
+    fn crossings(&self, q: &[f64; 3]) -> Option<(u32, u32)> {
+        if self.vertices.contains(&bits(q)) {
+            return None;
         }
         let q2 = xy(q);
         let (mut up, mut down) = (0u32, 0u32);
@@ -132,7 +208,7 @@ impl<'a> Column<'a> {
             // counter-clockwise, i.e. above the triangle.
             let side = orient3d(a, b, c, q);
             let above = match (side, turn) {
-                (Orientation::Zero, _) => return Verdict::On,
+                (Orientation::Zero, _) => return None,
                 (s, t) => s == t,
             };
             if above {
@@ -141,12 +217,7 @@ impl<'a> Column<'a> {
                 up += 1;
             }
         }
-        match (up + down, up % 2 == 1) {
-            (0, _) => Verdict::Uncovered,
-            (n, _) if n % 2 == 0 => Verdict::Folded(n),
-            (_, true) => Verdict::Below,
-            (_, false) => Verdict::Above,
-        }
+        Some((up, down))
     }
 }
 
@@ -191,6 +262,62 @@ mod tests {
         assert_eq!(c.locate(&[2.0, 2.0, 0.0]), Verdict::On, "a vertex");
         // On the outer border the perturbation may step off the surface: (2 + ε, 2 + ε²).
         assert_eq!(c.locate(&[2.0, 2.0, 5.0]), Verdict::Uncovered);
+    }
+
+    fn cuboid() -> TriMesh {
+        let (v, t) = test_support::shapes::cuboid([0.0; 3], [2.0; 3]);
+        TriMesh::new(v, t)
+    }
+
+    #[test]
+    fn a_closed_surface_encloses_points_by_the_parity_of_the_column_above_them() {
+        for (v, t) in [
+            test_support::shapes::cuboid([0.0; 3], [2.0; 3]),
+            test_support::shapes::octahedron(),
+        ] {
+            // The octahedron scaled and moved to have the cuboid's centre.
+            let v = if v.len() == 6 {
+                v.iter().map(|p| p.map(|x| 1.0 + x)).collect()
+            } else {
+                v
+            };
+            let m = TriMesh::new(v, t);
+            let c = Column::new(&m);
+            assert_eq!(c.enclosure(&[1.0, 1.0, 1.0]), Enclosure::Inside);
+            assert_eq!(c.enclosure(&[0.9, 1.2, 1.3]), Enclosure::Inside);
+            assert_eq!(c.enclosure(&[1.0, 1.0, 3.0]), Enclosure::Outside, "above");
+            assert_eq!(c.enclosure(&[1.0, 1.0, -1.0]), Enclosure::Outside, "below");
+            assert_eq!(c.enclosure(&[3.0, 1.0, 1.0]), Enclosure::Outside, "beside");
+            assert_eq!(c.enclosure(&m.vertices[0]), Enclosure::On, "a vertex");
+        }
+        // Exactly under a corner of the cuboid's top: the column crosses it once all the same.
+        let m = cuboid();
+        let c = Column::new(&m);
+        assert_eq!(c.enclosure(&[1.0, 1.0, 0.5]), Enclosure::Inside);
+        assert_eq!(c.enclosure(&[1.0, 1.0, 2.0]), Enclosure::On, "on the top");
+    }
+
+    #[test]
+    fn a_surface_is_closed_when_every_edge_has_an_even_number_of_triangles() {
+        assert_eq!(free_border(&cuboid()), None);
+        let mut open = cuboid();
+        let gone = open.triangles.pop().expect("a triangle");
+        let at = free_border(&open).expect("a free border");
+        assert!(
+            gone.iter().any(|&v| open.vertices[v as usize] == at),
+            "{at:?}"
+        );
+        // A copy of a vertex along a cut is the same point: still closed.
+        let mut cut = cuboid();
+        cut.vertices.push(cut.vertices[0]);
+        let last = cut.vertices.len() as u32 - 1;
+        let t = cut
+            .triangles
+            .iter()
+            .position(|t| t.contains(&0))
+            .expect("one");
+        cut.triangles[t] = cut.triangles[t].map(|v| if v == 0 { last } else { v });
+        assert_eq!(free_border(&cut), None);
     }
 
     #[test]
