@@ -70,10 +70,11 @@ fn dump(recipe_path: &Path, patch: &str, out: &Path) -> Result<(), String> {
     let nodes = |c: u32| curves.get(c as usize).map(|c| c.nodes.as_slice());
     let input = patch_input(&piece.name, &piece.support, &piece.boundary, &nodes)
         .map_err(|e| e.to_string())?;
-    let stem = out.join(patch);
-    write(&stem.with_extension("patch"), &patch_text(&input, &size))?;
-    write(&stem.with_extension("input.obj"), &input_obj(&input))?;
-    println!("{}", stem.with_extension("patch").display());
+    // Appended, not replaced: a chart's name (`SALT#3.2`) already has a dot.
+    let file = |ext: &str| out.join(format!("{patch}.{ext}"));
+    write(&file("patch"), &patch_text(&input, &size))?;
+    write(&file("input.obj"), &input_obj(&input))?;
+    println!("{}", file("patch").display());
     Ok(())
 }
 
