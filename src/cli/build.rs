@@ -132,6 +132,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         print_thin_regions(&recipe, &report);
         print_close_curves(&recipe, &report);
         print_failures_near_close_curves(&recipe, &report);
+        print_folds_on_faceted_supports(&recipe, &report);
     }
     let count = |s: NodeState| report.count(s);
     let summary = format!(
@@ -424,6 +425,42 @@ fn print_findings(report: &BuildReport) {
             for line in data.report_text.lines().take(20) {
                 errln!("             {line}");
             }
+        }
+    }
+}
+
+/// For each surface mesh that folded where its support turns sharply, on a surface meshed on its
+/// facets as read: the recipe switch that makes its curves and meshes follow such bends.
+fn print_folds_on_faceted_supports(recipe: &crate::recipe::Recipe, report: &BuildReport) {
+    let Some(model) = report
+        .artifact("model")
+        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
+    else {
+        return;
+    };
+    for n in (report.nodes.iter()).filter(|n| n.state == NodeState::Failed) {
+        let Some(patch) = n.name.strip_prefix("surface_mesh:") else {
+            continue;
+        };
+        if !n.error.as_deref().is_some_and(|e| e.contains("folds")) {
+            continue;
+        }
+        let Some(p) = model.patches.iter().find(|p| p.name == patch) else {
+            continue;
+        };
+        let faceted = recipe
+            .surfaces
+            .get(&p.surface)
+            .is_some_and(|s| s.smooth.is_none());
+        if faceted {
+            errln!(
+                "{:>12} `{}` folded where the facets of `{}` (meshed as read) turn faster than \
+                 its elements can follow: `smooth = true` in its `[surfaces]` entry makes its \
+                 curves and meshes follow such bends",
+                "note",
+                n.name,
+                p.surface
+            );
         }
     }
 }

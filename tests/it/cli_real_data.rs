@@ -186,3 +186,69 @@ dir = "out/tkc"
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("\"fail\": []"), "{text}");
 }
+
+/// A recipe meshing one closed TKC body alone in a box, `extra` added to its surface entry.
+fn tkc_body(shared: &std::path::Path, body: &str, extra: &str) -> String {
+    let d = shared.join("Geology_Surfaces");
+    format!(
+        r#"
+[model]
+name = "body"
+
+[surfaces]
+{body} = {{ file = "{}/{body}.ts"{extra} }}
+
+[box]
+min = [556900.0, 7133200.0, -200.0]
+max = [557800.0, 7134300.0, 500.0]
+
+[mesh]
+size = 50.0
+
+[output]
+dir = "out/body"
+"#,
+        d.display()
+    )
+}
+
+#[test]
+fn a_real_body_whose_facets_turn_faster_than_its_elements_folds_and_the_note_names_the_switch() {
+    // PK1's top is a rough cap: next to one another its facets face 100° apart, a few metres
+    // across, and its curves are discretized at the recipe's size as read.
+    let Some(shared) = paths::shared("data/gocad/simpeg-research__Astic-2020-JointInversion")
+    else {
+        return;
+    };
+    let s = Scratch::didactic();
+    std::fs::write(s.path("body.toml"), tkc_body(&shared, "PK1", "")).unwrap();
+    let out = s.recipe_cmd(&["build", "body.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{err}");
+    let fold = (err.lines())
+        .find(|l| l.contains("error `surface_mesh:PK1#") && l.contains("folds"))
+        .unwrap_or_else(|| panic!("no fold:\n{err}"));
+    assert!(fold.contains("the support turns by"), "{fold}");
+    let node = fold.split('`').nth(1).expect("the node");
+    let note = format!("note `{node}` folded where the facets of `PK1` (meshed as read)");
+    assert!(err.contains(&note), "{err}");
+    assert!(
+        err.contains("`smooth = true` in its `[surfaces]` entry"),
+        "{err}"
+    );
+    // As the note says: with its support refined once, the body meshes.
+    let smooth = tkc_body(&shared, "PK1", ", smooth = { levels = 1 }");
+    std::fs::write(s.path("body.toml"), smooth).unwrap();
+    let out = s.recipe_cmd(&["build", "body.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let Some(check) = checker() else { return };
+    let out = std::process::Command::new("python3")
+        .arg(&check)
+        .arg(s.path("out/body/body.msh"))
+        .args(["--regions", "2"])
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("\"fail\": []"), "{text}");
+}

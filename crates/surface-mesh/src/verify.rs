@@ -362,9 +362,19 @@ fn check_triangles(
             continue;
         };
         if !(dot(&n, &support.normals[on.tri as usize]) > 0.0) {
+            // How far the support turns between the facets under the triangle's corners and
+            // centroid: a bend sharper than one element can follow is the usual cause.
+            let under = [ntri[a], ntri[b], ntri[c], on.tri].map(|f| support.normals[f as usize]);
+            let bend = (under.iter())
+                .flat_map(|m| under.iter().map(move |k| dot(m, k).clamp(-1.0, 1.0).acos()))
+                .fold(0.0, f64::max)
+                .to_degrees();
             return Err(fail(
                 input,
-                format!("triangle {t} folds: its normal is more than 90° from the support's"),
+                format!(
+                    "triangle {t} folds: its normal is more than 90° from the support's (the \
+                     support turns by {bend:.0}° under it)"
+                ),
                 Some(g),
             ));
         }
