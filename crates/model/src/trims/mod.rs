@@ -14,16 +14,18 @@
 //!   for bit by splitting) or lie on it say nothing, nor do vertices whose vertical misses `S` or
 //!   crosses a fold of it an even number of times. The remaining vertices must all agree: a
 //!   patch found on both sides of `S` is an error (the pair is probably not intersected), and so
-//!   is a patch none of whose vertices can be placed (it lies on `S`, or `S` does not cover its
-//!   xy). Patches of `S` itself are never judged against `S` (a glob may select them).
+//!   is a patch none of whose vertices can be placed (`S` does not cover its xy). A patch all of
+//!   whose vertices are on `S` (a sliver between two curves where it meets `S`) is placed by the
+//!   centroids of its triangles that `S` does not have; one made only of triangles of `S` (a
+//!   face the two surfaces share) is discarded whichever side is kept: `S`'s own patch is there.
+//!   Patches of `S` itself are never judged against `S` (a glob may select them).
 //! * `keep = { inside = "S" }` / `{ outside = "S" }`: `S` must be closed (every edge of its
 //!   split mesh has an even number of triangles, points matched by coordinates), else the trim
 //!   fails naming a point of its border. A vertex is inside when the column above it crosses
 //!   `S` an odd number of times (the same exact cast); vertices on `S` say nothing, the others
-//!   must agree, as for `above` and `below`. A patch whose vertices are all on `S` is judged by
-//!   the centroids of its triangles that `S` does not have; one made only of triangles of `S`
-//!   (bodies modelled sharing a face) is discarded either way: `S`'s own patch bounds both sides
-//!   there, and two coincident patches would leave a region of no thickness.
+//!   must agree, and a patch all on `S` is placed or discarded as for `above` and `below` (two
+//!   bodies modelled sharing a face: two coincident patches would leave a region of no
+//!   thickness).
 //! * `discard = { containing = p }`: the patch on which `p` lies, exactly (on a triangle, by
 //!   `orient3d` and `orient2d`) or within the support tolerance
 //!   `Tolerances::support_distance_rel` × the box diagonal (a point typed in a recipe is rarely
@@ -249,7 +251,7 @@ pub fn apply_trims(
                     let here = if side.encloses() {
                         enclosed(&patches[i], column, of)
                     } else {
-                        place(&patches[i], column, of).map(Some)
+                        place(&patches[i], column, of)
                     };
                     let here = here.map_err(|(m, at)| err(m, Some(patches[i].name), Some(at)))?;
                     let word = here.map_or("a face shared with", Side::word);
@@ -326,10 +328,19 @@ fn inside(mesh: &TriMesh, bbox: &BBox) -> bool {
 }
 
 /// The side of `of` the patch lies on, or why it cannot be told (message and a point).
-fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Side, (String, [f64; 3])> {
+fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Option<Side>, (String, [f64; 3])> {
+    let on = |v: &[f64; 3]| column.locate(v) == Verdict::On;
+    let points = if p.mesh.vertices.iter().all(on) {
+        match own_centroids(p, column) {
+            Some(c) => c,
+            None => return Ok(None),
+        }
+    } else {
+        p.mesh.vertices.clone()
+    };
     let (mut above, mut below) = (None, None);
     let (mut uncovered, mut folded) = (None, None);
-    for v in &p.mesh.vertices {
+    for v in &points {
         match column.locate(v) {
             Verdict::Above => {
                 above.get_or_insert(*v);
@@ -353,8 +364,8 @@ fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Side, (String, [f64
             "on both sides of",
             [("above", a), ("below", b)],
         )),
-        (Some(_), None) => Ok(Side::Above),
-        (None, Some(_)) => Ok(Side::Below),
+        (Some(_), None) => Ok(Some(Side::Above)),
+        (None, Some(_)) => Ok(Some(Side::Below)),
         (None, None) => Err(match (folded, uncovered) {
             (Some((v, n)), _) => (
                 format!(
@@ -390,6 +401,18 @@ fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Side, (String, [f64
             }
         }),
     }
+}
+
+/// For a patch all of whose vertices lie on the surface of `column`: the centroids of its
+/// triangles that the surface does not have, which tell its side; `None` when it has none (a
+/// face the two surfaces share).
+fn own_centroids(p: &TrimPatch, column: &Column) -> Option<Vec<[f64; 3]>> {
+    let own: Vec<[f64; 3]> = (0..p.mesh.triangles.len())
+        .map(|t| p.mesh.corners(t))
+        .filter(|&c| !column.has_triangle(c))
+        .map(|c| [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0))
+        .collect();
+    (!own.is_empty()).then_some(own)
 }
 
 /// The error of a patch found on two sides of `of`: `how` it lies, and a vertex on each side.
@@ -430,14 +453,9 @@ fn enclosed(p: &TrimPatch, column: &Column, of: &str) -> Result<Option<Side>, (S
     };
     let (mut inside, mut outside) = judge(&mut p.mesh.vertices.iter().copied());
     if inside.is_none() && outside.is_none() {
-        let own: Vec<[f64; 3]> = (0..p.mesh.triangles.len())
-            .map(|t| p.mesh.corners(t))
-            .filter(|&c| !column.has_triangle(c))
-            .map(|c| [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0))
-            .collect();
-        if own.is_empty() {
+        let Some(own) = own_centroids(p, column) else {
             return Ok(None);
-        }
+        };
         (inside, outside) = judge(&mut own.into_iter());
     }
     match (inside, outside) {
@@ -653,6 +671,34 @@ mod tests {
         assert!(out.discarded[1].reason.ends_with(": a face shared with s"));
         let out = trim_against(&s, &[inside, outside, shared], Side::Inside).expect("trims");
         assert_eq!(out.keep, [true, false, false]);
+    }
+
+    #[test]
+    fn a_patch_with_every_vertex_on_the_surface_is_placed_by_its_own_triangles() {
+        // `s` is a low pyramid over [0, 2]²; the patch is a flat triangle on three of its base
+        // corners, every vertex on `s`, its inside under it.
+        let s = TriMesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [2.0, 2.0, 0.0],
+                [0.0, 2.0, 0.0],
+                [1.0, 1.0, 1.0],
+            ],
+            vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+        );
+        let under = TriMesh::new(s.vertices[..3].to_vec(), vec![[0, 1, 2]]);
+        let shared = TriMesh::new(s.vertices.clone(), vec![s.triangles[1]]);
+        let out = trim_against(&s, &[under.clone(), shared.clone()], Side::Above).expect("trims");
+        assert_eq!(out.keep, [false, false]);
+        assert!(
+            out.discarded[0].reason.ends_with(": below s"),
+            "{:?}",
+            out.discarded
+        );
+        assert!(out.discarded[1].reason.ends_with(": a face shared with s"));
+        let out = trim_against(&s, &[under, shared], Side::Below).expect("trims");
+        assert_eq!(out.keep, [true, false]);
     }
 
     #[test]
