@@ -48,6 +48,7 @@ pub fn trim_action(a: &recipe::TrimAction) -> trims::TrimAction {
         recipe::TrimAction::DiscardContaining(p) => trims::TrimAction::DiscardContaining(*p),
         recipe::TrimAction::DiscardNearest(p) => trims::TrimAction::DiscardNearest(*p),
         recipe::TrimAction::DiscardAreaBelow(a) => trims::TrimAction::DiscardAreaBelow(*a),
+        recipe::TrimAction::DiscardWithin(d) => trims::TrimAction::DiscardWithin(*d),
     }
 }
 

@@ -186,6 +186,8 @@ pub enum TrimAction {
     DiscardNearest([f64; 3]),
     /// `discard = { area_below = a }` (> 0, model units squared).
     DiscardAreaBelow(f64),
+    /// `discard = { within = d }` (> 0): patches lying within `d` of another surface all over.
+    DiscardWithin(f64),
 }
 
 /// One `[[trim]]`, applied in recipe order after splitting (outside the box is always discarded).

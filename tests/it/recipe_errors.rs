@@ -599,7 +599,7 @@ fn a_misspelled_trim_condition_gets_only_its_did_you_mean() {
 }
 
 #[test]
-fn a_trim_keeps_inside_or_outside_a_named_surface_and_a_misspelling_gets_its_did_you_mean() {
+fn a_trim_keeps_inside_or_outside_a_surface_or_discards_what_hugs_another_and_is_checked() {
     use georecipe::recipe::{Side, TrimAction};
     for (word, side) in [("inside", Side::Inside), ("outside", Side::Outside)] {
         let text = format!("{BASE}[[trim]]\nsurface = \"f1\"\nkeep = {{ {word} = \"top\" }}\n");
@@ -619,6 +619,11 @@ fn a_trim_keeps_inside_or_outside_a_named_surface_and_a_misspelling_gets_its_did
         Some("did you mean `outside`?"),
         "{d:#?}"
     );
+    let text = format!("{BASE}[[trim]]\nsurface = \"f1\"\ndiscard = {{ within = 0.1 }}\n");
+    assert_eq!(ok(&text).trims[0].action, TrimAction::DiscardWithin(0.1));
+    let text = format!("{BASE}[[trim]]\nsurface = \"f1\"\ndiscard = {{ within = -1.0 }}\n");
+    let d = errors(&text);
+    assert!(d[0].message.contains("trim[0].discard.within"), "{d:#?}");
 }
 
 #[test]

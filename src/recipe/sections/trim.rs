@@ -2,7 +2,7 @@
 //! are always discarded and need no entry). Each entry selects surfaces and gives exactly one
 //! action: keep one side of a named surface (above or below it, or inside or outside a closed
 //! one), or discard the patch containing / nearest a point,
-//! or every patch below an area.
+//! or every patch below an area, or every patch lying within a distance of another surface.
 
 use super::Names;
 use crate::recipe::reader::{self as rd, Ctx, Value, name_help};
@@ -11,7 +11,7 @@ use crate::recipe::spec::{Side, TrimAction, TrimSpec};
 
 const KEYS: &[&str] = &["surface", "keep", "discard"];
 const KEEP_KEYS: &[&str] = &["above", "below", "inside", "outside"];
-const DISCARD_KEYS: &[&str] = &["containing", "nearest", "area_below"];
+const DISCARD_KEYS: &[&str] = &["containing", "nearest", "area_below", "within"];
 
 pub(crate) fn read(ctx: &mut Ctx<'_>, v: Option<&Value<'_>>, names: &Names) -> Vec<TrimSpec> {
     let mut out = Vec::new();
@@ -161,6 +161,7 @@ fn discard(ctx: &mut Ctx<'_>, v: &Value<'_>, path: &str) -> Option<TrimAction> {
     match k {
         "containing" => rd::vec3(ctx, x, &p).map(TrimAction::DiscardContaining),
         "nearest" => rd::vec3(ctx, x, &p).map(TrimAction::DiscardNearest),
-        _ => rd::size(ctx, x, &p).map(TrimAction::DiscardAreaBelow),
+        "area_below" => rd::size(ctx, x, &p).map(TrimAction::DiscardAreaBelow),
+        _ => rd::size(ctx, x, &p).map(TrimAction::DiscardWithin),
     }
 }

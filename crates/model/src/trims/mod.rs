@@ -34,6 +34,8 @@
 //! * `discard = { nearest = p }`: the patch at the smallest distance from `p`; ties go to the
 //!   first patch name in byte order.
 //! * `discard = { area_below = a }`: every patch whose area is below `a`.
+//! * `discard = { within = d }`: every patch that hugs another surface (`hug`): each of its
+//!   vertices and triangle centroids within `d` of that one surface.
 //!
 //! A trim that discards nothing is an error naming the trim (its index in recipe order, so the
 //! caller can point at its `[[trim]]` header): its selector matches no patch still kept, its
@@ -43,6 +45,7 @@
 //! The function is pure; every decision is an exact predicate on input coordinates except the
 //! distances and areas, which are measures and say so in the reasons they give.
 
+mod hug;
 mod near;
 mod side;
 
@@ -92,6 +95,8 @@ pub enum TrimAction {
     DiscardNearest([f64; 3]),
     /// Discard every patch whose area is below this value (> 0, model units squared).
     DiscardAreaBelow(f64),
+    /// Discard every patch that lies within this distance of one other surface all over (> 0).
+    DiscardWithin(f64),
 }
 
 /// One trim, applied in order after splitting (outside the box is always discarded).
@@ -164,6 +169,7 @@ pub fn describe(index: usize, t: &TrimSpec) -> String {
         TrimAction::DiscardContaining(p) => format!("discard = {{ containing = {} }}", pt(p)),
         TrimAction::DiscardNearest(p) => format!("discard = {{ nearest = {} }}", pt(p)),
         TrimAction::DiscardAreaBelow(a) => format!("discard = {{ area_below = {a} }}"),
+        TrimAction::DiscardWithin(d) => format!("discard = {{ within = {d} }}"),
     };
     format!(
         "[[trim]] #{} (surface = \"{}\", {action})",
@@ -279,6 +285,10 @@ pub fn apply_trims(
                     let area = patches[i].mesh.area();
                     (area < *a).then(|| (i, format!("{}: area {area}", describe(k, t))))
                 })
+                .collect(),
+            TrimAction::DiscardWithin(d) => hug::hugging(patches, &selected, surfaces, *d)
+                .into_iter()
+                .map(|(i, other)| (i, format!("{}: within {d} of {other}", describe(k, t))))
                 .collect(),
         };
         if found.is_empty() {
@@ -579,6 +589,9 @@ fn nothing(patches: &[TrimPatch], selected: &[usize], action: &TrimAction) -> St
                 None => format!("no patch has an area below {a}"),
             }
         }
+        TrimAction::DiscardWithin(d) => {
+            format!("no patch it selects lies within {d} of another surface all over")
+        }
         // `containing` and `nearest` either find a patch or fail with their own message.
         _ => "it discards nothing".into(),
     }
@@ -699,6 +712,72 @@ mod tests {
         assert!(out.discarded[1].reason.ends_with(": a face shared with s"));
         let out = trim_against(&s, &[under, shared], Side::Below).expect("trims");
         assert_eq!(out.keep, [true, false]);
+    }
+
+    #[test]
+    fn a_patch_hugging_another_surface_is_discarded_only_where_that_surface_closes_its_border() {
+        // `s`: a square of four triangles round its centre, at z = 0.
+        let corners = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 2.0, 0.0],
+            [0.0, 2.0, 0.0],
+        ];
+        let fan = |centre: [f64; 3]| {
+            let mut v = corners.to_vec();
+            v.push(centre);
+            TriMesh::new(v, vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]])
+        };
+        let s = fan([1.0, 1.0, 0.0]);
+        // A copy of it 5 cm off at the centre, one 50 cm off, and a sliver 5 cm beside its edge
+        // whose border leaves `s`.
+        let near = fan([1.0, 1.0, 0.05]);
+        let far = fan([1.0, 1.0, 0.5]);
+        let beside = TriMesh::new(
+            vec![[0.2, 0.0, 0.0], [1.8, 0.0, 0.0], [1.0, -0.05, 0.0]],
+            vec![[0, 2, 1]],
+        );
+        let names = ["p#1", "p#2", "p#3"];
+        let patches: Vec<TrimPatch> = [&near, &far, &beside]
+            .iter()
+            .zip(names)
+            .map(|(mesh, name)| TrimPatch {
+                name,
+                surface: "p",
+                mesh,
+            })
+            .collect();
+        let within = TrimSpec {
+            selector: "p".into(),
+            surfaces: vec!["p".into()],
+            action: TrimAction::DiscardWithin(0.1),
+        };
+        let (box_, tol) = (unit_box(), Tolerances::default());
+        let out = apply_trims(
+            &patches,
+            &[("s", &s)],
+            std::slice::from_ref(&within),
+            &box_,
+            &tol,
+        )
+        .expect("trims");
+        assert_eq!(out.keep, [false, true, true]);
+        assert!(
+            out.discarded[0].reason.ends_with(": within 0.1 of s"),
+            "{:?}",
+            out.discarded
+        );
+        // Nothing hugs at 1 mm: the trim is an error saying so.
+        let tight = TrimSpec {
+            action: TrimAction::DiscardWithin(0.001),
+            ..within
+        };
+        let e = apply_trims(&patches, &[("s", &s)], &[tight], &box_, &tol).unwrap_err();
+        assert!(
+            e.message.contains("within 0.001 of another surface"),
+            "{}",
+            e.message
+        );
     }
 
     #[test]
