@@ -22,13 +22,13 @@ use std::collections::{BTreeMap, BTreeSet};
 type Boxed = GeomWithData<Rectangle<[f64; 3]>, (u32, u32)>;
 
 /// The triangles of every surface, indexed by their boxes.
-struct Nearby<'a> {
-    surfaces: &'a [(&'a str, &'a TriMesh)],
+struct Nearby<'s, 'a> {
+    surfaces: &'s [(&'a str, &'a TriMesh)],
     tree: RTree<Boxed>,
 }
 
-impl<'a> Nearby<'a> {
-    fn new(surfaces: &'a [(&'a str, &'a TriMesh)]) -> Nearby<'a> {
+impl<'s, 'a> Nearby<'s, 'a> {
+    fn new(surfaces: &'s [(&'a str, &'a TriMesh)]) -> Nearby<'s, 'a> {
         let mut items = Vec::new();
         for (s, (_, mesh)) in surfaces.iter().enumerate() {
             let nv = mesh.vertices.len();
@@ -110,13 +110,20 @@ fn edge_uses(mesh: &TriMesh, into: &mut BTreeMap<([u64; 3], [u64; 3]), u32>) {
 }
 
 /// Of the patches `selected` (indices into `patches`), those to discard as hugging another
-/// surface within `d`, each with that surface's name (see the module doc), in patch order.
+/// surface within `d`, each with that surface's name (see the module doc), in patch order. The
+/// other surfaces are their patches still kept (`keep`): a part already discarded closes
+/// nothing.
 pub fn hugging<'a>(
-    patches: &[TrimPatch],
+    patches: &[TrimPatch<'a>],
+    keep: &[bool],
     selected: &[usize],
-    surfaces: &'a [(&'a str, &'a TriMesh)],
     d: f64,
 ) -> Vec<(usize, &'a str)> {
+    let kept: Vec<(&'a str, &'a TriMesh)> = (patches.iter().zip(keep))
+        .filter(|(_, k)| **k)
+        .map(|(p, _)| (p.surface, p.mesh))
+        .collect();
+    let surfaces = kept.as_slice();
     let near = Nearby::new(surfaces);
     let hugs: Vec<(usize, &str)> = (selected.iter())
         .filter_map(|&i| Some((i, near.hugged(&patches[i], d)?)))
@@ -144,10 +151,10 @@ pub fn hugging<'a>(
     let mut out = Vec::new();
     for group in members.values() {
         let other = hugs[group[0]].1;
-        let Some(&(_, mesh)) = surfaces.iter().find(|(n, _)| *n == other) else {
-            continue;
-        };
-        let on: BTreeSet<[u64; 3]> = mesh.vertices.iter().map(bits).collect();
+        let on: BTreeSet<[u64; 3]> = (surfaces.iter())
+            .filter(|(n, _)| *n == other)
+            .flat_map(|(_, m)| m.vertices.iter().map(bits))
+            .collect();
         let mut edges = BTreeMap::new();
         for &k in group {
             edge_uses(patches[hugs[k].0].mesh, &mut edges);

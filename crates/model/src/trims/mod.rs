@@ -286,7 +286,7 @@ pub fn apply_trims(
                     (area < *a).then(|| (i, format!("{}: area {area}", describe(k, t))))
                 })
                 .collect(),
-            TrimAction::DiscardWithin(d) => hug::hugging(patches, &selected, surfaces, *d)
+            TrimAction::DiscardWithin(d) => hug::hugging(patches, &out.keep, &selected, *d)
                 .into_iter()
                 .map(|(i, other)| (i, format!("{}: within {d} of {other}", describe(k, t))))
                 .collect(),
@@ -737,13 +737,13 @@ mod tests {
             vec![[0.2, 0.0, 0.0], [1.8, 0.0, 0.0], [1.0, -0.05, 0.0]],
             vec![[0, 2, 1]],
         );
-        let names = ["p#1", "p#2", "p#3"];
-        let patches: Vec<TrimPatch> = [&near, &far, &beside]
+        let names = ["p#1", "p#2", "p#3", "s#1"];
+        let patches: Vec<TrimPatch> = [&near, &far, &beside, &s]
             .iter()
             .zip(names)
             .map(|(mesh, name)| TrimPatch {
                 name,
-                surface: "p",
+                surface: &name[..1],
                 mesh,
             })
             .collect();
@@ -761,12 +761,21 @@ mod tests {
             &tol,
         )
         .expect("trims");
-        assert_eq!(out.keep, [false, true, true]);
+        assert_eq!(out.keep, [false, true, true, true]);
         assert!(
             out.discarded[0].reason.ends_with(": within 0.1 of s"),
             "{:?}",
             out.discarded
         );
+        // A surface already trimmed away closes nothing: with `s` gone first, nothing hugs.
+        let gone = TrimSpec {
+            selector: "s".into(),
+            surfaces: vec!["s".into()],
+            action: TrimAction::DiscardAreaBelow(100.0),
+        };
+        let trims = [gone, within.clone()];
+        let e = apply_trims(&patches, &[("s", &s)], &trims, &box_, &tol).unwrap_err();
+        assert_eq!(e.trim, Some(1), "{}", e.message);
         // Nothing hugs at 1 mm: the trim is an error saying so.
         let tight = TrimSpec {
             action: TrimAction::DiscardWithin(0.001),
