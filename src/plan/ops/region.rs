@@ -73,6 +73,10 @@ impl TetMeshOp {
             "the two surfaces touch over an area there in the files (or come closer than their \
              meshes can part): part them in the data there"
         };
+        let cause = format!(
+            "{cause}, or, where one is drawn along the other all over a patch, drop it with a \
+             `[[trim]]` `discard = {{ within = d }}` (d the gap)"
+        );
         format!(
             "region `{}`: patches `{a}` and `{b}` lie on each other at ({x:.1}, {y:.1}, {z:.1}) \
              (their meshes share a triangle), so the region has no thickness there; {cause}",
@@ -528,6 +532,7 @@ mod tests {
         );
         assert!(!plain.contains("smooth"), "{plain}");
         assert!(plain.contains("part them in the data"), "{plain}");
+        assert!(plain.contains("`discard = { within = d }`"), "{plain}");
         let smoothed = op(vec![false, true, false]).face_to_face_error(&f);
         assert!(smoothed.contains("smooth neither"), "{smoothed}");
     }
