@@ -1,9 +1,10 @@
 //! Refinement where the model's curves come closer than their mesh can resolve. Between two
 //! curves a gap `g` apart, elements of edge `h` are flat unless `h` is a few times `g`; left at
 //! the curves' own size (ten times the gap or more), the surface meshes there are slivers and the
-//! tet mesher stalls or makes tets of a degree. So, unless the recipe turns it off
-//! (`[mesh] refine_close_curves = false`), every unexplained approach (`proximity`) becomes a
-//! refinement: points along the two curves where they are close, the size there [`GAP_SIZES`]
+//! tet mesher stalls or makes tets of a degree. So, when the recipe asks
+//! (`[mesh] refine_close_curves = true`; off by default, as it can cost millions of tets and does
+//! not help where the gap is a wedge of the model's own), every unexplained approach
+//! (`proximity`) becomes a refinement: points along the two curves where they are close, the size there [`GAP_SIZES`]
 //! times the local gap, never below the recipe's `min_size` (the budget the user set: it bounds
 //! the size ratio, so the element count the refinement adds), growing as the surface meshes may.
 //!
