@@ -432,19 +432,21 @@ fn print_findings(report: &BuildReport) {
 /// For each surface mesh that folded where its support turns sharply, on a surface meshed on its
 /// facets as read: the recipe switch that makes its curves and meshes follow such bends.
 fn print_folds_on_faceted_supports(recipe: &crate::recipe::Recipe, report: &BuildReport) {
+    let folded: Vec<(&str, &str)> = (report.nodes.iter())
+        .filter(|n| n.state == NodeState::Failed)
+        .filter(|n| n.error.as_deref().is_some_and(|e| e.contains("folds")))
+        .filter_map(|n| Some((n.name.as_str(), n.name.strip_prefix("surface_mesh:")?)))
+        .collect();
+    if folded.is_empty() {
+        return;
+    }
     let Some(model) = report
         .artifact("model")
         .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
     else {
         return;
     };
-    for n in (report.nodes.iter()).filter(|n| n.state == NodeState::Failed) {
-        let Some(patch) = n.name.strip_prefix("surface_mesh:") else {
-            continue;
-        };
-        if !n.error.as_deref().is_some_and(|e| e.contains("folds")) {
-            continue;
-        }
+    for (node, patch) in folded {
         let Some(p) = model.patches.iter().find(|p| p.name == patch) else {
             continue;
         };
@@ -458,7 +460,7 @@ fn print_folds_on_faceted_supports(recipe: &crate::recipe::Recipe, report: &Buil
                  its elements can follow: `smooth = true` in its `[surfaces]` entry makes its \
                  curves and meshes follow such bends",
                 "note",
-                n.name,
+                node,
                 p.surface
             );
         }
