@@ -339,19 +339,19 @@ fn inside(mesh: &TriMesh, bbox: &BBox) -> bool {
 
 /// The side of `of` the patch lies on, or why it cannot be told (message and a point).
 fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Option<Side>, (String, [f64; 3])> {
-    let on = |v: &[f64; 3]| column.locate(v) == Verdict::On;
-    let points = if p.mesh.vertices.iter().all(on) {
-        match own_centroids(p, column) {
-            Some(c) => c,
-            None => return Ok(None),
-        }
-    } else {
-        p.mesh.vertices.clone()
-    };
+    let mut judged: Vec<([f64; 3], Verdict)> = (p.mesh.vertices.iter())
+        .map(|v| (*v, column.locate(v)))
+        .collect();
+    if judged.iter().all(|(_, j)| *j == Verdict::On) {
+        let Some(own) = own_centroids(p, column) else {
+            return Ok(None);
+        };
+        judged = own.into_iter().map(|c| (c, column.locate(&c))).collect();
+    }
     let (mut above, mut below) = (None, None);
     let (mut uncovered, mut folded) = (None, None);
-    for v in &points {
-        match column.locate(v) {
+    for (v, verdict) in &judged {
+        match *verdict {
             Verdict::Above => {
                 above.get_or_insert(*v);
             }
