@@ -12,6 +12,7 @@
 
 use super::TrimPatch;
 use super::near::triangle_distance;
+use super::side::{EdgeBits, bits, edge_uses};
 use crate::union_find::UnionFind;
 use geom::TriMesh;
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -73,10 +74,7 @@ impl<'s, 'a> Nearby<'s, 'a> {
     /// triangle centroid of `p` lies within `d` of.
     fn hugged(&self, p: &TrimPatch, d: f64) -> Option<&'a str> {
         let m = p.mesh;
-        let centroids = (0..m.triangles.len()).map(|t| {
-            let c = m.corners(t);
-            [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0)
-        });
+        let centroids = (0..m.triangles.len()).map(|t| super::centroid(m.corners(t)));
         let mut common: Option<BTreeSet<u32>> = None;
         for q in m.vertices.iter().copied().chain(centroids) {
             let here = self.within(&q, d, p.surface);
@@ -91,21 +89,6 @@ impl<'s, 'a> Nearby<'s, 'a> {
         }
         let first = *common?.iter().next()?;
         Some(self.surfaces[first as usize].0)
-    }
-}
-
-fn bits(p: &[f64; 3]) -> [u64; 3] {
-    p.map(|c| if c == 0.0 { 0 } else { c.to_bits() })
-}
-
-/// The edges of `mesh` by their ends' coordinates, each with the number of its triangles.
-fn edge_uses(mesh: &TriMesh, into: &mut BTreeMap<([u64; 3], [u64; 3]), u32>) {
-    for t in 0..mesh.triangles.len() {
-        let c = mesh.corners(t);
-        for k in 0..3 {
-            let (a, b) = (bits(c[k]), bits(c[(k + 1) % 3]));
-            *into.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
     }
 }
 
@@ -130,7 +113,7 @@ pub fn hugging<'a>(
         .collect();
     // Join hugging patches of one pair of surfaces that share an edge.
     let mut groups = UnionFind::new(hugs.len());
-    let mut by_edge: BTreeMap<([u64; 3], [u64; 3]), usize> = BTreeMap::new();
+    let mut by_edge: BTreeMap<EdgeBits, usize> = BTreeMap::new();
     for (k, (i, other)) in hugs.iter().enumerate() {
         let mut edges = BTreeMap::new();
         edge_uses(patches[*i].mesh, &mut edges);

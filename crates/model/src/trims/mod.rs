@@ -413,6 +413,11 @@ fn place(p: &TrimPatch, column: &Column, of: &str) -> Result<Option<Side>, (Stri
     }
 }
 
+/// The centroid of a triangle given by its corners.
+fn centroid(c: [&[f64; 3]; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0)
+}
+
 /// For a patch all of whose vertices lie on the surface of `column`: the centroids of its
 /// triangles that the surface does not have, which tell its side; `None` when it has none (a
 /// face the two surfaces share).
@@ -420,7 +425,7 @@ fn own_centroids(p: &TrimPatch, column: &Column) -> Option<Vec<[f64; 3]>> {
     let own: Vec<[f64; 3]> = (0..p.mesh.triangles.len())
         .map(|t| p.mesh.corners(t))
         .filter(|&c| !column.has_triangle(c))
-        .map(|c| [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0))
+        .map(centroid)
         .collect();
     (!own.is_empty()).then_some(own)
 }

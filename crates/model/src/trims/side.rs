@@ -23,7 +23,7 @@
 use geom::{Orientation, TriMesh, orient2d, orient3d};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Where a point lies relative to a surface.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -53,8 +53,19 @@ pub enum Enclosure {
 /// a cut count as one, the smallest such edge first; `None` when the surface is closed and the
 /// parity of the column's crossings says inside or outside.
 pub fn free_border(mesh: &TriMesh) -> Option<[f64; 3]> {
+    let mut uses = BTreeMap::new();
+    edge_uses(mesh, &mut uses);
+    let odd = uses.into_iter().find(|(_, n)| n % 2 == 1)?;
+    Some(odd.0.0.map(f64::from_bits))
+}
+
+/// An edge by its ends' coordinate bits, the smaller first.
+pub(super) type EdgeBits = ([u64; 3], [u64; 3]);
+
+/// Counts into `into` the triangles of `mesh` on each edge, edges matched by their ends'
+/// coordinates (triangles pointing at missing vertices are left out).
+pub(super) fn edge_uses(mesh: &TriMesh, into: &mut BTreeMap<EdgeBits, u32>) {
     let nv = mesh.vertices.len();
-    let mut uses: std::collections::BTreeMap<([u64; 3], [u64; 3]), u32> = Default::default();
     for (t, tri) in mesh.triangles.iter().enumerate() {
         if tri.iter().any(|&v| v as usize >= nv) {
             continue;
@@ -62,11 +73,9 @@ pub fn free_border(mesh: &TriMesh) -> Option<[f64; 3]> {
         let c = mesh.corners(t);
         for k in 0..3 {
             let (a, b) = (bits(c[k]), bits(c[(k + 1) % 3]));
-            *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+            *into.entry((a.min(b), a.max(b))).or_default() += 1;
         }
     }
-    let odd = uses.into_iter().find(|(_, n)| n % 2 == 1)?;
-    Some(odd.0.0.map(f64::from_bits))
 }
 
 /// A surface prepared for vertical casts.
@@ -91,7 +100,7 @@ fn xy(p: &[f64; 3]) -> [f64; 2] {
     [p[0], p[1]]
 }
 
-fn bits(p: &[f64; 3]) -> [u64; 3] {
+pub(super) fn bits(p: &[f64; 3]) -> [u64; 3] {
     p.map(|c| if c == 0.0 { 0 } else { c.to_bits() })
 }
 
