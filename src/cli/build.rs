@@ -111,9 +111,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     // must not leave the report and the lock file as the last build's.
     let json = args.json.then(|| {
         let mut json = report.to_json();
-        if let Some(model) = report
-            .artifact("model")
-            .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
+        if let Some(model) = built_model(&report)
             && let Some(obj) = json.as_object_mut()
         {
             obj.insert("model".to_string(), model.summary());
@@ -324,10 +322,7 @@ fn ran(report: &BuildReport, name: &str) -> bool {
 /// ran in this build (a cached one was warned about when it ran; the report keeps every
 /// warning).
 fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
-    let Some(model) = report
-        .artifact("model")
-        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
-    else {
+    let Some(model) = built_model(report) else {
         return;
     };
     for (region, warning) in plan::ops::thin_region_warnings(recipe, &model) {
@@ -349,14 +344,10 @@ fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
 /// model's curves come closer than their mesh can resolve, when the model was built in this
 /// build (the report keeps the warnings).
 fn print_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
-    let ran = report
-        .node("model")
-        .is_some_and(|n| n.state == NodeState::Ran);
-    let Some(model) = report
-        .artifact("model")
-        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
-        .filter(|_| ran)
-    else {
+    if (report.node("model")).is_none_or(|n| n.state != NodeState::Ran) {
+        return;
+    }
+    let Some(model) = built_model(report) else {
         return;
     };
     let close = plan::ops::close_curve_warnings(recipe, &model);
@@ -384,10 +375,7 @@ fn print_failures_near_close_curves(recipe: &crate::recipe::Recipe, report: &Bui
     if failed_at.is_empty() {
         return;
     }
-    let Some(model) = report
-        .artifact("model")
-        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
-    else {
+    let Some(model) = built_model(report) else {
         return;
     };
     let places: Vec<[f64; 3]> = failed_at.iter().map(|&(_, at)| at).collect();
@@ -440,10 +428,7 @@ fn print_folds_on_faceted_supports(recipe: &crate::recipe::Recipe, report: &Buil
     if folded.is_empty() {
         return;
     }
-    let Some(model) = report
-        .artifact("model")
-        .and_then(|a| a.decode::<crate::plan::ops::ModelData>().ok())
-    else {
+    let Some(model) = built_model(report) else {
         return;
     };
     for (node, patch) in folded {
@@ -465,4 +450,9 @@ fn print_folds_on_faceted_supports(recipe: &crate::recipe::Recipe, report: &Buil
             );
         }
     }
+}
+
+/// The model the build made (or found in the cache), if it was built.
+fn built_model(report: &BuildReport) -> Option<crate::plan::ops::ModelData> {
+    report.artifact("model")?.decode().ok()
 }

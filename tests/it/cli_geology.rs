@@ -6,7 +6,7 @@
 //! when the independent checker is available, the msh passes `check_mesh.py` with that region
 //! count. Cases over the SCEC fault model in `../shared` skip when it is absent.
 
-use crate::common_cli::checker;
+use crate::common_cli;
 use geom::mesh::read::read_volume_msh;
 use std::collections::BTreeSet;
 use std::process::Command;
@@ -90,22 +90,8 @@ fn below_the_bars(dir: &std::path::Path, case: &Case) -> Vec<String> {
 /// Asserts that `check_mesh.py` passes the mesh of `case`, built in `dir` (skipped, with a
 /// note, where the checker is absent).
 fn passes_the_checker(dir: &std::path::Path, case: &Case) {
-    let Some(check) = checker() else {
-        return;
-    };
     let msh = dir.join(format!("out/{}.msh", case.name));
-    let out = Command::new("python3")
-        .arg(&check)
-        .arg(&msh)
-        .args(["--regions", &case.regions.to_string()])
-        .output()
-        .expect("python3 runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success() && text.contains("\"fail\": []"),
-        "{}: {text}",
-        case.name
-    );
+    common_cli::passes_check_mesh(&msh, case.regions, case.name);
 }
 
 fn case(name: &str) -> Case {

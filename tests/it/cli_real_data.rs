@@ -176,15 +176,7 @@ dir = "out/tkc"
     for pipe in ["PK2+till", "PK3+till"] {
         assert!(regions.contains(&pipe), "{regions:?}");
     }
-    let Some(check) = checker() else { return };
-    let out = std::process::Command::new("python3")
-        .arg(&check)
-        .arg(s.path("out/tkc/tkc.msh"))
-        .args(["--regions", "5"])
-        .output()
-        .expect("python3 runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("\"fail\": []"), "{text}");
+    passes_check_mesh(&s.path("out/tkc/tkc.msh"), 5, "tkc");
 }
 
 /// A recipe meshing one closed TKC body alone in a box, `extra` added to its surface entry.
@@ -242,13 +234,5 @@ fn a_real_body_whose_facets_turn_faster_than_its_elements_folds_and_the_note_nam
     let out = s.recipe_cmd(&["build", "body.toml"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
-    let Some(check) = checker() else { return };
-    let out = std::process::Command::new("python3")
-        .arg(&check)
-        .arg(s.path("out/body/body.msh"))
-        .args(["--regions", "2"])
-        .output()
-        .expect("python3 runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("\"fail\": []"), "{text}");
+    passes_check_mesh(&s.path("out/body/body.msh"), 2, "PK1 smoothed");
 }

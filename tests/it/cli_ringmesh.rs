@@ -9,7 +9,6 @@
 //! (`../shared/tools/check_mesh.py`) verify the msh with that region count.
 
 use crate::common_cli;
-use common_cli::checker;
 use geom::BBox;
 use gocad::import::{ImportOptions, import_surfaces, parse_gocad};
 use std::collections::BTreeMap;
@@ -181,20 +180,7 @@ fn sealed_model_meshes_into_its_regions(file: &str) -> Option<serde_json::Value>
 
 /// The msh built in `scratch` for `file` passes the independent checker with `regions` regions.
 fn passes_the_checker(scratch: &std::path::Path, file: &str, regions: usize) {
-    let msh = scratch.join("out/sealed.msh");
-    assert!(msh.is_file(), "{file}: no msh written");
-    let Some(check) = checker() else {
-        return;
-    };
-    let out = Command::new("python3")
-        .arg(&check)
-        .arg(&msh)
-        .args(["--regions", &regions.to_string()])
-        .output()
-        .expect("python3 runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{file}: {text}");
-    assert!(text.contains("\"fail\": []"), "{file}: {text}");
+    common_cli::passes_check_mesh(&scratch.join("out/sealed.msh"), regions, file);
 }
 
 #[test]

@@ -183,6 +183,26 @@ pub fn checker() -> Option<PathBuf> {
     Some(p)
 }
 
+/// Asserts that `check_mesh.py` passes `msh` with `regions` regions (skipped, with a note, where
+/// the checker is absent); `what` names the mesh in the failure.
+pub fn passes_check_mesh(msh: &Path, regions: usize, what: &str) {
+    assert!(msh.is_file(), "{what}: no msh written at {}", msh.display());
+    let Some(check) = checker() else {
+        return;
+    };
+    let out = Command::new("python3")
+        .arg(&check)
+        .arg(msh)
+        .args(["--regions", &regions.to_string()])
+        .output()
+        .expect("python3 runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && text.contains("\"fail\": []"),
+        "{what}: {text}"
+    );
+}
+
 /// Every temporary or staging directory a killed write could have left anywhere under the
 /// scratch folder (a user's own `.tmp-notes` aside).
 pub fn debris(s: &Scratch) -> Vec<String> {
