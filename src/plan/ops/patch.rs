@@ -172,7 +172,9 @@ impl Operation for SurfaceMeshOp {
         //    wrong way (a reverse fault's slit pinched to another hole).
         // 7: a support the mean plane does not project one to one tries the exact axis-plane
         //    projection before a Tutte embedding.
-        7
+        // 8: a folded triangle is judged from every corner's facet, and unfolded by an edge
+        //    flip where one does.
+        8
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
