@@ -50,16 +50,9 @@ fn two_dangling_faults_five_metres_apart_are_named_with_the_place_and_the_fix() 
     );
 }
 
-/// The smallest dihedral angle of the build's tets, from its quality tables.
+/// The smallest dihedral angle of the didactic build's tets.
 fn min_dihedral(s: &Scratch) -> f64 {
-    let text = std::fs::read(s.path("out/didactic/didactic.quality.json")).expect("the tables");
-    let q: serde_json::Value = serde_json::from_slice(&text).expect("JSON");
-    let rows = q["table2"].as_array().expect("rows");
-    let all = rows
-        .iter()
-        .find(|r| r["name"] == "all")
-        .expect("a row of all");
-    all["min_dihedral_deg"].as_f64().expect("an angle")
+    worst_dihedral(&s.path("out/didactic/didactic.quality.json"))
 }
 
 #[test]

@@ -222,3 +222,15 @@ pub fn debris(s: &Scratch) -> Vec<String> {
     out.sort();
     out
 }
+
+/// The smallest dihedral angle of a build's tets, from its quality tables (`quality.json`).
+pub fn worst_dihedral(quality_json: &Path) -> f64 {
+    let text = std::fs::read(quality_json).expect("the quality tables");
+    let q: serde_json::Value = serde_json::from_slice(&text).expect("JSON");
+    let rows = q["table2"].as_array().expect("rows");
+    let all = rows
+        .iter()
+        .find(|r| r["name"] == "all")
+        .expect("a row of all");
+    all["min_dihedral_deg"].as_f64().expect("an angle")
+}

@@ -49,48 +49,85 @@ pub fn clearances(
         .collect();
     let arcs = arc_lengths(curves);
     for (b, p) in bounds.iter().zip(patches) {
-        let used = b.curves();
-        if used.is_empty() {
-            continue;
-        }
-        let Some(project) = Projection::of(&p.mesh) else {
+        let Some(plane) = PlaneCurves::new(curves, &arcs, b, p) else {
             continue;
         };
-        let project = &project;
+        for &c in &plane.used {
+            for (k, q) in curves[c as usize].points.iter().enumerate() {
+                let at = Along {
+                    curve: c,
+                    arc: arcs[c as usize][k],
+                };
+                let slot = &mut out[c as usize][k];
+                *slot = slot.min(plane.apart(at, q, DETOUR));
+            }
+        }
+    }
+    out
+}
+
+/// One patch's curves drawn in its plane, searchable for the nearest piece apart from a place
+/// on one of them.
+pub(crate) struct PlaneCurves<'a> {
+    curves: &'a [Curve],
+    arcs: &'a [Vec<f64>],
+    project: Projection,
+    tree: RTree<Segment>,
+    /// The curves the patch's loops and constraints use, ascending.
+    pub used: Vec<u32>,
+}
+
+impl<'a> PlaneCurves<'a> {
+    /// `None` for a patch with no curve or no plane to draw in.
+    pub fn new(
+        curves: &'a [Curve],
+        arcs: &'a [Vec<f64>],
+        bound: &PatchBoundary,
+        patch: &PatchIn,
+    ) -> Option<Self> {
+        let used = bound.curves();
+        if used.is_empty() {
+            return None;
+        }
+        let project = Projection::of(&patch.mesh)?;
         let segments: Vec<Segment> = used
             .iter()
             .flat_map(|&c| {
                 let pts = &curves[c as usize].points;
+                let project = &project;
                 pts.windows(2).enumerate().map(move |(t, w)| {
                     let line = Line::new(project.at(&w[0]), project.at(&w[1]));
                     Segment::new(line, (c, t as u32))
                 })
             })
             .collect();
-        let tree = RTree::bulk_load(segments);
-        for &c in &used {
-            for (k, q) in curves[c as usize].points.iter().enumerate() {
-                let at = Along {
-                    curve: c,
-                    arc: arcs[c as usize][k],
-                };
-                let q = project.at(q);
-                let nearest = tree
-                    .nearest_neighbor_iter_with_distance_2(q)
-                    .take(MAX_CANDIDATES)
-                    .find(|(s, d2)| {
-                        let (j, t) = s.data;
-                        let arc = arc_at(&arcs[j as usize], t, s.geom(), &q);
-                        let there = Along { curve: j, arc };
-                        detour(curves, &arcs, at, there) > DETOUR * d2.sqrt()
-                    })
-                    .map_or(f64::INFINITY, |(_, d2)| d2.sqrt());
-                let slot = &mut out[c as usize][k];
-                *slot = slot.min(nearest);
-            }
-        }
+        Some(PlaneCurves {
+            curves,
+            arcs,
+            project,
+            tree: RTree::bulk_load(segments),
+            used,
+        })
     }
-    out
+
+    /// The distance in the plane from `q` (at place `at` of one of the curves) to the nearest
+    /// piece of the patch's curves apart from it; infinite when none is among the nearest
+    /// `MAX_CANDIDATES`.
+    pub fn apart(&self, at: Along, q: &[f64; 3], ratio: f64) -> f64 {
+        let q = self.project.at(q);
+        self.tree
+            .nearest_neighbor_iter_with_distance_2(q)
+            .take(MAX_CANDIDATES)
+            .find(|(s, d2)| {
+                let (j, t) = s.data;
+                let arc = arc_at(&self.arcs[j as usize], t, s.geom(), &q);
+                let there = Along { curve: j, arc };
+                // The place's own piece of curve, a rounding away, is never apart from it.
+                let own = ARC_EPS * self.arcs[at.curve as usize].last().copied().unwrap_or(0.0);
+                detour(self.curves, self.arcs, at, there) > ratio * d2.sqrt() + own
+            })
+            .map_or(f64::INFINITY, |(_, d2)| d2.sqrt())
+    }
 }
 
 /// A piece of curve is apart from a point when the way between them along the curves is longer
@@ -99,18 +136,21 @@ pub fn clearances(
 /// open angle (a chart seam leaving a salt body's rim at 10°) stay out, so their stair-steps near
 /// the junction are not split into support edges.
 const DETOUR: f64 = 20.0;
+/// Relative to its curve's length, the arc length by which a place may miss its own piece of
+/// curve by rounding.
+const ARC_EPS: f64 = 1e-9;
 /// Nearest pieces of curve a point looks at for one apart from it.
 const MAX_CANDIDATES: usize = 4096;
 
 /// A place on a curve: the curve and the arc length from its first point.
 #[derive(Clone, Copy)]
-struct Along {
-    curve: u32,
-    arc: f64,
+pub(crate) struct Along {
+    pub curve: u32,
+    pub arc: f64,
 }
 
 /// Cumulative arc length at each point of each curve.
-fn arc_lengths(curves: &[Curve]) -> Vec<Vec<f64>> {
+pub(crate) fn arc_lengths(curves: &[Curve]) -> Vec<Vec<f64>> {
     curves
         .iter()
         .map(|c| {
@@ -212,12 +252,12 @@ impl Projection {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::CurveUse;
     use geom::TriMesh;
 
-    fn curve(name: &str, points: Vec<[f64; 3]>) -> Curve {
+    pub(crate) fn curve(name: &str, points: Vec<[f64; 3]>) -> Curve {
         Curve {
             name: name.into(),
             surfaces: vec!["s".into()],
@@ -226,11 +266,12 @@ mod tests {
             closed: false,
             clearance: Vec::new(),
             curvature_size: Vec::new(),
+            narrow_size: Vec::new(),
         }
     }
 
     /// A flat 100 x 10 m strip in the plane z = 0, tilted by `tilt` (z grows with y).
-    fn strip(tilt: f64) -> (Vec<Curve>, PatchBoundary, PatchIn) {
+    pub(crate) fn strip(tilt: f64) -> (Vec<Curve>, PatchBoundary, PatchIn) {
         let p = |x: f64, y: f64| [x, y, tilt * y];
         let curves = vec![
             curve("low", vec![p(0.0, 0.0), p(50.0, 0.0), p(100.0, 0.0)]),

@@ -17,7 +17,8 @@
 //! A curvature size above a patch's own diameter is not computed: no element of that patch is
 //! larger. No recipe size enters this step.
 //!
-//! The sizes are then graded over every curve of the model at that same growth, by distance in
+//! The sizes are then graded, together with the sizes narrow patches ask of their seams and
+//! creases (`width`), over every curve of the model at that same growth, by distance in
 //! space: a point gets no more than any curve point's size plus the growth times the distance
 //! between them. Each patch's curvature sizes see that patch only, and the two borders of a
 //! narrow patch can lie along patches that bend very differently (a strip left between two crease
@@ -38,11 +39,21 @@ const SLOPE: f64 = surface_mesh::MAX_SURFACE_GROWTH - 1.0;
 const LEVEL_RATIO: f64 = 1.25;
 
 /// Per curve, per point of its polyline, the least curvature size of the patches along it that
-/// belong to a surface of `smooth` (infinite where none bends enough to ask for one); every
-/// curve's list is empty when no patch does.
-pub fn curvature_sizes(curves: &[Curve], patches: &[PatchIn], smooth: &[String]) -> Vec<Vec<f64>> {
-    if !patches.iter().any(|p| smooth.contains(&p.surface)) {
-        return vec![Vec::new(); curves.len()];
+/// belong to a surface of `smooth` (infinite where none bends enough to ask for one), graded
+/// together with the `narrow` places of every curve (`width::narrow_sizes`); and those places
+/// graded alike. Every curve's list is empty when no patch is smooth and no place narrow.
+pub fn curvature_sizes(
+    curves: &[Curve],
+    patches: &[PatchIn],
+    smooth: &[String],
+    narrow: &[Vec<[f64; 4]>],
+) -> (Vec<Vec<f64>>, Vec<Vec<[f64; 4]>>) {
+    let any_smooth = patches.iter().any(|p| smooth.contains(&p.surface));
+    if !any_smooth && narrow.iter().all(Vec::is_empty) {
+        return (
+            vec![Vec::new(); curves.len()],
+            vec![Vec::new(); curves.len()],
+        );
     }
     let fields: Vec<Option<CurvatureSizes>> = patches
         .par_iter()
@@ -62,19 +73,34 @@ pub fn curvature_sizes(curves: &[Curve], patches: &[PatchIn], smooth: &[String])
                 .collect()
         })
         .collect();
-    graded(curves, &own)
+    let sources: Vec<([f64; 3], f64)> = (curves.iter().zip(&own))
+        .flat_map(|(c, h)| c.points.iter().copied().zip(h.iter().copied()))
+        .chain(narrow.iter().flatten().map(|s| ([s[0], s[1], s[2]], s[3])))
+        .collect();
+    let at = graded(sources);
+    let points = (curves.par_iter().zip(&own))
+        .map(|(c, h)| (c.points.iter().zip(h)).map(|(p, &h)| at(p, h)).collect())
+        .collect();
+    let places = narrow
+        .par_iter()
+        .map(|n| {
+            n.iter()
+                .map(|s| [s[0], s[1], s[2], at(&[s[0], s[1], s[2]], s[3])])
+                .collect()
+        })
+        .collect();
+    (points, places)
 }
 
-/// Per curve point, the least over every curve point `q` of `own(q) + SLOPE · |p − q|` (its own
-/// size included). Exact: the sources are bucketed by size into levels within `LEVEL_RATIO` of
-/// each other, each level searched nearest first until no farther point can do better, the
-/// levels finest first until none can.
-fn graded(curves: &[Curve], own: &[Vec<f64>]) -> Vec<Vec<f64>> {
+/// The size field graded from `sources`: at a point with its own size `h`, the least of `h`
+/// and, over every source `q`, `size(q) + SLOPE · |p − q|`. Exact: the sources are bucketed by
+/// size into levels within `LEVEL_RATIO` of each other, each level searched nearest first until
+/// no farther point can do better, the levels finest first until none can.
+fn graded(sources: Vec<([f64; 3], f64)>) -> impl Fn(&[f64; 3], f64) -> f64 + Sync {
     type Source = GeomWithData<[f64; 3], f64>;
-    let mut sources: Vec<Source> = (curves.iter().zip(own))
-        .flat_map(|(c, h)| c.points.iter().zip(h))
+    let mut sources: Vec<Source> = (sources.into_iter())
         .filter(|(_, h)| h.is_finite())
-        .map(|(p, &h)| GeomWithData::new(*p, h))
+        .map(|(p, h)| GeomWithData::new(p, h))
         .collect();
     sources.sort_by(|a, b| a.data.total_cmp(&b.data));
     let mut levels: Vec<(f64, RTree<Source>)> = Vec::new();
@@ -85,7 +111,7 @@ fn graded(curves: &[Curve], own: &[Vec<f64>]) -> Vec<Vec<f64>> {
         levels.push((lo, RTree::bulk_load(rest[..n].to_vec())));
         rest = &rest[n..];
     }
-    let at = |p: &[f64; 3], mut best: f64| {
+    move |p: &[f64; 3], mut best: f64| {
         for (lo, tree) in &levels {
             if *lo >= best {
                 break;
@@ -99,10 +125,7 @@ fn graded(curves: &[Curve], own: &[Vec<f64>]) -> Vec<Vec<f64>> {
             }
         }
         best
-    };
-    (curves.par_iter().zip(own))
-        .map(|(c, h)| (c.points.iter().zip(h)).map(|(p, &h)| at(p, h)).collect())
-        .collect()
+    }
 }
 
 #[cfg(test)]
@@ -114,6 +137,17 @@ mod tests {
     fn half_cylinder() -> TriMesh {
         let (vs, ts) = test_support::shapes::half_cylinder(20);
         TriMesh::new(vs, ts)
+    }
+
+    /// [`graded`] from every curve point's own size, at every curve point.
+    fn graded_at(curves: &[Curve], own: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        let sources = (curves.iter().zip(own))
+            .flat_map(|(c, h)| c.points.iter().copied().zip(h.iter().copied()))
+            .collect();
+        let at = graded(sources);
+        (curves.iter().zip(own))
+            .map(|(c, h)| (c.points.iter().zip(h)).map(|(p, &h)| at(p, h)).collect())
+            .collect()
     }
 
     fn patch(name: &str, mesh: TriMesh) -> PatchIn {
@@ -134,6 +168,7 @@ mod tests {
             closed: false,
             clearance: Vec::new(),
             curvature_size: Vec::new(),
+            narrow_size: Vec::new(),
         }
     }
 
@@ -149,7 +184,7 @@ mod tests {
             curve(vec![2], far),
         ];
         let own = vec![vec![4.0; 21], vec![f64::INFINITY; 2], vec![3.0]];
-        let g = graded(&curves, &own);
+        let g = graded_at(&curves, &own);
         assert_eq!(g[0], own[0], "a finer size is never raised");
         for h in &g[1] {
             assert!((h - (4.0 + SLOPE * 10.0)).abs() < 1e-12, "h = {h}");
@@ -178,7 +213,7 @@ mod tests {
             );
             curves.push(curve(vec![0], pts));
         }
-        let g = graded(&curves, &own);
+        let g = graded_at(&curves, &own);
         let all: Vec<([f64; 3], f64)> = (curves.iter().zip(&own))
             .flat_map(|(c, h)| c.points.iter().copied().zip(h.iter().copied()))
             .collect();
@@ -207,7 +242,7 @@ mod tests {
             curve(vec![0], vec![[0.0, 0.0, 150.0], [0.0, 600.0, 150.0]]),
         ];
         let smooth = ["tube".to_string(), "plane".to_string()];
-        let sizes = curvature_sizes(&curves, &patches, &smooth);
+        let sizes = curvature_sizes(&curves, &patches, &smooth, &[]).0;
         // Radius 150 m: about 0.35 × 150 m, as the tube's own surface mesh refines.
         for h in sizes[0].iter().chain(&sizes[2]) {
             assert!(*h > 40.0 && *h < 80.0, "h = {h}");
@@ -215,17 +250,13 @@ mod tests {
         // The plane asks nothing, but a curve where the tube's is gets the tube's sizes.
         assert_eq!(sizes[1], sizes[0]);
         // A support as read (not smoothed) asks nothing of its curves.
-        let as_read = curvature_sizes(&curves, &patches, &["plane".to_string()]);
+        let as_read = curvature_sizes(&curves, &patches, &["plane".to_string()], &[]).0;
         assert!(
             as_read[0]
                 .iter()
                 .chain(&as_read[2])
                 .all(|h| *h == f64::INFINITY)
         );
-        assert!(
-            curvature_sizes(&curves, &patches, &[])
-                .iter()
-                .all(Vec::is_empty)
-        );
+        assert!((curvature_sizes(&curves, &patches, &[], &[]).0.iter()).all(Vec::is_empty));
     }
 }

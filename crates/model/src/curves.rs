@@ -381,6 +381,7 @@ fn name_curves(
                 closed: *closed,
                 clearance: Vec::new(),
                 curvature_size: Vec::new(),
+                narrow_size: Vec::new(),
             });
         }
         g = h;

@@ -2,7 +2,7 @@
 //! (`intersect`), the patches of each split surface (`patches`), which patches the recipe's trims
 //! discard (`trims`), the regions the patches bound (`regions`), the half-edge structure of one
 //! surface (`topology`), curve subdivision (`discretize`), the room it has (`clearance`) and the
-//! sizes the patches' curvature asks of it (`curvature`), how
+//! sizes the patches' curvature and width ask of it (`curvature`, `width`), how
 //! thick each region is (`thickness`), and, at the crate root, the model's topology and the FE
 //! assembly along it.
 //!
@@ -47,6 +47,7 @@ pub mod touches;
 pub mod trims;
 pub mod union_find;
 pub mod wells;
+pub mod width;
 
 pub use assemble::{
     FaceToFace, VolumeAssembly, assemble_volume, embed_polylines, face_to_face, patch_input,
@@ -76,6 +77,10 @@ pub struct Curve {
     /// ([`curvature`]; infinite where none does): its FE segments are no longer.
     #[serde(default)]
     pub curvature_size: Vec<f64>,
+    /// Places `[x, y, z, size]` where a patch along the curve is narrow, with the size its width
+    /// asks for there, graded like `curvature_size` ([`width`]): its FE segments are no longer.
+    #[serde(default)]
+    pub narrow_size: Vec<[f64; 4]>,
 }
 
 /// A curve as it appears in a patch's boundary loop.

@@ -40,6 +40,9 @@ pub struct ModelCurve {
     /// (`model::Curve::curvature_size`); empty for curves found without a model.
     #[serde(default)]
     pub curvature_size: Vec<f64>,
+    /// Places `[x, y, z, size]` where a patch along it is narrow (`model::Curve::narrow_size`).
+    #[serde(default)]
+    pub narrow_size: Vec<[f64; 4]>,
 }
 
 /// The output of `curves`: every curve, sorted by name.
@@ -61,7 +64,8 @@ impl Operation for CurvesOp {
     }
     fn version(&self) -> u32 {
         // 2: curves carry curvature sizes (none without a model).
-        2
+        // 3: and narrow sizes (none without a model).
+        3
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -97,6 +101,7 @@ impl Operation for CurvesOp {
                     closed,
                     clearance: Vec::new(),
                     curvature_size: Vec::new(),
+                    narrow_size: Vec::new(),
                 });
             }
         }
@@ -120,6 +125,7 @@ impl Operation for CurvesOp {
                     closed: c.closed,
                     clearance: Vec::new(),
                     curvature_size: Vec::new(),
+                    narrow_size: Vec::new(),
                 });
             }
         }
@@ -168,7 +174,8 @@ impl Operation for CurveExtractOp {
     }
     fn version(&self) -> u32 {
         // 3: the curvature sizes along the curve.
-        3
+        // 4: the narrow sizes along it.
+        4
     }
     fn params(&self) -> Params {
         Params::new()
@@ -195,6 +202,7 @@ impl Operation for CurveExtractOp {
                 closed: c.closed,
                 clearance: c.clearance.clone(),
                 curvature_size: c.curvature_size.clone(),
+                narrow_size: c.narrow_size.clone(),
             }
         } else {
             let set = input.decode_shared::<CurveSet>()?;
@@ -243,7 +251,8 @@ impl Operation for DiscretizeOp {
     }
     fn version(&self) -> u32 {
         // 3: no segment longer than the patches' curvature asks for.
-        3
+        // 4: nor than a narrow patch along the curve is wide.
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -315,8 +324,8 @@ impl Operation for DiscretizeOp {
     }
 }
 
-/// The curvature sizes of a curve's points that are below its rule's size (raised to
-/// `min_size`), as a size field
+/// The curvature sizes of a curve's points and the sizes of its narrow places that are below
+/// its rule's size (raised to `min_size`), as a size field
 /// along it: at a point, the least over them of `h + g · d`, with `g` the steepest growth of a
 /// surface mesh (the sizes were graded so on the patches already; between two points this
 /// bounds the size by its neighbours').
@@ -330,10 +339,16 @@ impl CurvatureAlong {
             Subdivision::Size { size, .. } => *size,
             Subdivision::Count(_) => 0.0,
         };
-        let points = (c.polyline.iter().zip(&c.curvature_size))
-            .filter(|&(_, &h)| h < below)
-            .map(|(p, &h)| GeomWithData::new(*p, h.max(min_size)))
-            .collect();
+        let narrow = (c.narrow_size.iter()).map(|s| ([s[0], s[1], s[2]], s[3]));
+        let points = (c
+            .polyline
+            .iter()
+            .copied()
+            .zip(c.curvature_size.iter().copied()))
+        .chain(narrow)
+        .filter(|&(_, h)| h < below)
+        .map(|(p, h)| GeomWithData::new(p, h.max(min_size)))
+        .collect();
         CurvatureAlong {
             points: RTree::bulk_load(points),
         }
@@ -493,6 +508,7 @@ mod tests {
             closed: false,
             clearance: Vec::new(),
             curvature_size,
+            narrow_size: Vec::new(),
         }
     }
 

@@ -355,6 +355,7 @@ mod tests {
             closed: false,
             clearance: Vec::new(),
             curvature_size: Vec::new(),
+            narrow_size: Vec::new(),
         }
     }
 

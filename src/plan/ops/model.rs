@@ -15,6 +15,7 @@ use model::intersect::{Intersection, split};
 use model::thickness::region_thickness;
 use model::touches::touch_points;
 use model::trims::{TrimPatch, TrimSpec, apply_trims, describe};
+use model::width::narrow_sizes;
 use model::{ModelTopology, build_topology};
 use model::{patches, regions};
 use serde::{Deserialize, Serialize};
@@ -91,7 +92,8 @@ impl Operation for ModelOp {
         // 19: no chart's border crosses itself on its plane where the charts can be mended.
         // 20: each patch records the part (TFACE) it lies in.
         // 21: charts peeled from an overlap merge on past one that cannot.
-        21
+        // 22: curves inside one surface carry the sizes their narrow patches ask for.
+        22
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -217,9 +219,11 @@ impl Operation for ModelOp {
             .map_err(|e| self.region_error(e))?;
         let mut topology =
             build_topology(&input, &self.tolerances).map_err(|e| OpError::from(e.to_string()))?;
-        let bends = curvature_sizes(&topology.curves, &input, &self.smoothed);
-        for (c, b) in topology.curves.iter_mut().zip(bends) {
+        let narrow = narrow_sizes(&topology.curves, &topology.patches, &input);
+        let (bends, narrow) = curvature_sizes(&topology.curves, &input, &self.smoothed, &narrow);
+        for ((c, b), n) in topology.curves.iter_mut().zip(bends).zip(narrow) {
             c.curvature_size = b;
+            c.narrow_size = n;
         }
         let thickness = model
             .regions
