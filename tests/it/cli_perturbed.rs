@@ -477,3 +477,14 @@ fn a_horizon_vertex_dragged_four_hundred_metres_at_a_fault_junction_meshes_and_p
         Perturbation::Drag(400.0),
     );
 }
+
+#[test]
+fn a_closed_salt_diapir_jittered_by_ten_metres_meshes_and_passes_the_checker() {
+    // It failed after 30 s until seams and creases were discretized as fine as their patches
+    // are wide and the surface mesher unfolded triangles by flips.
+    meshes(
+        || Model::case("closed_salt_diapir"),
+        "SALT.ts",
+        Perturbation::Jitter(10.0, 7),
+    );
+}
