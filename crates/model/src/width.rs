@@ -1,9 +1,8 @@
 //! How narrow the patches are along their seams and creases, as sizes for those curves.
 //!
 //! A patch narrower than the elements of its border can only be meshed with needles: a strip
-//! between two creases along a lens's tightly bent rim, a single facet that bends away from all
-//! its neighbours and so is a patch of its own, a chart whose seam runs close beside a contact
-//! curve. Their border nodes are their curves' nodes, fixed before the patch is meshed, so the
+//! between two creases along a rough body's tightly bent edge, a chart whose seam runs close
+//! beside a contact curve. Their border nodes are their curves' nodes, fixed before the patch is meshed, so the
 //! curves must already be as fine as the patch is wide. This module measures that width along
 //! the curves and asks for elements no longer than it (the local feature size of a 2D mesher).
 //!
