@@ -580,7 +580,7 @@ fn refine_and_smooth(
     refining.done();
     s.run(SMOOTH_ROUNDS, smoothing);
     let mut stri = std::mem::take(&mut s.stri);
-    unfold::repair_folds(cdt, p3, support, &mut stri);
+    unfold::repair_folds(cdt, p3, support, &mut stri, first_free);
     Ok(())
 }
 

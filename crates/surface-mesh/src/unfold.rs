@@ -11,40 +11,56 @@
 //! though, flipping one of its edges is tried: a diagonal drawn the wrong way across a sharp bend
 //! of a crumpled support unfolds that way without a point.
 //!
-//! A fold is judged from the support under the triangle's centroid as found from each of its
-//! corners' facets and by a global search: on a crumpled support a local search can land on
-//! different facets from different starts, and `verify` starts from one corner.
+//! A fold is judged exactly as `verify` judges it (from the support under the triangle's
+//! centroid, found by a local search from its first corner's facet, that facet found as `verify`
+//! finds it), and also from every corner's facet as refinement placed it and by a global search:
+//! on a crumpled support, searches from different facets land on different ones, and a repair
+//! that judged otherwise than `verify` left folds that `verify` then refused.
 
 use super::cdt::{CavityEdge, Cdt, FREE, NONE};
 use super::support::Support;
-use geom::predicates::{cross, dot, sub};
+use super::verify;
 
 /// Rounds of repair; each splits every triangle still folded.
 const MAX_ROUNDS: usize = 8;
 
 /// Splits folded triangles until none is left or `MAX_ROUNDS` pass; returns the points added.
 /// `stri` (the support triangle under each vertex, `u32::MAX` where unknown) is kept current.
+/// The vertices from 3 to `first_free` are the given nodes.
 pub fn repair_folds(
     cdt: &mut Cdt,
     p3: &mut Vec<[f64; 3]>,
     support: &Support,
     stri: &mut Vec<u32>,
+    first_free: u32,
 ) -> usize {
     let mut added = 0;
     for _ in 0..MAX_ROUNDS {
-        let folded: Vec<[u32; 3]> = cdt
-            .live_triangles()
-            .filter(|&t| cdt.inside[t as usize] && folds(cdt, p3, support, stri, t))
-            .map(|t| cdt.tri[t as usize])
-            .collect();
+        let facets = verify_facets(cdt, p3, support, first_free);
+        let folded: Vec<[u32; 3]> = {
+            let judge = Judge {
+                support,
+                stri,
+                facets: &facets,
+            };
+            cdt.live_triangles()
+                .filter(|&t| cdt.inside[t as usize] && judge.folds(cdt, p3, t))
+                .map(|t| cdt.tri[t as usize])
+                .collect()
+        };
         if folded.is_empty() {
             break;
         }
         for verts in folded {
-            // An earlier repair this round may have taken the triangle.
-            if unfold_by_flip(cdt, p3, support, stri, verts) {
+            let judge = Judge {
+                support,
+                stri,
+                facets: &facets,
+            };
+            if unfold_by_flip(cdt, p3, &judge, verts) {
                 continue;
             }
+            // An earlier repair this round may have taken the triangle.
             let Some(t) = find(cdt, verts) else { continue };
             if split(cdt, p3, support, stri, t) {
                 added += 1;
@@ -54,44 +70,63 @@ pub fn repair_folds(
     added
 }
 
-/// Whether the flat 3D triangle `t` faces away from the support under its centroid (its normal
-/// 90° or more from the support's there: the condition `verify` refuses).
-fn folds(cdt: &Cdt, p3: &[[f64; 3]], support: &Support, stri: &[u32], t: u32) -> bool {
-    let v = cdt.tri[t as usize];
-    if v.iter().any(|&x| x < 3) {
-        return false;
+/// Per vertex, the support facet `verify` finds for its node (`u32::MAX` for the super
+/// triangle's vertices and for vertices no inside triangle uses, which the output drops unless
+/// given): the same search from the same facets in the same order (`verify::node_facets`).
+fn verify_facets(cdt: &Cdt, p3: &[[f64; 3]], support: &Support, first_free: u32) -> Vec<u32> {
+    let mut used = vec![false; p3.len()];
+    for t in cdt.live_triangles().filter(|&t| cdt.inside[t as usize]) {
+        for v in cdt.tri[t as usize] {
+            used[v as usize] = true;
+        }
     }
-    let [a, b, c] = v.map(|x| p3[x as usize]);
-    let g = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
-    let n = cross(&sub(&b, &a), &sub(&c, &a));
-    // The support under the centroid as found from each corner's facet, and globally: on a
-    // crumpled support these can differ, and `verify` looks from one of them.
-    let hints = v.map(|x| stri.get(x as usize).copied().unwrap_or(u32::MAX));
-    let faces_away = |on: Option<crate::support::OnSupport>| {
-        on.is_some_and(|on| {
-            let ns = support.normals[on.tri as usize];
-            // A support triangle of zero area has no normal (`[0; 3]`) and says nothing.
-            ns != [0.0; 3] && !(dot(&n, &ns) > 0.0)
-        })
-    };
-    hints
-        .iter()
-        .filter(|&&h| h != u32::MAX)
-        .any(|&h| faces_away(support.project_from(h, &g)))
-        || faces_away(support.project(&g))
+    let kept: Vec<usize> = (3..p3.len())
+        .filter(|&v| v < first_free as usize || used[v])
+        .collect();
+    let nodes: Vec<[f64; 3]> = kept.iter().map(|&v| p3[v]).collect();
+    let mut out = vec![u32::MAX; p3.len()];
+    for (v, on) in kept.into_iter().zip(verify::node_facets(support, &nodes)) {
+        out[v] = on.map_or(u32::MAX, |on| on.tri);
+    }
+    out
+}
+
+/// How a fold is judged in one round of repair.
+struct Judge<'a> {
+    support: &'a Support,
+    /// The support triangle under each vertex as refinement placed it.
+    stri: &'a [u32],
+    /// The support facet `verify` finds for each vertex's node.
+    facets: &'a [u32],
+}
+
+impl Judge<'_> {
+    /// Whether the flat 3D triangle `t` faces away from the support under its centroid (its
+    /// normal 90° or more from the support's there): as `verify` judges it, from its first
+    /// corner's facet, and, since the facets can differ once a repair has moved things, from
+    /// every corner's facet as refinement placed it and by a global search. A support triangle
+    /// of zero area has no normal and says nothing.
+    fn folds(&self, cdt: &Cdt, p3: &[[f64; 3]], t: u32) -> bool {
+        let v = cdt.tri[t as usize];
+        if v.iter().any(|&x| x < 3) {
+            return false;
+        }
+        let corners = v.map(|x| &p3[x as usize]);
+        let away = |f: u32| verify::faces_away(self.support, corners, f).is_some_and(|(a, _)| a);
+        let of = |list: &[u32], x: u32| list.get(x as usize).copied().unwrap_or(u32::MAX);
+        let first = of(self.facets, v[0]);
+        (first != u32::MAX && away(first))
+            || v.iter()
+                .any(|&x| of(self.stri, x) != u32::MAX && away(of(self.stri, x)))
+            || away(u32::MAX)
+    }
 }
 
 /// Flips an edge of the folded triangle `verts` (free, inside, and convex in the plane) when
 /// neither triangle the flip makes folds; returns whether one was flipped. Where the fold is a
 /// diagonal drawn the wrong way across a sharp bend of the support (the base of a spike of a
 /// chart), the other diagonal follows the bend, and no split point, however many, is needed.
-fn unfold_by_flip(
-    cdt: &mut Cdt,
-    p3: &[[f64; 3]],
-    support: &Support,
-    stri: &[u32],
-    verts: [u32; 3],
-) -> bool {
+fn unfold_by_flip(cdt: &mut Cdt, p3: &[[f64; 3]], judge: &Judge<'_>, verts: [u32; 3]) -> bool {
     for corner in verts {
         // A flip undone leaves the triangle in another slot: find it again each time.
         let Some(t) = find(cdt, verts) else {
@@ -109,7 +144,7 @@ fn unfold_by_flip(
             continue;
         }
         let (a, b) = cdt.flip(t, i);
-        if !folds(cdt, p3, support, stri, a) && !folds(cdt, p3, support, stri, b) {
+        if !judge.folds(cdt, p3, a) && !judge.folds(cdt, p3, b) {
             return true;
         }
         let back = cdt

@@ -16,7 +16,7 @@
 use super::SurfaceMeshError;
 use super::input::{GivenNodes, given_nodes};
 use super::segments::first_crossing;
-use super::support::Support;
+use super::support::{OnSupport, Support};
 use super::{PatchInput, SurfaceMeshOutput};
 use geom::predicates::{cross, dot, sub};
 use geom::{Orientation, orient2d};
@@ -285,9 +285,9 @@ fn flatten_nodes(
     }
     let mut uv = Vec::with_capacity(nn);
     let mut ntri = Vec::with_capacity(nn);
-    let mut hint = u32::MAX;
-    for (i, p) in out.nodes.iter().enumerate() {
-        let Some(on) = support.project_hinted(hint, p) else {
+    let on_support = node_facets(support, &out.nodes);
+    for (i, (p, on)) in out.nodes.iter().zip(on_support).enumerate() {
+        let Some(on) = on else {
             return Err(fail(input, "the support is empty".into(), Some(*p)));
         };
         let local = lsum[i] / lcnt[i].max(1) as f64;
@@ -303,9 +303,40 @@ fn flatten_nodes(
         }
         uv.push(on.uv);
         ntri.push(on.tri);
-        hint = on.tri;
     }
     Ok((uv, ntri))
+}
+
+/// Where each of `nodes` lies on the support, each search starting from the facet of the node
+/// before it. The fold repair finds the facets the same way, so that it sees what
+/// [`check_triangles`] refuses: on a crumpled support, searches from different facets can land
+/// on different ones.
+pub(crate) fn node_facets(support: &Support, nodes: &[[f64; 3]]) -> Vec<Option<OnSupport>> {
+    let mut hint = u32::MAX;
+    (nodes.iter())
+        .map(|p| {
+            let on = support.project_hinted(hint, p);
+            if let Some(on) = &on {
+                hint = on.tri;
+            }
+            on
+        })
+        .collect()
+}
+
+/// Whether the flat triangle `[a, b, c]` faces away from the support (its normal 90° or more
+/// from the support's) under its centroid, as found from support facet `from`; `None` where
+/// nothing is found or the facet there has no normal (zero area).
+pub(crate) fn faces_away(
+    support: &Support,
+    [a, b, c]: [&[f64; 3]; 3],
+    from: u32,
+) -> Option<(bool, u32)> {
+    let g = centroid(a, b, c);
+    let n = cross(&sub(b, a), &sub(c, a));
+    let on = support.project_from(from, &g)?;
+    let ns = support.normals[on.tri as usize];
+    (ns != [0.0; 3]).then(|| (!(dot(&n, &ns) > 0.0), on.tri))
 }
 
 /// Whether the loops and constraints stay apart in the flattening (exact).
@@ -354,17 +385,11 @@ fn check_triangles(
                 Some(g),
             ));
         }
-        let n = cross(
-            &sub(&out.nodes[b], &out.nodes[a]),
-            &sub(&out.nodes[c], &out.nodes[a]),
-        );
-        let Some(on) = support.project_from(ntri[a], &g) else {
-            continue;
-        };
-        if !(dot(&n, &support.normals[on.tri as usize]) > 0.0) {
+        let corners = [&out.nodes[a], &out.nodes[b], &out.nodes[c]];
+        if let Some((true, under)) = faces_away(support, corners, ntri[a]) {
             // How far the support turns between the facets under the triangle's corners and
             // centroid: a bend sharper than one element can follow is the usual cause.
-            let under = [ntri[a], ntri[b], ntri[c], on.tri].map(|f| support.normals[f as usize]);
+            let under = [ntri[a], ntri[b], ntri[c], under].map(|f| support.normals[f as usize]);
             let bend = (under.iter())
                 .flat_map(|m| under.iter().map(move |k| dot(m, k).clamp(-1.0, 1.0).acos()))
                 .fold(0.0, f64::max)

@@ -174,7 +174,8 @@ impl Operation for SurfaceMeshOp {
         //    projection before a Tutte embedding.
         // 8: a folded triangle is judged from every corner's facet, and unfolded by an edge
         //    flip where one does.
-        8
+        // 9: and as the verification judges it, from the facets it finds.
+        9
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
