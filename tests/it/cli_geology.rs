@@ -101,6 +101,14 @@ fn case(name: &str) -> Case {
         .unwrap_or_else(|| panic!("no case `{name}`"))
 }
 
+/// The known gap named `name`.
+fn known_gap(name: &str) -> Case {
+    known_gaps()
+        .into_iter()
+        .find(|c| c.name == name)
+        .unwrap_or_else(|| panic!("no known gap `{name}`"))
+}
+
 #[test]
 fn a_normal_fault_with_throw_and_trimmed_horizons_meshes_into_six_regions() {
     builds_and_meshes(&case("normal_fault"));
@@ -167,10 +175,7 @@ fn every_case_of_the_corpus_has_a_test() {
 fn the_salt_overhangs_narrow_charts_are_as_fine_as_they_are_wide_and_its_tets_over_five_degrees() {
     // The overhang's rim is cut into charts whose seams run metres apart: elements of the case's
     // size across them were needles, and tets on them reached 0.9°.
-    let case = known_gaps()
-        .into_iter()
-        .find(|c| c.name == "salt_overhang")
-        .expect("the case");
+    let case = known_gap("salt_overhang");
     let dir = tempfile::tempdir().expect("a scratch folder");
     let out = build_quietly(dir.path(), &case.write(dir.path()));
     assert!(
@@ -196,10 +201,7 @@ fn a_lens_rim_meshed_without_creases_folds_and_the_note_names_the_smoothing_swit
     // The two lenses' rims are crumpled into facets that turn by up to 115° between
     // neighbours; with creases turned off (`crease_angle_deg = 179`) one surface element spans
     // such a turn and folds. The note says which recipe switch makes meshes follow such bends.
-    let case = known_gaps()
-        .into_iter()
-        .find(|c| c.name == "two_lenses")
-        .expect("the case");
+    let case = known_gap("two_lenses");
     let case = Case {
         recipe: format!("{}\n[tolerances]\ncrease_angle_deg = 179\n", case.recipe),
         ..case
