@@ -204,6 +204,48 @@ pub fn face_to_face<'a>(
     None
 }
 
+/// The first edge (in `sides` order) that the boundary meshes of two of the region's patches run
+/// the same way, oriented as [`region_input`] orients them (`at`: its midpoint): both bound the
+/// region from the same side there, so the region touches itself along that edge (two surfaces
+/// that cross or meet along a line, a wedge closed to nothing). Compared by exact coordinates.
+pub fn edge_clash<'a>(
+    sides: &[FaceUse],
+    patch_mesh: &dyn Fn(u32) -> Option<&'a TriMesh>,
+) -> Option<FaceToFace> {
+    let mut owner: HashMap<[[u64; 3]; 2], u32> = HashMap::new();
+    let mut i = 0;
+    while i < sides.len() {
+        let p = sides[i].patch;
+        if sides.get(i + 1).is_some_and(|s| s.patch == p) {
+            // A dangling patch is embedded, not boundary.
+            i += 2;
+            continue;
+        }
+        let front = sides[i].side == Side::Front;
+        i += 1;
+        let Some(mesh) = patch_mesh(p) else { continue };
+        for t in &mesh.triangles {
+            let mut c = t.map(|v| mesh.vertices[v as usize]);
+            if front {
+                c.swap(1, 2);
+            }
+            for k in 0..3 {
+                let (a, b) = (c[k], c[(k + 1) % 3]);
+                match owner.insert([point_key(&a), point_key(&b)], p) {
+                    Some(q) if q != p => {
+                        return Some(FaceToFace {
+                            patches: [q, p],
+                            at: [0, 1, 2].map(|j| 0.5 * (a[j] + b[j])),
+                        });
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    None
+}
+
 /// Adds polylines (well pieces inside the region) to a region's input as embedded segments. A
 /// polyline node bit-identical to a boundary node (a well's crossing, a node of the patch mesh)
 /// is that node; the others are new vertices. Returns, per polyline, the range of its segments
@@ -327,5 +369,36 @@ mod tests {
         // A dangling patch's two sides are one patch, not two.
         let sides = [face(0, Side::Back), face(0, Side::Front)];
         assert_eq!(face_to_face(&sides, &get), None);
+    }
+
+    #[test]
+    fn two_patches_bounding_a_region_from_one_side_of_an_edge_clash_there() {
+        // Two unit squares meeting along the x axis, as two patches: as the two halves of one
+        // flat face of the region they run the shared edge opposite ways; folded onto one side
+        // (one patch's sides swapped) they both run it one way, and the region touches itself.
+        let v = |x: f64, y: f64| [x, y, 0.0];
+        let south = TriMesh::new(
+            vec![v(0.0, 0.0), v(1.0, 0.0), v(1.0, -1.0), v(0.0, -1.0)],
+            vec![[0, 3, 2], [0, 2, 1]],
+        );
+        let north = TriMesh::new(
+            vec![v(0.0, 0.0), v(1.0, 0.0), v(1.0, 1.0), v(0.0, 1.0)],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let meshes = [south, north];
+        let get = |p: u32| meshes.get(p as usize);
+        let flat = [face(0, Side::Back), face(1, Side::Back)];
+        assert_eq!(edge_clash(&flat, &get), None);
+        let folded = [face(0, Side::Back), face(1, Side::Front)];
+        let c = edge_clash(&folded, &get).expect("they run the edge one way");
+        assert_eq!(c.patches, [0, 1]);
+        assert_eq!(c.at, [0.5, 0.0, 0.0]);
+        // A dangling patch's two sides are embedded, not boundary.
+        let dangling = [
+            face(0, Side::Back),
+            face(1, Side::Back),
+            face(1, Side::Front),
+        ];
+        assert_eq!(edge_clash(&dangling, &get), None);
     }
 }

@@ -17,7 +17,8 @@ use geom::mesh::{LineGroup, NamedPoint, RegionGroup, VolumeMesh};
 use geom::point_key;
 use model::regions::{FaceUse, Side};
 use model::{
-    FaceToFace, VolumeAssembly, assemble_volume, embed_polylines, face_to_face, region_input,
+    FaceToFace, VolumeAssembly, assemble_volume, edge_clash, embed_polylines, face_to_face,
+    region_input,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -80,6 +81,29 @@ impl TetMeshOp {
         format!(
             "region `{}`: patches `{a}` and `{b}` lie on each other at ({x:.1}, {y:.1}, {z:.1}) \
              (their meshes share a triangle), so the region has no thickness there; {cause}",
+            self.name
+        )
+    }
+}
+
+impl TetMeshOp {
+    /// Says in recipe terms that two of the region's patches bound it from one side of an edge.
+    fn edge_clash_error(&self, c: &FaceToFace) -> String {
+        let [a, b] = c
+            .patches
+            .map(|p| self.patches.get(p as usize).map_or("?", String::as_str));
+        let [x, y, z] = c.at;
+        let surface = |p: &str| p.split('#').next().unwrap_or(p).to_string();
+        let cause = if surface(a) == surface(b) {
+            format!("`{}` folds onto itself along a line there", surface(a))
+        } else {
+            "the two surfaces cross or meet along a line there".to_string()
+        };
+        format!(
+            "region `{}`: patches `{a}` and `{b}` both bound it from the same side of an edge at \
+             ({x:.1}, {y:.1}, {z:.1}) (their meshes run the edge the same way), so the region \
+             touches itself along it: {cause}, with nothing between; part the surfaces there in \
+             the data, or trim one of them",
             self.name
         )
     }
@@ -187,7 +211,8 @@ impl Operation for TetMeshOp {
         // Two patches lying on each other fail the mesher's input check; only then is it worth
         // finding which, to say so in recipe terms.
         let out = mesh_region_with_progress(&input, &size, &opts, &progress).map_err(|e| {
-            let said = face_to_face(&self.sides, &get).map(|f| self.face_to_face_error(&f));
+            let said = (face_to_face(&self.sides, &get).map(|f| self.face_to_face_error(&f)))
+                .or_else(|| edge_clash(&self.sides, &get).map(|c| self.edge_clash_error(&c)));
             OpError::from(said.unwrap_or_else(|| e.to_string()))
         })?;
         let well_edges = well_edges(&wells, &ranges, &out.lines);
@@ -506,9 +531,9 @@ mod tests {
         assert!(e.contains("well `W1`") && e.contains("surface `H2`"), "{e}");
     }
 
-    #[test]
-    fn patches_lying_on_each_other_are_put_down_to_smoothing_only_when_a_surface_is_smoothed() {
-        let op = |smoothed: Vec<bool>| TetMeshOp {
+    /// A region bounded by `H1#3`, `H2#4` and `F1#1`, each smoothed or not.
+    fn op(smoothed: Vec<bool>) -> TetMeshOp {
+        TetMeshOp {
             name: "r".into(),
             patches: vec!["H1#3".into(), "H2#4".into(), "F1#1".into()],
             smoothed,
@@ -518,7 +543,11 @@ mod tests {
             method: Method::default(),
             refinements: 0,
             wells: false,
-        };
+        }
+    }
+
+    #[test]
+    fn patches_lying_on_each_other_are_put_down_to_smoothing_only_when_a_surface_is_smoothed() {
         let f = FaceToFace {
             patches: [0, 1],
             at: [1.0, 2.0, 3.0],
@@ -535,5 +564,34 @@ mod tests {
         assert!(plain.contains("`discard = { within = d }`"), "{plain}");
         let smoothed = op(vec![false, true, false]).face_to_face_error(&f);
         assert!(smoothed.contains("smooth neither"), "{smoothed}");
+    }
+
+    #[test]
+    fn patches_bounding_a_region_from_one_side_of_an_edge_are_named_with_the_place() {
+        let f = FaceToFace {
+            patches: [0, 1],
+            at: [1.0, 2.0, 3.0],
+        };
+        let clash = op(vec![false, false, false]).edge_clash_error(&f);
+        assert!(
+            clash.contains(
+                "`H1#3` and `H2#4` both bound it from the same side of an edge at (1.0, 2.0, 3.0)"
+            ),
+            "{clash}"
+        );
+        assert_eq!(
+            crate::cli::culprit::failure_place(&clash),
+            Some([1.0, 2.0, 3.0])
+        );
+        assert!(clash.contains("the two surfaces cross or meet"), "{clash}");
+        let op = TetMeshOp {
+            patches: vec!["HK1#1.29".into(), "HK1#1.32".into()],
+            ..op(vec![false, false])
+        };
+        let folded = op.edge_clash_error(&f);
+        assert!(
+            folded.contains("`HK1` folds onto itself along a line"),
+            "{folded}"
+        );
     }
 }
