@@ -177,6 +177,10 @@ dir = "out/tkc"
         assert!(regions.contains(&pipe), "{regions:?}");
     }
     passes_check_mesh(&s.path("out/tkc/tkc.msh"), 5, "tkc");
+    // The pipes' rough facets are cut into strips metres wide where they meet the till: 1.0°
+    // with elements of 50 m across them, 5.9° with their curves as fine as the strips are wide.
+    let worst = worst_dihedral(&s.path("out/tkc/tkc.quality.json"));
+    assert!(worst > 4.0, "worst dihedral {worst}°");
 }
 
 /// A recipe meshing one closed TKC body alone in a box, as read.
