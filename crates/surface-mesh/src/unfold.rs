@@ -11,11 +11,11 @@
 //! though, flipping one of its edges is tried: a diagonal drawn the wrong way across a sharp bend
 //! of a crumpled support unfolds that way without a point.
 //!
-//! A fold is judged exactly as `verify` judges it (from the support under the triangle's
+//! A fold is judged exactly as `verify` judges it: from the support under the triangle's
 //! centroid, found by a local search from its first corner's facet, that facet found as `verify`
-//! finds it), and also from every corner's facet as refinement placed it and by a global search:
-//! on a crumpled support, searches from different facets land on different ones, and a repair
-//! that judged otherwise than `verify` left folds that `verify` then refused.
+//! finds it (the same search over the nodes the output keeps, in its order). On a crumpled
+//! support, searches from different facets land on different ones, and a repair that judged
+//! from the facets refinement had placed the vertices on left folds that `verify` then refused.
 
 use super::cdt::{CavityEdge, Cdt, FREE, NONE};
 use super::support::Support;
@@ -94,7 +94,8 @@ fn verify_facets(cdt: &Cdt, p3: &[[f64; 3]], support: &Support, first_free: u32)
 /// How a fold is judged in one round of repair.
 struct Judge<'a> {
     support: &'a Support,
-    /// The support triangle under each vertex as refinement placed it.
+    /// The support triangle under each vertex as refinement placed it (for vertices added
+    /// since `facets` was found).
     stri: &'a [u32],
     /// The support facet `verify` finds for each vertex's node.
     facets: &'a [u32],
@@ -102,23 +103,22 @@ struct Judge<'a> {
 
 impl Judge<'_> {
     /// Whether the flat 3D triangle `t` faces away from the support under its centroid (its
-    /// normal 90° or more from the support's there): as `verify` judges it, from its first
-    /// corner's facet, and, since the facets can differ once a repair has moved things, from
-    /// every corner's facet as refinement placed it and by a global search. A support triangle
-    /// of zero area has no normal and says nothing.
+    /// normal 90° or more from the support's there), as `verify` judges it: from the facet found
+    /// for its first corner's node. A vertex added this round has none yet; it is judged from
+    /// the facet refinement placed the vertex on. A support triangle of zero area has no normal
+    /// and says nothing.
     fn folds(&self, cdt: &Cdt, p3: &[[f64; 3]], t: u32) -> bool {
         let v = cdt.tri[t as usize];
         if v.iter().any(|&x| x < 3) {
             return false;
         }
-        let corners = v.map(|x| &p3[x as usize]);
-        let away = |f: u32| verify::faces_away(self.support, corners, f).is_some_and(|(a, _)| a);
         let of = |list: &[u32], x: u32| list.get(x as usize).copied().unwrap_or(u32::MAX);
-        let first = of(self.facets, v[0]);
-        (first != u32::MAX && away(first))
-            || v.iter()
-                .any(|&x| of(self.stri, x) != u32::MAX && away(of(self.stri, x)))
-            || away(u32::MAX)
+        let from = match of(self.facets, v[0]) {
+            u32::MAX => of(self.stri, v[0]),
+            f => f,
+        };
+        let corners = v.map(|x| &p3[x as usize]);
+        verify::faces_away(self.support, corners, from).is_some_and(|(away, _)| away)
     }
 }
 

@@ -175,7 +175,8 @@ impl Operation for SurfaceMeshOp {
         // 8: a folded triangle is judged from every corner's facet, and unfolded by an edge
         //    flip where one does.
         // 9: and as the verification judges it, from the facets it finds.
-        9
+        // 10: only as the verification judges it (no global search per triangle).
+        10
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
