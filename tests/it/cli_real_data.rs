@@ -215,7 +215,7 @@ fn every_tkc_body_alone_in_a_box_meshes_as_read() {
     // metres wide, and elements as long as the recipe's 50 m across them were needles (PK2 at
     // 0.6°, VK's front stuck after 40 s); PK1 and HK1 folded. Curves inside one surface are now
     // discretized no coarser than the patches along them are wide, and a triangle folded across
-    // a crumpled bend is unfolded. PK2, PK3 and VK reach 16° to 17°; HK1 7.5°; PK1 0.6°, at a
+    // a crumpled bend is unfolded. PK2, PK3 and VK reach 15.7° to 17.3°; HK1 7.5°; PK1 0.6°, at a
     // sharp thin edge of the body that no curve size reaches.
     let Some(shared) = paths::shared("data/gocad/simpeg-research__Astic-2020-JointInversion")
     else {
