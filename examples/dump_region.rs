@@ -12,7 +12,7 @@
 
 use engine::{self, BuildOptions};
 use georecipe::plan::ops::{ModelData, PatchMesh};
-use model::region_input;
+use model::{drop_pinched_faces, region_input};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -70,7 +70,9 @@ fn main() -> Result<(), String> {
         })
         .collect();
     let get = |p: u32| meshes.get(p as usize)?.as_ref().map(|m| &m.mesh);
-    let input = region_input(region, &r.sides, &get).map_err(|e| e.to_string())?;
+    let mut input = region_input(region, &r.sides, &get).map_err(|e| e.to_string())?;
+    // As the tet mesh op meshes it.
+    drop_pinched_faces(&mut input);
     let b = out.join("boundary.off");
     std::fs::write(&b, off(&input.vertices, &input.boundary)).map_err(|e| e.to_string())?;
     println!(

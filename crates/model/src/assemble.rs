@@ -10,6 +10,7 @@
 use super::{ModelError, PatchBoundary, point_key};
 use crate::regions::{FaceUse, Side};
 use geom::TriMesh;
+use geom::contact::{Contact, Tri, triangle_contact};
 use geom::mesh::{FaceSet, RegionGroup, SurfaceGroup, SurfaceKind, VolumeMesh};
 use std::collections::HashMap;
 use surface_mesh::PatchInput;
@@ -164,6 +165,71 @@ pub fn region_input<'a>(
     })
 }
 
+/// Drops the boundary triangles the region holds twice, once each way, and the vertices only
+/// they used; returns the centroid of each pair dropped. Such a pair is two patches whose meshes
+/// share a triangle with the region on the back of both: a wedge whose two sides close onto each
+/// other there (an onlap's tip, where the surfaces come closer than their meshes can part), or
+/// two surfaces drawn on each other. The region has no volume there, the triangle is an
+/// interface of the regions beyond, and without both copies the boundary stays closed. A
+/// triangle held twice the same way, and a boundary that is all such pairs, are left for the
+/// mesher's check to refuse.
+pub fn drop_pinched_faces(input: &mut RegionInput) -> Vec<[f64; 3]> {
+    let canonical = |t: &[u32; 3]| {
+        let k = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
+        [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+    };
+    let mut count: HashMap<[u32; 3], u32> = HashMap::new();
+    for t in &input.boundary {
+        *count.entry(canonical(t)).or_default() += 1;
+    }
+    let pinched = |t: &[u32; 3]| {
+        let [a, b, c] = canonical(t);
+        count.get(&[a, b, c]) == Some(&1) && count.get(&[a, c, b]) == Some(&1)
+    };
+    if input.boundary.iter().all(pinched) {
+        // Nothing would be left: the region is all one face, held each way (two surfaces
+        // drawn on each other), which the mesher's check refuses.
+        return Vec::new();
+    }
+    let mut places = Vec::new();
+    let pts = &input.vertices;
+    input.boundary.retain(|t| {
+        let drop = pinched(t);
+        if drop && canonical(t)[1] < canonical(t)[2] {
+            let c = t.map(|v| pts[v as usize]);
+            places.push([0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0));
+        }
+        !drop
+    });
+    if !places.is_empty() {
+        keep_used_vertices(input);
+    }
+    places
+}
+
+/// Renumbers the region's triangles onto the vertices they use, in their order.
+fn keep_used_vertices(input: &mut RegionInput) {
+    let mut map = vec![u32::MAX; input.vertices.len()];
+    let triangles = input.boundary.iter().chain(&input.embedded);
+    for &v in triangles.flatten().chain(input.lines.iter().flatten()) {
+        map[v as usize] = 0;
+    }
+    let mut kept = Vec::with_capacity(input.vertices.len());
+    for (v, p) in input.vertices.iter().enumerate() {
+        if map[v] == 0 {
+            map[v] = kept.len() as u32;
+            kept.push(*p);
+        }
+    }
+    input.vertices = kept;
+    for t in input.boundary.iter_mut().chain(input.embedded.iter_mut()) {
+        *t = t.map(|v| map[v as usize]);
+    }
+    for l in input.lines.iter_mut() {
+        *l = l.map(|v| map[v as usize]);
+    }
+}
+
 /// Two patches of a region whose meshes hold the same triangle (`at`: its centroid): the
 /// region has no thickness there, the two surfaces lie on each other.
 #[derive(Clone, Debug, PartialEq)]
@@ -172,32 +238,82 @@ pub struct FaceToFace {
     pub at: [f64; 3],
 }
 
+/// One triangle of a region's patch meshes: the patch, its corners as the region orients them
+/// (outward), and whether the patch is dangling (embedded).
+struct RegionTriangle {
+    patch: u32,
+    corners: [[f64; 3]; 3],
+    dangling: bool,
+}
+
+/// The region's patch triangles in `sides` order, oriented as [`region_input`] orients them,
+/// without those it holds once each way unless that is all of them, as [`drop_pinched_faces`]
+/// drops them from its input.
+fn region_triangles<'a>(
+    sides: &[FaceUse],
+    patch_mesh: &dyn Fn(u32) -> Option<&'a TriMesh>,
+) -> Vec<RegionTriangle> {
+    let mut all = Vec::new();
+    let mut i = 0;
+    while i < sides.len() {
+        let p = sides[i].patch;
+        let dangling = sides.get(i + 1).is_some_and(|s| s.patch == p);
+        let front = sides[i].side == Side::Front;
+        i += if dangling { 2 } else { 1 };
+        let Some(mesh) = patch_mesh(p) else { continue };
+        for t in &mesh.triangles {
+            let mut corners = t.map(|v| mesh.vertices[v as usize]);
+            if front && !dangling {
+                corners.swap(1, 2);
+            }
+            all.push(RegionTriangle {
+                patch: p,
+                corners,
+                dangling,
+            });
+        }
+    }
+    // Rotated to start at the least corner: a triangle and its reverse differ in the last two.
+    let oriented = |t: &RegionTriangle| {
+        let keys = t.corners.map(|c| point_key(&c));
+        let first = (0..3).min_by_key(|&k| keys[k]).unwrap_or(0);
+        [0, 1, 2].map(|k| keys[(first + k) % 3])
+    };
+    let mut count: HashMap<[[u64; 3]; 3], u32> = HashMap::new();
+    for t in all.iter().filter(|t| !t.dangling) {
+        *count.entry(oriented(t)).or_default() += 1;
+    }
+    let kept = |t: &RegionTriangle| {
+        let [a, b, c] = oriented(t);
+        t.dangling || count.get(&[a, b, c]) != Some(&1) || count.get(&[a, c, b]) != Some(&1)
+    };
+    if all.iter().any(|t| !t.dangling && kept(t)) {
+        all.retain(kept);
+    }
+    all
+}
+
 /// The first triangle (in `sides` order) that the meshes of two of the region's patches both
-/// hold, if any; compared by exact coordinates, as [`region_input`] welds them.
+/// hold, if any; compared by exact coordinates, as [`region_input`] welds them. A triangle held
+/// once each way is no fault: the region closes to nothing there ([`drop_pinched_faces`]).
 pub fn face_to_face<'a>(
     sides: &[FaceUse],
     patch_mesh: &dyn Fn(u32) -> Option<&'a TriMesh>,
 ) -> Option<FaceToFace> {
     let mut owner: HashMap<[[u64; 3]; 3], u32> = HashMap::new();
-    let mut patches: Vec<u32> = sides.iter().map(|s| s.patch).collect();
-    patches.dedup();
-    for p in patches {
-        let Some(mesh) = patch_mesh(p) else { continue };
-        for t in &mesh.triangles {
-            let corners = t.map(|v| mesh.vertices[v as usize]);
-            let mut key = corners.map(|c| point_key(&c));
-            key.sort_unstable();
-            match owner.get(&key) {
-                Some(&q) if q != p => {
-                    let at = [0, 1, 2].map(|k| corners.iter().map(|c| c[k]).sum::<f64>() / 3.0);
-                    return Some(FaceToFace {
-                        patches: [q, p],
-                        at,
-                    });
-                }
-                _ => {
-                    owner.insert(key, p);
-                }
+    for t in region_triangles(sides, patch_mesh) {
+        let mut key = t.corners.map(|c| point_key(&c));
+        key.sort_unstable();
+        match owner.get(&key) {
+            Some(&q) if q != t.patch => {
+                let c = t.corners;
+                return Some(FaceToFace {
+                    patches: [q, t.patch],
+                    at: [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0),
+                });
+            }
+            _ => {
+                owner.insert(key, t.patch);
             }
         }
     }
@@ -213,37 +329,72 @@ pub fn edge_clash<'a>(
     patch_mesh: &dyn Fn(u32) -> Option<&'a TriMesh>,
 ) -> Option<FaceToFace> {
     let mut owner: HashMap<[[u64; 3]; 2], u32> = HashMap::new();
-    let mut i = 0;
-    while i < sides.len() {
-        let p = sides[i].patch;
-        if sides.get(i + 1).is_some_and(|s| s.patch == p) {
-            // A dangling patch is embedded, not boundary.
-            i += 2;
-            continue;
-        }
-        let front = sides[i].side == Side::Front;
-        i += 1;
-        let Some(mesh) = patch_mesh(p) else { continue };
-        for t in &mesh.triangles {
-            let mut c = t.map(|v| mesh.vertices[v as usize]);
-            if front {
-                c.swap(1, 2);
-            }
-            for k in 0..3 {
-                let (a, b) = (c[k], c[(k + 1) % 3]);
-                match owner.insert([point_key(&a), point_key(&b)], p) {
-                    Some(q) if q != p => {
-                        return Some(FaceToFace {
-                            patches: [q, p],
-                            at: [0, 1, 2].map(|j| 0.5 * (a[j] + b[j])),
-                        });
-                    }
-                    _ => {}
+    // A dangling patch is embedded, not boundary.
+    for t in region_triangles(sides, patch_mesh)
+        .iter()
+        .filter(|t| !t.dangling)
+    {
+        let c = t.corners;
+        for k in 0..3 {
+            let (a, b) = (c[k], c[(k + 1) % 3]);
+            match owner.insert([point_key(&a), point_key(&b)], t.patch) {
+                Some(q) if q != t.patch => {
+                    return Some(FaceToFace {
+                        patches: [q, t.patch],
+                        at: [0, 1, 2].map(|j| 0.5 * (a[j] + b[j])),
+                    });
                 }
+                _ => {}
             }
         }
     }
     None
+}
+
+/// The first pair of triangles (in `sides` order) of two different patches of the region that
+/// cross or overlap beyond the vertices and edges they share (`at`: the midpoint of their
+/// centroids): two surfaces meeting at a small angle whose meshes, each within its tolerance of
+/// its own support, pass through each other near where they meet. Decided by the exact contact
+/// test the tet mesher's input check uses, on the region's welded nodes.
+pub fn patch_crossing<'a>(
+    sides: &[FaceUse],
+    patch_mesh: &dyn Fn(u32) -> Option<&'a TriMesh>,
+) -> Option<FaceToFace> {
+    let mut w = Welder::default();
+    let mut tris: Vec<([u32; 3], u32)> = Vec::new();
+    let mut patches: Vec<u32> = sides.iter().map(|s| s.patch).collect();
+    patches.dedup();
+    for p in patches {
+        let Some(mesh) = patch_mesh(p) else { continue };
+        for t in &mesh.triangles {
+            tris.push((t.map(|v| w.id(&mesh.vertices[v as usize])), p));
+        }
+    }
+    let pts = &w.points;
+    let boxes: Vec<geom::BBox> = (tris.iter())
+        .map(|(t, _)| geom::BBox::from_points(t.map(|v| &pts[v as usize])))
+        .collect();
+    let tri = |k: u32| {
+        let t = tris[k as usize].0;
+        Tri {
+            ids: t,
+            pts: t.map(|v| &pts[v as usize]),
+        }
+    };
+    let hits = geom::broad_phase::overlapping_pairs(&boxes, |k, j| {
+        let (pk, pj) = (tris[k as usize].1, tris[j as usize].1);
+        (pk != pj && triangle_contact(&tri(k), &tri(j)) != Contact::None).then_some(())
+    });
+    let &(k, j, ()) = hits.first()?;
+    let centroid = |k: u32| {
+        let c = tri(k).pts;
+        [0, 1, 2].map(|i| (c[0][i] + c[1][i] + c[2][i]) / 3.0)
+    };
+    let (a, b) = (centroid(k), centroid(j));
+    Some(FaceToFace {
+        patches: [tris[k as usize].1, tris[j as usize].1],
+        at: [0, 1, 2].map(|i| 0.5 * (a[i] + b[i])),
+    })
 }
 
 /// Adds polylines (well pieces inside the region) to a region's input as embedded segments. A
@@ -366,9 +517,79 @@ mod tests {
         }
         let sides = [face(0, Side::Back), face(2, Side::Front)];
         assert_eq!(face_to_face(&sides, &get), None);
+        // Held once each way, the region on the back of both: it closes to nothing there.
+        let sides = [face(0, Side::Back), face(1, Side::Back)];
+        assert_eq!(face_to_face(&sides, &get), None);
         // A dangling patch's two sides are one patch, not two.
         let sides = [face(0, Side::Back), face(0, Side::Front)];
         assert_eq!(face_to_face(&sides, &get), None);
+    }
+
+    #[test]
+    fn a_triangle_held_once_each_way_is_dropped_with_the_vertices_only_it_used() {
+        // A tetrahedron's four outward faces, and a flat triangle on a fifth vertex held twice,
+        // once each way (two patches closing onto each other there).
+        let input = |boundary: Vec<[u32; 3]>| RegionInput {
+            name: "r".into(),
+            vertices: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [3.0, 3.0, 0.0],
+            ],
+            boundary,
+            embedded: Vec::new(),
+            lines: Vec::new(),
+        };
+        let shell = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let mut pinched = input([shell.clone(), vec![[1, 4, 2], [4, 1, 2]]].concat());
+        let places = drop_pinched_faces(&mut pinched);
+        assert_eq!(places, vec![[4.0 / 3.0, 4.0 / 3.0, 0.0]]);
+        assert_eq!(pinched.boundary, shell);
+        assert_eq!(pinched.vertices.len(), 4);
+        // Held twice the same way, it stays for the mesher's check to refuse.
+        let mut twice = input([shell.clone(), vec![[1, 4, 2], [4, 2, 1]]].concat());
+        assert!(drop_pinched_faces(&mut twice).is_empty());
+        assert_eq!(twice.boundary.len(), 6);
+        let mut plain = input(shell.clone());
+        assert!(drop_pinched_faces(&mut plain).is_empty());
+        assert_eq!(plain.vertices.len(), 5);
+    }
+
+    #[test]
+    fn the_meshes_of_two_patches_passing_through_each_other_cross_where_they_do() {
+        // A unit square in z = 0, and a triangle through it on the y axis's far side; a third
+        // patch shares the square's edge along the x axis and meets it only there.
+        let v = |x: f64, y: f64, z: f64| [x, y, z];
+        let square = TriMesh::new(
+            vec![
+                v(0.0, 0.0, 0.0),
+                v(1.0, 0.0, 0.0),
+                v(1.0, 1.0, 0.0),
+                v(0.0, 1.0, 0.0),
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let through = TriMesh::new(
+            vec![v(0.5, 0.5, -1.0), v(0.6, 0.5, 1.0), v(0.5, 0.6, 1.0)],
+            vec![[0, 1, 2]],
+        );
+        let beside = TriMesh::new(
+            vec![v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.5, -1.0, 0.3)],
+            vec![[0, 2, 1]],
+        );
+        let meshes = [square, through, beside];
+        let get = |p: u32| meshes.get(p as usize);
+        let sides = [face(0, Side::Back), face(2, Side::Back)];
+        assert_eq!(patch_crossing(&sides, &get), None);
+        for sides in [
+            [face(0, Side::Back), face(1, Side::Back)],
+            [face(1, Side::Back), face(0, Side::Back)],
+        ] {
+            let c = patch_crossing(&sides, &get).expect("they cross");
+            assert_eq!(c.patches, [sides[0].patch, sides[1].patch]);
+        }
     }
 
     #[test]

@@ -50,8 +50,8 @@ pub mod wells;
 pub mod width;
 
 pub use assemble::{
-    FaceToFace, VolumeAssembly, assemble_volume, edge_clash, embed_polylines, face_to_face,
-    patch_input, region_input,
+    FaceToFace, VolumeAssembly, assemble_volume, drop_pinched_faces, edge_clash, embed_polylines,
+    face_to_face, patch_crossing, patch_input, region_input,
 };
 pub use curves::build_topology;
 

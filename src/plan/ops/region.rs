@@ -17,8 +17,8 @@ use geom::mesh::{LineGroup, NamedPoint, RegionGroup, VolumeMesh};
 use geom::point_key;
 use model::regions::{FaceUse, Side};
 use model::{
-    FaceToFace, VolumeAssembly, assemble_volume, edge_clash, embed_polylines, face_to_face,
-    region_input,
+    FaceToFace, VolumeAssembly, assemble_volume, drop_pinched_faces, edge_clash, embed_polylines,
+    face_to_face, patch_crossing, region_input,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -76,7 +76,12 @@ impl TetMeshOp {
         };
         let cause = format!(
             "{cause}, or, where one is drawn along the other all over a patch, drop it with a \
-             `[[trim]]` `discard = {{ within = d }}` (d the gap)"
+             `[[trim]]` `discard = {{ within = d }}` (d the gap){}",
+            if smoothed {
+                String::new()
+            } else {
+                self.refine_advice(a, b)
+            }
         );
         format!(
             "region `{}`: patches `{a}` and `{b}` lie on each other at ({x:.1}, {y:.1}, {z:.1}) \
@@ -107,6 +112,52 @@ impl TetMeshOp {
             self.name
         )
     }
+}
+
+impl TetMeshOp {
+    /// Says in recipe terms that the meshes of two of the region's patches cross.
+    fn crossing_error(&self, c: &FaceToFace) -> String {
+        let [a, b] = c
+            .patches
+            .map(|p| self.patches.get(p as usize).map_or("?", String::as_str));
+        let [x, y, z] = c.at;
+        format!(
+            "region `{}`: the meshes of patches `{a}` and `{b}` cross at ({x:.1}, {y:.1}, \
+             {z:.1}): the two surfaces meet at a small angle there (or cross in the files), and \
+             their meshes, each within its tolerance of its own surface, pass through each \
+             other; part the surfaces there in the data{}",
+            self.name,
+            self.refine_advice(a, b)
+        )
+    }
+
+    /// Where patches `a` and `b` of two surfaces come together, the `[[mesh.refine]]` entry that
+    /// lets their meshes part: a tenth of the region's size along the curves where the surfaces
+    /// meet, growing back over twice that size. Nothing for two patches of one surface.
+    fn refine_advice(&self, a: &str, b: &str) -> String {
+        let surface = |p: &str| p.split('#').next().unwrap_or(p).to_string();
+        let (sa, sb) = (surface(a), surface(b));
+        if sa == sb {
+            return String::new();
+        }
+        let size = self.size.size;
+        format!(
+            "; or, where they meet at a small angle (an onlap, a pinch-out), refine where they \
+             meet so that their meshes part: `[[mesh.refine]]` with `curve = \"{sa}/{sb}\"`, \
+             `size = {}` and `distance = {}`",
+            three_digits(size / 10.0),
+            three_digits(2.0 * size)
+        )
+    }
+}
+
+/// `x` to three significant digits, written without trailing zeros.
+fn three_digits(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return format!("{x}");
+    }
+    let scale = 10f64.powi(2 - x.abs().log10().floor() as i32);
+    format!("{}", (x * scale).round() / scale)
 }
 
 impl Operation for TetMeshOp {
@@ -197,6 +248,7 @@ impl Operation for TetMeshOp {
         let get = |p: u32| meshes.get(p as usize).map(|m| &m.mesh);
         let mut input = region_input(&self.name, &self.sides, &get)
             .map_err(|e| OpError::from(e.to_string()))?;
+        let pinched = drop_pinched_faces(&mut input);
         let pieces: Vec<Vec<[f64; 3]>> = wells.wells.iter().flat_map(|(_, p)| p.clone()).collect();
         let ranges = embed_polylines(&mut input, &pieces);
         let opts = TetMeshOptions {
@@ -208,23 +260,37 @@ impl Operation for TetMeshOp {
             ..self.size.clone()
         };
         let progress = |done, total| ctx.progress(done, total);
-        // Two patches lying on each other fail the mesher's input check; only then is it worth
-        // finding which, to say so in recipe terms.
+        // Two patches lying on each other or crossing fail the mesher's input check; only then
+        // is it worth finding which, to say so in recipe terms.
         let out = mesh_region_with_progress(&input, &size, &opts, &progress).map_err(|e| {
             let said = (face_to_face(&self.sides, &get).map(|f| self.face_to_face_error(&f)))
-                .or_else(|| edge_clash(&self.sides, &get).map(|c| self.edge_clash_error(&c)));
+                .or_else(|| edge_clash(&self.sides, &get).map(|c| self.edge_clash_error(&c)))
+                .or_else(|| patch_crossing(&self.sides, &get).map(|c| self.crossing_error(&c)));
             OpError::from(said.unwrap_or_else(|| e.to_string()))
         })?;
         let well_edges = well_edges(&wells, &ranges, &out.lines);
         let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
-        Ok(Output::new(Artifact::encode(&RegionMesh {
+        let out = Output::new(Artifact::encode(&RegionMesh {
             name: self.name.clone(),
             nodes: out.nodes,
             tets: out.tets,
             wells: well_edges,
         })?)
         .count("nodes", nn)
-        .count("tets", nt))
+        .count("tets", nt);
+        Ok(match pinched.first() {
+            Some(&[x, y, z]) => out
+                .count("pinched_triangles", pinched.len() as u64)
+                .note(format!(
+                    "region `{}` closes to nothing across {} triangle(s) where two of its patches' \
+                 meshes are one and the same, first at ({x:.1}, {y:.1}, {z:.1}): its sides come \
+                 closer there than their meshes can part, so the regions beyond them meet \
+                 directly",
+                    self.name,
+                    pinched.len()
+                )),
+            None => out,
+        })
     }
 }
 
@@ -564,6 +630,36 @@ mod tests {
         assert!(plain.contains("`discard = { within = d }`"), "{plain}");
         let smoothed = op(vec![false, true, false]).face_to_face_error(&f);
         assert!(smoothed.contains("smooth neither"), "{smoothed}");
+    }
+
+    #[test]
+    fn patches_whose_meshes_cross_are_named_with_the_refinement_that_parts_them() {
+        let f = FaceToFace {
+            patches: [0, 1],
+            at: [1.0, 2.0, 3.0],
+        };
+        let mut op = op(vec![false, false, false]);
+        op.size.size = 250.0;
+        let crossing = op.crossing_error(&f);
+        assert!(
+            crossing.contains("patches `H1#3` and `H2#4` cross at (1.0, 2.0, 3.0)"),
+            "{crossing}"
+        );
+        assert_eq!(
+            crate::cli::culprit::failure_place(&crossing),
+            Some([1.0, 2.0, 3.0])
+        );
+        let advice = "`[[mesh.refine]]` with `curve = \"H1/H2\"`, `size = 25` and `distance = 500`";
+        assert!(crossing.contains(advice), "{crossing}");
+        // The same advice for two patches lying on each other, unless smoothing is to blame.
+        assert!(op.face_to_face_error(&f).contains(advice));
+        op.smoothed = vec![true, false, false];
+        assert!(!op.face_to_face_error(&f).contains("mesh.refine"));
+        // Two patches of one surface meet along no curve of two surfaces.
+        op.patches = vec!["H1#3".into(), "H1#4".into()];
+        assert!(!op.crossing_error(&f).contains("mesh.refine"));
+        assert_eq!(three_digits(1153.0 / 10.0), "115");
+        assert_eq!(three_digits(0.123456), "0.123");
     }
 
     #[test]
