@@ -271,7 +271,7 @@ fn an_intrusion_keeps_the_overlap_of_two_bodies_whichever_is_kept_outside_the_ot
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
     // These mesh now, below the bars: the salt gaps since a front's last gaps are closed by the
     // Delaunay method, the lenses since no chart's border overlaps itself in map view.
-    let meshing = ["salt_overhang", "two_lenses", "fault_through_salt"];
+    let meshing = ["salt_overhang", "two_lenses", "fault_through_salt", "onlap"];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
         let recipe = case.write(dir.path());
@@ -310,6 +310,38 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
             assert!(failed.contains("pinched"), "{}: {failed}", case.name);
         }
     }
+}
+
+#[test]
+fn an_onlap_under_a_degree_fails_naming_both_patches_and_meshes_once_refined_as_advised() {
+    let case = known_gap("onlap_under_a_degree");
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let recipe = case.write(dir.path());
+    let out = build_quietly(dir.path(), &recipe);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "it meshes now: {err}");
+    let failed = (err.lines())
+        .find(|l| l.contains("lie on each other") || l.contains("cross at"))
+        .unwrap_or_else(|| panic!("neither patches on each other nor crossing:\n{err}"));
+    assert!(
+        failed.contains("`H1#") && failed.contains("`U#"),
+        "{failed}"
+    );
+    // The advice, as written, is a recipe entry that lets the meshes part.
+    let advice = "`[[mesh.refine]]` with `curve = \"H1/U\"`, `size = 25` and `distance = 500`";
+    assert!(failed.contains(advice), "{failed}");
+    let refined = format!(
+        "{}\n[[mesh.refine]]\ncurve = \"H1/U\"\nsize = 25\ndistance = 500\n",
+        case.recipe
+    );
+    std::fs::write(&recipe, refined).expect("write the recipe");
+    let out = build_quietly(dir.path(), &recipe);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "refined as advised, it still fails: {err}"
+    );
+    passes_the_checker(dir.path(), &case);
 }
 
 #[test]

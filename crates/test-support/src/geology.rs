@@ -74,8 +74,19 @@ pub fn cases() -> Vec<Case> {
 /// - `two_lenses`: meshes (once no chart's border overlaps itself in map view), but the lenses'
 ///   rims are crumpled into sliver facets (their neighbours bend away by 30° to 115°), each a
 ///   patch of its own between creases, with corners of a few degrees: tets on them reach 4.1°.
+/// - `onlap`: H1 onlaps U at 2.0°; meshes, but the surface meshes meet at the tip at about 1°
+///   (1.02° at the sharpest), and tets there reach 0.45°.
+/// - `onlap_under_a_degree`: the same at 0.86°; at the tip the meshes of U and H1 share a
+///   triangle (the surfaces 3 cm apart there), and the region between fails naming both patches
+///   and the refinement that lets it mesh.
 pub fn known_gaps() -> Vec<Case> {
-    vec![salt_overhang(), two_lenses(), fault_through_salt()]
+    vec![
+        salt_overhang(),
+        two_lenses(),
+        fault_through_salt(),
+        onlap("onlap", 0.035),
+        onlap("onlap_under_a_degree", 0.015),
+    ]
 }
 
 /// Fault systems of the SCEC Community Fault Model (`../shared/data/gocad/SCECcode__CFM`, the
@@ -1136,4 +1147,39 @@ fn fault_through_salt() -> Case {
     );
     r.surface("SALT", "other", &s, &DEPTH);
     r.case(&["box", "F", "SALT"], 4)
+}
+
+/// A horizon H1 onlapping an unconformity U: both bend alike (a dome-and-basin relief of 120 m),
+/// H1 rises westwards to meet U at `slope` and is kept below it, above an untouched H2. Where
+/// two triangulated surfaces meet at so small an angle, their facets cross each other again and
+/// again near the tip: the curves where they meet come in pieces metres apart.
+fn onlap(name: &'static str, slope: f64) -> Case {
+    let mut rng = Rng(0x7069_6e63_685f_6f75);
+    let mut r = Recipe::new(name);
+    let relief = |x: f64, y: f64| -1000.0 + 120.0 * (x / 900.0).sin() * (y / 1100.0).cos();
+    let (us, vs) = (
+        graded_axis(LO, HI, 160.0, 0.5),
+        graded_axis(LO, HI, 170.0, 1.5),
+    );
+    let u = grid_surface(&us, &vs, |x, y| [x, y, relief(x, y)], &mut rng);
+    r.surface("U", "horizon", &u, &DEPTH);
+    let (us, vs) = (
+        graded_axis(LO, HI, 150.0, 0.9),
+        graded_axis(LO, HI, 180.0, 0.2),
+    );
+    let h1 = |x: f64, y: f64| [x, y, relief(x, y) - slope * (x - 2000.0)];
+    r.surface(
+        "H1",
+        "horizon",
+        &grid_surface(&us, &vs, h1, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1600.0, 20.0, 1.2, &mut rng),
+        &PLAIN,
+    );
+    r.keep("H1", "below", "U");
+    r.case(&["box", "U", "H1", "H2"], 4)
 }
