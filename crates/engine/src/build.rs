@@ -167,6 +167,19 @@ pub fn build_holding(
     lock: &DirLock,
     on_event: &(dyn Fn(&Event) + Sync),
 ) -> Result<BuildReport, EngineError> {
+    build_again(graph, opts, lock, &BTreeMap::new(), on_event)
+}
+
+/// [`build_holding`] once more after a failed build of this process, whose failed nodes'
+/// keys and errors are `failed_before`: a node of the same key fails again with the same error
+/// without running (failures are not cached, and an op is a pure function of its key).
+pub fn build_again(
+    graph: BuildGraph,
+    opts: &BuildOptions,
+    lock: &DirLock,
+    failed_before: &BTreeMap<Hash, String>,
+    on_event: &(dyn Fn(&Event) + Sync),
+) -> Result<BuildReport, EngineError> {
     if lock.path() != opts.cache_dir.join("lock") {
         return Err(EngineError::Invalid {
             path: opts.cache_dir.clone(),
@@ -193,6 +206,7 @@ pub fn build_holding(
     };
 
     let mut co = Coordinator::new(&prev, &prev_emitted, opts.keep_going);
+    co.failed_before = failed_before.clone();
     co.add_nodes(&graph, 0..graph.len(), on_event);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)

@@ -75,6 +75,9 @@ pub(crate) struct Coordinator<'a> {
     /// Keys already resolved in this build: nodes sharing a key share the first resolution, so
     /// whether they ran or were cached depends on the cache at build start, not on timing.
     resolved: BTreeMap<Hash, Done>,
+    /// Keys that failed in a build of this process just before (an op is a pure function of
+    /// its key): they fail again with the same error, without running.
+    pub failed_before: BTreeMap<Hash, String>,
 }
 
 fn distinct_inputs(n: &NodeData) -> BTreeSet<usize> {
@@ -95,6 +98,7 @@ impl<'a> Coordinator<'a> {
             file_owner: BTreeMap::new(),
             inflight_keys: BTreeMap::new(),
             resolved: BTreeMap::new(),
+            failed_before: BTreeMap::new(),
         }
     }
 
@@ -174,6 +178,10 @@ impl<'a> Coordinator<'a> {
                         self.slots[id].phase = Phase::Running;
                         if let JobWork::Op { key, .. } = &job.work {
                             let key = *key;
+                            if let Some(e) = self.failed_before.get(&key) {
+                                self.finish(graph, Done::failed(id, e.clone()), on_event);
+                                continue;
+                            }
                             if let Some(res) = self.resolved.get(&key) {
                                 let done = Done {
                                     id,

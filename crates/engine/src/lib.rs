@@ -51,7 +51,9 @@ mod stored;
 mod worker;
 
 pub use artifact::{Artifact, FileSet, Hash};
-pub use build::{BuildOptions, DEFAULT_RECORD, Event, build, build_holding, lock_cache};
+pub use build::{
+    BuildOptions, DEFAULT_RECORD, Event, build, build_again, build_holding, lock_cache,
+};
 pub use derive::Derivations;
 pub use dirlock::DirLock;
 pub use error::EngineError;

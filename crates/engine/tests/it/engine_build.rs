@@ -356,6 +356,39 @@ fn without_keep_going_a_failure_stops_further_dispatch() {
 }
 
 #[test]
+fn a_node_that_failed_in_the_build_before_fails_again_without_running() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 2);
+    let runs = Runs::default();
+    let graph = |runs: &Runs| {
+        let mut g = BuildGraph::new();
+        g.add_op("bad", fail(runs), &[]).unwrap();
+        g.add_op("good", konst(4, runs), &[]).unwrap();
+        g
+    };
+    let lock = lock_cache(&o, &|_| {}).unwrap();
+    let first = build_holding(graph(&runs), &o, &lock, &|_| {}).unwrap();
+    assert_eq!(runs.total(), 2);
+    let bad = first.node("bad").unwrap();
+    let failed = std::collections::BTreeMap::from([(bad.key, "as before".to_string())]);
+    runs.reset();
+    let again = build_again(graph(&runs), &o, &lock, &failed, &|_| {}).unwrap();
+    // `good` is cached; `bad`, of the same key, fails with the error given, unrun.
+    assert_eq!(runs.total(), 0);
+    assert_eq!(state(&again, "bad"), NodeState::Failed);
+    assert_eq!(
+        again.node("bad").unwrap().error.as_deref(),
+        Some("as before")
+    );
+    assert_eq!(state(&again, "good"), NodeState::Cached);
+    // Without the memo, it runs again (failures are not cached).
+    runs.reset();
+    let plain = build_holding(graph(&runs), &o, &lock, &|_| {}).unwrap();
+    assert_eq!(runs.total(), 1);
+    assert_eq!(state(&plain, "bad"), NodeState::Failed);
+}
+
+#[test]
 fn emitted_files_are_written_rewritten_when_deleted_and_locked() {
     let dir = tempfile::tempdir().unwrap();
     let o = opts(dir.path(), 2);
