@@ -85,7 +85,43 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         record: record.name.clone(),
         read_only,
     };
-    let report = engine::build_holding(graph, &opts, &cache_lock, &|e| renderer.event(e))?;
+    // Where the meshes of two surfaces cross, refined there and built again (`crossings`).
+    let mut recipe = recipe;
+    let mut graph = Some(graph);
+    let mut rounds = 0;
+    let mut failed_before = std::collections::BTreeMap::new();
+    let report = loop {
+        let graph = match graph.take() {
+            Some(g) => g,
+            None => plan::lower(&recipe).map_err(|e| Failure(format!("error: {e}")))?,
+        };
+        let last = rounds == super::crossings::ROUNDS;
+        if !last {
+            renderer.hold_failures();
+        }
+        let on_event = |e: &engine::Event| renderer.event(e);
+        let report = engine::build_again(graph, &opts, &cache_lock, &failed_before, &on_event)?;
+        let added = match report.ok || last {
+            true => Vec::new(),
+            false => super::crossings::refinements(&report, &recipe, built_model(&report).as_ref()),
+        };
+        renderer.release_failures(added.is_empty());
+        if added.is_empty() {
+            break report;
+        }
+        if verbosity >= Verbosity::Normal {
+            for r in &added {
+                errln!("{:>12} {}", "Refining", super::crossings::said(r));
+            }
+        }
+        recipe.mesh.refine.extend(added);
+        rounds += 1;
+        // What failed and is out of the refinement's reach fails again at once.
+        failed_before = (report.nodes.iter())
+            .filter(|n| n.state == NodeState::Failed)
+            .filter_map(|n| Some((n.key, n.error.clone()?)))
+            .collect();
+    };
     let cached = report.count(NodeState::Cached) + report.count(NodeState::CutOff);
     if verbosity == Verbosity::Normal && cached > 0 {
         let cut = report.count(NodeState::CutOff);

@@ -43,6 +43,9 @@ pub struct Renderer {
     active: Mutex<BTreeMap<String, Running>>,
     /// The recipe's surfaces, imported when a meshing failure first needs them (`culprit`).
     surfaces: std::sync::OnceLock<Vec<super::culprit::Indexed>>,
+    /// Failures of a build that may be tried again, held until it is known whether it will be
+    /// (`hold_failures`).
+    held: Mutex<Option<Vec<String>>>,
 }
 
 /// A node that runs, when bars are drawn: since when, and its bar once it has one.
@@ -71,6 +74,7 @@ impl Renderer {
             delay,
             active: Mutex::new(BTreeMap::new()),
             surfaces: std::sync::OnceLock::new(),
+            held: Mutex::new(None),
         }
     }
 
@@ -153,7 +157,11 @@ impl Renderer {
         };
         match r.state {
             NodeState::Failed => {
-                self.line(self.failure(&r.name, r.error.as_deref().unwrap_or("unknown error")));
+                let line = self.failure(&r.name, r.error.as_deref().unwrap_or("unknown error"));
+                match self.held.lock().unwrap_or_else(|p| p.into_inner()).as_mut() {
+                    Some(held) => held.push(line),
+                    None => self.line(line),
+                }
             }
             NodeState::Ran if self.verbosity >= Verbosity::Normal => {
                 self.line(format!(
@@ -189,6 +197,20 @@ impl Renderer {
 }
 
 impl Renderer {
+    /// Holds the failures of the build about to run instead of printing them.
+    pub fn hold_failures(&self) {
+        *self.held.lock().unwrap_or_else(|p| p.into_inner()) = Some(Vec::new());
+    }
+
+    /// Prints the failures held, if `print`, else drops them (the build is tried again), and
+    /// prints failures as they come again.
+    pub fn release_failures(&self, print: bool) {
+        let held = self.held.lock().unwrap_or_else(|p| p.into_inner()).take();
+        for line in held.into_iter().flatten().filter(|_| print) {
+            self.line(line);
+        }
+    }
+
     /// A node's failure: at its recipe entry, with the line quoted and the entry underlined,
     /// when the error starts with a recipe location (as the model's errors about regions, the
     /// box and trims do); else on one line.

@@ -271,7 +271,13 @@ fn an_intrusion_keeps_the_overlap_of_two_bodies_whichever_is_kept_outside_the_ot
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
     // These mesh now, below the bars: the salt gaps since a front's last gaps are closed by the
     // Delaunay method, the lenses since no chart's border overlaps itself in map view.
-    let meshing = ["salt_overhang", "two_lenses", "fault_through_salt", "onlap"];
+    let meshing = [
+        "salt_overhang",
+        "two_lenses",
+        "fault_through_salt",
+        "onlap",
+        "onlap_under_a_degree",
+    ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
         let recipe = case.write(dir.path());
@@ -313,35 +319,47 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
 }
 
 #[test]
-fn an_onlap_under_a_degree_fails_naming_both_patches_and_meshes_once_refined_as_advised() {
+fn an_onlap_under_a_degree_meshes_once_the_build_refines_where_the_meshes_cross() {
     let case = known_gap("onlap_under_a_degree");
     let dir = tempfile::tempdir().expect("a scratch folder");
     let recipe = case.write(dir.path());
-    let out = build_quietly(dir.path(), &recipe);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "it meshes now: {err}");
-    let failed = (err.lines())
-        .find(|l| l.contains("lie on each other") || l.contains("cross at"))
-        .unwrap_or_else(|| panic!("neither patches on each other nor crossing:\n{err}"));
-    assert!(
-        failed.contains("`H1#") && failed.contains("`U#"),
-        "{failed}"
-    );
-    // The advice, as written, is a recipe entry that lets the meshes part.
-    let advice = "`[[mesh.refine]]` with `curve = \"H1/U\"`, `size = 25` and `distance = 500`";
-    assert!(failed.contains(advice), "{failed}");
-    let refined = format!(
+    let build = || {
+        let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+            .current_dir(dir.path())
+            .arg("build")
+            .arg(&recipe)
+            .output()
+            .expect("the recipe binary runs");
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{err}");
+        err
+    };
+    // The meshes of U and H1 cross near the tip: refined along the curves where they meet, with
+    // the entry that does it from the start, and no failure shown.
+    let err = build();
+    let entry = "`[[mesh.refine]]` with `curve = \"H1/U\"`, `size = 25` and `distance = 500`";
+    let refining = (err.lines())
+        .find(|l| l.contains("Refining `H1/U` to 25 where the meshes of its two surfaces cross"))
+        .unwrap_or_else(|| panic!("no refinement said:\n{err}"));
+    assert!(refining.contains(entry), "{refining}");
+    assert!(!err.contains("error"), "{err}");
+    // Where the two meshes share a triangle, the wedge closes to nothing: its report says so.
+    assert!(err.contains("closes to nothing across"), "{err}");
+    passes_the_checker(dir.path(), &case);
+    let lock = std::fs::read(dir.path().join("onlap_under_a_degree.toml.lock")).unwrap();
+    // Written in the recipe, the entry does it from the start, to the same mesh.
+    let written = format!(
         "{}\n[[mesh.refine]]\ncurve = \"H1/U\"\nsize = 25\ndistance = 500\n",
         case.recipe
     );
-    std::fs::write(&recipe, refined).expect("write the recipe");
-    let out = build_quietly(dir.path(), &recipe);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        out.status.success(),
-        "refined as advised, it still fails: {err}"
+    std::fs::write(&recipe, written).expect("write the recipe");
+    let err = build();
+    assert!(!err.contains("Refining"), "{err}");
+    assert_eq!(
+        std::fs::read(dir.path().join("onlap_under_a_degree.toml.lock")).unwrap(),
+        lock,
+        "the same nodes, the same outputs"
     );
-    passes_the_checker(dir.path(), &case);
 }
 
 #[test]

@@ -40,7 +40,7 @@ pub use import::{FINDINGS_REMAINING, ImportOp, OnInvalid, findings_by_kind};
 pub use inputs::{Groups, Wiring};
 pub use model::{ModelData, ModelOp, ModelPatch};
 pub use patch::{PatchExtractOp, PatchMesh, PatchPiece, SurfaceMeshOp};
-pub use region::{AssembleOp, RegionMesh, TetMeshOp};
+pub use region::{AdvisedRefinement, AssembleOp, RegionMesh, TetMeshOp};
 pub use support::SupportOp;
 pub use wells::{
     CurvePins, CurvePinsOp, RegionWells, RegionWellsOp, WellCutData, WellCutOp, WellData,

@@ -124,8 +124,8 @@ impl TetMeshOp {
         format!(
             "region `{}`: the meshes of patches `{a}` and `{b}` cross at ({x:.1}, {y:.1}, \
              {z:.1}): the two surfaces meet at a small angle there (or cross in the files), and \
-             their meshes, each within its tolerance of its own surface, pass through each \
-             other; part the surfaces there in the data{}",
+             their meshes, each within its tolerance of its own surface, {CROSSING}; part the \
+             surfaces there in the data{}",
             self.name,
             self.refine_advice(a, b)
         )
@@ -135,7 +135,7 @@ impl TetMeshOp {
     /// lets their meshes part: a tenth of the region's size along the curves where the surfaces
     /// meet, growing back over twice that size. Nothing for two patches of one surface.
     fn refine_advice(&self, a: &str, b: &str) -> String {
-        let surface = |p: &str| p.split('#').next().unwrap_or(p).to_string();
+        let surface = |p: &str| p.rsplit_once('#').map_or(p, |(s, _)| s).to_string();
         let (sa, sb) = (surface(a), surface(b));
         if sa == sb {
             return String::new();
@@ -143,13 +143,65 @@ impl TetMeshOp {
         let size = self.size.size;
         format!(
             "; or, where they meet at a small angle (an onlap, a pinch-out), refine where they \
-             meet so that their meshes part: `[[mesh.refine]]` with `curve = \"{sa}/{sb}\"`, \
-             `size = {}` and `distance = {}`",
-            three_digits(size / 10.0),
-            three_digits(2.0 * size)
+             meet so that their meshes part: {}",
+            AdvisedRefinement {
+                curve: format!("{sa}/{sb}"),
+                size: size / 10.0,
+                distance: 2.0 * size,
+            }
+            .advice()
         )
     }
 }
+
+/// The `[[mesh.refine]]` entry a region's error advises where the meshes of two surfaces cross:
+/// the curves where they meet (a curve selector), the size there and the distance it grows back
+/// over. The build adds it and tries again ([`AdvisedRefinement::of_crossing`] reads it back).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AdvisedRefinement {
+    pub curve: String,
+    pub size: f64,
+    pub distance: f64,
+}
+
+impl AdvisedRefinement {
+    const CURVE: &str = "`[[mesh.refine]]` with `curve = \"";
+    const SIZE: &str = "\"`, `size = ";
+    const DISTANCE: &str = "` and `distance = ";
+
+    /// As the error words it (sizes to three significant digits).
+    fn advice(&self) -> String {
+        format!(
+            "{}{}{}{}{}{}`",
+            Self::CURVE,
+            self.curve,
+            Self::SIZE,
+            three_digits(self.size),
+            Self::DISTANCE,
+            three_digits(self.distance)
+        )
+    }
+
+    /// The refinement a region's error advises because the meshes of two of its patches cross,
+    /// if it is such an error.
+    pub fn of_crossing(error: &str) -> Option<Self> {
+        if !error.contains(CROSSING) {
+            return None;
+        }
+        let rest = &error[error.find(Self::CURVE)? + Self::CURVE.len()..];
+        let (curve, rest) = rest.split_once(Self::SIZE)?;
+        let (size, rest) = rest.split_once(Self::DISTANCE)?;
+        let distance = &rest[..rest.find('`')?];
+        Some(AdvisedRefinement {
+            curve: curve.to_string(),
+            size: size.parse().ok()?,
+            distance: distance.parse().ok()?,
+        })
+    }
+}
+
+/// What names an error about the meshes of two patches crossing.
+const CROSSING: &str = "pass through each other";
 
 /// `x` to three significant digits, written without trailing zeros.
 fn three_digits(x: f64) -> String {
@@ -651,6 +703,17 @@ mod tests {
         );
         let advice = "`[[mesh.refine]]` with `curve = \"H1/H2\"`, `size = 25` and `distance = 500`";
         assert!(crossing.contains(advice), "{crossing}");
+        // The build reads the advice back from a crossing, and only from a crossing.
+        let advised = AdvisedRefinement {
+            curve: "H1/H2".into(),
+            size: 25.0,
+            distance: 500.0,
+        };
+        assert_eq!(AdvisedRefinement::of_crossing(&crossing), Some(advised));
+        assert_eq!(
+            AdvisedRefinement::of_crossing(&op.face_to_face_error(&f)),
+            None
+        );
         // The same advice for two patches lying on each other, unless smoothing is to blame.
         assert!(op.face_to_face_error(&f).contains(advice));
         op.smoothed = vec![true, false, false];
