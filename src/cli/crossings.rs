@@ -7,9 +7,10 @@
 //! [`ROUNDS`] rounds, and never below `min_size`. Then the build fails with the place and the
 //! advice. What was added is said, with the entry that does it from the start.
 //!
-//! Building again is cheap: the failing region fails at its input check, and everything the
-//! refinement does not reach is cached. The same recipe gets the same rounds, so the mesh is as
-//! reproducible as any other, and `--locked` checks it.
+//! Building again costs what the refinement reaches: the crossing region fails at its input
+//! check, what it does not reach is cached, and what failed out of its reach fails again at once
+//! (`engine::build_again`); failed regions within its reach run again. The same recipe gets the
+//! same rounds, so the mesh is as reproducible as any other, and `--locked` checks it.
 
 use crate::plan::ops::{AdvisedRefinement, ModelData};
 use crate::recipe::{CurveSelector, Recipe, RefineSpec, RefineTarget};

@@ -277,6 +277,7 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "fault_through_salt",
         "onlap",
         "onlap_under_a_degree",
+        "downlap",
     ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");

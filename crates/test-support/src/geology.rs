@@ -79,6 +79,9 @@ pub fn cases() -> Vec<Case> {
 /// - `onlap_under_a_degree`: the same at 0.86°; near the tip the meshes of U and H1 cross, so
 ///   the build refines along `H1/U` to a tenth of the size and builds again; where they share a
 ///   triangle (3 cm apart there) the wedge closes to nothing. Meshes, at 0.31°.
+/// - `downlap`: the onlap upside down, at 2.0°; meshes, at 0.11°. In both, the two surfaces
+///   cross again and again near the tip, so the box side holds vertices of the tip a few metres
+///   apart, and needles between them.
 pub fn known_gaps() -> Vec<Case> {
     vec![
         salt_overhang(),
@@ -86,6 +89,7 @@ pub fn known_gaps() -> Vec<Case> {
         fault_through_salt(),
         onlap("onlap", 0.035),
         onlap("onlap_under_a_degree", 0.015),
+        downlap("downlap", 0.035),
     ]
 }
 
@@ -1154,6 +1158,25 @@ fn fault_through_salt() -> Case {
 /// two triangulated surfaces meet at so small an angle, their facets cross each other again and
 /// again near the tip: the curves where they meet come in pieces metres apart.
 fn onlap(name: &'static str, slope: f64) -> Case {
+    lap(name, slope, Lap::On)
+}
+
+/// The onlap upside down: H1 sinks westwards onto a surface U below it (a downlap onto a
+/// basin floor), is kept above it, and an untouched H0 lies above both.
+fn downlap(name: &'static str, slope: f64) -> Case {
+    lap(name, slope, Lap::Down)
+}
+
+/// Which way H1 meets U.
+#[derive(Clone, Copy, PartialEq)]
+enum Lap {
+    /// Rising onto U from below.
+    On,
+    /// Sinking onto U from above.
+    Down,
+}
+
+fn lap(name: &'static str, slope: f64, lap: Lap) -> Case {
     let mut rng = Rng(0x7069_6e63_685f_6f75);
     let mut r = Recipe::new(name);
     let relief = |x: f64, y: f64| -1000.0 + 120.0 * (x / 900.0).sin() * (y / 1100.0).cos();
@@ -1167,19 +1190,19 @@ fn onlap(name: &'static str, slope: f64) -> Case {
         graded_axis(LO, HI, 150.0, 0.9),
         graded_axis(LO, HI, 180.0, 0.2),
     );
-    let h1 = |x: f64, y: f64| [x, y, relief(x, y) - slope * (x - 2000.0)];
+    let rise = if lap == Lap::On { -slope } else { slope };
+    let h1 = |x: f64, y: f64| [x, y, relief(x, y) + rise * (x - 2000.0)];
     r.surface(
         "H1",
         "horizon",
         &grid_surface(&us, &vs, h1, &mut rng),
         &PLAIN,
     );
-    r.surface(
-        "H2",
-        "horizon",
-        &horizon(-1600.0, 20.0, 1.2, &mut rng),
-        &PLAIN,
-    );
-    r.keep("H1", "below", "U");
-    r.case(&["box", "U", "H1", "H2"], 4)
+    let (other, z, side) = match lap {
+        Lap::On => ("H2", -1600.0, "below"),
+        Lap::Down => ("H0", -400.0, "above"),
+    };
+    r.surface(other, "horizon", &horizon(z, 20.0, 1.2, &mut rng), &PLAIN);
+    r.keep("H1", side, "U");
+    r.case(&["box", "U", "H1", other], 4)
 }
