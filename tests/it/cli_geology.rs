@@ -35,6 +35,16 @@ fn build(case: &Case) -> (tempfile::TempDir, serde_json::Value) {
     (dir, report)
 }
 
+/// Runs `recipe build recipe` in `dir`, saying what it does.
+fn build_saying(dir: &std::path::Path, recipe: &std::path::Path) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(dir)
+        .arg("build")
+        .arg(recipe)
+        .output()
+        .expect("the recipe binary runs")
+}
+
 /// Runs `recipe build --quiet recipe` in `dir`.
 fn build_quietly(dir: &std::path::Path, recipe: &std::path::Path) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_recipe"))
@@ -325,12 +335,7 @@ fn an_onlap_under_a_degree_meshes_once_the_build_refines_where_the_meshes_cross(
     let dir = tempfile::tempdir().expect("a scratch folder");
     let recipe = case.write(dir.path());
     let build = || {
-        let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
-            .current_dir(dir.path())
-            .arg("build")
-            .arg(&recipe)
-            .output()
-            .expect("the recipe binary runs");
+        let out = build_saying(dir.path(), &recipe);
         let err = String::from_utf8_lossy(&out.stderr).to_string();
         assert!(out.status.success(), "{err}");
         err
@@ -658,12 +663,7 @@ fn a_thin_region_the_recipe_does_not_name_is_warned_about_with_a_point_to_name_i
     lens.recipe = lens.recipe.replace("min_layers = 2\n", "");
     let dir = tempfile::tempdir().expect("a scratch folder");
     let recipe = lens.write(dir.path());
-    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .current_dir(dir.path())
-        .arg("build")
-        .arg(&recipe)
-        .output()
-        .expect("the recipe binary runs");
+    let out = build_saying(dir.path(), &recipe);
     let err = String::from_utf8_lossy(&out.stderr);
     let warning = err
         .lines()

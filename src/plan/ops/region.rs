@@ -59,12 +59,21 @@ pub struct TetMeshOp {
     pub wells: bool,
 }
 
+/// The surface of the patch named `patch` (`<surface>#<k>`).
+fn surface_of(patch: &str) -> &str {
+    patch.rsplit_once('#').map_or(patch, |(s, _)| s)
+}
+
 impl TetMeshOp {
+    /// The names of the two patches `f` is about.
+    fn patch_names(&self, f: &FaceToFace) -> [&str; 2] {
+        f.patches
+            .map(|p| self.patches.get(p as usize).map_or("?", String::as_str))
+    }
+
     /// Says in recipe terms that two of the region's patches lie on each other.
     fn face_to_face_error(&self, f: &FaceToFace) -> String {
-        let [a, b] = f
-            .patches
-            .map(|p| self.patches.get(p as usize).map_or("?", String::as_str));
+        let [a, b] = self.patch_names(f);
         let smoothed = (f.patches.iter()).any(|&p| self.smoothed.get(p as usize) == Some(&true));
         let [x, y, z] = f.at;
         let cause = if smoothed {
@@ -94,13 +103,10 @@ impl TetMeshOp {
 impl TetMeshOp {
     /// Says in recipe terms that two of the region's patches bound it from one side of an edge.
     fn edge_clash_error(&self, c: &FaceToFace) -> String {
-        let [a, b] = c
-            .patches
-            .map(|p| self.patches.get(p as usize).map_or("?", String::as_str));
+        let [a, b] = self.patch_names(c);
         let [x, y, z] = c.at;
-        let surface = |p: &str| p.split('#').next().unwrap_or(p).to_string();
-        let cause = if surface(a) == surface(b) {
-            format!("`{}` folds onto itself along a line there", surface(a))
+        let cause = if surface_of(a) == surface_of(b) {
+            format!("`{}` folds onto itself along a line there", surface_of(a))
         } else {
             "the two surfaces cross or meet along a line there".to_string()
         };
@@ -117,9 +123,7 @@ impl TetMeshOp {
 impl TetMeshOp {
     /// Says in recipe terms that the meshes of two of the region's patches cross.
     fn crossing_error(&self, c: &FaceToFace) -> String {
-        let [a, b] = c
-            .patches
-            .map(|p| self.patches.get(p as usize).map_or("?", String::as_str));
+        let [a, b] = self.patch_names(c);
         let [x, y, z] = c.at;
         format!(
             "region `{}`: the meshes of patches `{a}` and `{b}` cross at ({x:.1}, {y:.1}, \
@@ -135,8 +139,7 @@ impl TetMeshOp {
     /// lets their meshes part: a tenth of the region's size along the curves where the surfaces
     /// meet, growing back over twice that size. Nothing for two patches of one surface.
     fn refine_advice(&self, a: &str, b: &str) -> String {
-        let surface = |p: &str| p.rsplit_once('#').map_or(p, |(s, _)| s).to_string();
-        let (sa, sb) = (surface(a), surface(b));
+        let (sa, sb) = (surface_of(a), surface_of(b));
         if sa == sb {
             return String::new();
         }
