@@ -1,9 +1,9 @@
 //! Writes the corpus of geological situations (`test_support::geology`: faults with throw, a
 //! fault dying out in a layer, an erosional unconformity, X and Y fault junctions, a recumbent
 //! fold, a vertical tube, a salt stock, a closed salt diapir, a lens, a raft inside salt, a
-//! chevron fold), one folder per case holding its recipe and TSurf files, and under
-//! `known_gaps/` any situation that does not mesh yet, or not to the corpus's quality bars, to
-//! try or to show: `cargo run --example geology_corpus -- /tmp/corpus`, then
+//! chevron fold, an intrusion, a fault splay), one folder per case holding its recipe and TSurf
+//! files, and under `known_gaps/` any situation that does not mesh yet, or not to the corpus's
+//! quality bars, to try or to show: `cargo run --example geology_corpus -- /tmp/corpus`, then
 //! `recipe build /tmp/corpus/<case>/<case>.toml`.
 
 fn main() {

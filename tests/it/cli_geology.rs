@@ -2,8 +2,9 @@
 //! case meshes into its regions, every region's worst tet is within the quality bars (normalised
 //! mean ratio at least 0.2, dihedral angles at least the case's bar: 8°, or 6° for the
 //! erosional unconformity, whose wedge's surface meshes meet at 7.1° at its tip, 7° for the
-//! lens, whose rim's needle triangles bound it, and 6° for the Tejon Pass faults at 2 km), and,
-//! when the independent checker is available, the msh passes `check_mesh.py` with that region
+//! fault splay, whose wedge closes to 8°, and for the lens, whose rim's needle triangles bound
+//! it, and 6° for the Tejon Pass faults at 2 km), and, when the independent checker is
+//! available, the msh passes `check_mesh.py` with that region
 //! count. Cases over the SCEC fault model in `../shared` skip when it is absent.
 
 use crate::common_cli;
@@ -150,6 +151,11 @@ fn a_fault_ending_on_another_in_a_y_meshes_into_six_regions() {
 }
 
 #[test]
+fn a_splay_branching_from_a_fault_at_eight_degrees_meshes_into_six_regions() {
+    builds_and_meshes(&case("fault_splay"));
+}
+
+#[test]
 fn a_recumbent_fold_with_an_overturned_limb_cuts_the_box_into_two_regions() {
     builds_and_meshes(&case("recumbent_fold"));
 }
@@ -176,6 +182,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "raft_in_salt",
         "chevron_fold",
         "intrusion_cutting_a_body",
+        "fault_splay",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);

@@ -58,6 +58,7 @@ pub fn cases() -> Vec<Case> {
         raft_in_salt(),
         chevron_fold(),
         intrusion_cutting_a_body(),
+        fault_splay(),
     ]
 }
 
@@ -387,6 +388,31 @@ fn fault_with_throw(name: &'static str, throw: f64) -> Case {
         120.0,
     );
     r.case(&["box", "F", "H1_hw", "H1_fw", "H2_hw", "H2_fw"], 6)
+}
+
+/// A splay: F2 branches upwards from a through-going fault F1 (60°) along a line at 1300 m
+/// depth, 8° steeper than it, and is kept above it (ending on it); a horizon H crosses both.
+/// The hanging wall between the two faults is a wedge closing to 8° at the branch line: its
+/// tets reach 7.3° there, so the bar is 7°.
+fn fault_splay() -> Case {
+    let mut rng = Rng(0x7370_6c61_795f_3031);
+    let mut r = Recipe::new("fault_splay");
+    let zs = (-2300.0, 300.0);
+    let f1 = fault_y(2000.0, -1300.0, 60.0, (LO, HI), zs, &mut rng);
+    r.surface("F1", "fault", &f1, &PLAIN);
+    let f2 = fault_y(2000.0, -1300.0, 68.0, (LO, HI), zs, &mut rng);
+    r.surface("F2", "fault", &f2, &DEPTH);
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-800.0, 25.0, 0.3, &mut rng),
+        &PLAIN,
+    );
+    r.keep("F2", "above", "F1");
+    Case {
+        min_dihedral: 7.0,
+        ..r.case(&["box", "F1", "F2", "H"], 6)
+    }
 }
 
 /// A small fault that dies out inside the middle of three layers, crossing nothing.
