@@ -295,6 +295,7 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "onlap",
         "onlap_under_a_degree",
         "downlap",
+        "detachment",
     ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");

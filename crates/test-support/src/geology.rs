@@ -83,6 +83,9 @@ pub fn cases() -> Vec<Case> {
 /// - `downlap`: the onlap upside down, at 2.0°; meshes, at 0.11°. In both, the two surfaces
 ///   cross again and again near the tip, so the box side holds vertices of the tip a few metres
 ///   apart, and needles between them.
+/// - `detachment`: a thrust's flat 10 m above a horizon; meshes, but the slab between is one
+///   element across under the flat, at 1.8° (2.6° with `min_layers = 3`, which takes the
+///   region's median thickness, and the ramp makes that large).
 pub fn known_gaps() -> Vec<Case> {
     vec![
         salt_overhang(),
@@ -91,6 +94,7 @@ pub fn known_gaps() -> Vec<Case> {
         onlap("onlap", 0.035),
         onlap("onlap_under_a_degree", 0.015),
         downlap("downlap", 0.035),
+        detachment(),
     ]
 }
 
@@ -413,6 +417,33 @@ fn fault_splay() -> Case {
         min_dihedral: 7.0,
         ..r.case(&["box", "F1", "F2", "H"], 6)
     }
+}
+
+/// A ramp-flat thrust F whose flat runs 10 m above a horizon H (a detachment along a weak
+/// layer), its ramp rising at 30° from 1500 m east of the box's west side: the slab between
+/// them is 10 m thick under the flat and thickens under the ramp.
+fn detachment() -> Case {
+    let mut rng = Rng(0x6465_7461_6368_3031);
+    let mut r = Recipe::new("detachment");
+    let ramp = 30f64.to_radians().tan();
+    let (us, vs) = (
+        graded_axis(LO, HI, 150.0, 0.4),
+        graded_axis(LO, HI, 170.0, 0.8),
+    );
+    let f = grid_surface(
+        &us,
+        &vs,
+        |x, y| [x, y, -1500.0 + ramp * (x - 1500.0).max(0.0)],
+        &mut rng,
+    );
+    r.surface("F", "fault", &f, &PLAIN);
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-1510.0, 3.0, 0.6, &mut rng),
+        &PLAIN,
+    );
+    r.case(&["box", "F", "H"], 3)
 }
 
 /// A small fault that dies out inside the middle of three layers, crossing nothing.
