@@ -83,6 +83,8 @@ pub fn cases() -> Vec<Case> {
 /// - `downlap`: the onlap upside down, at 2.0°; meshes, at 0.11°. In both, the two surfaces
 ///   cross again and again near the tip, so the box side holds vertices of the tip a few metres
 ///   apart, and needles between them.
+/// - `fault_splay_at_one_degree`: the fault splay with F2 only 1° steeper than F1; meshes, at
+///   0.77°, its wedge's bound (planar faults leave no crossings at the branch line).
 /// - `detachment`: a thrust's flat 10 m above a horizon; meshes, but the slab between is one
 ///   element across under the flat, at 1.8° (2.6° with `min_layers = 3`, which takes the
 ///   region's median thickness, and the ramp makes that large).
@@ -95,6 +97,7 @@ pub fn known_gaps() -> Vec<Case> {
         onlap("onlap_under_a_degree", 0.015),
         downlap("downlap", 0.035),
         detachment(),
+        fault_splay_at("fault_splay_at_one_degree", 61.0),
     ]
 }
 
@@ -399,12 +402,20 @@ fn fault_with_throw(name: &'static str, throw: f64) -> Case {
 /// The hanging wall between the two faults is a wedge closing to 8° at the branch line: its
 /// tets reach 7.3° there, so the bar is 7°.
 fn fault_splay() -> Case {
+    Case {
+        min_dihedral: 7.0,
+        ..fault_splay_at("fault_splay", 68.0)
+    }
+}
+
+/// The splay, with F2 dipping `dip2` degrees.
+fn fault_splay_at(name: &'static str, dip2: f64) -> Case {
     let mut rng = Rng(0x7370_6c61_795f_3031);
-    let mut r = Recipe::new("fault_splay");
+    let mut r = Recipe::new(name);
     let zs = (-2300.0, 300.0);
     let f1 = fault_y(2000.0, -1300.0, 60.0, (LO, HI), zs, &mut rng);
     r.surface("F1", "fault", &f1, &PLAIN);
-    let f2 = fault_y(2000.0, -1300.0, 68.0, (LO, HI), zs, &mut rng);
+    let f2 = fault_y(2000.0, -1300.0, dip2, (LO, HI), zs, &mut rng);
     r.surface("F2", "fault", &f2, &DEPTH);
     r.surface(
         "H",
@@ -413,10 +424,7 @@ fn fault_splay() -> Case {
         &PLAIN,
     );
     r.keep("F2", "above", "F1");
-    Case {
-        min_dihedral: 7.0,
-        ..r.case(&["box", "F1", "F2", "H"], 6)
-    }
+    r.case(&["box", "F1", "F2", "H"], 6)
 }
 
 /// A ramp-flat thrust F whose flat runs 10 m above a horizon H (a detachment along a weak
