@@ -88,6 +88,10 @@ pub fn cases() -> Vec<Case> {
 /// - `detachment`: a thrust's flat 10 m above a horizon; meshes, but the slab between is one
 ///   element across under the flat, at 1.8° (2.6° with `min_layers = 3`, which takes the
 ///   region's median thickness, and the ramp makes that large).
+/// - `zero_thickness_layer`: a layer collapsed to nothing where it pinches out, its two
+///   surfaces one and the same there; the intersection refuses the coplanar overlap, naming the
+///   triangles and their lines. Sharing the overlap as one interface, its border a curve of
+///   both, is not built.
 pub fn known_gaps() -> Vec<Case> {
     vec![
         salt_overhang(),
@@ -98,6 +102,7 @@ pub fn known_gaps() -> Vec<Case> {
         downlap("downlap", 0.035),
         detachment(),
         fault_splay_at("fault_splay_at_one_degree", 61.0),
+        zero_thickness_layer(),
     ]
 }
 
@@ -425,6 +430,27 @@ fn fault_splay_at(name: &'static str, dip2: f64) -> Case {
     );
     r.keep("F2", "above", "F1");
     r.case(&["box", "F1", "F2", "H"], 6)
+}
+
+/// A layer whose base H2 is drawn onto its top H1 where it thins to nothing, vertex for vertex,
+/// as stratigraphic models collapse a pinched-out layer: west of a line the two surfaces are
+/// one, east of it the layer thickens to about 100 m.
+fn zero_thickness_layer() -> Case {
+    let mut rng = Rng(0x7a65_726f_5f74_6869);
+    let mut r = Recipe::new("zero_thickness_layer");
+    let h1 = horizon(-1000.0, 30.0, 0.5, &mut rng);
+    let mut h2 = Surface {
+        vertices: h1.vertices.clone(),
+        triangles: h1.triangles.clone(),
+        corners: h1.corners.clone(),
+    };
+    for v in &mut h2.vertices {
+        let base = -1060.0 + 90.0 * (v[0] - 2000.0) / 2000.0;
+        v[2] = v[2].min(base);
+    }
+    r.surface("H1", "horizon", &h1, &PLAIN);
+    r.surface("H2", "horizon", &h2, &DEPTH);
+    r.case(&["box", "H1", "H2"], 3)
 }
 
 /// A ramp-flat thrust F whose flat runs 10 m above a horizon H (a detachment along a weak
