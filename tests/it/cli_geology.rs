@@ -98,6 +98,17 @@ fn below_the_bars(dir: &std::path::Path, case: &Case) -> Vec<String> {
         .collect()
 }
 
+/// Builds `case` quietly in a scratch folder (returned), asserting that it succeeds and that its
+/// mesh passes the checker, whatever its quality.
+fn meshes_validly(case: &Case) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let out = build_quietly(dir.path(), &case.write(dir.path()));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{}: {err}", case.name);
+    passes_the_checker(dir.path(), case);
+    dir
+}
+
 /// Asserts that `check_mesh.py` passes the mesh of `case`, built in `dir` (skipped, with a
 /// note, where the checker is absent).
 fn passes_the_checker(dir: &std::path::Path, case: &Case) {
@@ -193,14 +204,7 @@ fn the_salt_overhangs_narrow_charts_are_as_fine_as_they_are_wide_and_its_tets_ov
     // The overhang's rim is cut into charts whose seams run metres apart: elements of the case's
     // size across them were needles, and tets on them reached 0.9°.
     let case = known_gap("salt_overhang");
-    let dir = tempfile::tempdir().expect("a scratch folder");
-    let out = build_quietly(dir.path(), &case.write(dir.path()));
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    passes_the_checker(dir.path(), &case);
+    let dir = meshes_validly(&case);
     // Below the corpus's 8° still: slivers on the boundary under the overhang, where the salt
     // meets H1 at 33°; refining close curves as well (three times the tets) reaches 6.0°.
     let worst = below_the_bars(dir.path(), &case)
@@ -223,14 +227,7 @@ fn a_lens_rim_meshed_without_creases_has_its_folds_repaired_and_meshes() {
         recipe: format!("{}\n[tolerances]\ncrease_angle_deg = 179\n", case.recipe),
         ..case
     };
-    let dir = tempfile::tempdir().expect("a scratch folder");
-    let out = build_quietly(dir.path(), &case.write(dir.path()));
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    passes_the_checker(dir.path(), &case);
+    meshes_validly(&case);
 }
 
 /// Builds `case` with its recipe's trims replaced by `trims`; returns the scratch folder and the
