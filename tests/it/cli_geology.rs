@@ -11,7 +11,7 @@ use crate::common_cli;
 use geom::mesh::read::read_volume_msh;
 use std::collections::BTreeSet;
 use std::process::Command;
-use test_support::geology::{Case, cases, known_gaps, scec_big_bend, scec_cases};
+use test_support::geology::{Case, cases, collapsed_layer, known_gaps, scec_big_bend, scec_cases};
 use test_support::paths;
 
 /// Builds `case` in a scratch folder (kept for the caller's checks); asserts the build
@@ -294,6 +294,7 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "downlap",
         "detachment",
         "fault_splay_at_one_degree",
+        "zero_thickness_layer",
     ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
@@ -332,6 +333,26 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         if failed.contains("the front") {
             assert!(failed.contains("pinched"), "{}: {failed}", case.name);
         }
+    }
+}
+
+#[test]
+fn a_layer_collapsed_onto_its_top_ends_where_the_two_surfaces_part_whichever_is_named_first() {
+    // The surface named first keeps the triangles the two have in common, the other ends at
+    // their border: the same three regions either way.
+    for (top, base, first) in [("H1", "H2", "H1"), ("T", "B", "B")] {
+        let case = collapsed_layer("collapsed_layer", top, base, -1060.0, 0.045);
+        let dir = tempfile::tempdir().expect("a scratch folder");
+        let out = build_saying(dir.path(), &case.write(dir.path()));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{top}/{base}: {err}");
+        let other = if first == top { base } else { top };
+        let said = format!(
+            "`{other}` is one with `{first}` over 209 triangle(s) (the same points): kept as \
+             `{first}`'s, and `{other}` ends where they part"
+        );
+        assert!(err.contains(&said), "{top}/{base}: {err}");
+        passes_the_checker(dir.path(), &case);
     }
 }
 

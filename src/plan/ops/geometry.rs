@@ -141,7 +141,8 @@ impl Operation for IntersectOp {
         true
     }
     fn version(&self) -> u32 {
-        1
+        // 2: triangles the two surfaces hold in common are listed, not an error.
+        2
     }
     fn params(&self) -> Params {
         Params::new()

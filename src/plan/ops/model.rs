@@ -11,7 +11,7 @@ use geom::mesh::SurfaceKind;
 use geom::{BBox, Tolerances, TriMesh};
 use model::conformity::{NearMiss, near_misses};
 use model::curvature::curvature_sizes;
-use model::intersect::{Intersection, split};
+use model::intersect::{Intersection, shared, split};
 use model::thickness::region_thickness;
 use model::touches::touch_points;
 use model::trims::{TrimPatch, TrimSpec, apply_trims, describe};
@@ -133,6 +133,7 @@ impl Operation for ModelOp {
             None => surfaces_bbox(&surfaces)?,
         };
         self.check_points(&bbox)?;
+        let (surfaces, intersections, shared) = unshare(surfaces, intersections)?;
         let named: Vec<(&str, &TriMesh)> = surfaces
             .iter()
             .map(|s| (s.name.as_str(), &s.mesh))
@@ -254,8 +255,60 @@ impl Operation for ModelOp {
         .count("regions", model.regions.len() as u64)
         .count("dangling_patches", model.dangling.len() as u64);
         let names: Vec<&str> = model.regions.iter().map(|r| r.name.as_str()).collect();
-        Ok(out.note(format!("regions: {}", names.join(", "))))
+        let out = out.note(format!("regions: {}", names.join(", ")));
+        Ok(shared.into_iter().fold(out, |o, n| o.note(n)))
     }
+}
+
+/// The model's surfaces and intersections once [`unshare`] has run, and its notes.
+type Unshared = (Vec<SurfaceData>, Vec<Intersection>, Vec<String>);
+
+/// The surfaces without the triangles each holds in common with a surface whose name sorts
+/// first (`model::intersect::shared`), with the intersections made again for them, and a note
+/// for each surface that dropped some (where it and the first are one interface).
+fn unshare(
+    surfaces: Vec<SurfaceData>,
+    intersections: Vec<Intersection>,
+) -> Result<Unshared, OpError> {
+    let named: Vec<(&str, &TriMesh)> = surfaces
+        .iter()
+        .map(|s| (s.name.as_str(), &s.mesh))
+        .collect();
+    let Some(u) =
+        shared::unshare(&named, &intersections).map_err(|e| OpError::from(e.to_string()))?
+    else {
+        return Ok((surfaces, intersections, Vec::new()));
+    };
+    let mut notes = Vec::new();
+    let surfaces = (surfaces.into_iter().zip(u.meshes))
+        .map(|(s, m)| match m {
+            None => s,
+            Some((mesh, kept)) => {
+                let with: Vec<&str> = (intersections.iter())
+                    .filter(|x| x.b == s.name && !x.shared.is_empty())
+                    .map(|x| x.a.as_str())
+                    .collect();
+                let n = s.mesh.triangles.len() - kept.len();
+                notes.push(format!(
+                    "`{}` is one with `{}` over {n} triangle(s) (the same points): kept as `{}`'s, \
+                     and `{}` ends where they part",
+                    s.name,
+                    with.join("`, `"),
+                    with.first().copied().unwrap_or_default(),
+                    s.name
+                ));
+                let triangle_part = (kept.iter())
+                    .filter_map(|&t| s.triangle_part.get(t as usize).copied())
+                    .collect();
+                SurfaceData {
+                    mesh,
+                    triangle_part,
+                    ..s
+                }
+            }
+        })
+        .collect();
+    Ok((surfaces, u.intersections, notes))
 }
 
 /// `[a, b, c]`, each coordinate as the shortest round-trip float.

@@ -17,7 +17,9 @@
 //!
 //! Degenerate contacts are handled exactly: a vertex on the other surface, an edge lying in it,
 //! shared vertices and curves through vertices all produce keys naming those vertices or edges.
-//! Coplanar triangles whose interiors overlap are an error naming both surfaces and where.
+//! Coplanar triangles whose interiors overlap are an error naming both surfaces and where,
+//! unless they are one and the same triangle ([`shared`]): then `b` drops it, listed in
+//! [`Intersection::shared`], and the curves are those of `a` with what `b` keeps.
 //! Surfaces touching at isolated points without a contact segment (tangent contact at a vertex)
 //! report those points in [`Intersection::touches`], not as curves. Zero-area triangles are
 //! skipped (their edges are shared with their neighbours) and listed.
@@ -31,6 +33,7 @@ pub mod error;
 pub mod key;
 pub mod locate;
 pub mod polygon;
+pub mod shared;
 pub mod split;
 
 pub use box_sides::box_sides;
@@ -89,6 +92,10 @@ pub struct Intersection {
     /// Zero-area triangles of `a` and of `b` met among the candidate pairs (skipped), sorted.
     pub degenerate_a: Vec<u32>,
     pub degenerate_b: Vec<u32>,
+    /// Triangles the two surfaces hold in common (the same three points), as (triangle of `a`,
+    /// triangle of `b`), sorted: `b` drops them, so no contact of them is computed, and the
+    /// curves run where what `b` keeps meets `a` (the border of the common part among them).
+    pub shared: Vec<(u32, u32)>,
 }
 
 fn check(s: &SurfaceRef) -> Result<(), IntersectError> {
@@ -163,9 +170,20 @@ pub fn intersect(s: SurfaceRef, t: SurfaceRef) -> Result<Intersection, Intersect
     let (a, b) = (sa.mesh, sb.mesh);
 
     let pairs = candidates::candidate_pairs(a, b);
+    let mut shared: Vec<(u32, u32)> = pairs
+        .par_iter()
+        .with_min_len(256)
+        .filter(|&&(i, j)| shared::identical(a, i, b, j) && !locate::is_degenerate(&tri(a, i).p))
+        .copied()
+        .collect();
+    shared.sort_unstable();
+    let mut dropped: Vec<u32> = shared.iter().map(|&(_, j)| j).collect();
+    dropped.sort_unstable();
+    dropped.dedup();
     let outcomes: Vec<((u32, u32), Outcome)> = pairs
         .par_iter()
         .with_min_len(256)
+        .filter(|&&(_, j)| dropped.binary_search(&j).is_err())
         .filter_map(|&(i, j)| {
             let (ta, tb) = (tri(a, i), tri(b, j));
             let out = if locate::is_degenerate(&ta.p) {
@@ -285,5 +303,6 @@ pub fn intersect(s: SurfaceRef, t: SurfaceRef) -> Result<Intersection, Intersect
         touches,
         degenerate_a: deg_a,
         degenerate_b: deg_b,
+        shared,
     })
 }

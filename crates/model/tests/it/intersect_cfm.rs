@@ -112,27 +112,20 @@ fn garlock_west_and_san_andreas_mojave_do_not_meet_in_the_1000m_model() {
     assert!(x.curves.is_empty() && x.touches.is_empty());
 }
 
-/// The 1857 rupture surface re-uses triangles of the Mojave segment: the seed aborts there, and
-/// so do we, naming both surfaces and where.
+/// The 1857 rupture surface re-uses 1,169 triangles of the Mojave segment, point for point: they
+/// are one piece of fault, kept once (by the name that sorts first), not an overlap to refuse.
+/// Elsewhere the rupture is its own, finer triangulation of nearly the same surface, so the two
+/// cross each other in hundreds of short curves, as any two such surfaces do.
 #[test]
-fn the_1857_rupture_overlapping_the_mojave_segment_is_a_coplanar_error_naming_both() {
+fn the_1857_rupture_shares_the_triangles_it_reuses_from_the_mojave_segment() {
     let Some(dir) = cfm_dir() else { return };
     let rupture = load(&dir, "SAFS-SAFZ-1857-San_Andreas_fault_rupture-CFM5_1000m");
     let saf = load(&dir, "SAFS-SAFZ-MJVS-San_Andreas_fault-CFM4_1000m");
-    let e = both("saf_1857", &rupture, "saf_mojave", &saf).expect_err("coplanar overlap");
-    let msg = e.to_string();
-    assert!(
-        msg.contains("`saf_1857`") && msg.contains("`saf_mojave`") && msg.contains("coplanar"),
-        "{msg}"
-    );
-    let model::intersect::IntersectError::Coplanar { contacts, .. } = e else {
-        panic!("{msg}")
-    };
-    let b = saf.bbox();
-    assert!(
-        contacts.iter().all(|c| b.contains(&c.at)),
-        "witness points lie on the surfaces"
-    );
+    let x = both("saf_1857", &rupture, "saf_mojave", &saf).expect("no coplanar overlap");
+    assert_eq!((x.a.as_str(), x.b.as_str()), ("saf_1857", "saf_mojave"));
+    assert_eq!(x.shared.len(), 1169);
+    assert!(x.coplanar.is_empty(), "{:?}", x.coplanar.first());
+    assert!(x.curves.len() > 100, "{}", x.curves.len());
 }
 
 #[test]

@@ -5,6 +5,7 @@ mod intersect_cases;
 mod intersect_cfm;
 mod intersect_corpus;
 mod intersect_proptest;
+mod intersect_shared;
 mod intersect_split;
 mod intersect_support;
 mod model_topology;
