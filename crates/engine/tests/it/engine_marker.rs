@@ -106,3 +106,64 @@ fn a_cache_made_before_the_marker_is_adopted_by_its_next_build() {
     assert!(is_cache(&o.cache_dir));
     assert!(clean(&o.cache_dir).unwrap());
 }
+
+#[test]
+fn a_folder_named_like_a_cache_at_its_top_but_holding_a_users_files_is_not_adopted() {
+    // Each time the top names are only a cache's, and something below is the user's.
+    let hash = "0123456789abcdef".repeat(4);
+    let mine: [&[&str]; 5] = [
+        &["objects/photo.jpg"],
+        &["records/thesis.txt"],
+        &["records/r/notes.txt", "records/r/manifest.bin"],
+        &["actions/keep/draft.md"],
+        &["lock", "objects/ABCDEF.txt"],
+    ];
+    for files in mine {
+        let dir = tempfile::tempdir().unwrap();
+        for f in files.iter().chain([&format!("objects/{hash}").as_str()]) {
+            let p = dir.path().join(f);
+            std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+            std::fs::write(&p, "mine").unwrap();
+        }
+        let mut o = opts(dir.path(), 1);
+        o.cache_dir = dir.path().to_path_buf();
+        let e = build(one_node(), &o, &|_| {}).unwrap_err();
+        assert!(matches!(e, EngineError::NotACache { .. }), "{files:?}: {e}");
+        let named = files
+            .iter()
+            .find(|f| !f.ends_with("manifest.bin") && **f != "lock");
+        let named = named
+            .unwrap()
+            .split('/')
+            .take(2)
+            .collect::<Vec<_>>()
+            .join("/");
+        assert!(e.to_string().contains(&named), "{files:?}: {e}");
+        assert!(clean(dir.path()).is_err() && gc(dir.path(), &[]).is_err());
+        for f in files {
+            assert_eq!(std::fs::read(dir.path().join(f)).unwrap(), b"mine", "{f}");
+        }
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn a_link_among_a_caches_entries_is_not_a_caches_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let theirs = tempfile::tempdir().unwrap();
+    std::fs::write(theirs.path().join("thesis.txt"), "mine").unwrap();
+    std::fs::create_dir_all(dir.path().join("objects")).unwrap();
+    let link = dir
+        .path()
+        .join("objects")
+        .join("0123456789abcdef".repeat(4));
+    std::os::unix::fs::symlink(theirs.path().join("thesis.txt"), link).unwrap();
+    let mut o = opts(dir.path(), 1);
+    o.cache_dir = dir.path().to_path_buf();
+    let e = build(one_node(), &o, &|_| {}).unwrap_err();
+    assert!(e.to_string().contains("(a link)"), "{e}");
+    assert_eq!(
+        std::fs::read(theirs.path().join("thesis.txt")).unwrap(),
+        b"mine"
+    );
+}
