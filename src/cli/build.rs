@@ -14,6 +14,7 @@ use super::render::{Renderer, Verbosity};
 use super::report::{ReportPlace, write_report};
 use super::report_state::ReportState;
 use super::staging::Staging;
+use super::user_file::{UserFile, read_text};
 use super::{BuildArgs, Failure, load};
 use crate::plan;
 use engine::{self, BuildOptions, BuildReport, LockFile, NodeState};
@@ -233,7 +234,10 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         }
     } else {
         let text = new_lock.to_text();
-        let old_text = std::fs::read_to_string(&lock_file).ok();
+        let old_text = match read_text(&lock_file) {
+            Ok(UserFile::Text(t)) => Some(t),
+            _ => None,
+        };
         // A lock is never rewritten over an output that changed without its version.
         if let Some(old) = old_text.as_deref().and_then(|t| LockFile::parse(t).ok()) {
             let stale = old.unversioned_changes(&new_lock);
@@ -317,10 +321,23 @@ fn mesh_summary(quality: &serde_json::Value) -> Option<String> {
 
 /// The committed lock file, for `--locked`.
 fn read_lock(lock_file: &Path) -> Result<LockFile, Failure> {
-    let text = std::fs::read_to_string(lock_file).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => Failure(format!("error: --locked, but there is no lock file {}: build once without --locked and commit it", lock_file.display())),
-        _ => Failure(format!("error: --locked, but the lock file {} cannot be read: {e}", lock_file.display())),
-    })?;
+    let cannot = |why: String| {
+        Failure(format!(
+            "error: --locked, but the lock file {} cannot be read: {why}",
+            lock_file.display()
+        ))
+    };
+    let text = match read_text(lock_file) {
+        Ok(UserFile::Text(text)) => text,
+        Ok(UserFile::Missing) => {
+            return Err(Failure(format!(
+                "error: --locked, but there is no lock file {}: build once without --locked and commit it",
+                lock_file.display()
+            )));
+        }
+        Ok(UserFile::Not(what)) => return Err(cannot(format!("it is {what}, not a file"))),
+        Err(e) => return Err(cannot(e.to_string())),
+    };
     LockFile::parse(&text).map_err(|e| Failure(format!("error: {}: {e}", lock_file.display())))
 }
 

@@ -18,6 +18,7 @@
 //! their root, whichever recipe built last: they are not migrated (they may be another recipe's),
 //! but ignored, so each recipe's first build explains its nodes as new, and `gc` deletes them.
 
+use super::user_file::{UserFile, read_text};
 use super::{CacheArgs, Failure};
 use engine::checked::CheckedError;
 use engine::{self, LockFile};
@@ -196,8 +197,9 @@ fn read_last(
             p.display(),
             recipe.display()
         )),
-        CheckedError::Damaged(_) => Failure(format!(
-            "error: the last build's record {} {e}: run `recipe build {}` to record it again",
+        CheckedError::Damaged(what) => Failure(format!(
+            "error: the last build's record {} is damaged: {what}: run `recipe build {}` to \
+             record it again",
             p.display(),
             recipe.display()
         )),
@@ -257,15 +259,19 @@ pub fn clean(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
 /// The lock file of `recipe`, if it has one.
 fn read_lock(recipe: &Path) -> Result<Option<LockFile>, Failure> {
     let path = lock_path(recipe);
-    match std::fs::read_to_string(&path) {
-        Ok(text) => LockFile::parse(&text)
+    let cannot = |why: String| {
+        Failure(format!(
+            "error: cannot read the lock file {}: {why}",
+            path.display()
+        ))
+    };
+    match read_text(&path) {
+        Ok(UserFile::Text(text)) => LockFile::parse(&text)
             .map(Some)
             .map_err(|e| Failure(format!("error: {}: {e}", path.display()))),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
-        Err(e) => Err(Failure(format!(
-            "error: cannot read the lock file {}: {e}",
-            path.display()
-        ))),
+        Ok(UserFile::Missing) => Ok(None),
+        Ok(UserFile::Not(what)) => Err(cannot(format!("it is {what}, not a file"))),
+        Err(e) => Err(cannot(e.to_string())),
     }
 }
 
@@ -273,7 +279,9 @@ fn read_lock(recipe: &Path) -> Result<Option<LockFile>, Failure> {
 /// its record), for the sweep of their debris; `None` for a recipe that no longer parses (its
 /// output directory is unknown).
 fn debris_places(recipe: &Path, cache: &Path) -> Option<(PathBuf, PathBuf, PathBuf)> {
-    let text = std::fs::read_to_string(recipe).ok()?;
+    let UserFile::Text(text) = read_text(recipe).ok()? else {
+        return None;
+    };
     let r = crate::recipe::parse(recipe, &text).ok()?;
     let output = recipe_dir(recipe).join(&r.output.dir);
     let record = RecipeRecord::of(recipe, cache).dir(cache);

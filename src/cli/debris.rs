@@ -81,7 +81,7 @@ pub fn sweep_staging(output_dir: &Path) -> usize {
 /// Does the staging directory `dir` belong to a build that is gone?
 fn abandoned(dir: &Path) -> bool {
     let owner = dir.join(OWNER);
-    let Ok(text) = std::fs::read_to_string(&owner) else {
+    let Ok(super::user_file::UserFile::Text(text)) = super::user_file::read_text(&owner) else {
         return false;
     };
     let Ok(pid) = text.trim().parse::<u32>() else {

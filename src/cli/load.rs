@@ -52,7 +52,7 @@ fn not_utf8(path: &Path, bytes: &[u8], e: std::str::Utf8Error) -> Failure {
 }
 
 /// What is at `path`, links followed (a link to a file is the file).
-fn file_kind(path: &Path) -> recipe::FileKind {
+pub(super) fn file_kind(path: &Path) -> recipe::FileKind {
     use recipe::FileKind;
     let Ok(meta) = std::fs::metadata(path) else {
         return FileKind::Missing;

@@ -46,6 +46,7 @@ mod report;
 mod report_state;
 mod staging;
 mod tetmesh;
+mod user_file;
 mod watch;
 
 use clap::{Parser, Subcommand};

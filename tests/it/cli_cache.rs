@@ -247,6 +247,55 @@ fn an_unreadable_lock_file_is_not_reported_as_missing() {
     assert!(!err.contains("there is no lock file"), "{err}");
 }
 
+#[cfg(unix)]
+#[test]
+fn a_fifo_or_a_device_link_in_place_of_the_lock_file_is_named_and_blocks_nothing() {
+    let s = Scratch::didactic_built();
+    let lock = s.path("didactic.toml.lock");
+    let make = |what: &str, p: &std::path::Path| match what {
+        "a device" => std::os::unix::fs::symlink("/dev/zero", p).is_ok(),
+        _ => (std::process::Command::new("mkfifo").arg(p).status()).is_ok_and(|st| st.success()),
+    };
+    for what in ["a FIFO (a named pipe)", "a device"] {
+        std::fs::remove_file(&lock).unwrap();
+        if !make(what, &lock) {
+            eprintln!("skipped {what}: cannot make one here");
+            std::fs::write(&lock, "").unwrap();
+            continue;
+        }
+        let said = format!("it is {what}, not a file");
+        // Named at once, by the build that checks the lock and by gc, which reads it too.
+        for args in [
+            &["build", "--locked", "--quiet", "didactic.toml"][..],
+            &["gc", "didactic.toml"],
+        ] {
+            let out = s.recipe_cmd(args);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+            assert!(
+                err.contains(&said) && err.contains("didactic.toml.lock"),
+                "{args:?}: {err}"
+            );
+        }
+        // A build that writes the lock puts a lock file in its place.
+        let out = s.recipe_cmd(&["build", "--quiet", "didactic.toml"]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            std::fs::symlink_metadata(&lock).unwrap().is_file(),
+            "{what}"
+        );
+        assert!(
+            s.recipe_cmd(&["build", "--locked", "--quiet", "didactic.toml"])
+                .status
+                .success()
+        );
+    }
+}
+
 /// Writes `other.toml` beside the example: the same model with another size for one region
 /// (so the two recipes share every node but that region's, the mesh and the export) and its own
 /// output directory; it shares the example's cache `.recipe/`.
