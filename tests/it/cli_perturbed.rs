@@ -325,6 +325,12 @@ fn builds_or_fails_at_a_place(fresh: fn() -> Model, file: &str, p: Perturbation)
             "{what}: the error names no line of the recipe or of {file}:\n{}",
             e.stderr
         );
+        // A failure in the geometry says where, as coordinates, beside the file line.
+        assert!(
+            at_recipe_line || names_a_point(&e.stderr),
+            "{what}: the error names no coordinates:\n{}",
+            e.stderr
+        );
         return false;
     }
     let regions = m.regions_listed();
@@ -336,6 +342,15 @@ fn builds_or_fails_at_a_place(fresh: fn() -> Model, file: &str, p: Perturbation)
         assert!(ok && out.contains("\"fail\": []"), "{what}: {out}");
     }
     true
+}
+
+/// Whether `text` holds a point as the errors write one: `(x, y, z)`, three numbers.
+fn names_a_point(text: &str) -> bool {
+    text.split('(').skip(1).any(|rest| {
+        let inside = rest.split(')').next().unwrap_or("");
+        let parts: Vec<&str> = inside.split(", ").collect();
+        parts.len() == 3 && parts.iter().all(|x| x.trim().parse::<f64>().is_ok())
+    })
 }
 
 /// [`builds_or_fails_at_a_place`], which must build.
