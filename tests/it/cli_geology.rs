@@ -337,6 +337,22 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
 }
 
 #[test]
+fn a_downlap_has_no_needle_where_its_two_surfaces_leave_the_box_side_together() {
+    // The box side's two curves leave the tip at 2°, one with a node 6 m on, the other's first
+    // 250 m on: without grading both from that node, the triangle between is a needle and its
+    // tets reach 0.11°.
+    let case = known_gap("downlap");
+    let dir = meshes_validly(&case);
+    let quality = dir.path().join("out/downlap.quality.json");
+    let q: serde_json::Value = serde_json::from_slice(&std::fs::read(quality).unwrap()).unwrap();
+    let all = (q["table2"].as_array().unwrap().iter())
+        .find(|r| r["name"] == "all")
+        .expect("the whole mesh's row");
+    let worst = all["min_dihedral_deg"].as_f64().unwrap();
+    assert!(worst > 1.0, "{all}");
+}
+
+#[test]
 fn a_layer_collapsed_onto_its_top_ends_where_the_two_surfaces_part_whichever_is_named_first() {
     // The surface named first keeps the triangles the two have in common, the other ends at
     // their border: the same three regions either way.

@@ -42,6 +42,7 @@ pub mod intersect;
 pub mod patches;
 pub mod regions;
 pub mod thickness;
+pub mod tips;
 pub mod topology;
 pub mod touches;
 pub mod trims;

@@ -76,13 +76,13 @@ pub fn cases() -> Vec<Case> {
 ///   rims are crumpled into sliver facets (their neighbours bend away by 30° to 115°), each a
 ///   patch of its own between creases, with corners of a few degrees: tets on them reach 4.1°.
 /// - `onlap`: H1 onlaps U at 2.0°; meshes, but the surface meshes meet at the tip at about 1°
-///   (1.02° at the sharpest), and tets there reach 0.45°.
+///   (1.02° at the sharpest), and tets there reach 1.2°.
 /// - `onlap_under_a_degree`: the same at 0.86°; near the tip the meshes of U and H1 cross, so
 ///   the build refines along `H1/U` to a tenth of the size and builds again; where they share a
 ///   triangle (3 cm apart there) the wedge closes to nothing. Meshes, at 0.31°.
-/// - `downlap`: the onlap upside down, at 2.0°; meshes, at 0.11°. In both, the two surfaces
-///   cross again and again near the tip, so the box side holds vertices of the tip a few metres
-///   apart, and needles between them.
+/// - `downlap`: the onlap upside down, at 2.0°; meshes, at 1.5°. In both, the two surfaces
+///   cross again and again near the tip, so the box side holds nodes of the tip a few metres
+///   apart; the curves there grade from them (`model::tips`), else needles (0.11°).
 /// - `fault_splay_at_one_degree`: the fault splay with F2 only 1° steeper than F1; meshes, at
 ///   0.77°, its wedge's bound (planar faults leave no crossings at the branch line).
 /// - `detachment`: a thrust's flat 10 m above a horizon; meshes, but the slab between is one

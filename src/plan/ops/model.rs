@@ -13,6 +13,7 @@ use model::conformity::{NearMiss, near_misses};
 use model::curvature::curvature_sizes;
 use model::intersect::{Intersection, shared, split};
 use model::thickness::region_thickness;
+use model::tips::tip_sizes;
 use model::touches::touch_points;
 use model::trims::{TrimPatch, TrimSpec, apply_trims, describe};
 use model::width::narrow_sizes;
@@ -93,7 +94,8 @@ impl Operation for ModelOp {
         // 20: each patch records the part (TFACE) it lies in.
         // 21: charts peeled from an overlap merge on past one that cannot.
         // 22: curves inside one surface carry the sizes their narrow patches ask for.
-        22
+        // 23: the curves at a patch's sharp corner carry the length of the shorter one there.
+        23
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -220,7 +222,11 @@ impl Operation for ModelOp {
             .map_err(|e| self.region_error(e))?;
         let mut topology =
             build_topology(&input, &self.tolerances).map_err(|e| OpError::from(e.to_string()))?;
-        let narrow = narrow_sizes(&topology.curves, &topology.patches, &input);
+        let mut narrow = narrow_sizes(&topology.curves, &topology.patches, &input);
+        let tips = tip_sizes(&topology.curves, &topology.patches);
+        for (n, t) in narrow.iter_mut().zip(tips) {
+            n.extend(t);
+        }
         let (bends, narrow) = curvature_sizes(&topology.curves, &input, &self.smoothed, &narrow);
         for ((c, b), n) in topology.curves.iter_mut().zip(bends).zip(narrow) {
             c.curvature_size = b;
