@@ -11,7 +11,9 @@ use crate::common_cli;
 use geom::mesh::read::read_volume_msh;
 use std::collections::BTreeSet;
 use std::process::Command;
-use test_support::geology::{Case, cases, collapsed_layer, known_gaps, scec_big_bend, scec_cases};
+use test_support::geology::{
+    Case, cases, collapsed_layer, horizon_with_a_hole, known_gaps, scec_big_bend, scec_cases,
+};
 use test_support::paths;
 
 /// Builds `case` in a scratch folder (kept for the caller's checks); asserts the build
@@ -350,6 +352,28 @@ fn a_downlap_has_no_needle_where_its_two_surfaces_leave_the_box_side_together() 
         .expect("the whole mesh's row");
     let worst = all["min_dihedral_deg"].as_f64().unwrap();
     assert!(worst > 1.0, "{all}");
+}
+
+#[test]
+fn a_fault_with_a_hole_in_it_is_embedded_in_its_layer_with_the_holes_border_as_a_curve() {
+    builds_and_meshes(&case("fault_with_a_hole"));
+}
+
+#[test]
+fn a_horizon_with_a_hole_nothing_fills_fails_naming_the_hole_and_what_to_change() {
+    let case = horizon_with_a_hole();
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let out = build_quietly(dir.path(), &case.write(dir.path()));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    for said in [
+        "surface `H2` stops short: a free border loop through (",
+        "a hole in the surface",
+        "close the hole in the data",
+        "`kind = \"fault\"`",
+    ] {
+        assert!(err.contains(said), "{said}: {err}");
+    }
 }
 
 #[test]

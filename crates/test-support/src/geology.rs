@@ -59,6 +59,7 @@ pub fn cases() -> Vec<Case> {
         chevron_fold(),
         intrusion_cutting_a_body(),
         fault_splay(),
+        fault_with_a_hole(),
     ]
 }
 
@@ -520,6 +521,63 @@ fn fault_stopping_in_a_layer() -> Case {
         &mut rng,
     );
     r.surface("F", "fault", &f, &PLAIN);
+    r.case(&["box", "H1", "H2"], 3)
+}
+
+/// `s` without the triangles whose centroid `cut` holds: a hole in it.
+fn with_hole(s: Surface, cut: impl Fn([f64; 3]) -> bool) -> Surface {
+    let centroid = |t: &[usize; 3]| {
+        let p = t.map(|v| s.vertices[v]);
+        [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
+    };
+    let triangles = (s.triangles.iter())
+        .filter(|t| !cut(centroid(t)))
+        .copied()
+        .collect();
+    Surface { triangles, ..s }
+}
+
+/// Two horizons, the lower one H2 with a hole 1.2 km across that nothing fills: the layers above
+/// and below H2 would meet through it, which a horizon may not let them do (a fault may), so the
+/// model fails naming the hole. Not a corpus case: the build refuses it.
+pub fn horizon_with_a_hole() -> Case {
+    let mut rng = Rng(0x7769_6e64_6f77_2121);
+    let mut r = Recipe::new("horizon_with_a_hole");
+    let h1 = horizon(-600.0, 30.0, 0.2, &mut rng);
+    r.surface("H1", "horizon", &h1, &PLAIN);
+    let round = |p: [f64; 3]| (p[0] - 2100.0).hypot(p[1] - 1900.0) < 600.0;
+    let h2 = with_hole(horizon(-1300.0, 40.0, 0.6, &mut rng), round);
+    r.surface("H2", "horizon", &h2, &DEPTH);
+    r.case(&["box", "H1", "H2"], 2)
+}
+
+/// A fault dying out inside a layer, with a hole where its slip was never mapped: an embedded
+/// patch with a loop inside its border.
+fn fault_with_a_hole() -> Case {
+    let mut rng = Rng(0x686f_6c65_2066_6c74);
+    let mut r = Recipe::new("fault_with_a_hole");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-600.0, 30.0, 0.3, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1400.0, 30.0, 0.8, &mut rng),
+        &PLAIN,
+    );
+    let f = fault_y(
+        2000.0,
+        -1000.0,
+        65.0,
+        (900.0, 3100.0),
+        (-1250.0, -750.0),
+        &mut rng,
+    );
+    let hole = |p: [f64; 3]| (p[1] - 2000.0).abs() < 400.0 && (p[2] + 1000.0).abs() < 120.0;
+    r.surface("F", "fault", &with_hole(f, hole), &PLAIN);
     r.case(&["box", "H1", "H2"], 3)
 }
 

@@ -142,8 +142,19 @@ pub(super) fn check_free_borders(
     } else {
         format!("free border from {} to {}", fmt_point(&a), fmt_point(&b))
     };
+    let cause = if first.len() > 2 && first[0] == first[first.len() - 1] {
+        "a hole in the surface, or a piece of it that ends inside the model, lets the volumes on \
+         its two sides meet; close the hole in the data (or let the surface that fills it cut \
+         this one), or, where it ends inside a region on purpose as a fault does, give it \
+         `kind = \"fault\"`"
+    } else {
+        "it ends short of the box or of the surface it should end on, so the volumes on its two \
+         sides meet past its border; extend it there in the data (the intersection trims what \
+         reaches past), or, where it ends inside a region on purpose as a fault does, give it \
+         `kind = \"fault\"`"
+    };
     Err(RegionError::new(
-        format!("surface `{surface}` stops short: {what} does not close any region{more}"),
+        format!("surface `{surface}` stops short: {what} does not close any region{more}: {cause}"),
         Some(surface),
         Some(a),
     ))
