@@ -355,6 +355,11 @@ fn a_downlap_has_no_needle_where_its_two_surfaces_leave_the_box_side_together() 
 }
 
 #[test]
+fn a_graben_between_a_master_fault_and_an_antithetic_one_ending_on_it_meshes_into_six_regions() {
+    builds_and_meshes(&case("graben"));
+}
+
+#[test]
 fn a_fault_with_a_hole_in_it_is_embedded_in_its_layer_with_the_holes_border_as_a_curve() {
     builds_and_meshes(&case("fault_with_a_hole"));
 }

@@ -60,6 +60,7 @@ pub fn cases() -> Vec<Case> {
         intrusion_cutting_a_body(),
         fault_splay(),
         fault_with_a_hole(),
+        graben(),
     ]
 }
 
@@ -403,6 +404,38 @@ fn fault_with_throw(name: &'static str, throw: f64) -> Case {
         120.0,
     );
     r.case(&["box", "F", "H1_hw", "H1_fw", "H2_hw", "H2_fw"], 6)
+}
+
+/// A graben: a master fault F1 (60° east) and an antithetic fault F2 (60° west) ending on it
+/// at 1540 m depth, the block between them dropped 150 m: the horizon's footwalls are one
+/// surface H whose part in the graben is discarded, the graben's H_g is kept above both faults.
+fn graben() -> Case {
+    let mut rng = Rng(0x6772_6162_656e_2121);
+    let mut r = Recipe::new("graben");
+    // Both reach far past the box, so that each lies under or over every point it trims
+    // (`above` and `below` look vertically).
+    let zs = (-6000.0, 3000.0);
+    let f1 = fault_y(1400.0, -500.0, 120.0, (LO, HI), zs, &mut rng);
+    let f2 = fault_y(2600.0, -500.0, 60.0, (LO, HI), zs, &mut rng);
+    r.surface("F1", "fault", &f1, &PLAIN);
+    r.surface("F2", "fault", &f2, &DEPTH);
+    r.keep("F2", "above", "F1");
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-800.0, 25.0, 0.5, &mut rng),
+        &PLAIN,
+    );
+    r.trims.push(format!(
+        "[[trim]]\nsurface = \"H\"\ndiscard = {{ nearest = [{}, {}, -800.0] }}\n",
+        ORIGIN_X + 2000.0,
+        ORIGIN_Y + 2000.0
+    ));
+    let g = horizon(-950.0, 25.0, 0.2, &mut rng);
+    r.surface("H_g", "horizon", &g, &PLAIN);
+    r.keep("H_g", "above", "F1");
+    r.keep("H_g", "above", "F2");
+    r.case(&["box", "F1", "F2", "H", "H_g"], 6)
 }
 
 /// A splay: F2 branches upwards from a through-going fault F1 (60°) along a line at 1300 m
