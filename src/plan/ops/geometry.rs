@@ -142,7 +142,8 @@ impl Operation for IntersectOp {
     }
     fn version(&self) -> u32 {
         // 2: triangles the two surfaces hold in common are listed, not an error.
-        2
+        // 3: unless the two also cross elsewhere at under a degree (one part drawn twice).
+        3
     }
     fn params(&self) -> Params {
         Params::new()

@@ -42,6 +42,20 @@ pub enum IntersectError {
         b: String,
         contacts: Vec<CoplanarContact>,
     },
+    #[error(
+        "surfaces `{a}` and `{b}` hold {shared} triangle(s) in common, and elsewhere cross each \
+         other at {angle:.2}° at ({}, {}, {}): one draws the other again there with other \
+         triangles, so they cross over and over; keep one drawing of that part (cut it from the \
+         other in the data, or discard the other's patches there with a `[[trim]]`)",
+        at[0], at[1], at[2]
+    )]
+    Redrawn {
+        a: String,
+        b: String,
+        shared: usize,
+        angle: f64,
+        at: [f64; 3],
+    },
     #[error("cannot intersect surface `{name}` with itself")]
     SameSurface { name: String },
     #[error(

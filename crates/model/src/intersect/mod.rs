@@ -19,7 +19,8 @@
 //! shared vertices and curves through vertices all produce keys naming those vertices or edges.
 //! Coplanar triangles whose interiors overlap are an error naming both surfaces and where,
 //! unless they are one and the same triangle ([`shared`]): then `b` drops it, listed in
-//! [`Intersection::shared`], and the curves are those of `a` with what `b` keeps.
+//! [`Intersection::shared`], and the curves are those of `a` with what `b` keeps (an error
+//! where the two also cross elsewhere at under a degree: one part drawn twice).
 //! Surfaces touching at isolated points without a contact segment (tangent contact at a vertex)
 //! report those points in [`Intersection::touches`], not as curves. Zero-area triangles are
 //! skipped (their edges are shared with their neighbours) and listed.
@@ -268,6 +269,17 @@ pub fn intersect(s: SurfaceRef, t: SurfaceRef) -> Result<Intersection, Intersect
             a: sa.name.to_string(),
             b: sb.name.to_string(),
             contacts: overlaps,
+        });
+    }
+    if !shared.is_empty()
+        && let Some((angle, k)) = shared::redrawn(&segments, a, b)
+    {
+        return Err(IntersectError::Redrawn {
+            a: sa.name.to_string(),
+            b: sb.name.to_string(),
+            shared: shared.len(),
+            angle,
+            at: construct::point_xyz(&k, a, b),
         });
     }
     deg_a.sort_unstable();

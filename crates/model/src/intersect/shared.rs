@@ -6,8 +6,10 @@
 //! Identity is a comparison of coordinates, exact; nothing is near enough by a distance.
 
 use geom::TriMesh;
+use geom::predicates::{cross, dot, sub};
 use rayon::prelude::*;
 
+use super::key::PointKey;
 use super::{IntersectError, Intersection, SurfaceRef, intersect};
 
 /// The corners of triangle `t` of `m` by their bits (`-0.0` as `0.0`: the same place), sorted
@@ -28,6 +30,37 @@ fn corners(m: &TriMesh, t: u32) -> Option<[[u64; 3]; 3]> {
 /// Whether triangles `i` of `a` and `j` of `b` have the same three points.
 pub fn identical(a: &TriMesh, i: u32, b: &TriMesh, j: u32) -> bool {
     corners(a, i).is_some_and(|c| Some(c) == corners(b, j))
+}
+
+/// Two surfaces that hold triangles in common and also cross elsewhere at less than this many
+/// degrees draw one part twice with different triangles (the CFM's 1857 rupture over the Mojave
+/// segment): their curves would be hundreds of slivers, so that is an error instead.
+pub const REDRAWN_DEG: f64 = 1.0;
+
+/// Where two surfaces with triangles in common cross under [`REDRAWN_DEG`]: the first segment
+/// (its ends' keys and its pair of triangles) that crosses a triangle rather than running along
+/// an edge both hold, with the angle between the triangles' planes. Where a layer collapses onto
+/// its top, its base leaves the top along their common edges, and no segment counts.
+pub fn redrawn(
+    segments: &[(PointKey, PointKey, (u32, u32))],
+    a: &TriMesh,
+    b: &TriMesh,
+) -> Option<(f64, PointKey)> {
+    let normal = |m: &TriMesh, t: u32| {
+        let p = m.triangles[t as usize].map(|v| m.vertices[v as usize]);
+        let n = cross(&sub(&p[1], &p[0]), &sub(&p[2], &p[0]));
+        let len = dot(&n, &n).sqrt();
+        n.map(|x| x / len)
+    };
+    let along_edges = |k: &PointKey| matches!(k, PointKey::VertexVertex { .. });
+    segments
+        .iter()
+        .filter(|(k0, k1, _)| !(along_edges(k0) && along_edges(k1)))
+        .find_map(|&(k0, _, (i, j))| {
+            let c = dot(&normal(a, i), &normal(b, j)).abs().min(1.0);
+            let angle = c.acos().to_degrees();
+            (angle < REDRAWN_DEG).then_some((angle, k0))
+        })
 }
 
 /// The triangles of each surface that a surface whose name sorts before it also holds (as the

@@ -5,7 +5,7 @@
 use crate::intersect_support::{both, grid};
 use geom::TriMesh;
 use model::intersect::shared::unshare;
-use model::intersect::{Location, PointKey, split};
+use model::intersect::{IntersectError, Location, PointKey, split};
 
 /// A flat top on a 6 × 6 grid of unit cells.
 fn top() -> TriMesh {
@@ -128,4 +128,27 @@ fn surfaces_with_nothing_in_common_are_left_as_they_are() {
     let x = both("a", &t, "b", &low).unwrap();
     assert!(x.shared.is_empty());
     assert!(unshare(&[("a", &t), ("b", &low)], &[x]).unwrap().is_none());
+}
+
+#[test]
+fn surfaces_sharing_triangles_and_crossing_elsewhere_at_a_hairs_angle_are_refused() {
+    // The base holds the top's triangles east of column 3; west of it, the same plane drawn
+    // again with a millimetre of relief, crossing the top over and over.
+    let t = top();
+    let b = grid(6, 6, |i, j| {
+        let bump = if (i + j) % 2 == 1 { 0.001 } else { -0.001 };
+        [i as f64, j as f64, if i < 3 && i > 0 { bump } else { 0.0 }]
+    });
+    for (nt, nb) in [("top", "base"), ("a_top", "base")] {
+        let e = both(nt, &t, nb, &b).expect_err("one part drawn twice");
+        let IntersectError::Redrawn { shared, angle, .. } = &e else {
+            panic!("{e}")
+        };
+        assert_eq!(*shared, 36);
+        assert!(*angle < 1.0, "{angle}");
+        assert!(
+            e.to_string().contains("in common, and elsewhere cross"),
+            "{e}"
+        );
+    }
 }
