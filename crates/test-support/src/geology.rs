@@ -533,18 +533,7 @@ fn detachment() -> Case {
 fn fault_stopping_in_a_layer() -> Case {
     let mut rng = Rng(0x7374_6f70_7320_7368);
     let mut r = Recipe::new("fault_stops_in_a_layer");
-    r.surface(
-        "H1",
-        "horizon",
-        &horizon(-600.0, 30.0, 0.1, &mut rng),
-        &DEPTH_CRLF,
-    );
-    r.surface(
-        "H2",
-        "horizon",
-        &horizon(-1400.0, 30.0, 0.9, &mut rng),
-        &PLAIN,
-    );
+    layer_between(&mut r, (0.1, 0.9), &DEPTH_CRLF, &mut rng);
     let f = fault_y(
         2000.0,
         -1000.0,
@@ -555,6 +544,18 @@ fn fault_stopping_in_a_layer() -> Case {
     );
     r.surface("F", "fault", &f, &PLAIN);
     r.case(&["box", "H1", "H2"], 3)
+}
+
+/// Horizons H1 at 600 m depth (written in `top` style) and H2 at 1400 m, their reliefs at the
+/// `phases` given: the layer between holds the faults of the cases that add them.
+fn layer_between(r: &mut Recipe, phases: (f64, f64), top: &Style, rng: &mut Rng) {
+    r.surface("H1", "horizon", &horizon(-600.0, 30.0, phases.0, rng), top);
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1400.0, 30.0, phases.1, rng),
+        &PLAIN,
+    );
 }
 
 /// `s` without the triangles whose centroid `cut` holds: a hole in it.
@@ -589,18 +590,7 @@ pub fn horizon_with_a_hole() -> Case {
 fn fault_with_a_hole() -> Case {
     let mut rng = Rng(0x686f_6c65_2066_6c74);
     let mut r = Recipe::new("fault_with_a_hole");
-    r.surface(
-        "H1",
-        "horizon",
-        &horizon(-600.0, 30.0, 0.3, &mut rng),
-        &PLAIN,
-    );
-    r.surface(
-        "H2",
-        "horizon",
-        &horizon(-1400.0, 30.0, 0.8, &mut rng),
-        &PLAIN,
-    );
+    layer_between(&mut r, (0.3, 0.8), &PLAIN, &mut rng);
     let f = fault_y(
         2000.0,
         -1000.0,
