@@ -196,6 +196,8 @@ fn every_case_of_the_corpus_has_a_test() {
         "chevron_fold",
         "intrusion_cutting_a_body",
         "fault_splay",
+        "fault_with_a_hole",
+        "graben",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
