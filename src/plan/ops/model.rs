@@ -1,4 +1,6 @@
-//! `model`: the topological model. Every surface (imports and box sides) is split along all its
+//! `model`: the topological model. Each surface first drops the triangles it holds in common
+//! with a surface named before it (`model::intersect::shared`; its intersections are made again
+//! without them). Every surface (imports and box sides) is split along all its
 //! intersection curves, cut into patches, the patches outside the box are trimmed away, and the
 //! regions are found by face-uses, faults being the surfaces allowed to dangle; then the model's
 //! vertices, named curves and patch boundaries are derived (the `model` crate). Inputs: the box
@@ -94,7 +96,8 @@ impl Operation for ModelOp {
         // 20: each patch records the part (TFACE) it lies in.
         // 21: charts peeled from an overlap merge on past one that cannot.
         // 22: curves inside one surface carry the sizes their narrow patches ask for.
-        // 23: the curves at a patch's sharp corner carry the length of the shorter one there.
+        // 23: triangles held in common with a surface named first are dropped; the curves at a
+        //     patch's sharp corner carry the distance to the nearer first point past it.
         23
     }
     fn params(&self) -> Params {
