@@ -198,6 +198,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "fault_splay",
         "fault_with_a_hole",
         "graben",
+        "fault_under_an_unconformity",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -359,6 +360,11 @@ fn a_downlap_has_no_needle_where_its_two_surfaces_leave_the_box_side_together() 
 #[test]
 fn a_graben_between_a_master_fault_and_an_antithetic_one_ending_on_it_meshes_into_six_regions() {
     builds_and_meshes(&case("graben"));
+}
+
+#[test]
+fn a_fault_ending_upwards_on_an_unconformity_meshes_into_five_regions() {
+    builds_and_meshes(&case("fault_under_an_unconformity"));
 }
 
 #[test]

@@ -61,6 +61,7 @@ pub fn cases() -> Vec<Case> {
         fault_splay(),
         fault_with_a_hole(),
         graben(),
+        fault_under_an_unconformity(),
     ]
 }
 
@@ -807,6 +808,35 @@ fn erosional_unconformity() -> Case {
         min_dihedral: 6.0,
         ..r.case(&["box", "U", "H1", "H2"], 4)
     }
+}
+
+/// A normal fault F (60°) offsetting a horizon by 150 m and ending upwards on an unconformity U
+/// above, which erosion left gently dipping and unfaulted: F is kept below U, the horizon's two
+/// blocks each beside F, and the layer above U is whole.
+fn fault_under_an_unconformity() -> Case {
+    let mut rng = Rng(0x756e_6465_7220_5521);
+    let mut r = Recipe::new("fault_under_an_unconformity");
+    let f = fault_y(2000.0, -1000.0, 60.0, (LO, HI), (-6000.0, 3000.0), &mut rng);
+    r.surface("F", "fault", &f, &PLAIN);
+    let (us, vs) = (
+        graded_axis(LO, HI, 160.0, 0.9),
+        graded_axis(LO, HI, 170.0, 0.1),
+    );
+    let u = grid_surface(
+        &us,
+        &vs,
+        |x, y| [x, y, -600.0 - 0.05 * x + 15.0 * (y / 700.0).sin()],
+        &mut rng,
+    );
+    r.surface("U", "horizon", &u, &DEPTH);
+    r.keep("F", "below", "U");
+    let hw = horizon(-1250.0, 25.0, 0.7, &mut rng);
+    let fw = horizon(-1100.0, 25.0, 0.7, &mut rng);
+    r.surface("H_hw", "horizon", &hw, &PLAIN);
+    r.surface("H_fw", "horizon", &fw, &DEPTH_CRLF);
+    r.keep("H_hw", "above", "F");
+    r.keep("H_fw", "below", "F");
+    r.case(&["box", "F", "U", "H_hw", "H_fw"], 5)
 }
 
 /// Two faults crossing (F1 striking along y, F2 along x) and one horizon H, with F2 and H
