@@ -199,6 +199,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "fault_with_a_hole",
         "graben",
         "fault_under_an_unconformity",
+        "relay_ramp",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -365,6 +366,11 @@ fn a_graben_between_a_master_fault_and_an_antithetic_one_ending_on_it_meshes_int
 #[test]
 fn a_fault_ending_upwards_on_an_unconformity_meshes_into_five_regions() {
     builds_and_meshes(&case("fault_under_an_unconformity"));
+}
+
+#[test]
+fn a_relay_ramp_between_two_faults_dying_out_side_by_side_meshes_into_two_regions() {
+    builds_and_meshes(&case("relay_ramp"));
 }
 
 #[test]

@@ -62,6 +62,7 @@ pub fn cases() -> Vec<Case> {
         fault_with_a_hole(),
         graben(),
         fault_under_an_unconformity(),
+        relay_ramp(),
     ]
 }
 
@@ -837,6 +838,26 @@ fn fault_under_an_unconformity() -> Case {
     r.keep("H_hw", "above", "F");
     r.keep("H_fw", "below", "F");
     r.case(&["box", "F", "U", "H_hw", "H_fw"], 5)
+}
+
+/// A relay ramp: two en-echelon faults 300 m apart, overlapping over 800 m along strike, each
+/// dying out inside the box, both cutting a horizon that ramps between them unbroken: two slits
+/// in the horizon, side by side, and the faults' free edges dangling in both layers.
+fn relay_ramp() -> Case {
+    let mut rng = Rng(0x7265_6c61_7920_7221);
+    let mut r = Recipe::new("relay_ramp");
+    let zs = (-2300.0, 300.0);
+    let fa = fault_y(1800.0, -1000.0, 70.0, (LO, 2400.0), zs, &mut rng);
+    let fb = fault_y(2100.0, -1000.0, 70.0, (1600.0, HI), zs, &mut rng);
+    r.surface("Fa", "fault", &fa, &PLAIN);
+    r.surface("Fb", "fault", &fb, &DEPTH);
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-1000.0, 25.0, 0.4, &mut rng),
+        &PLAIN,
+    );
+    r.case(&["box", "Fa", "Fb", "H"], 2)
 }
 
 /// Two faults crossing (F1 striking along y, F2 along x) and one horizon H, with F2 and H
