@@ -298,12 +298,16 @@ fn unshare(
                     .map(|x| x.a.as_str())
                     .collect();
                 let n = s.mesh.triangles.len() - kept.len();
+                // Each common triangle stays with the surface it shares it with.
+                let owner = match with.as_slice() {
+                    [one] => format!("`{one}`'s"),
+                    _ => "theirs".to_string(),
+                };
                 notes.push(format!(
-                    "`{}` is one with `{}` over {n} triangle(s) (the same points): kept as `{}`'s, \
-                     and `{}` ends where they part",
+                    "`{}` is one with `{}` over {n} triangle(s) (the same points): kept as \
+                     {owner}, and `{}` ends where they part",
                     s.name,
                     with.join("`, `"),
-                    with.first().copied().unwrap_or_default(),
                     s.name
                 ));
                 let triangle_part = (kept.iter())
