@@ -27,6 +27,15 @@ fn patch_triangles(r: &serde_json::Value, name: &str) -> u64 {
         .unwrap_or_else(|| panic!("no patch {name} in the report"))
 }
 
+/// A curve's length and node count, from the report.
+fn curve(r: &serde_json::Value, name: &str) -> (f64, u64) {
+    r["curves"]
+        .as_array()
+        .and_then(|a| a.iter().find(|x| x["name"] == name))
+        .and_then(|x| Some((x["length"].as_f64()?, x["nodes"].as_u64()?)))
+        .unwrap_or_else(|| panic!("no curve {name} in the report"))
+}
+
 /// The patches bounding `region`, from the report.
 fn patches_of(r: &serde_json::Value, region: &str) -> Vec<String> {
     r["regions"]
@@ -129,6 +138,29 @@ fn min_layers_refines_the_thin_reservoirs_from_their_measured_thickness_and_noth
     }
     for r in ["overburden_W", "underburden_E"] {
         assert!(thickness(r) > 1000.0, "{r} is over a kilometre thick");
+    }
+    // The fault's curves along the reservoir have a rule of 100; one layer of 35 m overrides it,
+    // or the fault's strips across the reservoir stay one element across whatever its size.
+    let reservoir = thickness("reservoir_E").max(thickness("reservoir_W"));
+    for c in ["F1/H1", "F1/H2"] {
+        let (len, nodes) = curve(&after, c);
+        assert!(
+            nodes as f64 >= len / reservoir,
+            "{c}: {nodes} nodes over {len:.0} m, at most {reservoir:.1} apart"
+        );
+    }
+    // The box's vertical edges above and below the reservoir, at the global 200 m, start from
+    // the reservoir's size where they meet it and grow; the box's top edges, out of reach, do not.
+    for c in ["box.xmax/box.ymin#1", "box.xmin/box.ymax#3"] {
+        let (len, nodes) = curve(&after, c);
+        let uniform = (len / 200.0).round() as u64 + 1;
+        assert!(
+            nodes >= uniform + 4,
+            "{c}: {nodes} nodes over {len:.0} m, {uniform} at 200 m"
+        );
+    }
+    for c in ["box.xmax/box.zmax", "box.ymin/box.zmax#2", "F1/box.zmax"] {
+        assert_eq!(curve(&after, c), curve(&before, c), "{c}");
     }
     for p in patches_of(&before, "overburden_W")
         .iter()

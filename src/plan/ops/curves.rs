@@ -239,6 +239,12 @@ pub struct DiscretizeOp {
     pub pinned: bool,
     /// The global `min_size`: the patches' curvature asks for no less, as their meshes do not.
     pub min_size: f64,
+    /// The longest segment a count of elements across a region it bounds allows (`layers`),
+    /// where that is finer than the rule (`sizes::curve_caps`): the rule yields to it.
+    pub cap: Option<SizeChoice>,
+    /// The segment length each end (first point, last point) starts from where finer sizes
+    /// meet it (`sizes::curve_end_sizes`), growing by `max_slope` with the distance from it.
+    pub ends: [Option<f64>; 2],
 }
 
 impl Operation for DiscretizeOp {
@@ -285,8 +291,19 @@ impl Operation for DiscretizeOp {
         }
         p.set("mesh.min_size", self.min_size)
             .expect("validated finite");
-        if self.refinements > 0 {
+        if self.refinements > 0 || self.ends.iter().any(Option::is_some) {
             p.set("mesh.growth.surface_slope", self.max_slope)
+                .expect("validated finite");
+        }
+        for (end, size) in ["first", "last"].iter().zip(self.ends) {
+            if let Some(size) = size {
+                // Derived from the sizes of the curves meeting this one.
+                p.set(&format!("model.end_size.{end}"), size)
+                    .expect("finite");
+            }
+        }
+        if let Some(cap) = &self.cap {
+            p.set(&format!("{}.cap", cap.path), cap.size)
                 .expect("validated finite");
         }
         p
@@ -305,11 +322,14 @@ impl Operation for DiscretizeOp {
         let pins = all_pins.of(&self.name);
         let fail = |e| OpError::from(format!("curve `{}`: {e}", self.name));
         let near = SizeNear::new(&refine, self.max_slope);
-        let bends = CurvatureAlong::new(&c, &self.rule, self.min_size);
-        let field = |x: &[f64; 3]| near.at(x).min(bends.at(x));
-        let size_at: Option<SizeAt<'_>> = (!near.is_empty() || !bends.is_empty()).then_some(&field);
-        let mut nodes = discretize_pinned(&c.polyline, &self.rule, &c.clearance, size_at, pins)
-            .map_err(fail)?;
+        let rule = capped(&self.rule, self.cap.as_ref(), &c.polyline);
+        let bends = CurvatureAlong::new(&c, &rule, self.min_size);
+        let ends = EndSizes::new(&c.polyline, self.ends, self.max_slope);
+        let field = |x: &[f64; 3]| near.at(x).min(bends.at(x)).min(ends.at(x));
+        let graded = !near.is_empty() || !bends.is_empty() || !ends.is_empty();
+        let size_at: Option<SizeAt<'_>> = graded.then_some(&field);
+        let mut nodes =
+            discretize_pinned(&c.polyline, &rule, &c.clearance, size_at, pins).map_err(fail)?;
         if nodes.len() < self.min_segments as usize + 1 {
             let count = Subdivision::Count(self.min_segments);
             nodes =
@@ -321,6 +341,53 @@ impl Operation for DiscretizeOp {
             nodes,
         })?)
         .count("nodes", n))
+    }
+}
+
+/// The sizes a curve's ends start from ([`DiscretizeOp::ends`]), as a field: at a point, the
+/// least over the ends of their size plus `slope` times the distance from them.
+struct EndSizes {
+    ends: Vec<([f64; 3], f64)>,
+    slope: f64,
+}
+
+impl EndSizes {
+    fn new(polyline: &[[f64; 3]], sizes: [Option<f64>; 2], slope: f64) -> EndSizes {
+        let points = [polyline.first(), polyline.last()];
+        let ends = (points.iter().zip(sizes))
+            .filter_map(|(p, s)| Some((**p.as_ref()?, s?)))
+            .collect();
+        EndSizes { ends, slope }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.ends.is_empty()
+    }
+
+    fn at(&self, x: &[f64; 3]) -> f64 {
+        (self.ends.iter())
+            .map(|(p, s)| s + self.slope * geom::predicates::dist(p, x))
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// `rule` with no segment longer than `cap` along `polyline`: a count raised to what the cap
+/// needs, a size lowered to it (uniform: a grading from the cap would grow past it).
+fn capped(rule: &Subdivision, cap: Option<&SizeChoice>, polyline: &[[f64; 3]]) -> Subdivision {
+    let Some(cap) = cap.map(|c| c.size) else {
+        return rule.clone();
+    };
+    match rule {
+        Subdivision::Count(n) => {
+            let needed = (geom::predicates::polyline_length(polyline) / cap).ceil();
+            Subdivision::Count((*n).max(needed.min(f64::from(u32::MAX)) as u32))
+        }
+        Subdivision::Size { size, ratio, .. } if *size <= cap && *ratio == 1.0 => rule.clone(),
+        Subdivision::Size { size, .. } => Subdivision::Size {
+            size: size.min(cap),
+            ratio: 1.0,
+            grading: Grading::Geometric,
+        },
     }
 }
 
@@ -409,6 +476,11 @@ impl Expander for DiscretizeExpander {
 #[derive(Default)]
 pub(super) struct CurveSizing<'a> {
     pub fallback: Option<&'a SizeChoice>,
+    /// What a count of elements across a region the curve bounds allows at most
+    /// ([`DiscretizeOp::cap`]); a curve without a rule has it in its fallback already.
+    pub cap: Option<&'a SizeChoice>,
+    /// The sizes its ends start from ([`DiscretizeOp::ends`]).
+    pub ends: [Option<f64>; 2],
     pub refine: Vec<NodeId>,
     pub max_slope: f64,
 }
@@ -437,8 +509,9 @@ pub(super) fn add_curve_nodes(
             &[source],
         )
         .map_err(graph_error)?;
+    let ruled = recipe.mesh.curve_rule(name).is_some();
     let (rule_path, rule) = match sizing.fallback {
-        Some(f) if recipe.mesh.curve_rule(name).is_none() && !f.is_global() => (
+        Some(f) if !ruled && !f.is_global() => (
             f.path.clone(),
             Subdivision::Size {
                 size: f.size,
@@ -462,6 +535,8 @@ pub(super) fn add_curve_nodes(
             max_slope: sizing.max_slope,
             pinned: pins.is_some(),
             min_size: recipe.mesh.min_size,
+            cap: sizing.cap.filter(|_| ruled).cloned(),
+            ends: sizing.ends,
         }),
         &inputs,
     )
@@ -514,7 +589,23 @@ mod tests {
 
     /// `curve`'s nodes at 250 m, `min_size` 2.5 m, with at least `min` segments.
     fn discretized(curve: ModelCurve, min: u32, pins: Option<CurvePins>) -> Vec<[f64; 3]> {
-        let op = DiscretizeOp {
+        let op = at_250(min, pins.is_some());
+        let mut inputs = vec![Artifact::encode(&curve).unwrap()];
+        inputs.extend(pins.map(|p| Artifact::encode(&p).unwrap()));
+        let out = op.run(&Quiet, &inputs).unwrap();
+        out.artifact.decode::<CurveNodes>().unwrap().nodes
+    }
+
+    /// The segment lengths of `curve` under `op`.
+    fn segments(op: &DiscretizeOp, curve: &ModelCurve) -> Vec<f64> {
+        let out = op.run(&Quiet, &[Artifact::encode(curve).unwrap()]).unwrap();
+        let nodes = out.artifact.decode::<CurveNodes>().unwrap().nodes;
+        nodes.windows(2).map(|w| w[1][0] - w[0][0]).collect()
+    }
+
+    /// The op for curve `c` at 250 m, `min_size` 2.5 m, with at least `min` segments.
+    fn at_250(min: u32, pinned: bool) -> DiscretizeOp {
+        DiscretizeOp {
             name: "c".into(),
             rule_path: "mesh.size".into(),
             rule: Subdivision::Size {
@@ -525,13 +616,66 @@ mod tests {
             min_segments: min,
             refinements: 0,
             max_slope: 0.15,
-            pinned: pins.is_some(),
+            pinned,
             min_size: 2.5,
+            cap: None,
+            ends: [None; 2],
+        }
+    }
+
+    #[test]
+    fn a_layers_cap_shortens_a_rules_segments_and_raises_its_count_and_nothing_else() {
+        let cap = SizeChoice {
+            path: "mesh.regions.r.layers".into(),
+            size: 10.0,
         };
-        let mut inputs = vec![Artifact::encode(&curve).unwrap()];
-        inputs.extend(pins.map(|p| Artifact::encode(&p).unwrap()));
-        let out = op.run(&Quiet, &inputs).unwrap();
-        out.artifact.decode::<CurveNodes>().unwrap().nodes
+        let line = straight(1000.0, Vec::new());
+        let mut op = at_250(1, false);
+        op.cap = Some(cap.clone());
+        let capped = segments(&op, &line);
+        assert_eq!(capped.len(), 100);
+        assert!(
+            capped.iter().all(|&l| (l - 10.0).abs() < 1e-9),
+            "{capped:?}"
+        );
+        op.rule = Subdivision::Count(4);
+        assert_eq!(segments(&op, &line).len(), 100, "a count is raised");
+        op.rule = Subdivision::Count(200);
+        assert_eq!(segments(&op, &line).len(), 200, "a finer count stays");
+        op.rule = Subdivision::Size {
+            size: 50.0,
+            ratio: 1.3,
+            grading: Grading::Geometric,
+        };
+        let graded = segments(&op, &line);
+        assert!(graded.iter().all(|&l| l <= 10.0 + 1e-9), "{graded:?}");
+        assert!(op.params().get("mesh.regions.r.layers.cap").is_some());
+        op.cap = None;
+        assert!(op.params().get("mesh.regions.r.layers.cap").is_none());
+    }
+
+    #[test]
+    fn a_curve_starts_from_the_size_at_its_ends_and_grows_from_there() {
+        let line = straight(1000.0, Vec::new());
+        let mut op = at_250(1, false);
+        op.ends = [Some(20.0), None];
+        let from_first = segments(&op, &line);
+        assert!(from_first[0] < 25.0, "{from_first:?}");
+        assert!(
+            from_first.windows(2).all(|w| w[1] >= w[0] * 0.99),
+            "{from_first:?}"
+        );
+        assert!(from_first[from_first.len() - 1] > 100.0, "{from_first:?}");
+        op.ends = [None, Some(20.0)];
+        let from_last = segments(&op, &line);
+        assert!(from_last[from_last.len() - 1] < 25.0, "{from_last:?}");
+        assert_eq!(
+            from_first.len(),
+            from_last.len(),
+            "the same grading either way"
+        );
+        assert!(op.params().get("model.end_size.last").is_some());
+        assert!(op.params().get("model.end_size.first").is_none());
     }
 
     #[test]
@@ -593,6 +737,8 @@ mod tests {
             max_slope: 0.15,
             pinned: false,
             min_size: 2.5,
+            cap: None,
+            ends: [None; 2],
         };
         assert!(op(1).params().get("model.min_segments").is_none());
         assert!(op(2).params().get("model.min_segments").is_some());

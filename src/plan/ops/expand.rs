@@ -127,7 +127,9 @@ impl Expander for ModelExpander {
         let region_sizes = sizes::region_sizes(&self.recipe, &model);
         let patch_sizes = sizes::patch_sizes(&self.recipe, &model, &region_sizes);
         let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
+        let curve_caps = sizes::curve_caps(&model, &region_sizes);
         let surface_slope = self.recipe.mesh.growth.min(MAX_SURFACE_GROWTH) - 1.0;
+        let end_sizes = sizes::curve_end_sizes(&self.recipe, &model, &region_sizes, surface_slope);
         let mut placed = refine::place(&self.recipe, &model, x);
         placed.extend(add_close_curves(x, &self.recipe, &model, surface_slope)?);
         let cuts = self.add_well_cuts(x, model_node)?;
@@ -138,10 +140,13 @@ impl Expander for ModelExpander {
             Some(id.map_err(graph_error)?)
         };
         let mut discretized = Vec::with_capacity(topo.curves.len());
-        for ((c, &min), size) in topo.curves.iter().zip(&min_segments).zip(&curve_sizes) {
+        let sized = curve_sizes.iter().zip(&curve_caps).zip(&end_sizes);
+        for ((c, &min), ((size, cap), &ends)) in topo.curves.iter().zip(&min_segments).zip(sized) {
             let near = refine::bounds_of(&c.points);
             let sizing = CurveSizing {
                 fallback: Some(size),
+                cap: cap.as_ref(),
+                ends,
                 refine: refine::within_reach(&placed, near, size.size, surface_slope),
                 max_slope: surface_slope,
             };

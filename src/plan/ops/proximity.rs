@@ -15,7 +15,7 @@
 
 use super::ModelData;
 use super::sizes;
-use crate::recipe::{Recipe, Subdivision};
+use crate::recipe::Recipe;
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
 use geom::predicates::{dist, dot, polyline_length, sub};
@@ -171,13 +171,8 @@ fn nearest_within_size(
 
 /// Every unexplained approach of two segments, with its two curves (lower first).
 pub(super) fn approaches(recipe: &Recipe, model: &ModelData) -> Vec<(usize, usize, Approach)> {
-    let topo = &model.topology;
     let regions = sizes::region_sizes(recipe, model);
-    let patches = sizes::patch_sizes(recipe, model, &regions);
-    let size: Vec<f64> = (topo.curves.iter())
-        .zip(sizes::curve_sizes(recipe, topo, &patches))
-        .map(|(c, fallback)| curve_size(recipe, c, fallback.size))
-        .collect();
+    let size = sizes::nominal_curve_sizes(recipe, model, &regions);
     let segments = segments(model);
     let boxes: Vec<BBox> = (segments.iter())
         .map(|s| BBox::from_points(&s.ends).inflate(FRACTION * size[s.curve] / 2.0))
@@ -191,16 +186,6 @@ pub(super) fn approaches(recipe: &Recipe, model: &ModelData) -> Vec<(usize, usiz
             (c.min(d), c.max(d), a)
         })
         .collect()
-}
-
-/// The length of a curve's mesh segments: its `[mesh.curves]` rule's, else `fallback` (the finest
-/// of its patches' sizes, as the expander gives it).
-fn curve_size(recipe: &Recipe, curve: &model::Curve, fallback: f64) -> f64 {
-    match recipe.mesh.curve_rule(&curve.name).map(|r| &r.subdivision) {
-        Some(Subdivision::Size { size, .. }) => *size,
-        Some(Subdivision::Count(n)) => polyline_length(&curve.points) / f64::from((*n).max(1)),
-        None => fallback,
-    }
 }
 
 /// Curves that come close, joined by their close pairs: the closest approach, the curves

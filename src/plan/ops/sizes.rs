@@ -15,14 +15,19 @@
 //! (`model::thickness`, measured on the model) over the count.
 //!
 //! A curve without a `[mesh.curves]` rule takes the finest size of the patches it bounds (its
-//! nodes are their border nodes); a curve rule, written for that curve, always wins. Each choice
-//! keeps the recipe path of the rule that decided it, which names the parameter in the node's
-//! key: a model whose choices are all the global size keeps the keys it had without this step.
+//! nodes are their border nodes); a curve rule, written for that curve, wins over sizes, but not
+//! over a count across a region it bounds (`layers`: a requirement, not a preference). Sizes a
+//! surface or region sets grade out along the curves meeting them, vertex to vertex, so no
+//! corner joins segments of very different lengths. Each choice keeps the recipe path of the
+//! rule that decided it, which names the parameter in the node's key: a model whose choices are
+//! all the global size or curve rules keeps the keys it had without this step.
 
 use super::ModelData;
 use crate::recipe::{Recipe, Subdivision};
 use geom::predicates::polyline_length;
 use model::ModelTopology;
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BinaryHeap};
 
 /// A size and the recipe path of the rule it comes from (`mesh`, `mesh.surfaces."H1"`,
 /// `mesh.regions.reservoir`), without the trailing `.size`.
@@ -43,6 +48,11 @@ impl SizeChoice {
     /// Is this the global `[mesh] size`?
     pub fn is_global(&self) -> bool {
         self.path == "mesh"
+    }
+
+    /// Does this size come from a count of elements across a region (`layers`, `min_layers`)?
+    pub fn is_layers(&self) -> bool {
+        self.path.ends_with(".layers") || self.path == "mesh.min_layers"
     }
 }
 
@@ -97,8 +107,18 @@ fn region_size(recipe: &Recipe, name: &str, thickness: f64) -> SizeChoice {
 /// Per patch of `model` (in its order), the size its surface mesh uses; `regions` as
 /// [`region_sizes`] gives them.
 pub fn patch_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]) -> Vec<SizeChoice> {
-    // Per patch, the regions on its sides (a region's sides are sorted by patch, so a region
-    // with both sides of a patch comes twice in a row).
+    model
+        .patches
+        .iter()
+        .zip(&sides_of_patches(model, regions))
+        .map(|(p, regions)| patch_size(recipe, &p.surface, regions))
+        .collect()
+}
+
+/// Per patch of `model`, the sizes of the regions on its sides (`regions` in region order). A
+/// region's sides are sorted by patch, so a region with both sides of a patch comes twice in a
+/// row and is taken once.
+fn sides_of_patches<'a>(model: &ModelData, regions: &'a [SizeChoice]) -> Vec<Vec<&'a SizeChoice>> {
     let mut bounded: Vec<Vec<&SizeChoice>> = vec![Vec::new(); model.patches.len()];
     for (r, choice) in model.regions.regions.iter().zip(regions) {
         let mut last = None;
@@ -112,12 +132,36 @@ pub fn patch_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]) -
             }
         }
     }
-    model
-        .patches
-        .iter()
-        .zip(&bounded)
-        .map(|(p, regions)| patch_size(recipe, &p.surface, regions))
-        .collect()
+    bounded
+}
+
+/// Per curve of `model`, the finest size a count of elements across (`layers`, `min_layers`)
+/// gives the regions its patches bound, if any does. A `[mesh.curves]` rule for the curve
+/// yields to it: the curves along a layer's edges (where it meets a fault or the box) are the
+/// borders of the strips across it, and segments longer than the layer's size would leave those
+/// strips one element across whatever the layer's own size. Sizes without a count stay below a
+/// curve's rule, which names the curve.
+pub fn curve_caps(model: &ModelData, regions: &[SizeChoice]) -> Vec<Option<SizeChoice>> {
+    let topo = &model.topology;
+    let per_patch: Vec<Option<SizeChoice>> = sides_of_patches(model, regions)
+        .into_iter()
+        .map(|rs| {
+            let layered = rs.into_iter().filter(|c| c.is_layers()).cloned();
+            layered.reduce(|a, b| if b.size < a.size { b } else { a })
+        })
+        .collect();
+    let mut caps: Vec<Option<SizeChoice>> = vec![None; topo.curves.len()];
+    for (boundary, cap) in topo.patches.iter().zip(&per_patch) {
+        let Some(cap) = cap else { continue };
+        for c in boundary.curves() {
+            if let Some(slot) = caps.get_mut(c as usize)
+                && slot.as_ref().is_none_or(|s| cap.size < s.size)
+            {
+                *slot = Some(cap.clone());
+            }
+        }
+    }
+    caps
 }
 
 fn patch_size(recipe: &Recipe, surface: &str, regions: &[&SizeChoice]) -> SizeChoice {
@@ -159,6 +203,111 @@ pub fn curve_sizes(
         .map(|v| finest(v, SizeChoice::global(recipe)))
         .collect()
 }
+
+/// Per curve of `model`, the length of its mesh segments before any grading: its
+/// `[mesh.curves]` rule's (a count's as the curve's length over it), at most its cap
+/// ([`curve_caps`]); without a rule, the finest of its patches' sizes ([`curve_sizes`]).
+pub fn nominal_curve_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]) -> Vec<f64> {
+    let topo = &model.topology;
+    let patches = patch_sizes(recipe, model, regions);
+    let fallbacks = curve_sizes(recipe, topo, &patches);
+    let caps = curve_caps(model, regions);
+    (topo.curves.iter().zip(fallbacks).zip(caps))
+        .map(|((c, fallback), cap)| {
+            let own = match recipe.mesh.curve_rule(&c.name).map(|r| &r.subdivision) {
+                Some(Subdivision::Size { size, .. }) => *size,
+                Some(Subdivision::Count(n)) => polyline_length(&c.points) / f64::from((*n).max(1)),
+                None => fallback.size,
+            };
+            cap.map_or(own, |cap| own.min(cap.size))
+        })
+        .collect()
+}
+
+/// Per curve of `model`, the segment length its two ends (first point, last point) must start
+/// from, where that is finer than the curve's own size: a size that a surface or region sets
+/// (a curve's fallback or cap that is not the global size) grades out along the curves meeting
+/// it, growing by `slope` per unit of length from vertex to vertex (a shortest path over the
+/// curves), the way the surface meshes grade from their borders. Without it a fault's border
+/// at its rule's 100 meets a layer's curves at 12 in one corner triangle, and the embedded
+/// fault's large triangles beside the layer's fine surface are more than the tet mesher's
+/// recovery can take. A curve rule, written for its curve, is not graded out (the seed's
+/// refinements refine the reservoir's curves alone). `None` at an end that is not finer than
+/// the curve's own size by more than [`GRADED_JUMP`].
+pub fn curve_end_sizes(
+    recipe: &Recipe,
+    model: &ModelData,
+    regions: &[SizeChoice],
+    slope: f64,
+) -> Vec<[Option<f64>; 2]> {
+    let topo = &model.topology;
+    let nominal = nominal_curve_sizes(recipe, model, regions);
+    let patches = patch_sizes(recipe, model, regions);
+    let fallbacks = curve_sizes(recipe, topo, &patches);
+    let caps = curve_caps(model, regions);
+    let key = |p: &[f64; 3]| p.map(|x| (x + 0.0).to_bits());
+    let mut vertices: BTreeMap<[u64; 3], usize> = BTreeMap::new();
+    let mut ends: Vec<Option<[usize; 2]>> = Vec::with_capacity(topo.curves.len());
+    for c in &topo.curves {
+        ends.push(match (c.points.first(), c.points.last()) {
+            (Some(a), Some(b)) if !c.closed => {
+                let n = vertices.len();
+                let i = *vertices.entry(key(a)).or_insert(n);
+                let n = vertices.len();
+                Some([i, *vertices.entry(key(b)).or_insert(n)])
+            }
+            _ => None,
+        });
+    }
+    // Seeds: each vertex takes the finest size a surface or region sets on a curve ending there.
+    let mut at = vec![f64::INFINITY; vertices.len()];
+    for (i, c) in topo.curves.iter().enumerate() {
+        let ruled = recipe.mesh.curve_rule(&c.name).is_some();
+        let set = caps[i].is_some() || (!ruled && !fallbacks[i].is_global());
+        if let (true, Some(e)) = (set, ends[i]) {
+            for v in e {
+                at[v] = at[v].min(nominal[i]);
+            }
+        }
+    }
+    // Dijkstra over the curves, each as long as its polyline (sizes are finite and positive).
+    let mut links: Vec<Vec<(usize, f64)>> = vec![Vec::new(); vertices.len()];
+    for (c, e) in topo.curves.iter().zip(&ends) {
+        if let Some([a, b]) = *e {
+            let len = polyline_length(&c.points);
+            links[a].push((b, len));
+            links[b].push((a, len));
+        }
+    }
+    let mut heap: BinaryHeap<Reverse<(u64, usize)>> = (at.iter().enumerate())
+        .filter(|(_, s)| s.is_finite())
+        .map(|(v, s)| Reverse((s.to_bits(), v)))
+        .collect();
+    while let Some(Reverse((bits, v))) = heap.pop() {
+        if f64::from_bits(bits) > at[v] {
+            continue;
+        }
+        for &(w, len) in &links[v] {
+            let s = at[v] + slope * len;
+            if s < at[w] {
+                at[w] = s;
+                heap.push(Reverse((s.to_bits(), w)));
+            }
+        }
+    }
+    (ends.iter().zip(&nominal))
+        .map(|(e, &own)| match e {
+            Some(e) => e.map(|v| (at[v] * GRADED_JUMP < own).then_some(at[v])),
+            None => [None, None],
+        })
+        .collect()
+}
+
+/// A curve starts from the size at its end only where its own is more than this many times
+/// that: a corner joining segments of twice the length is one the surface mesher grades across
+/// well (the shipped example's fault curves at 100 meet the box's at 200), and a size set on a
+/// region or surface then re-runs the curves along it and nothing further.
+pub const GRADED_JUMP: f64 = 2.0;
 
 /// What the sizes did to thin regions, one sentence each, in region order: a region thinner than
 /// its size with no `layers` asked (its mesh is about one element across), and a `layers` count
