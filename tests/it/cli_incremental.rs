@@ -215,3 +215,43 @@ fn choosing_the_front_for_one_region_reruns_only_that_region_the_mesh_and_the_ex
     assert_eq!(ran, vec!["tet_mesh:underburden_W"]);
     assert_eq!(tets(&again), tets(&before));
 }
+
+#[test]
+fn layers_on_one_reservoir_rerun_it_its_surfaces_their_curves_and_neighbours_only() {
+    let s = Scratch::didactic_built();
+    let (ran, r) = ran_after(
+        &s,
+        "[regions]",
+        "[mesh.regions.reservoir_W]\nlayers = 1\n\n[regions]",
+    );
+    for must in [
+        "tet_mesh:reservoir_W",
+        "tet_mesh:overburden_W",
+        "tet_mesh:underburden_W",
+        "discretize:F1/H1",
+        "mesh",
+        "export",
+    ] {
+        assert!(
+            ran.contains(&must.to_string()),
+            "`{must}` did not re-run: {ran:?}"
+        );
+    }
+    // The thickness is the model's own measure: nothing up to the model's curves re-runs, nor
+    // the box's top and floor, out of the layer's reach, nor the eastern side of the box.
+    assert_none_ran(&ran, &all_nodes(&r), |n| {
+        n.starts_with("import:")
+            || n.starts_with("intersect:")
+            || n.starts_with("curve:")
+            || n == "model"
+            || n.starts_with("surface_mesh:box.zmax#")
+            || n.starts_with("surface_mesh:box.zmin#")
+            || n.starts_with("surface_mesh:box.xmax#")
+    });
+    // Two layers instead of one: the same kind of nodes, none of those.
+    let (again, r) = ran_after(&s, "layers = 1", "layers = 2");
+    assert!(again.contains(&"tet_mesh:reservoir_W".to_string()));
+    assert_none_ran(&again, &all_nodes(&r), |n| {
+        n == "model" || n.starts_with("surface_mesh:box.zmax#")
+    });
+}
