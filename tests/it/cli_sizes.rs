@@ -272,3 +272,105 @@ fn a_curve_rule_whose_size_exceeds_its_curves_is_warned_about_at_the_rule_with_t
     let (ok, _, err) = Scratch::didactic().build(&[]);
     assert!(ok && !err.contains("asks for segments of"), "{err}");
 }
+
+/// A TSurf of the plane `z = z0 + 0.05 x` (a layer's top or base dipping at about 3°), two
+/// triangles from -100 to 500 m on both axes.
+fn dipping_plane(name: &str, z0: f64) -> String {
+    let z = |x: f64| z0 + 0.05 * x;
+    format!(
+        "GOCAD TSurf 1\nHEADER {{\nname:{name}\n}}\nTFACE\nVRTX 1 -100 -100 {a}\nVRTX 2 500 -100 \
+         {b}\nVRTX 3 500 500 {b}\nVRTX 4 -100 500 {a}\nTRGL 1 2 3\nTRGL 1 3 4\nEND\n",
+        a = z(-100.0),
+        b = z(500.0)
+    )
+}
+
+/// The fewest tet edges from a node of surface `from` to a node of surface `to` through the
+/// tets of `region` of `mesh` (breadth first from every node of `from`).
+fn fewest_edges_across(mesh: &geom::mesh::VolumeMesh, region: &str, from: &str, to: &str) -> u32 {
+    let group = |name: &str| {
+        let g = mesh.surface_groups.iter().position(|g| g.name == name);
+        let g = g.unwrap_or_else(|| panic!("no surface {name}")) as u32;
+        let mut on = vec![false; mesh.nodes.len()];
+        for (t, _) in (mesh.triangles.iter().zip(&mesh.triangle_group)).filter(|(_, k)| **k == g) {
+            t.iter().for_each(|&v| on[v as usize] = true);
+        }
+        on
+    };
+    let (start, goal) = (group(from), group(to));
+    let r = mesh.regions.iter().position(|g| g.name == region);
+    let r = r.unwrap_or_else(|| panic!("no region {region}")) as u32;
+    let mut links: Vec<Vec<u32>> = vec![Vec::new(); mesh.nodes.len()];
+    for (t, _) in (mesh.tets.iter().zip(&mesh.tet_region)).filter(|(_, k)| **k == r) {
+        for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+            links[t[i] as usize].push(t[j]);
+            links[t[j] as usize].push(t[i]);
+        }
+    }
+    let mut seen: Vec<bool> = start.clone();
+    let mut front: Vec<u32> = (0..mesh.nodes.len() as u32)
+        .filter(|&v| start[v as usize] && !links[v as usize].is_empty())
+        .collect();
+    for level in 0.. {
+        if front.iter().any(|&v| goal[v as usize]) {
+            return level;
+        }
+        assert!(
+            !front.is_empty(),
+            "{to} is not reached from {from} in {region}"
+        );
+        let mut next = Vec::new();
+        for v in front {
+            for &w in &links[v as usize] {
+                if !std::mem::replace(&mut seen[w as usize], true) {
+                    next.push(w);
+                }
+            }
+        }
+        front = next;
+    }
+    unreachable!()
+}
+
+#[test]
+fn three_layers_are_three_tet_edges_across_everywhere_even_where_a_box_side_cuts_the_layer() {
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    std::fs::write(dir.path().join("top.ts"), dipping_plane("top", -300.0)).unwrap();
+    std::fs::write(dir.path().join("base.ts"), dipping_plane("base", -324.0)).unwrap();
+    let recipe = r#"[model]
+name = "layer"
+[surfaces]
+top = { file = "top.ts", kind = "horizon" }
+base = { file = "base.ts", kind = "horizon" }
+[box]
+min = [0.0, 0.0, -500.0]
+max = [400.0, 400.0, -100.0]
+[intersect]
+all = ["top", "base", "box"]
+[mesh]
+size = 100.0
+[mesh.regions]
+layer = { layers = 3 }
+[regions]
+layer = { point = [200.0, 200.0, -302.0] }
+[output]
+dir = "out"
+formats = ["msh"]
+"#;
+    std::fs::write(dir.path().join("layer.toml"), recipe).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .args(["build", "layer.toml"])
+        .current_dir(dir.path())
+        .env_remove("RECIPE_CACHE_DIR")
+        .output()
+        .expect("run recipe");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(dir.path().join("out/layer.msh")).expect("the mesh");
+    let mesh = geom::mesh::read::read_volume_msh(&bytes, "layer.msh").expect("it reads");
+    assert_eq!(fewest_edges_across(&mesh, "layer", "top", "base"), 3);
+    assert_eq!(fewest_edges_across(&mesh, "layer", "base", "top"), 3);
+}

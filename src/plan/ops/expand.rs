@@ -203,7 +203,9 @@ impl Expander for ModelExpander {
 
         let mut region_nodes = Vec::new();
         let mut groups = Vec::new();
-        for (r, own) in model.regions.regions.iter().zip(&region_sizes) {
+        let interior = sizes::interior_sizes(&self.recipe, &model, &region_sizes);
+        for ((r, own), &inside) in (model.regions.regions.iter().zip(&region_sizes)).zip(&interior)
+        {
             let mut patches: Vec<u32> = r.sides.iter().map(|f| f.patch).collect();
             patches.dedup();
             let sides: Vec<FaceUse> = r
@@ -228,7 +230,7 @@ impl Expander for ModelExpander {
                 inputs.push(wells);
             }
             let (size_path, mut size, method) = self.region_settings(&r.name);
-            size.size = own.size;
+            size.size = inside;
             let near = refine::bounds_of(
                 patches
                     .iter()
