@@ -200,6 +200,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "graben",
         "fault_under_an_unconformity",
         "relay_ramp",
+        "listric_fault",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -371,6 +372,11 @@ fn a_fault_ending_upwards_on_an_unconformity_meshes_into_five_regions() {
 #[test]
 fn a_relay_ramp_between_two_faults_dying_out_side_by_side_meshes_into_two_regions() {
     builds_and_meshes(&case("relay_ramp"));
+}
+
+#[test]
+fn a_listric_fault_flattening_with_depth_over_a_rollover_meshes_into_six_regions() {
+    builds_and_meshes(&case("listric_fault"));
 }
 
 #[test]

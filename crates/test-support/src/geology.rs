@@ -63,6 +63,7 @@ pub fn cases() -> Vec<Case> {
         graben(),
         fault_under_an_unconformity(),
         relay_ramp(),
+        listric_fault(),
     ]
 }
 
@@ -405,6 +406,52 @@ fn fault_with_throw(name: &'static str, throw: f64) -> Case {
         ],
         120.0,
     );
+    r.case(&["box", "F", "H1_hw", "H1_fw", "H2_hw", "H2_fw"], 6)
+}
+
+/// A listric normal fault F: 70° at the surface, flattening with depth to 20° by 2300 m (the
+/// dip falling evenly between), so it meets the box's floor at about 27°, with a rollover: the
+/// hanging wall's horizons (150 m down) bend down towards the fault by up to 200 m more. Each
+/// horizon is one surface per block, trimmed at the fault; F reaches far past the box so that
+/// it lies under or over every point it trims.
+fn listric_fault() -> Case {
+    let mut rng = Rng(0x6c69_7374_7269_6321);
+    let mut r = Recipe::new("listric_fault");
+    let dip = |z: f64| (70.0 + 50.0 * z / 2300.0).clamp(20.0, 70.0);
+    // x of the fault at depth z: from 3300 m at z = 0, x' = cot(dip) (dipping towards -x),
+    // integrated in 10 m steps.
+    let fault_x = |z: f64| {
+        let (n, sign) = ((z.abs() / 10.0).ceil().max(1.0), z.signum());
+        let h = z.abs() / n;
+        (0..n as usize).fold(3300.0, |x, k| {
+            let mid = sign * (k as f64 + 0.5) * h;
+            x + sign * h / dip(mid).to_radians().tan()
+        })
+    };
+    let us = graded_axis(LO, HI, 170.0, 0.9);
+    let vs = graded_axis(-4000.0, 3000.0, 150.0, 0.4);
+    let f = grid_surface(&us, &vs, |y, z| [fault_x(z), y, z], &mut rng);
+    r.surface("F", "fault", &f, &DEPTH);
+    for (h, z0, phase) in [("H1", -600.0, 0.2), ("H2", -1200.0, 1.1)] {
+        let at = fault_x(z0);
+        let (xs, ys) = (
+            graded_axis(LO, HI, 160.0, phase),
+            graded_axis(LO, HI, 170.0, phase + 1.0),
+        );
+        let relief = move |x: f64, y: f64| 20.0 * (x / 700.0 + phase).sin() * (y / 900.0).cos();
+        let roll = |x: f64| 200.0 * (-(at - x).max(0.0) / 800.0).exp();
+        let hw = grid_surface(
+            &xs,
+            &ys,
+            |x, y| [x, y, z0 - 150.0 - roll(x) + relief(x, y)],
+            &mut rng,
+        );
+        let fw = grid_surface(&xs, &ys, |x, y| [x, y, z0 + relief(x, y)], &mut rng);
+        r.surface(&format!("{h}_hw"), "horizon", &hw, &PLAIN);
+        r.surface(&format!("{h}_fw"), "horizon", &fw, &DEPTH_CRLF);
+        r.keep(&format!("{h}_hw"), "above", "F");
+        r.keep(&format!("{h}_fw"), "below", "F");
+    }
     r.case(&["box", "F", "H1_hw", "H1_fw", "H2_hw", "H2_fw"], 6)
 }
 
