@@ -273,16 +273,73 @@ fn a_curve_rule_whose_size_exceeds_its_curves_is_warned_about_at_the_rule_with_t
     assert!(ok && !err.contains("asks for segments of"), "{err}");
 }
 
-/// A TSurf of the plane `z = z0 + 0.05 x` (a layer's top or base dipping at about 3°), two
-/// triangles from -100 to 500 m on both axes.
-fn dipping_plane(name: &str, z0: f64) -> String {
-    let z = |x: f64| z0 + 0.05 * x;
+/// A TSurf of the plane `z = z0 + slope x`, two triangles from -100 to `to` m on both axes.
+fn dipping_plane(name: &str, (z0, slope): (f64, f64), to: f64) -> String {
+    let z = |x: f64| z0 + slope * x;
     format!(
-        "GOCAD TSurf 1\nHEADER {{\nname:{name}\n}}\nTFACE\nVRTX 1 -100 -100 {a}\nVRTX 2 500 -100 \
-         {b}\nVRTX 3 500 500 {b}\nVRTX 4 -100 500 {a}\nTRGL 1 2 3\nTRGL 1 3 4\nEND\n",
+        "GOCAD TSurf 1\nHEADER {{\nname:{name}\n}}\nTFACE\nVRTX 1 -100 -100 {a}\nVRTX 2 {to} -100 \
+         {b}\nVRTX 3 {to} {to} {b}\nVRTX 4 -100 {to} {a}\nTRGL 1 2 3\nTRGL 1 3 4\nEND\n",
         a = z(-100.0),
-        b = z(500.0)
+        b = z(to)
     )
+}
+
+/// Builds a layer between the planes `top` and `base` (`(z0, slope)` each, see
+/// [`dipping_plane`]) in the box `[0, side]² × [-500, -100]` with `layers = 3` and the global
+/// size 100, and reads its mesh back.
+fn three_layers_between(top: (f64, f64), base: (f64, f64), side: f64) -> geom::mesh::VolumeMesh {
+    layers_between(top, base, side, 3).0
+}
+
+/// As [`three_layers_between`] with `layers` layers; the mesh and what the build printed.
+fn layers_between(
+    top: (f64, f64),
+    base: (f64, f64),
+    side: f64,
+    layers: u32,
+) -> (geom::mesh::VolumeMesh, String) {
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let file = |name: &str, plane: (f64, f64)| {
+        let path = dir.path().join(format!("{name}.ts"));
+        std::fs::write(path, dipping_plane(name, plane, side + 100.0)).unwrap();
+    };
+    file("top", top);
+    file("base", base);
+    let inside = (top.0 + base.0) / 2.0;
+    let recipe = format!(
+        r#"[model]
+name = "layer"
+[surfaces]
+top = {{ file = "top.ts", kind = "horizon" }}
+base = {{ file = "base.ts", kind = "horizon" }}
+[box]
+min = [0.0, 0.0, -500.0]
+max = [{side:?}, {side:?}, -100.0]
+[intersect]
+all = ["top", "base", "box"]
+[mesh]
+size = 100.0
+[mesh.regions]
+layer = {{ layers = {layers} }}
+[regions]
+layer = {{ point = [0.5, 0.5, {inside:?}] }}
+[output]
+dir = "out"
+formats = ["msh"]
+"#
+    );
+    std::fs::write(dir.path().join("layer.toml"), recipe).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .args(["build", "layer.toml"])
+        .current_dir(dir.path())
+        .env_remove("RECIPE_CACHE_DIR")
+        .output()
+        .expect("run recipe");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let bytes = std::fs::read(dir.path().join("out/layer.msh")).expect("the mesh");
+    let mesh = geom::mesh::read::read_volume_msh(&bytes, "layer.msh").expect("it reads");
+    (mesh, err.into_owned())
 }
 
 /// The fewest tet edges from a node of surface `from` to a node of surface `to` through the
@@ -334,43 +391,38 @@ fn fewest_edges_across(mesh: &geom::mesh::VolumeMesh, region: &str, from: &str, 
 
 #[test]
 fn three_layers_are_three_tet_edges_across_everywhere_even_where_a_box_side_cuts_the_layer() {
-    let dir = tempfile::tempdir().expect("a scratch folder");
-    std::fs::write(dir.path().join("top.ts"), dipping_plane("top", -300.0)).unwrap();
-    std::fs::write(dir.path().join("base.ts"), dipping_plane("base", -324.0)).unwrap();
-    let recipe = r#"[model]
-name = "layer"
-[surfaces]
-top = { file = "top.ts", kind = "horizon" }
-base = { file = "base.ts", kind = "horizon" }
-[box]
-min = [0.0, 0.0, -500.0]
-max = [400.0, 400.0, -100.0]
-[intersect]
-all = ["top", "base", "box"]
-[mesh]
-size = 100.0
-[mesh.regions]
-layer = { layers = 3 }
-[regions]
-layer = { point = [200.0, 200.0, -302.0] }
-[output]
-dir = "out"
-formats = ["msh"]
-"#;
-    std::fs::write(dir.path().join("layer.toml"), recipe).unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
-        .args(["build", "layer.toml"])
-        .current_dir(dir.path())
-        .env_remove("RECIPE_CACHE_DIR")
-        .output()
-        .expect("run recipe");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let bytes = std::fs::read(dir.path().join("out/layer.msh")).expect("the mesh");
-    let mesh = geom::mesh::read::read_volume_msh(&bytes, "layer.msh").expect("it reads");
+    let mesh = three_layers_between((-300.0, 0.05), (-324.0, 0.05), 400.0);
     assert_eq!(fewest_edges_across(&mesh, "layer", "top", "base"), 3);
     assert_eq!(fewest_edges_across(&mesh, "layer", "base", "top"), 3);
+}
+
+#[test]
+fn three_layers_stay_three_edges_across_where_the_layer_thins_to_half_its_median() {
+    // 16 m thick at x = 0, 8 m at x = 200: sized from its median (12 m), the thin end would
+    // be two edges across; its local thickness refines it there.
+    let mesh = three_layers_between((-300.0, 0.02), (-316.0, 0.06), 200.0);
+    assert_eq!(fewest_edges_across(&mesh, "layer", "top", "base"), 3);
+    assert_eq!(fewest_edges_across(&mesh, "layer", "base", "top"), 3);
+}
+
+#[test]
+fn a_layer_thinning_over_square_kilometres_stays_at_its_median_size_and_says_what_would_fit() {
+    // 60 m thick at x = 0 and 0.5 m at x = 4000: one layer where it is under 25 m thick, down
+    // to `min_size` (1 m) near its thin end, would be millions of tets.
+    let (mesh, err) = layers_between((-250.0, 0.0), (-310.0, 0.014875), 4000.0, 1);
+    let line = (err.lines()).find(|l| l.contains("region `layer` thins to"));
+    let line = line.unwrap_or_else(|| panic!("no warning:\n{err}"));
+    for needle in [
+        "`mesh.regions.layer.layers = 1`",
+        "million tets",
+        "`min_size = ",
+    ] {
+        assert!(line.contains(needle), "{needle}: {line}");
+    }
+    let layer = mesh.regions.iter().position(|r| r.name == "layer").unwrap() as u32;
+    let tets = mesh.tet_region.iter().filter(|&&r| r == layer).count();
+    assert!(
+        tets < 200_000,
+        "meshed from its median thickness: {tets} tets"
+    );
 }

@@ -16,12 +16,19 @@
 //!   test, rays that meet nothing (a grazing ray through a seam) are left out.
 
 use crate::regions::{FaceUse, PatchIn, Side};
+use geom::TriMesh;
 use geom::predicates::{cross, dot, sub};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
 
 /// Triangles cast per region, at most.
 pub const MAX_SAMPLES: usize = 4096;
+
+/// Two walls face each other across a region where their inward normals are more than 150°
+/// apart (the cosine of the angle between them is under minus this): a layer's top and base
+/// closing at under 30°, a lens's two sides; not a layer's top and the box side or fault it
+/// ends on, nor the two sides of a 60° corner, which elements of one size fill well.
+pub const OPPOSITE: f64 = 0.866;
 
 type Boxed = GeomWithData<Rectangle<[f64; 3]>, u32>;
 
@@ -36,42 +43,144 @@ struct Wall {
 /// The thickness of the region bounded by `sides` (face-uses of `patches`), as the module doc
 /// defines it; `None` when no ray meets the far side (an empty or open region).
 pub fn region_thickness(patches: &[PatchIn], sides: &[FaceUse]) -> Option<f64> {
-    let walls = walls(patches, sides);
-    if walls.is_empty() {
-        return None;
-    }
-    let tree = RTree::bulk_load(
-        walls
-            .iter()
-            .enumerate()
-            .map(|(i, w)| {
-                let (lo, hi) = bounds(&w.corners);
-                Boxed::new(Rectangle::from_corners(lo, hi), i as u32)
-            })
-            .collect(),
-    );
-    let (lo, hi) = walls
-        .iter()
-        .map(|w| bounds(&w.corners))
-        .reduce(|(a, b), (c, d)| (min3(a, c), max3(b, d)))?;
-    let diag = sub(&hi, &lo).iter().map(|x| x * x).sum::<f64>().sqrt();
+    let meshes: Vec<&TriMesh> = patches.iter().map(|p| &p.mesh).collect();
+    let inside = Inside::new(&meshes, sides)?;
+    let walls = &inside.walls;
     let step = walls.len().div_ceil(MAX_SAMPLES).max(1);
     let mut samples: Vec<(f64, f64)> = (0..walls.len())
         .step_by(step)
-        .filter_map(|i| across(&walls, &tree, i, diag).map(|t| (t, walls[i].area)))
+        .filter_map(|i| {
+            inside
+                .across(i, &centroid(&walls[i]))
+                .map(|t| (t, walls[i].area))
+        })
         .collect();
     weighted_median(&mut samples)
 }
 
+/// Where the region bounded by `sides` (face-uses of the patches whose meshes are `meshes`) is
+/// thinner than `thin`: points on its walls, each with the distance across the region there and
+/// the area of wall it stands for, so
+/// that sizes can follow the local thickness where a layer thins (a pinch-out, a wedge) rather
+/// than its median. A wall is looked at first at its centroid and near its corners; one thinner
+/// than `thin` at any of them is then sampled on a grid at `spacing(thickness)` (its thinnest
+/// probe's), the grid widened evenly over all such walls so that there are at most about
+/// `max_points` casts. In wall order, deterministic.
+pub fn thin_places(
+    meshes: &[&TriMesh],
+    sides: &[FaceUse],
+    thin: f64,
+    spacing: &dyn Fn(f64) -> f64,
+    max_points: usize,
+) -> Vec<([f64; 3], f64, f64)> {
+    let Some(inside) = Inside::new(meshes, sides) else {
+        return Vec::new();
+    };
+    let walls = &inside.walls;
+    // Pass 1: the thinnest of each wall's probes, for the walls thinner than `thin` somewhere.
+    let thin_walls: Vec<(usize, f64)> = (0..walls.len())
+        .filter_map(|i| {
+            let c = centroid(&walls[i]);
+            let probes = std::iter::once(c).chain(walls[i].corners.iter().map(|v| pulled(v, &c)));
+            let t = (probes.filter_map(|p| inside.across_to_opposite(i, &p)))
+                .fold(f64::INFINITY, f64::min);
+            (t < thin).then_some((i, t))
+        })
+        .collect();
+    // Pass 2: a grid on each at its spacing, all widened alike to stay within `max_points`.
+    let steps = |i: usize, h: f64| (longest_edge(&walls[i].corners) / h).ceil().max(1.0);
+    let count = |widen: f64| -> f64 {
+        (thin_walls.iter())
+            .map(|&(i, t)| {
+                let k = steps(i, spacing(t) * widen);
+                (k + 1.0) * (k + 2.0) / 2.0
+            })
+            .sum()
+    };
+    let widen = (count(1.0) / max_points.max(1) as f64).sqrt().max(1.0);
+    let mut out = Vec::new();
+    for &(i, t) in &thin_walls {
+        let k = steps(i, spacing(t) * widen) as usize;
+        let share = walls[i].area / ((k + 1) * (k + 2) / 2) as f64;
+        let [a, b, c] = walls[i].corners;
+        let mid = centroid(&walls[i]);
+        for u in 0..=k {
+            for v in 0..=k - u {
+                let (wu, wv) = (u as f64 / k as f64, v as f64 / k as f64);
+                let p = [0, 1, 2].map(|d| a[d] + wu * (b[d] - a[d]) + wv * (c[d] - a[d]));
+                let p = pulled(&p, &mid);
+                if let Some(t) = inside.across_to_opposite(i, &p).filter(|&t| t < thin) {
+                    out.push((p, t, share));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `p` moved a hundredth of the way towards `to`: a ray from a wall's corner or edge would run
+/// along the wall beside it.
+fn pulled(p: &[f64; 3], to: &[f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|k| p[k] + 0.01 * (to[k] - p[k]))
+}
+
+fn longest_edge(c: &[[f64; 3]; 3]) -> f64 {
+    [(0, 1), (1, 2), (2, 0)]
+        .iter()
+        .map(|&(i, j)| geom::predicates::dist(&c[i], &c[j]))
+        .fold(0.0, f64::max)
+}
+
+/// A region's walls, indexed for ray casts.
+struct Inside {
+    walls: Vec<Wall>,
+    tree: RTree<Boxed>,
+    diag: f64,
+}
+
+impl Inside {
+    /// The walls of the region bounded by `sides` (face-uses of the patches whose meshes are
+    /// `meshes`); `None` without any.
+    fn new(meshes: &[&TriMesh], sides: &[FaceUse]) -> Option<Inside> {
+        let walls = walls(meshes, sides);
+        let (lo, hi) = walls
+            .iter()
+            .map(|w| bounds(&w.corners))
+            .reduce(|(a, b), (c, d)| (min3(a, c), max3(b, d)))?;
+        let tree = RTree::bulk_load(
+            (walls.iter().enumerate())
+                .map(|(i, w)| {
+                    let (lo, hi) = bounds(&w.corners);
+                    Boxed::new(Rectangle::from_corners(lo, hi), i as u32)
+                })
+                .collect(),
+        );
+        let diag = sub(&hi, &lo).iter().map(|x| x * x).sum::<f64>().sqrt();
+        Some(Inside { walls, tree, diag })
+    }
+
+    /// The distance across the region from point `o` of wall `i`, along its inward normal.
+    fn across(&self, i: usize, o: &[f64; 3]) -> Option<f64> {
+        across(&self.walls, &self.tree, i, o, self.diag).map(|(t, _)| t)
+    }
+
+    /// As [`Inside::across`], only where the wall met faces wall `i` ([`OPPOSITE`]): near a
+    /// layer's edge, a ray from the box side or fault along the layer meets its top or base
+    /// at a short distance that is not its thickness.
+    fn across_to_opposite(&self, i: usize, o: &[f64; 3]) -> Option<f64> {
+        let (t, j) = across(&self.walls, &self.tree, i, o, self.diag)?;
+        (dot(&self.walls[i].inward, &self.walls[j].inward) < -OPPOSITE).then_some(t)
+    }
+}
+
 /// The region's boundary triangles with inward normals (dangling patches left out).
-fn walls(patches: &[PatchIn], sides: &[FaceUse]) -> Vec<Wall> {
+fn walls(meshes: &[&TriMesh], sides: &[FaceUse]) -> Vec<Wall> {
     let both = |p: u32| sides.iter().filter(|f| f.patch == p).count() > 1;
     let mut out = Vec::new();
     for f in sides.iter().filter(|f| !both(f.patch)) {
-        let Some(patch) = patches.get(f.patch as usize) else {
+        let Some(m) = meshes.get(f.patch as usize) else {
             continue;
         };
-        let m = &patch.mesh;
         for t in &m.triangles {
             let corners = t.map(|v| m.vertices[v as usize]);
             let n = cross(
@@ -93,12 +202,21 @@ fn walls(patches: &[PatchIn], sides: &[FaceUse]) -> Vec<Wall> {
     out
 }
 
-/// Distance from wall `i`'s centroid along its inward normal to the nearest other wall, looking
-/// out to ever longer reaches (so thin layers cost few candidates) up to twice `diag`.
-fn across(walls: &[Wall], tree: &RTree<Boxed>, i: usize, diag: f64) -> Option<f64> {
-    let w = &walls[i];
-    let o = [0, 1, 2].map(|k| (w.corners[0][k] + w.corners[1][k] + w.corners[2][k]) / 3.0);
-    let d = w.inward;
+fn centroid(w: &Wall) -> [f64; 3] {
+    [0, 1, 2].map(|k| (w.corners[0][k] + w.corners[1][k] + w.corners[2][k]) / 3.0)
+}
+
+/// Distance from point `o` of wall `i` along its inward normal to the nearest other wall, and
+/// that wall, looking out to ever longer reaches (so thin layers cost few candidates) up to twice `diag`.
+fn across(
+    walls: &[Wall],
+    tree: &RTree<Boxed>,
+    i: usize,
+    o: &[f64; 3],
+    diag: f64,
+) -> Option<(f64, usize)> {
+    let o = *o;
+    let d = walls[i].inward;
     let near = 1e-9 * diag;
     let mut reach = diag / 64.0;
     loop {
@@ -106,10 +224,17 @@ fn across(walls: &[Wall], tree: &RTree<Boxed>, i: usize, diag: f64) -> Option<f6
         let env = AABB::from_corners(min3(o, end), max3(o, end));
         let hit = tree
             .locate_in_envelope_intersecting(env)
-            .filter(|b| b.data as usize != i)
-            .filter_map(|b| ray_hits(&o, &d, &walls[b.data as usize].corners))
-            .filter(|&t| t > near && t <= reach)
-            .reduce(f64::min);
+            .map(|b| b.data as usize)
+            .filter(|&j| j != i)
+            .filter_map(|j| Some((ray_hits(&o, &d, &walls[j].corners)?, j)))
+            .filter(|&(t, _)| t > near && t <= reach)
+            .reduce(|a, b| {
+                if b.0 < a.0 || (b.0 == a.0 && b.1 < a.1) {
+                    b
+                } else {
+                    a
+                }
+            });
         if hit.is_some() || reach > 2.0 * diag {
             return hit;
         }
@@ -167,7 +292,6 @@ fn max3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geom::TriMesh;
 
     /// A closed box `[0,a]×[0,b]×[0,c]`, two triangles per side, normals outwards.
     fn cuboid(a: f64, b: f64, c: f64) -> PatchIn {
@@ -200,6 +324,73 @@ mod tests {
             let t = region_thickness(&[cuboid(a, b, c)], &inside(0)).expect("a thickness");
             assert!((t - want).abs() < 1e-6, "{a}x{b}x{c}: {t}");
         }
+    }
+
+    /// A closed wedge: the slab `[0,a]×[0,b]` between z = 0 and z = h0 + slope·x.
+    fn wedge(a: f64, b: f64, h0: f64, slope: f64) -> TriMesh {
+        let top = |x: f64| h0 + slope * x;
+        let vertices = vec![
+            [0.0, 0.0, 0.0],
+            [a, 0.0, 0.0],
+            [a, b, 0.0],
+            [0.0, b, 0.0],
+            [0.0, 0.0, top(0.0)],
+            [a, 0.0, top(a)],
+            [a, b, top(a)],
+            [0.0, b, top(0.0)],
+        ];
+        let triangles = vec![
+            [0, 2, 1],
+            [0, 3, 2],
+            [4, 5, 6],
+            [4, 6, 7],
+            [0, 1, 5],
+            [0, 5, 4],
+            [1, 2, 6],
+            [1, 6, 5],
+            [2, 3, 7],
+            [2, 7, 6],
+            [3, 0, 4],
+            [3, 4, 7],
+        ];
+        TriMesh {
+            vertices,
+            triangles,
+        }
+    }
+
+    #[test]
+    fn a_wedge_is_thin_where_it_thins_and_sampled_there_within_the_budget() {
+        let m = wedge(1000.0, 500.0, 2.0, 0.05);
+        let spacing = |t: f64| t;
+        let places = thin_places(&[&m], &inside(0), 20.0, &spacing, 100_000);
+        assert!(!places.is_empty());
+        // Thin below 20 m: x under 360 m; the distance across is the local height (within the
+        // tilt of the top, under 0.13 %).
+        for (p, t, _) in &places {
+            assert!(p[0] < 361.0, "{p:?} {t}");
+            let h = 2.0 + 0.05 * p[0];
+            assert!((t - h).abs() < 0.01 * h, "{p:?}: {t} vs {h}");
+        }
+        // The areas add up to the thin walls' (top and base, x under 360 m), give or take the
+        // triangles' share beyond it: at least that, at most the whole walls.
+        let area: f64 = places.iter().map(|(.., a)| a).sum();
+        assert!(
+            area > 2.0 * 360.0 * 500.0 * 0.9 && area < 2.0 * 1000.0 * 500.0 * 1.01,
+            "{area}"
+        );
+        // Dense where thin (spacing = thickness), near the tip most of all.
+        let near_tip = places.iter().filter(|(p, ..)| p[0] < 50.0).count();
+        assert!(near_tip > 100, "{near_tip}");
+        let capped = thin_places(&[&m], &inside(0), 20.0, &spacing, 500);
+        assert!(
+            capped.len() <= 2 * 500 && capped.len() * 4 < places.len(),
+            "{}",
+            capped.len()
+        );
+        // A slab thicker than `thin` everywhere has no thin place.
+        let slab = wedge(1000.0, 500.0, 30.0, 0.0);
+        assert!(thin_places(&[&slab], &inside(0), 20.0, &spacing, 1000).is_empty());
     }
 
     #[test]

@@ -15,7 +15,6 @@
 use super::ModelData;
 use super::proximity::{Approach, approaches, closest_points};
 use crate::recipe::Recipe;
-use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::predicates::dist;
 use geom::refine::Refinement;
 use model::union_find::UnionFind;
@@ -107,42 +106,6 @@ fn samples(a: &Approach) -> Vec<(f64, [f64; 3])> {
         out.push((a.distance, y));
     }
     out
-}
-
-/// `close_curves:<k>`: one refinement at a place where curves come close, as the expander found it
-/// on the model. Its key is the refinement's own content, so a model edit that leaves the place
-/// as it was re-runs nothing that takes it.
-pub struct CloseCurvesOp {
-    pub refinement: Refinement,
-}
-
-impl Operation for CloseCurvesOp {
-    fn kind(&self) -> &'static str {
-        "close_curves"
-    }
-    fn version(&self) -> u32 {
-        1
-    }
-    fn params(&self) -> Params {
-        let r = &self.refinement;
-        let mut h = blake3::Hasher::new();
-        for p in &r.points {
-            for v in p {
-                h.update(&v.to_le_bytes());
-            }
-        }
-        let mut p = Params::new();
-        p.set("points", h.finalize().to_hex().as_str())
-            .expect("a string");
-        p.set("count", r.points.len() as u64).expect("a count");
-        p.set("size", r.size).expect("finite");
-        p.set("slope", r.slope).expect("finite");
-        p
-    }
-    fn run(&self, _ctx: &dyn RunContext, _inputs: &[Artifact]) -> Result<Output, OpError> {
-        let n = self.refinement.points.len() as u64;
-        Ok(Output::new(Artifact::encode(&self.refinement)?).count("points", n))
-    }
 }
 
 #[cfg(test)]

@@ -11,11 +11,13 @@
 //! regions within its reach. Editing one curve's subdivision therefore re-runs that curve, the patches it
 //! bounds, the regions those bound, `mesh` and `export`, and nothing else.
 
-use super::close_refine::{self, CloseCurvesOp};
+use super::close_refine;
 use super::curves::{CurveSizing, add_curve_nodes, graph_error};
 use super::patch::WellReach;
 use super::refine;
+use super::refine::KnownRefinementOp;
 use super::sizes::{self, SizeChoice};
+use super::thin;
 use super::wells::{CurvePinsOp, RegionWellsOp, WellCutOp};
 use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetMeshOp, Wiring};
 use crate::recipe::{self, Recipe};
@@ -130,8 +132,11 @@ impl Expander for ModelExpander {
         let curve_caps = sizes::curve_caps(&model, &region_sizes);
         let surface_slope = self.recipe.mesh.growth.min(MAX_SURFACE_GROWTH) - 1.0;
         let end_sizes = sizes::curve_end_sizes(&self.recipe, &model, &region_sizes, surface_slope);
+        let interior = sizes::interior_sizes(&self.recipe, &model, &region_sizes);
         let mut placed = refine::place(&self.recipe, &model, x);
         placed.extend(add_close_curves(x, &self.recipe, &model, surface_slope)?);
+        let thin = thin::thin_refinements(&self.recipe, &model, &interior, surface_slope);
+        placed.extend(add_known(x, "thin", thin)?);
         let cuts = self.add_well_cuts(x, model_node)?;
         let pins = if cuts.is_empty() {
             None
@@ -203,7 +208,6 @@ impl Expander for ModelExpander {
 
         let mut region_nodes = Vec::new();
         let mut groups = Vec::new();
-        let interior = sizes::interior_sizes(&self.recipe, &model, &region_sizes);
         for ((r, own), &inside) in (model.regions.regions.iter().zip(&region_sizes)).zip(&interior)
         {
             let mut patches: Vec<u32> = r.sides.iter().map(|f| f.patch).collect();
@@ -309,15 +313,23 @@ fn add_close_curves(
     model: &ModelData,
     slope: f64,
 ) -> Result<Vec<refine::Placed>, OpError> {
+    let found = close_refine::close_refinements(recipe, model, slope);
+    add_known(x, "close_curves", found)
+}
+
+/// One `<kind>:<k>` node per refinement, in order, placed for the nodes within their reach.
+fn add_known(
+    x: &mut Expansion,
+    kind: &'static str,
+    refinements: Vec<geom::refine::Refinement>,
+) -> Result<Vec<refine::Placed>, OpError> {
     let mut out = Vec::new();
-    for (k, refinement) in close_refine::close_refinements(recipe, model, slope)
-        .into_iter()
-        .enumerate()
-    {
-        let name = format!("close_curves:{}", k + 1);
+    for (k, refinement) in refinements.into_iter().enumerate() {
+        let name = format!("{kind}:{}", k + 1);
         let node = (x.add_op(
             &name,
-            Arc::new(CloseCurvesOp {
+            Arc::new(KnownRefinementOp {
+                kind,
                 refinement: refinement.clone(),
             }),
             &[],

@@ -20,12 +20,14 @@ mod refine;
 mod region;
 mod sizes;
 mod support;
+mod thin;
 mod wells;
-pub use close_refine::{CloseCurvesOp, refined_size};
+pub use close_refine::refined_size;
 pub use conformity::non_conformity_warnings;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
 pub use geology::{Counts as GeologyCounts, counts as geology_counts};
 pub use proximity::{close_curve_warnings, close_curves_near};
+pub use refine::KnownRefinementOp;
 pub use refine::RefineOp;
 pub use sizes::{short_curve_warnings, thin_region_warnings};
 

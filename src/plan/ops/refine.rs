@@ -157,6 +157,44 @@ impl Operation for RefineOp {
     }
 }
 
+/// `close_curves:<k>` or `thin:<k>`: one refinement the expander found on the model (where
+/// curves come close, where a layer thins). Its key is the refinement's own content, so a model
+/// edit that leaves the place as it was re-runs nothing that takes it.
+pub struct KnownRefinementOp {
+    /// The node kind: `close_curves` or `thin`.
+    pub kind: &'static str,
+    pub refinement: Refinement,
+}
+
+impl Operation for KnownRefinementOp {
+    fn kind(&self) -> &'static str {
+        self.kind
+    }
+    fn version(&self) -> u32 {
+        1
+    }
+    fn params(&self) -> Params {
+        let r = &self.refinement;
+        let mut h = blake3::Hasher::new();
+        for p in &r.points {
+            for v in p {
+                h.update(&v.to_le_bytes());
+            }
+        }
+        let mut p = Params::new();
+        p.set("points", h.finalize().to_hex().as_str())
+            .expect("a string");
+        p.set("count", r.points.len() as u64).expect("a count");
+        p.set("size", r.size).expect("finite");
+        p.set("slope", r.slope).expect("finite");
+        p
+    }
+    fn run(&self, _ctx: &dyn RunContext, _inputs: &[Artifact]) -> Result<Output, OpError> {
+        let n = self.refinement.points.len() as u64;
+        Ok(Output::new(Artifact::encode(&self.refinement)?).count("points", n))
+    }
+}
+
 /// Splits off the last `n` inputs, the refinements a node takes after its own inputs.
 pub fn split_refinements(
     inputs: &[Artifact],

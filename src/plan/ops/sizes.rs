@@ -82,7 +82,7 @@ pub fn region_sizes(recipe: &Recipe, model: &ModelData) -> Vec<SizeChoice> {
 
 /// The count of elements across region `name` the recipe asks for (its `layers`, else the
 /// global `min_layers`), and the recipe path that asks it.
-fn layers_of(recipe: &Recipe, name: &str) -> (Option<u32>, String) {
+pub(super) fn layers_of(recipe: &Recipe, name: &str) -> (Option<u32>, String) {
     let m = &recipe.mesh;
     match m.regions.get(name).and_then(|s| s.layers) {
         Some(n) => (Some(n), format!("mesh.regions.{name}.layers")),
@@ -346,12 +346,14 @@ pub fn curve_end_sizes(
 /// region or surface then re-runs the curves along it and nothing further.
 pub const GRADED_JUMP: f64 = 2.0;
 
-/// What the sizes did to thin regions, one sentence each, in region order: a region thinner than
-/// its size with no `layers` asked (its mesh is about one element across), and a `layers` count
-/// that `min_size` kept from being met. `(region, message)`.
+/// What the sizes did to thin regions, one sentence each: the regions whose thin parts the
+/// element budget held back (`thin`), then in region order a region thinner than its size with
+/// no `layers` asked (its mesh is about one element across), and a `layers` count that
+/// `min_size` kept from being met. `(region, message)`.
 pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, String)> {
     let m = &recipe.mesh;
-    let mut out = Vec::new();
+    let slope = recipe.mesh.growth.min(surface_mesh::MAX_SURFACE_GROWTH) - 1.0;
+    let mut out = super::thin::budget_warnings(recipe, model, slope);
     for ((r, own), &t) in model
         .regions
         .regions
