@@ -326,33 +326,13 @@ mod tests {
         }
     }
 
-    /// A closed wedge: the slab `[0,a]×[0,b]` between z = 0 and z = h0 + slope·x.
+    /// A closed wedge: the slab `[0,a]×[0,b]` between z = 0 and z = h0 + slope·x (the cuboid's
+    /// top corners lifted).
     fn wedge(a: f64, b: f64, h0: f64, slope: f64) -> TriMesh {
-        let top = |x: f64| h0 + slope * x;
-        let vertices = vec![
-            [0.0, 0.0, 0.0],
-            [a, 0.0, 0.0],
-            [a, b, 0.0],
-            [0.0, b, 0.0],
-            [0.0, 0.0, top(0.0)],
-            [a, 0.0, top(a)],
-            [a, b, top(a)],
-            [0.0, b, top(0.0)],
-        ];
-        let triangles = vec![
-            [0, 2, 1],
-            [0, 3, 2],
-            [4, 5, 6],
-            [4, 6, 7],
-            [0, 1, 5],
-            [0, 5, 4],
-            [1, 2, 6],
-            [1, 6, 5],
-            [2, 3, 7],
-            [2, 7, 6],
-            [3, 0, 4],
-            [3, 4, 7],
-        ];
+        let (mut vertices, triangles) = test_support::shapes::cuboid([0.0; 3], [a, b, 1.0]);
+        for v in vertices.iter_mut().filter(|v| v[2] == 1.0) {
+            v[2] = h0 + slope * v[0];
+        }
         TriMesh {
             vertices,
             triangles,
