@@ -131,7 +131,8 @@ impl Expander for ModelExpander {
         let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
         let curve_caps = sizes::curve_caps(&model, &region_sizes);
         let surface_slope = self.recipe.mesh.growth.min(MAX_SURFACE_GROWTH) - 1.0;
-        let end_sizes = sizes::curve_end_sizes(&self.recipe, &model, &region_sizes, surface_slope);
+        let end_sizes =
+            sizes::curve_end_sizes(&self.recipe, topo, &curve_sizes, &curve_caps, surface_slope);
         let interior = sizes::interior_sizes(&self.recipe, &model, &region_sizes);
         let mut placed = refine::place(&self.recipe, &model, x);
         placed.extend(add_close_curves(x, &self.recipe, &model, surface_slope)?);

@@ -172,7 +172,10 @@ fn nearest_within_size(
 /// Every unexplained approach of two segments, with its two curves (lower first).
 pub(super) fn approaches(recipe: &Recipe, model: &ModelData) -> Vec<(usize, usize, Approach)> {
     let regions = sizes::region_sizes(recipe, model);
-    let size = sizes::nominal_curve_sizes(recipe, model, &regions);
+    let patches = sizes::patch_sizes(recipe, model, &regions);
+    let fallbacks = sizes::curve_sizes(recipe, &model.topology, &patches);
+    let caps = sizes::curve_caps(model, &regions);
+    let size = sizes::nominal_curve_sizes(recipe, &model.topology, &fallbacks, &caps);
     let segments = segments(model);
     let boxes: Vec<BBox> = (segments.iter())
         .map(|s| BBox::from_points(&s.ends).inflate(FRACTION * size[s.curve] / 2.0))

@@ -241,14 +241,15 @@ pub fn curve_sizes(
         .collect()
 }
 
-/// Per curve of `model`, the length of its mesh segments before any grading: its
+/// Per curve of `topo`, the length of its mesh segments before any grading: its
 /// `[mesh.curves]` rule's (a count's as the curve's length over it), at most its cap
 /// ([`curve_caps`]); without a rule, the finest of its patches' sizes ([`curve_sizes`]).
-pub fn nominal_curve_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]) -> Vec<f64> {
-    let topo = &model.topology;
-    let patches = patch_sizes(recipe, model, regions);
-    let fallbacks = curve_sizes(recipe, topo, &patches);
-    let caps = curve_caps(model, regions);
+pub fn nominal_curve_sizes(
+    recipe: &Recipe,
+    topo: &ModelTopology,
+    fallbacks: &[SizeChoice],
+    caps: &[Option<SizeChoice>],
+) -> Vec<f64> {
     (topo.curves.iter().zip(fallbacks).zip(caps))
         .map(|((c, fallback), cap)| {
             let own = match recipe.mesh.curve_rule(&c.name).map(|r| &r.subdivision) {
@@ -256,13 +257,13 @@ pub fn nominal_curve_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeCh
                 Some(Subdivision::Count(n)) => polyline_length(&c.points) / f64::from((*n).max(1)),
                 None => fallback.size,
             };
-            cap.map_or(own, |cap| own.min(cap.size))
+            cap.as_ref().map_or(own, |cap| own.min(cap.size))
         })
         .collect()
 }
 
-/// Per curve of `model`, the segment length its two ends (first point, last point) must start
-/// from, where that is finer than the curve's own size: a size that a surface or region sets
+/// Per curve of `topo` (`fallbacks` and `caps` as [`curve_sizes`] and [`curve_caps`] give
+/// them), the segment length its two ends (first point, last point) must start from, where that is finer than the curve's own size: a size that a surface or region sets
 /// (a curve's fallback or cap that is not the global size) grades out along the curves meeting
 /// it, growing by `slope` per unit of length from vertex to vertex (a shortest path over the
 /// curves), the way the surface meshes grade from their borders. Without it a fault's border
@@ -273,15 +274,12 @@ pub fn nominal_curve_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeCh
 /// the curve's own size by more than [`GRADED_JUMP`].
 pub fn curve_end_sizes(
     recipe: &Recipe,
-    model: &ModelData,
-    regions: &[SizeChoice],
+    topo: &ModelTopology,
+    fallbacks: &[SizeChoice],
+    caps: &[Option<SizeChoice>],
     slope: f64,
 ) -> Vec<[Option<f64>; 2]> {
-    let topo = &model.topology;
-    let nominal = nominal_curve_sizes(recipe, model, regions);
-    let patches = patch_sizes(recipe, model, regions);
-    let fallbacks = curve_sizes(recipe, topo, &patches);
-    let caps = curve_caps(model, regions);
+    let nominal = nominal_curve_sizes(recipe, topo, fallbacks, caps);
     let key = |p: &[f64; 3]| p.map(|x| (x + 0.0).to_bits());
     let mut vertices: BTreeMap<[u64; 3], usize> = BTreeMap::new();
     let mut ends: Vec<Option<[usize; 2]>> = Vec::with_capacity(topo.curves.len());
