@@ -189,6 +189,76 @@ fn a_full_standard_output_is_an_error_message_not_a_panic() {
     }
 }
 
+/// Runs `recipe args` in `s` with standard error given as `stderr` and standard output captured;
+/// returns the exit code.
+fn run_with_stderr(s: &Scratch, args: &[&str], stderr: std::process::Stdio) -> Option<i32> {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(s.path("."))
+        .args(args)
+        .env_remove("RECIPE_CACHE_DIR")
+        .stderr(stderr)
+        .output()
+        .expect("the recipe binary runs");
+    out.status.code()
+}
+
+/// A stream for standard error that takes nothing: `/dev/full` (every write fails with ENOSPC),
+/// or where there is none, a pipe whose reader is gone (every write fails with EPIPE).
+fn stderr_that_takes_nothing(full: bool) -> Option<std::process::Stdio> {
+    if full {
+        let f = std::fs::OpenOptions::new().write(true).open("/dev/full");
+        return f.ok().map(Into::into);
+    }
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    Some(writer.into())
+}
+
+#[test]
+fn a_full_or_closed_standard_error_changes_no_exit_status_and_no_output() {
+    // Progress, warnings and errors go to standard error; a stream that takes none of them is
+    // the user's to mind, so every command ends as it would have, with no panic (101).
+    let s = Scratch::didactic_built();
+    s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 80.0 }");
+    for full in [true, false] {
+        let Some(_) = stderr_that_takes_nothing(full) else {
+            eprintln!("note: no /dev/full here; skipped");
+            continue;
+        };
+        let runs: [(&[&str], i32); 4] = [
+            (&["build", "didactic.toml"], 0),
+            (&["check", "didactic.toml"], 0),
+            (&["explain", "didactic.toml"], 0),
+            (&["check", "missing.toml"], 1),
+        ];
+        for (args, status) in runs {
+            let err = stderr_that_takes_nothing(full).expect("as above");
+            assert_eq!(
+                run_with_stderr(&s, args, err),
+                Some(status),
+                "{args:?} with standard error {}",
+                if full { "full" } else { "closed" }
+            );
+        }
+    }
+    // The edited build above wrote its outputs and lock: a locked build agrees with them.
+    let (ok, _, err) = s.build(&["--locked"]);
+    assert!(
+        ok,
+        "the build with nowhere to report finished its work: {err}"
+    );
+}
+
+#[test]
+fn check_whose_reader_reads_nothing_ends_quietly() {
+    let s = Scratch::didactic();
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    let (code, err) = run_with_stdout(&s, &["check", "didactic.toml"], writer.into());
+    assert_eq!(code, Some(141), "{err}");
+    assert!(err.is_empty(), "{err}");
+}
+
 #[test]
 fn check_catches_a_region_point_outside_the_box_without_building() {
     let s = Scratch::didactic();
