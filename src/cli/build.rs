@@ -378,10 +378,26 @@ fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     let Some(model) = built_model(report) else {
         return;
     };
-    for (region, warning) in plan::ops::thin_region_warnings(recipe, &model) {
-        if ran(report, &format!("tet_mesh:{region}")) {
-            errln!("{:>12} {warning}", "Warning");
-        }
+    let thin = plan::ops::thin_region_warnings(recipe, &model);
+    let thin: Vec<_> = (thin.iter())
+        .filter(|t| ran(report, &format!("tet_mesh:{}", t.region)))
+        .collect();
+    // Many regions one element across (surfaces crossing over and over) are told at once.
+    let across: Vec<_> = thin
+        .iter()
+        .copied()
+        .filter(|t| t.one_across.is_some())
+        .collect();
+    let summed = across.len() > plan::ops::THIN_REGIONS_TOLD;
+    for t in thin.iter().filter(|t| !summed || t.one_across.is_none()) {
+        errln!("{:>12} {}", "Warning", t.message);
+    }
+    if summed {
+        errln!(
+            "{:>12} {}",
+            "Warning",
+            plan::ops::one_across_summary(&across)
+        );
     }
     for (curves, warning) in plan::ops::short_curve_warnings(recipe, &model) {
         if curves

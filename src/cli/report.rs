@@ -237,7 +237,7 @@ fn report_input<'a>(
         warnings.extend(
             crate::plan::ops::thin_region_warnings(recipe, m)
                 .into_iter()
-                .map(|(_, w)| w),
+                .map(|t| t.message),
         );
         warnings.extend(crate::plan::ops::non_conformity_warnings(m));
         warnings.extend(

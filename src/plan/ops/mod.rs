@@ -29,7 +29,9 @@ pub use geology::{Counts as GeologyCounts, counts as geology_counts};
 pub use proximity::{close_curve_warnings, close_curves_near};
 pub use refine::KnownRefinementOp;
 pub use refine::RefineOp;
-pub use sizes::{short_curve_warnings, thin_region_warnings};
+pub use sizes::{
+    THIN_REGIONS_TOLD, ThinRegion, one_across_summary, short_curve_warnings, thin_region_warnings,
+};
 
 pub use curves::{
     CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,

@@ -344,14 +344,29 @@ pub fn curve_end_sizes(
 /// region or surface then re-runs the curves along it and nothing further.
 pub const GRADED_JUMP: f64 = 2.0;
 
+/// A warning about one thin region: its name, the sentence, and for a region about one element
+/// across with no `layers` asked, its thickness and size (so that many can be told at once).
+pub struct ThinRegion {
+    pub region: String,
+    pub message: String,
+    pub one_across: Option<(f64, f64)>,
+}
+
 /// What the sizes did to thin regions, one sentence each: the regions whose thin parts the
 /// element budget held back (`thin`), then in region order a region thinner than its size with
 /// no `layers` asked (its mesh is about one element across), and a `layers` count that
-/// `min_size` kept from being met. `(region, message)`.
-pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, String)> {
+/// `min_size` kept from being met.
+pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<ThinRegion> {
     let m = &recipe.mesh;
     let slope = recipe.mesh.growth.min(surface_mesh::MAX_SURFACE_GROWTH) - 1.0;
-    let mut out = super::thin::budget_warnings(recipe, model, slope);
+    let mut out: Vec<ThinRegion> = (super::thin::budget_warnings(recipe, model, slope))
+        .into_iter()
+        .map(|(region, message)| ThinRegion {
+            region,
+            message,
+            one_across: None,
+        })
+        .collect();
     for ((r, own), &t) in model
         .regions
         .regions
@@ -366,9 +381,9 @@ pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, 
             .or(m.min_layers);
         let name = &r.name;
         match asked {
-            None if t > 0.0 && t < own.size => out.push((
-                name.clone(),
-                format!(
+            None if t > 0.0 && t < own.size => out.push(ThinRegion {
+                region: name.clone(),
+                message: format!(
                     "region `{name}` is about {} thick but meshed at {} (`{}.size`): about one \
                      element across; {}",
                     short(t),
@@ -376,21 +391,56 @@ pub fn thin_region_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(String, 
                     own.path,
                     three_layers(recipe, r)
                 ),
-            )),
-            Some(n) if t > 0.0 && t / f64::from(n) < own.size => out.push((
-                name.clone(),
-                format!(
+                one_across: Some((t, own.size)),
+            }),
+            Some(n) if t > 0.0 && t / f64::from(n) < own.size => out.push(ThinRegion {
+                region: name.clone(),
+                message: format!(
                     "region `{name}` is about {} thick: {n} layers need {} but `min_size` keeps \
                      it at {}; lower `min_size` to get them",
                     short(t),
                     short(t / f64::from(n)),
                     short(own.size)
                 ),
-            )),
+                one_across: None,
+            }),
             _ => {}
         }
     }
     out
+}
+
+/// Thin regions told one by one on the console; more are told in one sentence
+/// ([`one_across_summary`]), and the report still lists each.
+pub const THIN_REGIONS_TOLD: usize = 4;
+
+/// One sentence for many regions about one element across (`thin`, each with `one_across`):
+/// the first few named, how many more, the range of thicknesses and sizes, and the one setting
+/// that gives them all three elements across. (A model whose surfaces cross each other over and
+/// over, a horizon jittered through the next one, has hundreds of such slivers.)
+pub fn one_across_summary(thin: &[&ThinRegion]) -> String {
+    let across: Vec<(f64, f64)> = thin.iter().filter_map(|t| t.one_across).collect();
+    let range = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::INFINITY, 0.0f64), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+        if short(lo) == short(hi) {
+            short(lo)
+        } else {
+            format!("{} to {}", short(lo), short(hi))
+        }
+    };
+    let named: Vec<String> = (thin.iter().take(THIN_REGIONS_TOLD))
+        .map(|t| format!("`{}`", t.region))
+        .collect();
+    format!(
+        "regions {} and {} more are about {} thick but meshed at {}: about one element across \
+         each (the report lists them); `min_layers = 3` in `[mesh]` gives them three",
+        named.join(", "),
+        thin.len() - named.len(),
+        range(&mut across.iter().map(|a| a.0)),
+        range(&mut across.iter().map(|a| a.1)),
+    )
 }
 
 /// The `[mesh.curves]` size rules that cannot be honoured anywhere: a rule asking for segments
@@ -463,4 +513,35 @@ fn three_layers(recipe: &Recipe, r: &model::regions::Region) -> String {
 pub(super) fn short(x: f64) -> String {
     let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
     format!("{x:.digits$}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sliver(k: usize, thickness: f64) -> ThinRegion {
+        ThinRegion {
+            region: format!("H1+H2#{k}"),
+            message: String::new(),
+            one_across: Some((thickness, 200.0)),
+        }
+    }
+
+    #[test]
+    fn many_regions_one_element_across_are_told_in_one_sentence_with_their_range() {
+        let thin: Vec<ThinRegion> = [2.28, 3.94, 0.378, 8.37, 2.93, 3.05]
+            .iter()
+            .enumerate()
+            .map(|(k, &t)| sliver(k + 1, t))
+            .collect();
+        let told = one_across_summary(&thin.iter().collect::<Vec<_>>());
+        assert!(
+            told.starts_with(
+                "regions `H1+H2#1`, `H1+H2#2`, `H1+H2#3`, `H1+H2#4` and 2 more are about 0.378 \
+                 to 8.37 thick but meshed at 200:"
+            ),
+            "{told}"
+        );
+        assert!(told.contains("`min_layers = 3` in `[mesh]`"), "{told}");
+    }
 }
