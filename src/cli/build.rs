@@ -102,11 +102,15 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         }
         let on_event = |e: &engine::Event| renderer.event(e);
         let report = engine::build_again(graph, &opts, &cache_lock, &failed_before, &on_event)?;
-        let added = match report.ok || last {
-            true => Vec::new(),
+        let round = match report.ok || last {
+            true => Default::default(),
             false => super::crossings::refinements(&report, &recipe, built_model(&report).as_ref()),
         };
+        let added = round.added;
         renderer.release_failures(added.is_empty());
+        for why in round.refused.iter().filter(|_| added.is_empty()) {
+            errln!("{:>12} {why}", "note");
+        }
         if added.is_empty() {
             break report;
         }

@@ -21,6 +21,7 @@ mod region;
 mod sizes;
 mod support;
 mod thin;
+pub use thin::{BUDGET as REFINEMENT_BUDGET, tets_near_curves};
 mod wells;
 pub use close_refine::refined_size;
 pub use conformity::non_conformity_warnings;

@@ -111,6 +111,19 @@ fn tets(part: &ThinPart) -> f64 {
         .sum()
 }
 
+/// The tets a refinement of curves `length` long adds: `size` at the curves, growing at `slope`
+/// per unit of length (at most) up to `far`. Round the curves the sizes are a tube's, so per
+/// unit of length `∫ 2πr dr / (h + g r)³` out to where `far` is reached, less the tets at `far`
+/// that were there before.
+pub fn tets_near_curves(length: f64, size: f64, far: f64, slope: f64) -> f64 {
+    let (a, g) = (size, slope.max(0.05));
+    let reach = (far - size).max(0.0) / g;
+    let primitive = |r: f64| -(a + 2.0 * g * r) / (2.0 * g * g * (a + g * r).powi(2));
+    let refined = 2.0 * std::f64::consts::PI * (primitive(reach) - primitive(0.0));
+    let before = std::f64::consts::PI * reach * reach / far.powi(3);
+    length * TETS_PER_CUBE * (refined - before).max(0.0)
+}
+
 /// The smallest floor (by bisection, to a percent) that keeps `part` within [`BUDGET`].
 fn floor_within_budget(part: &mut ThinPart) -> f64 {
     let thickest = (part.places.iter()).map(|p| p.1).fold(0.0, f64::max);
@@ -206,6 +219,25 @@ mod tests {
         assert_eq!(per_layer(2), 2.0);
         assert_eq!(per_layer(3), 4.0);
         assert_eq!(per_layer(5), 8.0);
+    }
+
+    #[test]
+    fn a_refinement_round_curves_counts_the_tube_it_fills_and_nothing_at_its_far_size() {
+        // A kilometre of curve at 20 m, growing at 0.3 to 200 m: the tube holds
+        // 2π · (1/(2g²a) − (a + 2gR)/(2g²(a + gR)²)) per cube, R = 600 m.
+        let (a, g, r): (f64, f64, f64) = (20.0, 0.3, 600.0);
+        let per_m = 2.0
+            * std::f64::consts::PI
+            * (1.0 / (2.0 * g * g * a) - (a + 2.0 * g * r) / (2.0 * g * g * (a + g * r).powi(2)));
+        let before = std::f64::consts::PI * r * r / 200f64.powi(3);
+        let want = 1000.0 * TETS_PER_CUBE * (per_m - before);
+        let got = tets_near_curves(1000.0, 20.0, 200.0, 0.3);
+        assert!((got - want).abs() < 1e-6 * want, "{got} {want}");
+        // Twice the length, twice the tets; a quarter of the size, many times more.
+        assert!((tets_near_curves(2000.0, 20.0, 200.0, 0.3) - 2.0 * got).abs() < 1e-6 * got);
+        assert!(tets_near_curves(1000.0, 5.0, 200.0, 0.3) > 3.0 * got);
+        // At the far size already, nothing.
+        assert_eq!(tets_near_curves(1000.0, 200.0, 200.0, 0.3), 0.0);
     }
 
     #[test]
