@@ -15,6 +15,7 @@
 
 use geom::mesh::{SurfaceGroup, SurfaceKind, VolumeMesh};
 use geom::predicates::{Orientation, orient3d};
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// The TETRA4 sides as 0-based local node indices, side 1 first.
@@ -50,32 +51,53 @@ pub(crate) fn face_uses(mesh: &VolumeMesh, number: &[u32]) -> Vec<Vec<FaceUse>> 
         }
     }
     let on = |v: u32| on_triangle.get(v as usize).copied().unwrap_or(false);
+    // The tets in chunks on the build's threads, each chunk's finds in tet order, gathered in
+    // chunk order: the same lists, in the same order, for any number of threads.
+    let found: Vec<Vec<(usize, FaceUse)>> = (0..mesh.tets.len().div_ceil(TETS_PER_CHUNK))
+        .into_par_iter()
+        .map(|chunk| {
+            let mut out = Vec::new();
+            let start = chunk * TETS_PER_CHUNK;
+            let tets = mesh.tets.iter().enumerate().skip(start);
+            for (t, &tet) in tets.take(TETS_PER_CHUNK) {
+                for (s, local) in TETRA4_SIDES.iter().enumerate() {
+                    let face = local.map(|k| tet[k]);
+                    if !face.iter().all(|&v| on(v)) {
+                        continue;
+                    }
+                    let Some(tris) = by_key.get(&sorted(face)) else {
+                        continue;
+                    };
+                    let apex = tet[6 - local.iter().sum::<usize>()];
+                    for &i in tris {
+                        out.push((
+                            i,
+                            FaceUse {
+                                tet: t as u32,
+                                elem: number[t],
+                                side: s as u32 + 1,
+                                front: in_front(mesh, mesh.triangles[i], apex),
+                            },
+                        ));
+                    }
+                }
+            }
+            out
+        })
+        .collect();
     let mut uses = vec![Vec::new(); mesh.triangles.len()];
-    for (t, tet) in mesh.tets.iter().enumerate() {
-        for (s, local) in TETRA4_SIDES.iter().enumerate() {
-            let face = local.map(|k| tet[k]);
-            if !face.iter().all(|&v| on(v)) {
-                continue;
-            }
-            let Some(tris) = by_key.get(&sorted(face)) else {
-                continue;
-            };
-            let apex = tet[6 - local.iter().sum::<usize>()];
-            for &i in tris {
-                uses[i].push(FaceUse {
-                    tet: t as u32,
-                    elem: number[t],
-                    side: s as u32 + 1,
-                    front: in_front(mesh, mesh.triangles[i], apex),
-                });
-            }
-        }
+    for (i, u) in found.into_iter().flatten() {
+        uses[i].push(u);
     }
     for u in &mut uses {
         u.sort_by_key(|f| f.elem);
     }
     uses
 }
+
+/// Tets per parallel chunk of [`face_uses`]: large enough that a chunk's work outweighs its
+/// scheduling.
+const TETS_PER_CHUNK: usize = 1 << 16;
 
 /// Fails, naming the first triangle's group and corners, when a triangle is no tet face:
 /// Exodus and Abaqus name only element faces.

@@ -116,12 +116,14 @@ impl Out {
                     self.buf.push(b' ');
                 }
                 first = false;
-                // Writing into a Vec<u8> cannot fail.
-                let _ = match f {
-                    F::S(v) => write!(self.buf, "{v}"),
-                    F::I(v) => write!(self.buf, "{v}"),
-                    F::D(v) => write!(self.buf, "{v}"),
-                };
+                match f {
+                    F::S(v) => decimal(&mut self.buf, *v, false),
+                    F::I(v) => decimal(&mut self.buf, u64::from(v.unsigned_abs()), *v < 0),
+                    // Writing into a Vec<u8> cannot fail.
+                    F::D(v) => {
+                        let _ = write!(self.buf, "{v}");
+                    }
+                }
             }
             self.buf.push(b'\n');
         }
@@ -133,6 +135,25 @@ impl Out {
         }
         self.text(&format!("$End{section}\n"));
     }
+}
+
+/// Appends `v` in decimal (after a `-` when `negative`), as `{}` writes it: the element and node
+/// records are most of a large file, and the formatting machinery cost more than the digits.
+fn decimal(buf: &mut Vec<u8>, mut v: u64, negative: bool) {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (v % 10) as u8;
+        v /= 10;
+        if v == 0 {
+            break;
+        }
+    }
+    if negative {
+        buf.push(b'-');
+    }
+    buf.extend_from_slice(&digits[at..]);
 }
 
 /// A name as Gmsh reads it between double quotes (no quote or line break inside).
@@ -616,6 +637,29 @@ fn element_data(o: &mut Out, name: &str, order: &Order, value: impl Fn(Option<us
 mod tests {
     use super::*;
     use topology::tests::three_tets;
+
+    #[test]
+    fn integers_are_written_as_the_standard_formatting_writes_them() {
+        let cases: [(u64, bool); 7] = [
+            (0, false),
+            (9, false),
+            (10, false),
+            (1_234_567, false),
+            (u64::MAX, false),
+            (1, true),
+            (2_147_483_648, true),
+        ];
+        for (v, negative) in cases {
+            let mut buf = Vec::new();
+            decimal(&mut buf, v, negative);
+            let want = if negative {
+                format!("-{v}")
+            } else {
+                v.to_string()
+            };
+            assert_eq!(String::from_utf8(buf).unwrap(), want);
+        }
+    }
 
     /// The lines of `section` in the ASCII file of `mesh`.
     fn section(mesh: &VolumeMesh, section: &str) -> Vec<String> {
