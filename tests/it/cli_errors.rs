@@ -202,29 +202,55 @@ fn run_with_stderr(s: &Scratch, args: &[&str], stderr: std::process::Stdio) -> O
     out.status.code()
 }
 
-/// A stream for standard error that takes nothing: `/dev/full` (every write fails with ENOSPC),
-/// or where there is none, a pipe whose reader is gone (every write fails with EPIPE).
-fn stderr_that_takes_nothing(full: bool) -> Option<std::process::Stdio> {
-    if full {
-        let f = std::fs::OpenOptions::new().write(true).open("/dev/full");
-        return f.ok().map(Into::into);
+/// Streams for standard error that take nothing.
+#[derive(Clone, Copy, Debug)]
+enum Sink {
+    /// `/dev/full`: every write fails with ENOSPC.
+    Full,
+    /// A pipe whose reader is gone: every write fails with EPIPE.
+    Closed,
+    /// A non-blocking socket already full, its reader alive but reading nothing: every write
+    /// fails with EAGAIN.
+    Blocked,
+}
+
+impl Sink {
+    /// The stream, and what must stay open while the command runs; `None` where the machine has
+    /// no such stream.
+    fn open(self) -> Option<(std::process::Stdio, Option<std::os::unix::net::UnixStream>)> {
+        match self {
+            Sink::Full => {
+                let f = std::fs::OpenOptions::new().write(true).open("/dev/full");
+                f.ok().map(|f| (f.into(), None))
+            }
+            Sink::Closed => {
+                let (reader, writer) = std::io::pipe().expect("a pipe");
+                drop(reader);
+                Some((writer.into(), None))
+            }
+            Sink::Blocked => {
+                use std::io::Write as _;
+                let (reader, mut writer) = std::os::unix::net::UnixStream::pair().ok()?;
+                writer.set_nonblocking(true).ok()?;
+                let chunk = [b'x'; 4096];
+                while writer.write(&chunk).is_ok() {}
+                Some((std::os::fd::OwnedFd::from(writer).into(), Some(reader)))
+            }
+        }
     }
-    let (reader, writer) = std::io::pipe().expect("a pipe");
-    drop(reader);
-    Some(writer.into())
 }
 
 #[test]
-fn a_full_or_closed_standard_error_changes_no_exit_status_and_no_output() {
+fn a_full_closed_or_blocked_standard_error_changes_no_exit_status_and_no_output() {
     // Progress, warnings and errors go to standard error; a stream that takes none of them is
     // the user's to mind, so every command ends as it would have, with no panic (101).
     let s = Scratch::didactic_built();
     s.edit("\"F2\" = { size = 100.0 }", "\"F2\" = { size = 80.0 }");
-    for full in [true, false] {
-        let Some(_) = stderr_that_takes_nothing(full) else {
-            eprintln!("note: no /dev/full here; skipped");
+    for sink in [Sink::Full, Sink::Closed, Sink::Blocked] {
+        if sink.open().is_none() {
+            eprintln!("note: no {sink:?} stream here; skipped");
             continue;
-        };
+        }
         let runs: [(&[&str], i32); 4] = [
             (&["build", "didactic.toml"], 0),
             (&["check", "didactic.toml"], 0),
@@ -232,12 +258,11 @@ fn a_full_or_closed_standard_error_changes_no_exit_status_and_no_output() {
             (&["check", "missing.toml"], 1),
         ];
         for (args, status) in runs {
-            let err = stderr_that_takes_nothing(full).expect("as above");
+            let (err, _open) = sink.open().expect("as above");
             assert_eq!(
                 run_with_stderr(&s, args, err),
                 Some(status),
-                "{args:?} with standard error {}",
-                if full { "full" } else { "closed" }
+                "{args:?} with standard error {sink:?}"
             );
         }
     }
