@@ -18,6 +18,10 @@
 //! (their own and the grading's, estimated from the places): past that, they are not refined,
 //! the region is meshed from its median thickness as before, and the build warns naming the
 //! region, its thinnest place, the count it would have taken and the `min_size` that would fit.
+//!
+//! The same budget bounds a round of refinement the build adds where two surfaces' meshes cross
+//! (`cli::crossings`), estimated round its curves by [`tets_near_curves`]: one measure of what a
+//! refinement costs, whichever asks for it.
 
 use super::ModelData;
 use super::sizes::{EDGE_SPAN, interior_sizes, layers_of, region_sizes, short};
@@ -31,7 +35,8 @@ use std::collections::BTreeMap;
 pub const FINER: f64 = 0.8;
 /// At most about this many points are cast per region.
 pub const MAX_POINTS: usize = 400_000;
-/// The most tets the thin parts of one region may ask for.
+/// The most tets the thin parts of one region, or one round of refinement where meshes cross,
+/// may ask for.
 pub const BUDGET: f64 = 4.0e6;
 /// Size classes per octave.
 const CLASSES: f64 = 4.0;
