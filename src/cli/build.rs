@@ -86,7 +86,8 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         record: record.name.clone(),
         read_only,
     };
-    // Where the meshes of two surfaces cross, refined there and built again (`crossings`).
+    // Where the meshes of two surfaces cross, or a mesh fails where curves come close, refined
+    // there and built again (`crossings`, `close_places`).
     let mut recipe = recipe;
     let mut graph = Some(graph);
     let mut rounds = 0;
@@ -102,24 +103,35 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         }
         let on_event = |e: &engine::Event| renderer.event(e);
         let report = engine::build_again(graph, &opts, &cache_lock, &failed_before, &on_event)?;
-        let round = match report.ok || last {
-            true => Default::default(),
-            false => super::crossings::refinements(&report, &recipe, built_model(&report).as_ref()),
+        let model = (!report.ok && !last)
+            .then(|| built_model(&report))
+            .flatten();
+        let (round, close) = match model {
+            None => Default::default(),
+            Some(m) => (
+                super::crossings::refinements(&report, &recipe, Some(&m)),
+                super::close_places::round(&report, &recipe, Some(&m)),
+            ),
         };
         let added = round.added;
-        renderer.release_failures(added.is_empty());
-        for why in round.refused.iter().filter(|_| added.is_empty()) {
+        let none = added.is_empty() && close.named.is_empty();
+        renderer.release_failures(none);
+        for why in round.refused.iter().chain(&close.refused).filter(|_| none) {
             errln!("{:>12} {why}", "note");
         }
-        if added.is_empty() {
+        if none {
             break report;
         }
         if verbosity >= Verbosity::Normal {
             for r in &added {
                 errln!("{:>12} {}", "Refining", super::crossings::said(r));
             }
+            for said in &close.said {
+                errln!("{:>12} {said}", "Refining");
+            }
         }
         recipe.mesh.refine.extend(added);
+        (recipe.mesh.refine_close_curves.named).extend(close.named);
         rounds += 1;
         // What failed and is out of the refinement's reach fails again at once.
         failed_before = (report.nodes.iter())

@@ -36,6 +36,7 @@ macro_rules! err {
 
 mod build;
 mod cache;
+mod close_places;
 mod crossings;
 pub(crate) mod culprit;
 mod debris;

@@ -330,12 +330,64 @@ pub struct MeshSpec {
     /// `[[mesh.refine]]`, in recipe order.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub refine: Vec<RefineSpec>,
-    /// `refine_close_curves` (default false): refine where the model's curves come closer than
-    /// their mesh can resolve, rather than only warn.
-    #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub refine_close_curves: bool,
+    /// `refine_close_curves`: where the model's curves come closer than their mesh can resolve,
+    /// which of those places are refined rather than only warned about.
+    #[serde(skip_serializing_if = "CloseCurves::is_default")]
+    pub refine_close_curves: CloseCurves,
     #[serde(skip)]
     pub span: Span,
+}
+
+/// `[mesh] refine_close_curves`: `true` refines every place where curves come closer than their
+/// mesh can resolve; a list of curve names, the places those curves are in; `false`, none. Unless
+/// it is `false`, a build whose surface or tet mesh fails at such a place adds the place's curves
+/// and builds again (as where two surfaces' meshes cross).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CloseCurves {
+    /// `true`: every place.
+    pub all: bool,
+    /// The curves whose places are refined from the start.
+    pub named: Vec<CurveSelector>,
+    /// Whether a failure at a place adds it (all but `false`).
+    pub on_failure: bool,
+}
+
+impl Default for CloseCurves {
+    fn default() -> Self {
+        CloseCurves {
+            all: false,
+            named: Vec::new(),
+            on_failure: true,
+        }
+    }
+}
+
+impl CloseCurves {
+    /// `true` in the recipe.
+    pub fn every() -> Self {
+        CloseCurves {
+            all: true,
+            ..Self::default()
+        }
+    }
+
+    /// `false` in the recipe.
+    pub fn none() -> Self {
+        CloseCurves {
+            on_failure: false,
+            ..Self::default()
+        }
+    }
+
+    /// Not written in the recipe.
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// Whether the place holding the curves `names` is refined.
+    pub fn refines<'a>(&self, mut names: impl Iterator<Item = &'a str>) -> bool {
+        self.all || names.any(|n| self.named.iter().any(|m| m.matches(n)))
+    }
 }
 
 impl MeshSpec {

@@ -41,11 +41,11 @@ fn two_dangling_faults_five_metres_apart_are_named_with_the_place_and_the_fix() 
         assert!(warning.contains(needle), "`{needle}` not in: {warning}");
     }
     assert!(
-        warning.contains("`[[mesh.refine]]` with `curve = "),
+        warning.contains("`refine_close_curves = [\"F") && warning.contains("(elements of 8.00"),
         "{warning}"
     );
     assert!(
-        warning.contains("`refine_close_curves = true` in `[mesh]` (elements of 8.00"),
+        warning.contains("`refine_close_curves = true` for every such place"),
         "{warning}"
     );
 }
@@ -93,6 +93,50 @@ fn refining_close_curves_lifts_the_tets_between_two_faults_and_reruns_only_what_
     }) {
         assert!(!ran.contains(n), "`{n}` re-ran");
     }
+}
+
+#[test]
+fn refining_the_places_of_listed_curves_refines_those_and_warns_about_the_rest() {
+    // F3 8 m north of F2: the model's one place where curves come close. Listing one curve of
+    // it, as the warning advises, refines the place as `true` does.
+    let s = Scratch::didactic();
+    with_f3(&s, 8.0);
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let warning = (err.lines())
+        .find(|l| l.contains("Warning curves") && l.contains("come within"))
+        .unwrap_or_else(|| panic!("no warning about close curves in:\n{err}"));
+    // The advice names a curve of the place to list.
+    let listed = (warning.split("`refine_close_curves = [\"").nth(1))
+        .and_then(|t| t.split('"').next())
+        .unwrap_or_else(|| panic!("no curve to list in: {warning}"))
+        .to_string();
+    s.edit(
+        "[mesh]\n",
+        &format!("[mesh]\nrefine_close_curves = [\"{listed}\"]\n"),
+    );
+    let (ok, r, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let ran = nodes_in_state(&r, "ran");
+    assert!(
+        ran.iter().any(|n| n.starts_with("close_curves:")),
+        "{ran:?}"
+    );
+    let lifted = min_dihedral(&s);
+    assert!(lifted > 8.0, "{lifted}°");
+    // The same mesh as `true` gives: the model has no other place.
+    let listed_mesh = std::fs::read(s.path("out/didactic/didactic.msh")).expect("the mesh");
+    s.edit(
+        &format!("refine_close_curves = [\"{listed}\"]"),
+        "refine_close_curves = true",
+    );
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let all_mesh = std::fs::read(s.path("out/didactic/didactic.msh")).expect("the mesh");
+    assert!(
+        listed_mesh == all_mesh,
+        "listing the place's curve differs from `true`"
+    );
 }
 
 #[test]

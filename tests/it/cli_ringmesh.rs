@@ -265,10 +265,7 @@ fn cloud_spin_fixed_meshes_every_region_once_its_close_curves_are_refined() {
     // 30 m) to keep the test short; at the default 1.15 km it is the same.
     let Some(dir) = data_dir() else { return };
     let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
-    let model = recipe_for(&bytes, "CloudSpin_fixed.ml");
-    let (head, tail) = model.recipe.split_once("[mesh]\nsize = ").expect("a size");
-    let (_, tail) = tail.split_once('\n').expect("a line");
-    let recipe = format!("{head}[mesh]\nsize = 3000.0\nrefine_close_curves = true\n{tail}");
+    let (model, recipe) = cloud_spin_at_3_km(&bytes, "refine_close_curves = true\n");
     let (scratch, out) = build_in_scratch(&bytes, &recipe, &[]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
@@ -276,15 +273,25 @@ fn cloud_spin_fixed_meshes_every_region_once_its_close_curves_are_refined() {
     passes_the_checker(scratch.path(), "CloudSpin_fixed.ml", model.regions);
 }
 
+/// The CloudSpin recipe at 3 km (the refinements then stop at `min_size`, 30 m), with `close`
+/// written in `[mesh]`.
+fn cloud_spin_at_3_km(bytes: &[u8], close: &str) -> (Model, String) {
+    let model = recipe_for(bytes, "CloudSpin_fixed.ml");
+    let (head, tail) = model.recipe.split_once("[mesh]\nsize = ").expect("a size");
+    let (_, tail) = tail.split_once('\n').expect("a line");
+    let recipe = format!("{head}[mesh]\nsize = 3000.0\n{close}{tail}");
+    (model, recipe)
+}
+
 #[test]
 fn cloud_spin_fixed_meshes_every_patch_and_puts_each_failing_region_down_to_close_curves() {
     // HOUSTON's patches hold a reverse fault's slit whose lips overlap in map view and a slit
-    // pinched where two faults meet: no plane projects them one to one. Some of the model's
-    // regions do not mesh yet; every patch must.
+    // pinched where two faults meet: no plane projects them one to one. Without refining where
+    // curves come close, some of the model's regions do not mesh; every patch must.
     let Some(dir) = data_dir() else { return };
     let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
-    let model = recipe_for(&bytes, "CloudSpin_fixed.ml");
-    let (_scratch, out) = build_in_scratch(&bytes, &model.recipe, &["--json"]);
+    let (_, recipe) = cloud_spin_at_3_km(&bytes, "refine_close_curves = false\n");
+    let (_scratch, out) = build_in_scratch(&bytes, &recipe, &["--json"]);
     let err = String::from_utf8_lossy(&out.stderr);
     // Counted as RINGMesh's load test counted this file when it was added (its
     // CloudSpin_fixed.ml.txt of 2018-01): charts and creases cut 132 patches out of 115 TFACEs.
@@ -306,15 +313,46 @@ fn cloud_spin_fixed_meshes_every_patch_and_puts_each_failing_region_down_to_clos
         err.contains("ran") && !err.contains("error `model"),
         "the model builds:\n{err}"
     );
-    // The regions that still fail, fail among curves a few centimetres to metres apart at a
+    // `false` refines nowhere, not even where a mesh fails.
+    assert!(!err.contains("Refining where curves"), "{err}");
+    // The regions that fail, fail among curves a few centimetres to metres apart at a
     // kilometre's mesh size: each failure is put down to the nearest such place.
-    for line in err.lines().filter(|l| l.contains("error `tet_mesh:")) {
+    let failed: Vec<&str> = (err.lines())
+        .filter(|l| l.contains("error `tet_mesh:"))
+        .collect();
+    assert!(!failed.is_empty(), "every region meshes now:\n{err}");
+    for line in failed {
         let node = line.split('`').nth(1).expect("the node");
         let note = format!("note `{node}` failed ");
         let cause = (err.lines().find(|l| l.contains(&note)))
             .unwrap_or_else(|| panic!("no likely cause for `{node}`:\n{err}"));
         assert!(cause.contains("where curves `"), "{cause}");
         assert!(cause.contains("the likely cause"), "{cause}");
-        assert!(cause.contains("`refine_close_curves = true`"), "{cause}");
+        assert!(cause.contains("`refine_close_curves = [\""), "{cause}");
     }
+}
+
+#[test]
+fn cloud_spin_fixed_meshes_every_region_by_refining_where_its_meshes_fail_among_close_curves() {
+    // Unwritten, `refine_close_curves` refines the places the failed regions are put down to,
+    // and the build goes on: every region meshes, at fewer tets than refining every place.
+    let Some(dir) = data_dir() else { return };
+    let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
+    let (model, recipe) = cloud_spin_at_3_km(&bytes, "");
+    let (scratch, out) = build_in_scratch(&bytes, &recipe, &["--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let refining: Vec<&str> = (err.lines())
+        .filter(|l| l.contains("Refining where curves"))
+        .collect();
+    assert!(!refining.is_empty(), "{err}");
+    for line in refining {
+        assert!(line.contains("come within"), "{line}");
+        assert!(line.contains("at which `tet_mesh:"), "{line}");
+        assert!(
+            line.contains("(`refine_close_curves = [\"") && line.contains("does it from the start"),
+            "{line}"
+        );
+    }
+    passes_the_checker(scratch.path(), "CloudSpin_fixed.ml", model.regions);
 }

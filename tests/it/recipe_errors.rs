@@ -774,17 +774,44 @@ fn layers_are_read_per_region_and_globally_and_a_count_out_of_range_is_named() {
 }
 
 #[test]
-fn refining_close_curves_is_off_unless_written_and_only_a_boolean_turns_it_on() {
-    assert!(!ok(BASE).mesh.refine_close_curves);
-    let on = BASE.replace("size = 1.0", "size = 1.0\nrefine_close_curves = true");
-    assert!(ok(&on).mesh.refine_close_curves);
+fn close_curves_are_refined_where_a_mesh_fails_unless_the_recipe_says_otherwise() {
+    let with = |v: &str| {
+        let text = BASE.replace(
+            "size = 1.0",
+            &format!("size = 1.0\nrefine_close_curves = {v}"),
+        );
+        ok(&text).mesh.refine_close_curves
+    };
+    // Unwritten: no place from the start, the places where a mesh fails.
+    let default = ok(BASE).mesh.refine_close_curves;
+    assert!(!default.all && default.named.is_empty() && default.on_failure);
+    assert!(!default.refines(["top/f1#1"].into_iter()));
+    // `true`: every place; `false`: none, not even where a mesh fails.
+    assert!(with("true").refines(["top/f1#1"].into_iter()));
+    let off = with("false");
+    assert!(!off.on_failure && !off.refines(["top/f1#1"].into_iter()));
+    // A list: the places of the curves it selects, in either order of their surfaces.
+    let listed = with("[\"f1/top#2\", \"base\"]");
+    assert!(listed.on_failure && !listed.all);
+    assert!(listed.refines(["top/f1#2"].into_iter()));
+    assert!(listed.refines(["base/f1#7"].into_iter()));
+    assert!(!listed.refines(["top/f1#1", "f1#3"].into_iter()));
+    // Anything else is an error at its place, naming what it may be.
     let text = BASE.replace("size = 1.0", "size = 1.0\nrefine_close_curves = \"yes\"");
     let (d, rendered) = single_at(&text, "\"yes\"", 0);
     assert!(
-        d.message
-            .contains("`mesh.refine_close_curves` must be `true` or `false`"),
+        d.message.contains(
+            "`mesh.refine_close_curves` must be `true`, `false` or a list of curve names"
+        ),
         "{rendered}"
     );
+    // A list naming a surface the recipe does not have.
+    let text = BASE.replace(
+        "size = 1.0",
+        "size = 1.0\nrefine_close_curves = [\"top/f2\"]",
+    );
+    let (d, rendered) = single_at(&text, "f2\"]", 0);
+    assert!(d.message.contains("f2"), "{rendered}");
 }
 
 #[test]

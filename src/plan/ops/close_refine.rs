@@ -1,10 +1,11 @@
 //! Refinement where the model's curves come closer than their mesh can resolve. Between two
 //! curves a gap `g` apart, elements of edge `h` are flat unless `h` is a few times `g`; left at
 //! the curves' own size (ten times the gap or more), the surface meshes there are slivers and the
-//! tet mesher stalls or makes tets of a degree. So, when the recipe asks
-//! (`[mesh] refine_close_curves = true`; off by default, as it can cost millions of tets and does
-//! not help where the gap is a wedge of the model's own), every unexplained approach
-//! (`proximity`) becomes a refinement: points along the two curves where they are close, the size there [`GAP_SIZES`]
+//! tet mesher stalls or makes tets of a degree. So, where the recipe asks (`[mesh]
+//! refine_close_curves = true` for every place, as it can cost millions of tets and does not
+//! help where the gap is a wedge of the model's own; or a list of curves, for their places, which
+//! the build also adds to where a mesh failed at a place), every unexplained approach
+//! (`proximity`) of the places asked becomes a refinement: points along the two curves where they are close, the size there [`GAP_SIZES`]
 //! times the local gap, never below the recipe's `min_size` (the budget the user set: it bounds
 //! the size ratio, so the element count the refinement adds), growing as the surface meshes may.
 //!
@@ -44,10 +45,13 @@ fn power_of_two_below(x: f64) -> f64 {
 /// them off): per place (closest first), per size (finest first), the points where the curves'
 /// gap asks for that size.
 pub fn close_refinements(recipe: &Recipe, model: &ModelData, slope: f64) -> Vec<Refinement> {
-    if !recipe.mesh.refine_close_curves {
+    let close = &recipe.mesh.refine_close_curves;
+    if !close.all && close.named.is_empty() {
         return Vec::new();
     }
     let found = approaches(recipe, model);
+    let refined = refined_curves(recipe, model, &found);
+    let found: Vec<_> = found.into_iter().filter(|(c, ..)| refined[*c]).collect();
     let mut places = UnionFind::new(model.topology.curves.len());
     for (c, d, _) in &found {
         places.union(*c, *d);
@@ -76,6 +80,37 @@ pub fn close_refinements(recipe: &Recipe, model: &ModelData, slope: f64) -> Vec<
                 size: f64::from_bits(size),
                 slope,
             });
+        }
+    }
+    out
+}
+
+/// Per curve of `model`, whether the recipe refines the place it is in among the approaches
+/// `found`: a place is the curves joined by approaches, and it is refined when the recipe's
+/// `refine_close_curves` is `true` or selects one of its curves.
+pub(super) fn refined_curves(
+    recipe: &Recipe,
+    model: &ModelData,
+    found: &[(usize, usize, Approach)],
+) -> Vec<bool> {
+    let curves = &model.topology.curves;
+    let mut places = UnionFind::new(curves.len());
+    for (c, d, _) in found {
+        places.union(*c, *d);
+    }
+    let mut members: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (c, d, _) in found {
+        for k in [*c, *d] {
+            members.entry(places.find(k)).or_default().push(k);
+        }
+    }
+    let close = &recipe.mesh.refine_close_curves;
+    let mut out = vec![false; curves.len()];
+    for place in members.values() {
+        if close.refines(place.iter().map(|&k| curves[k].name.as_str())) {
+            for &k in place {
+                out[k] = true;
+            }
         }
     }
     out

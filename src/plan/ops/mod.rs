@@ -27,9 +27,12 @@ pub use close_refine::refined_size;
 pub use conformity::non_conformity_warnings;
 pub use crossings::{Crossing, CrossingsOp, unpaired_crossings};
 pub use geology::{Counts as GeologyCounts, counts as geology_counts};
-pub use proximity::{close_curve_warnings, close_curves_near};
+pub use proximity::{
+    UnrefinedPlace, close_curve_warnings, close_curves_near, unrefined_places_near,
+};
 pub use refine::KnownRefinementOp;
 pub use refine::RefineOp;
+pub use sizes::short as short_number;
 pub use sizes::{
     THIN_REGIONS_TOLD, ThinRegion, one_across_summary, short_curve_warnings, thin_region_warnings,
 };

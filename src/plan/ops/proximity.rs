@@ -53,6 +53,7 @@ pub(super) struct Approach {
 /// eight and a count of the rest.
 pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
     let found = approaches(recipe, model);
+    let refined = super::close_refine::refined_curves(recipe, model, &found);
     let mut closest: BTreeMap<(usize, usize), Approach> = BTreeMap::new();
     for (c, d, a) in found {
         let best = closest.entry((c, d)).or_insert_with(|| a.clone());
@@ -64,7 +65,7 @@ pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
     pairs.sort_by(|x, y| x.1.distance.total_cmp(&y.1.distance).then(x.0.cmp(&y.0)));
     let sites = sites(pairs);
     let mut out: Vec<String> = (sites.iter().take(MAX_NAMED))
-        .map(|site| sentence(recipe, model, site))
+        .map(|site| sentence(recipe, model, site, refined[site.curves[0]]))
         .collect();
     if sites.len() > MAX_NAMED {
         out.push(format!(
@@ -85,9 +86,53 @@ pub fn close_curves_near(
     places: &[[f64; 3]],
 ) -> Vec<Option<String>> {
     let found = approaches(recipe, model);
+    let refined = super::close_refine::refined_curves(recipe, model, &found);
     (places.iter())
-        .map(|&at| cause_sentence(recipe, model, &found, at))
+        .map(|&at| cause_sentence(recipe, model, &found, &refined, at))
         .collect()
+}
+
+/// A place where curves come close that a failed mesh is put down to, which the recipe does not
+/// refine yet: one of its curves (naming it in `refine_close_curves` refines the place), the
+/// other curve of the closest approach, the gap there and where, the curves' mesh size, and how
+/// long the two curves run close.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UnrefinedPlace {
+    pub curve: String,
+    pub other: String,
+    pub gap: f64,
+    pub at: [f64; 3],
+    pub size: f64,
+    pub length: f64,
+}
+
+/// For meshes that failed at `places`: for each, the place where curves come close within their
+/// mesh size of it, as [`close_curves_near`] puts the failure down to it, when the recipe does
+/// not refine that place yet.
+pub fn unrefined_places_near(
+    recipe: &Recipe,
+    model: &ModelData,
+    places: &[[f64; 3]],
+) -> Vec<Option<UnrefinedPlace>> {
+    let found = approaches(recipe, model);
+    let refined = super::close_refine::refined_curves(recipe, model, &found);
+    let curves = &model.topology.curves;
+    let place = |at: [f64; 3]| {
+        let (&(c, d, ref a), _) = nearest_within_size(&found, at)?;
+        let length: f64 = (found.iter())
+            .filter(|f| (f.0, f.1) == (c, d))
+            .map(|f| dist(&f.2.segments[0][0], &f.2.segments[0][1]))
+            .sum();
+        (!refined[c]).then(|| UnrefinedPlace {
+            curve: curves[c].name.clone(),
+            other: curves[d].name.clone(),
+            gap: a.distance,
+            at: a.at,
+            size: a.size,
+            length,
+        })
+    };
+    places.iter().map(|&at| place(at)).collect()
 }
 
 /// The sentence for a failure at `at`, from the model's approaches `found`.
@@ -95,6 +140,7 @@ fn cause_sentence(
     recipe: &Recipe,
     model: &ModelData,
     found: &[(usize, usize, Approach)],
+    refined: &[bool],
     at: [f64; 3],
 ) -> Option<String> {
     let (&(c, d, ref a), from) = nearest_within_size(found, at)?;
@@ -119,21 +165,21 @@ fn cause_sentence(
          likely cause; {}",
         short(from),
         short(a.size),
-        remedy(recipe, &curves[c].name, a.distance),
+        remedy(recipe, &curves[c].name, a.distance, refined[c]),
     ))
 }
 
 /// What the user can do about curves `gap` apart, one of them `curve`: what the build did when
-/// it refines close curves, else how to make it.
-fn remedy(recipe: &Recipe, curve: &str, gap: f64) -> String {
+/// it refines there (`refined`), else how to make it.
+fn remedy(recipe: &Recipe, curve: &str, gap: f64, refined: bool) -> String {
     let min_size = recipe.mesh.min_size;
     let wanted = super::close_refine::refined_size(gap, 0.0);
-    if !recipe.mesh.refine_close_curves {
+    if !refined {
         format!(
             "mend the surfaces there in the data (join or part them), or refine there: \
-             `refine_close_curves = true` in `[mesh]` (elements of {} where the gap is smallest; \
-             finer and slower, the more so the longer the curves run close), or \
-             `[[mesh.refine]]` with `curve = \"{curve}\"` and a `size` a few times the gap",
+             `refine_close_curves = [\"{curve}\"]` in `[mesh]` (elements of {} where the gap is \
+             smallest), or `refine_close_curves = true` for every such place (finer and slower, \
+             the more so the longer the curves run close)",
             short(wanted.max(min_size))
         )
     } else if wanted < min_size {
@@ -248,7 +294,7 @@ fn sites(pairs: Vec<((usize, usize), Approach)>) -> Vec<Site> {
     out
 }
 
-fn sentence(recipe: &Recipe, model: &ModelData, site: &Site) -> String {
+fn sentence(recipe: &Recipe, model: &ModelData, site: &Site, refined: bool) -> String {
     let curves = &model.topology.curves;
     let mut names: Vec<String> = (site.curves.iter().take(NAMES_PER_PLACE))
         .map(|&c| format!("`{}`", curves[c].name))
@@ -274,7 +320,7 @@ fn sentence(recipe: &Recipe, model: &ModelData, site: &Site) -> String {
         })
         .collect();
     let first = &curves[site.curves[0]].name;
-    let flat = if recipe.mesh.refine_close_curves {
+    let flat = if refined {
         ""
     } else {
         " the elements between them will be flat;"
@@ -283,7 +329,7 @@ fn sentence(recipe: &Recipe, model: &ModelData, site: &Site) -> String {
         "{which} near {}, under a tenth of their mesh size {}:{flat} {}",
         places.join(", "),
         short(site.first.size),
-        remedy(recipe, first, site.first.distance),
+        remedy(recipe, first, site.first.distance, refined),
     )
 }
 

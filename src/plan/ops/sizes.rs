@@ -510,7 +510,7 @@ fn three_layers(recipe: &Recipe, r: &model::regions::Region) -> String {
 }
 
 /// A length for a message, in model units: three significant digits.
-pub(super) fn short(x: f64) -> String {
+pub fn short(x: f64) -> String {
     let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
     format!("{x:.digits$}")
 }

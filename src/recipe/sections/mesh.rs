@@ -4,8 +4,9 @@
 //! `max_size = size*10`, `growth = 1.3`, curve `ratio = 1`, `grading = "geometric"`,
 //! `tet_method = "delaunay"`), that bounds are ordered, and that every selector side names a
 //! known surface and every region key a `[regions]` name. Curves closer than their mesh can
-//! resolve are refined only when `refine_close_curves = true`: that is finer and slower, and
-//! where the gap is a wedge of the model's own it buys little. Rules keep their recipe order, which
+//! resolve are refined everywhere only when `refine_close_curves = true` (that is finer and
+//! slower, and where the gap is a wedge of the model's own it buys little), at the places of the
+//! curves it lists, and, unless it is `false`, where a mesh fails at such a place. Rules keep their recipe order, which
 //! breaks precedence ties (see `MeshSpec::curve_rule`).
 
 use std::collections::BTreeMap;
@@ -17,7 +18,8 @@ use super::Names;
 use crate::recipe::reader::{self as rd, Ctx, Value, name_help, path_join};
 use crate::recipe::selector::SurfaceSelector;
 use crate::recipe::spec::{
-    CurveRule, Grading, MeshSpec, RegionMeshSpec, Subdivision, SurfaceSizeRule, TetMethod,
+    CloseCurves, CurveRule, Grading, MeshSpec, RegionMeshSpec, Subdivision, SurfaceSizeRule,
+    TetMethod,
 };
 
 const KEYS: &[&str] = &[
@@ -170,8 +172,8 @@ pub(crate) fn read(
         .unwrap_or_default();
     let min_layers = layers(ctx, t, "mesh", "min_layers");
     let refine_close_curves = match t.get("refine_close_curves") {
-        Some(v) => rd::boolean(ctx, v, "mesh.refine_close_curves"),
-        None => Some(false),
+        Some(v) => close_curves(ctx, v, names),
+        None => Some(CloseCurves::default()),
     };
     let global = global?;
     let refine = t
@@ -195,6 +197,39 @@ pub(crate) fn read(
         refine,
         refine_close_curves: refine_close_curves?,
         span: ctx.span(v.span()),
+    })
+}
+
+/// `refine_close_curves`: `true`, `false` or a list of curve selectors.
+fn close_curves(ctx: &mut Ctx<'_>, v: &Value<'_>, names: &Names) -> Option<CloseCurves> {
+    const PATH: &str = "mesh.refine_close_curves";
+    match v.get_ref() {
+        toml::de::DeValue::Boolean(true) => return Some(CloseCurves::every()),
+        toml::de::DeValue::Boolean(false) => return Some(CloseCurves::none()),
+        toml::de::DeValue::Array(_) => {}
+        other => {
+            let msg = format!(
+                "`{PATH}` must be `true`, `false` or a list of curve names, found {} `{}`",
+                rd::type_name(other),
+                ctx.text(v.span())
+            );
+            let help = "`true` refines every place where curves come closer than their mesh can \
+                        resolve, `[\"top/f1#2\"]` the places of the curves listed";
+            ctx.error(v.span(), msg, Some(help.into()));
+            return None;
+        }
+    }
+    let mut named = Vec::new();
+    let mut ok = true;
+    for (text, span) in rd::strings(ctx, v, PATH)? {
+        match super::curve_selector(ctx, &text, span, names) {
+            Some(s) => named.push(s),
+            None => ok = false,
+        }
+    }
+    ok.then(|| CloseCurves {
+        named,
+        ..CloseCurves::default()
     })
 }
 
