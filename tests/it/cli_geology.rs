@@ -222,6 +222,34 @@ fn the_salt_overhangs_narrow_charts_are_as_fine_as_they_are_wide_and_its_tets_ov
         })
         .fold(f64::INFINITY, f64::min);
     assert!((5.0..8.0).contains(&worst), "{worst}°");
+    // Its curves come close at several places: each warning gives the line that refines there,
+    // and what to do about them all is said once.
+    let text = std::fs::read(dir.path().join("out/report.json")).expect("the report");
+    let report: serde_json::Value = serde_json::from_slice(&text).expect("JSON");
+    let warnings: Vec<&str> = (report["warnings"].as_array().expect("warnings").iter())
+        .filter_map(|w| w.as_str())
+        .collect();
+    let close: Vec<&&str> = warnings
+        .iter()
+        .filter(|w| w.contains("come within"))
+        .collect();
+    assert!(close.len() > 1, "{warnings:?}");
+    for w in &close {
+        assert!(
+            w.contains("`refine_close_curves = [\"") && w.contains("refines there"),
+            "{w}"
+        );
+        assert!(!w.contains("mend the surfaces"), "{w}");
+    }
+    let advice: Vec<&&str> = (warnings.iter())
+        .filter(|w| w.starts_with("where curves come that close"))
+        .collect();
+    assert_eq!(advice.len(), 1, "{warnings:?}");
+    assert!(
+        advice[0].contains("`refine_close_curves = true`"),
+        "{}",
+        advice[0]
+    );
 }
 
 #[test]

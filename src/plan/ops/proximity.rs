@@ -64,14 +64,28 @@ pub fn close_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<String> {
     let mut pairs: Vec<((usize, usize), Approach)> = closest.into_iter().collect();
     pairs.sort_by(|x, y| x.1.distance.total_cmp(&y.1.distance).then(x.0.cmp(&y.0)));
     let sites = sites(pairs);
-    let mut out: Vec<String> = (sites.iter().take(MAX_NAMED))
-        .map(|site| sentence(recipe, model, site, refined[site.curves[0]]))
+    let named = &sites[..sites.len().min(MAX_NAMED)];
+    // Several places left as they are share one advice, told once after them.
+    let unrefined = named.iter().filter(|s| !refined[s.curves[0]]).count();
+    let brief = unrefined > 1;
+    let mut out: Vec<String> = (named.iter())
+        .map(|site| sentence(recipe, model, site, refined[site.curves[0]], brief))
         .collect();
     if sites.len() > MAX_NAMED {
         out.push(format!(
             "curves come as close at {} more places (the closest are named above)",
             sites.len() - MAX_NAMED
         ));
+    }
+    if brief {
+        out.push(
+            "where curves come that close, mend the surfaces in the data (join or part them), or \
+             refine there with the line each warning gives, or everywhere with \
+             `refine_close_curves = true` in `[mesh]` (finer and slower, the more so the longer \
+             the curves run close); a mesh that fails at such a place is refined there without \
+             it"
+            .to_string(),
+        );
     }
     out
 }
@@ -165,16 +179,23 @@ fn cause_sentence(
          likely cause; {}",
         short(from),
         short(a.size),
-        remedy(recipe, &curves[c].name, a.distance, refined[c]),
+        remedy(recipe, &curves[c].name, a.distance, refined[c], false),
     ))
 }
 
 /// What the user can do about curves `gap` apart, one of them `curve`: what the build did when
-/// it refines there (`refined`), else how to make it.
-fn remedy(recipe: &Recipe, curve: &str, gap: f64, refined: bool) -> String {
+/// it refines there (`refined`), else how to make it (`brief`: the line that refines there
+/// alone, the rest being told once for several places).
+fn remedy(recipe: &Recipe, curve: &str, gap: f64, refined: bool, brief: bool) -> String {
     let min_size = recipe.mesh.min_size;
     let wanted = super::close_refine::refined_size(gap, 0.0);
-    if !refined {
+    if !refined && brief {
+        format!(
+            "`refine_close_curves = [\"{curve}\"]` in `[mesh]` refines there (elements of {} \
+             where the gap is smallest)",
+            short(wanted.max(min_size))
+        )
+    } else if !refined {
         format!(
             "mend the surfaces there in the data (join or part them), or refine there: \
              `refine_close_curves = [\"{curve}\"]` in `[mesh]` (elements of {} where the gap is \
@@ -294,7 +315,7 @@ fn sites(pairs: Vec<((usize, usize), Approach)>) -> Vec<Site> {
     out
 }
 
-fn sentence(recipe: &Recipe, model: &ModelData, site: &Site, refined: bool) -> String {
+fn sentence(recipe: &Recipe, model: &ModelData, site: &Site, refined: bool, brief: bool) -> String {
     let curves = &model.topology.curves;
     let mut names: Vec<String> = (site.curves.iter().take(NAMES_PER_PLACE))
         .map(|&c| format!("`{}`", curves[c].name))
@@ -329,7 +350,7 @@ fn sentence(recipe: &Recipe, model: &ModelData, site: &Site, refined: bool) -> S
         "{which} near {}, under a tenth of their mesh size {}:{flat} {}",
         places.join(", "),
         short(site.first.size),
-        remedy(recipe, first, site.first.distance, refined),
+        remedy(recipe, first, site.first.distance, refined, brief),
     )
 }
 
