@@ -6,16 +6,18 @@
 //! recipe line that does it from the start.
 //!
 //! Decisions and why:
-//! - Only the places a failure is put down to are refined, not every place of the model: on the
+//! - The places refined are those on the curves bounding what failed (the region, or the
+//!   patch), the one the failure is put down to first, not every place of the model: on the
 //!   RINGMesh CloudSpin model, refining all of them gives 9 million tets, and most places mesh
-//!   (flat) without it.
+//!   (flat) without it. Refining only the place each failure is put down to took three rounds
+//!   there, each region failing at the next place once the last was refined.
+//! - The round's places together stay within the budget a refinement may add, estimated as a
+//!   tube round the curves where they run close (`tets_near_curves`); the rest are not refined,
+//!   and the build says how many.
 //! - A failure where two surfaces' meshes cross is left to `crossings`, whose refinement along
 //!   the curves where they meet is the remedy: on the corpus's onlap under a degree, refining
 //!   the close place as well took 1.5 times the tets for no better smallest dihedral.
 //! - `refine_close_curves = false` turns it off, `true` refines every place from the start.
-//! - A place whose refinement, estimated as a tube round the curves where they run close
-//!   (`tets_near_curves`), would pass the budget a refinement may add is not refined: the
-//!   build fails there and says why, as for crossing meshes.
 //! - The rounds are the crossings' rounds (`crossings::ROUNDS`): the same recipe gets the same
 //!   rounds, so the mesh is as reproducible as any other, and `--locked` checks it.
 
@@ -52,57 +54,74 @@ pub fn round(report: &BuildReport, recipe: &Recipe, model: Option<&ModelData>) -
     if failed.is_empty() {
         return CloseRound::default();
     }
-    let at: Vec<[f64; 3]> = failed.iter().map(|f| f.1).collect();
-    let places = unrefined_places_near(recipe, model, &at);
-    let found = failed
-        .iter()
-        .zip(places)
-        .filter_map(|((node, _), p)| Some((*node, p?)));
+    let places = unrefined_places_near(recipe, model, &failed);
+    let found = (failed.iter().zip(places))
+        .filter(|(_, p)| !p.is_empty())
+        .map(|((node, _), p)| (*node, p));
     next_round(found, recipe)
 }
 
-/// The round for `places` (each with the node that failed there), each place once.
+/// The round for the places of each failed node (the one its failure is put down to first), as
+/// long as their tets together stay within the budget.
 fn next_round<'a>(
-    places: impl Iterator<Item = (&'a str, UnrefinedPlace)>,
+    failures: impl Iterator<Item = (&'a str, Vec<UnrefinedPlace>)>,
     recipe: &Recipe,
 ) -> CloseRound {
     let mut round = CloseRound::default();
     let slope = recipe.mesh.growth.min(surface_mesh::MAX_SURFACE_GROWTH) - 1.0;
-    let mut seen: Vec<String> = Vec::new();
-    for (node, place) in places {
-        if seen.contains(&place.curve) {
-            continue;
+    let mut total = 0.0;
+    for (node, places) in failures {
+        let mut over = (0, 0.0);
+        for (k, place) in places.into_iter().enumerate() {
+            let Ok(selector) = CurveSelector::parse(&place.curve) else {
+                continue;
+            };
+            let size = refined_size(place.gap, recipe.mesh.min_size);
+            let tets = tets_near_curves(place.length, size, place.size, slope);
+            let pair = pair(&place);
+            if total + tets > REFINEMENT_BUDGET {
+                if tets > REFINEMENT_BUDGET {
+                    round.refused.push(format!(
+                        "not refining where {pair}: they run close for {:.1} km, and refining \
+                         there would take about {:.0} million tets, over the {:.0} million a \
+                         refinement may add; mend the surfaces there in the data (join or part \
+                         them)",
+                        place.length / 1000.0,
+                        tets / 1e6,
+                        REFINEMENT_BUDGET / 1e6,
+                    ));
+                } else {
+                    over = (over.0 + 1, over.1 + tets);
+                }
+                continue;
+            }
+            total += tets;
+            let [x, y, z] = place.at.map(|v| format!("{v:.1}"));
+            let whence = match k {
+                0 => format!("at which `{node}` failed"),
+                _ => format!("on what `{node}` meshes"),
+            };
+            round.said.push(format!(
+                "where {pair} near ({x}, {y}, {z}), {whence}, to {}, and building again \
+                 (`refine_close_curves = [\"{}\"]` in `[mesh]` does it from the start)",
+                short_number(size),
+                place.curve,
+            ));
+            round.named.push(selector);
         }
-        seen.push(place.curve.clone());
-        let Ok(selector) = CurveSelector::parse(&place.curve) else {
-            continue;
-        };
-        let size = refined_size(place.gap, recipe.mesh.min_size);
-        let tets = tets_near_curves(place.length, size, place.size, slope);
-        let pair = pair(&place);
-        if tets > REFINEMENT_BUDGET {
+        if over.0 > 0 {
             round.refused.push(format!(
-                "not refining where {pair}: they run close for {:.1} km, and refining there would \
-                 take about {:.0} million tets, over the {:.0} million a refinement may add; mend \
-                 the surfaces there in the data (join or part them)",
-                place.length / 1000.0,
-                tets / 1e6,
+                "not refining {} more places where curves come close on what `{node}` meshes: \
+                 they would take about {:.1} million tets more, and with the places above over \
+                 the {:.0} million a refinement may add",
+                over.0,
+                over.1 / 1e6,
                 REFINEMENT_BUDGET / 1e6,
             ));
-            continue;
         }
-        let [x, y, z] = place.at.map(|v| format!("{v:.1}"));
-        round.said.push(format!(
-            "where {pair} near ({x}, {y}, {z}), at which `{node}` failed, to {}, and building \
-             again (`refine_close_curves = [\"{}\"]` in `[mesh]` does it from the start)",
-            short_number(size),
-            place.curve,
-        ));
-        round.named.push(selector);
     }
     round
 }
-
 /// "curves `a` and `b` come within g of each other", or of itself for one curve.
 fn pair(place: &UnrefinedPlace) -> String {
     let gap = short_number(place.gap);
@@ -140,13 +159,19 @@ mod tests {
     }
 
     #[test]
-    fn each_place_a_failure_is_put_down_to_is_named_once_with_the_line_that_does_it() {
-        let two_regions = [
-            ("tet_mesh:a", place("F/H#1", "F/H#2", 0.14, 300.0)),
-            ("tet_mesh:b", place("F/H#1", "F/H#2", 0.14, 300.0)),
-            ("surface_mesh:F#2", place("F#3", "F#3", 25.0, 80.0)),
+    fn the_places_of_what_failed_are_named_once_with_the_line_that_does_it() {
+        // Two regions failed; the second at a place the first's places hold already.
+        let failures = [
+            (
+                "tet_mesh:a",
+                vec![
+                    place("F/H#1", "F/H#2", 0.14, 300.0),
+                    place("F#3", "F#3", 25.0, 80.0),
+                ],
+            ),
+            ("tet_mesh:b", vec![]),
         ];
-        let round = next_round(two_regions.into_iter(), &recipe());
+        let round = next_round(failures.into_iter(), &recipe());
         let named: Vec<&str> = round.named.iter().map(|s| s.text.as_str()).collect();
         assert_eq!(named, ["F/H#1", "F#3"]);
         assert!(round.refused.is_empty());
@@ -158,17 +183,19 @@ mod tests {
              (`refine_close_curves = [\"F/H#1\"]` in `[mesh]` does it from the start)"
         );
         assert!(
-            round.said[1].starts_with("where curve `F#3` comes within 25.0 of itself"),
+            round.said[1].starts_with(
+                "where curve `F#3` comes within 25.0 of itself near (1.0, 2.0, 3.0), on what \
+                 `tet_mesh:a` meshes, to 32.0"
+            ),
             "{}",
             round.said[1]
         );
-        assert!(round.said[1].contains(" to 32.0, "), "{}", round.said[1]);
     }
 
     #[test]
     fn a_place_whose_curves_run_close_too_long_is_not_refined_and_the_build_is_told_why() {
         // Two sheets 0.5 m apart for 200 km: refined to 10 m, tens of millions of tets.
-        let sheets = [("tet_mesh:a", place("F/H#1", "F/H#2", 0.5, 2.0e5))];
+        let sheets = [("tet_mesh:a", vec![place("F/H#1", "F/H#2", 0.5, 2.0e5)])];
         let round = next_round(sheets.into_iter(), &recipe());
         assert!(round.named.is_empty() && round.said.is_empty());
         let why = &round.refused[0];
@@ -181,6 +208,29 @@ mod tests {
         );
         assert!(
             why.contains("over the 4 million a refinement may add"),
+            "{why}"
+        );
+    }
+
+    #[test]
+    fn the_places_of_a_round_stay_within_the_budget_together() {
+        // Each place alone is within the budget, five together are not: the first ones are
+        // refined and the rest are counted.
+        let place_of = |k: usize| place(&format!("F/H#{k}"), "F#1", 0.5, 1.6e4);
+        let alone = next_round([("tet_mesh:a", vec![place_of(1)])].into_iter(), &recipe());
+        assert_eq!(alone.named.len(), 1);
+        let five = [("tet_mesh:a", (1..=5).map(place_of).collect())];
+        let round = next_round(five.into_iter(), &recipe());
+        assert!(
+            !round.named.is_empty() && round.named.len() < 5,
+            "{round:?}"
+        );
+        let why = &round.refused[0];
+        assert!(
+            why.starts_with(&format!(
+                "not refining {} more places where curves come close on what `tet_mesh:a` meshes",
+                5 - round.named.len()
+            )),
             "{why}"
         );
     }

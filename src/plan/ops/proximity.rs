@@ -19,8 +19,9 @@ use crate::recipe::Recipe;
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
 use geom::predicates::{dist, dot, polyline_length, sub};
+use model::union_find::UnionFind;
 use sizes::short;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// Curves nearer than this share of their mesh size are warned about (the tets between them
 /// have dihedral angles of about this many radians).
@@ -120,33 +121,94 @@ pub struct UnrefinedPlace {
     pub length: f64,
 }
 
-/// For meshes that failed at `places`: for each, the place where curves come close within their
-/// mesh size of it, as [`close_curves_near`] puts the failure down to it, when the recipe does
-/// not refine that place yet.
+/// For meshes that failed (each the node's name, `tet_mesh:<region>` or
+/// `surface_mesh:<patch>`, and where it failed): the places where curves come close that the
+/// recipe does not refine yet among the curves bounding what failed, each place once over all
+/// failures. Per failure, the place the failure is put down to ([`close_curves_near`]) first,
+/// then the others by their gap, closest first: a mesh that failed at one such place tends to
+/// fail at the next once that one is refined.
 pub fn unrefined_places_near(
     recipe: &Recipe,
     model: &ModelData,
-    places: &[[f64; 3]],
-) -> Vec<Option<UnrefinedPlace>> {
+    failures: &[(&str, [f64; 3])],
+) -> Vec<Vec<UnrefinedPlace>> {
     let found = approaches(recipe, model);
     let refined = super::close_refine::refined_curves(recipe, model, &found);
     let curves = &model.topology.curves;
-    let place = |at: [f64; 3]| {
-        let (&(c, d, ref a), _) = nearest_within_size(&found, at)?;
-        let length: f64 = (found.iter())
-            .filter(|f| (f.0, f.1) == (c, d))
-            .map(|f| dist(&f.2.segments[0][0], &f.2.segments[0][1]))
-            .sum();
-        (!refined[c]).then(|| UnrefinedPlace {
-            curve: curves[c].name.clone(),
-            other: curves[d].name.clone(),
-            gap: a.distance,
-            at: a.at,
-            size: a.size,
-            length,
-        })
+    let mut places = UnionFind::new(curves.len());
+    for (c, d, _) in &found {
+        places.union(*c, *d);
+    }
+    let mut taken = BTreeSet::new();
+    let mut out = Vec::with_capacity(failures.len());
+    for &(node, at) in failures {
+        let bounding = bounding_curves(model, node);
+        let nearest = nearest_within_size(&found, at).map(|(f, _)| (f.0, f.1));
+        let mut mine: Vec<&(usize, usize, Approach)> = (found.iter())
+            .filter(|(c, d, _)| !refined[*c] && (bounding[*c] || bounding[*d]))
+            .collect();
+        mine.sort_by(|x, y| {
+            let first = |f: &&(usize, usize, Approach)| Some((f.0, f.1)) != nearest;
+            (first(x).cmp(&first(y)))
+                .then(x.2.distance.total_cmp(&y.2.distance))
+                .then((x.0, x.1).cmp(&(y.0, y.1)))
+        });
+        let mut here = Vec::new();
+        for &&(c, d, ref a) in &mine {
+            if !taken.insert(places.find(c)) {
+                continue;
+            }
+            let length: f64 = (found.iter())
+                .filter(|f| (f.0, f.1) == (c, d))
+                .map(|f| dist(&f.2.segments[0][0], &f.2.segments[0][1]))
+                .sum();
+            here.push(UnrefinedPlace {
+                curve: curves[c].name.clone(),
+                other: curves[d].name.clone(),
+                gap: a.distance,
+                at: a.at,
+                size: a.size,
+                length,
+            });
+        }
+        out.push(here);
+    }
+    out
+}
+
+/// Per curve of `model`, whether it bounds what the failed node `node` meshed: a region's
+/// patches' curves for `tet_mesh:<region>`, a patch's for `surface_mesh:<patch>` (a chart
+/// `<patch>.<k>` counts as its patch); none for another node.
+fn bounding_curves(model: &ModelData, node: &str) -> Vec<bool> {
+    let topology = &model.topology;
+    let mut out = vec![false; topology.curves.len()];
+    let patches: Vec<usize> = match node.split_once(':') {
+        Some(("tet_mesh", region)) => (model.regions.regions.iter())
+            .filter(|r| r.name == region)
+            .flat_map(|r| r.sides.iter().map(|s| s.patch as usize))
+            .collect(),
+        Some(("surface_mesh", patch)) => {
+            let whole = patch.rsplit_once('.').map_or(patch, |(p, _)| p);
+            (model.patches.iter().enumerate())
+                .filter(|(_, p)| p.name == patch || p.name == whole)
+                .map(|(k, _)| k)
+                .collect()
+        }
+        _ => Vec::new(),
     };
-    places.iter().map(|&at| place(at)).collect()
+    for p in patches {
+        for c in topology
+            .patches
+            .get(p)
+            .map(|b| b.curves())
+            .unwrap_or_default()
+        {
+            if let Some(b) = out.get_mut(c as usize) {
+                *b = true;
+            }
+        }
+    }
+    out
 }
 
 /// The sentence for a failure at `at`, from the model's approaches `found`.
