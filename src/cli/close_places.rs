@@ -37,8 +37,9 @@ pub struct CloseRound {
     pub refused: Vec<String>,
 }
 
-/// The places to refine after the failed build `report` of `recipe`: those its failed surface
-/// and tet meshes are put down to, on `model`.
+/// The places to refine after the failed build `report` of `recipe`: for each surface or tet
+/// mesh that failed among close curves of `model` (not where two meshes cross), the places on
+/// the curves of what it meshes.
 pub fn round(report: &BuildReport, recipe: &Recipe, model: Option<&ModelData>) -> CloseRound {
     let close = &recipe.mesh.refine_close_curves;
     let (Some(model), true, false) = (model, close.on_failure, close.all) else {
@@ -122,6 +123,7 @@ fn next_round<'a>(
     }
     round
 }
+
 /// "curves `a` and `b` come within g of each other", or of itself for one curve.
 fn pair(place: &UnrefinedPlace) -> String {
     let gap = short_number(place.gap);

@@ -335,8 +335,7 @@ fn cloud_spin_fixed_meshes_every_patch_and_puts_each_failing_region_down_to_clos
 #[test]
 fn cloud_spin_fixed_meshes_every_region_by_refining_where_its_meshes_fail_among_close_curves() {
     // Unwritten, `refine_close_curves` refines the places on the curves of the regions that
-    // failed among close curves, and the build goes on: every region meshes, at fewer tets than
-    // refining every place.
+    // failed among close curves, and the build goes on: every region meshes.
     let Some(dir) = data_dir() else { return };
     let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
     let (model, recipe) = cloud_spin_at_3_km(&bytes, "");

@@ -5,9 +5,10 @@
 //! refine_close_curves = true` for every place, as it can cost millions of tets and does not
 //! help where the gap is a wedge of the model's own; or a list of curves, for their places, which
 //! the build also adds to where a mesh failed at a place), every unexplained approach
-//! (`proximity`) of the places asked becomes a refinement: points along the two curves where they are close, the size there [`GAP_SIZES`]
-//! times the local gap, never below the recipe's `min_size` (the budget the user set: it bounds
-//! the size ratio, so the element count the refinement adds), growing as the surface meshes may.
+//! (`proximity`) of the places asked becomes a refinement: points along the two curves where
+//! they are close, the size there [`GAP_SIZES`] times the local gap, never below the recipe's
+//! `min_size` (the budget the user set: it bounds the size ratio, so the element count the
+//! refinement adds), growing as the surface meshes may.
 //!
 //! The places are grouped as the warnings group them (curves joined by close pairs), and each
 //! place's points by size class (the gap's power of two), so that a node's feature is one size:

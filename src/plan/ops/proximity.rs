@@ -4,7 +4,8 @@
 //! than their edges and come out flat, whatever the mesher does; the build says where, so the
 //! user can refine there or mend the data (or says that it refined there, when the recipe asks
 //! it to: `close_refine`). When a surface or tet mesh then fails within the curves' mesh size of
-//! such a place, the build puts the failure down to it.
+//! such a place, the build puts the failure down to it, and names the places on what failed for
+//! the command line to refine (`cli::close_places`). Several places share one advice, said once.
 //!
 //! Two points of the curves are *close* when they are nearer than [`FRACTION`] of the finer of
 //! the two curves' mesh sizes, and *unexplained* when nothing in the model's layout makes them
@@ -107,10 +108,10 @@ pub fn close_curves_near(
         .collect()
 }
 
-/// A place where curves come close that a failed mesh is put down to, which the recipe does not
+/// A place where curves come close on what a failed mesh meshed, which the recipe does not
 /// refine yet: one of its curves (naming it in `refine_close_curves` refines the place), the
 /// other curve of the closest approach, the gap there and where, the curves' mesh size, and how
-/// long the two curves run close.
+/// long the place's curves run close.
 #[derive(Clone, Debug, PartialEq)]
 pub struct UnrefinedPlace {
     pub curve: String,
@@ -139,6 +140,7 @@ pub fn unrefined_places_near(
     for (c, d, _) in &found {
         places.union(*c, *d);
     }
+    let place_of: Vec<usize> = (0..curves.len()).map(|k| places.find(k)).collect();
     let mut taken = BTreeSet::new();
     let mut out = Vec::with_capacity(failures.len());
     for &(node, at) in failures {
@@ -148,19 +150,24 @@ pub fn unrefined_places_near(
             .filter(|(c, d, _)| !refined[*c] && (bounding[*c] || bounding[*d]))
             .collect();
         mine.sort_by(|x, y| {
-            let first = |f: &&(usize, usize, Approach)| Some((f.0, f.1)) != nearest;
-            (first(x).cmp(&first(y)))
+            let other = |f: &&(usize, usize, Approach)| Some((f.0, f.1)) != nearest;
+            (other(x).cmp(&other(y)))
                 .then(x.2.distance.total_cmp(&y.2.distance))
                 .then((x.0, x.1).cmp(&(y.0, y.1)))
         });
         let mut here = Vec::new();
         for &&(c, d, ref a) in &mine {
-            if !taken.insert(places.find(c)) {
+            if !taken.insert(place_of[c]) {
                 continue;
             }
-            let length: f64 = (found.iter())
-                .filter(|f| (f.0, f.1) == (c, d))
-                .map(|f| dist(&f.2.segments[0][0], &f.2.segments[0][1]))
+            // How long the place's curves run close: its approaching segments, one side of each
+            // approach, each segment once (a segment approaches several across from it).
+            let sides: BTreeSet<[[u64; 3]; 2]> = (found.iter())
+                .filter(|f| place_of[f.0] == place_of[c])
+                .map(|f| f.2.segments[0].map(|p| p.map(f64::to_bits)))
+                .collect();
+            let length: f64 = (sides.iter())
+                .map(|s| dist(&s[0].map(f64::from_bits), &s[1].map(f64::from_bits)))
                 .sum();
             here.push(UnrefinedPlace {
                 curve: curves[c].name.clone(),
