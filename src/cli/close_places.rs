@@ -79,7 +79,7 @@ fn next_round<'a>(
             };
             let size = refined_size(place.gap, recipe.mesh.min_size);
             let tets = tets_near_curves(place.length, size, place.size, slope);
-            let pair = pair(&place);
+            let pair = place.which();
             if total + tets > REFINEMENT_BUDGET {
                 if tets > REFINEMENT_BUDGET {
                     round.refused.push(format!(
@@ -122,19 +122,6 @@ fn next_round<'a>(
         }
     }
     round
-}
-
-/// "curves `a` and `b` come within g of each other", or of itself for one curve.
-fn pair(place: &UnrefinedPlace) -> String {
-    let gap = short_number(place.gap);
-    if place.curve == place.other {
-        format!("curve `{}` comes within {gap} of itself", place.curve)
-    } else {
-        format!(
-            "curves `{}` and `{}` come within {gap} of each other",
-            place.curve, place.other
-        )
-    }
 }
 
 #[cfg(test)]

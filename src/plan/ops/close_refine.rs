@@ -52,18 +52,15 @@ pub fn close_refinements(recipe: &Recipe, model: &ModelData, slope: f64) -> Vec<
     }
     let found = approaches(recipe, model);
     let refined = refined_curves(recipe, model, &found);
+    let place_of = places(model.topology.curves.len(), &found);
     let found: Vec<_> = found.into_iter().filter(|(c, ..)| refined[*c]).collect();
-    let mut places = UnionFind::new(model.topology.curves.len());
-    for (c, d, _) in &found {
-        places.union(*c, *d);
-    }
     // Per place: its closest gap, and its points by size (the size's bits order as the sizes do).
     type Points = BTreeMap<u64, BTreeSet<[u64; 3]>>;
     let mut by_place: BTreeMap<usize, (f64, Points)> = BTreeMap::new();
     let min_size = recipe.mesh.min_size;
     for (c, _, a) in &found {
         let place = by_place
-            .entry(places.find(*c))
+            .entry(place_of[*c])
             .or_insert((f64::INFINITY, BTreeMap::new()));
         place.0 = place.0.min(a.distance);
         for (gap, p) in samples(a) {
@@ -86,6 +83,16 @@ pub fn close_refinements(recipe: &Recipe, model: &ModelData, slope: f64) -> Vec<
     out
 }
 
+/// Per curve (of `curves` in all), the place it is in among the approaches `found`: the curves
+/// joined by approaches share a place, named by one of them.
+pub(super) fn places(curves: usize, found: &[(usize, usize, Approach)]) -> Vec<usize> {
+    let mut places = UnionFind::new(curves);
+    for (c, d, _) in found {
+        places.union(*c, *d);
+    }
+    (0..curves).map(|k| places.find(k)).collect()
+}
+
 /// Per curve of `model`, whether the recipe refines the place it is in among the approaches
 /// `found`: a place is the curves joined by approaches, and it is refined when the recipe's
 /// `refine_close_curves` is `true` or selects one of its curves.
@@ -95,14 +102,11 @@ pub(super) fn refined_curves(
     found: &[(usize, usize, Approach)],
 ) -> Vec<bool> {
     let curves = &model.topology.curves;
-    let mut places = UnionFind::new(curves.len());
-    for (c, d, _) in found {
-        places.union(*c, *d);
-    }
+    let place_of = places(curves.len(), found);
     let mut members: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for (c, d, _) in found {
         for k in [*c, *d] {
-            members.entry(places.find(k)).or_default().push(k);
+            members.entry(place_of[k]).or_default().push(k);
         }
     }
     let close = &recipe.mesh.refine_close_curves;

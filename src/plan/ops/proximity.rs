@@ -20,7 +20,6 @@ use crate::recipe::Recipe;
 use geom::BBox;
 use geom::broad_phase::overlapping_pairs;
 use geom::predicates::{dist, dot, polyline_length, sub};
-use model::union_find::UnionFind;
 use sizes::short;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -136,11 +135,19 @@ pub fn unrefined_places_near(
     let found = approaches(recipe, model);
     let refined = super::close_refine::refined_curves(recipe, model, &found);
     let curves = &model.topology.curves;
-    let mut places = UnionFind::new(curves.len());
-    for (c, d, _) in &found {
-        places.union(*c, *d);
+    let place_of = super::close_refine::places(curves.len(), &found);
+    // How long each place's curves run close: its approaching segments, one side of each
+    // approach, each segment once (a segment approaches several across from it).
+    let mut sides: BTreeMap<usize, BTreeSet<[[u64; 3]; 2]>> = BTreeMap::new();
+    for (c, _, a) in &found {
+        let side = a.segments[0].map(|p| p.map(f64::to_bits));
+        sides.entry(place_of[*c]).or_default().insert(side);
     }
-    let place_of: Vec<usize> = (0..curves.len()).map(|k| places.find(k)).collect();
+    let length = |place: usize| -> f64 {
+        (sides.get(&place).into_iter().flatten())
+            .map(|s| dist(&s[0].map(f64::from_bits), &s[1].map(f64::from_bits)))
+            .sum()
+    };
     let mut taken = BTreeSet::new();
     let mut out = Vec::with_capacity(failures.len());
     for &(node, at) in failures {
@@ -160,22 +167,13 @@ pub fn unrefined_places_near(
             if !taken.insert(place_of[c]) {
                 continue;
             }
-            // How long the place's curves run close: its approaching segments, one side of each
-            // approach, each segment once (a segment approaches several across from it).
-            let sides: BTreeSet<[[u64; 3]; 2]> = (found.iter())
-                .filter(|f| place_of[f.0] == place_of[c])
-                .map(|f| f.2.segments[0].map(|p| p.map(f64::to_bits)))
-                .collect();
-            let length: f64 = (sides.iter())
-                .map(|s| dist(&s[0].map(f64::from_bits), &s[1].map(f64::from_bits)))
-                .sum();
             here.push(UnrefinedPlace {
                 curve: curves[c].name.clone(),
                 other: curves[d].name.clone(),
                 gap: a.distance,
                 at: a.at,
                 size: a.size,
-                length,
+                length: length(place_of[c]),
             });
         }
         out.push(here);
@@ -218,6 +216,23 @@ fn bounding_curves(model: &ModelData, node: &str) -> Vec<bool> {
     out
 }
 
+impl UnrefinedPlace {
+    /// "curves `a` and `b` come within g of each other", or of itself for one curve.
+    pub fn which(&self) -> String {
+        come_within(&self.curve, &self.other, self.gap)
+    }
+}
+
+/// "curves `a` and `b` come within `gap` of each other", or of itself when `a` is `b`.
+fn come_within(a: &str, b: &str, gap: f64) -> String {
+    let gap = short(gap);
+    if a == b {
+        format!("curve `{a}` comes within {gap} of itself")
+    } else {
+        format!("curves `{a}` and `{b}` come within {gap} of each other")
+    }
+}
+
 /// The sentence for a failure at `at`, from the model's approaches `found`.
 fn cause_sentence(
     recipe: &Recipe,
@@ -228,20 +243,7 @@ fn cause_sentence(
 ) -> Option<String> {
     let (&(c, d, ref a), from) = nearest_within_size(found, at)?;
     let curves = &model.topology.curves;
-    let which = if c == d {
-        format!(
-            "curve `{}` comes within {} of itself",
-            curves[c].name,
-            short(a.distance)
-        )
-    } else {
-        format!(
-            "curves `{}` and `{}` come within {} of each other",
-            curves[c].name,
-            curves[d].name,
-            short(a.distance)
-        )
-    };
+    let which = come_within(&curves[c].name, &curves[d].name, a.distance);
     let [x, y, z] = a.at.map(|v| format!("{v:.1}"));
     Some(format!(
         "{} from ({x}, {y}, {z}), where {which}, under a tenth of their mesh size {}: the \

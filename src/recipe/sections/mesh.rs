@@ -6,8 +6,8 @@
 //! known surface and every region key a `[regions]` name. Curves closer than their mesh can
 //! resolve are refined everywhere only when `refine_close_curves = true` (that is finer and
 //! slower, and where the gap is a wedge of the model's own it buys little), at the places of the
-//! curves it lists, and, unless it is `false`, where a mesh fails at such a place. Rules keep their recipe order, which
-//! breaks precedence ties (see `MeshSpec::curve_rule`).
+//! curves it lists, and, unless it is `false`, where a mesh fails at such a place. Rules keep
+//! their recipe order, which breaks precedence ties (see `MeshSpec::curve_rule`).
 
 use std::collections::BTreeMap;
 use std::ops::Range;
