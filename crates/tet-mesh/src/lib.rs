@@ -332,14 +332,16 @@ pub fn mesh_region_with_progress(
                     }
                     let [front, optimize, finish] =
                         meter.rest().split(progress::front(opts.optimize));
-                    // If the front fails too, its error says why both did.
-                    let m = advance::advance_front_reporting(input, size, front, &work).map_err(
-                        |mut e| {
-                            e.message =
-                                format!("{} (after Delaunay gave way: {})", e.message, why.message);
-                            explained(e, input, &work)
-                        },
-                    )?;
+                    // If the front fails too, its error says why both did. It has a budget of its
+                    // own (`work::FrontWork::for_fallback`): a region it meshes takes a fraction.
+                    let own = work.for_fallback();
+                    let m = advance::advance_front_reporting(input, size, front, &own);
+                    work.spend(own.spent());
+                    let m = m.map_err(|mut e| {
+                        e.message =
+                            format!("{} (after Delaunay gave way: {})", e.message, why.message);
+                        explained(e, input, &work)
+                    })?;
                     fallback = Some(why.to_string());
                     (m, delaunay::Figures::default(), Tail { optimize, finish })
                 }

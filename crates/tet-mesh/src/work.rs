@@ -31,6 +31,13 @@
 //! 30, to the same bytes. A hole with at least as many faces as the region (its own front, or
 //! one widened nearly as far; told by the count, which errs towards the old, uncapped budget)
 //! keeps all the region has left.
+//! The front on the whole region, after the Delaunay method gave way, has a budget of its own as
+//! well: [`FALLBACK_BASE`] and [`PER_FACE`] per region face (and the per-tet allowance), within
+//! what the region has left. Across the suite the fallback meshed three regions, the heaviest
+//! (the onlap's overburden, 22,842 faces, 138,942 tets) with 111 million units in 6.6 s; the
+//! eight where it failed (CloudSpin's regions at 3 km) spent up to 870 million, 19 to 58 s, each
+//! time after the recovery's fronts had failed. Capped, those fail in 10 s (CloudSpin's first
+//! region: 56 s to 24 s, the recovery's 14 s included), and the three mesh to the same bytes.
 //! Counting, not timing: the same input gives up at the same place on every machine.
 
 use std::cell::{Cell, OnceCell};
@@ -52,6 +59,9 @@ pub const PER_TET: u64 = 2_000;
 pub const HOLE_BASE: u64 = 20_000_000;
 /// Units per face of a recovery hole.
 pub const HOLE_PER_FACE: u64 = 2_000;
+/// Units the front on the whole region, after the Delaunay method gave way, may spend whatever
+/// the region's size.
+pub const FALLBACK_BASE: u64 = 100_000_000;
 
 /// The work the fronts of one region have spent, against what they may.
 #[derive(Debug)]
@@ -96,6 +106,20 @@ impl FrontWork {
         FrontWork {
             may_close: self.may_close,
             ..FrontWork::with(allowed, self.per_tet)
+        }
+    }
+
+    /// The budget of the front on the whole region after the Delaunay method gave way:
+    /// [`FALLBACK_BASE`] and [`PER_FACE`] per face of the region at most, within what the region
+    /// has left (and the per-tet allowance). The caller [`spend`](Self::spend)s here what the
+    /// front spent.
+    pub fn for_fallback(&self) -> FrontWork {
+        let own = FALLBACK_BASE.saturating_add(PER_FACE.saturating_mul(self.faces as u64));
+        let left = self.allowed.saturating_sub(self.spent.get());
+        FrontWork {
+            faces: self.faces,
+            may_close: self.may_close,
+            ..FrontWork::with(left.min(own), self.per_tet)
         }
     }
 
@@ -200,5 +224,30 @@ mod tests {
         assert!(!empty.exhausted(0));
         empty.spend(1);
         assert!(empty.exhausted(0));
+    }
+
+    #[test]
+    fn the_front_after_delaunay_gave_way_gets_its_own_cap_within_what_the_region_has_left() {
+        let input = RegionInput {
+            boundary: vec![[0, 1, 2]; 1000],
+            ..RegionInput::default()
+        };
+        let region = FrontWork::for_region(&input);
+        let fallback = region.for_fallback();
+        assert!(
+            fallback.may_close(),
+            "what it leaves open may still be closed"
+        );
+        fallback.spend(FALLBACK_BASE + 1000 * PER_FACE);
+        assert!(!fallback.exhausted(0));
+        fallback.spend(1);
+        assert!(fallback.exhausted(0) && !fallback.exhausted(1));
+        // With less left than its cap, it has what is left.
+        region.spend(BASE);
+        let late = region.for_fallback();
+        late.spend(1000 * PER_FACE);
+        assert!(!late.exhausted(0));
+        late.spend(1);
+        assert!(late.exhausted(0));
     }
 }

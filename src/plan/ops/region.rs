@@ -254,7 +254,8 @@ impl Operation for TetMeshOp {
         // 28: a front that keeps back-tracking near its end is closed by the Delaunay method.
         // 29: closing is tried again after twice as many back-tracks, and widens at most 512 faces.
         // 30: a closing try that fails leaves the front as it was.
-        30
+        // 31: the front on the whole region after Delaunay gave way has a budget of its own.
+        31
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
