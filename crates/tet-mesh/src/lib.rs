@@ -333,7 +333,8 @@ pub fn mesh_region_with_progress(
                     let [front, optimize, finish] =
                         meter.rest().split(progress::front(opts.optimize));
                     // If the front fails too, its error says why both did. It has a budget of its
-                    // own (`work::FrontWork::for_fallback`): a region it meshes takes a fraction.
+                    // own (`work::FrontWork::for_fallback`), far above what a front it rescues
+                    // spends, far below what a failing one did.
                     let own = work.for_fallback();
                     let m = advance::advance_front_reporting(input, size, front, &own);
                     work.spend(own.spent());
