@@ -159,10 +159,7 @@ fn token() -> impl Strategy<Value = String> {
 
 proptest! {
     // FUZZ_CASES sets the count (`.ci/run` runs a longer, bounded hunt).
-    #![proptest_config(ProptestConfig {
-        cases: test_support::fuzz_cases(512),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(test_support::proptest_config(test_support::fuzz_cases(512)))]
 
     #[test]
     fn arbitrary_strings_never_panic(text in ".{0,400}") {

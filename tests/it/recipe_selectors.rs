@@ -31,7 +31,7 @@ fn pattern() -> impl Strategy<Value = String> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+    #![proptest_config(test_support::proptest_config(2000))]
 
     #[test]
     fn the_glob_matcher_agrees_with_the_reference_definition(p in "[ab*?]{0,7}", t in "[ab]{0,9}") {

@@ -33,10 +33,7 @@ fn damage(mut bytes: Vec<u8>, edits: &[(usize, u8)], cut: usize) -> Vec<u8> {
 
 proptest! {
     // FUZZ_CASES sets the count (`.ci/run` runs a longer, bounded hunt).
-    #![proptest_config(ProptestConfig {
-        cases: test_support::fuzz_cases(96),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(test_support::proptest_config(test_support::fuzz_cases(96)))]
 
     #[test]
     fn damaged_off_and_obj_never_panic(edits in prop::collection::vec((0usize..200, any::<u8>()), 0..6), cut in 0usize..200) {

@@ -189,9 +189,8 @@ fn edit_lines(bytes: &[u8], f: impl FnOnce(&mut Vec<Vec<u8>>)) -> Vec<u8> {
 proptest! {
     #![proptest_config(ProptestConfig {
         // FUZZ_CASES=20000 for a longer hunt.
-        cases: test_support::fuzz_cases(192),
         failure_persistence: None,
-        ..ProptestConfig::default()
+        ..test_support::proptest_config(test_support::fuzz_cases(192))
     })]
     #[test]
     fn mutated_real_files_never_panic(seed in any::<prop::sample::Index>(), muts in prop::collection::vec(mutation(), 1..6)) {

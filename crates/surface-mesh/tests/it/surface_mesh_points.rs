@@ -415,7 +415,7 @@ fn points_beside_an_interior_constraint_become_nodes_and_a_point_on_it_is_an_err
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 32, .. ProptestConfig::default() })]
+    #![proptest_config(test_support::proptest_config(32))]
     #[test]
     fn random_points_in_random_star_shaped_patches_always_become_nodes(
         radii in proptest::collection::vec(0.6f64..1.0, 7..14),

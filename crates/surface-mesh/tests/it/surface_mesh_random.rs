@@ -11,7 +11,7 @@ use surface_mesh::quality::stats;
 use surface_mesh::{PatchInput, SurfaceSize, mesh_patch, verify};
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, .. ProptestConfig::default() })]
+    #![proptest_config(test_support::proptest_config(64))]
     #[test]
     fn random_star_shaped_patches_always_mesh_validly(
         radii in proptest::collection::vec(0.6f64..1.0, 7..14),
