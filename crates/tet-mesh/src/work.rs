@@ -9,13 +9,14 @@
 //!
 //! So the work is counted, in units of 0.05 to 0.1 µs: a node or face the apex search scans is
 //! one, a face taken from the front [`FACE_TAKEN`], a candidate apex tested exactly
-//! [`APEX_TEST`]. A region's fronts may spend [`BASE`] units (about a minute), [`PER_FACE`] more
-//! per input face, and [`PER_TET`] more per tetrahedron the running front holds at its fullest
-//! (so a region whose interior is far finer than its boundary is not cut short). Fronts that
-//! meshed the peer model's L1 blocks spent 90 to 710 units per tet, but the heaviest front that
-//! succeeded in the test corpus (a recovery hole of 4,283 faces, 26,422 tets) spent 296 million
-//! units, 11,000 per tet; and a front that fails may spend 500 million (RINGMesh modelA4, a hole
-//! widened to 10,360 faces, before a 210-face hole closes in 5 million): hence the base. The
+//! [`APEX_TEST`]. A region's fronts may spend [`BASE`] units (about half a minute), [`PER_FACE`]
+//! more per input face, and [`PER_TET`] more per tetrahedron the running front holds at its
+//! fullest (so a region whose interior is far finer than its boundary is not cut short). Fronts
+//! that meshed the peer model's L1 blocks spent 90 to 710 units per tet; across the suite the
+//! fronts of every region that meshed spent at most 180 million units in all (CloudSpin's
+//! HOUSTON and KOBE blocks, 6,680 faces, 26 s), while a region that failed spent all it had
+//! (CloudSpin's KOBE region at 3 km: 1.25 billion units in 79 s when the base was a billion):
+//! hence the base, near three times the most a region that meshed needed. The
 //! Delaunay recovery's fronts and the whole-region fallback share one budget: the recovery stops
 //! widening holes once it is spent, and the fallback meshes with what is left, or does not start
 //! (nor where the recovery's own front already failed on exactly the region's triangles: it
@@ -53,7 +54,7 @@ pub const APEX_TEST: u64 = 30;
 /// Units per boundary or embedded triangle of the region.
 pub const PER_FACE: u64 = 500;
 /// Units every region may spend whatever its size.
-pub const BASE: u64 = 1_000_000_000;
+pub const BASE: u64 = 500_000_000;
 /// Units per tetrahedron of the running front, at its fullest.
 pub const PER_TET: u64 = 2_000;
 /// Units the front on one recovery hole may spend whatever the hole's size.

@@ -255,7 +255,8 @@ impl Operation for TetMeshOp {
         // 29: closing is tried again after twice as many back-tracks, and widens at most 512 faces.
         // 30: a closing try that fails leaves the front as it was.
         // 31: the front on the whole region after Delaunay gave way has a budget of its own.
-        31
+        // 32: a region's fronts may spend half as much whatever its size.
+        32
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
