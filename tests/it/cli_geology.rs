@@ -319,7 +319,8 @@ fn an_intrusion_keeps_the_overlap_of_two_bodies_whichever_is_kept_outside_the_ot
 #[test]
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
     // These mesh now, below the bars: the salt gaps since a front's last gaps are closed by the
-    // Delaunay method, the lenses since no chart's border overlaps itself in map view.
+    // Delaunay method, the lenses since no chart's border overlaps itself in map view, the
+    // smoothed channel since no pinch given away after untwisting makes a chart overlap again.
     let meshing = [
         "salt_overhang",
         "two_lenses",
@@ -331,6 +332,7 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "fault_splay_at_one_degree",
         "zero_thickness_layer",
         "channel",
+        "smoothed_channel",
     ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");

@@ -262,7 +262,10 @@ impl<'a> Charting<'a> {
         if crate::charts::widen_necks(&patch.mesh, &normals, self.max_deg, &mut group) > 0 {
             crate::charts::unpinch(&patch.mesh, &mut group);
         }
-        if crate::charts::untwist(&patch.mesh, &normals, self.max_deg, &mut group) > 0 {
+        for _ in 0..crate::charts::UNTWIST_PASSES {
+            if crate::charts::untwist(&patch.mesh, &normals, self.max_deg, &mut group) == 0 {
+                break;
+            }
             crate::charts::unpinch(&patch.mesh, &mut group);
         }
         groups = crate::charts::connected_groups(&patch.mesh, |t| group[t as usize]);

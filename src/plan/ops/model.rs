@@ -98,7 +98,8 @@ impl Operation for ModelOp {
         // 22: curves inside one surface carry the sizes their narrow patches ask for.
         // 23: triangles held in common with a surface named first are dropped; the curves at a
         //     patch's sharp corner carry the distance to the nearer first point past it.
-        23
+        // 24: untwisting and unpinching charts alternate until untwisting moves nothing.
+        24
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
