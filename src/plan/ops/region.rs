@@ -256,7 +256,8 @@ impl Operation for TetMeshOp {
         // 30: a closing try that fails leaves the front as it was.
         // 31: the front on the whole region after Delaunay gave way has a budget of its own.
         // 32: a region's fronts may spend half as much whatever its size.
-        32
+        // 33: a thin layer's flips and contractions act on tets up to shape 0.6, not 0.8.
+        33
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
