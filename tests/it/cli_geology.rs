@@ -198,6 +198,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "fault_splay",
         "fault_with_a_hole",
         "graben",
+        "horst",
         "fault_under_an_unconformity",
         "relay_ramp",
         "listric_fault",
@@ -393,6 +394,20 @@ fn a_downlap_has_no_needle_where_its_two_surfaces_leave_the_box_side_together() 
 #[test]
 fn a_graben_between_a_master_fault_and_an_antithetic_one_ending_on_it_meshes_into_six_regions() {
     builds_and_meshes(&case("graben"));
+}
+
+#[test]
+fn a_horst_between_two_faults_dipping_away_from_each_other_meshes_into_six_regions() {
+    let (_dir, report) = builds_and_meshes_reporting(&case("horst"));
+    let names = region_names(&report);
+    // The raised block, above and below its own horizon, lies between both faults; each outer
+    // block, above and below the regional horizon, against one.
+    let between = |n: &&String| n.starts_with("F1+F2+H_h+");
+    assert_eq!(names.iter().filter(between).count(), 2, "{names:?}");
+    for fault in ["F1+H+", "F2+H+"] {
+        let outer = names.iter().filter(|n| n.starts_with(fault)).count();
+        assert_eq!(outer, 2, "{fault}: {names:?}");
+    }
 }
 
 #[test]

@@ -61,6 +61,7 @@ pub fn cases() -> Vec<Case> {
         fault_splay(),
         fault_with_a_hole(),
         graben(),
+        horst(),
         fault_under_an_unconformity(),
         relay_ramp(),
         listric_fault(),
@@ -547,6 +548,35 @@ fn graben() -> Case {
     r.keep("H_g", "above", "F1");
     r.keep("H_g", "above", "F2");
     r.case(&["box", "F1", "F2", "H", "H_g"], 6)
+}
+
+/// A horst: two faults dipping away from each other (F1 60° west, F2 60° east), both through
+/// the box, the block between them raised 150 m: the horizon H of the two outer blocks is one
+/// surface whose part in the horst is discarded, the horst's H_h is kept below both faults.
+fn horst() -> Case {
+    let mut rng = Rng(0x686f_7273_7421_2121);
+    let mut r = Recipe::new("horst");
+    let zs = (-6000.0, 3000.0);
+    let f1 = fault_y(1400.0, -500.0, 60.0, (LO, HI), zs, &mut rng);
+    let f2 = fault_y(2600.0, -500.0, 120.0, (LO, HI), zs, &mut rng);
+    r.surface("F1", "fault", &f1, &PLAIN);
+    r.surface("F2", "fault", &f2, &DEPTH);
+    r.surface(
+        "H",
+        "horizon",
+        &horizon(-950.0, 25.0, 0.5, &mut rng),
+        &PLAIN,
+    );
+    r.trims.push(format!(
+        "[[trim]]\nsurface = \"H\"\ndiscard = {{ nearest = [{}, {}, -950.0] }}\n",
+        ORIGIN_X + 2000.0,
+        ORIGIN_Y + 2000.0
+    ));
+    let h = horizon(-800.0, 25.0, 0.2, &mut rng);
+    r.surface("H_h", "horizon", &h, &PLAIN);
+    r.keep("H_h", "below", "F1");
+    r.keep("H_h", "below", "F2");
+    r.case(&["box", "F1", "F2", "H", "H_h"], 6)
 }
 
 /// A splay: F2 branches upwards from a through-going fault F1 (60°) along a line at 1300 m
