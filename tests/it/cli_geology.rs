@@ -199,6 +199,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "fault_with_a_hole",
         "graben",
         "horst",
+        "tilted_layers",
         "fault_under_an_unconformity",
         "relay_ramp",
         "listric_fault",
@@ -394,6 +395,35 @@ fn a_downlap_has_no_needle_where_its_two_surfaces_leave_the_box_side_together() 
 #[test]
 fn a_graben_between_a_master_fault_and_an_antithetic_one_ending_on_it_meshes_into_six_regions() {
     builds_and_meshes(&case("graben"));
+}
+
+#[test]
+fn layers_tilted_to_35_degrees_outcrop_at_the_top_and_mesh_into_four_regions() {
+    let (_dir, report) = builds_and_meshes_reporting(&case("tilted_layers"));
+    let names = region_names(&report);
+    // The layers between horizons run from the box's top to its base; the side regions each
+    // end at one of them.
+    for layer in ["H1+H2+", "H2+H3+"] {
+        let n = (names.iter().find(|n| n.starts_with(layer)))
+            .unwrap_or_else(|| panic!("no layer {layer}: {names:?}"));
+        assert!(n.contains("box.zmax") && n.contains("box.zmin"), "{n}");
+    }
+    let west = names
+        .iter()
+        .find(|n| n.starts_with("H1+box"))
+        .expect("west");
+    assert!(
+        west.contains("box.zmax") && !west.contains("box.zmin"),
+        "{west}"
+    );
+    let east = names
+        .iter()
+        .find(|n| n.starts_with("H3+box"))
+        .expect("east");
+    assert!(
+        east.contains("box.zmin") && !east.contains("box.zmax"),
+        "{east}"
+    );
 }
 
 #[test]

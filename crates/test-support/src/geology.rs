@@ -62,6 +62,7 @@ pub fn cases() -> Vec<Case> {
         fault_with_a_hole(),
         graben(),
         horst(),
+        tilted_layers(),
         fault_under_an_unconformity(),
         relay_ramp(),
         listric_fault(),
@@ -548,6 +549,20 @@ fn graben() -> Case {
     r.keep("H_g", "above", "F1");
     r.keep("H_g", "above", "F2");
     r.case(&["box", "F1", "F2", "H", "H_g"], 6)
+}
+
+/// Layers tilted to 35°, as on a fold's limb: three horizons striking along y, each leaving the
+/// box through its top or east side and through its base or west side; of the four regions,
+/// the two layers between horizons reach from the box's top to its base.
+fn tilted_layers() -> Case {
+    let mut rng = Rng(0x7469_6c74_6564_2121);
+    let mut r = Recipe::new("tilted_layers");
+    let zs = (-2600.0, 600.0);
+    for (name, x0) in [("H1", 1200.0), ("H2", 2000.0), ("H3", 2800.0)] {
+        let h = fault_y(x0, -1000.0, 35.0, (LO, HI), zs, &mut rng);
+        r.surface(name, "horizon", &h, &PLAIN);
+    }
+    r.case(&["box", "H1", "H2", "H3"], 4)
 }
 
 /// A horst: two faults dipping away from each other (F1 60° west, F2 60° east), both through
