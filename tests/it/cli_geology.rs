@@ -352,6 +352,7 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "channel",
         "smoothed_channel",
         "salt_dome_cut_by_the_box",
+        "lens_cut_by_a_fault",
     ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
