@@ -426,22 +426,12 @@ fn layers_tilted_to_35_degrees_outcrop_at_the_top_and_mesh_into_four_regions() {
             .unwrap_or_else(|| panic!("no layer {layer}: {names:?}"));
         assert!(n.contains("box.zmax") && n.contains("box.zmin"), "{n}");
     }
-    let west = names
-        .iter()
-        .find(|n| n.starts_with("H1+box"))
-        .expect("west");
-    assert!(
-        west.contains("box.zmax") && !west.contains("box.zmin"),
-        "{west}"
-    );
-    let east = names
-        .iter()
-        .find(|n| n.starts_with("H3+box"))
-        .expect("east");
-    assert!(
-        east.contains("box.zmin") && !east.contains("box.zmax"),
-        "{east}"
-    );
+    // West of H1 the top and no base; east of H3 the base and no top.
+    for (side, has, lacks) in [("H1+box", "zmax", "zmin"), ("H3+box", "zmin", "zmax")] {
+        let n = (names.iter().find(|n| n.starts_with(side))).expect(side);
+        let (has, lacks) = (format!("box.{has}"), format!("box.{lacks}"));
+        assert!(n.contains(&has) && !n.contains(&lacks), "{n}");
+    }
 }
 
 #[test]

@@ -536,30 +536,52 @@ fn smoothed_channel() -> Case {
 fn graben() -> Case {
     let mut rng = Rng(0x6772_6162_656e_2121);
     let mut r = Recipe::new("graben");
-    // Both reach far past the box, so that each lies under or over every point it trims
-    // (`above` and `below` look vertically).
-    let zs = (-6000.0, 3000.0);
-    let f1 = fault_y(1400.0, -500.0, 120.0, (LO, HI), zs, &mut rng);
-    let f2 = fault_y(2600.0, -500.0, 60.0, (LO, HI), zs, &mut rng);
-    r.surface("F1", "fault", &f1, &PLAIN);
-    r.surface("F2", "fault", &f2, &DEPTH);
-    r.keep("F2", "above", "F1");
-    r.surface(
-        "H",
-        "horizon",
-        &horizon(-800.0, 25.0, 0.5, &mut rng),
-        &PLAIN,
-    );
-    r.trims.push(format!(
-        "[[trim]]\nsurface = \"H\"\ndiscard = {{ nearest = [{}, {}, -800.0] }}\n",
-        ORIGIN_X + 2000.0,
-        ORIGIN_Y + 2000.0
-    ));
-    let g = horizon(-950.0, 25.0, 0.2, &mut rng);
-    r.surface("H_g", "horizon", &g, &PLAIN);
-    r.keep("H_g", "above", "F1");
-    r.keep("H_g", "above", "F2");
+    let block = Block {
+        dips: (120.0, 60.0),
+        outer_z: -800.0,
+        block_z: -950.0,
+        side: "above",
+    };
+    block.draw(&mut r, &mut rng, "H_g", true);
     r.case(&["box", "F1", "F2", "H", "H_g"], 6)
+}
+
+/// A fault block between F1 (at x = 1400 m) and F2 (at 2600 m), both at -500 m, with the
+/// dips `dips`: the horizon H of the outer blocks at `outer_z`, one surface whose part in the
+/// block is discarded; the block's own horizon at `block_z`, kept on `side` of both faults.
+struct Block {
+    dips: (f64, f64),
+    outer_z: f64,
+    block_z: f64,
+    side: &'static str,
+}
+
+impl Block {
+    /// Adds F1, F2, H and the block's horizon `inner` to `r`; with `ending`, F2 ends on F1
+    /// (kept above it).
+    fn draw(&self, r: &mut Recipe, rng: &mut Rng, inner: &str, ending: bool) {
+        // Both reach far past the box, so that each lies under or over every point it trims
+        // (`above` and `below` look vertically).
+        let zs = (-6000.0, 3000.0);
+        let f1 = fault_y(1400.0, -500.0, self.dips.0, (LO, HI), zs, rng);
+        let f2 = fault_y(2600.0, -500.0, self.dips.1, (LO, HI), zs, rng);
+        r.surface("F1", "fault", &f1, &PLAIN);
+        r.surface("F2", "fault", &f2, &DEPTH);
+        if ending {
+            r.keep("F2", "above", "F1");
+        }
+        let z = self.outer_z;
+        r.surface("H", "horizon", &horizon(z, 25.0, 0.5, rng), &PLAIN);
+        r.trims.push(format!(
+            "[[trim]]\nsurface = \"H\"\ndiscard = {{ nearest = [{}, {}, {z:.1}] }}\n",
+            ORIGIN_X + 2000.0,
+            ORIGIN_Y + 2000.0
+        ));
+        let h = horizon(self.block_z, 25.0, 0.2, rng);
+        r.surface(inner, "horizon", &h, &PLAIN);
+        r.keep(inner, self.side, "F1");
+        r.keep(inner, self.side, "F2");
+    }
 }
 
 /// Layers tilted to 35°, as on a fold's limb: three horizons striking along y, each leaving the
@@ -582,26 +604,13 @@ fn tilted_layers() -> Case {
 fn horst() -> Case {
     let mut rng = Rng(0x686f_7273_7421_2121);
     let mut r = Recipe::new("horst");
-    let zs = (-6000.0, 3000.0);
-    let f1 = fault_y(1400.0, -500.0, 60.0, (LO, HI), zs, &mut rng);
-    let f2 = fault_y(2600.0, -500.0, 120.0, (LO, HI), zs, &mut rng);
-    r.surface("F1", "fault", &f1, &PLAIN);
-    r.surface("F2", "fault", &f2, &DEPTH);
-    r.surface(
-        "H",
-        "horizon",
-        &horizon(-950.0, 25.0, 0.5, &mut rng),
-        &PLAIN,
-    );
-    r.trims.push(format!(
-        "[[trim]]\nsurface = \"H\"\ndiscard = {{ nearest = [{}, {}, -950.0] }}\n",
-        ORIGIN_X + 2000.0,
-        ORIGIN_Y + 2000.0
-    ));
-    let h = horizon(-800.0, 25.0, 0.2, &mut rng);
-    r.surface("H_h", "horizon", &h, &PLAIN);
-    r.keep("H_h", "below", "F1");
-    r.keep("H_h", "below", "F2");
+    let block = Block {
+        dips: (60.0, 120.0),
+        outer_z: -950.0,
+        block_z: -800.0,
+        side: "below",
+    };
+    block.draw(&mut r, &mut rng, "H_h", false);
     r.case(&["box", "F1", "F2", "H", "H_h"], 6)
 }
 
