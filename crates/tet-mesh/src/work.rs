@@ -18,13 +18,11 @@
 //! (CloudSpin's KOBE region at 3 km: 1.25 billion units in 79 s when the base was a billion):
 //! hence the base, near three times the most a region that meshed needed. The
 //! Delaunay recovery's fronts and the whole-region fallback share one budget: the recovery stops
-//! widening holes once it is spent, and the fallback meshes with what is left, or does not start
+//! widening holes once it is spent, and the fallback meshes within what is left, or does not start
 //! (nor where the recovery's own front already failed on exactly the region's triangles: it
-//! would repeat it). Across the suite's RINGMesh models, geology corpus, SCEC systems and
-//! smoothed supports (158 regions) the fallback never meshed a region whose recovery failed,
-//! and spent 124 to 376 million units each time failing, three times of four repeating the
-//! recovery's front on the whole region; sharing and not repeating bring down the time a region
-//! takes to fail. Within that, the front on one recovery hole smaller than the region may spend
+//! would repeat it): where the recovery's front had failed on the whole region, the fallback
+//! repeated it and failed too, so sharing and not repeating bring down the time a region takes
+//! to fail. Within that, the front on one recovery hole smaller than the region may spend
 //! at most [`HOLE_BASE`] and [`HOLE_PER_FACE`] per hole face (and the per-tet allowance): on the
 //! corpus every front on such a hole that closed it spent under 11 million units, while modelA4's
 //! front on a hole widened to 10,360 faces spent 500 million failing before a smaller hole
@@ -99,11 +97,10 @@ impl FrontWork {
     /// [`spend`](Self::spend)s here what the hole's front spent.
     pub fn for_hole(&self, faces: usize) -> FrontWork {
         let own = HOLE_BASE.saturating_add(HOLE_PER_FACE.saturating_mul(faces as u64));
-        let left = self.allowed.saturating_sub(self.spent.get());
         let allowed = if faces >= self.faces {
-            left
+            self.left()
         } else {
-            left.min(own)
+            self.left().min(own)
         };
         FrontWork {
             may_close: self.may_close,
@@ -117,12 +114,16 @@ impl FrontWork {
     /// front spent.
     pub fn for_fallback(&self) -> FrontWork {
         let own = FALLBACK_BASE.saturating_add(PER_FACE.saturating_mul(self.faces as u64));
-        let left = self.allowed.saturating_sub(self.spent.get());
         FrontWork {
             faces: self.faces,
             may_close: self.may_close,
-            ..FrontWork::with(left.min(own), self.per_tet)
+            ..FrontWork::with(self.left().min(own), self.per_tet)
         }
+    }
+
+    /// The units not yet spent of the fixed part of the budget (the per-tet allowance aside).
+    fn left(&self) -> u64 {
+        self.allowed.saturating_sub(self.spent.get())
     }
 
     /// A budget of `allowed` units plus `per_tet` per tet of the running front at its fullest,
