@@ -20,6 +20,9 @@
 //! - Labels are computed once on the whole imported surface, not per patch: where a curve
 //!   crosses a seam, the charts of the patches on both sides then end at the same point of it
 //!   (per patch, seam ends a metre apart made metre-long curve pieces and elements).
+//! - Where a curve clips a chart near its tip, the patch keeps a wedge of it that meets the
+//!   curve along a few metres between long seams (`merge_wedges` gives it to the chart beside
+//!   it, per patch: that only removes seam ends).
 //! - A chart never touches itself at a vertex only (`unpinch` gives the smaller fans there to a
 //!   neighbouring chart): its boundary loops must not touch. Nor does a seam cut off a lobe of
 //!   it behind a sliver of a neck (`widen_necks` gives the lobe to the chart across the seam):
@@ -39,11 +42,13 @@
 
 mod necks;
 mod twists;
+mod wedges;
 
 use geom::TriMesh;
 use geom::predicates::{cross, dot, sub};
 pub use necks::widen_necks;
 pub use twists::untwist;
+pub use wedges::merge_wedges;
 
 /// The six axis directions, in label order.
 const AXES: [[f64; 3]; 6] = [
@@ -233,6 +238,15 @@ fn area(mesh: &TriMesh, t: usize) -> f64 {
     let [a, b, c] = mesh.corners(t);
     let n = cross(&sub(b, a), &sub(c, a));
     0.5 * dot(&n, &n).sqrt()
+}
+
+/// The length of triangle `t`'s edge `k` (from corner `k` to corner `k + 1`).
+fn edge_length(mesh: &TriMesh, t: u32, k: usize) -> f64 {
+    let tri = mesh.triangles[t as usize];
+    geom::predicates::dist(
+        &mesh.vertices[tri[k] as usize],
+        &mesh.vertices[tri[(k + 1) % 3] as usize],
+    )
 }
 
 /// `sum += w * n`.

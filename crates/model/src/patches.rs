@@ -258,6 +258,7 @@ impl<'a> Charting<'a> {
                 group[t as usize] = g as u32;
             }
         }
+        crate::charts::merge_wedges(&patch.mesh, &normals, self.max_deg, &mut group);
         crate::charts::unpinch(&patch.mesh, &mut group);
         if crate::charts::widen_necks(&patch.mesh, &normals, self.max_deg, &mut group) > 0 {
             crate::charts::unpinch(&patch.mesh, &mut group);

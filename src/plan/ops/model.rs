@@ -99,7 +99,8 @@ impl Operation for ModelOp {
         // 23: triangles held in common with a surface named first are dropped; the curves at a
         //     patch's sharp corner carry the distance to the nearer first point past it.
         // 24: untwisting and unpinching charts alternate until untwisting moves nothing.
-        24
+        // 25: a chart that meets its patch's border along a wedge joins a chart beside it.
+        25
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -23,9 +23,9 @@
 //!   the longest seam (the lowest on ties). Triangles and edges are visited in index order, so
 //!   the result is the same on every machine.
 
-use super::{NONE, across_edges, add, area};
+use super::{NONE, across_edges, add, area, edge_length};
 use geom::TriMesh;
-use geom::predicates::{dist, dot};
+use geom::predicates::dot;
 
 /// The most triangles a lobe may have.
 const MAX_LOBE: usize = 256;
@@ -239,15 +239,6 @@ fn receiver(
         .into_iter()
         .max_by(|x, y| x.1.total_cmp(&y.1).then(y.0.cmp(&x.0)))
         .map(|(h, _)| h)
-}
-
-/// The length of triangle `t`'s edge `k`.
-fn edge_length(mesh: &TriMesh, t: u32, k: usize) -> f64 {
-    let tri = mesh.triangles[t as usize];
-    dist(
-        &mesh.vertices[tri[k] as usize],
-        &mesh.vertices[tri[(k + 1) % 3] as usize],
-    )
 }
 
 #[cfg(test)]

@@ -214,12 +214,9 @@ impl<'a> Untwisting<'a> {
             .collect();
         runs.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
         runs.into_iter().map(|(_, h)| h).find(|&h| {
-            let mut mean = self.mean[h as usize];
-            add(&mut mean, &self.mean[g], 1.0);
-            let both: Vec<u32> = merged(&members[g], &members[h as usize]);
-            both.iter()
-                .all(|&t| cosine(&self.normals[t as usize], &mean) >= self.cos_max)
-                && surface_mesh::projects_one_to_one(&chart_mesh(self.mesh, &both).0)
+            let (a, b) = (&members[g], &members[h as usize]);
+            let means = [self.mean[g], self.mean[h as usize]];
+            union_flattens(self.mesh, self.normals, [a, b], means, [self.cos_max; 2])
         })
     }
 
@@ -268,11 +265,23 @@ fn chart_mesh(mesh: &TriMesh, members: &[u32]) -> (TriMesh, Vec<u32>) {
     (chart, global)
 }
 
-/// Two ascending lists merged into one.
-fn merged(a: &[u32], b: &[u32]) -> Vec<u32> {
-    let mut out = [a, b].concat();
-    out.sort_unstable();
-    out
+/// Whether the union of two charts (their ascending `members`, and the area-weighted sums of
+/// their normals, `means`) is a chart: the triangles of each face within the angle of its
+/// `cos_max` of the union's mean normal, and the union projects one to one.
+pub(super) fn union_flattens(
+    mesh: &TriMesh,
+    normals: &[[f64; 3]],
+    members: [&[u32]; 2],
+    means: [[f64; 3]; 2],
+    cos_max: [f64; 2],
+) -> bool {
+    let mut mean = means[0];
+    add(&mut mean, &means[1], 1.0);
+    let faces =
+        |k: usize| (members[k].iter()).all(|&t| cosine(&normals[t as usize], &mean) >= cos_max[k]);
+    let mut both = members.concat();
+    both.sort_unstable();
+    faces(0) && faces(1) && surface_mesh::projects_one_to_one(&chart_mesh(mesh, &both).0)
 }
 
 /// The cosine of the angle between a unit normal `n` and the direction of `mean` (1 for a zero

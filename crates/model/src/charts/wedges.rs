@@ -1,0 +1,221 @@
+//! Wedges: a chart that a curve of the patch's border cuts off near the chart's tip, so that the
+//! chart meets the border along a stretch far shorter than its seams.
+//!
+//! Charts are labelled on the whole imported surface, before curves cut it into patches. Where a
+//! curve (a box side cutting a salt dome, a horizon meeting it) passes near the point where three
+//! charts meet, or clips the end of a chart's lobe, the patch keeps a wedge of that chart: two
+//! seams that reach the curve metres apart, or one seam that leaves the curve and comes back to
+//! it. Each seam end splits the curve, so the curve holds a piece of a few metres between seams
+//! that run on for a hundred, and at the case's size the elements there are flat: a salt dome
+//! cut by the box's side had seams meeting the cut 6 and 21 m apart at 250 m, and tets of 7.5°.
+//!
+//! Decisions and why:
+//! - A wedge is a chart of a patch whose border edges (edges of the patch's own border) are
+//!   shorter in all than [`WEDGE`] times its seam edges, and not absent: a chart with no border
+//!   is an island or a closed body's chart, which the labelling already decided.
+//! - A wedge joins the chart beside it with which it shares the longest seam, among those with
+//!   which the union is still a chart (each triangle faces within the chart angle of the union's
+//!   mean normal, and it projects one to one): seams only disappear, so no two seam ends come
+//!   closer than before. When no chart beside it can take it, it stays.
+//! - A wedge under a tenth of the taker's area may face further, up to [`WEDGE_ANGLE_DEG`]: it
+//!   lies where its own chart turns away, so it faces the taker at more than the chart angle
+//!   (the salt dome's, 68°), and so small it barely moves the union's mean; the one-to-one
+//!   projection is what the surface mesher needs, and it is checked.
+//! - Only the patch changes: the patch across the curve keeps its seams, whose ends still split
+//!   the curve, but no end is added anywhere. Across a box side or a discarded part, there is
+//!   no patch across.
+//! - Charts are visited smallest first (then by label), seams compared by length (then by the
+//!   lower label), so the result is the same on every machine.
+
+use super::twists::union_flattens;
+use super::{NONE, across_edges, add, area, edge_length};
+use geom::TriMesh;
+
+/// A chart is a wedge when its border is shorter than this many times its seams. The salt dome's
+/// wedge has 0.07; the charts of a band of a closed body between two horizons have 0.4 to 0.6.
+/// Long charts (a tube's quarters, a channel's flanks) have less, and join another only where
+/// the union is still a chart.
+const WEDGE: f64 = 0.25;
+/// The triangles of a wedge under [`SMALL`] times the area of the chart that takes it may face
+/// this far from the union's mean normal (the chart's own triangles, and a larger wedge's, the
+/// chart angle): such a wedge lies where its chart turns away from the chart beside it, it
+/// hardly moves the mean, and the one-to-one projection of the union, checked as well, is what
+/// the surface mesher needs. The salt dome's wedge, one support triangle, faces 68° away.
+const WEDGE_ANGLE_DEG: f64 = 80.0;
+/// See [`WEDGE_ANGLE_DEG`].
+const SMALL: f64 = 0.1;
+
+/// Gives each wedge of a patch to a chart beside it (see the module doc); `group` is the chart of
+/// each of `mesh`'s triangles, `normals` their unit (or zero) normals. Returns how many wedges
+/// joined another chart.
+pub fn merge_wedges(
+    mesh: &TriMesh,
+    normals: &[[f64; 3]],
+    max_deg: f64,
+    group: &mut [u32],
+) -> usize {
+    let across = across_edges(mesh);
+    let cos_max = max_deg.to_radians().cos();
+    let mut merged = 0;
+    while let Some((g, h)) = next_merge(mesh, normals, &across, group, cos_max) {
+        for x in group.iter_mut().filter(|x| **x == g) {
+            *x = h;
+        }
+        merged += 1;
+    }
+    merged
+}
+
+/// The chart of a patch, as [`merge_wedges`] measures it.
+#[derive(Clone, Default)]
+struct Chart {
+    members: Vec<u32>,
+    area: f64,
+    /// The area-weighted sum of its normals.
+    mean: [f64; 3],
+    /// The length of its edges on the patch's border.
+    border: f64,
+    /// The length of its seam with each chart beside it, by label.
+    seams: Vec<(u32, f64)>,
+}
+
+/// The first wedge, smallest first, that a chart beside it can take, and that chart.
+fn next_merge(
+    mesh: &TriMesh,
+    normals: &[[f64; 3]],
+    across: &[[u32; 3]],
+    group: &[u32],
+    cos_max: f64,
+) -> Option<(u32, u32)> {
+    let charts = measure(mesh, normals, across, group);
+    let mut order: Vec<usize> = (0..charts.len())
+        .filter(|&g| {
+            let c = &charts[g];
+            let seams: f64 = c.seams.iter().map(|s| s.1).sum();
+            c.border > 0.0 && c.border < WEDGE * seams
+        })
+        .collect();
+    order.sort_by(|&a, &b| charts[a].area.total_cmp(&charts[b].area).then(a.cmp(&b)));
+    order.into_iter().find_map(|g| {
+        let c = &charts[g];
+        let mut beside = c.seams.clone();
+        beside.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
+        let h = beside.into_iter().map(|s| s.0).find(|&h| {
+            let d = &charts[h as usize];
+            let members = [&c.members[..], &d.members[..]];
+            let small = c.area < SMALL * d.area;
+            let own = if small {
+                WEDGE_ANGLE_DEG.to_radians().cos()
+            } else {
+                cos_max
+            };
+            let cos = [own, cos_max];
+            union_flattens(mesh, normals, members, [c.mean, d.mean], cos)
+        })?;
+        Some((g as u32, h))
+    })
+}
+
+/// Every chart's triangles, area, normal sum, border and seams, indexed by label.
+fn measure(mesh: &TriMesh, normals: &[[f64; 3]], across: &[[u32; 3]], group: &[u32]) -> Vec<Chart> {
+    let labels = group.iter().map(|&g| g as usize + 1).max().unwrap_or(0);
+    let mut charts = vec![Chart::default(); labels];
+    for (t, &g) in group.iter().enumerate() {
+        let c = &mut charts[g as usize];
+        c.members.push(t as u32);
+        let a = area(mesh, t);
+        c.area += a;
+        add(&mut c.mean, &normals[t], a);
+        for (k, &u) in across[t].iter().enumerate() {
+            let len = edge_length(mesh, t as u32, k);
+            if u == NONE {
+                c.border += len;
+            } else if group[u as usize] != g {
+                let h = group[u as usize];
+                match c.seams.iter_mut().find(|s| s.0 == h) {
+                    Some(s) => s.1 += len,
+                    None => c.seams.push((h, len)),
+                }
+            }
+        }
+    }
+    charts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A patch 10 m high and `2 * side` wide fanned around a point near its bottom side: chart 0
+    /// all around, and one triangle (index 3) reaching the top side along `top` m, in chart 1,
+    /// whose normal leans `deg` degrees from the others'.
+    fn fan(side: f64, top: f64, deg: f64) -> (TriMesh, Vec<[f64; 3]>, Vec<u32>) {
+        let h = top / 2.0;
+        let mesh = TriMesh::new(
+            vec![
+                [5.0 - side, 0.0, 0.0],
+                [5.0 + side, 0.0, 0.0],
+                [5.0 + side, 10.0, 0.0],
+                [5.0 + h, 10.0, 0.0],
+                [5.0 - h, 10.0, 0.0],
+                [5.0 - side, 10.0, 0.0],
+                [5.0, 0.5, 0.0],
+            ],
+            vec![
+                [0, 1, 6],
+                [1, 2, 6],
+                [2, 3, 6],
+                [3, 4, 6],
+                [4, 5, 6],
+                [5, 0, 6],
+            ],
+        );
+        let (s, c) = deg.to_radians().sin_cos();
+        let mut normals = vec![[0.0, 0.0, 1.0]; 6];
+        normals[3] = [s, 0.0, c];
+        (mesh, normals, vec![0, 0, 0, 1, 0, 0])
+    }
+
+    #[test]
+    fn a_chart_meeting_the_border_along_a_sliver_joins_the_chart_around_it() {
+        let (mesh, normals, mut group) = fan(5.0, 0.1, 30.0);
+        assert_eq!(merge_wedges(&mesh, &normals, 60.0, &mut group), 1);
+        assert_eq!(group, [0; 6]);
+    }
+
+    #[test]
+    fn a_small_wedge_joins_though_it_faces_beyond_the_chart_angle() {
+        // As on the salt dome cut by the box: one support triangle at 68°.
+        let (mesh, normals, mut group) = fan(5.0, 0.1, 68.0);
+        assert_eq!(merge_wedges(&mesh, &normals, 60.0, &mut group), 1);
+        assert_eq!(group, [0; 6]);
+    }
+
+    #[test]
+    fn a_wedge_facing_away_beyond_the_wedge_angle_stays() {
+        let (mesh, normals, mut group) = fan(5.0, 0.1, 85.0);
+        assert_eq!(merge_wedges(&mesh, &normals, 60.0, &mut group), 0);
+        assert_eq!(group, [0, 0, 0, 1, 0, 0]);
+    }
+
+    #[test]
+    fn a_chart_with_a_long_border_keeps_its_seams() {
+        // 6 m of border against two seams of 10 m: not a wedge, though the union would flatten.
+        let (mesh, normals, mut group) = fan(5.0, 6.0, 0.0);
+        assert_eq!(merge_wedges(&mesh, &normals, 60.0, &mut group), 0);
+        assert_eq!(group, [0, 0, 0, 1, 0, 0]);
+    }
+
+    #[test]
+    fn a_wedge_not_small_beside_its_taker_joins_only_within_the_chart_angle() {
+        // The patch 0.3 m wide: the wedge is a fifth of the chart around it.
+        for (deg, joins) in [(75.0, 0), (30.0, 1)] {
+            let (mesh, normals, mut group) = fan(0.15, 0.1, deg);
+            assert_eq!(
+                merge_wedges(&mesh, &normals, 60.0, &mut group),
+                joins,
+                "{deg}°"
+            );
+        }
+    }
+}
