@@ -226,6 +226,22 @@ fn a_salt_dome_cut_by_the_box_meshes_with_no_wedge_of_a_chart_on_the_cut() {
 }
 
 #[test]
+fn a_fault_with_a_five_metre_throw_meets_the_bars_once_its_close_curves_are_refined() {
+    // Each horizon's cutoffs bound a strip of the fault 5.8 m wide at a size of 250 m: the
+    // build warns, and the recipe line the warnings give refines there.
+    let gap = known_gap("small_throw_fault");
+    let mesh = "[mesh]\nsize = ";
+    assert!(gap.recipe.contains(mesh), "{}", gap.recipe);
+    let case = Case {
+        recipe: gap
+            .recipe
+            .replace(mesh, "[mesh]\nrefine_close_curves = true\nsize = "),
+        ..gap
+    };
+    builds_and_meshes(&case);
+}
+
+#[test]
 fn the_salt_overhangs_narrow_charts_are_as_fine_as_they_are_wide_and_its_tets_over_five_degrees() {
     // The overhang's rim is cut into charts whose seams run metres apart: elements of the case's
     // size across them were needles, and tets on them reached 0.9°.
@@ -353,6 +369,7 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "channel",
         "smoothed_channel",
         "lens_cut_by_a_fault",
+        "small_throw_fault",
     ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
