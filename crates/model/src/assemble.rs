@@ -170,9 +170,11 @@ pub fn region_input<'a>(
 /// share a triangle with the region on the back of both: a wedge whose two sides close onto each
 /// other there (an onlap's tip, where the surfaces come closer than their meshes can part), or
 /// two surfaces drawn on each other. The region has no volume there, the triangle is an
-/// interface of the regions beyond, and without both copies the boundary stays closed. A
-/// triangle held twice the same way, and a boundary that is all such pairs, are left for the
-/// mesher's check to refuse.
+/// interface of the regions beyond, and without both copies the boundary stays closed. When the
+/// region beyond is this one on both sides (it lies round a thinner region that closes there),
+/// the triangle stays in it as an embedded face (`surrounded_pairs`), or its nodes would be in
+/// no tet. A triangle held twice the same way, and a boundary that is all such pairs, are left
+/// for the mesher's check to refuse.
 pub fn drop_pinched_faces(input: &mut RegionInput) -> Vec<[f64; 3]> {
     let canonical = |t: &[u32; 3]| {
         let k = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
@@ -192,19 +194,109 @@ pub fn drop_pinched_faces(input: &mut RegionInput) -> Vec<[f64; 3]> {
         return Vec::new();
     }
     let mut places = Vec::new();
+    let around = surrounded_pairs(input, &pinched);
     let pts = &input.vertices;
+    let mut kept = Vec::new();
     input.boundary.retain(|t| {
         let drop = pinched(t);
         if drop && canonical(t)[1] < canonical(t)[2] {
-            let c = t.map(|v| pts[v as usize]);
-            places.push([0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0));
+            if around.binary_search(&sorted(t)).is_ok() {
+                kept.push(*t);
+            } else {
+                let c = t.map(|v| pts[v as usize]);
+                places.push([0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0));
+            }
         }
         !drop
     });
+    input.embedded.extend(kept);
     if !places.is_empty() {
         keep_used_vertices(input);
     }
     places
+}
+
+/// The vertices of `t`, ascending.
+fn sorted(t: &[u32; 3]) -> [u32; 3] {
+    let mut v = *t;
+    v.sort_unstable();
+    v
+}
+
+/// Of the triangles the region holds once each way (`pinched`), as sorted vertex triples, those
+/// where the region lies round the pinch rather than in it: a thinner region between the two
+/// patches closes to nothing there and drops them, so this one must keep the triangle, as a
+/// face inside it, or its nodes would be in no tet. Decided where an edge of such a triangle
+/// has exactly two other boundary triangles, one of each patch: the region lies round the pinch
+/// when the one's far corner is outside the other (exact `orient3d`), since the patches part
+/// there with the thinner region between them. A component of such triangles (connected through
+/// edges) goes one way, by its first decided edge; undecided, it is dropped as before.
+fn surrounded_pairs(input: &RegionInput, pinched: &dyn Fn(&[u32; 3]) -> bool) -> Vec<[u32; 3]> {
+    let edge = |a: u32, b: u32| [a.min(b), a.max(b)];
+    let mut by_edge: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
+    for (i, t) in input.boundary.iter().enumerate() {
+        for k in 0..3 {
+            by_edge
+                .entry(edge(t[k], t[(k + 1) % 3]))
+                .or_default()
+                .push(i);
+        }
+    }
+    let mut faces: Vec<[u32; 3]> = (input.boundary.iter())
+        .filter(|t| pinched(t))
+        .map(sorted)
+        .collect();
+    faces.sort_unstable();
+    faces.dedup();
+    let p = |v: u32| &input.vertices[v as usize];
+    // Whether the region lies round the pinch at edge `e`, when the edge decides it.
+    let decide = |e: [u32; 2]| -> Option<bool> {
+        let others: Vec<&[u32; 3]> = (by_edge.get(&e)?.iter())
+            .map(|&i| &input.boundary[i])
+            .filter(|t| !pinched(t))
+            .collect();
+        let [t1, t2] = others[..] else { return None };
+        let far = *t2.iter().find(|&&v| v != e[0] && v != e[1])?;
+        let side = geom::predicates::orient3d(p(t1[0]), p(t1[1]), p(t1[2]), p(far));
+        match side {
+            geom::Orientation::Positive => Some(true),
+            geom::Orientation::Negative => Some(false),
+            geom::Orientation::Zero => None,
+        }
+    };
+    let mut out = Vec::new();
+    let mut seen = vec![false; faces.len()];
+    for start in 0..faces.len() {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let mut component = vec![start];
+        let mut k = 0;
+        let mut verdict = None;
+        while k < component.len() {
+            let f = faces[component[k]];
+            k += 1;
+            for e in [edge(f[0], f[1]), edge(f[1], f[2]), edge(f[0], f[2])] {
+                let near = (faces.iter().enumerate())
+                    .filter(|(j, g)| !seen[*j] && g.contains(&e[0]) && g.contains(&e[1]))
+                    .map(|(j, _)| j)
+                    .collect::<Vec<_>>();
+                for j in near {
+                    seen[j] = true;
+                    component.push(j);
+                }
+                if verdict.is_none() {
+                    verdict = decide(e);
+                }
+            }
+        }
+        if verdict == Some(true) {
+            out.extend(component.iter().map(|&j| faces[j]));
+        }
+    }
+    out.sort_unstable();
+    out
 }
 
 /// Renumbers the region's triangles onto the vertices they use, in their order.
@@ -525,11 +617,10 @@ mod tests {
         assert_eq!(face_to_face(&sides, &get), None);
     }
 
-    #[test]
-    fn a_triangle_held_once_each_way_is_dropped_with_the_vertices_only_it_used() {
-        // A tetrahedron's four outward faces, and a flat triangle on a fifth vertex held twice,
-        // once each way (two patches closing onto each other there).
-        let input = |boundary: Vec<[u32; 3]>| RegionInput {
+    /// A region on a unit tetrahedron's corners and a fifth vertex (3, 3, 0), bounded by
+    /// `boundary`.
+    fn tet_and_fin(boundary: Vec<[u32; 3]>) -> RegionInput {
+        RegionInput {
             name: "r".into(),
             vertices: vec![
                 [0.0, 0.0, 0.0],
@@ -541,7 +632,14 @@ mod tests {
             boundary,
             embedded: Vec::new(),
             lines: Vec::new(),
-        };
+        }
+    }
+
+    #[test]
+    fn a_triangle_held_once_each_way_is_dropped_with_the_vertices_only_it_used() {
+        // A tetrahedron's four outward faces, and a flat triangle on a fifth vertex held twice,
+        // once each way (two patches closing onto each other there).
+        let input = tet_and_fin;
         let shell = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
         let mut pinched = input([shell.clone(), vec![[1, 4, 2], [4, 1, 2]]].concat());
         let places = drop_pinched_faces(&mut pinched);
@@ -555,6 +653,19 @@ mod tests {
         let mut plain = input(shell.clone());
         assert!(drop_pinched_faces(&mut plain).is_empty());
         assert_eq!(plain.vertices.len(), 5);
+    }
+
+    #[test]
+    fn a_triangle_held_once_each_way_by_the_region_round_it_stays_as_a_face_inside() {
+        // The tetrahedron as a cavity (its faces turned inward: the region lies outside it), and
+        // the same fin on its edge 1-2: the region is on both sides of the fin, which a thinner
+        // region closing there would drop, so this one keeps it, embedded.
+        let shell = vec![[0, 1, 2], [0, 3, 1], [1, 3, 2], [0, 2, 3]];
+        let mut input = tet_and_fin([shell.clone(), vec![[1, 4, 2], [4, 1, 2]]].concat());
+        assert!(drop_pinched_faces(&mut input).is_empty());
+        assert_eq!(input.boundary, shell);
+        assert_eq!(input.embedded, vec![[4, 1, 2]]);
+        assert_eq!(input.vertices.len(), 5);
     }
 
     #[test]

@@ -257,7 +257,8 @@ impl Operation for TetMeshOp {
         // 31: the front on the whole region after Delaunay gave way has a budget of its own.
         // 32: a region's fronts may spend half as much whatever its size.
         // 33: a thin layer's flips and contractions act on tets up to shape 0.6, not 0.8.
-        33
+        // 34: a region round a pinch keeps the pinched triangle as a face inside it.
+        34
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
