@@ -284,24 +284,21 @@ fn cloud_spin_at_3_km(bytes: &[u8], close: &str) -> (Model, String) {
 }
 
 #[test]
-fn cloud_spin_fixed_meshes_every_patch_and_puts_each_failing_region_down_to_close_curves() {
+fn cloud_spin_fixed_meshes_every_region_without_refining_its_close_curves() {
     // HOUSTON's patches hold a reverse fault's slit whose lips overlap in map view and a slit
-    // pinched where two faults meet: no plane projects them one to one. Without refining where
-    // curves come close, some of the model's regions do not mesh; every patch must.
+    // pinched where two faults meet: no plane projects them one to one. Some regions failed
+    // among curves centimetres to metres apart until the strips of the faults between a
+    // horizon's two cutoffs were as fine as they are wide; now none needs a refinement round.
     let Some(dir) = data_dir() else { return };
     let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
-    let (_, recipe) = cloud_spin_at_3_km(&bytes, "refine_close_curves = false\n");
-    let (_scratch, out) = build_in_scratch(&bytes, &recipe, &["--json"]);
+    let (model, recipe) = cloud_spin_at_3_km(&bytes, "refine_close_curves = false\n");
+    let (scratch, out) = build_in_scratch(&bytes, &recipe, &["--json"]);
     let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
     // Counted as RINGMesh's load test counted this file when it was added (its
     // CloudSpin_fixed.ml.txt of 2018-01): charts and creases cut 132 patches out of 115 TFACEs.
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a JSON report");
     assert_eq!(geology(&report), [138, 239, 115, 7]);
-    let patch_failures: Vec<&str> = err
-        .lines()
-        .filter(|l| l.contains("error `surface_mesh:") || l.contains("error `patch:"))
-        .collect();
-    assert!(patch_failures.is_empty(), "{}", patch_failures.join("\n"));
     // KOBE's slit is pinched to another hole and one lobe's lips overlap in map view: judged at
     // the loop's lowest vertex alone the projection passed, and a triangle on one lip lay over
     // the other block, which left a region's boundary inconsistently oriented.
@@ -309,57 +306,6 @@ fn cloud_spin_fixed_meshes_every_patch_and_puts_each_failing_region_down_to_clos
         !err.contains("traversed in the same direction"),
         "a surface mesh lies on the wrong side of its border:\n{err}"
     );
-    assert!(
-        err.contains("ran") && !err.contains("error `model"),
-        "the model builds:\n{err}"
-    );
-    // `false` refines nowhere, not even where a mesh fails.
     assert!(!err.contains("Refining where curves"), "{err}");
-    // The regions that fail, fail among curves a few centimetres to metres apart at a
-    // kilometre's mesh size: each failure is put down to the nearest such place.
-    let failed: Vec<&str> = (err.lines())
-        .filter(|l| l.contains("error `tet_mesh:"))
-        .collect();
-    assert!(!failed.is_empty(), "every region meshes now:\n{err}");
-    for line in failed {
-        let node = line.split('`').nth(1).expect("the node");
-        let note = format!("note `{node}` failed ");
-        let cause = (err.lines().find(|l| l.contains(&note)))
-            .unwrap_or_else(|| panic!("no likely cause for `{node}`:\n{err}"));
-        assert!(cause.contains("where curves `"), "{cause}");
-        assert!(cause.contains("the likely cause"), "{cause}");
-        assert!(cause.contains("`refine_close_curves = [\""), "{cause}");
-    }
-}
-
-#[test]
-fn cloud_spin_fixed_meshes_every_region_by_refining_where_its_meshes_fail_among_close_curves() {
-    // Unwritten, `refine_close_curves` refines the places on the curves of the regions that
-    // failed among close curves, and the build goes on: every region meshes.
-    let Some(dir) = data_dir() else { return };
-    let bytes = std::fs::read(dir.join("CloudSpin_fixed.ml")).expect("read the Model3d");
-    let (model, recipe) = cloud_spin_at_3_km(&bytes, "");
-    let (scratch, out) = build_in_scratch(&bytes, &recipe, &["--json"]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
-    let refining: Vec<&str> = (err.lines())
-        .filter(|l| l.contains("Refining where curves"))
-        .collect();
-    // Each failed region's places: the one it failed at, and the others on its curves.
-    assert!(
-        refining.iter().any(|l| l.contains("at which `tet_mesh:")),
-        "{err}"
-    );
-    for line in refining {
-        assert!(line.contains("come within"), "{line}");
-        assert!(
-            line.contains("at which `tet_mesh:") || line.contains("on what `tet_mesh:"),
-            "{line}"
-        );
-        assert!(
-            line.contains("(`refine_close_curves = [\"") && line.contains("does it from the start"),
-            "{line}"
-        );
-    }
     passes_the_checker(scratch.path(), "CloudSpin_fixed.ml", model.regions);
 }

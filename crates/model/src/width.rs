@@ -15,12 +15,19 @@
 //!   does not: its corner holds a thin triangle whatever the size, and refining into it only
 //!   costs elements (at the clearance's 20, the corpus's lenses, whose rims are crumpled into
 //!   sliver facets, took five to seven times the tets for no better angle).
-//! - Only curves inside one surface count (a seam between two charts, a crease between two
-//!   patches of one surface). There the region on either side is smooth across the curve, so
-//!   elements of the width's size are well shaped and worth their count. Between curves of two
-//!   different surfaces a narrow place is a wedge of the model's own (two horizons converging, an
-//!   unconformity) whose tets are bound by its angle whatever their size; refining those is the
-//!   recipe's choice (`refine_close_curves`).
+//! - Curves inside one surface count (a seam between two charts, a crease between two patches
+//!   of one surface). There the region on either side is smooth across the curve, so elements
+//!   of the width's size are well shaped and worth their count.
+//! - Curves of two surfaces count only on a juxtaposition strip ([`juxtaposition_strips`]): a
+//!   patch every region beside which goes on along the patch's surface past one of its curves,
+//!   as on each side of a fault whose throw is far below the size, where the strip between a
+//!   horizon's two cutoffs lies between two thick blocks (a 5 m throw at 250 m left needles
+//!   there and tets of 2.2°; refined, 14°). Elsewhere a narrow place between two surfaces is a
+//!   region closing between them (a thin layer, a wedge of two converging horizons, an
+//!   unconformity) whose tets are bound by its own thickness or angle whatever the size there;
+//!   refining those is the recipe's choice (`refine_close_curves`, `layers`). Like the others,
+//!   a strip narrower than `min_size` is refined to `min_size`: a Model3d whose horizons cross a
+//!   fault with cutoffs millimetres apart (RINGMesh's modelA5) takes three times the tets.
 //! - A polyline segment is sampled, not only its ends: a sliver facet's long side has no point
 //!   but its two corners. The samples are spaced by the width at the segment's middle, at most
 //!   `MAX_SAMPLES` per segment.
@@ -52,14 +59,41 @@ pub fn narrow_sizes(
     bounds: &[PatchBoundary],
     patches: &[PatchIn],
 ) -> Vec<Vec<[f64; 4]>> {
+    widths(curves, bounds, patches, |_, c| inside_one_surface(c))
+}
+
+/// Per curve of two surfaces, the places `[x, y, z, size]` where a patch it bounds that
+/// `strips` marks (see [`juxtaposition_strips`]) is narrow, with the size that width asks for.
+pub fn strip_sizes(
+    curves: &[Curve],
+    bounds: &[PatchBoundary],
+    patches: &[PatchIn],
+    strips: &[bool],
+) -> Vec<Vec<[f64; 4]>> {
+    widths(curves, bounds, patches, |p, c| {
+        strips.get(p).copied().unwrap_or(false) && c.surfaces.len() >= 2
+    })
+}
+
+/// Per curve, the places where a patch it bounds is narrow, for the curves `counts(patch, c)`
+/// accepts on that patch.
+fn widths(
+    curves: &[Curve],
+    bounds: &[PatchBoundary],
+    patches: &[PatchIn],
+    counts: impl Fn(usize, &Curve) -> bool,
+) -> Vec<Vec<[f64; 4]>> {
     let mut out = vec![Vec::new(); curves.len()];
-    if !curves.iter().any(inside_one_surface) {
+    let counted = |k: usize, b: &PatchBoundary| {
+        (b.curves().into_iter()).any(|c| counts(k, &curves[c as usize]))
+    };
+    if !bounds.iter().enumerate().any(|(k, b)| counted(k, b)) {
         return out;
     }
     let arcs = arc_lengths(curves);
-    for (b, p) in bounds.iter().zip(patches) {
-        let inner = |c: &u32| inside_one_surface(&curves[*c as usize]);
-        if !b.curves().iter().any(inner) {
+    for (k, (b, p)) in bounds.iter().zip(patches).enumerate() {
+        let inner = |c: &u32| counts(k, &curves[*c as usize]);
+        if !counted(k, b) {
             continue;
         }
         let Some(plane) = PlaneCurves::new(curves, &arcs, b, p) else {
@@ -73,6 +107,44 @@ pub fn narrow_sizes(
         }
     }
     out
+}
+
+/// Per patch, whether it is a juxtaposition strip: it bounds a region, and every region it
+/// bounds goes on along the patch's surface past one of the patch's curves of two surfaces (a
+/// patch of that surface beside it across the curve bounds the region too). A region that turns
+/// off the surface at every such curve closes between the surfaces there (a layer, a wedge).
+/// `region_patches` lists each region's patches, ascending.
+pub fn juxtaposition_strips(
+    curves: &[Curve],
+    bounds: &[PatchBoundary],
+    patches: &[PatchIn],
+    region_patches: &[Vec<u32>],
+) -> Vec<bool> {
+    let mut regions_of: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
+    for (r, ps) in region_patches.iter().enumerate() {
+        for &p in ps {
+            if let Some(rs) = regions_of.get_mut(p as usize) {
+                rs.push(r);
+            }
+        }
+    }
+    let goes_on = |p: usize, r: usize, c: &Curve| {
+        c.patches.iter().any(|&q| {
+            q as usize != p
+                && patches.get(q as usize).map(|x| &x.surface) == Some(&patches[p].surface)
+                && region_patches[r].binary_search(&q).is_ok()
+        })
+    };
+    (bounds.iter().enumerate())
+        .map(|(p, b)| {
+            let across: Vec<&Curve> = (b.curves().iter())
+                .map(|&c| &curves[c as usize])
+                .filter(|c| c.surfaces.len() >= 2)
+                .collect();
+            !regions_of[p].is_empty()
+                && (regions_of[p].iter()).all(|&r| across.iter().any(|c| goes_on(p, r, c)))
+        })
+        .collect()
 }
 
 /// The samples of one curve (points `curve.points`, arc lengths `arc`) with a finite width,
@@ -155,6 +227,64 @@ mod tests {
         }
         let n = narrow_sizes(&curves, &[bound], &[patch]);
         assert!(n.iter().all(Vec::is_empty), "{n:?}");
+    }
+
+    /// The 100 x 10 m strip as patch 0 of a fault `s` between two horizons' cutoffs: `low`
+    /// meets `t` (patch 4) and `high` meets `u` (patch 2); patches 1 and 3 go on along `s`
+    /// past `low` and `high`. Returns the curves, boundaries and patches of the five.
+    fn cutoffs() -> (Vec<Curve>, Vec<PatchBoundary>, Vec<PatchIn>) {
+        let (mut curves, bound, patch) = strip(0.0);
+        (curves[0].surfaces, curves[0].patches) = (vec!["s".into(), "t".into()], vec![0, 1, 4]);
+        (curves[2].surfaces, curves[2].patches) = (vec!["s".into(), "u".into()], vec![0, 2, 3]);
+        let mut bounds = vec![bound];
+        let mut patches = vec![patch.clone()];
+        for surface in ["s", "u", "s", "t"] {
+            bounds.push(PatchBoundary {
+                loops: Vec::new(),
+                constraints: Vec::new(),
+            });
+            patches.push(PatchIn {
+                surface: surface.into(),
+                ..patch.clone()
+            });
+        }
+        (curves, bounds, patches)
+    }
+
+    #[test]
+    fn a_strip_of_a_fault_between_two_blocks_asks_its_width_of_the_cutoffs() {
+        // Each block goes on along the fault past one cutoff: the footwall's (0, 1, 2) past
+        // `low`, the hanging wall's (0, 3, 4) past `high`.
+        let (curves, bounds, patches) = cutoffs();
+        let blocks = [vec![0, 1, 2], vec![0, 3, 4]];
+        let strips = juxtaposition_strips(&curves, &bounds, &patches, &blocks);
+        assert_eq!(strips, [true, false, false, false, false]);
+        let n = strip_sizes(&curves, &bounds, &patches, &strips);
+        for k in [0, 2] {
+            assert!(n[k].len() >= 10, "{}: {:?}", curves[k].name, n[k]);
+            assert!(
+                n[k].iter().all(|s| (s[3] - 10.0).abs() < 1e-9),
+                "{:?}",
+                n[k]
+            );
+        }
+        // Curves of two surfaces count on strips only.
+        assert!(
+            narrow_sizes(&curves, &bounds, &patches)
+                .iter()
+                .all(Vec::is_empty)
+        );
+    }
+
+    #[test]
+    fn a_strip_closing_a_region_between_two_surfaces_is_no_juxtaposition() {
+        // A thin layer (or a wedge) between `t` and `u`, ending on `s`: it turns off `s` at both
+        // curves, so its thickness, not the strip, bounds its tets.
+        let (curves, bounds, patches) = cutoffs();
+        let layer = [vec![0, 2, 4], vec![0, 3, 4]];
+        assert!(!juxtaposition_strips(&curves, &bounds, &patches, &layer)[0]);
+        // Nor is a patch that bounds no region.
+        assert!(!juxtaposition_strips(&curves, &bounds, &patches, &[])[0]);
     }
 
     #[test]

@@ -41,6 +41,7 @@ pub fn cases() -> Vec<Case> {
     vec![
         fault_with_throw("normal_fault", -150.0),
         fault_with_throw("reverse_fault", 150.0),
+        fault_with_throw("small_throw_fault", -5.0),
         fault_stopping_in_a_layer(),
         erosional_unconformity(),
         x_fault_junction(),
@@ -114,13 +115,6 @@ pub fn cases() -> Vec<Case> {
 ///   untwisting made its border cross itself in map view again, and the Tutte embedding that
 ///   then flattened it was far from isometric (a fifth of its refined triangles were slivers on
 ///   the support, and some folded).
-/// - `small_throw_fault`: the normal fault with a throw of 5 m, under a fiftieth of the case's
-///   size: each horizon's two cutoffs bound a strip of the fault 5.8 m wide and 4 km long. Only
-///   curves inside one surface are refined to the width of their patches (`model::width`), so
-///   the strips' triangles are needles between cutoff nodes 77 m apart, and the tets beside them
-///   reach 2.2° (1.5 million tets, the sizes grading out from the needles). The build warns
-///   with the lines that refine there; with `refine_close_curves = true` it meets the bars
-///   (16.2°, 3.1 million tets).
 /// - `lens_cut_by_a_fault`: a closed lens offset 100 m by a normal fault, each half a body closed
 ///   by the fault; meshes into its eight regions, at 6.7° in the footwall half (7.3° with
 ///   `refine_close_curves = true`, at 301,000 tets against 161,000): the curves of the lens's
@@ -128,7 +122,6 @@ pub fn cases() -> Vec<Case> {
 pub fn known_gaps() -> Vec<Case> {
     vec![
         lens_cut_by_a_fault(),
-        fault_with_throw("small_throw_fault", -5.0),
         salt_overhang(),
         two_lenses(),
         fault_through_salt(),

@@ -18,7 +18,7 @@ use model::thickness::region_thickness;
 use model::tips::tip_sizes;
 use model::touches::touch_points;
 use model::trims::{TrimPatch, TrimSpec, apply_trims, describe};
-use model::width::narrow_sizes;
+use model::width::{juxtaposition_strips, narrow_sizes, strip_sizes};
 use model::{ModelTopology, build_topology};
 use model::{patches, regions};
 use serde::{Deserialize, Serialize};
@@ -100,7 +100,8 @@ impl Operation for ModelOp {
         //     patch's sharp corner carry the distance to the nearer first point past it.
         // 24: untwisting and unpinching charts alternate until untwisting moves nothing.
         // 25: a chart that meets its patch's border along a wedge joins a chart beside it.
-        25
+        // 26: the curves of juxtaposition strips carry the sizes their width asks for.
+        26
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -227,7 +228,20 @@ impl Operation for ModelOp {
             .map_err(|e| self.region_error(e))?;
         let mut topology =
             build_topology(&input, &self.tolerances).map_err(|e| OpError::from(e.to_string()))?;
+        let region_patches: Vec<Vec<u32>> = (model.regions.iter())
+            .map(|r| {
+                let mut ps: Vec<u32> = r.sides.iter().map(|s| s.patch).collect();
+                ps.dedup();
+                ps
+            })
+            .collect();
+        let strips =
+            juxtaposition_strips(&topology.curves, &topology.patches, &input, &region_patches);
+        let strip = strip_sizes(&topology.curves, &topology.patches, &input, &strips);
         let mut narrow = narrow_sizes(&topology.curves, &topology.patches, &input);
+        for (n, s) in narrow.iter_mut().zip(strip) {
+            n.extend(s);
+        }
         let tips = tip_sizes(&topology.curves, &topology.patches);
         for (n, t) in narrow.iter_mut().zip(tips) {
             n.extend(t);
