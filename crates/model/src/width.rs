@@ -26,8 +26,9 @@
 //!   region closing between them (a thin layer, a wedge of two converging horizons, an
 //!   unconformity) whose tets are bound by its own thickness or angle whatever the size there;
 //!   refining those is the recipe's choice (`refine_close_curves`, `layers`). Like the others,
-//!   a strip narrower than `min_size` is refined to `min_size`: a Model3d whose horizons cross a
-//!   fault with cutoffs millimetres apart (RINGMesh's modelA5) takes three times the tets.
+//!   a strip narrower than `min_size` is refined to `min_size`, which costs where a fault's
+//!   throw falls to nothing: RINGMesh's modelA5, whose horizons turn round a fault tip with
+//!   cutoffs millimetres apart, takes 5.6 times the tets (1.0 million).
 //! - A polyline segment is sampled, not only its ends: a sliver facet's long side has no point
 //!   but its two corners. The samples are spaced by the width at the segment's middle, at most
 //!   `MAX_SAMPLES` per segment.
