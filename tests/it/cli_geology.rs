@@ -216,14 +216,20 @@ fn a_salt_dome_cut_by_the_box_meshes_with_no_wedge_of_a_chart_on_the_cut() {
     // cut along 6 m between seams 95 m long, and the tets there reached 7.5°. Given to the chart
     // beside it, it leaves no piece of the cut that short.
     let dir = builds_and_meshes(&case("salt_dome_cut_by_the_box"));
-    let report = std::fs::read(dir.path().join("out/report.json")).expect("the report");
-    let report: serde_json::Value = serde_json::from_slice(&report).expect("JSON");
-    let cut: Vec<(&str, f64)> = (report["curves"].as_array().expect("curves").iter())
-        .filter_map(|c| Some((c["name"].as_str()?, c["length"].as_f64()?)))
-        .filter(|(name, _)| name.starts_with("SALT/box.xmax#"))
-        .collect();
+    let cut = curves_named(dir.path(), "SALT/box.xmax#", "length");
     assert!(cut.len() > 4, "{cut:?}");
     assert!(cut.iter().all(|(_, length)| *length > 10.0), "{cut:?}");
+}
+
+/// The curves of the build in `dir` whose names start with `prefix`, each with its figure
+/// `field` (`length`, `nodes`) from the report.
+fn curves_named(dir: &std::path::Path, prefix: &str, field: &str) -> Vec<(String, f64)> {
+    let report = std::fs::read(dir.join("out/report.json")).expect("the report");
+    let report: serde_json::Value = serde_json::from_slice(&report).expect("JSON");
+    (report["curves"].as_array().expect("curves").iter())
+        .filter_map(|c| Some((c["name"].as_str()?.to_string(), c[field].as_f64()?)))
+        .filter(|(name, _)| name.starts_with(prefix))
+        .collect()
 }
 
 #[test]
@@ -232,15 +238,13 @@ fn a_fault_with_a_five_metre_throw_meshes_with_its_strips_as_fine_as_they_are_wi
     // between two thick blocks: cut at the cutoffs' nodes 77 m apart, its triangles were
     // needles and the tets beside them reached 2.2°.
     let dir = builds_and_meshes(&case("small_throw_fault"));
-    let report = std::fs::read(dir.path().join("out/report.json")).expect("the report");
-    let report: serde_json::Value = serde_json::from_slice(&report).expect("JSON");
-    let cutoffs: Vec<(&str, u64)> = (report["curves"].as_array().expect("curves").iter())
-        .filter_map(|c| Some((c["name"].as_str()?, c["nodes"].as_u64()?)))
-        .filter(|(name, _)| name.starts_with("F/H"))
-        .collect();
+    let cutoffs = curves_named(dir.path(), "F/H", "nodes");
     assert_eq!(cutoffs.len(), 4, "{cutoffs:?}");
     // 4 km each, their nodes now about the strip's width apart (77 m before).
-    assert!(cutoffs.iter().all(|(_, nodes)| *nodes > 300), "{cutoffs:?}");
+    assert!(
+        cutoffs.iter().all(|(_, nodes)| *nodes > 300.0),
+        "{cutoffs:?}"
+    );
 }
 
 #[test]

@@ -278,13 +278,15 @@ fn surrounded_pairs(input: &RegionInput, pinched: &dyn Fn(&[u32; 3]) -> bool) ->
             let f = faces[component[k]];
             k += 1;
             for e in [edge(f[0], f[1]), edge(f[1], f[2]), edge(f[0], f[2])] {
-                let near = (faces.iter().enumerate())
-                    .filter(|(j, g)| !seen[*j] && g.contains(&e[0]) && g.contains(&e[1]))
-                    .map(|(j, _)| j)
-                    .collect::<Vec<_>>();
+                let near = (by_edge.get(&e).into_iter().flatten())
+                    .map(|&i| &input.boundary[i])
+                    .filter(|t| pinched(t))
+                    .filter_map(|t| faces.binary_search(&sorted(t)).ok());
                 for j in near {
-                    seen[j] = true;
-                    component.push(j);
+                    if !seen[j] {
+                        seen[j] = true;
+                        component.push(j);
+                    }
                 }
                 if verdict.is_none() {
                     verdict = decide(e);

@@ -85,16 +85,16 @@ fn widths(
     counts: impl Fn(usize, &Curve) -> bool,
 ) -> Vec<Vec<[f64; 4]>> {
     let mut out = vec![Vec::new(); curves.len()];
-    let counted = |k: usize, b: &PatchBoundary| {
-        (b.curves().into_iter()).any(|c| counts(k, &curves[c as usize]))
-    };
-    if !bounds.iter().enumerate().any(|(k, b)| counted(k, b)) {
+    let counted: Vec<bool> = (bounds.iter().enumerate())
+        .map(|(k, b)| (b.curves().into_iter()).any(|c| counts(k, &curves[c as usize])))
+        .collect();
+    if !counted.contains(&true) {
         return out;
     }
     let arcs = arc_lengths(curves);
     for (k, (b, p)) in bounds.iter().zip(patches).enumerate() {
         let inner = |c: &u32| counts(k, &curves[*c as usize]);
-        if !counted(k, b) {
+        if !counted[k] {
             continue;
         }
         let Some(plane) = PlaneCurves::new(curves, &arcs, b, p) else {
