@@ -188,6 +188,7 @@ pub fn lower(recipe: &Recipe) -> Result<BuildGraph, PlanError> {
                 .map(|r| recipe.place(r.span))
                 .collect(),
             tolerances: recipe.tolerances.clone(),
+            min_size: recipe.mesh.min_size,
             trims: trims(recipe),
             box_at: recipe.bbox.as_ref().map(|b| recipe.place(b.span)),
         };

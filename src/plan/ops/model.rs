@@ -71,6 +71,8 @@ pub struct ModelOp {
     /// messages; like the trims' locations, not in the key.
     pub names_at: Vec<String>,
     pub tolerances: Tolerances,
+    /// `[mesh] min_size`: a juxtaposition strip narrower than it asks for less refinement.
+    pub min_size: f64,
     /// The recipe's `[[trim]]` entries, in order, each with its recipe location (`file:line:col`)
     /// for error messages.
     pub trims: Vec<(TrimSpec, String)>,
@@ -101,7 +103,8 @@ impl Operation for ModelOp {
         // 24: untwisting and unpinching charts alternate until untwisting moves nothing.
         // 25: a chart that meets its patch's border along a wedge joins a chart beside it.
         // 26: the curves of juxtaposition strips carry the sizes their width asks for.
-        26
+        // 27: a strip narrower than `min_size` asks for less the narrower it is.
+        27
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -110,6 +113,8 @@ impl Operation for ModelOp {
             p.set(&format!("tolerances.{k}"), v)
                 .expect("validated finite");
         }
+        p.set("mesh.min_size", self.min_size)
+            .expect("validated finite");
         p.set("surfaces.faults", self.faults.clone())
             .expect("strings");
         if !self.smoothed.is_empty() {
@@ -237,7 +242,13 @@ impl Operation for ModelOp {
             .collect();
         let strips =
             juxtaposition_strips(&topology.curves, &topology.patches, &input, &region_patches);
-        let strip = strip_sizes(&topology.curves, &topology.patches, &input, &strips);
+        let strip = strip_sizes(
+            &topology.curves,
+            &topology.patches,
+            &input,
+            &strips,
+            self.min_size,
+        );
         let mut narrow = narrow_sizes(&topology.curves, &topology.patches, &input);
         for (n, s) in narrow.iter_mut().zip(strip) {
             n.extend(s);
