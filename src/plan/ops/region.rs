@@ -76,6 +76,7 @@ impl TetMeshOp {
         let [a, b] = self.patch_names(f);
         let smoothed = (f.patches.iter()).any(|&p| self.smoothed.get(p as usize) == Some(&true));
         let [x, y, z] = f.at;
+        let [sa, sb] = [a, b].map(surface_of);
         let cause = if smoothed {
             "two surfaces that touch in the files can cross once `smooth` refines them between \
              the files' vertices: smooth neither of the two surfaces, or part them in the data"
@@ -84,8 +85,11 @@ impl TetMeshOp {
              meshes can part): part them in the data there"
         };
         let cause = format!(
-            "{cause}, or, where one is drawn along the other all over a patch, drop it with a \
-             `[[trim]]` `discard = {{ within = d }}` (d the gap){}",
+            "{cause}, or, where one is drawn along the other over a patch, drop that patch: a \
+             `[[trim]]` with `surface = \"{sa}\"` and `discard = {{ nearest = [{x:.1}, {y:.1}, \
+             {z:.1}] }}` drops `{a}` (with `surface = \"{sb}\"`, `{b}`), and `discard = {{ \
+             within = d }}` (d the gap) drops every patch of the surface that lies within d of \
+             another surface all over{}",
             if smoothed {
                 String::new()
             } else {
@@ -687,6 +691,14 @@ mod tests {
         assert!(!plain.contains("smooth"), "{plain}");
         assert!(plain.contains("part them in the data"), "{plain}");
         assert!(plain.contains("`discard = { within = d }`"), "{plain}");
+        // Either patch can be dropped by the place the message gives.
+        assert!(
+            plain.contains(
+                "`surface = \"H1\"` and `discard = { nearest = [1.0, 2.0, 3.0] }` drops `H1#3` \
+                 (with `surface = \"H2\"`, `H2#4`)"
+            ),
+            "{plain}"
+        );
         let smoothed = op(vec![false, true, false]).face_to_face_error(&f);
         assert!(smoothed.contains("smooth neither"), "{smoothed}");
     }
