@@ -319,3 +319,49 @@ fn every_tkc_body_alone_in_a_box_meshes_as_read() {
         passes_check_mesh(&s.path("out/body/body.msh"), 2, body);
     }
 }
+
+#[test]
+fn the_gulf_of_mexico_salt_bodies_mesh_at_every_size() {
+    // Eleven closed salt bodies in one TSurf, one TFACE each, faceted by triangles 500 m to 1 km
+    // wide whose normals turn by 50° to 70° from one to the next. At 1 km and above, curve
+    // segments cut across the bodies' shoulders (130 m off the curve on a 490 m chord) and a
+    // surface mesh along them folded, at every size from 600 m up.
+    let Some(shared) = paths::shared("data/gocad/xaliphostes__xali-pytools/data/models") else {
+        return;
+    };
+    for (size, checked) in [(1000.0, false), (3000.0, true)] {
+        let s = Scratch::didactic();
+        let recipe = format!(
+            r#"
+[model]
+name = "gom"
+
+[surfaces]
+salt = {{ file = "{}" }}
+
+[box]
+min = [540000.0, 0.0, -11000.0]
+max = [620000.0, 58000.0, -2000.0]
+
+[mesh]
+size = {size:.1}
+
+[output]
+dir = "out/gom"
+"#,
+            shared.join("gom.ts").display()
+        );
+        std::fs::write(s.path("gom.toml"), recipe).unwrap();
+        let out = s.recipe_cmd(&["build", "--json", "gom.toml"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "at {size}: {err}");
+        let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let regions = r["model"]["regions"].as_array().expect("regions").len();
+        assert_eq!(regions, 12, "at {size}: the host and the eleven bodies");
+        let worst = worst_dihedral(&s.path("out/gom/gom.quality.json"));
+        assert!(worst > 8.0, "at {size}: worst dihedral {worst}°");
+        if checked {
+            passes_check_mesh(&s.path("out/gom/gom.msh"), 12, "gom");
+        }
+    }
+}

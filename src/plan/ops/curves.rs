@@ -258,7 +258,8 @@ impl Operation for DiscretizeOp {
     fn version(&self) -> u32 {
         // 3: no segment longer than the patches' curvature asks for.
         // 4: nor than a narrow patch along the curve is wide.
-        4
+        // 5: no segment cuts across a bend of the curve sharper than 45°.
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
