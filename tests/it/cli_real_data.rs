@@ -365,3 +365,91 @@ dir = "out/gom"
         }
     }
 }
+
+/// The names of the TSurf objects in `file`, in file order.
+fn tsurf_names(file: &std::path::Path) -> Vec<String> {
+    let text =
+        String::from_utf8_lossy(&std::fs::read(file).expect("read the TSurf file")).into_owned();
+    (text.lines())
+        .filter_map(|l| l.trim_end().strip_prefix("name:").map(str::to_string))
+        .collect()
+}
+
+/// A recipe meshing every object of `file` as a fault, in the box `[lo, hi]`, at `size`.
+fn fault_network(file: &std::path::Path, lo: [f64; 3], hi: [f64; 3], size: f64) -> String {
+    let names = tsurf_names(file);
+    let surfaces: Vec<String> = (names.iter())
+        .map(|n| {
+            format!(
+                "{n} = {{ file = \"{}\", object = \"{n}\", kind = \"fault\" }}",
+                file.display()
+            )
+        })
+        .collect();
+    let all: Vec<String> = (std::iter::once("box".to_string()))
+        .chain(names.iter().cloned())
+        .map(|n| format!("\"{n}\""))
+        .collect();
+    format!(
+        "[model]\nname = \"net\"\n\n[surfaces]\n{}\n\n[box]\nmin = {lo:?}\nmax = {hi:?}\n\n\
+         [intersect]\nall = [{}]\n\n[mesh]\nsize = {size:.1}\n\n[output]\ndir = \"out/net\"\n",
+        surfaces.join("\n"),
+        all.join(", ")
+    )
+}
+
+/// Builds `recipe` and checks the mesh; returns the JSON report.
+fn fault_network_meshes(recipe: &str, regions: usize) -> serde_json::Value {
+    let s = Scratch::didactic();
+    std::fs::write(s.path("net.toml"), recipe).unwrap();
+    let out = s.recipe_cmd(&["build", "--json", "net.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let found = r["model"]["regions"].as_array().expect("regions").len();
+    assert_eq!(found, regions);
+    passes_check_mesh(&s.path("out/net/net.msh"), regions, "net");
+    r
+}
+
+#[test]
+fn the_oseberg_network_of_fifty_eight_faults_meshes_with_every_fault_embedded() {
+    // Fifty-eight faults of the Oseberg field in one file, none cutting the box through: one
+    // region, every fault a dangling sheet inside it, crossing and abutting one another.
+    let Some(shared) = paths::shared("data/gocad/xaliphostes__xali-pytools/data/models") else {
+        return;
+    };
+    let file = shared.join("oseberg.ts");
+    assert_eq!(tsurf_names(&file).len(), 58);
+    let recipe = fault_network(
+        &file,
+        [-2000.0, -5000.0, -200.0],
+        [9000.0, 10000.0, 600.0],
+        300.0,
+    );
+    let r = fault_network_meshes(&recipe, 1);
+    let patches = r["model"]["patches"].as_array().expect("patches");
+    let dangling: std::collections::BTreeSet<&str> = (patches.iter())
+        .filter(|p| p["dangling"] == true)
+        .filter_map(|p| p["surface"].as_str())
+        .collect();
+    assert_eq!(dangling.len(), 58, "every fault is embedded: {dangling:?}");
+}
+
+#[test]
+fn the_tindel_faults_that_branch_and_truncate_mesh_into_their_blocks() {
+    // Eleven faults, some branching off and some truncated by others; in this box three of them
+    // cut it into three blocks and the rest end inside.
+    let Some(shared) = paths::shared("data/gocad/xaliphostes__xali-pytools/data/models") else {
+        return;
+    };
+    let file = shared.join("tindel.ts");
+    assert_eq!(tsurf_names(&file).len(), 11);
+    let recipe = fault_network(
+        &file,
+        [-1000.0, -1500.0, -2400.0],
+        [3000.0, 5500.0, -1700.0],
+        200.0,
+    );
+    fault_network_meshes(&recipe, 3);
+}
