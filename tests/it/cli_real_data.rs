@@ -453,3 +453,49 @@ fn the_tindel_faults_that_branch_and_truncate_mesh_into_their_blocks() {
     );
     fault_network_meshes(&recipe, 3);
 }
+
+#[test]
+fn the_chimney_faults_whose_sheets_branch_along_shared_edges_mesh() {
+    // One TSurf of 24 TFACEs, vertical sheets between two depths that meet three and four to an
+    // edge along branch lines. Taken as one patch across such a line, the sheets had a boundary
+    // that could not be chained into loops: `the boundary of patch ... is open`.
+    let Some(shared) = paths::shared("data/gocad/xaliphostes__xali-pytools/data/models") else {
+        return;
+    };
+    let recipe = format!(
+        r#"
+[model]
+name = "net"
+
+[surfaces]
+B = {{ file = "{}", kind = "fault" }}
+
+[box]
+min = [539000.0, 4339000.0, 1400.0]
+max = [545200.0, 4344200.0, 1750.0]
+
+[intersect]
+all = ["box", "B"]
+
+[mesh]
+size = 200.0
+
+[output]
+dir = "out/net"
+"#,
+        shared.join("chimney.ts").display()
+    );
+    let r = fault_network_meshes(&recipe, 1);
+    // The sheets are parted where they branch: a branch line bounds three patches or more.
+    let mut bounded: std::collections::BTreeMap<&str, usize> = Default::default();
+    for p in r["model"]["patches"].as_array().expect("patches") {
+        let curves = (p["loops"].as_array().into_iter().flatten())
+            .flat_map(|l| l.as_array().into_iter().flatten())
+            .filter_map(|c| c.as_str());
+        for c in curves.collect::<std::collections::BTreeSet<_>>() {
+            *bounded.entry(c).or_default() += 1;
+        }
+    }
+    let branches = bounded.values().filter(|&&n| n >= 3).count();
+    assert!(branches > 0, "no curve bounds three patches: {bounded:?}");
+}

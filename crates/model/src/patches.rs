@@ -1,9 +1,15 @@
 //! Patches: the pieces of a split surface between its intersection curves.
 //!
 //! It decides which triangles of a [`SplitSurface`] form one patch (connected across edges that
-//! are neither curve edges nor creases), the canonical order of the patches (so names `S#1`,
-//! `S#2`... do not depend on input order or thread count), and whether a patch lies inside the
-//! model's box.
+//! are neither curve edges nor creases, and that carry exactly two triangles), the canonical
+//! order of the patches (so names `S#1`, `S#2`... do not depend on input order or thread count),
+//! and whether a patch lies inside the model's box.
+//!
+//! An edge with three or more triangles (faults given as one surface whose sheets branch or
+//! cross along shared edges) bounds each sheet's patch, as the topology stage's patches are
+//! bounded: one patch over a branch line is no surface at all (its boundary cannot be chained
+//! into loops), while a patch per sheet meets the others along the line like two surfaces along
+//! their intersection.
 //!
 //! A crease is an edge between two triangles of the imported surface that bend by more than
 //! `Tolerances::crease_angle_deg` (a box TSurf wrapping around the box's edges in one TFACE, a
@@ -46,8 +52,8 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
 
 /// The patches of `split` (surface `surface`, split from an original surface whose triangles'
 /// unit normals are `normals`, see `TriMesh::unit_normals`): connected components of its triangles,
-/// where two triangles connect through a shared edge that is not a curve edge and whose original
-/// triangles bend by at most `kink_deg`. Ordered by their smallest vertex (lexicographic, total
+/// where two triangles connect through a shared edge that is theirs alone, is not a curve edge,
+/// and whose original triangles bend by at most `kink_deg`. Ordered by their smallest vertex (lexicographic, total
 /// f64 order), ties broken by the sorted list of their vertices.
 pub fn patches_at_creases(
     surface: &str,
@@ -68,8 +74,8 @@ pub fn patches_at_creases(
     })
 }
 
-/// The components of `split`'s triangles across edges that are not curve edges and on which
-/// `crease` (given the two triangles of a manifold edge) is false.
+/// The components of `split`'s triangles across edges that carry exactly two triangles, are not
+/// curve edges, and on which `crease` (given the two triangles) is false.
 fn components(
     surface: &str,
     split: &SplitSurface,
@@ -122,19 +128,17 @@ fn components(
         if split.curve_edges.binary_search(&run[0].0).is_ok() {
             continue;
         }
-        if let [x, y] = run
-            && crease((x.1, y.1))
-        {
+        // Only a manifold edge joins: where three or more sheets meet (a branch line of faults
+        // given as one surface), each sheet is a patch of its own and the line is their curve.
+        let [x, y] = run else {
+            continue;
+        };
+        if crease((x.1, y.1)) {
             continue;
         }
-        for w in run.windows(2) {
-            let (ra, rb) = (
-                root(&mut up, w[0].1 as usize),
-                root(&mut up, w[1].1 as usize),
-            );
-            if ra != rb {
-                up[ra.max(rb)] = ra.min(rb);
-            }
+        let (ra, rb) = (root(&mut up, x.1 as usize), root(&mut up, y.1 as usize));
+        if ra != rb {
+            up[ra.max(rb)] = ra.min(rb);
         }
     }
     // Components by root, in order of their first (smallest) triangle.
@@ -369,6 +373,36 @@ mod tests {
         let ps = patches_at_creases("s", &split, &original.unit_normals(), 30.0);
         assert_eq!(ps.len(), 2);
         assert_eq!(ps.iter().map(|p| p.triangles.len()).sum::<usize>(), 3);
+    }
+
+    #[test]
+    fn sheets_meeting_three_and_four_to_an_edge_are_a_patch_each() {
+        // Fins on the edge 0-1 (a branch line of faults given as one surface): three sheets, then
+        // four (two strands crossing). Each fin has a second triangle beyond it, joined across
+        // a manifold edge, so the patches are the sheets, not their triangles.
+        for sheets in [3usize, 4] {
+            let mut vertices = vec![[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+            let mut triangles = Vec::new();
+            for k in 0..sheets {
+                let a = k as f64 * std::f64::consts::TAU / sheets as f64;
+                let (near, far) = (vertices.len() as u32, vertices.len() as u32 + 1);
+                vertices.push([a.cos(), a.sin(), 0.0]);
+                vertices.push([2.0 * a.cos(), 2.0 * a.sin(), 1.0]);
+                triangles.extend([[0, near, 1], [1, near, far]]);
+            }
+            let n = triangles.len();
+            let split = SplitSurface {
+                mesh: TriMesh::new(vertices, triangles),
+                parent: (0..n as u32).collect(),
+                vertex_of: BTreeMap::new(),
+                vertex_of_each: Vec::new(),
+                crossings: Vec::new(),
+                curve_edges: Vec::new(),
+            };
+            let ps = patches("s", &split);
+            assert_eq!(ps.len(), sheets, "{sheets} sheets");
+            assert!(ps.iter().all(|p| p.triangles.len() == 2), "{sheets} sheets");
+        }
     }
 
     #[test]

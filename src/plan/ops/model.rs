@@ -104,7 +104,8 @@ impl Operation for ModelOp {
         // 25: a chart that meets its patch's border along a wedge joins a chart beside it.
         // 26: the curves of juxtaposition strips carry the sizes their width asks for.
         // 27: a strip narrower than `min_size` asks for less the narrower it is.
-        27
+        // 28: three or more sheets of one surface meeting at an edge are patches of their own.
+        28
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
