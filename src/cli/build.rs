@@ -425,9 +425,9 @@ fn print_thin_regions(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     }
 }
 
-/// Where the imported surfaces almost share vertices (a non-conformal contact) and where the
-/// model's curves come closer than their mesh can resolve, when the model was built in this
-/// build (the report keeps the warnings).
+/// Which surfaces have no part in the model, where the imported surfaces almost share vertices
+/// (a non-conformal contact) and where the model's curves come closer than their mesh can
+/// resolve, when the model was built in this build (the report keeps the warnings).
 fn print_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
     if (report.node("model")).is_none_or(|n| n.state != NodeState::Ran) {
         return;
@@ -436,8 +436,9 @@ fn print_close_curves(recipe: &crate::recipe::Recipe, report: &BuildReport) {
         return;
     };
     let close = plan::ops::close_curve_warnings(recipe, &model);
-    for warning in plan::ops::non_conformity_warnings(&model)
+    for warning in plan::ops::vanished_surface_warnings(recipe, &model)
         .into_iter()
+        .chain(plan::ops::non_conformity_warnings(&model))
         .chain(close)
     {
         errln!("{:>12} {warning}", "Warning");

@@ -240,6 +240,7 @@ fn report_input<'a>(
                 .map(|t| t.message),
         );
         warnings.extend(crate::plan::ops::non_conformity_warnings(m));
+        warnings.extend(crate::plan::ops::vanished_surface_warnings(recipe, m));
         warnings.extend(
             crate::plan::ops::short_curve_warnings(recipe, m)
                 .into_iter()

@@ -450,3 +450,54 @@ fn a_fifo_given_as_a_surface_file_is_named_as_a_fifo_and_nothing_blocks() {
     fails_with(&s, &["check", "didactic.toml"], &needles);
     fails_with(&s, &["build", "didactic.toml"], &needles);
 }
+
+#[test]
+fn a_surface_that_reaches_past_the_box_uncut_is_named_as_meshed_nowhere() {
+    // A flat sheet 300 m down, wider than the box, in `[surfaces]` but in no `[intersect]`
+    // entry: uncut, it reaches past the box, so all of it is discarded.
+    let s = Scratch::didactic();
+    std::fs::write(
+        s.path("data/didactic/sheet.ts"),
+        "GOCAD TSurf 1\nHEADER {\nname:sheet\n}\nTFACE\nVRTX 1 499000 6999000 -300\n\
+         VRTX 2 506000 6999000 -300\nVRTX 3 506000 7006000 -300\nVRTX 4 499000 7006000 -300\n\
+         TRGL 1 2 3\nTRGL 1 3 4\nEND\n",
+    )
+    .unwrap();
+    s.edit(
+        "F2 = { file",
+        "S = { file = \"data/didactic/sheet.ts\", kind = \"horizon\" }\nF2 = { file",
+    );
+    let (_, r, err) = s.build(&[]);
+    let said = "didactic.toml:14:1: surface `S` has no part in the model, so it is meshed \
+                nowhere: it is not cut by the box";
+    assert!(err.contains(said), "{err}");
+    assert!(err.contains("`all = [\"box\", \"S\", ...]`"), "{err}");
+    assert!(
+        r["model"]["patches"].as_array().is_some(),
+        "the model was built"
+    );
+    let report = std::fs::read_to_string(s.path("out/didactic/report.json")).unwrap();
+    assert!(report.contains("surface `S` has no part in the model"));
+}
+
+#[test]
+fn a_surface_its_trims_discard_whole_is_named_as_meshed_nowhere_and_one_kept_is_not() {
+    let s = Scratch::didactic();
+    s.edit("\"F2\" = { size = 100.0 }\n", "");
+    let recipe = std::fs::read_to_string(s.recipe()).unwrap();
+    std::fs::write(
+        s.recipe(),
+        format!("{recipe}\n[[trim]]\nsurface = \"F2\"\ndiscard = {{ area_below = 1e12 }}\n"),
+    )
+    .unwrap();
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains(
+            "surface `F2` has no part in the model, so it is meshed nowhere: the `[[trim]]` \
+             entries that select it discarded all of it"
+        ),
+        "{err}"
+    );
+    assert!(!err.contains("`H1` has no part"), "{err}");
+}

@@ -21,6 +21,7 @@ mod region;
 mod sizes;
 mod support;
 mod thin;
+mod vanished;
 pub use thin::{BUDGET as REFINEMENT_BUDGET, tets_near_curves};
 mod wells;
 pub use close_refine::refined_size;
@@ -36,6 +37,7 @@ pub use sizes::short as short_number;
 pub use sizes::{
     THIN_REGIONS_TOLD, ThinRegion, one_across_summary, short_curve_warnings, thin_region_warnings,
 };
+pub use vanished::vanished_surface_warnings;
 
 pub use curves::{
     CurveExtractOp, CurveNodes, CurveSet, CurvesOp, DiscretizeExpander, DiscretizeOp, ModelCurve,
