@@ -120,6 +120,62 @@ fn a_file_whose_tsurf_objects_share_a_name_imports_by_position_and_the_name_says
     assert_eq!(import["counts"]["parts"], 3);
 }
 
+/// A recipe meshing the TKC topography, the till's base and `bodies` (files in `d`), with the
+/// pipes kept below the till and the further `[[trim]]` tables `trims`.
+fn tkc_recipe(d: &std::path::Path, bodies: &[&str], trims: &str) -> String {
+    let d = d.display();
+    let surfaces: Vec<String> = (bodies.iter())
+        .map(|b| format!("{b} = {{ file = \"{d}/{b}.ts\" }}"))
+        .collect();
+    let all: Vec<String> = (["box", "topo", "till"].iter().chain(bodies))
+        .map(|n| format!("\"{n}\""))
+        .collect();
+    format!(
+        r#"
+[model]
+name = "tkc"
+
+[surfaces]
+topo = {{ file = "{d}/CDED_Lake_Coarse.ts", kind = "horizon" }}
+till = {{ file = "{d}/Till.ts", kind = "horizon" }}
+{}
+
+[box]
+min = [556900.0, 7133200.0, -200.0]
+max = [557800.0, 7134300.0, 500.0]
+
+[intersect]
+all = [{}]
+
+[[trim]]
+surface = "PK*"
+keep = {{ below = "till" }}
+{trims}
+[mesh]
+size = 50.0
+
+[output]
+dir = "out/tkc"
+"#,
+        surfaces.join("\n"),
+        all.join(", ")
+    )
+}
+
+/// Builds `recipe` in a scratch folder; returns it and the model's region names.
+fn build_tkc(recipe: &str) -> (Scratch, Vec<String>) {
+    let s = Scratch::didactic();
+    std::fs::write(s.path("tkc.toml"), recipe).unwrap();
+    let out = s.recipe_cmd(&["build", "--json", "tkc.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let regions = (r["model"]["regions"].as_array().expect("regions").iter())
+        .map(|g| g["name"].as_str().expect("a name").to_string())
+        .collect();
+    (s, regions)
+}
+
 #[test]
 fn the_tkc_kimberlite_pipes_under_till_and_topography_mesh_into_their_regions() {
     // A GOCAD model of the Tli Kwi Cho kimberlites (Astic 2020): topography and the till's base
@@ -130,50 +186,12 @@ fn the_tkc_kimberlite_pipes_under_till_and_topography_mesh_into_their_regions() 
     else {
         return;
     };
-    let s = Scratch::didactic();
     let d = shared.join("Geology_Surfaces");
-    let d = d.display();
-    let recipe = format!(
-        r#"
-[model]
-name = "tkc"
-
-[surfaces]
-topo = {{ file = "{d}/CDED_Lake_Coarse.ts", kind = "horizon" }}
-till = {{ file = "{d}/Till.ts", kind = "horizon" }}
-PK2 = {{ file = "{d}/PK2.ts" }}
-PK3 = {{ file = "{d}/PK3.ts" }}
-
-[box]
-min = [556900.0, 7133200.0, -200.0]
-max = [557800.0, 7134300.0, 500.0]
-
-[intersect]
-all = ["box", "topo", "till", "PK2", "PK3"]
-
-[[trim]]
-surface = "PK*"
-keep = {{ below = "till" }}
-
-[mesh]
-size = 50.0
-
-[output]
-dir = "out/tkc"
-"#
-    );
-    std::fs::write(s.path("tkc.toml"), recipe).unwrap();
-    let out = s.recipe_cmd(&["build", "--json", "tkc.toml"]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
-    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (s, regions) = build_tkc(&tkc_recipe(&d, &["PK2", "PK3"], ""));
     // The air, the till, the rock below it, and each pipe below the till.
-    let regions: Vec<&str> = (r["model"]["regions"].as_array().expect("regions").iter())
-        .map(|g| g["name"].as_str().expect("a name"))
-        .collect();
     assert_eq!(regions.len(), 5, "{regions:?}");
     for pipe in ["PK2+till", "PK3+till"] {
-        assert!(regions.contains(&pipe), "{regions:?}");
+        assert!(regions.iter().any(|r| r == pipe), "{regions:?}");
     }
     passes_check_mesh(&s.path("out/tkc/tkc.msh"), 5, "tkc");
     // The pipes' rough facets are cut into strips metres wide where they meet the till: 1.0°
@@ -192,74 +210,38 @@ fn all_five_tkc_bodies_mesh_once_the_recipe_says_which_body_cuts_which() {
     else {
         return;
     };
-    let s = Scratch::didactic();
-    let d = shared.join("Geology_Surfaces");
-    let d = d.display();
-    let recipe = format!(
-        r#"
-[model]
-name = "tkc"
-
-[surfaces]
-topo = {{ file = "{d}/CDED_Lake_Coarse.ts", kind = "horizon" }}
-till = {{ file = "{d}/Till.ts", kind = "horizon" }}
-PK1 = {{ file = "{d}/PK1.ts" }}
-PK2 = {{ file = "{d}/PK2.ts" }}
-PK3 = {{ file = "{d}/PK3.ts" }}
-HK1 = {{ file = "{d}/HK1.ts" }}
-VK = {{ file = "{d}/VK.ts" }}
-
-[box]
-min = [556900.0, 7133200.0, -200.0]
-max = [557800.0, 7134300.0, 500.0]
-
-[intersect]
-all = ["box", "topo", "till", "PK1", "PK2", "PK3", "HK1", "VK"]
-
-[[trim]]
-surface = "PK*"
-keep = {{ below = "till" }}
-
+    let trims = r#"
 [[trim]]
 surface = "HK1"
-keep = {{ outside = "PK1" }}
+keep = { outside = "PK1" }
 
 [[trim]]
 surface = "VK"
-keep = {{ outside = "PK1" }}
+keep = { outside = "PK1" }
 
 [[trim]]
 surface = "VK"
-keep = {{ outside = "HK1" }}
+keep = { outside = "HK1" }
 
 [[trim]]
 surface = "VK"
-discard = {{ within = 0.5 }}
+discard = { within = 0.5 }
 
 [[trim]]
 surface = "PK1"
-discard = {{ nearest = [557378.1, 7133579.8, 369.9] }}
-
-[mesh]
-size = 50.0
-
-[output]
-dir = "out/tkc"
-"#
-    );
-    std::fs::write(s.path("tkc.toml"), recipe).unwrap();
-    let out = s.recipe_cmd(&["build", "--json", "tkc.toml"]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
-    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let regions: Vec<&str> = (r["model"]["regions"].as_array().expect("regions").iter())
-        .map(|g| g["name"].as_str().expect("a name"))
-        .collect();
+discard = { nearest = [557378.1, 7133579.8, 369.9] }
+"#;
+    let d = shared.join("Geology_Surfaces");
+    let bodies = ["PK1", "PK2", "PK3", "HK1", "VK"];
+    let (s, regions) = build_tkc(&tkc_recipe(&d, &bodies, trims));
     // The air, the till, the rock below it and the five bodies: PK1 whole, HK1 where PK1 cuts
     // it, VK where both do.
     assert_eq!(regions.len(), 8, "{regions:?}");
     for body in ["PK1+till", "PK2+till", "PK3+till", "HK1+PK1", "HK1+PK1+VK"] {
-        assert!(regions.contains(&body), "{body} not in {regions:?}");
+        assert!(
+            regions.iter().any(|r| r == body),
+            "{body} not in {regions:?}"
+        );
     }
     passes_check_mesh(&s.path("out/tkc/tkc.msh"), 8, "tkc");
 }
