@@ -405,11 +405,13 @@ fn cut_bend(curve: &Polyline<'_>, a: Station, b: Station) -> Option<Station> {
         return None;
     }
     let t = (curve.cum[far] - sa) / (sb - sa);
-    Some(if (0.25..=0.75).contains(&t) {
-        Station::Vertex(far)
+    let mid = 0.5 * (sa + sb);
+    if (0.25..=0.75).contains(&t) {
+        Some(Station::Vertex(far))
     } else {
-        Station::Arc(0.5 * (sa + sb))
-    })
+        // An arc too short to halve in f64 is left whole rather than given a zero-length piece.
+        (sa < mid && mid < sb).then_some(Station::Arc(mid))
+    }
 }
 
 /// Distance from `p` to the segment `a`–`b`.

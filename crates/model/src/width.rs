@@ -88,8 +88,8 @@ pub fn strip_sizes(
 
 /// The size a strip of width `w` asks for: `w`, or where `w` is below `min_size` (which no
 /// element goes under, so the strip holds needles whatever its curves' size),
-/// `min_size² / w`: as large again as the strip is too narrow, so that a strip closing to
-/// nothing (a throw falling to zero at a fault's tip) asks for nothing near its end. At
+/// `min_size² / w`: the narrower the strip, the larger, so that a strip closing to nothing (a
+/// throw falling to zero at a fault's tip) asks for nothing near its end. At
 /// `min_size` the two agree, so the size does not jump as the strip narrows.
 pub fn faded(w: f64, min_size: f64) -> f64 {
     if w >= min_size || w <= 0.0 {
