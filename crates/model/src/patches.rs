@@ -53,8 +53,8 @@ pub fn patches(surface: &str, split: &SplitSurface) -> Vec<Patch> {
 /// The patches of `split` (surface `surface`, split from an original surface whose triangles'
 /// unit normals are `normals`, see `TriMesh::unit_normals`): connected components of its triangles,
 /// where two triangles connect through a shared edge that is theirs alone, is not a curve edge,
-/// and whose original triangles bend by at most `kink_deg`. Ordered by their smallest vertex (lexicographic, total
-/// f64 order), ties broken by the sorted list of their vertices.
+/// and whose original triangles bend by at most `kink_deg`. Ordered by their smallest vertex
+/// (lexicographic, total f64 order), ties broken by the sorted list of their vertices.
 pub fn patches_at_creases(
     surface: &str,
     split: &SplitSurface,
