@@ -14,8 +14,7 @@ pub fn vanished_surface_warnings(recipe: &Recipe, model: &ModelData) -> Vec<Stri
         .filter(|s| !model.patches.iter().any(|p| p.surface == s.name))
         .map(|s| {
             let name = &s.name;
-            let cut_by_box = (recipe.intersect.iter())
-                .any(|(a, b)| (a == name && b == "box") || (b == name && a == "box"));
+            let cut_by_box = cut_by_box(recipe, name);
             let trimmed = (recipe.trims.iter()).any(|t| t.surface.matches(name));
             let cause = if trimmed {
                 "the `[[trim]]` entries that select it discarded all of it; help: check their \
@@ -37,4 +36,27 @@ pub fn vanished_surface_warnings(recipe: &Recipe, model: &ModelData) -> Vec<Stri
             )
         })
         .collect()
+}
+
+/// Whether `[intersect]` pairs surface `name` with a side of the box (`box` there stands for its
+/// six sides, `box.xmin` to `box.zmax`).
+fn cut_by_box(recipe: &Recipe, name: &str) -> bool {
+    let side = |s: &str| s.starts_with("box.");
+    (recipe.intersect.iter()).any(|(a, b)| (a == name && side(b)) || (b == name && side(a)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_surface_listed_with_the_box_is_cut_by_its_sides_and_one_paired_elsewhere_is_not() {
+        let text = "[model]\nname = \"m\"\n[surfaces]\nA = { file = \"a.ts\" }\nB = { file = \"b.ts\" }\n\
+                    [box]\nmin = [0.0, 0.0, 0.0]\nmax = [1.0, 1.0, 1.0]\n\
+                    [intersect]\nall = [\"box\", \"A\"]\npairs = [[\"A\", \"B\"]]\n[mesh]\nsize = 1.0\n[output]\ndir = \"out\"\n";
+        let recipe = crate::recipe::parse(std::path::Path::new("r.toml"), text)
+            .unwrap_or_else(|d| panic!("{}", crate::recipe::render(&d)));
+        assert!(cut_by_box(&recipe, "A"));
+        assert!(!cut_by_box(&recipe, "B"));
+    }
 }
