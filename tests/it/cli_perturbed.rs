@@ -399,6 +399,16 @@ fn a_horizon_jittered_across_the_reservoir_meshes_or_fails_naming_a_recipe_line(
 }
 
 #[test]
+fn a_horizon_jittered_by_fifty_metres_fails_fast_naming_a_line_of_its_file() {
+    // 50 m on a 35 m reservoir: the horizons cross along hundreds of loops, each a sliver.
+    assert!(!builds_or_fails_at_a_place(
+        Model::didactic,
+        "H1_top_reservoir.ts",
+        Perturbation::Jitter(50.0, 6),
+    ));
+}
+
+#[test]
 fn a_collapsed_triangle_in_a_horizon_meshes_and_passes_the_checker() {
     meshes(
         Model::didactic,

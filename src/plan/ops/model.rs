@@ -105,7 +105,8 @@ impl Operation for ModelOp {
         // 26: the curves of juxtaposition strips carry the sizes their width asks for.
         // 27: a strip narrower than `min_size` asks for less the narrower it is.
         // 28: three or more sheets of one surface meeting at an edge are patches of their own.
-        28
+        // 29: two surfaces enclosing more than `MAX_LENSES` regions alone fail the model.
+        29
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -17,6 +17,7 @@
 //! may dangle (a fault, see [`RegionOptions`]) this is reported by name with the gap's ends.
 
 mod assemble;
+mod crowded;
 mod exact;
 mod locate;
 mod names;

@@ -7,6 +7,7 @@
 //! order) only when several regions would share that name.
 
 use super::assemble::Assembled;
+use super::crowded::{Enclosed, check_lenses, mean_turn};
 use super::locate::Locator;
 use super::weld::fmt_point;
 use super::{PatchIn, RegionError, RegionModel, Shell, Side};
@@ -101,7 +102,7 @@ pub(super) fn name_regions(
             ));
         }
     }
-    let base: Vec<String> = regions
+    let surfaces: Vec<Vec<&str>> = regions
         .iter()
         .map(|r| {
             let mut s: Vec<&str> = r
@@ -112,9 +113,17 @@ pub(super) fn name_regions(
                 .collect();
             s.sort_unstable();
             s.dedup();
-            s.join("+")
+            s
         })
         .collect();
+    let enclosed: Vec<Enclosed> = (regions.iter().zip(&surfaces).enumerate())
+        .map(|(i, (r, s))| Enclosed {
+            named: given.contains_key(&i),
+            surfaces: s.iter().map(|s| (*s, sample(r, s, patches))).collect(),
+        })
+        .collect();
+    check_lenses(&enclosed, |s| mean_turn(patches, s))?;
+    let base: Vec<String> = surfaces.iter().map(|s| s.join("+")).collect();
     let mut count: BTreeMap<&str, usize> = BTreeMap::new();
     for (i, b) in base.iter().enumerate() {
         if !given.contains_key(&i) {
@@ -145,4 +154,17 @@ pub(super) fn name_regions(
         exterior,
         dangling,
     })
+}
+
+/// The centroid of the first triangle of `surface` on the region's outer shell.
+fn sample(r: &super::Region, surface: &str, patches: &[PatchIn]) -> [f64; 3] {
+    let f = r.outer.face_uses.iter().map(|f| &patches[f.patch as usize]);
+    let Some(p) = f
+        .filter(|p| p.surface == surface)
+        .find(|p| !p.mesh.triangles.is_empty())
+    else {
+        return [0.0; 3];
+    };
+    let [a, b, c] = p.mesh.corners(0);
+    [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
 }
