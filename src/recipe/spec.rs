@@ -294,6 +294,10 @@ pub struct RegionMeshSpec {
     /// surfaces and curves bounding it) is meshed at most at its thickness over this.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layers: Option<u32>,
+    /// `aspect`: the region is meshed stretched across its layer by this factor, so its elements
+    /// are about this many times as wide along the layer as across it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aspect: Option<f64>,
     pub min_size: f64,
     pub max_size: f64,
     pub growth: f64,

@@ -255,3 +255,50 @@ fn layers_on_one_reservoir_rerun_it_its_surfaces_their_curves_and_neighbours_onl
         n == "model" || n.starts_with("surface_mesh:box.zmax#")
     });
 }
+
+#[test]
+fn an_aspect_on_one_layered_reservoir_reruns_its_meshes_and_its_neighbours_tets_only() {
+    let s = Scratch::didactic_built();
+    s.edit(
+        "[regions]",
+        "[mesh.regions.reservoir_W]\nlayers = 2\n\n[regions]",
+    );
+    let (ok, _, err) = s.build(&[]);
+    assert!(ok, "{err}");
+    let (ran, r) = ran_after(&s, "layers = 2", "layers = 2\naspect = 4");
+    // Its top and base coarsen, its sides are meshed stretched across it, so it and the regions
+    // sharing those patches re-run.
+    for must in [
+        "tet_mesh:reservoir_W",
+        "tet_mesh:overburden_W",
+        "tet_mesh:underburden_W",
+        "mesh",
+        "export",
+    ] {
+        assert!(
+            ran.contains(&must.to_string()),
+            "`{must}` did not re-run: {ran:?}"
+        );
+    }
+    assert!(ran.iter().any(|n| n.starts_with("surface_mesh:H1#")));
+    assert!(ran.iter().any(|n| n.starts_with("surface_mesh:box.xmin#")));
+    // Not the model nor anything before it, nor the eastern reservoir and the box's top and
+    // floor, beyond its reach. Its curves across the layer keep the count's size: the curves
+    // of the box's vertical edges do not re-run.
+    assert_none_ran(&ran, &all_nodes(&r), |n| {
+        n.starts_with("import:")
+            || n.starts_with("intersect:")
+            || n.starts_with("curve:")
+            || n == "model"
+            || n == "tet_mesh:reservoir_E"
+            || n.starts_with("surface_mesh:box.zmax#")
+            || n.starts_with("surface_mesh:box.zmin#")
+            || n.starts_with("discretize:box.xmin/box.ymin")
+    });
+    // A different aspect re-runs the same region and no model.
+    let (again, r) = ran_after(&s, "aspect = 4", "aspect = 2");
+    assert!(again.contains(&"tet_mesh:reservoir_W".to_string()));
+    assert_none_ran(&again, &all_nodes(&r), |n| {
+        n == "model" || n == "tet_mesh:reservoir_E"
+    });
+}

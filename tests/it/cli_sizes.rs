@@ -288,15 +288,16 @@ fn dipping_plane(name: &str, (z0, slope): (f64, f64), to: f64) -> String {
 /// [`dipping_plane`]) in the box `[0, side]² × [-500, -100]` with `layers = 3` and the global
 /// size 100, and reads its mesh back.
 fn three_layers_between(top: (f64, f64), base: (f64, f64), side: f64) -> geom::mesh::VolumeMesh {
-    layers_between(top, base, side, 3).0
+    layers_between(top, base, side, "layers = 3").0
 }
 
-/// As [`three_layers_between`] with `layers` layers; the mesh and what the build printed.
+/// As [`three_layers_between`] with the layer's `[mesh.regions]` entry `entry` (`layers = 1`);
+/// the mesh and what the build printed.
 fn layers_between(
     top: (f64, f64),
     base: (f64, f64),
     side: f64,
-    layers: u32,
+    entry: &str,
 ) -> (geom::mesh::VolumeMesh, String) {
     let dir = tempfile::tempdir().expect("a scratch folder");
     let file = |name: &str, plane: (f64, f64)| {
@@ -320,7 +321,7 @@ all = ["top", "base", "box"]
 [mesh]
 size = 100.0
 [mesh.regions]
-layer = {{ layers = {layers} }}
+layer = {{ {entry} }}
 [regions]
 layer = {{ point = [0.5, 0.5, {inside:?}] }}
 [output]
@@ -397,6 +398,31 @@ fn three_layers_are_three_tet_edges_across_everywhere_even_where_a_box_side_cuts
 }
 
 #[test]
+fn a_layer_with_an_aspect_keeps_three_edges_across_in_far_fewer_flat_tets() {
+    // A 24 m layer dipping 3°, 1.2 km across: flat tets, four times as wide as thick, keep three
+    // edges across it everywhere (its strips along the box's sides included) in a fraction of
+    // the isotropic count, and are as good as those once stretched across the layer.
+    let (top, base, side) = ((-300.0, 0.05), (-324.0, 0.05), 1200.0);
+    let (iso, _) = layers_between(top, base, side, "layers = 3");
+    let (flat, err) = layers_between(top, base, side, "layers = 3, aspect = 4");
+    assert_eq!(fewest_edges_across(&flat, "layer", "top", "base"), 3);
+    assert_eq!(fewest_edges_across(&flat, "layer", "base", "top"), 3);
+    let count = |m: &geom::mesh::VolumeMesh| m.tets.len();
+    assert!(
+        4 * count(&flat) < count(&iso),
+        "{} flat tets, {} isotropic",
+        count(&flat),
+        count(&iso)
+    );
+    let said = err
+        .split("`aspect`): stretched by that across the layer its tets reach a mean ratio of ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no note on the stretched quality:\n{err}"));
+    let ratio: f64 = said.split(' ').next().unwrap().parse().unwrap();
+    assert!(ratio > 0.3, "{said}");
+}
+
+#[test]
 fn three_layers_stay_three_edges_across_where_the_layer_thins_to_half_its_median() {
     // 16 m thick at x = 0, 8 m at x = 200: sized from its median (12 m), the thin end would
     // be two edges across; its local thickness refines it there.
@@ -409,7 +435,7 @@ fn three_layers_stay_three_edges_across_where_the_layer_thins_to_half_its_median
 fn a_layer_thinning_over_square_kilometres_stays_at_its_median_size_and_says_what_would_fit() {
     // 60 m thick at x = 0 and 0.5 m at x = 4000: one layer where it is under 25 m thick, down
     // to `min_size` (1 m) near its thin end, would be millions of tets.
-    let (mesh, err) = layers_between((-250.0, 0.0), (-310.0, 0.014875), 4000.0, 1);
+    let (mesh, err) = layers_between((-250.0, 0.0), (-310.0, 0.014875), 4000.0, "layers = 1");
     let line = (err.lines()).find(|l| l.contains("region `layer` thins to"));
     let line = line.unwrap_or_else(|| panic!("no warning:\n{err}"));
     for needle in [

@@ -97,6 +97,7 @@ fn a_tet_mesh_node_built_by_the_engine_emits_progress_events_that_make_a_good_ba
         method: Method::Delaunay,
         refinements: 0,
         wells: false,
+        layer: None,
     };
     graph
         .add_op("tet_mesh:overburden_E", std::sync::Arc::new(op), &[b, f])

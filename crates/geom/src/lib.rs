@@ -14,6 +14,7 @@ pub mod mesh;
 pub mod predicates;
 pub mod progress;
 pub mod refine;
+pub mod stretch;
 pub mod tolerances;
 pub mod trimesh;
 pub mod units;

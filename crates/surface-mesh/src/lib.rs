@@ -52,10 +52,13 @@ mod segments;
 mod size;
 mod smooth;
 mod sparse;
+mod stretched;
 mod support;
 mod tutte;
 mod unfold;
 mod verify;
+
+pub use stretched::mesh_patch_stretched;
 
 use cdt::{CONSTRAINT, Cdt, CdtError, LOOP, NONE};
 use geom::predicates::dist;

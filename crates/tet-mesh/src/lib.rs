@@ -68,6 +68,7 @@ mod sides;
 mod sizing;
 mod slivers;
 mod smooth;
+pub mod stretch;
 mod verify;
 mod work;
 

@@ -11,6 +11,7 @@
 //! regions within its reach. Editing one curve's subdivision therefore re-runs that curve, the patches it
 //! bounds, the regions those bound, `mesh` and `export`, and nothing else.
 
+use super::aspect;
 use super::close_refine;
 use super::curves::{CurveSizing, add_curve_nodes, graph_error};
 use super::patch::WellReach;
@@ -128,8 +129,9 @@ impl Expander for ModelExpander {
         let min_segments = min_segments(topo);
         let region_sizes = sizes::region_sizes(&self.recipe, &model);
         let patch_sizes = sizes::patch_sizes(&self.recipe, &model, &region_sizes);
+        let curve_caps = sizes::curve_caps(&self.recipe, &model, &region_sizes);
         let curve_sizes = sizes::curve_sizes(&self.recipe, topo, &patch_sizes);
-        let curve_caps = sizes::curve_caps(&model, &region_sizes);
+        let curve_sizes = sizes::within_caps(curve_sizes, &curve_caps);
         let surface_slope = self.recipe.mesh.growth.min(MAX_SURFACE_GROWTH) - 1.0;
         let end_sizes =
             sizes::curve_end_sizes(&self.recipe, topo, &curve_sizes, &curve_caps, surface_slope);
@@ -169,8 +171,11 @@ impl Expander for ModelExpander {
 
         let mut piece_inputs = vec![model_node];
         piece_inputs.extend(&cuts);
+        let layers = aspect::layers(&self.recipe, &model);
+        let sides = aspect::side_layers(&model, &layers);
         let mut meshed = Vec::with_capacity(model.patches.len());
-        for ((p, boundary), choice) in model.patches.iter().zip(&topo.patches).zip(&patch_sizes) {
+        let each = (model.patches.iter().zip(&topo.patches)).zip(patch_sizes.iter().zip(&sides));
+        for ((p, boundary), (choice, side)) in each {
             let reach = (!cuts.is_empty()).then_some(WellReach {
                 size: choice.size,
                 slope: surface_slope,
@@ -200,6 +205,7 @@ impl Expander for ModelExpander {
                         size,
                         tolerances: self.recipe.tolerances.clone(),
                         refinements: features.len(),
+                        layer: side.clone(),
                     }),
                     &inputs,
                 )
@@ -209,8 +215,9 @@ impl Expander for ModelExpander {
 
         let mut region_nodes = Vec::new();
         let mut groups = Vec::new();
-        for ((r, own), &inside) in (model.regions.regions.iter().zip(&region_sizes)).zip(&interior)
-        {
+        let each =
+            (model.regions.regions.iter().zip(&region_sizes)).zip(interior.iter().zip(&layers));
+        for ((r, own), (&inside, layer)) in each {
             let mut patches: Vec<u32> = r.sides.iter().map(|f| f.patch).collect();
             patches.dedup();
             let sides: Vec<FaceUse> = r
@@ -263,6 +270,7 @@ impl Expander for ModelExpander {
                         method,
                         refinements: features.len(),
                         wells: !cuts.is_empty(),
+                        layer: layer.clone(),
                     }),
                     &inputs,
                 )

@@ -2,6 +2,7 @@
 //! pure stage functions, plus the artifact types they exchange. Each operation declares exactly
 //! the parameters it reads; its `version` is bumped whenever its output for the same inputs changes.
 
+mod aspect;
 mod close_refine;
 mod conformity;
 mod crossings;

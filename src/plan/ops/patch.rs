@@ -3,6 +3,7 @@
 //! its dependents off early), and its FE surface mesh from the discretizations of its curves,
 //! with every crossing a node.
 
+use super::aspect::Layer;
 use super::wells::{WellCutData, patch_crossings, patch_runs, wells_within_reach};
 use super::{CurveNodes, ModelData};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
@@ -11,7 +12,7 @@ use geom::refine::Refinement;
 use geom::{Tolerances, TriMesh};
 use model::{PatchBoundary, patch_input};
 use serde::{Deserialize, Serialize};
-use surface_mesh::{SurfaceSize, mesh_patch_with_progress};
+use surface_mesh::{SurfaceSize, mesh_patch_stretched, mesh_patch_with_progress};
 
 /// The output of `patch:<p>`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -154,6 +155,9 @@ pub struct SurfaceMeshOp {
     pub tolerances: Tolerances,
     /// How many `refine:<k>` inputs follow the curves (features within reach of the patch).
     pub refinements: usize,
+    /// For a side of a region with an `aspect`, the layer it is meshed stretched across (in the
+    /// key only then).
+    pub layer: Option<Layer>,
 }
 
 impl Operation for SurfaceMeshOp {
@@ -194,6 +198,10 @@ impl Operation for SurfaceMeshOp {
             self.tolerances.support_distance_rel,
         )
         .expect("validated finite");
+        if let Some(l) = &self.layer {
+            p.set("stretch.factor", l.aspect).expect("validated finite");
+            p.set("stretch.axis", l.normal.to_vec()).expect("finite");
+        }
         p
     }
     fn run(&self, ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -221,9 +229,14 @@ impl Operation for SurfaceMeshOp {
             .chain(piece.well_refine.iter().cloned())
             .collect();
         let progress = |done, total| ctx.progress(done, total);
-        let out =
-            mesh_patch_with_progress(&input, &self.size, &self.tolerances, &refine, &progress)
-                .map_err(|e| OpError::from(well_context(e, &piece)))?;
+        let (size, tol) = (&self.size, &self.tolerances);
+        let out = match (&self.layer, input.support.vertices.first()) {
+            (Some(l), Some(&origin)) => {
+                mesh_patch_stretched(&input, size, tol, &refine, &l.stretch(origin), &progress)
+            }
+            _ => mesh_patch_with_progress(&input, size, tol, &refine, &progress),
+        }
+        .map_err(|e| OpError::from(well_context(e, &piece)))?;
         let mesh = TriMesh::new(out.nodes, out.triangles);
         let (nn, nt) = (mesh.vertices.len() as u64, mesh.triangles.len() as u64);
         Ok(Output::new(Artifact::encode(&PatchMesh {

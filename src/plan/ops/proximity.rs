@@ -311,8 +311,9 @@ fn nearest_within_size(
 pub(super) fn approaches(recipe: &Recipe, model: &ModelData) -> Vec<(usize, usize, Approach)> {
     let regions = sizes::region_sizes(recipe, model);
     let patches = sizes::patch_sizes(recipe, model, &regions);
+    let caps = sizes::curve_caps(recipe, model, &regions);
     let fallbacks = sizes::curve_sizes(recipe, &model.topology, &patches);
-    let caps = sizes::curve_caps(model, &regions);
+    let fallbacks = sizes::within_caps(fallbacks, &caps);
     let size = sizes::nominal_curve_sizes(recipe, &model.topology, &fallbacks, &caps);
     let segments = segments(model);
     let boxes: Vec<BBox> = (segments.iter())

@@ -10,6 +10,7 @@
 //! surface mesh bit for bit and welding keeps coordinates, so a crossing that is not a node of
 //! the mesh is a broken invariant, reported by well and surface.
 
+use super::aspect::Layer;
 use super::wells::{RegionWells, WellCutData};
 use super::{Groups, PatchMesh};
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
@@ -22,6 +23,7 @@ use model::{
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use tet_mesh::stretch::{mesh_region_stretched, stretched_quality};
 use tet_mesh::{Method, SizeField, TetMeshOptions, mesh_region_with_progress};
 
 /// The output of `tet_mesh:<r>`.
@@ -57,6 +59,8 @@ pub struct TetMeshOp {
     pub refinements: usize,
     /// Whether `wells_in:<r>` follows the patch meshes.
     pub wells: bool,
+    /// With an `aspect`, the layer it is meshed stretched across (in the key only then).
+    pub layer: Option<Layer>,
 }
 
 /// The surface of the patch named `patch` (`<surface>#<k>`).
@@ -293,6 +297,13 @@ impl Operation for TetMeshOp {
             p.set(&format!("{path}.tet_method"), self.method.name())
                 .expect("string");
         }
+        if let Some(l) = &self.layer {
+            let at = format!("mesh.regions.{}", self.name);
+            p.set(&format!("{at}.aspect"), l.aspect)
+                .expect("validated finite");
+            p.set(&format!("{at}.aspect_normal"), l.normal.to_vec())
+                .expect("finite");
+        }
         p
     }
     fn run(&self, ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -325,7 +336,13 @@ impl Operation for TetMeshOp {
         let progress = |done, total| ctx.progress(done, total);
         // Two patches lying on each other or crossing fail the mesher's input check; only then
         // is it worth finding which, to say so in recipe terms.
-        let out = mesh_region_with_progress(&input, &size, &opts, &progress).map_err(|e| {
+        let meshed = match (&self.layer, input.vertices.first()) {
+            (Some(l), Some(&origin)) => {
+                mesh_region_stretched(&input, &size, &opts, &l.stretch(origin), &progress)
+            }
+            _ => mesh_region_with_progress(&input, &size, &opts, &progress),
+        };
+        let out = meshed.map_err(|e| {
             let said = (face_to_face(&self.sides, &get).map(|f| self.face_to_face_error(&f)))
                 .or_else(|| edge_clash(&self.sides, &get).map(|c| self.edge_clash_error(&c)))
                 .or_else(|| patch_crossing(&self.sides, &get).map(|c| self.crossing_error(&c)));
@@ -333,6 +350,15 @@ impl Operation for TetMeshOp {
         })?;
         let well_edges = well_edges(&wells, &ranges, &out.lines);
         let (nn, nt) = (out.nodes.len() as u64, out.tets.len() as u64);
+        let flat = (self.layer.as_ref().zip(input.vertices.first())).map(|(l, &origin)| {
+            let (ratio, angle) = stretched_quality(&out.nodes, &out.tets, &l.stretch(origin));
+            format!(
+                "region `{}` is meshed {} times as wide along its layer as across it (`aspect`): \
+                 stretched by that across the layer its tets reach a mean ratio of {ratio:.3} and \
+                 a dihedral angle of {angle:.1}°; the quality tables measure them as they are, flat",
+                self.name, l.aspect
+            )
+        });
         let out = Output::new(Artifact::encode(&RegionMesh {
             name: self.name.clone(),
             nodes: out.nodes,
@@ -341,6 +367,10 @@ impl Operation for TetMeshOp {
         })?)
         .count("nodes", nn)
         .count("tets", nt);
+        let out = match flat {
+            Some(note) => out.note(note),
+            None => out,
+        };
         Ok(match pinched.first() {
             Some(&[x, y, z]) => out
                 .count("pinched_triangles", pinched.len() as u64)
@@ -672,6 +702,7 @@ mod tests {
             method: Method::default(),
             refinements: 0,
             wells: false,
+            layer: None,
         }
     }
 

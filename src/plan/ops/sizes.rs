@@ -23,6 +23,7 @@
 //! all the global size or curve rules keeps the keys it had without this step.
 
 use super::ModelData;
+use super::aspect::{self, aspect_of};
 use crate::recipe::{Recipe, Subdivision};
 use geom::predicates::polyline_length;
 use model::ModelTopology;
@@ -108,8 +109,15 @@ pub fn interior_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]
                     let min_size = (recipe.mesh.regions.get(&r.name))
                         .map_or(recipe.mesh.min_size, |s| s.min_size);
                     let across = thickness / (EDGE_SPAN * f64::from(n - 1));
-                    own.size.min(across.max(min_size))
+                    match aspect_of(recipe, &r.name) {
+                        Some(s) => (s * across.max(min_size)).min(base_size(recipe, &r.name).size),
+                        None => own.size.min(across.max(min_size)),
+                    }
                 }
+                Some(_) if own.is_layers() => match aspect_of(recipe, &r.name) {
+                    Some(s) => (s * own.size).min(base_size(recipe, &r.name).size),
+                    None => own.size,
+                },
                 _ => own.size,
             }
         })
@@ -120,16 +128,21 @@ pub fn interior_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]
 /// ([`interior_sizes`]).
 pub const EDGE_SPAN: f64 = 2.0;
 
-fn region_size(recipe: &Recipe, name: &str, thickness: f64) -> SizeChoice {
-    let m = &recipe.mesh;
-    let spec = m.regions.get(name);
-    let base = match spec.filter(|s| s.size_given) {
+/// The size region `name` writes, else the global one.
+fn base_size(recipe: &Recipe, name: &str) -> SizeChoice {
+    match recipe.mesh.regions.get(name).filter(|s| s.size_given) {
         Some(s) => SizeChoice {
             path: format!("mesh.regions.{name}"),
             size: s.size,
         },
         None => SizeChoice::global(recipe),
-    };
+    }
+}
+
+fn region_size(recipe: &Recipe, name: &str, thickness: f64) -> SizeChoice {
+    let m = &recipe.mesh;
+    let spec = m.regions.get(name);
+    let base = base_size(recipe, name);
     let (layers, path) = layers_of(recipe, name);
     let min_size = spec.map_or(m.min_size, |s| s.min_size);
     match layers {
@@ -147,29 +160,65 @@ pub fn patch_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]) -
     model
         .patches
         .iter()
-        .zip(&sides_of_patches(model, regions))
+        .zip(&sides_of_patches(recipe, model, regions, true))
         .map(|(p, regions)| patch_size(recipe, &p.surface, regions))
         .collect()
 }
 
 /// Per patch of `model`, the sizes of the regions on its sides (`regions` in region order). A
 /// region's sides are sorted by patch, so a region with both sides of a patch comes twice in a
-/// row and is taken once.
-fn sides_of_patches<'a>(model: &ModelData, regions: &'a [SizeChoice]) -> Vec<Vec<&'a SizeChoice>> {
-    let mut bounded: Vec<Vec<&SizeChoice>> = vec![Vec::new(); model.patches.len()];
-    for (r, choice) in model.regions.regions.iter().zip(regions) {
+/// row and is taken once. With `widen`, a region with an `aspect` (`aspect::layers`) asks its
+/// top and base, and the sides meshed in its stretched space (`aspect::side_layers`, where that
+/// size is the count's across the layer), for its count's size times the aspect, up to its own
+/// size; its other sides keep the count's size.
+fn sides_of_patches(
+    recipe: &Recipe,
+    model: &ModelData,
+    regions: &[SizeChoice],
+    widen: bool,
+) -> Vec<Vec<SizeChoice>> {
+    let layers = if widen {
+        aspect::layers(recipe, model)
+    } else {
+        vec![None; regions.len()]
+    };
+    let sides = aspect::side_layers(model, &layers);
+    let mut bounded: Vec<Vec<SizeChoice>> = vec![Vec::new(); model.patches.len()];
+    for ((r, choice), layer) in model.regions.regions.iter().zip(regions).zip(&layers) {
         let mut last = None;
         for f in r
             .sides
             .iter()
             .filter(|f| last.replace(f.patch) != Some(f.patch))
         {
-            if let Some(rs) = bounded.get_mut(f.patch as usize) {
-                rs.push(choice);
-            }
+            let Some(rs) = bounded.get_mut(f.patch as usize) else {
+                continue;
+            };
+            let wide = |l: &&aspect::Layer| {
+                choice.is_layers() && aspect::widened(model, f.patch as usize, l, &sides)
+            };
+            rs.push(match layer.as_ref().filter(wide) {
+                Some(l) => widened(recipe, &r.name, choice, l.aspect),
+                None => choice.clone(),
+            });
         }
     }
     bounded
+}
+
+/// The size a layer's count asks of its top and base when its elements are `aspect` times as
+/// wide as thick: the count's size times the aspect, up to the region's own size.
+fn widened(recipe: &Recipe, name: &str, choice: &SizeChoice, aspect: f64) -> SizeChoice {
+    let base = base_size(recipe, name);
+    let wide = choice.size * aspect;
+    if wide >= base.size {
+        base
+    } else {
+        SizeChoice {
+            path: format!("mesh.regions.{name}.aspect"),
+            size: wide,
+        }
+    }
 }
 
 /// Per curve of `model`, the finest size a count of elements across (`layers`, `min_layers`)
@@ -178,12 +227,16 @@ fn sides_of_patches<'a>(model: &ModelData, regions: &'a [SizeChoice]) -> Vec<Vec
 /// borders of the strips across it, and segments longer than the layer's size would leave those
 /// strips one element across whatever the layer's own size. Sizes without a count stay below a
 /// curve's rule, which names the curve.
-pub fn curve_caps(model: &ModelData, regions: &[SizeChoice]) -> Vec<Option<SizeChoice>> {
+pub fn curve_caps(
+    recipe: &Recipe,
+    model: &ModelData,
+    regions: &[SizeChoice],
+) -> Vec<Option<SizeChoice>> {
     let topo = &model.topology;
-    let per_patch: Vec<Option<SizeChoice>> = sides_of_patches(model, regions)
+    let per_patch: Vec<Option<SizeChoice>> = sides_of_patches(recipe, model, regions, false)
         .into_iter()
         .map(|rs| {
-            let layered = rs.into_iter().filter(|c| c.is_layers()).cloned();
+            let layered = rs.into_iter().filter(|c| c.is_layers());
             layered.reduce(|a, b| if b.size < a.size { b } else { a })
         })
         .collect();
@@ -201,9 +254,9 @@ pub fn curve_caps(model: &ModelData, regions: &[SizeChoice]) -> Vec<Option<SizeC
     caps
 }
 
-fn patch_size(recipe: &Recipe, surface: &str, regions: &[&SizeChoice]) -> SizeChoice {
+fn patch_size(recipe: &Recipe, surface: &str, regions: &[SizeChoice]) -> SizeChoice {
     let m = &recipe.mesh;
-    let each = regions.iter().map(|c| (*c).clone());
+    let each = regions.iter().cloned();
     if m.surfaces.iter().any(|r| r.selector.matches(surface)) {
         let own = SizeChoice {
             path: format!("mesh.surfaces.\"{surface}\""),
@@ -214,6 +267,17 @@ fn patch_size(recipe: &Recipe, surface: &str, regions: &[&SizeChoice]) -> SizeCh
     } else {
         finest(each, SizeChoice::global(recipe))
     }
+}
+
+/// `sizes` (per curve) lowered to `caps` where finer: a curve bounding the sides of a layer with
+/// an `aspect` takes the count's size across it although its patches are meshed coarser.
+pub fn within_caps(sizes: Vec<SizeChoice>, caps: &[Option<SizeChoice>]) -> Vec<SizeChoice> {
+    (sizes.into_iter().zip(caps))
+        .map(|(s, cap)| match cap {
+            Some(c) if c.size < s.size => c.clone(),
+            _ => s,
+        })
+        .collect()
 }
 
 /// Per curve of `topo`, the size a curve without a `[mesh.curves]` rule uses: the finest of the

@@ -24,6 +24,7 @@
 //! refinement costs, whichever asks for it.
 
 use super::ModelData;
+use super::aspect::aspect_of;
 use super::sizes::{EDGE_SPAN, interior_sizes, layers_of, region_sizes, short};
 use crate::recipe::Recipe;
 use geom::TriMesh;
@@ -73,6 +74,10 @@ fn thin_parts(recipe: &Recipe, model: &ModelData, interior: &[f64], slope: f64) 
         let (Some(n), _) = layers_of(recipe, &r.name) else {
             continue;
         };
+        // A layer meshed flat along it takes its thickness from its sides, not from its walls.
+        if aspect_of(recipe, &r.name).is_some() {
+            continue;
+        }
         let min_size =
             (recipe.mesh.regions.get(&r.name)).map_or(recipe.mesh.min_size, |s| s.min_size);
         if min_size >= FINER * inside {

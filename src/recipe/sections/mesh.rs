@@ -43,10 +43,14 @@ const REGION_KEYS: &[&str] = &[
     "growth",
     "tet_method",
     "layers",
+    "aspect",
 ];
 /// Largest accepted `layers` / `min_layers`: more elements across one layer than this is surely
 /// a typo (and would refine a 35 m layer below a metre).
 const MAX_LAYERS: i64 = 100;
+/// Largest accepted `aspect`: elements fifty times as wide as they are thick are beyond what a
+/// solver's elements bear.
+const MAX_ASPECT: f64 = 50.0;
 /// Largest accepted segment count for one curve: beyond this a recipe is surely a typo.
 const MAX_COUNT: i64 = 10_000_000;
 
@@ -249,6 +253,22 @@ fn layers(ctx: &mut Ctx<'_>, t: &DeTable<'_>, path: &str, key: &str) -> Option<u
     u32::try_from(n).ok()
 }
 
+/// The aspect of a region's elements that `aspect` of `t` asks for, if written and valid.
+fn aspect(ctx: &mut Ctx<'_>, t: &DeTable<'_>, path: &str) -> Option<f64> {
+    let v = t.get("aspect")?;
+    let at = path_join(path, "aspect");
+    let a = rd::number(ctx, v, &at)?;
+    if !(1.0..=MAX_ASPECT).contains(&a) {
+        ctx.error(
+            v.span(),
+            format!("`{at}` = {a} must be between 1 and {MAX_ASPECT}"),
+            Some("how many times as wide along the layer as across it, e.g. `4`".into()),
+        );
+        return None;
+    }
+    Some(a)
+}
+
 fn curve_rules(ctx: &mut Ctx<'_>, v: &Value<'_>, names: &Names) -> Vec<CurveRule> {
     let mut out: Vec<CurveRule> = Vec::new();
     let Some(t) = rd::as_table(ctx, v, "mesh.curves", None) else {
@@ -429,6 +449,7 @@ fn region_rules(
                     size: s.size,
                     size_given: rt.get("size").is_some(),
                     layers: layers(ctx, rt, &path, "layers"),
+                    aspect: aspect(ctx, rt, &path),
                     min_size: s.min_size,
                     max_size: s.max_size,
                     growth: s.growth,
