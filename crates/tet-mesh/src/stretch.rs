@@ -138,24 +138,9 @@ mod tests {
         assert_eq!(layer_normal(&[[0.0; 3]; 3], &[[0, 1, 2]]), None);
     }
 
-    /// The closed surface of an axis-aligned box at UTM-like coordinates, 12 triangles.
+    /// The closed surface of an axis-aligned box of sides `d` at UTM-like coordinates.
     fn box_mesh(d: [f64; 3]) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-        let o = [500_000.0, 7_000_000.0, -2000.0];
-        let v: Vec<[f64; 3]> = (0..8)
-            .map(|i| [0, 1, 2].map(|k| o[k] + if (i >> k) & 1 == 1 { d[k] } else { 0.0 }))
-            .collect();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let t = quads
-            .iter()
-            .flat_map(|q: &[u32; 4]| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
-        (v, t)
+        let lo = [500_000.0, 7_000_000.0, -2000.0];
+        test_support::shapes::cuboid(lo, [0, 1, 2].map(|k| lo[k] + d[k]))
     }
 }

@@ -198,7 +198,7 @@ fn sides_of_patches(
                 choice.is_layers() && aspect::widened(model, f.patch as usize, l, &sides)
             };
             rs.push(match layer.as_ref().filter(wide) {
-                Some(l) => widened(recipe, &r.name, choice, l.aspect),
+                Some(l) => wide_choice(recipe, &r.name, choice, l.aspect),
                 None => choice.clone(),
             });
         }
@@ -208,7 +208,7 @@ fn sides_of_patches(
 
 /// The size a layer's count asks of its top and base when its elements are `aspect` times as
 /// wide as thick: the count's size times the aspect, up to the region's own size.
-fn widened(recipe: &Recipe, name: &str, choice: &SizeChoice, aspect: f64) -> SizeChoice {
+fn wide_choice(recipe: &Recipe, name: &str, choice: &SizeChoice, aspect: f64) -> SizeChoice {
     let base = base_size(recipe, name);
     let wide = choice.size * aspect;
     if wide >= base.size {

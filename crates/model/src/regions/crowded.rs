@@ -154,24 +154,17 @@ mod tests {
 
     #[test]
     fn the_mean_turn_of_a_flat_sheet_is_zero_and_of_a_folded_one_its_angle() {
-        let flat = geom::TriMesh::new(
-            vec![
+        // The unit square in two triangles, its corner (1, 1) raised by `z`.
+        let sheet = |z: f64| {
+            let v = vec![
                 [0.0, 0.0, 0.0],
                 [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
+                [1.0, 1.0, z],
                 [0.0, 1.0, 0.0],
-            ],
-            vec![[0, 1, 2], [0, 2, 3]],
-        );
-        let folded = geom::TriMesh::new(
-            vec![
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 1.0],
-                [0.0, 1.0, 0.0],
-            ],
-            vec![[0, 1, 2], [0, 2, 3]],
-        );
+            ];
+            geom::TriMesh::new(v, vec![[0, 1, 2], [0, 2, 3]])
+        };
+        let (flat, folded) = (sheet(0.0), sheet(1.0));
         let patch = |surface: &str, mesh: geom::TriMesh| PatchIn {
             name: format!("{surface}#1"),
             surface: surface.to_string(),
