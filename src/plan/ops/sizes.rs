@@ -93,7 +93,7 @@ pub(super) fn layers_of(recipe: &Recipe, name: &str) -> (Option<u32>, String) {
 
 /// Per region of `model`, the target size inside it for the tet mesher: its size
 /// ([`region_sizes`], `regions`), and in a region with `n ≥ 2` elements across, at most its
-/// thickness over `EDGE_SPAN · (n − 1)` (never below its `min_size`). The surfaces bounding it
+/// thickness over [`per_layer`]`(n)` (never below its `min_size`). The surfaces bounding it
 /// stay at thickness over `n`. The count across is the fewest tet edges from one side to the
 /// other, and a path of `n − 1` edges crosses only if its edges are longer than thickness over
 /// `n − 1`: Delaunay refinement leaves tets of circumradius up to 0.9 sizes, so edges of up to
@@ -108,7 +108,7 @@ pub fn interior_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]
                 Some(n) if own.is_layers() && n >= 2 => {
                     let min_size = (recipe.mesh.regions.get(&r.name))
                         .map_or(recipe.mesh.min_size, |s| s.min_size);
-                    let across = thickness / (EDGE_SPAN * f64::from(n - 1));
+                    let across = thickness / per_layer(n);
                     match aspect_of(recipe, &r.name) {
                         Some(s) => (s * across.max(min_size)).min(base_size(recipe, &r.name).size),
                         None => own.size.min(across.max(min_size)),
@@ -127,6 +127,16 @@ pub fn interior_sizes(recipe: &Recipe, model: &ModelData, regions: &[SizeChoice]
 /// The longest tet edge inside a layered region, in its interior target sizes
 /// ([`interior_sizes`]).
 pub const EDGE_SPAN: f64 = 2.0;
+
+/// How many interior target sizes a region with `n` layers is across ([`interior_sizes`]):
+/// `EDGE_SPAN · (n − 1)`, and at least `n + 1` from two layers on: with `n` for two layers (its
+/// surfaces' size) the example's reservoirs kept 393 tet edges straight across them.
+pub fn per_layer(n: u32) -> f64 {
+    match n {
+        0 | 1 => 1.0,
+        _ => (EDGE_SPAN * f64::from(n - 1)).max(f64::from(n + 1)),
+    }
+}
 
 /// The size region `name` writes, else the global one.
 fn base_size(recipe: &Recipe, name: &str) -> SizeChoice {

@@ -7,7 +7,7 @@
 //! its neighbours' within their reach), never below the region's `min_size`.
 //!
 //! The size there is the interior's rule (`sizes::interior_sizes`): thickness over
-//! `max(n, EDGE_SPAN · (n − 1))`, so the tets keep `n` edges across; the surfaces there take it
+//! `sizes::per_layer(n)`, so the tets keep `n` edges across; the surfaces there take it
 //! too (a refinement is one size for every mesher). Points are grouped by size class (a quarter
 //! of an octave, each class at its lower bound), so that a node's feature is one size and an
 //! edit far from a thin part re-runs none of the nodes that take it.
@@ -25,7 +25,7 @@
 
 use super::ModelData;
 use super::aspect::aspect_of;
-use super::sizes::{EDGE_SPAN, interior_sizes, layers_of, region_sizes, short};
+use super::sizes::{interior_sizes, layers_of, per_layer, region_sizes, short};
 use crate::recipe::Recipe;
 use geom::TriMesh;
 use geom::refine::Refinement;
@@ -214,11 +214,6 @@ pub fn budget_warnings(recipe: &Recipe, model: &ModelData, slope: f64) -> Vec<(S
     out
 }
 
-/// How many sizes a region with `n` layers is across: `max(n, EDGE_SPAN · (n − 1))`.
-fn per_layer(n: u32) -> f64 {
-    f64::from(n).max(EDGE_SPAN * f64::from(n.saturating_sub(1)))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -226,7 +221,7 @@ mod tests {
     #[test]
     fn a_layer_is_as_many_sizes_across_as_its_tets_need_for_its_count() {
         assert_eq!(per_layer(1), 1.0);
-        assert_eq!(per_layer(2), 2.0);
+        assert_eq!(per_layer(2), 3.0);
         assert_eq!(per_layer(3), 4.0);
         assert_eq!(per_layer(5), 8.0);
     }
