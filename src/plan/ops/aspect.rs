@@ -5,9 +5,11 @@
 //! `s` (`tet_mesh::stretch`), so its elements are about `s` times as wide as they are thick, and
 //! the patches facing across the layer (its top and base: within 45° of its normal on average)
 //! are meshed `s` times coarser than the count across asks, up to the region's own size. Its
-//! sides (faults, the box) keep the count's size: they are the strips across the layer, and
-//! their nodes set the elements across it there. The layer's normal is measured on the model
-//! (the dominant direction of its boundary's normals), so it is in the tet mesh's key.
+//! sides (faults, the box: the strips across the layer) are meshed in the same stretched space
+//! when only regions with an aspect bound them, so the tets along them are isotropic there too;
+//! a side shared with an isotropic region stays isotropic. The curves keep the count's size:
+//! their nodes set the elements across the layer at its edges. The layer's normal is measured
+//! on the model (the dominant direction of its boundary's normals), so it is in the keys.
 //!
 //! A solver sees these elements as a flow with a vertical permeability `s²` times below the
 //! horizontal one sees isotropic ones: stretched by `√(kh / kv)` the equations of such a layer are
