@@ -406,6 +406,21 @@ fn a_horizon_jittered_by_fifty_metres_fails_fast_naming_a_line_of_its_file() {
         "H1_top_reservoir.ts",
         Perturbation::Jitter(50.0, 6),
     ));
+    // And it fails in the model, before any mesher, blaming the jittered horizon (meshing round
+    // the slivers took 45 s before failing on them).
+    let m = Model::didactic();
+    perturb(
+        &m.path(&format!("{}/H1_top_reservoir.ts", m.data)),
+        Perturbation::Jitter(50.0, 6),
+    );
+    let e = build_within(&m, Duration::from_secs(60), "didactic jittered by 50 m");
+    assert!(!e.ok);
+    assert!(
+        e.stderr.contains("cross each other so often") && e.stderr.contains("`H1` is the rougher"),
+        "{}",
+        e.stderr
+    );
+    assert!(!e.stderr.contains("tet_mesh:"), "{}", e.stderr);
 }
 
 #[test]

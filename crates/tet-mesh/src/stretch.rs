@@ -16,6 +16,8 @@
 
 pub use geom::stretch::Stretch;
 
+use geom::predicates::{cross, dot, sub};
+
 use crate::{
     RegionInput, SizeField, TetMeshError, TetMeshOptions, TetMeshOutput, measured_stats,
     mesh_region_with_progress, quality, verify,
@@ -28,14 +30,8 @@ pub fn layer_normal(vertices: &[[f64; 3]], boundary: &[[u32; 3]]) -> Option<[f64
     let mut m = [[0.0f64; 3]; 3];
     for t in boundary {
         let [a, b, c] = t.map(|i| vertices[i as usize]);
-        let u = [0, 1, 2].map(|k| b[k] - a[k]);
-        let v = [0, 1, 2].map(|k| c[k] - a[k]);
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let n = cross(&sub(&b, &a), &sub(&c, &a));
+        let len = dot(&n, &n).sqrt();
         if len == 0.0 {
             continue;
         }
