@@ -34,13 +34,25 @@ use engine::{BuildReport, Derivations, NodeReport, NodeState};
 use geom::mesh::SurfaceKind;
 use geom::mesh::VolumeMesh;
 use geom::predicates::polyline_length;
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-fn count(report: &BuildReport, node: &str, key: &str) -> usize {
-    report
-        .node(node)
-        .and_then(|n| n.counts.get(key))
-        .map_or(0, |&c| c as usize)
+/// The build's nodes by name: looked up once per curve, patch and region, where a scan of the
+/// list each time made the report quadratic (a surface of thousands of patches has tens of
+/// thousands of nodes).
+struct ByName<'r>(HashMap<&'r str, &'r NodeReport>);
+
+impl<'r> ByName<'r> {
+    fn new(report: &'r BuildReport) -> Self {
+        ByName(report.nodes.iter().map(|n| (n.name.as_str(), n)).collect())
+    }
+
+    /// Count `key` of node `node`, 0 when either is missing.
+    fn count(&self, node: &str, key: &str) -> usize {
+        (self.0.get(node))
+            .and_then(|n| n.counts.get(key))
+            .map_or(0, |&c| c as usize)
+    }
 }
 
 /// The artifact of node `name` decoded as `T`: `None` when the build has none (the node failed or
@@ -217,6 +229,7 @@ fn report_input<'a>(
         .map(|c| c.message())
         .collect();
     if let Some(m) = &model {
+        let nodes = ByName::new(report);
         curves = m
             .topology
             .curves
@@ -225,7 +238,7 @@ fn report_input<'a>(
                 name: c.name.clone(),
                 surfaces: c.surfaces.clone(),
                 length: polyline_length(&c.points),
-                nodes: count(report, &format!("discretize:{}", c.name), "nodes"),
+                nodes: nodes.count(&format!("discretize:{}", c.name), "nodes"),
             })
             .collect();
         let named: Vec<(&str, &str)> = m
@@ -248,10 +261,10 @@ fn report_input<'a>(
         );
         warnings.extend(crate::plan::ops::close_curve_warnings(recipe, m));
         for p in &mut patches {
-            p.triangles = count(report, &format!("surface_mesh:{}", p.name), "triangles");
+            p.triangles = nodes.count(&format!("surface_mesh:{}", p.name), "triangles");
         }
         for r in &mut regions {
-            r.tets = count(report, &format!("tet_mesh:{}", r.name), "tets");
+            r.tets = nodes.count(&format!("tet_mesh:{}", r.name), "tets");
             r.material = recipe.regions.get(&r.name).and_then(|s| s.material);
         }
     }
