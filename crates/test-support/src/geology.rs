@@ -54,6 +54,7 @@ pub fn cases() -> Vec<Case> {
         salt_dome_cut_by_the_box(),
         lens(),
         fault_patches_touching_at_corners(),
+        dense_fault_patches_touching_at_corners(),
         dangling_faults_crossing(),
         horizons_touching_at_a_point(),
         horizons_touching_along_a_line(),
@@ -797,6 +798,31 @@ fn fault_patches_touching_at_corners() -> Case {
         &PLAIN,
     );
     r.surface("F", "fault", &corner_patches(12, 100.0), &PLAIN);
+    r.case(&["box", "H1", "H2"], 3)
+}
+
+/// The same fault as [`fault_patches_touching_at_corners`] mapped five times as finely (60 ×
+/// 60 triangles of 20 m, 3,600 patches): the grid's cells are cocircular, so the Delaunay
+/// tetrahedralization of the layer splits about half of them along the diagonal through the
+/// gap, and each such triangle is recovered by flipping that diagonal. Before, 1,816 of the
+/// layer's 5,362 boundary and embedded triangles were missing: the recovery gave way to the
+/// advancing front, which failed.
+fn dense_fault_patches_touching_at_corners() -> Case {
+    let mut rng = Rng(0x6465_6e73_6520_7321);
+    let mut r = Recipe::new("dense_fault_patches_at_corners");
+    r.surface(
+        "H1",
+        "horizon",
+        &horizon(-600.0, 30.0, 0.4, &mut rng),
+        &PLAIN,
+    );
+    r.surface(
+        "H2",
+        "horizon",
+        &horizon(-1400.0, 30.0, 1.1, &mut rng),
+        &PLAIN,
+    );
+    r.surface("F", "fault", &corner_patches(60, 20.0), &PLAIN);
     r.case(&["box", "H1", "H2"], 3)
 }
 

@@ -266,7 +266,9 @@ impl Operation for TetMeshOp {
         // 32: a region's fronts may spend half as much whatever its size.
         // 33: a thin layer's flips and contractions act on tets up to shape 0.6, not 0.8.
         // 34: a region round a pinch keeps the pinched triangle as a face inside it.
-        34
+        // 35: a missing triangle's coplanar wrong diagonal is flipped whatever holds the quad's
+        //     other half (a chequerboard's gap, not only a neighbouring triangle).
+        35
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

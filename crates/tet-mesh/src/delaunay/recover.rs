@@ -579,42 +579,49 @@ fn vertex_tets(tri: &Tri) -> Vec<u32> {
     vtet
 }
 
-/// For each missing constraint triangle that forms a coplanar quad with a neighbouring
-/// constraint triangle, flip the tetrahedralization's other diagonal of that quad to theirs
-/// (`flip`). Returns the number of flips; `vtet` is kept current.
+/// For each missing constraint triangle `uvw` whose edge `uv` the tetrahedralization crosses in
+/// the triangle's plane by an edge `wz` (a coplanar quad `u w v z` holding the other diagonal),
+/// flip `wz` to `uv` (`flip44`, where `wz` has four tets round it). The quad's other half may
+/// be a neighbouring constraint triangle (a structured grid with its diagonals one way) or no
+/// constraint at all (a chequerboard of triangles touching at corners, whose gaps are the other
+/// halves): `z` is sought among the vertices round `w` in the triangle's plane, so either is
+/// found. An edge of a constraint triangle is never flipped away. Returns the number of flips;
+/// `vtet` is kept current.
 fn flip_diagonals(
     tri: &mut Tri,
     all: &[([u32; 3], bool)],
     missing: &[usize],
     vtet: &mut [u32],
 ) -> usize {
-    // (edge, triangle) pairs sorted by edge: the triangles on an edge are one run (12 bytes a
-    // pair, where a map of lists costs several times that at the recovery's memory peak).
-    let mut by_edge: Vec<([u32; 2], u32)> = Vec::with_capacity(3 * all.len());
-    for (k, (t, _)) in all.iter().enumerate() {
-        for e in 0..3 {
-            let (u, v) = (t[e], t[(e + 1) % 3]);
-            by_edge.push(([u.min(v), u.max(v)], k as u32));
-        }
-    }
-    by_edge.sort_unstable();
+    // Constraint edges, sorted: an edge of a constraint triangle is never flipped away.
+    let mut edges: Vec<[u32; 2]> = (all.iter())
+        .flat_map(|(t, _)| (0..3).map(move |e| sorted_pair(t[e], t[(e + 1) % 3])))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
     let mut flips = 0;
+    let mut near: Vec<u32> = Vec::new();
     for &k in missing {
         let t = all[k].0;
         for e in 0..3 {
             let (u, v, w) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
-            let key = [u.min(v), u.max(v)];
-            let first = by_edge.partition_point(|&(e, _)| e < key);
-            for &(_, k2) in by_edge[first..].iter().take_while(|&&(e, _)| e == key) {
-                let k2 = k2 as usize;
-                if k2 == k {
-                    continue;
+            if vtet[w as usize] == NONE {
+                continue;
+            }
+            // The vertices round `w` in the triangle's plane, each tried once.
+            near.clear();
+            for s in star(tri, w, vtet[w as usize]) {
+                for &z in &tri.t[s as usize].v {
+                    if ![u, v, w].contains(&z) && !near.contains(&z) {
+                        near.push(z);
+                    }
                 }
-                let t2 = all[k2].0;
-                let Some(&z) = t2.iter().find(|&&x| x != u && x != v) else {
-                    continue;
-                };
-                if !coplanar(tri, [u, v, w, z]) || vtet[w as usize] == NONE {
+                if near.len() > MAX_NEAR {
+                    break;
+                }
+            }
+            for &z in &near {
+                if edges.binary_search(&sorted_pair(w, z)).is_ok() || !coplanar(tri, [u, v, w, z]) {
                     continue;
                 }
                 // A tet holding the wrong diagonal wz, found round w.
@@ -630,11 +637,19 @@ fn flip_diagonals(
                             vtet[x as usize] = n;
                         }
                     }
+                    break;
                 }
             }
         }
     }
     flips
+}
+
+/// Vertices round a constraint triangle's vertex that [`flip_diagonals`] looks at.
+const MAX_NEAR: usize = 256;
+
+fn sorted_pair(a: u32, b: u32) -> [u32; 2] {
+    [a.min(b), a.max(b)]
 }
 
 /// Star sizes up to which [`Star`] scans its list for a tet already met.

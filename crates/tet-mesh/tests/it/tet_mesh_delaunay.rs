@@ -211,6 +211,63 @@ fn a_dangling_fault_of_needles_is_recovered_and_keeps_a_tet_on_each_side() {
     assert!(out.stats.new_nodes > 0);
 }
 
+/// The cube `[0, s]³` (two triangles a side), shifted to `origin`, and inside it a dangling
+/// fault given as a chequerboard: on a `k × k` grid in a plane dipping 60°, the lower left half
+/// of every cell, so that the triangles touch only at their corners and every gap between them
+/// is a cell's other half (a thresholded slip map, or a fault stick export).
+fn cube_with_chequerboard_fault(s: f64, k: usize, origin: P) -> RegionInput {
+    let (mut pts, tris) = test_support::shapes::cuboid([0.0; 3], [s; 3]);
+    let (cos, sin) = (60f64.to_radians().cos(), 60f64.to_radians().sin());
+    let base = pts.len();
+    for i in 0..=k {
+        for j in 0..=k {
+            let (u, v) = (i as f64 / k as f64 - 0.5, j as f64 / k as f64 - 0.5);
+            let (u, v) = (0.6 * s * u, 0.6 * s * v);
+            pts.push([0.5 * s + v * cos, 0.5 * s + u, 0.5 * s + v * sin]);
+        }
+    }
+    let at = |i: usize, j: usize| (base + i * (k + 1) + j) as u32;
+    let embedded = (0..k)
+        .flat_map(|i| (0..k).map(move |j| [at(i, j), at(i + 1, j), at(i, j + 1)]))
+        .collect();
+    for p in &mut pts {
+        for c in 0..3 {
+            p[c] += origin[c];
+        }
+    }
+    RegionInput {
+        name: "cube with chequerboard fault".into(),
+        vertices: pts,
+        boundary: tris,
+        embedded,
+        lines: Vec::new(),
+    }
+}
+
+#[test]
+fn a_chequerboard_fault_whose_diagonals_delaunay_chose_the_other_way_is_recovered_by_flips() {
+    // The grid's cells are cocircular: the Delaunay tetrahedralization splits about half of them
+    // along the other diagonal, through a gap. Flipping that diagonal recovers each such
+    // triangle; the hundreds that were missing made the recovery give way to the front, which
+    // failed on this cube (and on the example's overburden with such a fault in it).
+    for origin in [[0.0; 3], [512_345.25, 7_003_125.5, -1500.0]] {
+        let input = cube_with_chequerboard_fault(800.0, 40, origin);
+        let cube = RegionInput {
+            embedded: Vec::new(),
+            ..input.clone()
+        };
+        let out = mesh_with(&input, Method::Delaunay);
+        assert_eq!(out.stats.fallback, None, "at {origin:?}");
+        // The cube's own sides are no Delaunay faces in places: the fault adds next to none.
+        let alone = mesh_with(&cube, Method::Delaunay).stats.recovered_faces;
+        assert!(
+            out.stats.recovered_faces <= alone + 16,
+            "{} triangles went through holes at {origin:?}, {alone} without the fault",
+            out.stats.recovered_faces
+        );
+    }
+}
+
 #[test]
 fn refinement_never_dissolves_a_dangling_fault_whose_tip_it_goes_round() {
     // A fine boundary makes the refinement insert many points around the fault's tips, where a
