@@ -162,6 +162,11 @@ pub struct CurveExtractOp {
     pub name: String,
     /// The input is `model` (a `ModelData`), not `curves`.
     pub from_model: bool,
+    /// Where the curve was in its input's list when the node was added: looked at first, so
+    /// that extracting every curve is not quadratic in their number (a fault of thousands of
+    /// triangles touching at corners has tens of thousands). Only a hint: the name decides, and
+    /// it is no parameter.
+    pub at: usize,
 }
 
 impl Operation for CurveExtractOp {
@@ -189,11 +194,7 @@ impl Operation for CurveExtractOp {
         // the extraction quadratic in the number of curves.
         let c = if self.from_model {
             let model = input.decode_shared::<super::ModelData>()?;
-            let c = model
-                .topology
-                .curves
-                .iter()
-                .find(|c| c.name == self.name)
+            let c = named(&model.topology.curves, self.at, |c| &c.name, &self.name)
                 .ok_or_else(missing)?;
             ModelCurve {
                 name: c.name.clone(),
@@ -206,12 +207,23 @@ impl Operation for CurveExtractOp {
             }
         } else {
             let set = input.decode_shared::<CurveSet>()?;
-            let found = set.curves.iter().find(|c| c.name == self.name);
+            let found = named(&set.curves, self.at, |c| &c.name, &self.name);
             found.cloned().ok_or_else(missing)?
         };
         let n = c.polyline.len() as u64;
         Ok(Output::new(Artifact::encode(&c)?).count("points", n))
     }
+}
+
+/// The item of `list` called `name`: the one at `at` when it is, else the first so called.
+fn named<'a, T>(
+    list: &'a [T],
+    at: usize,
+    name_of: impl Fn(&T) -> &String,
+    name: &str,
+) -> Option<&'a T> {
+    (list.get(at).filter(|c| name_of(c) == name))
+        .or_else(|| list.iter().find(|c| name_of(c) == name))
 }
 
 /// The output of `discretize:<name>`.
@@ -449,11 +461,11 @@ impl Expander for DiscretizeExpander {
         }
         let curves_node = x.node("curves").ok_or("no `curves` node")?;
         let mut discretized = Vec::with_capacity(set.curves.len());
-        for c in &set.curves {
+        for (at, c) in set.curves.iter().enumerate() {
             discretized.push(add_curve_nodes(
                 x,
                 &self.recipe,
-                &c.name,
+                (&c.name, at),
                 (curves_node, false),
                 1,
                 CurveSizing::default(),
@@ -494,7 +506,7 @@ pub(super) struct CurveSizing<'a> {
 pub(super) fn add_curve_nodes(
     x: &mut Expansion,
     recipe: &Recipe,
-    name: &str,
+    (name, at): (&str, usize),
     (source, from_model): (NodeId, bool),
     min_segments: u32,
     sizing: CurveSizing<'_>,
@@ -506,6 +518,7 @@ pub(super) fn add_curve_nodes(
             Arc::new(CurveExtractOp {
                 name: name.to_string(),
                 from_model,
+                at,
             }),
             &[source],
         )
@@ -555,6 +568,17 @@ mod tests {
     struct Quiet;
     impl RunContext for Quiet {
         fn progress(&self, _: u64, _: u64) {}
+    }
+
+    #[test]
+    fn a_curve_is_found_by_its_name_whether_or_not_the_hint_points_at_it() {
+        let list: Vec<String> = ["F1/H1", "F2#3", "H1#1"].map(String::from).to_vec();
+        let find = |at: usize, name: &str| named(&list, at, |c| c, name).cloned();
+        assert_eq!(find(1, "F2#3").as_deref(), Some("F2#3"));
+        // A stale or wrong hint, or one past the end: the name still decides.
+        assert_eq!(find(0, "H1#1").as_deref(), Some("H1#1"));
+        assert_eq!(find(9, "F1/H1").as_deref(), Some("F1/H1"));
+        assert_eq!(find(1, "F9"), None);
     }
 
     /// The nodes of a 100 m straight curve discretized at 250 m with at least `min` segments.

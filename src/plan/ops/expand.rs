@@ -149,7 +149,8 @@ impl Expander for ModelExpander {
         };
         let mut discretized = Vec::with_capacity(topo.curves.len());
         let sized = curve_sizes.iter().zip(&curve_caps).zip(&end_sizes);
-        for ((c, &min), ((size, cap), &ends)) in topo.curves.iter().zip(&min_segments).zip(sized) {
+        let each = topo.curves.iter().enumerate().zip(&min_segments).zip(sized);
+        for (((at, c), &min), ((size, cap), &ends)) in each {
             let near = refine::bounds_of(&c.points);
             let sizing = CurveSizing {
                 fallback: Some(size),
@@ -161,7 +162,7 @@ impl Expander for ModelExpander {
             discretized.push(add_curve_nodes(
                 x,
                 &self.recipe,
-                &c.name,
+                (&c.name, at),
                 (model_node, true),
                 min,
                 sizing,
