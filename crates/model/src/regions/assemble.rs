@@ -8,7 +8,7 @@
 //! outside of the body). Each body has exactly one outside shell. A body's host is the innermost
 //! region whose outer shell encloses a point just outside the body.
 
-use super::exact::{Loc, Tri, near_point, one_sided, parity};
+use super::exact::{Indexed, Loc, Tri, near_point, one_sided, parity};
 use super::radial::UnionFind;
 use super::shells::Shells;
 use super::weld::{P3, Soup, fmt_point};
@@ -76,7 +76,7 @@ fn surfaces_of(patches: &[PatchIn], fus: &[FaceUse]) -> String {
 fn classify(
     soup: &Soup,
     patches: &[PatchIn],
-    all: &[Tri],
+    all: &Indexed,
     shells: &Shells,
     s: usize,
     bbox: &BBox,
@@ -174,13 +174,14 @@ pub(super) fn assemble(
 ) -> Result<Assembled, RegionError> {
     let n = shells.shells.len();
     let all: Vec<Tri> = (0..soup.tris.len()).map(|t| soup.corners(t)).collect();
+    let indexed = Indexed::new(&all);
     let bbox = BBox::from_points(soup.points.iter());
     let mut comp = UnionFind::new(n);
     for pair in &shells.shell_of {
         comp.union(pair[0] as usize, pair[1] as usize);
     }
     let infos: Vec<Info> = (0..n)
-        .map(|s| classify(soup, patches, &all, shells, s, &bbox))
+        .map(|s| classify(soup, patches, &indexed, shells, s, &bbox))
         .collect::<Result<_, _>>()?;
 
     // Each body: its shells; exactly one faces the outside unless it is a dangling sheet.

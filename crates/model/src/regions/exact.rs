@@ -11,8 +11,39 @@ use super::PatchIn;
 use super::weld::{P3, drop_axis};
 use geom::predicates::{cross, sub};
 use geom::{BBox, Orientation, orient2d, orient3d};
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{AABB, RTree};
 
 pub(super) type Tri = [P3; 3];
+
+/// The model's triangles with an R-tree of their boxes: [`near_point`] asks which of them a short
+/// segment may touch once per shell, and a scan of them all made that quadratic in the number of
+/// patches (a fault of thousands of triangles touching at corners, each a dangling shell).
+pub(super) struct Indexed<'a> {
+    pub tris: &'a [Tri],
+    boxes: RTree<GeomWithData<Rectangle<P3>, usize>>,
+}
+
+impl<'a> Indexed<'a> {
+    pub fn new(tris: &'a [Tri]) -> Self {
+        let boxes = (tris.iter().enumerate())
+            .map(|(k, t)| {
+                let b = BBox::from_points(t.iter());
+                GeomWithData::new(Rectangle::from_corners(b.min, b.max), k)
+            })
+            .collect();
+        Indexed {
+            tris,
+            boxes: RTree::bulk_load(boxes),
+        }
+    }
+
+    /// The triangles whose boxes meet `b` (closed boxes, as [`BBox::overlaps`]), in no order.
+    fn meeting(&self, b: &BBox) -> impl Iterator<Item = usize> + '_ {
+        let env = AABB::from_corners(b.min, b.max);
+        (self.boxes.locate_in_envelope_intersecting(env)).map(|g| g.data)
+    }
+}
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(super) enum Loc {
@@ -175,8 +206,8 @@ fn segment_may_touch(q: &P3, r: &P3, t: &Tri) -> bool {
 /// A point just off side `front` of triangle `t` of `all`, verified exactly: the segment from it
 /// to its mirror point crosses `t` properly through its interior and touches no other triangle,
 /// so the point lies in the open cell of space that face-use faces.
-pub(super) fn near_point(all: &[Tri], t: usize, front: bool) -> Option<P3> {
-    let tri = all.get(t)?;
+pub(super) fn near_point(all: &Indexed, t: usize, front: bool) -> Option<P3> {
+    let tri = all.tris.get(t)?;
     let [a, b, c] = tri;
     let (ab, ac) = (sub(b, a), sub(c, a));
     let n = cross(&ab, &ac);
@@ -214,9 +245,7 @@ pub(super) fn near_point(all: &[Tri], t: usize, front: bool) -> Option<P3> {
             continue;
         }
         let seg = BBox::from_points([&q, &r]);
-        let clear = all.iter().enumerate().all(|(u, o)| {
-            u == t || !seg.overlaps(&BBox::from_points(o.iter())) || !segment_may_touch(&q, &r, o)
-        });
+        let clear = (all.meeting(&seg)).all(|u| u == t || !segment_may_touch(&q, &r, &all.tris[u]));
         if clear {
             return Some(q);
         }
@@ -315,7 +344,7 @@ mod tests {
         ]);
         for (i, tri) in t.iter().enumerate() {
             for front in [true, false] {
-                let q = near_point(&t, i, front).expect("a point");
+                let q = near_point(&Indexed::new(&t), i, front).expect("a point");
                 let want = if front {
                     Orientation::Positive
                 } else {
@@ -327,6 +356,6 @@ mod tests {
         // A triangle lying on top of another one leaves no room on that side.
         let mut twice = t.clone();
         twice.push(t[0]);
-        assert_eq!(near_point(&twice, 0, true), None);
+        assert_eq!(near_point(&Indexed::new(&twice), 0, true), None);
     }
 }
