@@ -783,22 +783,7 @@ fn fault_with_a_hole() -> Case {
 /// every patch is embedded in the layer's region. What a fault stick export or a thresholded
 /// slip map looks like; it once cost time quadratic in the number of curves.
 fn fault_patches_touching_at_corners() -> Case {
-    let mut rng = Rng(0x7061_7463_6865_7321);
-    let mut r = Recipe::new("fault_patches_at_corners");
-    r.surface(
-        "H1",
-        "horizon",
-        &horizon(-600.0, 30.0, 0.4, &mut rng),
-        &PLAIN,
-    );
-    r.surface(
-        "H2",
-        "horizon",
-        &horizon(-1400.0, 30.0, 1.1, &mut rng),
-        &PLAIN,
-    );
-    r.surface("F", "fault", &corner_patches(12, 100.0), &PLAIN);
-    r.case(&["box", "H1", "H2"], 3)
+    patches_at_corners_in_a_layer("fault_patches_at_corners", 0x7061_7463_6865_7321, 12, 100.0)
 }
 
 /// The same fault as [`fault_patches_touching_at_corners`] mapped five times as finely (60 ×
@@ -808,8 +793,19 @@ fn fault_patches_touching_at_corners() -> Case {
 /// layer's 5,362 boundary and embedded triangles were missing: the recovery gave way to the
 /// advancing front, which failed.
 fn dense_fault_patches_touching_at_corners() -> Case {
-    let mut rng = Rng(0x6465_6e73_6520_7321);
-    let mut r = Recipe::new("dense_fault_patches_at_corners");
+    patches_at_corners_in_a_layer(
+        "dense_fault_patches_at_corners",
+        0x6465_6e73_6520_7321,
+        60,
+        20.0,
+    )
+}
+
+/// Two horizons (their relief drawn from `seed`) and between them a fault of `k × k` triangles
+/// of `d` m touching only at their corners ([`corner_patches`]).
+fn patches_at_corners_in_a_layer(name: &'static str, seed: u64, k: usize, d: f64) -> Case {
+    let mut rng = Rng(seed);
+    let mut r = Recipe::new(name);
     r.surface(
         "H1",
         "horizon",
@@ -822,7 +818,7 @@ fn dense_fault_patches_touching_at_corners() -> Case {
         &horizon(-1400.0, 30.0, 1.1, &mut rng),
         &PLAIN,
     );
-    r.surface("F", "fault", &corner_patches(60, 20.0), &PLAIN);
+    r.surface("F", "fault", &corner_patches(k, d), &PLAIN);
     r.case(&["box", "H1", "H2"], 3)
 }
 
