@@ -645,7 +645,7 @@ fn flip_diagonals(
     flips
 }
 
-/// Vertices round a constraint triangle's vertex that [`flip_diagonals`] looks at.
+/// The most vertices round a constraint triangle's vertex that [`flip_diagonals`] looks at.
 const MAX_NEAR: usize = 256;
 
 fn sorted_pair(a: u32, b: u32) -> [u32; 2] {
