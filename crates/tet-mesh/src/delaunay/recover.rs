@@ -600,7 +600,8 @@ fn flip_diagonals(
     edges.sort_unstable();
     edges.dedup();
     let mut flips = 0;
-    let mut near: Vec<u32> = Vec::new();
+    // (vertex round `w`, a tet holding the edge to it): a failed `flip44` changes no tet.
+    let mut near: Vec<(u32, u32)> = Vec::new();
     for &k in missing {
         let t = all[k].0;
         for e in 0..3 {
@@ -608,28 +609,22 @@ fn flip_diagonals(
             if vtet[w as usize] == NONE {
                 continue;
             }
-            // The vertices round `w` in the triangle's plane, each tried once.
+            // The vertices round `w`, each once; those in the triangle's plane are tried.
             near.clear();
             for s in star(tri, w, vtet[w as usize]) {
                 for &z in &tri.t[s as usize].v {
-                    if ![u, v, w].contains(&z) && !near.contains(&z) {
-                        near.push(z);
+                    if ![u, v, w].contains(&z) && !near.iter().any(|&(x, _)| x == z) {
+                        near.push((z, s));
                     }
                 }
                 if near.len() > MAX_NEAR {
                     break;
                 }
             }
-            for &z in &near {
+            for &(z, start) in &near {
                 if edges.binary_search(&sorted_pair(w, z)).is_ok() || !coplanar(tri, [u, v, w, z]) {
                     continue;
                 }
-                // A tet holding the wrong diagonal wz, found round w.
-                let Some(start) =
-                    star(tri, w, vtet[w as usize]).find(|&s| tri.t[s as usize].v.contains(&z))
-                else {
-                    continue;
-                };
                 if let Some(new) = tri.flip44(w, z, start, u, v) {
                     flips += 1;
                     for &n in &new {
