@@ -206,6 +206,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "fault_under_an_unconformity",
         "relay_ramp",
         "listric_fault",
+        "fault_through_salt",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -360,13 +361,11 @@ fn an_intrusion_keeps_the_overlap_of_two_bodies_whichever_is_kept_outside_the_ot
 
 #[test]
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
-    // These mesh now, below the bars: the salt gaps since a front's last gaps are closed by the
-    // Delaunay method, the lenses since no chart's border overlaps itself in map view, the
-    // smoothed channel since no pinch given away after untwisting makes a chart overlap again.
+    // These mesh now, below the bars: the salt overhang since a front's last gaps are closed by
+    // the Delaunay method, the lenses since no chart's border overlaps itself in map view.
     let meshing = [
         "salt_overhang",
         "two_lenses",
-        "fault_through_salt",
         "onlap",
         "onlap_under_a_degree",
         "downlap",
@@ -374,7 +373,6 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "fault_splay_at_one_degree",
         "zero_thickness_layer",
         "channel",
-        "smoothed_channel",
         "lens_cut_by_a_fault",
     ];
     for case in known_gaps() {
@@ -575,6 +573,13 @@ fn a_vertical_tube_through_a_horizon_meshes_into_four_regions() {
 #[test]
 fn a_salt_stock_piercing_two_horizons_meshes_into_four_regions() {
     builds_and_meshes(&case("salt_stock"));
+}
+
+#[test]
+fn a_fault_through_a_closed_salt_diapir_meshes_with_no_crease_at_the_walls_standing_caps() {
+    // The salt wall's caps stood at 89-118° to the wall round them: their edges were creases,
+    // a sliver patch between them held a needle of 1.2 m by 12 m, and tets on it reached 5.7°.
+    builds_and_meshes(&case("fault_through_salt"));
 }
 
 #[test]

@@ -290,11 +290,11 @@ fn neighbours(mesh: &TriMesh) -> Vec<Vec<u32>> {
 }
 
 /// No triangle across an edge (see [`across_edges`]).
-const NONE: u32 = u32::MAX;
+pub(crate) const NONE: u32 = u32::MAX;
 
 /// Per triangle, per edge `k` (from corner `k` to corner `k + 1`), the triangle across it when
 /// exactly two triangles share the edge, else [`NONE`].
-fn across_edges(mesh: &TriMesh) -> Vec<[u32; 3]> {
+pub(crate) fn across_edges(mesh: &TriMesh) -> Vec<[u32; 3]> {
     let mut uses: Vec<([u32; 2], u32, u8)> = Vec::with_capacity(3 * mesh.triangles.len());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for k in 0..3 {

@@ -37,6 +37,7 @@ pub mod conformity;
 pub mod curvature;
 mod curves;
 pub mod discretize;
+pub mod facets;
 pub mod features;
 pub mod intersect;
 pub mod patches;

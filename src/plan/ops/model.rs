@@ -106,7 +106,9 @@ impl Operation for ModelOp {
         // 27: a strip narrower than `min_size` asks for less the narrower it is.
         // 28: three or more sheets of one surface meeting at an edge are patches of their own.
         // 29: two surfaces enclosing more than `MAX_LENSES` regions alone fail the model.
-        29
+        // 30: a cap on a smooth stretch of surface stands for the triangle across its longest
+        //     edge in creases and charts.
+        30
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -155,7 +157,10 @@ impl Operation for ModelOp {
             .collect();
         let split =
             split::split_model(&named, &intersections).map_err(|e| OpError::from(e.to_string()))?;
-        let normals: Vec<Vec<[f64; 3]>> = surfaces.iter().map(|s| s.mesh.unit_normals()).collect();
+        let normals: Vec<Vec<[f64; 3]>> = surfaces
+            .iter()
+            .map(|s| model::facets::facet_normals(&s.mesh, &self.tolerances))
+            .collect();
         let all: Vec<(usize, patches::Patch)> = split
             .iter()
             .enumerate()
