@@ -207,6 +207,7 @@ fn every_case_of_the_corpus_has_a_test() {
         "relay_ramp",
         "listric_fault",
         "fault_through_salt",
+        "horizon_with_standing_caps",
     ];
     let names: Vec<&str> = cases().iter().map(|c| c.name).collect();
     assert_eq!(names, tested);
@@ -374,6 +375,7 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
         "zero_thickness_layer",
         "channel",
         "lens_cut_by_a_fault",
+        "caps_cut_by_curves",
     ];
     for case in known_gaps() {
         let dir = tempfile::tempdir().expect("a scratch folder");
@@ -580,6 +582,17 @@ fn a_fault_through_a_closed_salt_diapir_meshes_with_no_crease_at_the_walls_stand
     // The salt wall's caps stood at 89-118° to the wall round them: their edges were creases,
     // a sliver patch between them held a needle of 1.2 m by 12 m, and tets on it reached 5.7°.
     builds_and_meshes(&case("fault_through_salt"));
+}
+
+#[test]
+fn a_horizon_with_caps_standing_off_it_meshes_as_if_it_had_none() {
+    // Each cap stood at about 70° to the horizon round it: its edges were creases, and it a
+    // patch of its own, a needle 2 m wide and 230 m long.
+    let (_, report) = builds_and_meshes_reporting(&case("horizon_with_standing_caps"));
+    let h1 = (report["model"]["patches"].as_array().unwrap().iter())
+        .filter(|p| p["name"].as_str().unwrap().starts_with("H1#"))
+        .count();
+    assert_eq!(h1, 2, "H1 cut by the fault, and nothing else");
 }
 
 #[test]

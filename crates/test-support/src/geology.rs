@@ -70,6 +70,7 @@ pub fn cases() -> Vec<Case> {
         relay_ramp(),
         listric_fault(),
         fault_through_salt(),
+        horizon_with_standing_caps(),
     ]
 }
 
@@ -115,6 +116,11 @@ pub fn cases() -> Vec<Case> {
 ///   creases and seams of their own (`model::facets`); its seams, merged smallest chart
 ///   first, move with the smallest change of a normal, and its underside's charts were
 ///   flattened by a Tutte embedding far from isometric even then.
+/// - `caps_cut_by_curves`: `horizon_with_standing_caps` with caps anywhere; meshes, but where
+///   the box's side or the fault cuts a cap, the curve there climbs its 0.5 m wall and comes
+///   down within 0.1 m, its nodes come 0.0-0.4 m apart, and the box side's surface mesh holds
+///   needles there: tets reach 0.10° (0.49° while the caps' edges were creases, at 3.2 million
+///   tets against 206,000).
 /// - `lens_cut_by_a_fault`: a closed lens offset 100 m by a normal fault, each half a body closed
 ///   by the fault; meshes into its eight regions, at 6.7° in the footwall half (7.3° with
 ///   `refine_close_curves = true`, at 301,000 tets against 161,000): the curves of the lens's
@@ -132,6 +138,7 @@ pub fn known_gaps() -> Vec<Case> {
         zero_thickness_layer(),
         channel("channel"),
         smoothed_channel(),
+        caps_cut_by_curves(),
     ]
 }
 
@@ -861,6 +868,80 @@ fn dangling_faults_crossing() -> Case {
     );
     r.surface("F2", "fault", &f2, &DEPTH);
     r.case(&["box", "H1", "H2", "F1", "F2"], 3)
+}
+
+/// Two horizons over a fault, H1 carrying standing caps, as a triangulation repaired at
+/// T-junctions has them: in every fifth cell split along its a-c diagonal, a vertex a tenth of a
+/// percent off the middle of that diagonal towards the cell's fourth corner, and 0.5 m above the
+/// surface, splits the far triangle in two; the cap between them and the diagonal, 179.5° at that
+/// vertex, stands at 66-78° to the horizon round it. The caps lie in the box, 500 m or more from
+/// the fault and the box's sides (where a curve cuts one, see [`known_gaps`]). Their edges are
+/// no creases: each cap lies on a smooth stretch, so it stands for the horizon
+/// (`model::facets`), and the horizon's patches are those of a horizon without caps.
+fn horizon_with_standing_caps() -> Case {
+    standing_caps("horizon_with_standing_caps", |[x, y, _]| {
+        let inside = |v: f64| (500.0..3500.0).contains(&v);
+        inside(x) && inside(y) && (x - 2000.0).abs() > 500.0
+    })
+}
+
+/// [`horizon_with_standing_caps`] with caps anywhere, those the box's sides and the fault cut
+/// included.
+fn caps_cut_by_curves() -> Case {
+    standing_caps("caps_cut_by_curves", |_| true)
+}
+
+/// The model of [`horizon_with_standing_caps`], named `name`, with caps where `at` (given the
+/// middle of a cell's diagonal, in the surfaces' own coordinates) says.
+fn standing_caps(name: &'static str, at: impl Fn([f64; 3]) -> bool) -> Case {
+    let mut rng = Rng(0x6361_7073_2121_2121);
+    let mut r = Recipe::new(name);
+    let f = fault_y(2000.0, -1000.0, 60.0, (LO, HI), (-2300.0, 300.0), &mut rng);
+    r.surface("F", "fault", &f, &PLAIN);
+    let mut h1 = horizon(-700.0, 40.0, 0.2, &mut rng);
+    stand_caps(&mut h1, 5, 0.5, at);
+    r.surface("H1", "horizon", &h1, &DEPTH);
+    let h2 = horizon(-1300.0, 40.0, 0.6, &mut rng);
+    r.surface("H2", "horizon", &h2, &PLAIN);
+    r.case(&["box", "F", "H1", "H2"], 6)
+}
+
+/// Splits the second triangle `[a, c, d]` of every `every`-th cell of `s` split along a-c (its
+/// first triangle `[a, b, c]`) whose diagonal's middle is `at`, at a new vertex m just off that
+/// middle towards d and `lift` above it: `[a, c, m]` is then a cap standing off the surface,
+/// `[a, m, d]` and `[m, c, d]` the rest of the cell, every edge used once each way as before.
+fn stand_caps(s: &mut Surface, every: usize, lift: f64, at: impl Fn([f64; 3]) -> bool) {
+    let mut seen = 0;
+    let mut out = Vec::with_capacity(s.triangles.len() + s.triangles.len() / every);
+    let mut k = 0;
+    while k < s.triangles.len() {
+        let t = s.triangles[k];
+        let next = s.triangles.get(k + 1).copied();
+        match next {
+            Some([a, c, d]) if a == t[0] && c == t[2] => {
+                let p = |i: usize| s.vertices[i];
+                let (pa, pc, pd) = (p(a), p(c), p(d));
+                let mid = |q: usize| 0.5 * (pa[q] + pc[q]);
+                let here = at([mid(0), mid(1), mid(2)]);
+                seen += usize::from(here);
+                out.push(t);
+                if here && seen % every == 0 {
+                    let toward = |q: usize| mid(q) + 0.001 * (pd[q] - mid(q));
+                    s.vertices.push([toward(0), toward(1), toward(2) + lift]);
+                    let m = s.vertices.len() - 1;
+                    out.extend([[a, c, m], [a, m, d], [m, c, d]]);
+                } else {
+                    out.push([a, c, d]);
+                }
+                k += 2;
+            }
+            _ => {
+                out.push(t);
+                k += 1;
+            }
+        }
+    }
+    s.triangles = out;
 }
 
 /// A flat horizon H1 at z = -600 and below it a horizon H2 domed up so that its apex, one of
