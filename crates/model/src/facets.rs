@@ -85,10 +85,15 @@ fn proper_across(longest: &[Option<usize>], across: &[[u32; 3]], t: usize) -> Op
     None
 }
 
-/// The longest edge `k` (from corner `k` to corner `k + 1`) of triangle `t` when it is a cap.
+/// The longest edge `k` (from corner `k` to corner `k + 1`) of triangle `t` when it is a cap
+/// (never when a corner is not a vertex of `mesh`).
 fn cap_edge(mesh: &TriMesh, t: usize) -> Option<usize> {
     let tri = mesh.triangles[t];
-    let p = |k: usize| &mesh.vertices[tri[k % 3] as usize];
+    let corners = tri.map(|v| mesh.vertices.get(v as usize));
+    let [Some(p0), Some(p1), Some(p2)] = corners else {
+        return None;
+    };
+    let p = |k: usize| [p0, p1, p2][k % 3];
     let cos_cap = CAP_DEG.to_radians().cos();
     (0..3).find(|&k| {
         // The angle at corner k + 2, opposite edge k.
@@ -98,12 +103,14 @@ fn cap_edge(mesh: &TriMesh, t: usize) -> Option<usize> {
     })
 }
 
-/// The triangles at each vertex of `mesh`.
+/// The triangles at each vertex of `mesh` (corners that are not its vertices left out).
 fn stars(mesh: &TriMesh) -> Vec<Vec<usize>> {
     let mut star = vec![Vec::new(); mesh.vertices.len()];
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for &v in tri {
-            star[v as usize].push(t);
+            if let Some(s) = star.get_mut(v as usize) {
+                s.push(t);
+            }
         }
     }
     star
