@@ -586,7 +586,7 @@ fn a_fault_through_a_closed_salt_diapir_meshes_with_no_crease_at_the_walls_stand
 
 #[test]
 fn a_horizon_with_caps_standing_off_it_meshes_as_if_it_had_none() {
-    // Each cap stood at about 70° to the horizon round it: its edges were creases, and it a
+    // Each cap stood at 71-80° to the horizon round it: its edges were creases, and it a
     // patch of its own, a needle half a metre wide and some 230 m long.
     let (_, report) = builds_and_meshes_reporting(&case("horizon_with_standing_caps"));
     let h1 = (report["model"]["patches"].as_array().unwrap().iter())

@@ -140,12 +140,7 @@ const UNPINCH_ROUNDS: usize = 8;
 /// there, which a chart's loops may not. Every fan but the largest (the first on ties) moves to
 /// the group across its first edge at the vertex. Returns whether any pinch is left.
 pub fn unpinch(mesh: &TriMesh, group: &mut [u32]) -> bool {
-    let mut star: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for &v in tri {
-            star[v as usize].push(t as u32);
-        }
-    }
+    let star = stars(mesh);
     for _ in 0..UNPINCH_ROUNDS {
         let mut moved = false;
         for (v, ts) in star.iter().enumerate() {
@@ -287,6 +282,20 @@ fn neighbours(mesh: &TriMesh) -> Vec<Vec<u32>> {
             adj
         })
         .collect()
+}
+
+/// The triangles at each vertex of `mesh`, ascending (corners that are not its vertices left
+/// out).
+pub(crate) fn stars(mesh: &TriMesh) -> Vec<Vec<u32>> {
+    let mut star = vec![Vec::new(); mesh.vertices.len()];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for &v in tri {
+            if let Some(s) = star.get_mut(v as usize) {
+                s.push(t as u32);
+            }
+        }
+    }
+    star
 }
 
 /// No triangle across an edge (see [`across_edges`]).

@@ -30,7 +30,7 @@
 //!   walk and the neighbour are decided by index and exact equality, so the result is the same on
 //!   every machine.
 
-use crate::charts::{NONE, across_edges};
+use crate::charts::{NONE, across_edges, stars};
 use geom::predicates::{dot, sub};
 use geom::{Tolerances, TriMesh};
 
@@ -64,7 +64,7 @@ pub fn facet_normals(mesh: &TriMesh, tol: &Tolerances) -> Vec<[f64; 3]> {
             let faces_side = |u: usize| dot(&own[u], &own[side]) >= cos_crease;
             let smooth = (mesh.triangles[t].iter())
                 .flat_map(|&v| &star[v as usize])
-                .all(|&u| longest[u].is_some() || faces_side(u));
+                .all(|&u| longest[u as usize].is_some() || faces_side(u as usize));
             let upright = dot(&own[t], &own[side]) > 0.0;
             if smooth && upright { own[side] } else { own[t] }
         })
@@ -101,19 +101,6 @@ fn cap_edge(mesh: &TriMesh, t: usize) -> Option<usize> {
         let len = (dot(&a, &a) * dot(&b, &b)).sqrt();
         len > 0.0 && dot(&a, &b) < cos_cap * len
     })
-}
-
-/// The triangles at each vertex of `mesh` (corners that are not its vertices left out).
-fn stars(mesh: &TriMesh) -> Vec<Vec<usize>> {
-    let mut star = vec![Vec::new(); mesh.vertices.len()];
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for &v in tri {
-            if let Some(s) = star.get_mut(v as usize) {
-                s.push(t);
-            }
-        }
-    }
-    star
 }
 
 #[cfg(test)]

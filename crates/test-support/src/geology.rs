@@ -873,8 +873,8 @@ fn dangling_faults_crossing() -> Case {
 /// Two horizons over a fault, H1 carrying standing caps, as a triangulation repaired at
 /// T-junctions has them: in every fifth cell split along its a-c diagonal, a vertex a tenth of a
 /// percent off the middle of that diagonal towards the cell's fourth corner, and 0.5 m above the
-/// surface, splits the far triangle in two; the cap between them and the diagonal, 179.5° at that
-/// vertex, stands at 66-78° to the horizon round it. The caps lie in the box, 500 m or more from
+/// surface, splits the far triangle in two; the cap between them and the diagonal, 179.5-179.7°
+/// at that vertex, stands at 71-80° to the triangles round it. The caps lie in the box, 500 m or more from
 /// the fault and the box's sides (where a curve cuts one, see [`known_gaps`]). Their edges are
 /// no creases: each cap lies on a smooth stretch, so it stands for the horizon
 /// (`model::facets`), and the horizon's patches are those of a horizon without caps.
