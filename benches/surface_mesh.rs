@@ -27,6 +27,7 @@ fn input(size: f64) -> PatchInput {
         loops: vec![g.border_loop(n, n)],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     }
 }
 

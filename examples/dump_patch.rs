@@ -134,6 +134,7 @@ fn read_patch(text: &str) -> Result<(PatchInput, SurfaceSize), String> {
         loops: Vec::new(),
         constraints: Vec::new(),
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let mut size = None;
     let mut into_loops = true;

@@ -6,10 +6,12 @@
 //! meshing stages exchange (`mesh`, with readers for the formats meshes come in); and
 //! `progress`, how a long stage reports how far it got without knowing who watches.
 
+pub mod adjacency;
 pub mod bbox;
 pub mod broad_phase;
 pub mod closest;
 pub mod contact;
+pub mod facets;
 pub mod mesh;
 pub mod predicates;
 pub mod progress;

@@ -26,6 +26,15 @@ impl Stretch {
     pub fn undo(&self, p: &[f64; 3]) -> [f64; 3] {
         self.scaled(p, 1.0 / self.factor)
     }
+
+    /// The unit normal in the stretched space of a plane whose unit normal is `n` in the model
+    /// (normals take the inverse transpose: the part along the axis shrinks by `factor`).
+    pub fn normal(&self, n: &[f64; 3]) -> [f64; 3] {
+        let along: f64 = (0..3).map(|k| n[k] * self.axis[k]).sum();
+        let m = [0, 1, 2].map(|k| n[k] + (1.0 / self.factor - 1.0) * along * self.axis[k]);
+        let len = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+        if len > 0.0 { m.map(|x| x / len) } else { m }
+    }
 }
 
 #[cfg(test)]
@@ -53,5 +62,31 @@ mod tests {
         };
         assert!((along(&q) - 4.0 * along(&p)).abs() < 1e-6);
         assert!((q[0] - p[0]).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_normal_stays_normal_to_its_plane_in_the_stretched_space() {
+        let s = Stretch {
+            axis: [0.0, 0.6, 0.8],
+            factor: 4.0,
+            origin: [10.0, 20.0, 30.0],
+        };
+        // The plane through o spanned by u and v, with unit normal n.
+        let (o, u, v): ([f64; 3], [f64; 3], [f64; 3]) =
+            ([1.0, 2.0, 3.0], [1.0, 0.5, 0.0], [0.0, 1.0, 2.0]);
+        let c = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        let m = s.normal(&c.map(|x| x / l));
+        let at = |w: [f64; 3]| s.apply(&[0, 1, 2].map(|k| o[k] + w[k]));
+        let (q0, qu, qv) = (s.apply(&o), at(u), at(v));
+        for q in [qu, qv] {
+            let d: f64 = (0..3).map(|k| (q[k] - q0[k]) * m[k]).sum();
+            assert!(d.abs() < 1e-9, "{d}");
+        }
+        assert!(((0..3).map(|k| m[k] * m[k]).sum::<f64>() - 1.0).abs() < 1e-12);
     }
 }

@@ -77,6 +77,7 @@ pub fn patch_input<'a>(
         loops,
         constraints,
         points: Vec::new(),
+        facets: Vec::new(),
     })
 }
 

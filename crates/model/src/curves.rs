@@ -3,6 +3,7 @@
 //! (The decisions are listed in the module doc of the `model` crate.)
 
 use super::{Curve, CurveUse, ModelError, ModelTopology, PatchBoundary, cmp_points};
+use crate::kinks::is_kink;
 use crate::regions::PatchIn;
 use geom::Tolerances;
 use std::collections::BTreeMap;
@@ -43,19 +44,6 @@ fn weld(patches: &[PatchIn]) -> (Vec<[f64; 3]>, Vec<Vec<u32>>) {
         })
         .collect();
     (points, ids)
-}
-
-/// Turn angle at `b` on the path a→b→c, in degrees (`None` for a zero-length side).
-fn turn_deg(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> Option<f64> {
-    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let v = [c[0] - b[0], c[1] - b[1], c[2] - b[2]];
-    let nu = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-    let nv = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    if nu == 0.0 || nv == 0.0 {
-        return None;
-    }
-    let c = ((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (nu * nv)).clamp(-1.0, 1.0);
-    Some(c.acos().to_degrees())
 }
 
 /// Builds the model's vertices, named curves and patch boundaries from conforming patches.
@@ -254,13 +242,30 @@ impl<'a> CurveGraph<'a> {
         if self.seams[sig as usize] {
             return false;
         }
-        let (a, c) = (self.other(es[0], v), self.other(es[1], v));
-        turn_deg(
-            &self.points[a as usize],
+        is_kink(
             &self.points[v as usize],
-            &self.points[c as usize],
+            self.run(v, es[0]),
+            self.run(v, es[1]),
+            tol.kink_angle_deg,
         )
-        .is_some_and(|d| d > tol.kink_angle_deg)
+    }
+
+    /// The points of the curve from `v` outwards along `e`: through vertices with two curve
+    /// edges of one signature, ending at the first other vertex (or back at `v`).
+    fn run(&self, v: u32, e: u32) -> impl Iterator<Item = [f64; 3]> + '_ {
+        let sig = self.curve_edges[e as usize].sig;
+        let mut step = Some((v, e));
+        std::iter::from_fn(move || {
+            let (from, e) = step?;
+            let w = self.other(e, from);
+            let es = self.incident(w);
+            step = (w != v && es.len() == 2)
+                .then(|| es.iter().copied().find(|&f| f != e))
+                .flatten()
+                .filter(|&f| self.curve_edges[f as usize].sig == sig)
+                .map(|f| (w, f));
+            Some(self.points[w as usize])
+        })
     }
 
     /// Follows curve edges from `v0` along `e0` until a topological vertex, back to `v0`, or an

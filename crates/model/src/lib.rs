@@ -15,7 +15,8 @@
 //! * where curves end: at **topological vertices**, the points where the set of patches along the
 //!   curve changes (three or more surfaces meet: a fault, a horizon and a box side), where a free
 //!   border turns by more than `Tolerances::kink_angle_deg` (so discretization never cuts a
-//!   corner), or where curve edges branch;
+//!   corner; a jog that turns back within the edges around it is no corner, see `kinks`), or where
+//!   curve edges branch;
 //! * the **names**: a curve is named after the surfaces whose patches meet along it, sorted and
 //!   joined by `/` (`F1/H1`), with `#k` when several curves share that set (always for a curve of
 //!   a single surface: `F2#1`), `k` ranking the curves by their canonical polyline (direction from
@@ -37,9 +38,9 @@ pub mod conformity;
 pub mod curvature;
 mod curves;
 pub mod discretize;
-pub mod facets;
 pub mod features;
 pub mod intersect;
+mod kinks;
 pub mod patches;
 pub mod regions;
 pub mod thickness;

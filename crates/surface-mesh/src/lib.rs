@@ -95,6 +95,11 @@ pub struct PatchInput {
     /// on a loop or constraint segment away from its nodes (exactly in the flattening, or within
     /// that tolerance in 3D), is an error naming the point.
     pub points: Vec<[f64; 3]>,
+    /// Support triangles that stand for another direction than their own, with that unit normal
+    /// (caps and needles, as `geom::facets` decides on the imported surface): the support's
+    /// curvature is measured on these normals, so a cap's wall asks for no small elements.
+    /// Empty: every triangle stands for itself.
+    pub facets: Vec<(u32, [f64; 3])>,
 }
 
 /// Element sizes (model units): target `size`, clamped to [`min_size`, `max_size`], growing away
@@ -537,7 +542,13 @@ fn refine_and_smooth(
         .zip(hloc.iter().copied())
         .collect();
     let origin = support::Support::origin_of(&input.support);
-    let curvature = size::curvature_nodes(&input.support, &support.normals, target);
+    let mut normals = support.normals.clone();
+    for &(t, n) in &input.facets {
+        if let Some(x) = normals.get_mut(t as usize) {
+            *x = n;
+        }
+    }
+    let curvature = size::curvature_nodes(&input.support, &normals, target);
     let field = SizeField::new(
         &snodes,
         &curvature,

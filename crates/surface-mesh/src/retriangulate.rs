@@ -56,6 +56,7 @@ pub fn retriangulate_keeping(
         loops: out_loops,
         constraints: vec![],
         points,
+        facets: Vec::new(),
     };
     let out = mesh_patch(
         &input,

@@ -51,6 +51,9 @@ pub fn mesh_patch_stretched(
         loops,
         constraints,
         points,
+        facets: (input.facets.iter())
+            .map(|&(t, n)| (t, stretch.normal(&n)))
+            .collect(),
     };
     let refine: Vec<Refinement> = (refine.iter())
         .map(|r| Refinement {

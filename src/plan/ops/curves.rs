@@ -65,7 +65,8 @@ impl Operation for CurvesOp {
     fn version(&self) -> u32 {
         // 2: curves carry curvature sizes (none without a model).
         // 3: and narrow sizes (none without a model).
-        3
+        // 4: borders are cut only at kinks that turn over the longer edge's reach.
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -35,6 +35,10 @@ pub struct ModelPatch {
     /// counted as its source file draws it (`geology`).
     #[serde(default)]
     pub part: u32,
+    /// The triangles of `mesh` that stand for another direction than their own (pieces of caps
+    /// and needles of the imported surface, `geom::facets`), with that unit normal, ascending.
+    #[serde(default)]
+    pub facets: Vec<(u32, [f64; 3])>,
 }
 
 /// The output of `model`.
@@ -108,7 +112,9 @@ impl Operation for ModelOp {
         // 29: two surfaces enclosing more than `MAX_LENSES` regions alone fail the model.
         // 30: a cap on a smooth stretch of surface stands for the triangle across its longest
         //     edge in creases and charts.
-        30
+        // 31: curves are cut only at kinks that turn over the longer edge's reach; patches
+        //     record which triangles stand for another direction (caps and needles).
+        31
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -159,8 +165,9 @@ impl Operation for ModelOp {
             split::split_model(&named, &intersections).map_err(|e| OpError::from(e.to_string()))?;
         let normals: Vec<Vec<[f64; 3]>> = surfaces
             .iter()
-            .map(|s| model::facets::facet_normals(&s.mesh, &self.tolerances))
+            .map(|s| geom::facets::facet_normals(&s.mesh, &self.tolerances))
             .collect();
+        let own: Vec<Vec<[f64; 3]>> = surfaces.iter().map(|s| s.mesh.unit_normals()).collect();
         let all: Vec<(usize, patches::Patch)> = split
             .iter()
             .enumerate()
@@ -220,6 +227,7 @@ impl Operation for ModelOp {
             let charts = charting[i].cut(p, &split[i]);
             let cut = charts.len() > 1;
             for c in charts {
+                let facets = standing_for(&c.triangles, &split[i].parent, &normals[i], &own[i]);
                 input.push(regions::PatchIn {
                     name: c.name.clone(),
                     surface: surfaces[i].name.clone(),
@@ -232,6 +240,7 @@ impl Operation for ModelOp {
                     kind: surfaces[i].kind,
                     mesh: c.mesh,
                     part,
+                    facets,
                 });
             }
         }
@@ -575,4 +584,22 @@ impl ModelData {
             "geology": super::geology::counts(self),
         })
     }
+}
+
+/// Of a patch whose triangles are `triangles` of a split surface (`parent`: each one's triangle
+/// of the imported surface), those whose imported triangle stands for another direction than its
+/// own (`facets` against `own`), by their index in the patch, with that direction.
+fn standing_for(
+    triangles: &[u32],
+    parent: &[u32],
+    facets: &[[f64; 3]],
+    own: &[[f64; 3]],
+) -> Vec<(u32, [f64; 3])> {
+    (triangles.iter().enumerate())
+        .filter_map(|(k, &t)| {
+            let p = *parent.get(t as usize)? as usize;
+            let n = *facets.get(p)?;
+            (own.get(p) != Some(&n)).then_some((k as u32, n))
+        })
+        .collect()
 }

@@ -34,6 +34,9 @@ pub struct PatchPiece {
     pub touches: Vec<[f64; 3]>,
     /// The sizes near the wells that come within reach of the patch, in well order.
     pub well_refine: Vec<Refinement>,
+    /// The support triangles that stand for another direction than their own, with it
+    /// (`ModelPatch::facets`).
+    pub facets: Vec<(u32, [f64; 3])>,
 }
 
 /// A well's crossing of a patch: a node of its mesh.
@@ -78,7 +81,8 @@ impl Operation for PatchExtractOp {
         // 3: the wells' crossings of the patch and their sizes within reach.
         // 4: the wells' stretches lying on the patch.
         // 5: the points where other surfaces touch the patch.
-        5
+        // 6: the triangles that stand for another direction (caps and needles).
+        6
     }
     fn params(&self) -> Params {
         let mut p = Params::new()
@@ -129,6 +133,7 @@ impl Operation for PatchExtractOp {
                 Some(r) => wells_within_reach(&cuts, &p.mesh, r.size, r.slope),
                 None => Vec::new(),
             },
+            facets: p.facets.clone(),
         };
         let n = piece.support.triangles.len() as u64;
         Ok(Output::new(Artifact::encode(&piece)?).count("support_triangles", n))
@@ -180,7 +185,8 @@ impl Operation for SurfaceMeshOp {
         //    flip where one does.
         // 9: and as the verification judges it, from the facets it finds.
         // 10: only as the verification judges it (no global search per triangle).
-        10
+        // 11: the support's curvature is measured on the directions its caps stand for.
+        11
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -225,6 +231,7 @@ impl Operation for SurfaceMeshOp {
             .chain(piece.touches.iter().copied())
             .collect();
         (input.constraints).extend(piece.runs.iter().map(|r| r.points.clone()));
+        input.facets = piece.facets.clone();
         let refine: Vec<Refinement> = (refine.into_iter())
             .chain(piece.well_refine.iter().cloned())
             .collect();

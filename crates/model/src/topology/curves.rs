@@ -1,12 +1,13 @@
 //! Corners and curves. A boundary vertex is a corner (topological vertex) when it is a BSTONE,
-//! when the boundary turns there by more than `Tolerances::kink_angle_deg` (angle between the
-//! incoming and outgoing edge directions, a measured tolerance as the recipe sets it), when it
+//! when the boundary turns there by more than `Tolerances::kink_angle_deg` (between its two edges
+//! and over the longer edge's reach, as `crate::kinks` measures a kink), when it
 //! does not have exactly two boundary edges (branching, fin ends, touching loops), or when the
 //! boundary changes kind there (border edge meets non-manifold edge or part seam). Corners split
 //! each loop into curves; a loop without corners is one closed curve. A curve shared by several
 //! loops (a non-manifold edge chain, a seam) is stored once, in a canonical direction.
 
 use super::SurfaceTopology;
+use crate::kinks::is_kink;
 use geom::{Tolerances, TriMesh};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -17,18 +18,6 @@ pub struct Curve {
     /// Vertices in order; for a closed curve the first vertex is not repeated at the end.
     pub vertices: Vec<u32>,
     pub closed: bool,
-}
-
-fn turn_deg(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> Option<f64> {
-    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let w = [c[0] - b[0], c[1] - b[1], c[2] - b[2]];
-    let nu = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-    let nw = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
-    if nu == 0.0 || nw == 0.0 {
-        return None;
-    }
-    let cos = ((u[0] * w[0] + u[1] * w[1] + u[2] * w[2]) / (nu * nw)).clamp(-1.0, 1.0);
-    Some(cos.acos().to_degrees())
 }
 
 /// Canonical form of a curve: open curves read from the smaller end; closed ones start at their
@@ -98,18 +87,16 @@ impl SurfaceTopology {
                 continue;
             }
             for i in 0..n {
-                let (prev, v, next) = (
-                    l.vertices[(i + n - 1) % n],
-                    l.vertices[i],
-                    l.vertices[(i + 1) % n],
-                );
+                let v = l.vertices[i];
                 let ein = self.edge_of(l.half_edges[(i + n - 1) % n]);
                 let eout = self.edge_of(l.half_edges[i]);
                 if self.edge_kind(ein) != self.edge_kind(eout) {
                     corner[v as usize] = true;
                 }
-                if let (Some(a), Some(b), Some(c)) = (p(prev), p(v), p(next))
-                    && turn_deg(a, b, c).is_some_and(|d| d > tol.kink_angle_deg)
+                let back = (1..n).filter_map(|k| p(l.vertices[(i + n - k) % n]).copied());
+                let fwd = (1..n).filter_map(|k| p(l.vertices[(i + k) % n]).copied());
+                if let Some(b) = p(v)
+                    && is_kink(b, back, fwd, tol.kink_angle_deg)
                 {
                     corner[v as usize] = true;
                 }

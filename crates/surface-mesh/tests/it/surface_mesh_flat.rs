@@ -27,6 +27,7 @@ fn a_flat_square_with_four_discretized_sides_meshes_into_near_equilateral_triang
             loops: vec![g.border_loop(20, 20)],
             constraints: vec![],
             points: Vec::new(),
+            facets: Vec::new(),
         };
         let (out, q) = mesh_and_check(&input, &uniform(50.0), 1.06, 1.6);
         assert!(
@@ -49,6 +50,7 @@ fn a_square_with_a_hole_leaves_the_hole_empty() {
             loops: vec![g.border_loop(20, 20), g.hole(500.0, 500.0, 200.0, 25)],
             constraints: vec![],
             points: Vec::new(),
+            facets: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.08, 1.7);
         // No triangle centroid inside the hole.
@@ -82,6 +84,7 @@ fn a_dangling_constraint_polyline_becomes_interior_edges() {
             loops: vec![g.border_loop(20, 20)],
             constraints: vec![trace.clone(), from_border],
             points: Vec::new(),
+            facets: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.08, 1.8);
         // The border-touching constraint starts on loop node 75 (left side, 250 m up): shared.
@@ -125,6 +128,7 @@ fn graded_boundary_nodes_give_a_graded_valid_mesh() {
             loops: vec![l],
             constraints: vec![],
             points: Vec::new(),
+            facets: Vec::new(),
         };
         let size = SurfaceSize {
             size: 100.0,
@@ -174,6 +178,7 @@ fn a_self_intersecting_loop_is_an_error_naming_the_patch_and_the_place() {
             loops: vec![bow],
             constraints: vec![],
             points: Vec::new(),
+            facets: Vec::new(),
         };
         let e = mesh_patch(&input, &uniform(50.0)).unwrap_err();
         let at = e.at.expect("a place");
@@ -200,6 +205,7 @@ fn a_loop_node_off_the_support_is_an_error_with_its_place() {
         loops: vec![l.clone()],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert_eq!(e.at, Some(l[3]), "{e}");
@@ -218,6 +224,7 @@ fn meshing_twice_gives_the_same_mesh_bit_for_bit() {
         loops: vec![g.border_loop(17, 23), g.hole(700.0, 300.0, 100.0, 13)],
         constraints: vec![trace],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let a = mesh_patch(&input, &uniform(45.0)).unwrap();
     let b = mesh_patch(&input, &uniform(45.0)).unwrap();
@@ -235,6 +242,7 @@ fn a_constraint_that_leaves_the_patch_is_an_error_with_a_place() {
         // support, which extends nowhere beyond: the end is off the support).
         constraints: vec![vec![g.at(500.0, 900.0), [550.0, 1100.0, -500.0]]],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert!(
@@ -260,6 +268,7 @@ fn a_constraint_crossing_the_boundary_on_the_support_is_an_intersection_error() 
         loops: vec![square],
         constraints: vec![vec![g.at(500.0, 850.0), g.at(530.0, 1150.0)]],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     let at = e.at.expect("a place");
@@ -282,6 +291,7 @@ fn invalid_sizes_are_refused_with_the_values() {
         loops: vec![g.border_loop(4, 4)],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let e = mesh_patch(
         &input,
@@ -318,6 +328,7 @@ fn a_clockwise_outer_loop_still_gives_triangles_oriented_like_the_support() {
         loops: vec![l],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let (out, _) = mesh_and_check(&input, &uniform(80.0), 1.06, 1.6);
     // The support faces +z: every triangle's normal must too.
@@ -344,6 +355,7 @@ fn a_closed_support_is_refused_because_it_must_come_split_into_patches() {
         loops: vec![vec![v[0], v[1], v[2]]],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(0.1)).unwrap_err();
     assert!(
@@ -388,6 +400,7 @@ fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_fla
             loops: vec![border],
             constraints: vec![],
             points: Vec::new(),
+            facets: Vec::new(),
         };
         mesh_and_check(&input, &uniform(100.0), 1.06, 1.6);
     }
@@ -433,6 +446,7 @@ fn a_hole_whose_rim_overhangs_its_neighbour_is_not_flattened_by_projection() {
             loops: vec![border, vec![vs[6], vs[7], vs[8]]],
             constraints: vec![],
             points: Vec::new(),
+            facets: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(100.0), 1.2, 3.0);
         // The sliver stays a hole: the mesh uses P1 P2 and P2 P3 on the left, P3 P1 on the right.
@@ -498,6 +512,7 @@ fn a_hole_touching_the_outer_border_at_one_node_meshes_with_one_fan_per_side() {
                 loops: loops.clone(),
                 constraints: vec![],
                 points: Vec::new(),
+                facets: Vec::new(),
             };
             let (out, _) = mesh_and_check(&input, &uniform(100.0), 1.2, 3.0);
             // The pinch node is given once and its triangles form two fans, none inside the hole.
@@ -527,6 +542,7 @@ fn a_loop_repeating_a_node_next_to_itself_is_an_error_naming_the_node() {
         loops,
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert!(e.to_string().contains("zero-length segment"), "{e}");

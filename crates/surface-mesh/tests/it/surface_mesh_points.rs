@@ -33,6 +33,7 @@ fn square_with(off: [f64; 3], points: Vec<[f64; 3]>) -> PatchInput {
         loops: vec![g.border_loop(20, 20)],
         constraints: vec![],
         points,
+        facets: Vec::new(),
     }
 }
 
@@ -160,6 +161,7 @@ fn points_computed_on_curved_support_triangles_become_nodes() {
             loops: vec![g.border_loop(18, 24)],
             constraints: vec![],
             points: points.clone(),
+            facets: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.04, 1.6);
         let loop_nodes = 2 * (18 + 24);
@@ -195,6 +197,7 @@ fn points_computed_on_curved_support_triangles_become_nodes() {
             loops: vec![g.border_loop(60, 24)],
             constraints: vec![],
             points: points.clone(),
+            facets: Vec::new(),
         };
         assert_eq!(
             surface_mesh::flattening_method(&input.support).unwrap(),
@@ -225,6 +228,7 @@ fn points_computed_on_curved_support_triangles_become_nodes() {
             loops: vec![rim],
             constraints: vec![],
             points: points.clone(),
+            facets: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(90.0), 1.06, 1.8);
         for (k, p) in points.iter().enumerate() {
@@ -247,6 +251,7 @@ fn a_point_given_twice_or_on_a_loop_or_constraint_node_is_that_node() {
         loops: vec![loop_.clone()],
         constraints: vec![trace.clone()],
         points: vec![p, loop_[7], p, trace[2], q],
+        facets: Vec::new(),
     };
     let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.04, 1.6);
     // 80 loop nodes, 5 trace nodes, then p and q only.
@@ -302,6 +307,7 @@ fn a_point_outside_the_patch_is_an_error_naming_the_point_and_its_place() {
         loops: vec![flat(UTM).border_loop(10, 10)],
         constraints: vec![],
         points: vec![g.at(500.0, 500.0), outside],
+        facets: Vec::new(),
     };
     let e = mesh_patch(&input, &uniform(100.0)).unwrap_err();
     assert_error(
@@ -371,6 +377,7 @@ fn points_round_a_hole_become_nodes_and_a_point_in_the_hole_lies_outside() {
             loops: vec![g.border_loop(20, 20), g.hole(500.0, 500.0, 200.0, 25)],
             constraints: vec![],
             points: points.clone(),
+            facets: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.06, 1.7);
         for (k, p) in points.iter().enumerate() {
@@ -398,6 +405,7 @@ fn points_beside_an_interior_constraint_become_nodes_and_a_point_on_it_is_an_err
             loops: vec![g.border_loop(20, 20)],
             constraints: vec![trace.clone()],
             points: points.clone(),
+            facets: Vec::new(),
         };
         let (out, _) = mesh_and_check(&input, &uniform(50.0), 1.06, 1.7);
         for (k, p) in points.iter().enumerate() {
@@ -458,6 +466,7 @@ proptest! {
             loops: vec![outer, hole],
             constraints: vec![trace],
             points: pts.clone(),
+            facets: Vec::new(),
         };
         let sz = SurfaceSize { size, min_size: 5.0, max_size: 400.0, growth: 1.3 };
         let out = mesh_patch(&input, &sz).map_err(|e| TestCaseError::fail(e.to_string()))?;

@@ -25,6 +25,7 @@ fn the_surface_mesher_reports_growing_progress_that_ends_at_its_total() {
         loops: vec![g.border_loop(60, 50)],
         constraints: vec![],
         points: vec![],
+        facets: Vec::new(),
     };
     let (size, tolerances) = (uniform(50.0), geom::Tolerances::default());
     let seen = RefCell::new(Vec::new());

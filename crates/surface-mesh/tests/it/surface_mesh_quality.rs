@@ -65,6 +65,7 @@ fn a_25_m_border_graded_into_a_200_m_interior_stays_near_equilateral() {
         loops: vec![border(&g, 80, 80, 80, 80)],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     // Gmsh's frontal-Delaunay (algorithm 6) on the same square and sizes: mean 1.048 at growth
     // 1.3, 1.030 at 1.15.
@@ -89,6 +90,7 @@ fn a_fine_curve_ending_on_a_coarse_one_keeps_its_size_up_to_the_corner() {
         loops: vec![border(&g, 64, 6, 8, 6)],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     // The triangles on the two 200 m edges next to the corners cannot be good (a 200 m edge
     // beside 25 m elements); they are the only bad ones.
@@ -138,6 +140,7 @@ fn a_35_m_strip_between_curves_at_its_width_has_no_bad_triangle() {
         loops: vec![border(&g, 125, 1, 125, 1)],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let (_, q) = mesh_and_check(&input, &recipe_size(), 1.2, 1.25);
     assert_eq!(q.pct_above_1_5, 0.0);
@@ -155,6 +158,7 @@ fn a_strip_with_single_segment_ends_and_coarse_sides_is_meshed_validly_and_no_wo
         loops: vec![border(&g, 10, 1, 10, 1)],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let forced = (200.0f64.powi(2) + 35.0f64.powi(2)) / (3f64.sqrt() * 200.0 * 35.0);
     let (out, q) = mesh_and_check(&input, &recipe_size(), forced + 1e-6, forced + 1e-6);
@@ -173,6 +177,7 @@ fn the_surface_growth_is_capped_whatever_the_volume_growth_allows() {
         loops: vec![border(&g, 80, 80, 80, 80)],
         constraints: vec![],
         points: Vec::new(),
+        facets: Vec::new(),
     };
     let fast = SurfaceSize {
         growth: 3.0,

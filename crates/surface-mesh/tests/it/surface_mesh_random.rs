@@ -46,7 +46,7 @@ proptest! {
             let r = r1 + 60.0 * j as f64;
             g.at(cx + r * c, cy + r * s)
         }).collect();
-        let input = PatchInput { name: "random".into(), support: g.support(), loops: vec![outer, hole], constraints: vec![trace], points: vec![] };
+        let input = PatchInput { name: "random".into(), support: g.support(), loops: vec![outer, hole], constraints: vec![trace], points: vec![], facets: Vec::new() };
         let sz = SurfaceSize { size, min_size: 5.0, max_size: 400.0, growth: 1.3 };
         let out = mesh_patch(&input, &sz).map_err(|e| TestCaseError::fail(e.to_string()))?;
         verify(&input, &out, 1e-6).map_err(|e| TestCaseError::fail(e.to_string()))?;

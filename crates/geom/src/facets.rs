@@ -17,6 +17,10 @@
 //!   into their neighbours' chart on such a "smooth" stretch folded its surface mesh.
 //!   Caps at its corners are not asked: a revolved salt wall's caps come in pairs, each standing
 //!   at 118° to the other.
+//! - A needle (a triangle with an angle under [`NEEDLE_DEG`]) is taken as a cap: its normal
+//!   turns with the least move of its short edge's ends. Where a curve cuts a cap, the split
+//!   leaves a needle on the cap's wall (0.4 m by 42 m, largest angle 139°) standing as the cap
+//!   did.
 //! - Where the surface itself turns sharply (a lens's rim sampled by a few rings, crumpled into
 //!   caps between triangles 45-107° apart), a cap keeps its own normal: which side it joins
 //!   would move the rim's crease and charts, and a rim so turned folded the surface mesh of a
@@ -30,12 +34,15 @@
 //!   walk and the neighbour are decided by index and exact equality, so the result is the same on
 //!   every machine.
 
-use crate::charts::{NONE, across_edges, stars};
-use geom::predicates::{dot, sub};
-use geom::{Tolerances, TriMesh};
+use crate::adjacency::{NONE, across_edges, stars};
+use crate::predicates::{dot, sub};
+use crate::{Tolerances, TriMesh};
 
 /// A triangle whose largest angle exceeds this (degrees) is a cap.
 pub const CAP_DEG: f64 = 150.0;
+/// A triangle whose smallest angle is below this (degrees) is a needle, and stands for a
+/// triangle across as a cap does.
+pub const NEEDLE_DEG: f64 = 2.0;
 /// Most caps walked across from one cap in search of a proper triangle.
 pub const CHAIN: usize = 8;
 
@@ -85,8 +92,8 @@ fn proper_across(longest: &[Option<usize>], across: &[[u32; 3]], t: usize) -> Op
     None
 }
 
-/// The longest edge `k` (from corner `k` to corner `k + 1`) of triangle `t` when it is a cap
-/// (never when a corner is not a vertex of `mesh`).
+/// The longest edge `k` (from corner `k` to corner `k + 1`) of triangle `t` when it is a cap or
+/// a needle (never when a corner is not a vertex of `mesh`).
 fn cap_edge(mesh: &TriMesh, t: usize) -> Option<usize> {
     let tri = mesh.triangles[t];
     let corners = tri.map(|v| mesh.vertices.get(v as usize));
@@ -94,13 +101,18 @@ fn cap_edge(mesh: &TriMesh, t: usize) -> Option<usize> {
         return None;
     };
     let p = |k: usize| [p0, p1, p2][k % 3];
-    let cos_cap = CAP_DEG.to_radians().cos();
-    (0..3).find(|&k| {
-        // The angle at corner k + 2, opposite edge k.
+    // The cosine of the angle at corner k + 2, opposite edge k, and the edge's squared length.
+    let opposite = |k: usize| {
         let (a, b) = (sub(p(k), p(k + 2)), sub(p(k + 1), p(k + 2)));
         let len = (dot(&a, &a) * dot(&b, &b)).sqrt();
-        len > 0.0 && dot(&a, &b) < cos_cap * len
-    })
+        let e = sub(p(k + 1), p(k));
+        ((len > 0.0).then(|| dot(&a, &b) / len), dot(&e, &e))
+    };
+    let edges = [opposite(0), opposite(1), opposite(2)];
+    let (cos_cap, cos_needle) = (CAP_DEG.to_radians().cos(), NEEDLE_DEG.to_radians().cos());
+    let sliver = (edges.iter()).any(|(c, _)| c.is_some_and(|c| c < cos_cap || c > cos_needle));
+    let longest = (0..3).fold(0, |m, k| if edges[k].1 > edges[m].1 { k } else { m });
+    sliver.then_some(longest)
 }
 
 #[cfg(test)]
@@ -180,6 +192,24 @@ mod tests {
         let own = m.unit_normals();
         assert!(dot(&own[2], &own[0]) < 0.9, "cap 2 leans away");
         assert_eq!(facet_normals(&m, &Tolerances::default()), vec![own[0]; 3]);
+    }
+
+    #[test]
+    fn a_needle_standing_on_a_smooth_stretch_stands_for_the_triangle_across_its_longest_edge() {
+        // Triangle 1 has an angle of 1.7° at corner 0 and stands at 80° to triangle 0, as the
+        // piece of a cap's wall a curve cuts off does; its largest angle is no cap's.
+        let m = TriMesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [10.0, 0.0, 0.0],
+                [10.0, 0.05, 0.3],
+                [0.0, 10.0, 0.0],
+            ],
+            vec![[0, 2, 3], [0, 1, 2]],
+        );
+        let own = m.unit_normals();
+        assert!(dot(&own[1], &own[0]) < 0.2, "the needle stands up");
+        assert_eq!(facet_normals(&m, &Tolerances::default()), vec![own[0]; 2]);
     }
 
     #[test]
