@@ -11,7 +11,9 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields, default)]
 pub struct Tolerances {
     /// Boundary vertices where the polyline turns by more than this angle (degrees) become
-    /// topological vertices (corners) that split boundary loops into curves. Default 30°.
+    /// topological vertices (corners) that split boundary loops into curves, when it also turns
+    /// by more than half of it over the longer edge's length there (`model::kinks`: a jog that
+    /// turns back within its edges is no corner). Default 30°.
     pub kink_angle_deg: f64,
     /// Edges inside a surface where its triangles bend by more than this angle (degrees) are
     /// creases: the surface is cut into patches there (a box TSurf folded around the box's
