@@ -1,5 +1,5 @@
 //! Facet normals: the direction each imported triangle stands for, where creases and charts are
-//! decided.
+//! decided and, carried with each patch, where the surface mesher measures curvature.
 //!
 //! A cap (a triangle with one angle near 180°, its third corner almost on its longest edge) is a
 //! crack filler: its own normal turns with the smallest jitter of that corner, and on real
