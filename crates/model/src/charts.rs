@@ -32,7 +32,9 @@
 //!   pinched fan away after untwisting can double a border back again (on the smoothed channel's
 //!   underside: 37 triangles moved, then one fan made a crossing, and its 13,335 triangles
 //!   folded under a Tutte embedding), so the two alternate until untwisting moves nothing, at
-//!   most [`UNTWIST_PASSES`] times.
+//!   most [`UNTWIST_PASSES`] times; and a moved triangle takes along the few triangles that
+//!   would leave its new chart touching itself at its corner (`gaps`), else `unpinch` gives it
+//!   back on every pass.
 //! - Seams run along support edges: no point is constructed, and the triangles are the patch's
 //!   own. Seam curves are not features, so the topology does not end curves at their kinks.
 //! - Normals are those of the original (imported) triangles each split triangle lies in, as for
@@ -40,6 +42,7 @@
 //!   are measures steering where seams go, not orientation decisions; ties go to the lower axis
 //!   and the lower triangle index, so the result is the same on every machine.
 
+mod gaps;
 mod necks;
 mod twists;
 mod wedges;
@@ -61,8 +64,10 @@ const AXES: [[f64; 3]; 6] = [
     [0.0, 0.0, -1.0],
 ];
 
-/// Most alternations of `untwist` and `unpinch` on one patch. In the geology corpus only the
-/// smoothed channel's body needs a second (it moves one triangle), and its third moves none.
+/// Most alternations of `untwist` and `unpinch` on one patch. In the geology corpus the second
+/// moves nothing (the channels' bodies and a lens of `two_lenses` move triangles in the first);
+/// before a moved triangle took the gap it left along (`gaps`), the smoothed channel's body
+/// moved one triangle to and fro on every pass.
 pub const UNTWIST_PASSES: usize = 4;
 
 /// Smoothing passes over the labels (each can only shorten seams).

@@ -114,7 +114,9 @@ impl Operation for ModelOp {
         //     edge in creases and charts.
         // 31: curves are cut only at kinks that turn over the longer edge's reach; patches
         //     record which triangles stand for another direction (caps and needles).
-        31
+        // 32: a triangle moved to mend a chart's crossing takes the few triangles that would
+        //     leave its new chart touching itself at its corner.
+        32
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

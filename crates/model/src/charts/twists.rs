@@ -29,6 +29,7 @@
 //!   as before. Charts are visited in label order and ties go to the lower triangle index, so
 //!   the result is the same on every machine.
 
+use super::gaps::gap_at;
 use super::{NONE, across_edges, add, area};
 use geom::TriMesh;
 use geom::predicates::dot;
@@ -120,6 +121,7 @@ impl<'a> Untwisting<'a> {
                 return Round::Stuck;
             };
             self.take(t, to);
+            self.close_gaps(t, to);
             moved = true;
         }
         if moved { Round::Moved } else { Round::Clean }
@@ -218,6 +220,28 @@ impl<'a> Untwisting<'a> {
             let means = [self.mean[g], self.mean[h as usize]];
             union_flattens(self.mesh, self.normals, [a, b], means, [self.cos_max; 2])
         })
+    }
+
+    /// Closes the gaps that moving triangle `t` to chart `to` left round `t`'s corners (see
+    /// `gaps`), each where all of its triangles face within the chart angle of `to` and none
+    /// has moved yet: else the chart is pinched there, `unpinch` gives `t` back, and the two
+    /// passes undo each other for ever.
+    fn close_gaps(&mut self, t: u32, to: u32) {
+        for v in self.mesh.triangles[t as usize] {
+            let Some(gap) = gap_at(self.mesh, &self.across, &self.group, t, v) else {
+                continue;
+            };
+            let fits = |u: &u32| {
+                let u = *u as usize;
+                !self.moved_once[u]
+                    && cosine(&self.normals[u], &self.mean[to as usize]) >= self.cos_max
+            };
+            if gap.iter().all(fits) {
+                for u in gap {
+                    self.take(u, to);
+                }
+            }
+        }
     }
 
     /// Moves triangle `t` to chart `to`.
