@@ -5,7 +5,8 @@
 //! Method (the brief's option B, chosen because it needs no height-field assumption and lets every
 //! topological decision be an exact 2D predicate):
 //! 1. `param`: flatten the support triangulation — projection onto its mean plane when that is
-//!    exactly fold-free, else a Tutte embedding — and index it with R-trees (`support`).
+//!    exactly fold-free, mended where it turns a few triangles over (`relax`), else a Tutte
+//!    embedding — and index it with R-trees (`support`).
 //! 2. `input`: number the given loop and constraint nodes and the given points (isolated nodes,
 //!    where wells cross the patch); map each to the plane by projecting it onto the support (it
 //!    must lie within `Tolerances::support_distance_rel` × its segment length, or for a point its
@@ -47,6 +48,7 @@ mod points;
 pub mod quality;
 mod refine;
 mod refine_support;
+mod relax;
 mod retriangulate;
 mod segments;
 mod size;
@@ -662,7 +664,8 @@ fn crossing_point(s: &([f64; 2], [f64; 2]), t: &([f64; 2], [f64; 2])) -> Option<
 }
 
 /// How the support is flattened for meshing: `"plane"` (projection onto its mean plane, exactly
-/// fold-free) or `"tutte"` (Tutte embedding, for supports that fold over every plane).
+/// fold-free), `"relaxed"` (that projection, mended where it turns a few triangles over) or
+/// `"tutte"` (Tutte embedding, for supports that fold over every plane).
 pub fn flattening_method(support: &TriMesh) -> Result<&'static str, SurfaceMeshError> {
     param::flatten(support)
         .map(|p| p.method)

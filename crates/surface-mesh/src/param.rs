@@ -28,6 +28,10 @@
 //!   rotation rounds each coordinate, which can turn a triangle with a sub-nanometre edge (two
 //!   curve points a rounding error apart, where a surface's edge passes a box edge) the wrong way
 //!   on a plane that a box side is exactly.
+//! - Third choice, where the mean plane's projection turns a few triangles over but its border
+//!   does not cross itself (a tooth of a chart's border curled round a smoothed body's rim, a
+//!   cap left standing): that projection mended (`relax`), under the same test, so the rest of
+//!   the support keeps its projected shapes.
 //! - Otherwise (recumbent folds, caps down to their equator, overlapping lips): a Tutte
 //!   embedding with mean value weights (`tutte`, which says how its border is pinned); the
 //!   solution is still checked triangle by triangle with `orient2d`, and a failure is an error.
@@ -40,7 +44,7 @@ use std::collections::BTreeMap;
 /// A flattening: one 2D point per support vertex (unused vertices get the origin).
 pub struct Param {
     pub uv: Vec<[f64; 2]>,
-    /// "plane" or "tutte": for reports.
+    /// "plane", "relaxed" or "tutte": for reports.
     pub method: &'static str,
 }
 
@@ -166,6 +170,12 @@ pub fn flatten(s: &TriMesh) -> Result<Param, ParamError> {
         return Ok(Param {
             uv,
             method: "plane",
+        });
+    }
+    if let Some(uv) = mean_plane_uv(s).and_then(|uv| super::relax::mended(s, &loops, &uv)) {
+        return Ok(Param {
+            uv,
+            method: "relaxed",
         });
     }
     let uv = super::tutte::embed(s, &loops)?;
@@ -307,19 +317,21 @@ pub fn projects_one_to_one(s: &TriMesh) -> bool {
     border_loops(s).is_ok_and(|loops| !loops.is_empty() && plane_projection(s, &loops).is_some())
 }
 
-/// Whether `uv` maps the support one to one (exact): every triangle counter-clockwise, the border
-/// `loops` free of crossings and, of their simple cycles, only the outer borders (one per piece
-/// connected across edges) counter-clockwise.
-pub fn injective(s: &TriMesh, loops: &[Vec<u32>], uv: &[[f64; 2]]) -> bool {
-    if !all_positive(s, uv) {
-        return false;
-    }
+/// Whether two edges of the border `loops` cross in `uv` (exact).
+pub fn border_crosses(loops: &[Vec<u32>], uv: &[[f64; 2]]) -> bool {
     let segs: Vec<([f64; 2], [f64; 2])> = loops
         .iter()
         .flat_map(|l| (0..l.len()).map(move |i| (l[i], l[(i + 1) % l.len()])))
         .map(|(a, b)| (uv[a as usize], uv[b as usize]))
         .collect();
-    if first_crossing(&segs).is_some() {
+    first_crossing(&segs).is_some()
+}
+
+/// Whether `uv` maps the support one to one (exact): every triangle counter-clockwise, the border
+/// `loops` free of crossings and, of their simple cycles, only the outer borders (one per piece
+/// connected across edges) counter-clockwise.
+pub fn injective(s: &TriMesh, loops: &[Vec<u32>], uv: &[[f64; 2]]) -> bool {
+    if !all_positive(s, uv) || border_crosses(loops, uv) {
         return false;
     }
     let outer = loops

@@ -166,7 +166,7 @@ impl System {
 
 /// Floater's mean value weights, row vertex first: w(i, j) = (tan(α/2) + tan(β/2)) / |ij|, with
 /// α and β the angles at i of the triangles on edge ij (one on a border edge).
-fn mean_value_weights(s: &TriMesh) -> BTreeMap<(u32, u32), f64> {
+pub(crate) fn mean_value_weights(s: &TriMesh) -> BTreeMap<(u32, u32), f64> {
     let mut w: BTreeMap<(u32, u32), f64> = BTreeMap::new();
     let floor = f64::MIN_POSITIVE.sqrt();
     for t in &s.triangles {

@@ -111,13 +111,14 @@ pub fn cases() -> Vec<Case> {
 ///   within 1.5 m of the two apexes, where the rim's facets (crease strips, kept as features)
 ///   have corners of 1.1-1.3° on a cone about 9° high; with `min_size = 0.5` (1.5 million tets)
 ///   they still reach 2.1°, so sizes alone do not lift it.
-/// - `smoothed_channel`: the channel with `smooth = true`; fails naming the place: the surface
-///   meshes of two charts of its body fold where their seams come within 13 to 25 m of each
-///   other, after the build has refined there twice. It meshed, at 1.47°, while its caps (146
-///   of the smoothed surface's 209 stand on smooth stretches, 42 of them at more than 30°) made
-///   creases and seams of their own (`geom::facets`); its seams, merged smallest chart
-///   first, move with the smallest change of a normal, and its underside's charts were
-///   flattened by a Tutte embedding far from isometric even then.
+/// - `smoothed_channel`: the channel with `smooth = true`; meshes (2.0 million tets), at 1.95°
+///   within a few metres of its east tip, where its top chart's border runs as a stair of
+///   needles 4 m wide along the rim. Its top and bottom charts each face one way but for two to
+///   six triangles (teeth of that stair curled round the rim, a needle beside them): their
+///   projections are mended (`surface_mesh`'s `relax`); flattened on a circle by a Tutte
+///   embedding instead, the 3 km strips folded their meshes. And a needle that `untwist` moved
+///   off the top chart's crossing came back on every pass (`unpinch`), until it took along
+///   the gap it left (`charts::gaps`).
 /// - `lens_cut_by_a_fault`: a closed lens offset 100 m by a normal fault, each half a body closed
 ///   by the fault; meshes into its eight regions, at 6.6° in the footwall half (7.3° with
 ///   `refine_close_curves = true`, at 301,000 tets against 161,000): the curves of the lens's

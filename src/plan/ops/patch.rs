@@ -186,7 +186,9 @@ impl Operation for SurfaceMeshOp {
         // 9: and as the verification judges it, from the facets it finds.
         // 10: only as the verification judges it (no global search per triangle).
         // 11: the support's curvature is measured on the directions its caps stand for.
-        11
+        // 12: a projection that turns a few triangles over is mended (teeth folded back, the
+        //     vertices round the rest relaxed) before a Tutte embedding is tried.
+        12
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -392,6 +392,7 @@ fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_fla
         ts.push([0, 9, 4]);
         ts.push([1, 4, 9]);
         let support = geom::TriMesh::new(vs, ts);
+        // No relaxing makes the needle a triangle in 3D: the projection is not mended.
         assert_eq!(flattening_method(&support).unwrap(), "tutte");
         let border = square_border(p);
         let input = PatchInput {
@@ -403,6 +404,63 @@ fn a_support_with_a_zero_area_needle_triangle_still_meshes_through_the_tutte_fla
             facets: Vec::new(),
         };
         mesh_and_check(&input, &uniform(100.0), 1.06, 1.6);
+    }
+}
+
+#[test]
+fn a_strip_whose_rim_curls_under_it_in_one_tooth_meshes_through_a_mended_projection() {
+    use surface_mesh::flattening_method;
+    // A 1000 m by 300 m strip of 100 m cells, as the top of a long body whose south rim bends
+    // down (its first row of cells dips at 39°), with a tooth on that rim: one triangle whose
+    // tip curls 60 m further down and 10 m back under the strip, as a stair-stepped seam leaves
+    // along a body's rim (facing 99° from up, 60° from the cell beside it). Its tip is in no
+    // other triangle. Projected, the tooth turns over: before, the whole strip went to a Tutte
+    // embedding.
+    for off in [[0.0; 3], UTM] {
+        let p = |x: f64, y: f64, z: f64| [x + off[0], y + off[1], z - 500.0];
+        let (nx, ny) = (10u32, 3u32);
+        let id = |i: u32, j: u32| j * (nx + 1) + i;
+        let mut vs = Vec::new();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                let dip = if j == 0 { -80.0 } else { 0.0 };
+                vs.push(p(100.0 * i as f64, 100.0 * j as f64, dip));
+            }
+        }
+        let tip = vs.len() as u32;
+        vs.push(p(450.0, 40.0, -140.0));
+        let mut ts = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                ts.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                ts.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        ts.push([id(5, 0), id(4, 0), tip]);
+        let support = geom::TriMesh::new(vs.clone(), ts);
+        assert_eq!(flattening_method(&support).unwrap(), "relaxed");
+        let mut border: Vec<[f64; 3]> = (0..=4).map(|i| vs[id(i, 0) as usize]).collect();
+        border.push(vs[tip as usize]);
+        border.extend((5..=nx).map(|i| vs[id(i, 0) as usize]));
+        border.extend((1..=ny).map(|j| vs[id(nx, j) as usize]));
+        border.extend((0..nx).rev().map(|i| vs[id(i, ny) as usize]));
+        border.extend((1..ny).rev().map(|j| vs[id(0, j) as usize]));
+        // Nodes every fifth of a border edge, on the support's own edges.
+        let nodes = (0..border.len())
+            .flat_map(|k| {
+                let (a, b) = (border[k], border[(k + 1) % border.len()]);
+                (0..5).map(move |s| [0, 1, 2].map(|c| a[c] + (b[c] - a[c]) * s as f64 / 5.0))
+            })
+            .collect();
+        let input = PatchInput {
+            name: "strip with a curled tooth".into(),
+            support,
+            loops: vec![nodes],
+            constraints: vec![],
+            points: Vec::new(),
+            facets: Vec::new(),
+        };
+        mesh_and_check(&input, &uniform(20.0), 1.05, 2.0);
     }
 }
 
