@@ -2,17 +2,17 @@
 //! vertices round the rest relaxed to their Tutte positions among the others, which keep their
 //! projected places.
 //!
-//! A chart of a smoothed closed body faces one way but for a handful of triangles (a needle on
-//! a tapering tip, a cap the smoothing left standing): the projection onto its mean plane turns
-//! those over, so the whole chart went to a Tutte embedding. Pinned on the border's projection,
+//! A chart of a smoothed closed body faces one way but for a handful of triangles (teeth of its
+//! stair-stepped border curled round the body's rim, a step of that stair running backwards):
+//! the projection onto its mean plane turns those over, so the whole chart went to a Tutte embedding. Pinned on the border's projection,
 //! that embedding turned two of a 3 km channel top's 13,000 triangles over as well (its border
 //! is far from convex), and pinned on a circle it squeezed the strip so much that the surface
 //! mesh made there folded on the support, whatever the size.
 //!
 //! Decisions and why:
 //! - A turned triangle with a corner in no other triangle is a tooth of the border curled round
-//!   the body's rim (six of the channel's eight): that corner is mirrored across the tooth's
-//!   base, which unfolds the tooth as the rim would unroll, and moves nothing else.
+//!   the body's rim (seven of the smoothed channel's eight): that corner is mirrored across the
+//!   tooth's base, which unfolds the tooth as the rim would unroll, and moves nothing else.
 //! - The corners of the triangles still turned move, border ones too (a step of the border's
 //!   stair that runs backwards on the plane cannot be mended from inside), and so do the interior
 //!   vertices within a few rings of them; every other vertex keeps its projection, where the

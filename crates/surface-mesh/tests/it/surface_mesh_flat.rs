@@ -412,8 +412,8 @@ fn a_strip_whose_rim_curls_under_it_in_one_tooth_meshes_through_a_mended_project
     use surface_mesh::flattening_method;
     // A 1000 m by 300 m strip of 100 m cells, as the top of a long body whose south rim bends
     // down (its first row of cells dips at 39°), with a tooth on that rim: one triangle whose
-    // tip curls 60 m further down and 10 m back under the strip, as a stair-stepped seam leaves
-    // along a body's rim (facing 99° from up, 60° from the cell beside it). Its tip is in no
+    // tip curls 60 m further down and 40 m back under the strip, as a stair-stepped seam leaves
+    // along a body's rim (facing 124° from up, 85° from the cell beside it). Its tip is in no
     // other triangle. Projected, the tooth turns over: before, the whole strip went to a Tutte
     // embedding.
     for off in [[0.0; 3], UTM] {
