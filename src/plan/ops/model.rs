@@ -116,7 +116,8 @@ impl Operation for ModelOp {
         //     record which triangles stand for another direction (caps and needles).
         // 32: a triangle moved to mend a chart's crossing takes the few triangles that would
         //     leave its new chart touching itself at its corner.
-        32
+        // 33: a chart that a curve cuts into a strip along it joins the chart beside it.
+        33
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -1,5 +1,6 @@
-//! Wedges: a chart that a curve of the patch's border cuts off near the chart's tip, so that the
-//! chart meets the border along a stretch far shorter than its seams.
+//! Wedges and strips: a chart that a curve of the patch's border cuts off near the chart's tip,
+//! so that the chart meets the border along a stretch far shorter than its seams; or that a curve
+//! cuts into a strip along it, metres wide and hundreds long.
 //!
 //! Charts are labelled on the whole imported surface, before curves cut it into patches. Where a
 //! curve (a box side cutting a salt dome, a horizon meeting it) passes near the point where three
@@ -10,11 +11,19 @@
 //! cut by the box's side, a wedge one support triangle wide met the cut along 6.4 m between
 //! seams of 95 m, at a size of 250 m, and the tets there reached 7.5° (12.6° once it joined the
 //! chart beside it; on an intrusion cutting an older body, four joined, and 10.7° became 16.3°).
+//! Where the curve runs beside a seam instead, the patch keeps a strip: on a salt overhang whose
+//! underside faces between two axes, a horizon cut a chart into a strip 330 m long and 2 to 12 m
+//! wide along their contact; its elements were needles, and the tets on them reached 5.4° (8.7°
+//! once it joined the chart beside it).
 //!
 //! Decisions and why:
 //! - A wedge is a chart of a patch whose border edges (edges of the patch's own border) are
 //!   shorter in all than [`WEDGE`] times its seam edges, and not absent: a chart with no border
 //!   is an island or a closed body's chart, which the labelling already decided.
+//! - A strip is a chart of a patch with a border whose area, times four, is under [`STRIP`] times
+//!   its perimeter squared (about its width over its length): the overhang's strips have 0.03 and
+//!   0.04, the bands of its salt between two horizons 0.05 to 0.24. It joins a chart beside it as
+//!   a wedge does, but always within the chart angle: it is no tip where its chart turns away.
 //! - A wedge joins the chart beside it with which it shares the longest seam, among those with
 //!   which the union is still a chart (each triangle faces within the chart angle of the union's
 //!   mean normal, and it projects one to one): seams only disappear, so no two seam ends come
@@ -38,6 +47,9 @@ use geom::TriMesh;
 /// Long charts (a tube's quarters, a channel's flanks) have less, and join another only where
 /// the union is still a chart.
 const WEDGE: f64 = 0.25;
+/// A chart is a strip when four times its area is under this share of its perimeter squared
+/// (about its width over its length); see the module doc.
+const STRIP: f64 = 0.05;
 /// The triangles of a wedge under [`SMALL`] times the area of the chart that takes it may face
 /// this far from the union's mean normal (the chart's own triangles, and a larger wedge's, the
 /// chart angle): such a wedge lies where its chart turns away from the chart beside it, it
@@ -90,15 +102,18 @@ fn next_merge(
     cos_max: f64,
 ) -> Option<(u32, u32)> {
     let charts = measure(mesh, normals, across, group);
-    let mut order: Vec<usize> = (0..charts.len())
-        .filter(|&g| {
+    // Each wedge or strip, and whether it is a wedge.
+    let mut order: Vec<(usize, bool)> = (0..charts.len())
+        .filter_map(|g| {
             let c = &charts[g];
             let seams: f64 = c.seams.iter().map(|s| s.1).sum();
-            c.border > 0.0 && c.border < WEDGE * seams
+            let p = c.border + seams;
+            let wedge = c.border < WEDGE * seams;
+            (c.border > 0.0 && (wedge || 4.0 * c.area < STRIP * p * p)).then_some((g, wedge))
         })
         .collect();
-    order.sort_by(|&a, &b| charts[a].area.total_cmp(&charts[b].area).then(a.cmp(&b)));
-    order.into_iter().find_map(|g| {
+    order.sort_by(|&(a, _), &(b, _)| charts[a].area.total_cmp(&charts[b].area).then(a.cmp(&b)));
+    order.into_iter().find_map(|(g, wedge)| {
         let c = &charts[g];
         let mut beside = c.seams.clone();
         beside.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
@@ -106,12 +121,15 @@ fn next_merge(
             let d = &charts[h as usize];
             let members = [&c.members[..], &d.members[..]];
             let small = c.area < SMALL * d.area;
-            let own = if small {
+            let own = if small && wedge {
                 WEDGE_ANGLE_DEG.to_radians().cos()
             } else {
                 cos_max
             };
-            let cos = [own, cos_max];
+            // A small piece moves the taker's mean by under asin(SMALL) (5.7°): its triangles face
+            // the union's as they faced their own, within that; only the projection is checked.
+            let taker = if small { -1.0 } else { cos_max };
+            let cos = [own, taker];
             union_flattens(mesh, normals, members, [c.mean, d.mean], cos)
         })?;
         Some((g as u32, h))
@@ -219,5 +237,54 @@ mod tests {
                 "{deg}°"
             );
         }
+    }
+
+    /// A patch 100 m long: a strip 0.5 m wide along its bottom side (triangles 0 to 19, chart 1)
+    /// below a band 10 m wide (triangles 20 to 39, chart 0), all in the plane z = 0; the strip's
+    /// normals lean `deg` degrees towards +x.
+    fn strip(deg: f64) -> (TriMesh, Vec<[f64; 3]>, Vec<u32>) {
+        let rows = [0.0, 0.5, 10.5];
+        let vertices = (rows.iter())
+            .flat_map(|&y| (0..11).map(move |i| [10.0 * i as f64, y, 0.0]))
+            .collect();
+        let mut triangles = Vec::new();
+        for row in 0..2u32 {
+            let (lo, hi) = (11 * row, 11 * (row + 1));
+            for i in 0..10 {
+                triangles.push([lo + i, lo + i + 1, hi + i + 1]);
+                triangles.push([lo + i, hi + i + 1, hi + i]);
+            }
+        }
+        let (s, c) = deg.to_radians().sin_cos();
+        let mut normals = vec![[0.0, 0.0, 1.0]; 40];
+        normals[..20].fill([s, 0.0, c]);
+        let mut group = vec![0; 40];
+        group[..20].fill(1);
+        (TriMesh::new(vertices, triangles), normals, group)
+    }
+
+    #[test]
+    fn a_strip_a_curve_cuts_along_a_seam_joins_the_chart_beside_it() {
+        let (mesh, normals, mut group) = strip(11.0);
+        assert_eq!(merge_wedges(&mesh, &normals, 60.0, &mut group), 1);
+        assert_eq!(group, [0; 40]);
+    }
+
+    #[test]
+    fn a_strip_facing_past_the_chart_angle_stays_though_a_wedge_as_small_would_join() {
+        let (mesh, normals, mut group) = strip(70.0);
+        assert_eq!(merge_wedges(&mesh, &normals, 60.0, &mut group), 0);
+        assert_eq!(group[..20], [1; 20]);
+    }
+
+    #[test]
+    fn a_small_strip_joins_a_chart_whose_own_triangles_face_past_the_chart_angle() {
+        // The band's last triangle leans 63° the other way: 60.4° from the band's mean, 61.9°
+        // from the union's, past the chart angle as on the overhang.
+        let (mesh, mut normals, mut group) = strip(30.0);
+        let (s, c) = 63f64.to_radians().sin_cos();
+        normals[39] = [-s, 0.0, c];
+        assert_eq!(merge_wedges(&mesh, &normals, 60.0, &mut group), 1);
+        assert_eq!(group, [0; 40]);
     }
 }
