@@ -327,13 +327,37 @@ fn mesh_summary(quality: &serde_json::Value) -> Option<String> {
     };
     let (ratio, ratio_in) = worst("min")?;
     let (dihedral, dihedral_in) = worst("min_dihedral_deg")?;
+    let row = regions.iter().find(|r| r["name"] == dihedral_in)?;
     Some(format!(
         "{} region{}, {tets} tets; worst tet: mean ratio {ratio:.4} ({ratio_in}), \
-         dihedral {dihedral:.2}° ({dihedral_in})",
+         dihedral {dihedral:.2}° ({dihedral_in}{})",
         regions.len(),
-        plural(regions.len())
+        plural(regions.len()),
+        sharp_boundary(row)
     ))
 }
+
+/// Where a region's surfaces leave its tets an angle under the seed's dihedral bar
+/// ([`SHARP_DEG`]), the angle and its place, said after the region's name: no mesh of that
+/// boundary does better there.
+fn sharp_boundary(row: &serde_json::Value) -> String {
+    let (Some(deg), Some(at)) = (
+        row["min_dihedral_bound_deg"].as_f64(),
+        row["min_dihedral_bound_at"].as_array(),
+    ) else {
+        return String::new();
+    };
+    let at: Vec<f64> = at.iter().filter_map(|x| x.as_f64()).collect();
+    match at[..] {
+        [x, y, z] if deg < SHARP_DEG => {
+            format!(", whose surfaces meet at {deg:.2}° near ({x:.1}, {y:.1}, {z:.1})")
+        }
+        _ => String::new(),
+    }
+}
+
+/// The seed's bar on the smallest dihedral angle (degrees).
+const SHARP_DEG: f64 = 10.0;
 
 /// The committed lock file, for `--locked`.
 fn read_lock(lock_file: &Path) -> Result<LockFile, Failure> {
@@ -541,4 +565,34 @@ fn print_folds_on_faceted_supports(recipe: &crate::recipe::Recipe, report: &Buil
 /// The model the build made (or found in the cache), if it was built.
 fn built_model(report: &BuildReport) -> Option<crate::plan::ops::ModelData> {
     report.artifact("model")?.decode().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn region(name: &str, dihedral: f64, bound: f64) -> serde_json::Value {
+        serde_json::json!({
+            "name": name, "elements": 10, "min": 0.3, "min_dihedral_deg": dihedral,
+            "min_dihedral_bound_deg": bound, "min_dihedral_bound_at": [1.0, 2.0, 3.0],
+        })
+    }
+
+    #[test]
+    fn the_summary_says_where_the_worst_regions_surfaces_meet_under_the_dihedral_bar() {
+        let tables = |bound| {
+            serde_json::json!({ "table2": [
+                region("upper", 18.0, 60.0), region("wedge", 1.1, bound), region("all", 1.1, bound),
+            ]})
+        };
+        let sharp = mesh_summary(&tables(1.2)).expect("a summary");
+        assert!(
+            sharp.ends_with(
+                "dihedral 1.10° (wedge, whose surfaces meet at 1.20° near (1.0, 2.0, 3.0))"
+            ),
+            "{sharp}"
+        );
+        let wide = mesh_summary(&tables(45.0)).expect("a summary");
+        assert!(wide.ends_with("dihedral 1.10° (wedge)"), "{wide}");
+    }
 }

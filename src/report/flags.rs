@@ -52,6 +52,8 @@ mod tests {
             pct_lt_0_2: 0.0,
             pct_lt_0_1: 0.0,
             min_dihedral_deg: 20.0,
+            min_dihedral_bound_deg: None,
+            min_dihedral_bound_at: None,
             avg_paper: avg,
             min_paper: avg,
         }

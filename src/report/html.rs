@@ -458,7 +458,7 @@ fn quality_tables(h: &mut String, t1: &[TriQuality], t2: &[TetQuality]) {
     h.push_str("<section><h2>Quality (the seed's Tables 1 and 2)</h2>");
     quality_table(h, &layout::table1(t1));
     quality_table(h, &layout::table2(t2));
-    h.push_str("<p class=\"small\">Thresholds and statistics as in the seed (population SD; strict comparisons), computed like <code>tools/check_mesh.py</code>. The percentages of Table 2 are of the normalised mean ratio.</p></section>\n");
+    h.push_str("<p class=\"small\">Thresholds and statistics as in the seed (population SD; strict comparisons), computed like <code>tools/check_mesh.py</code>. The percentages of Table 2 are of the normalised mean ratio. Its bound is the sharpest angle a region's surfaces leave its tets round an edge: no tet there, so no mesh of that boundary, has a larger smallest dihedral angle.</p></section>\n");
 }
 
 fn histogram_grid(h: &mut String, hs: &[Histogram], colours: &[Rgb], measure: &str, marks: &[f64]) {

@@ -65,7 +65,8 @@ impl Operation for ExportOp {
     fn version(&self) -> u32 {
         // 8: msh curve and corner entities bounding the surfaces.
         // 9: Abaqus truss sections of the wells given an area.
-        9
+        // 10: Table 2 gives the bound each region's boundary sets on its smallest dihedral.
+        10
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

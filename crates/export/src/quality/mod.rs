@@ -6,6 +6,7 @@
 //! Rows are in group/region index order with an "all" row last, so the output is deterministic.
 //! An empty group keeps its row with zero counts and NaN statistics (rendered as "-", JSON null).
 
+pub mod bound;
 pub mod layout;
 pub mod measures;
 
@@ -43,6 +44,13 @@ pub struct TetQuality {
     pub pct_lt_0_2: f64,
     pub pct_lt_0_1: f64,
     pub min_dihedral_deg: f64,
+    /// The sharpest angle (degrees) the region's surface triangles leave its tets round an
+    /// edge, which its smallest dihedral angle cannot exceed ([`bound`]), and where; `None`
+    /// where no two surface triangles meet at an edge of its tets.
+    #[serde(default)]
+    pub min_dihedral_bound_deg: Option<f64>,
+    #[serde(default)]
+    pub min_dihedral_bound_at: Option<[f64; 3]>,
     pub avg_paper: f64,
     pub min_paper: f64,
 }
@@ -83,7 +91,7 @@ fn count_nodes<'a>(n_nodes: usize, elems: impl Iterator<Item = &'a [u32]>) -> us
     count
 }
 
-fn node(mesh: &VolumeMesh, v: u32) -> [f64; 3] {
+pub(crate) fn node(mesh: &VolumeMesh, v: u32) -> [f64; 3] {
     mesh.nodes.get(v as usize).copied().unwrap_or([f64::NAN; 3])
 }
 
@@ -132,7 +140,13 @@ pub fn tet_measures(mesh: &VolumeMesh) -> Vec<(f64, f64)> {
         .collect()
 }
 
-fn tet_row(mesh: &VolumeMesh, measures: &[(f64, f64)], name: &str, sel: &[usize]) -> TetQuality {
+fn tet_row(
+    mesh: &VolumeMesh,
+    measures: &[(f64, f64)],
+    name: &str,
+    sel: &[usize],
+    bound: Option<bound::Bound>,
+) -> TetQuality {
     let mut q = Vec::with_capacity(sel.len());
     let mut dmin = f64::INFINITY;
     for &t in sel {
@@ -152,6 +166,8 @@ fn tet_row(mesh: &VolumeMesh, measures: &[(f64, f64)], name: &str, sel: &[usize]
         pct_lt_0_2: pct(&q, |v| v < 0.2),
         pct_lt_0_1: pct(&q, |v| v < 0.1),
         min_dihedral_deg: if sel.is_empty() { f64::NAN } else { dmin },
+        min_dihedral_bound_deg: bound.map(|b| b.deg),
+        min_dihedral_bound_at: bound.map(|b| b.at),
         avg_paper: PAPER_MEAN_RATIO_SCALE * avg,
         min_paper: PAPER_MEAN_RATIO_SCALE * min,
     }
@@ -193,14 +209,16 @@ pub fn table2(mesh: &VolumeMesh) -> Vec<TetQuality> {
 fn table2_with(mesh: &VolumeMesh, measures: &[(f64, f64)]) -> Vec<TetQuality> {
     let n = mesh.tets.len().min(mesh.tet_region.len());
     let groups = by_group(&mesh.tet_region[..n], mesh.regions.len());
-    let mut rows: Vec<TetQuality> = mesh
-        .regions
-        .iter()
-        .zip(&groups)
-        .map(|(r, sel)| tet_row(mesh, measures, &r.name, sel))
+    let bounds = bound::dihedral_bounds(mesh);
+    let mut rows: Vec<TetQuality> = (mesh.regions.iter().zip(&groups).zip(&bounds))
+        .map(|((r, sel), &b)| tet_row(mesh, measures, &r.name, sel, b))
         .collect();
     let all: Vec<usize> = (0..mesh.tets.len()).collect();
-    rows.push(tet_row(mesh, measures, "all", &all));
+    let mut sharpest = None;
+    for &b in bounds.iter().flatten() {
+        bound::keep_sharper(&mut sharpest, b);
+    }
+    rows.push(tet_row(mesh, measures, "all", &all, sharpest));
     rows
 }
 

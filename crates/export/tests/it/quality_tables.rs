@@ -169,6 +169,39 @@ fn rendered_tables_are_aligned_and_mark_empty_groups() {
 }
 
 #[test]
+fn each_regions_bound_on_its_dihedral_angles_is_the_sharpest_angle_its_surfaces_leave_it() {
+    // The layered box: its horizons and the fault meet the box sides and each other at right
+    // angles, and the faces' diagonals leave 180°; the Kuhn tets' smallest angle is 45°.
+    let mesh = layered_box(6, 6);
+    let rows = table2(&mesh);
+    for row in &rows {
+        let bound = row.min_dihedral_bound_deg.expect("a bound");
+        assert!((bound - 90.0).abs() < 1e-9, "{}: {bound}", row.name);
+        assert!(row.min_dihedral_deg <= bound, "{}", row.name);
+        let at = row.min_dihedral_bound_at.expect("a place");
+        let [x0, y0, z0, x1, y1, z1] = box_bounds();
+        let on_box = [
+            at[0] - x0,
+            x1 - at[0],
+            at[1] - y0,
+            y1 - at[1],
+            at[2] - z0,
+            z1 - at[2],
+        ];
+        assert!(
+            on_box.iter().any(|d| d.abs() < 1e-6),
+            "{}: {at:?}",
+            row.name
+        );
+    }
+    let t2 = render_table2(&rows);
+    assert!(
+        t2.lines().nth(1).is_some_and(|l| l.contains("bound")),
+        "{t2}"
+    );
+}
+
+#[test]
 fn table1_on_the_peer_didactic_surfaces_matches_check_mesh_tri_quality() {
     if !python_has("meshio, numpy") {
         return;
