@@ -117,7 +117,8 @@ fn regions(dir: &std::path::Path, case: &Case) -> Vec<serde_json::Value> {
 
 /// A region whose surfaces meet at an angle under the dihedral bar must reach this share of it.
 /// The wedges of the corpus reach 0.77 (the splay at 1°) to 1.0 (the erosional unconformity at
-/// 7.1° and the onlap at 0.16°); the closed channel, whose rim's facets meet at 3.8°, 0.56.
+/// 7.1° and the onlap under a degree at 0.16°); the closed channel, whose rim's facets meet at
+/// 3.8°, 0.56.
 const BOUND_SHARE: f64 = 0.75;
 
 /// The rows of the regions of `case`, built in `dir`, whose surfaces meet at an angle under the
@@ -389,8 +390,8 @@ fn an_intrusion_keeps_the_overlap_of_two_bodies_whichever_is_kept_outside_the_ot
 
 #[test]
 fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place() {
-    // These mesh now, below the bars: the lenses since no chart's border overlaps itself in map view, the
-    // smoothed channel since projections that turn a few triangles over are mended.
+    // These mesh now, below the bars: the lenses since no chart's border overlaps itself in map
+    // view, the smoothed channel since projections that turn a few triangles over are mended.
     let meshing = [
         "two_lenses",
         "onlap",

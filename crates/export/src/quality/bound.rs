@@ -9,11 +9,13 @@
 //!
 //! Measures, not decisions: plain floating point. An edge with one triangle (a free border of a
 //! fault) bounds nothing, nor does a node out of range or not finite (an inconsistent mesh is
-//! measured, never a panic). Edges are found in a sorted list, not a hash map, and tets are visited
-//! in order, so the result is the same on every run.
+//! measured, never a panic). Edges are found in a sorted list, not a hash map, and of equal
+//! angles the place first in coordinate order is kept, so the result is the same for any
+//! thread count.
 
 use std::f64::consts::TAU;
 
+use super::measures::TET_EDGES;
 use super::node;
 use geom::mesh::VolumeMesh;
 use geom::predicates::{cross, dot, sub};
@@ -67,7 +69,7 @@ fn tet_bounds<'a>(
     fans: &'a Fans,
     tet: &'a [u32; 4],
 ) -> impl Iterator<Item = Bound> + 'a {
-    EDGES.iter().filter_map(move |&(i, j, k, l)| {
+    TET_EDGES.iter().filter_map(move |&(i, j, k, l)| {
         let (a, b) = (tet[i], tet[j]);
         let deg = sector_deg(mesh, [a, b], fans.thirds(a, b)?, [tet[k], tet[l]])?;
         if !deg.is_finite() {
@@ -92,16 +94,6 @@ pub(super) fn keep_sharper(slot: &mut Option<Bound>, b: Bound) {
         *slot = Some(b);
     }
 }
-
-/// A tet's edges as (i, j) with the other two corners (k, l).
-const EDGES: [(usize, usize, usize, usize); 6] = [
-    (0, 1, 2, 3),
-    (0, 2, 1, 3),
-    (0, 3, 1, 2),
-    (1, 2, 0, 3),
-    (1, 3, 0, 2),
-    (2, 3, 0, 1),
-];
 
 /// The surface triangles round each edge: (lower node, higher node, third node), sorted.
 struct Fans {

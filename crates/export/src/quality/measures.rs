@@ -86,7 +86,7 @@ pub fn tet_min_dihedral_deg(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 
 }
 
 /// A tet's six edges `ij`, each with the two other corners `k`, `l`.
-const TET_EDGES: [(usize, usize, usize, usize); 6] = [
+pub(crate) const TET_EDGES: [(usize, usize, usize, usize); 6] = [
     (0, 1, 2, 3),
     (0, 2, 1, 3),
     (0, 3, 1, 2),

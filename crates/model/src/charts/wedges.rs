@@ -32,6 +32,10 @@
 //!   lies where its own chart turns away, so it faces the taker at more than the chart angle
 //!   (the salt dome's, 68°), and so small it barely moves the union's mean; the one-to-one
 //!   projection is what the surface mesher needs, and it is checked.
+//! - The taker of a chart under a tenth of its area is not checked again: the union's mean is
+//!   within asin([`SMALL`]) (5.7°) of its own, so its triangles face it as they faced their own,
+//!   within that. The overhang's strip moved the mean of a chart whose triangles reach 63.4°
+//!   from it to 63.9°, past the chart angle; the projection is still checked.
 //! - Only the patch changes: the patch across the curve keeps its seams, whose ends still split
 //!   the curve, but no end is added anywhere. Across a box side or a discarded part, there is
 //!   no patch across.
@@ -126,8 +130,7 @@ fn next_merge(
             } else {
                 cos_max
             };
-            // A small piece moves the taker's mean by under asin(SMALL) (5.7°): its triangles face
-            // the union's as they faced their own, within that; only the projection is checked.
+            // A small piece hardly moves the taker's mean (see the module doc).
             let taker = if small { -1.0 } else { cos_max };
             let cos = [own, taker];
             union_flattens(mesh, normals, members, [c.mean, d.mean], cos)
