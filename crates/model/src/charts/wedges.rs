@@ -22,7 +22,7 @@
 //!   is an island or a closed body's chart, which the labelling already decided.
 //! - A strip is a chart of a patch with a border whose area, times four, is under [`STRIP`] times
 //!   its perimeter squared (about its width over its length): the overhang's strips have 0.03 and
-//!   0.04, the bands of its salt between two horizons 0.05 to 0.24. It joins a chart beside it as
+//!   0.04, the other charts of its salt with a border 0.05 to 0.24. It joins a chart beside it as
 //!   a wedge does, but always within the chart angle: it is no tip where its chart turns away.
 //! - A wedge joins the chart beside it with which it shares the longest seam, among those with
 //!   which the union is still a chart (each triangle faces within the chart angle of the union's
