@@ -248,10 +248,16 @@ pub fn graph(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
 
 pub fn clean(recipe: &Path, args: &CacheArgs) -> Result<(), Failure> {
     let dir = cache_dir(recipe, args);
-    if engine::clean(&dir)? {
-        outln!("removed {}", dir.display());
-    } else {
-        outln!("nothing to remove: {} does not exist", dir.display());
+    match engine::clean(&dir)? {
+        engine::Cleaned::Removed => outln!("removed {}", dir.display()),
+        engine::Cleaned::Absent => {
+            outln!("nothing to remove: {} does not exist", dir.display())
+        }
+        engine::Cleaned::Kept(left) => outln!(
+            "removed the cache's entries from {}; left what it holds that is not the cache's: {}",
+            dir.display(),
+            engine::marker::listed(&left)
+        ),
     }
     Ok(())
 }

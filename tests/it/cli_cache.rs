@@ -157,6 +157,45 @@ fn clean_pointed_at_the_recipes_folder_deletes_nothing_and_says_why() {
 }
 
 #[test]
+fn clean_and_gc_pointed_at_a_folder_another_program_tagged_delete_nothing() {
+    // Cargo's `target/` carries the same cache tag, with another owner's line.
+    let s = Scratch::didactic();
+    let target = s.path("target");
+    std::fs::create_dir_all(target.join("release")).unwrap();
+    std::fs::write(
+        target.join("CACHEDIR.TAG"),
+        "Signature: 8a477f597d28d172789f06886806bc55\n# This file is a cache directory tag created by cargo.\n",
+    )
+    .unwrap();
+    std::fs::write(target.join("release/recipe"), "a binary").unwrap();
+    let before = snapshot(&s);
+    for cmd in ["clean", "gc"] {
+        let out = s.recipe_cmd(&[cmd, "didactic.toml", "--cache-dir", "target"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{cmd}: {err}");
+        assert!(err.contains("is not a recipe cache"), "{cmd}: {err}");
+        assert_eq!(snapshot(&s), before, "{cmd} touched the folder");
+    }
+}
+
+#[test]
+fn clean_leaves_a_file_the_user_put_in_the_cache_and_names_it() {
+    let s = Scratch::didactic_built();
+    std::fs::write(s.path(".recipe/notes.txt"), "mine").unwrap();
+    let out = stdout_of(&s, &["clean", "didactic.toml"]);
+    assert!(
+        out.contains("removed the cache's entries") && out.contains("`notes.txt`"),
+        "{out}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(s.path(".recipe/notes.txt")).unwrap(),
+        "mine"
+    );
+    let left: Vec<_> = std::fs::read_dir(s.path(".recipe")).unwrap().collect();
+    assert_eq!(left.len(), 1, "only the user's file is left");
+}
+
+#[test]
 fn a_build_refuses_a_cache_dir_that_holds_the_users_files() {
     let s = Scratch::didactic();
     let before = snapshot(&s);

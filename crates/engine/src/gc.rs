@@ -2,7 +2,8 @@
 //! any record (`manifest`, and what the caller derived from it: `derive`) reference (node keys
 //! and output objects) and removes everything else, including stray temporary files and the
 //! root `manifest.bin` that builds wrote before records; `forget` removes a record, so what only
-//! its last build referenced goes at the next `gc`; `clean` removes the whole cache directory.
+//! its last build referenced goes at the next `gc`; `clean` removes the cache. Each removes only
+//! the cache's own entries (`marker` says which): a file of the user's left inside stays.
 //! All touch only a directory marked as a cache (`marker`), and take the directory lock so they
 //! never race a build.
 
@@ -95,7 +96,7 @@ pub fn forget(cache_dir: &Path, name: &str) -> Result<bool, EngineError> {
     }
     marker::require(cache_dir)?;
     let _lock = lock_now(cache_dir)?;
-    std::fs::remove_dir_all(&dir).map_err(|e| EngineError::io(&dir, e))?;
+    marker::remove_record(&dir)?;
     Ok(true)
 }
 
@@ -108,7 +109,13 @@ fn sweep(dir: &Path, keep: &BTreeSet<Hash>, stats: &mut GcStats) -> Result<(), E
     let mut paths = Vec::new();
     for entry in entries {
         let entry = entry.map_err(|e| EngineError::io(dir, e))?;
-        paths.push(entry.path());
+        let kind = entry.file_type().map_err(|e| EngineError::io(dir, e))?;
+        // Only the store's own files: entries named by hashes and temporaries of their writes.
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        if kind.is_file() && (Hash::from_hex(&name).is_ok() || name.starts_with(".tmp")) {
+            paths.push(entry.path());
+        }
     }
     paths.sort();
     for path in paths {
@@ -158,15 +165,31 @@ pub fn last_build(cache_dir: &Path, record: &str) -> Option<LockFile> {
     })
 }
 
-/// Remove the cache directory entirely; `false` when it did not exist. A directory that is not
-/// marked as a cache is an error and is not touched (not even by the lock file).
-pub fn clean(cache_dir: &Path) -> Result<bool, EngineError> {
+/// What [`clean`] did.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Cleaned {
+    /// There was no such directory.
+    Absent,
+    /// The cache and its directory are gone.
+    Removed,
+    /// The cache's entries are gone; the directory stays, holding these paths (relative to it)
+    /// that were never the cache's.
+    Kept(Vec<String>),
+}
+
+/// Removes the cache: its own entries, then its directory unless it holds anything else. A
+/// directory that is not marked as a cache is an error and is not touched (not even by the lock
+/// file).
+pub fn clean(cache_dir: &Path) -> Result<Cleaned, EngineError> {
     if !cache_dir.exists() {
-        return Ok(false);
+        return Ok(Cleaned::Absent);
     }
     marker::require(cache_dir)?;
     let lock = lock_now(cache_dir)?;
-    let r = std::fs::remove_dir_all(cache_dir).map_err(|e| EngineError::io(cache_dir, e));
+    let left = marker::remove_own(cache_dir);
     drop(lock);
-    r.map(|()| true)
+    Ok(match left? {
+        left if left.is_empty() => Cleaned::Removed,
+        left => Cleaned::Kept(left),
+    })
 }

@@ -57,7 +57,7 @@ pub use build::{
 pub use derive::Derivations;
 pub use dirlock::DirLock;
 pub use error::EngineError;
-pub use gc::{GcStats, clean, forget, gc, gc_and};
+pub use gc::{Cleaned, GcStats, clean, forget, gc, gc_and};
 pub use graph::{BuildGraph, Expander, Expansion, GraphError, NodeId};
 pub use lockfile::{LockFile, LockedNode};
 pub use op::{OpError, Operation, Output, RunContext};

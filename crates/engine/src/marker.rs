@@ -1,21 +1,28 @@
 //! What makes a directory a cache: the marker file `CACHEDIR.TAG` (the Cache Directory Tagging
-//! convention, which backup tools honour), written when a build first uses the directory. `clean`
-//! and `gc` touch only a marked directory, and a build claims only a new or empty directory, or
-//! one that holds nothing but cache entries, down to the names of its files (a cache made
-//! before the marker existed), so a mistyped `--cache-dir` can never make the engine delete a
-//! user's files.
+//! convention, which backup tools honour) with this program's line in it, written when a build
+//! first uses the directory. `clean` and `gc` touch only a marked directory, and in it only the
+//! cache's own entries, by their names and kinds; a build claims only a new or empty directory,
+//! or one that holds nothing but cache entries, down to the names of its files (a cache made
+//! before the marker existed). So a mistyped `--cache-dir`, another program's tagged cache, or
+//! a file a user left inside a cache never makes the engine delete a user's files.
 
 use crate::error::EngineError;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The marker's file name.
 pub const MARKER: &str = "CACHEDIR.TAG";
 
 const SIGNATURE: &str = "Signature: 8a477f597d28d172789f06886806bc55";
 
+/// The marker's line that makes a tagged directory this program's cache.
+const OWNER: &str = "# This directory is a georecipe build cache;";
+
+/// How much of a marker is read: a little more than [`TEXT`].
+const MARKER_READ: u64 = 1024;
+
 /// What the marker says, beyond the signature the convention requires.
 const TEXT: &str = "Signature: 8a477f597d28d172789f06886806bc55\n\
-    # This directory is a georecipe build cache; `recipe clean` may delete it whole.\n\
+    # This directory is a georecipe build cache; `recipe clean` may delete its entries.\n\
     # For information about cache directory tags see https://bford.info/cachedir/\n";
 
 /// Files a cache holds at its root: its lock, and those that builds kept there before records
@@ -29,11 +36,12 @@ const ROOT_FILES: [&str; 5] = [
 ];
 
 /// Files a record holds: the engine's (manifest, emitted files, derivations) and the command
-/// line's (the last report and graph, the report's state).
-const RECORD_FILES: [&str; 6] = [
+/// line's (the recipe's path, the last report and graph, the report's state).
+const RECORD_FILES: [&str; 7] = [
     "manifest.bin",
     "emitted.bin",
     "derived.bin",
+    "recipe",
     "report-state.json",
     "last-report.json",
     "last-graph.dot",
@@ -70,48 +78,134 @@ fn entries(dir: &Path) -> std::io::Result<Vec<(String, bool)>> {
     Ok(out)
 }
 
-/// The paths under `dir` (relative to it) that a cache does not hold: anything but its root
-/// files, `objects/` and `actions/` of files named by hashes, and `records/<name>/` of the
-/// record files, temporaries anywhere. Looked at whole, so a folder of the user's whose top
-/// names happen to be a cache's is never taken for one.
-fn foreign_entries(dir: &Path) -> std::io::Result<Vec<String>> {
-    let mut foreign = Vec::new();
-    for (name, is_dir) in entries(dir)? {
-        let within = |rule: &dyn Fn(&str, bool) -> bool| -> std::io::Result<Vec<String>> {
-            Ok(entries(&dir.join(&name))?
-                .into_iter()
-                .filter(|(n, d)| (*d || !is_temporary(n)) && !rule(n, *d))
-                .map(|(n, _)| format!("{name}/{n}"))
-                .collect())
-        };
-        match (name.as_str(), is_dir) {
-            ("objects" | "actions", true) => foreign.extend(within(&|n, d| !d && is_hash_name(n))?),
-            ("records", true) => {
-                for (record, d) in entries(&dir.join(&name))? {
-                    if !d {
-                        foreign.push(format!("records/{record}"));
-                        continue;
-                    }
-                    let files = entries(&dir.join("records").join(&record))?;
-                    foreign.extend(
-                        (files.into_iter())
-                            .filter(|(n, d)| {
-                                *d || !(is_temporary(n) || RECORD_FILES.contains(&n.as_str()))
-                            })
-                            .map(|(n, _)| format!("records/{record}/{n}")),
-                    );
-                }
-            }
-            (n, false) if ROOT_FILES.contains(&n) || is_temporary(n) => {}
-            _ => foreign.push(name),
-        }
-    }
-    Ok(foreign)
+/// What a directory holds, sorted into a cache's own entries and the rest.
+#[derive(Default)]
+struct Survey {
+    /// The cache's own files: its root files, store entries, record files and temporaries.
+    files: Vec<PathBuf>,
+    /// The cache's own folders (`objects`, `actions`, `records` and each record), deepest first.
+    folders: Vec<PathBuf>,
+    /// The paths (relative to the directory) of anything else: never the cache's to delete.
+    foreign: Vec<String>,
 }
 
-/// Whether `dir` carries the marker.
+/// Sorts `dir`'s entries: a cache holds its root files, `objects/` and `actions/` of files named
+/// by hashes, and `records/<name>/` of the record files, temporaries anywhere. Looked at whole,
+/// so a folder of the user's whose top names happen to be a cache's is never taken for one.
+fn survey(dir: &Path) -> std::io::Result<Survey> {
+    let mut s = Survey::default();
+    for (name, is_dir) in entries(dir)? {
+        let path = dir.join(&name);
+        match (name.as_str(), is_dir) {
+            ("objects" | "actions", true) => s.take(&path, &name, &|n, d| {
+                !d && (is_hash_name(n) || is_temporary(n))
+            })?,
+            ("records", true) => {
+                for (record, d) in entries(&path)? {
+                    if !d {
+                        s.foreign.push(format!("records/{record}"));
+                        continue;
+                    }
+                    s.take(
+                        &path.join(&record),
+                        &format!("records/{record}"),
+                        &|n, d| !d && (is_temporary(n) || RECORD_FILES.contains(&n)),
+                    )?;
+                }
+                s.folders.push(path);
+            }
+            // Another program's tag: that program's directory, whatever else it holds.
+            (MARKER, false) if !is_cache(dir) => s.foreign.push(format!("{MARKER} (not ours)")),
+            (n, false) if ROOT_FILES.contains(&n) || is_temporary(n) => s.files.push(path),
+            _ => s.foreign.push(name),
+        }
+    }
+    Ok(s)
+}
+
+impl Survey {
+    /// Sorts the entries of the cache's folder `path` (`shown` relative to the cache) by `own`.
+    fn take(
+        &mut self,
+        path: &Path,
+        shown: &str,
+        own: &dyn Fn(&str, bool) -> bool,
+    ) -> std::io::Result<()> {
+        for (n, d) in entries(path)? {
+            if own(&n, d) {
+                self.files.push(path.join(&n));
+            } else {
+                self.foreign.push(format!("{shown}/{n}"));
+            }
+        }
+        self.folders.push(path.to_path_buf());
+        Ok(())
+    }
+}
+
+/// The paths under `dir` (relative to it) that a cache does not hold.
+fn foreign_entries(dir: &Path) -> std::io::Result<Vec<String>> {
+    survey(dir).map(|s| s.foreign)
+}
+
+/// Removes the record folder `dir`'s own files (the record files and temporaries), and the
+/// folder when nothing else is left in it. The caller holds the cache lock.
+pub(crate) fn remove_record(dir: &Path) -> Result<(), EngineError> {
+    let mut s = Survey::default();
+    s.take(dir, "", &|n, d| {
+        !d && (is_temporary(n) || RECORD_FILES.contains(&n))
+    })
+    .map_err(|e| EngineError::io(dir, e))?;
+    for f in &s.files {
+        remove(f, std::fs::remove_file(f))?;
+    }
+    let _ = std::fs::remove_dir(dir);
+    Ok(())
+}
+
+/// Removes the cache's own entries from the marked cache `dir`, its marker last, and `dir`
+/// itself when nothing else is left in it; returns the paths (relative to `dir`) of what was not
+/// the cache's and was left as it was. The caller holds the cache lock.
+pub(crate) fn remove_own(dir: &Path) -> Result<Vec<String>, EngineError> {
+    let s = survey(dir).map_err(|e| EngineError::io(dir, e))?;
+    let marker = dir.join(MARKER);
+    for f in s.files.iter().filter(|f| **f != marker) {
+        remove(f, std::fs::remove_file(f))?;
+    }
+    // A folder still holding something of the user's stays; `foreign` names what.
+    for f in &s.folders {
+        let _ = std::fs::remove_dir(f);
+    }
+    remove(&marker, std::fs::remove_file(&marker))?;
+    if s.foreign.is_empty() {
+        remove(dir, std::fs::remove_dir(dir))?;
+    }
+    Ok(s.foreign)
+}
+
+/// The outcome of removing `path`: done, or already gone.
+fn remove(path: &Path, r: std::io::Result<()>) -> Result<(), EngineError> {
+    match r {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(EngineError::io(path, e)),
+        _ => Ok(()),
+    }
+}
+
+/// Whether `dir` carries this program's marker: a plain file (never a link, a FIFO or a device,
+/// read no further than the marker's own length) with the convention's signature and the line
+/// that says whose cache it is. Other tools tag their caches with the same signature (cargo's
+/// `target/`, folders a user keeps out of backups): those are not ours to clean.
 pub fn is_cache(dir: &Path) -> bool {
-    std::fs::read(dir.join(MARKER)).is_ok_and(|b| b.starts_with(SIGNATURE.as_bytes()))
+    use std::io::Read;
+    let path = dir.join(MARKER);
+    let plain = std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_file());
+    let mut text = Vec::new();
+    plain
+        && std::fs::File::open(&path)
+            .and_then(|f| f.take(MARKER_READ).read_to_end(&mut text))
+            .is_ok()
+        && text.starts_with(SIGNATURE.as_bytes())
+        && text.windows(OWNER.len()).any(|w| w == OWNER.as_bytes())
 }
 
 /// Makes `dir` a cache for a build: creates it if needed and marks it, unless it is an unmarked
@@ -132,24 +226,26 @@ pub fn claim(dir: &Path) -> Result<(), EngineError> {
 
 /// An error naming the first entries of `dir` that are not cache entries, if there are any.
 fn refuse_foreign(dir: &Path) -> Result<(), EngineError> {
-    let mut foreign = foreign_entries(dir).map_err(|e| EngineError::io(dir, e))?;
+    let foreign = foreign_entries(dir).map_err(|e| EngineError::io(dir, e))?;
     if foreign.is_empty() {
         return Ok(());
     }
-    let more = foreign.len().saturating_sub(3);
-    foreign.truncate(3);
-    let mut found = foreign
-        .iter()
+    Err(EngineError::NotACache {
+        path: dir.to_path_buf(),
+        found: listed(&foreign),
+    })
+}
+
+/// The first three of `paths` in backquotes, and how many more there are.
+pub fn listed(paths: &[String]) -> String {
+    let mut found = (paths.iter().take(3))
         .map(|n| format!("`{n}`"))
         .collect::<Vec<_>>()
         .join(", ");
-    if more > 0 {
-        found.push_str(&format!(" and {more} more"));
+    if paths.len() > 3 {
+        found.push_str(&format!(" and {} more", paths.len() - 3));
     }
-    Err(EngineError::NotACache {
-        path: dir.to_path_buf(),
-        found,
-    })
+    found
 }
 
 /// For `clean` and `gc`: an error unless `dir` is marked as a cache (the entries it holds say

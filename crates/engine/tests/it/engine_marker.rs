@@ -87,9 +87,9 @@ fn a_cache_a_build_made_is_marked_cleaned_once_then_reported_absent() {
     let o = opts(dir.path(), 1);
     assert!(run(one_node(), &o).ok);
     assert!(is_cache(&o.cache_dir));
-    assert!(clean(&o.cache_dir).unwrap());
+    assert_eq!(clean(&o.cache_dir).unwrap(), Cleaned::Removed);
     assert!(!o.cache_dir.exists());
-    assert!(!clean(&o.cache_dir).unwrap());
+    assert_eq!(clean(&o.cache_dir).unwrap(), Cleaned::Absent);
     // gc of a missing cache does nothing and creates nothing.
     assert_eq!(gc(&o.cache_dir, &[]).unwrap(), GcStats::default());
     assert!(!o.cache_dir.exists());
@@ -104,7 +104,7 @@ fn a_cache_made_before_the_marker_is_adopted_by_its_next_build() {
     assert!(clean(&o.cache_dir).is_err(), "unmarked: not cleaned");
     assert!(run(one_node(), &o).ok, "its entries are all a cache's own");
     assert!(is_cache(&o.cache_dir));
-    assert!(clean(&o.cache_dir).unwrap());
+    assert_eq!(clean(&o.cache_dir).unwrap(), Cleaned::Removed);
 }
 
 #[test]
@@ -166,4 +166,129 @@ fn a_link_among_a_caches_entries_is_not_a_caches_own() {
         std::fs::read(theirs.path().join("thesis.txt")).unwrap(),
         b"mine"
     );
+}
+
+/// Cargo's tag, as it writes it in `target/`: the convention's signature, another owner.
+const CARGOS_TAG: &str = "Signature: 8a477f597d28d172789f06886806bc55\n\
+    # This file is a cache directory tag created by cargo.\n\
+    # For information about cache directory tags see https://bford.info/cachedir/\n";
+
+#[test]
+fn a_folder_another_program_tagged_as_its_cache_is_neither_cleaned_collected_nor_built_into() {
+    // Cargo's `target/`, or a folder its owner tagged to keep it out of backups.
+    for extra in [&[][..], &["objects/notes.txt"][..]] {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join(MARKER), CARGOS_TAG).unwrap();
+        for f in extra {
+            let p = dir.path().join(f);
+            std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+            std::fs::write(p, "mine").unwrap();
+        }
+        assert!(!is_cache(dir.path()));
+        let e = clean(dir.path()).unwrap_err();
+        assert!(matches!(e, EngineError::NotACache { .. }), "{e}");
+        assert!(e.to_string().contains("not ours"), "{e}");
+        assert!(gc(dir.path(), &[]).is_err());
+        let mut o = opts(dir.path(), 1);
+        o.cache_dir = dir.path().to_path_buf();
+        assert!(build(one_node(), &o, &|_| {}).is_err());
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join(MARKER)).unwrap(),
+            CARGOS_TAG
+        );
+        for f in extra {
+            assert_eq!(std::fs::read(dir.path().join(f)).unwrap(), b"mine");
+        }
+    }
+}
+
+/// Writes "mine" at each of `files` under `dir`.
+fn put(dir: &Path, files: &[&str]) {
+    for f in files {
+        let p = dir.join(f);
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(p, "mine").unwrap();
+    }
+}
+
+#[test]
+fn clean_removes_a_caches_own_entries_and_leaves_the_files_a_user_put_inside_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 1);
+    assert!(run(one_node(), &o).ok);
+    let mine = ["notes.txt", "objects/photo.jpg", "records/x/draft.md"];
+    put(&o.cache_dir, &mine);
+    let left = match clean(&o.cache_dir).unwrap() {
+        Cleaned::Kept(left) => left,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        left,
+        ["notes.txt", "objects/photo.jpg", "records/x/draft.md"]
+    );
+    for f in mine {
+        assert_eq!(std::fs::read(o.cache_dir.join(f)).unwrap(), b"mine", "{f}");
+    }
+    // Nothing of the cache is left: no marker, lock, manifest, entry or record file.
+    assert_eq!(entries(&o.cache_dir), ["notes.txt", "objects", "records"]);
+    assert_eq!(entries(&o.cache_dir.join("objects")), ["photo.jpg"]);
+    assert_eq!(entries(&o.cache_dir.join("records")), ["x"]);
+    assert!(!is_cache(&o.cache_dir));
+    // And with no marker left, the folder is the user's: it is not cleaned again.
+    assert!(clean(&o.cache_dir).is_err());
+}
+
+#[test]
+fn gc_and_forget_remove_only_store_entries_and_record_files_never_a_users_file_among_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 1);
+    assert!(run(one_node(), &o).ok);
+    let record = format!("records/{}", o.record);
+    let mine = [
+        "objects/photo.jpg".to_string(),
+        "actions/notes".to_string(),
+        format!("{record}/draft.md"),
+    ];
+    let mine: Vec<&str> = mine.iter().map(String::as_str).collect();
+    put(&o.cache_dir, &mine);
+    std::fs::create_dir_all(o.cache_dir.join("objects/album")).unwrap();
+    assert!(forget(&o.cache_dir, &o.record).unwrap());
+    let stats = gc(&o.cache_dir, &[]).unwrap();
+    assert!(stats.removed >= 2, "{stats:?}");
+    for f in &mine {
+        assert_eq!(std::fs::read(o.cache_dir.join(f)).unwrap(), b"mine", "{f}");
+    }
+    assert_eq!(
+        entries(&o.cache_dir.join("objects")),
+        ["album", "photo.jpg"]
+    );
+    assert_eq!(entries(&o.cache_dir.join("actions")), ["notes"]);
+    assert_eq!(entries(&o.cache_dir.join(&record)), ["draft.md"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_or_a_link_in_place_of_the_marker_marks_nothing_and_blocks_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 1);
+    assert!(run(one_node(), &o).ok);
+    let marker = o.cache_dir.join(MARKER);
+    let text = std::fs::read(&marker).unwrap();
+    std::fs::remove_file(&marker).unwrap();
+    let status = std::process::Command::new("mkfifo").arg(&marker).status();
+    if status.is_ok_and(|s| s.success()) {
+        // Were the FIFO opened, the test would hang here: no writer ever comes.
+        assert!(!is_cache(&o.cache_dir));
+        assert!(clean(&o.cache_dir).is_err());
+        std::fs::remove_file(&marker).unwrap();
+    }
+    let real = dir.path().join("real-tag");
+    std::fs::write(&real, text).unwrap();
+    std::os::unix::fs::symlink(&real, &marker).unwrap();
+    assert!(
+        !is_cache(&o.cache_dir),
+        "a link is not the cache's own marker"
+    );
+    assert!(clean(&o.cache_dir).is_err());
+    assert!(o.cache_dir.join("objects").exists());
 }
