@@ -1,6 +1,6 @@
 //! Generated recipes with tens of thousands of entries: the checker's answers (what is accepted,
 //! which line a repeat names) stay right at that size. The time is measured in
-//! `benches/recipe_check.rs`, not here.
+//! `benches/recipe_check.rs`, not here; only how it grows with the entries is tested.
 
 use std::path::Path;
 
@@ -144,4 +144,36 @@ fn an_error_far_along_a_very_long_line_quotes_a_window_around_it() {
         Some('"'),
         "{shown}"
     );
+}
+
+/// The fastest of three parses of `text`.
+fn fastest_parse(text: &str) -> std::time::Duration {
+    (0..3)
+        .map(|_| {
+            let t = std::time::Instant::now();
+            let _ = parsed(text);
+            t.elapsed()
+        })
+        .min()
+        .expect("three runs")
+}
+
+/// Eight times the entries take about eight times as long: a check whose work grows with the
+/// square of the entries (each compared with every other, as it once was: 100,000 regions took
+/// 81 s) takes 64 times as long. The bound, 24, leaves room for a busy machine's noise
+/// between the two sizes. A ratio of two times is compared, never a time against a target.
+#[test]
+fn checking_eight_times_the_regions_or_curve_rules_takes_far_less_than_sixty_four_times_as_long() {
+    let (few, many) = (5_000, 40_000);
+    for (what, make) in [
+        ("regions", big_recipe::regions as fn(usize) -> String),
+        ("curve rules", big_recipe::curve_rules),
+    ] {
+        let (small, big) = (make(few), make(many));
+        let ratio = fastest_parse(&big).as_secs_f64() / fastest_parse(&small).as_secs_f64();
+        assert!(
+            ratio < 24.0,
+            "{what}: {many} entries took {ratio:.1} times as long as {few}"
+        );
+    }
 }
