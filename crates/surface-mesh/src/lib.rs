@@ -143,6 +143,16 @@ pub struct SurfaceMeshError {
 /// graded square: 1.048 at 1.3, 1.030 at 1.15); the seed's Table 1 asks for 1.03 at (d).
 pub const MAX_SURFACE_GROWTH: f64 = 1.15;
 
+/// The most points the sizes may ask a patch's refinement to add, as `refine::expected_points`
+/// estimates them before it starts: about four million triangles, tens of seconds of meshing,
+/// and far past what a finite-element model needs on one surface (the didactic model at 10.8
+/// million tets has patches of under 100,000 points). Sizes asking for more are a slip (a size
+/// in the wrong unit, a digit too few) or a mesh no one can use; the patch fails at once saying
+/// so. Without it, the example at `size = 0.05` meshed for more than five minutes without an
+/// answer: where the size is a thousandth of its border's, each size query meets every border
+/// node within reach.
+pub const MAX_PATCH_POINTS: f64 = 2.0e6;
+
 /// Smoothing/flip rounds after refinement.
 const SMOOTH_ROUNDS: usize = 4;
 
@@ -511,6 +521,27 @@ fn check_inside(
     Ok(())
 }
 
+/// Why a patch whose sizes ask for about `points` over its `area` (elements of `target` inside,
+/// `finest` at the finest) is not meshed.
+fn over_budget(points: f64, area: f64, target: f64, finest: f64) -> String {
+    format!(
+        "its sizes ask for about {} million points over its {:.3} km² (elements of {} inside, \
+         {} at the finest), over the {} million a patch may take: raise the size (a size in \
+         the wrong unit, or a digit too few?)",
+        sig(points / 1e6),
+        area / 1e6,
+        sig(target),
+        sig(finest),
+        MAX_PATCH_POINTS / 1e6
+    )
+}
+
+/// `x` to three significant digits, as a plain number.
+fn sig(x: f64) -> String {
+    let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    format!("{x:.digits$}")
+}
+
 /// Sizes and refinement: inserts points up to the size field (bounded by a point budget from
 /// the area and the smallest size), then flips and smooths.
 /// The sizes a patch is meshed at: the recipe's, and the refinements near features; with the
@@ -579,6 +610,13 @@ fn refine_and_smooth(
         .max(f64::MIN_POSITIVE);
     let max_points = (8.0 * area / (hfloor * hfloor)).min(5.0e7) as usize + 10_000;
     let expected = refine::expected_points(cdt, p3, &field);
+    if expected > MAX_PATCH_POINTS {
+        return Err(fail(
+            input,
+            over_budget(expected, area, target, hfloor),
+            None,
+        ));
+    }
     let stri = {
         let mut r = refine::Refiner::new(cdt, p3, support, &field);
         r.run(max_points, refining, expected)

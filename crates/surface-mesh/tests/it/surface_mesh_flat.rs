@@ -318,6 +318,28 @@ fn invalid_sizes_are_refused_with_the_values() {
 }
 
 #[test]
+fn sizes_asking_a_patch_for_millions_of_points_are_refused_at_once_with_the_estimate() {
+    // A square kilometre at half a metre (for 50 m): millions of points, where the refinement
+    // would run for minutes.
+    let g = flat(UTM);
+    let input = PatchInput {
+        name: "typo".into(),
+        support: g.support(),
+        loops: vec![g.border_loop(20, 20)],
+        constraints: vec![],
+        points: Vec::new(),
+        facets: Vec::new(),
+    };
+    let e = mesh_patch(&input, &uniform(0.5)).unwrap_err();
+    let e = e.to_string();
+    assert!(
+        e.contains("million points over its 1.000 km²") && e.contains("over the 2 million"),
+        "{e}"
+    );
+    assert!(e.contains("elements of 0.500 inside"), "{e}");
+}
+
+#[test]
 fn a_clockwise_outer_loop_still_gives_triangles_oriented_like_the_support() {
     let g = flat(UTM);
     let mut l = g.border_loop(12, 12);
