@@ -452,3 +452,36 @@ fn a_layer_thinning_over_square_kilometres_stays_at_its_median_size_and_says_wha
         "meshed from its median thickness: {tets} tets"
     );
 }
+
+#[test]
+fn a_size_a_thousand_times_too_fine_fails_at_once_naming_the_region_and_the_recipe_entry() {
+    // `size = 0.05` for 50: about 10¹⁵ tets in the example's box. Meshing its first surfaces ran
+    // for minutes without an answer; the build now stops before any mesher.
+    let s = Scratch::didactic();
+    s.edit("size = 200.0", "size = 0.05\nmin_size = 0.01");
+    let (ok, r, err) = s.build(&[]);
+    assert!(!ok, "{err}");
+    assert!(
+        err.contains("the mesh sizes ask for about 4.2e15 tets, over the 1e9 a build may make")
+            && err.contains("region `overburden_E` alone")
+            && err.contains("from `size` in `[mesh]`: raise it"),
+        "{err}"
+    );
+    let meshed = (r["nodes"].as_array().expect("nodes").iter())
+        .filter(|n| n["kind"] == "surface_mesh" || n["kind"] == "tet_mesh")
+        .count();
+    assert_eq!(meshed, 0, "no mesher ran");
+    // A region's own size is named as its entry.
+    let s = Scratch::didactic();
+    s.edit(
+        "size = 200.0",
+        "size = 200.0\n\n[mesh.regions]\nunderburden_E = { size = 0.5 }",
+    );
+    let (ok, _, err) = s.build(&[]);
+    assert!(!ok);
+    assert!(
+        err.contains("region `underburden_E` alone")
+            && err.contains("`size` in `[mesh.regions]`'s entry underburden_E"),
+        "{err}"
+    );
+}

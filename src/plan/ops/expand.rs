@@ -12,6 +12,7 @@
 //! bounds, the regions those bound, `mesh` and `export`, and nothing else.
 
 use super::aspect;
+use super::budget;
 use super::close_refine;
 use super::curves::{CurveSizing, add_curve_nodes, graph_error};
 use super::patch::WellReach;
@@ -136,6 +137,7 @@ impl Expander for ModelExpander {
         let end_sizes =
             sizes::curve_end_sizes(&self.recipe, topo, &curve_sizes, &curve_caps, surface_slope);
         let interior = sizes::interior_sizes(&self.recipe, &model, &region_sizes);
+        budget::check(&model, &region_sizes, &interior, &patch_sizes)?;
         let mut placed = refine::place(&self.recipe, &model, x);
         placed.extend(add_close_curves(x, &self.recipe, &model, surface_slope)?);
         let thin = thin::thin_refinements(&self.recipe, &model, &interior, surface_slope);

@@ -3,6 +3,7 @@
 //! the parameters it reads; its `version` is bumped whenever its output for the same inputs changes.
 
 mod aspect;
+mod budget;
 mod close_refine;
 mod conformity;
 mod crossings;

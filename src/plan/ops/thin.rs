@@ -25,6 +25,7 @@
 
 use super::ModelData;
 use super::aspect::aspect_of;
+use super::budget::TETS_PER_CUBE;
 use super::sizes::{interior_sizes, layers_of, per_layer, region_sizes, short};
 use crate::recipe::Recipe;
 use geom::TriMesh;
@@ -41,8 +42,6 @@ pub const MAX_POINTS: usize = 400_000;
 pub const BUDGET: f64 = 4.0e6;
 /// Size classes per octave.
 const CLASSES: f64 = 4.0;
-/// Tets in a cube of the size's edge, for a regular mesh (a regular tet's volume is h³/8.49).
-const TETS_PER_CUBE: f64 = 8.49;
 
 /// The thin parts of one region.
 struct ThinPart {
