@@ -187,6 +187,26 @@ fn a_full_standard_output_is_an_error_message_not_a_panic() {
         assert_eq!(code, Some(141), "{flag}: {err}");
         assert!(err.is_empty(), "{flag}: {err}");
     }
+    // Every other command that writes to standard output (`clean` last: it removes the cache).
+    for args in [
+        &["check", "didactic.toml"][..],
+        &["graph", "didactic.toml"],
+        &["build", "--json", "didactic.toml"],
+        &["gc", "didactic.toml"],
+        &["clean", "didactic.toml"],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let (code, err) = run_with_stdout(&s, args, full.into());
+        assert_eq!(code, Some(1), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            err.contains("cannot write to standard output"),
+            "{args:?}: {err}"
+        );
+    }
 }
 
 /// Runs `recipe args` in `s` with standard error given as `stderr` and standard output captured;
