@@ -148,9 +148,9 @@ pub const MAX_SURFACE_GROWTH: f64 = 1.15;
 /// and far past what a finite-element model needs on one surface (the didactic model at 10.8
 /// million tets has patches of under 100,000 points). Sizes asking for more are a slip (a size
 /// in the wrong unit, a digit too few) or a mesh no one can use; the patch fails at once saying
-/// so. Without it, the example at `size = 0.05` meshed for more than five minutes without an
-/// answer: where the size is a thousandth of its border's, each size query meets every border
-/// node within reach.
+/// so. Where the size is a thousandth of the border's (the example at `size = 0.05`), each size
+/// query also meets every border node within reach, so such a refinement runs for many minutes.
+/// (The recipe's sizes are checked earlier, against the whole model: `plan::ops::budget`.)
 pub const MAX_PATCH_POINTS: f64 = 2.0e6;
 
 /// Smoothing/flip rounds after refinement.
@@ -538,6 +538,9 @@ fn over_budget(points: f64, area: f64, target: f64, finest: f64) -> String {
 
 /// `x` to three significant digits, as a plain number.
 fn sig(x: f64) -> String {
+    if !x.is_normal() {
+        return format!("{x}");
+    }
     let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
     format!("{x:.digits$}")
 }
