@@ -871,44 +871,81 @@ fn a_read_only_build_refuses_a_directory_that_is_not_a_cache_and_creates_none() 
     }
 }
 
-#[test]
-fn a_cache_the_user_cannot_write_is_read_without_the_flag_and_gc_refuses_it() {
-    use std::os::unix::fs::PermissionsExt;
-    let s = Scratch::didactic_built();
-    let cache = s.path(".recipe");
-    let set = |mode: u32| {
-        for (rel, _) in cache_tree(&s) {
-            let p = cache.join(rel);
-            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(mode & 0o444)).unwrap();
+/// A cache that no write may touch while this guard lives: its files and folders lose their
+/// write permissions, and where those do not bind (the superuser), they are made immutable
+/// (`chattr +i`). Dropping it makes the cache writable again. `None` when neither works here.
+struct Unwritable(std::path::PathBuf);
+
+impl Unwritable {
+    fn make(cache: &std::path::Path) -> Option<Unwritable> {
+        let guard = Unwritable(cache.to_path_buf());
+        guard.chmod(0o555);
+        if !guard.writable() {
+            return Some(guard);
         }
-        let mut dirs = vec![cache.clone()];
+        let immutable = std::process::Command::new("chattr")
+            .args(["-R", "+i"])
+            .arg(cache)
+            .status()
+            .is_ok_and(|s| s.success());
+        (immutable && !guard.writable()).then_some(guard)
+    }
+
+    fn writable(&self) -> bool {
+        let probe = self.0.join("probe");
+        let wrote = std::fs::write(&probe, b"x").is_ok();
+        let _ = std::fs::remove_file(&probe);
+        wrote
+    }
+
+    /// Every file to `mode & 0o444`, every folder to `mode`.
+    fn chmod(&self, mode: u32) {
+        use std::os::unix::fs::PermissionsExt;
+        let mut dirs = vec![self.0.clone()];
         while let Some(d) = dirs.pop() {
             for e in std::fs::read_dir(&d).unwrap().flatten() {
-                if e.file_type().unwrap().is_dir() {
-                    dirs.push(e.path());
+                let (p, dir) = (e.path(), e.file_type().unwrap().is_dir());
+                if dir {
+                    dirs.push(p);
+                } else {
+                    let perm = std::fs::Permissions::from_mode(mode & 0o444 | (mode & 0o200));
+                    std::fs::set_permissions(&p, perm).unwrap();
                 }
             }
             std::fs::set_permissions(&d, std::fs::Permissions::from_mode(mode)).unwrap();
         }
-    };
-    set(0o555);
-    // Permissions do not bind the superuser: there the flag's tests cover the read-only path.
-    if std::fs::write(cache.join("probe"), b"x").is_ok() {
-        eprintln!("note: running as a user that can write a read-only directory; skipped");
-        std::fs::remove_file(cache.join("probe")).unwrap();
-        set(0o755);
-        return;
     }
+}
+
+impl Drop for Unwritable {
+    fn drop(&mut self) {
+        let _ = std::process::Command::new("chattr")
+            .args(["-R", "-i"])
+            .arg(&self.0)
+            .stderr(std::process::Stdio::null())
+            .status();
+        self.chmod(0o755);
+    }
+}
+
+#[test]
+fn a_cache_the_user_cannot_write_is_read_without_the_flag_and_gc_refuses_it() {
+    let s = Scratch::didactic_built();
+    let cache = s.path(".recipe");
     let before = cache_tree(&s);
+    let Some(guard) = Unwritable::make(&cache) else {
+        eprintln!(
+            "note: neither permissions nor `chattr +i` keep writes out of a folder here; skipped"
+        );
+        return;
+    };
     let (ok, report, err) = s.build(&["--locked"]);
-    set(0o755);
+    let out = s.recipe_cmd(&["gc", "didactic.toml"]);
+    drop(guard);
     assert!(ok, "{err}");
     assert!(err.contains("is read-only"), "{err}");
     assert!(nodes_in_state(&report, "ran").is_empty());
     assert_eq!(cache_tree(&s), before);
-    set(0o555);
-    let out = s.recipe_cmd(&["gc", "didactic.toml"]);
-    set(0o755);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{err}");
     assert!(err.contains("cannot be written"), "{err}");
