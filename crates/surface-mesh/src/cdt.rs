@@ -52,6 +52,9 @@ pub struct Cdt {
     cavity: Vec<u32>,
     mark: Vec<u32>,
     stamp: u32,
+    /// Triangles every successful insertion removed (the work the insertion order decides).
+    #[cfg(test)]
+    pub removed: u64,
 }
 
 #[inline]
@@ -87,6 +90,8 @@ impl Cdt {
             cavity: Vec::new(),
             mark: vec![0],
             stamp: 0,
+            #[cfg(test)]
+            removed: 0,
         }
     }
 
@@ -192,6 +197,34 @@ impl Cdt {
     /// modified when it fails. `accept` may veto the insertion after seeing the cavity's boundary
     /// edges and their kinds (each new triangle is such an edge plus the new point).
     pub fn insert(&mut self, p: [f64; 2], start: u32, accept: &mut Veto) -> Result<u32, CdtError> {
+        let pv = self.pts.len() as u32;
+        self.pts.push(p);
+        self.vtri.push(NONE);
+        let inserted = self.insert_vertex(pv, start, accept);
+        if inserted.is_err() {
+            self.pts.pop();
+            self.vtri.pop();
+        }
+        inserted.map(|()| pv)
+    }
+
+    /// Stores `points` as vertices not yet in the triangulation, so that they keep their order's
+    /// numbers (the first is returned) whatever order [`Cdt::insert_stored`] then inserts them in.
+    pub fn store(&mut self, points: &[[f64; 2]]) -> u32 {
+        let first = self.pts.len() as u32;
+        self.pts.extend_from_slice(points);
+        self.vtri.resize(self.pts.len(), NONE);
+        first
+    }
+
+    /// Inserts the stored vertex `v`, as [`Cdt::insert`] inserts a new point.
+    pub fn insert_stored(&mut self, v: u32, accept: &mut Veto) -> Result<(), CdtError> {
+        self.insert_vertex(v, NONE, accept)
+    }
+
+    /// Bowyer–Watson insertion of vertex `pv`, whose point is stored and which no triangle has.
+    fn insert_vertex(&mut self, pv: u32, start: u32, accept: &mut Veto) -> Result<(), CdtError> {
+        let p = self.pts[pv as usize];
         let t0 = self.locate(&p, start).ok_or(CdtError::Rejected(p))?;
         for &v in &self.tri[t0 as usize] {
             if self.pts[v as usize] == p {
@@ -256,6 +289,10 @@ impl Cdt {
             return Err(CdtError::Rejected(p));
         }
         let inside = self.inside[t0 as usize];
+        #[cfg(test)]
+        {
+            self.removed += cavity.len() as u64;
+        }
         for &t in &cavity {
             self.alive[t as usize] = false;
         }
@@ -263,9 +300,6 @@ impl Cdt {
         for &t in cavity.iter().rev() {
             self.free.push(t);
         }
-        let pv = self.pts.len() as u32;
-        self.pts.push(p);
-        self.vtri.push(NONE);
         let mut made: Vec<(u32, u32)> = Vec::with_capacity(boundary.len()); // (first vertex, tri)
         for &(a, b, n, f) in &boundary {
             let t = self.new_tri([a, b, pv], [NONE, NONE, n], [FREE, FREE, f], inside);
@@ -292,7 +326,7 @@ impl Cdt {
         self.last = made.first().map(|m| m.1).unwrap_or(self.last);
         verts.clear();
         self.cavity = cavity;
-        Ok(pv)
+        Ok(())
     }
 
     /// Flips the edge opposite vertex `i` of `t`. The caller checks convexity.

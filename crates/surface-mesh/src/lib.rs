@@ -43,6 +43,7 @@
 
 mod cdt;
 mod input;
+mod order;
 mod param;
 mod points;
 pub mod quality;
@@ -400,28 +401,14 @@ fn triangulate_given(
     }
     let mut cdt = Cdt::new(lo, hi);
     let mut p3: Vec<[f64; 3]> = vec![[0.0; 3]; 3];
-    for (i, q) in uv[..given.first_point].iter().enumerate() {
-        match cdt.insert(*q, NONE, &mut |_: &Cdt, _: &[(u32, u32, u8)]| true) {
-            Ok(v) => {
-                debug_assert_eq!(v as usize, i + 3);
-                p3.push(given.nodes[i]);
-            }
-            Err(CdtError::Duplicate(_)) => {
-                return Err(fail(
-                    input,
-                    "two given nodes land on the same point of the support".into(),
-                    Some(given.nodes[i]),
-                ));
-            }
-            Err(_) => {
-                return Err(fail(
-                    input,
-                    "a given node could not be placed".into(),
-                    Some(given.nodes[i]),
-                ));
-            }
-        }
-    }
+    p3.extend_from_slice(&given.nodes[..given.first_point]);
+    order::insert_all(&mut cdt, &uv[..given.first_point]).map_err(|(i, e)| {
+        let why = match e {
+            CdtError::Duplicate(_) => "two given nodes land on the same point of the support",
+            _ => "a given node could not be placed",
+        };
+        fail(input, why.into(), Some(given.nodes[i]))
+    })?;
     let nloop = given.loop_segments().count();
     for (k, &(a, b)) in segs.iter().enumerate() {
         let kind = if k < nloop { LOOP } else { CONSTRAINT };

@@ -188,7 +188,9 @@ impl Operation for SurfaceMeshOp {
         // 11: the support's curvature is measured on the directions its caps stand for.
         // 12: a projection that turns a few triangles over is mended (teeth folded back, the
         //     vertices round the rest relaxed) before a Tutte embedding is tried.
-        12
+        // 13: the given nodes enter the triangulation in a biased randomized order, not along
+        //     the borders.
+        13
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
