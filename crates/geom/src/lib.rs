@@ -3,8 +3,9 @@
 //! triangle meshes with f64 coordinates as read (never rescaled), the exact contact tests
 //! between triangles and segments (`contact`) with the broad phase that proposes their pairs
 //! (`broad_phase`), the closest point of a triangle (`closest`), and the FE mesh types the
-//! meshing stages exchange (`mesh`, with readers for the formats meshes come in); and
-//! `progress`, how a long stage reports how far it got without knowing who watches.
+//! meshing stages exchange (`mesh`, with readers for the formats meshes come in);
+//! `progress`, how a long stage reports how far it got without knowing who watches; and
+//! `spatial_order`, the order in which the Delaunay meshers insert points.
 
 pub mod adjacency;
 pub mod bbox;
@@ -16,6 +17,7 @@ pub mod mesh;
 pub mod predicates;
 pub mod progress;
 pub mod refine;
+pub mod spatial_order;
 pub mod stretch;
 pub mod tolerances;
 pub mod trimesh;

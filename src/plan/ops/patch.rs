@@ -190,7 +190,8 @@ impl Operation for SurfaceMeshOp {
         //     vertices round the rest relaxed) before a Tutte embedding is tried.
         // 13: the given nodes enter the triangulation in a biased randomized order, not along
         //     the borders.
-        13
+        // 14: that order is the tet mesher's (rounds by a hash of the index, 3D Hilbert keys).
+        14
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -33,7 +33,8 @@ impl Operation for SupportOp {
     fn version(&self) -> u32 {
         // 2: re-triangulation keeps the corners of the recipe's kink angle, not the default's.
         // 3: the surface mesher inserts the border's nodes in a biased randomized order.
-        3
+        // 4: the tet mesher's biased randomized order.
+        4
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

@@ -33,8 +33,8 @@ use super::super::front::{FaceMap, WordSet};
 use super::super::work::FrontWork;
 use super::super::{RegionInput, SizeField, TetMeshError};
 use super::flip::coplanar;
-use super::order::brio;
 use super::tri::{FACE, Limits, NONE, P, Tri};
+use geom::spatial_order::brio;
 use holes::{
     Filler, flood, hole_tets, hole_walls, mesh_holes, seed_sides, unpinched_hole_surface,
     widen_around, widen_hole,

@@ -16,8 +16,8 @@ use geom::predicates::{cross, dist, dot, sub};
 use geom::progress::Span;
 
 use super::super::sizing::Background;
-use super::order::hilbert_sort;
 use super::tri::{FACE, Limits, NONE, P, Tri};
+use geom::spatial_order::hilbert_sort;
 
 /// A tet is split when its circumradius exceeds this many local sizes (a regular tet of edge h
 /// has circumradius 0.61 h).
