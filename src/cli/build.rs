@@ -92,6 +92,7 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     let mut graph = Some(graph);
     let mut rounds = 0;
     let mut failed_before = std::collections::BTreeMap::new();
+    let mut failed_names = std::collections::BTreeSet::new();
     let report = loop {
         let graph = match graph.take() {
             Some(g) => g,
@@ -102,7 +103,12 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
             renderer.hold_failures();
         }
         let on_event = |e: &engine::Event| renderer.event(e);
-        let report = engine::build_again(graph, &opts, &cache_lock, &failed_before, &on_event)?;
+        let retry = engine::Retry {
+            failed_before: std::mem::take(&mut failed_before),
+            focus: std::mem::take(&mut failed_names),
+        };
+        let again = || plan::lower(&recipe).map_err(|e| Failure(format!("error: {e}")));
+        let report = build_round(graph, again, &opts, &cache_lock, retry, &on_event)?;
         let model = (!report.ok && !last)
             .then(|| built_model(&report))
             .flatten();
@@ -133,11 +139,13 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         recipe.mesh.refine.extend(added);
         (recipe.mesh.refine_close_curves.named).extend(close.named);
         rounds += 1;
-        // What failed and is out of the refinement's reach fails again at once.
-        failed_before = (report.nodes.iter())
-            .filter(|n| n.state == NodeState::Failed)
+        // What failed and is out of the refinement's reach fails again at once; what failed
+        // is built first.
+        let failed = || report.nodes.iter().filter(|n| n.state == NodeState::Failed);
+        failed_before = failed()
             .filter_map(|n| Some((n.key, n.error.clone()?)))
             .collect();
+        failed_names = failed().map(|n| n.name.clone()).collect();
     };
     let cached = report.count(NodeState::Cached) + report.count(NodeState::CutOff);
     if verbosity == Verbosity::Normal && cached > 0 {
@@ -221,11 +229,21 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
     };
     if !report.ok {
         print_json()?;
+        let unfocused = (report.nodes.iter())
+            .filter(|n| n.reason == engine::RebuildReason::Unfocused)
+            .count();
+        let left = match unfocused {
+            0 => String::new(),
+            n => format!(
+                ", {n} not tried again (the last round built what had failed first, and it \
+                 failed again)"
+            ),
+        };
         return Err(Failure(format!(
-            "error: build of {} failed: {summary}, {} failed, {} skipped",
+            "error: build of {} failed: {summary}, {} failed, {} skipped{left}",
             args.recipe.display(),
             count(NodeState::Failed),
-            count(NodeState::Skipped)
+            count(NodeState::Skipped) - unfocused
         )));
     }
 
@@ -300,6 +318,34 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         output_dir.display()
     );
     Ok(report)
+}
+
+/// One round of the build: `graph` built whole, or, after a failed round (`retry`), first only
+/// what failed there and what it needs (the other nodes skipped as unfocused), and the whole
+/// graph (`again`, lowered anew) only if that now succeeds. A refinement that does not reach a
+/// failure so costs the failed nodes' part of the model, not all of it; and as the nodes a
+/// focused build runs are a function of the graph, the rounds are the same for any `-j`.
+fn build_round(
+    graph: engine::BuildGraph,
+    again: impl FnOnce() -> Result<engine::BuildGraph, Failure>,
+    opts: &BuildOptions,
+    lock: &engine::DirLock,
+    retry: engine::Retry,
+    on_event: &(dyn Fn(&engine::Event) + Sync),
+) -> Result<BuildReport, Failure> {
+    if retry.focus.is_empty() {
+        return Ok(engine::build_again(graph, opts, lock, &retry, on_event)?);
+    }
+    let probe = engine::build_again(graph, opts, lock, &retry, on_event)?;
+    let mended = (retry.focus.iter()).all(|n| probe.node(n).is_none_or(|r| r.state.is_ok()));
+    if !mended {
+        return Ok(probe);
+    }
+    let whole = engine::Retry {
+        focus: Default::default(),
+        ..retry
+    };
+    Ok(engine::build_again(again()?, opts, lock, &whole, on_event)?)
 }
 
 fn plural(n: usize) -> &'static str {

@@ -167,17 +167,27 @@ pub fn build_holding(
     lock: &DirLock,
     on_event: &(dyn Fn(&Event) + Sync),
 ) -> Result<BuildReport, EngineError> {
-    build_again(graph, opts, lock, &BTreeMap::new(), on_event)
+    build_again(graph, opts, lock, &Retry::default(), on_event)
 }
 
-/// [`build_holding`] once more after a failed build of this process, whose failed nodes'
-/// keys and errors are `failed_before`: a node of the same key fails again with the same error
-/// without running (failures are not cached, and an op is a pure function of its key).
+/// What a build again knows from a failed build of this process before it.
+#[derive(Debug, Clone, Default)]
+pub struct Retry {
+    /// The failed nodes' keys and errors: a node of the same key fails again with the same
+    /// error without running (failures are not cached, and an op is a pure function of its key).
+    pub failed_before: BTreeMap<Hash, String>,
+    /// When not empty, the build runs only what the nodes of these names need (see `focus`);
+    /// every other node is skipped as [`RebuildReason::Unfocused`].
+    pub focus: BTreeSet<String>,
+}
+
+/// [`build_holding`] once more after a failed build of this process, with what it knows from
+/// that build (`retry`).
 pub fn build_again(
     graph: BuildGraph,
     opts: &BuildOptions,
     lock: &DirLock,
-    failed_before: &BTreeMap<Hash, String>,
+    retry: &Retry,
     on_event: &(dyn Fn(&Event) + Sync),
 ) -> Result<BuildReport, EngineError> {
     if lock.path() != opts.cache_dir.join("lock") {
@@ -206,7 +216,8 @@ pub fn build_again(
     };
 
     let mut co = Coordinator::new(&prev, &prev_emitted, opts.keep_going);
-    co.failed_before = failed_before.clone();
+    co.failed_before = retry.failed_before.clone();
+    co.focus = crate::focus::Focus::new(retry.focus.clone());
     co.add_nodes(&graph, 0..graph.len(), on_event);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)

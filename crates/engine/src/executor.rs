@@ -11,6 +11,7 @@ const QUEUE_DEPTH: usize = 4;
 use crate::artifact::{Artifact, Hash};
 use crate::build::Event;
 use crate::emitted::{Emitted, NodeFiles};
+use crate::focus::Focus;
 use crate::graph::{BuildGraph, Expansion, NodeData, NodeId, Work};
 use crate::key::{file_key, op_key};
 use crate::manifest::{Manifest, ManifestEntry};
@@ -78,6 +79,12 @@ pub(crate) struct Coordinator<'a> {
     /// Keys that failed in a build of this process just before (an op is a pure function of
     /// its key): they fail again with the same error, without running.
     pub failed_before: BTreeMap<Hash, String>,
+    /// The nodes a focused build runs (all, unless the caller focuses it).
+    pub focus: Focus,
+    /// Ready nodes the focus does not need (yet: an expansion may add a node that needs them).
+    held: BTreeSet<(String, usize)>,
+    /// The graph's size when the held nodes were last looked at.
+    held_at: usize,
 }
 
 fn distinct_inputs(n: &NodeData) -> BTreeSet<usize> {
@@ -99,6 +106,9 @@ impl<'a> Coordinator<'a> {
             inflight_keys: BTreeMap::new(),
             resolved: BTreeMap::new(),
             failed_before: BTreeMap::new(),
+            focus: Focus::default(),
+            held: BTreeSet::new(),
+            held_at: 0,
         }
     }
 
@@ -170,9 +180,18 @@ impl<'a> Coordinator<'a> {
             // stops everything not yet started.
             let depth = if self.keep_going { QUEUE_DEPTH } else { 1 };
             while in_flight < jobs * depth && !self.stopped {
-                let Some((_, id)) = self.ready.pop_first() else {
+                if self.held_at != graph.len() {
+                    // An expansion grew the graph: what was held back may be needed now.
+                    self.held_at = graph.len();
+                    self.ready.append(&mut self.held);
+                }
+                let Some((name, id)) = self.ready.pop_first() else {
                     break;
                 };
+                if !self.focus.needs(graph, id) {
+                    self.held.insert((name, id));
+                    continue;
+                }
                 match self.job_for(graph, id) {
                     Ok(job) => {
                         self.slots[id].phase = Phase::Running;
@@ -232,6 +251,9 @@ impl<'a> Coordinator<'a> {
                 }
                 None => self.finish(graph, done, on_event),
             }
+        }
+        if self.focus.is_on() && !self.stopped {
+            self.finish_unfocused(graph, on_event);
         }
         let reason = if self.stopped {
             RebuildReason::BuildStopped
@@ -341,6 +363,22 @@ impl<'a> Coordinator<'a> {
         self.ready.retain(|(_, i)| *i != id);
         let r = self.base_report(graph, id, NodeState::Skipped, reason);
         self.settle(graph, id, r, None, on_event);
+    }
+
+    /// Every node a focused build left out (held back, or waiting on one that was), skipped as
+    /// such: none of them failed.
+    fn finish_unfocused(&mut self, graph: &BuildGraph, on_event: &(dyn Fn(&Event) + Sync)) {
+        self.ready.clear();
+        self.held.clear();
+        for id in 0..self.slots.len() {
+            if self.slots[id].phase != Phase::Done {
+                let r = self.base_report(graph, id, NodeState::Skipped, RebuildReason::Unfocused);
+                on_event(&Event::Finished(r.clone()));
+                let slot = &mut self.slots[id];
+                slot.phase = Phase::Done;
+                slot.report = Some(r);
+            }
+        }
     }
 
     /// Why a node that had to run ran, from the previous build's manifest.

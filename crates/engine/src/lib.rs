@@ -35,6 +35,7 @@ mod emitted;
 mod entry;
 pub mod error;
 mod executor;
+mod focus;
 pub mod gc;
 pub mod graph;
 pub mod key;
@@ -52,7 +53,7 @@ mod worker;
 
 pub use artifact::{Artifact, FileSet, Hash};
 pub use build::{
-    BuildOptions, DEFAULT_RECORD, Event, build, build_again, build_holding, lock_cache,
+    BuildOptions, DEFAULT_RECORD, Event, Retry, build, build_again, build_holding, lock_cache,
 };
 pub use derive::Derivations;
 pub use dirlock::DirLock;

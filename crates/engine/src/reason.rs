@@ -30,11 +30,13 @@ pub enum RebuildReason {
     },
     /// Skipped because an earlier failure stopped the build (`keep_going = false`).
     BuildStopped,
+    /// Skipped because a focused build ran only what the nodes it was focused on need.
+    Unfocused,
 }
 
 impl RebuildReason {
     /// A short machine tag: "new", "params", "version", "input-file", "upstream", "corrupt",
-    /// "missing", "up-to-date", "input-failed", "stopped".
+    /// "missing", "up-to-date", "input-failed", "stopped", "unfocused".
     pub fn tag(&self) -> &'static str {
         match self {
             RebuildReason::NewNode => "new",
@@ -47,6 +49,7 @@ impl RebuildReason {
             RebuildReason::UpToDate => "up-to-date",
             RebuildReason::InputFailed { .. } => "input-failed",
             RebuildReason::BuildStopped => "stopped",
+            RebuildReason::Unfocused => "unfocused",
         }
     }
 }
@@ -73,6 +76,9 @@ impl fmt::Display for RebuildReason {
                 write!(f, "input failed: {}", inputs.join(", "))
             }
             RebuildReason::BuildStopped => f.write_str("build stopped after a failure"),
+            RebuildReason::Unfocused => {
+                f.write_str("not needed by what failed before, which did not mesh again")
+            }
         }
     }
 }

@@ -370,9 +370,12 @@ fn a_node_that_failed_in_the_build_before_fails_again_without_running() {
     let first = build_holding(graph(&runs), &o, &lock, &|_| {}).unwrap();
     assert_eq!(runs.total(), 2);
     let bad = first.node("bad").unwrap();
-    let failed = std::collections::BTreeMap::from([(bad.key, "as before".to_string())]);
+    let retry = Retry {
+        failed_before: std::collections::BTreeMap::from([(bad.key, "as before".to_string())]),
+        ..Retry::default()
+    };
     runs.reset();
-    let again = build_again(graph(&runs), &o, &lock, &failed, &|_| {}).unwrap();
+    let again = build_again(graph(&runs), &o, &lock, &retry, &|_| {}).unwrap();
     // `good` is cached; `bad`, of the same key, fails with the error given, unrun.
     assert_eq!(runs.total(), 0);
     assert_eq!(state(&again, "bad"), NodeState::Failed);
@@ -615,4 +618,83 @@ fn an_output_that_changes_under_the_same_key_is_named_as_a_missing_version_bump(
             .iter()
             .any(|l| l.starts_with("node `sum`: output"))
     );
+}
+
+/// `a → s` and `b → u`, independent.
+fn two_chains(runs: &Runs) -> BuildGraph {
+    let mut g = BuildGraph::new();
+    let a = g.add_op("a", konst(1, runs), &[]).unwrap();
+    let b = g.add_op("b", konst(2, runs), &[]).unwrap();
+    g.add_op("s", add(10, runs), &[a]).unwrap();
+    g.add_op("u", add(20, runs), &[b]).unwrap();
+    g
+}
+
+fn focused(names: &[&str]) -> Retry {
+    Retry {
+        focus: names.iter().map(|n| n.to_string()).collect(),
+        ..Retry::default()
+    }
+}
+
+#[test]
+fn a_focused_build_runs_only_what_the_named_nodes_need_for_any_number_of_jobs() {
+    for jobs in [1, 4] {
+        let dir = tempfile::tempdir().unwrap();
+        let o = opts(dir.path(), jobs);
+        let runs = Runs::default();
+        let lock = lock_cache(&o, &|_| {}).unwrap();
+        let r = build_again(two_chains(&runs), &o, &lock, &focused(&["s"]), &quiet).unwrap();
+        assert_eq!(runs.total(), 2, "only a and s ran");
+        assert_eq!(value(&r, "s"), 11);
+        for name in ["b", "u"] {
+            assert_eq!(state(&r, name), NodeState::Skipped);
+            assert_eq!(r.node(name).unwrap().reason, RebuildReason::Unfocused);
+        }
+        assert!(!r.ok, "a build that left nodes out is not whole");
+        // The whole build after it runs only what the focused one left out.
+        runs.reset();
+        let whole = build_holding(two_chains(&runs), &o, &lock, &quiet).unwrap();
+        assert!(whole.ok);
+        assert_eq!(runs.total(), 2, "b and u ran; a and s were cached");
+        assert_eq!(state(&whole, "s"), NodeState::Cached);
+    }
+}
+
+#[test]
+fn a_focused_build_runs_the_expansion_that_adds_a_named_node() {
+    for jobs in [1, 4] {
+        let dir = tempfile::tempdir().unwrap();
+        let o = opts(dir.path(), jobs);
+        let runs = Runs::default();
+        let mut g = split_graph(3, &runs, false);
+        g.add_op("other", konst(7, &runs), &[]).unwrap();
+        let lock = lock_cache(&o, &|_| {}).unwrap();
+        let r = build_again(g, &o, &lock, &focused(&["part:1"]), &quiet).unwrap();
+        // `count` expands (the named node exists only after it), then `part:1` runs.
+        assert_eq!(runs.total(), 2);
+        assert_eq!(value(&r, "part:1"), 3 + 1);
+        for name in ["part:0", "part:2", "join", "other"] {
+            assert_eq!(
+                r.node(name).unwrap().reason,
+                RebuildReason::Unfocused,
+                "{name}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_focused_build_whose_named_node_fails_again_stops_there() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = opts(dir.path(), 2);
+    let runs = Runs::default();
+    let mut g = two_chains(&runs);
+    let s = g.node("s").unwrap();
+    g.add_op("bad", fail(&runs), &[s]).unwrap();
+    let lock = lock_cache(&o, &|_| {}).unwrap();
+    let r = build_again(g, &o, &lock, &focused(&["bad"]), &quiet).unwrap();
+    assert_eq!(state(&r, "bad"), NodeState::Failed);
+    assert_eq!(runs.total(), 3, "a, s and bad ran; b and u did not");
+    assert_eq!(r.node("u").unwrap().reason, RebuildReason::Unfocused);
 }
