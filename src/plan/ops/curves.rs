@@ -582,6 +582,22 @@ mod tests {
         assert_eq!(find(1, "F9"), None);
     }
 
+    #[test]
+    fn finding_every_curve_at_its_hint_reads_one_name_each_not_the_list() {
+        // A fault of triangles touching at corners has a free-border curve per triangle; a
+        // search from the list's start would read half of it per curve (quadratic).
+        let list: Vec<String> = (0..20_000).map(|k| format!("F#{k}")).collect();
+        let read = std::cell::Cell::new(0usize);
+        fn counted<'a>(read: &std::cell::Cell<usize>, c: &'a String) -> &'a String {
+            read.set(read.get() + 1);
+            c
+        }
+        for (at, name) in list.iter().enumerate() {
+            assert_eq!(named(&list, at, |c| counted(&read, c), name), Some(name));
+        }
+        assert_eq!(read.get(), list.len());
+    }
+
     /// The nodes of a 100 m straight curve discretized at 250 m with at least `min` segments.
     fn nodes(min: u32) -> Vec<[f64; 3]> {
         pinned_nodes(min, None)
