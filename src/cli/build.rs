@@ -304,6 +304,12 @@ pub fn run(args: &BuildArgs) -> Result<BuildReport, Failure> {
         if let Some(line) = quality.as_ref().and_then(mesh_summary) {
             errln!("{:>12} {line}", "Mesh");
         }
+        if let Some(warning) = quality
+            .as_ref()
+            .and_then(|q| thin_at_worst(&recipe, &report, q))
+        {
+            errln!("{:>12} {warning}", "Warning");
+        }
         // Every file the build wrote (or, staged, published) into the output directory.
         let mut files: Vec<String> = report.output_files.keys().cloned().collect();
         files.push("validation.json".into());
@@ -400,6 +406,33 @@ fn sharp_boundary(row: &serde_json::Value) -> String {
         }
         _ => String::new(),
     }
+}
+
+/// Where the worst tet of the summary's region is under the bar though the region's surfaces
+/// allow more, and the region is thinner there than its elements: why, and what to write.
+fn thin_at_worst(
+    recipe: &crate::recipe::Recipe,
+    report: &BuildReport,
+    quality: &serde_json::Value,
+) -> Option<String> {
+    let worst = (quality["table2"].as_array()?.iter())
+        .filter(|r| r["name"] != "all")
+        .filter_map(|r| Some((r, r["min_dihedral_deg"].as_f64()?)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let (row, dihedral) = worst;
+    let bound = row["min_dihedral_bound_deg"].as_f64();
+    if dihedral >= SHARP_DEG || bound.is_some_and(|b| b < SHARP_DEG) {
+        return None;
+    }
+    let at: Vec<f64> = (row["min_dihedral_at"].as_array()?.iter())
+        .filter_map(|x| x.as_f64())
+        .collect();
+    let worst = plan::ops::WorstTet {
+        region: row["name"].as_str()?,
+        dihedral,
+        at: at.try_into().ok()?,
+    };
+    plan::ops::thin_at_worst(recipe, &built_model(report)?, &worst)
 }
 
 /// The seed's bar on the smallest dihedral angle (degrees).

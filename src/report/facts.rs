@@ -19,7 +19,7 @@ use geom::mesh::{LineGroup, RegionGroup, SurfaceGroup, VolumeMesh};
 use serde::{Deserialize, Serialize};
 
 /// The version of what [`MeshFacts::of`] computes, for caches of it.
-pub const FACTS_VERSION: u32 = 4;
+pub const FACTS_VERSION: u32 = 5;
 
 /// Everything a report shows of a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

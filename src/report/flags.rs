@@ -54,6 +54,7 @@ mod tests {
             min_dihedral_deg: 20.0,
             min_dihedral_bound_deg: None,
             min_dihedral_bound_at: None,
+            min_dihedral_at: None,
             avg_paper: avg,
             min_paper: avg,
         }

@@ -448,6 +448,44 @@ fn every_known_gap_misses_the_bars_with_a_valid_mesh_or_fails_naming_its_place()
 }
 
 #[test]
+fn a_detachments_worst_tet_is_put_down_to_the_slab_under_its_flat_with_what_to_write() {
+    // The thrust's flat runs 10 m above the horizon, meshed at 250: the slab between is a
+    // fraction of an element across, though its surfaces never meet at a sharp angle (Table 2's
+    // bound is 60°), and the region is thick by its median, so no other warning says why.
+    let case = known_gap("detachment");
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let recipe = case.write(dir.path());
+    let out = build_saying(dir.path(), &recipe);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let warning = (err.lines())
+        .find(|l| l.contains("worst tet (") && l.contains("is where the region is only"))
+        .unwrap_or_else(|| panic!("no warning about the thin slab:\n{err}"));
+    let thickness: f64 = (warning.split("is only ").nth(1))
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no thickness: {warning}"));
+    // The flat's slab is 10 m thick where the horizon is flat, thinner where it rises.
+    assert!(thickness > 0.0 && thickness <= 10.5, "{warning}");
+    assert!(
+        warning.contains("meshed at 250") && warning.contains("layers = 3"),
+        "{warning}"
+    );
+    // A region that is thick where its worst tet is gets no such warning: the shipped example.
+    let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("recipes/didactic.toml");
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
+        .current_dir(scratch.path())
+        .args(["build", "--cache-dir", "cache"])
+        .arg(&example)
+        .output()
+        .expect("the recipe binary runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("is where the region is only"), "{err}");
+}
+
+#[test]
 fn a_downlap_has_no_needle_where_its_two_surfaces_leave_the_box_side_together() {
     // The box side's two curves leave the tip at 2°, one with a node 6 m on, the other's first
     // 250 m on: without grading both from that node, the triangle between is a needle and its

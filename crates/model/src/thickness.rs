@@ -118,6 +118,68 @@ pub fn thin_places(
     out
 }
 
+/// Walls looked at round a point by [`thickness_near`].
+const NEAR_WALLS: usize = 8;
+
+/// The distance across the region bounded by `sides` (face-uses of the patches whose meshes are
+/// `meshes`) near the point `at` in it, so that a bad element there can be put down to a thin
+/// part of the region: of the walls nearest `at` (at most `NEAR_WALLS`, by their points
+/// nearest it, ties by index), the first whose cast from that point along its inward normal
+/// meets a wall facing it ([`OPPOSITE`]) gives it. Only the nearest counts: a wall's point
+/// farther off measures the region elsewhere. `None` when no such ray meets one.
+pub fn thickness_near(meshes: &[&TriMesh], sides: &[FaceUse], at: [f64; 3]) -> Option<f64> {
+    let inside = Inside::new(meshes, sides)?;
+    let mut near: Vec<(f64, usize, [f64; 3])> = (inside.tree.nearest_neighbor_iter(at))
+        .take(NEAR_WALLS)
+        .map(|b| {
+            let i = b.data as usize;
+            let p = nearest_on(&inside.walls[i].corners, &at);
+            (geom::predicates::dist(&p, &at), i, p)
+        })
+        .collect();
+    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    near.into_iter().find_map(|(_, i, p)| {
+        // Off the wall's edges, but barely: a support's walls can be hundreds of metres wide.
+        let c = centroid(&inside.walls[i]);
+        let p = [0, 1, 2].map(|k| p[k] + 1e-3 * (c[k] - p[k]));
+        inside.across_to_opposite(i, &p)
+    })
+}
+
+/// The point of triangle `c` nearest `p`: its projection onto the plane when that falls inside,
+/// else the nearest point of its edges.
+fn nearest_on(c: &[[f64; 3]; 3], p: &[f64; 3]) -> [f64; 3] {
+    let (e1, e2) = (sub(&c[1], &c[0]), sub(&c[2], &c[0]));
+    let n = cross(&e1, &e2);
+    let nn = dot(&n, &n);
+    if nn > 0.0 {
+        let w = sub(p, &c[0]);
+        let (u, v) = (dot(&cross(&w, &e2), &n) / nn, dot(&cross(&e1, &w), &n) / nn);
+        if u >= 0.0 && v >= 0.0 && u + v <= 1.0 {
+            return [0, 1, 2].map(|k| c[0][k] + u * e1[k] + v * e2[k]);
+        }
+    }
+    let on_edge = |a: &[f64; 3], b: &[f64; 3]| {
+        let ab = sub(b, a);
+        let len = dot(&ab, &ab);
+        let t = if len > 0.0 {
+            (dot(&sub(p, a), &ab) / len).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        [0, 1, 2].map(|k| a[k] + t * ab[k])
+    };
+    let far = |q: &[f64; 3]| dot(&sub(q, p), &sub(q, p));
+    [
+        on_edge(&c[0], &c[1]),
+        on_edge(&c[1], &c[2]),
+        on_edge(&c[2], &c[0]),
+    ]
+    .into_iter()
+    .min_by(|a, b| far(a).total_cmp(&far(b)))
+    .unwrap_or(c[0])
+}
+
 /// `p` moved a hundredth of the way towards `to`: a ray from a wall's corner or edge would run
 /// along the wall beside it.
 fn pulled(p: &[f64; 3], to: &[f64; 3]) -> [f64; 3] {
@@ -371,6 +433,22 @@ mod tests {
         // A slab thicker than `thin` everywhere has no thin place.
         let slab = wedge(1000.0, 500.0, 30.0, 0.0);
         assert!(thin_places(&[&slab], &inside(0), 20.0, &spacing, 1000).is_empty());
+    }
+
+    #[test]
+    fn the_thickness_near_a_point_of_a_wedge_is_its_height_there() {
+        let m = wedge(1000.0, 500.0, 2.0, 0.05);
+        for (x, z) in [(100.0, 1.0), (800.0, 10.0), (5.0, 0.5)] {
+            let t = thickness_near(&[&m], &inside(0), [x, 250.0, z]).expect("a thickness");
+            let h = 2.0 + 0.05 * x;
+            assert!((t - h).abs() < 0.02 * h, "at x = {x}: {t} vs {h}");
+        }
+        // Seen from outside, nothing faces the walls.
+        let outside = vec![FaceUse {
+            patch: 0,
+            side: Side::Front,
+        }];
+        assert_eq!(thickness_near(&[&m], &outside, [100.0, 250.0, 1.0]), None);
     }
 
     #[test]

@@ -66,7 +66,8 @@ impl Operation for ExportOp {
         // 8: msh curve and corner entities bounding the surfaces.
         // 9: Abaqus truss sections of the wells given an area.
         // 10: Table 2 gives the bound each region's boundary sets on its smallest dihedral.
-        10
+        // 11: and the place of its worst tet.
+        11
     }
     fn params(&self) -> Params {
         let mut p = Params::new();

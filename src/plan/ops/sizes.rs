@@ -567,7 +567,7 @@ pub fn short_curve_warnings(recipe: &Recipe, model: &ModelData) -> Vec<(Vec<Stri
 
 /// How to ask for three layers in `r`: its `[mesh.regions]` entry when the recipe names it, else
 /// naming it first (a point of its own, which the model gives), or `min_layers` for all.
-fn three_layers(recipe: &Recipe, r: &model::regions::Region) -> String {
+pub(super) fn three_layers(recipe: &Recipe, r: &model::regions::Region) -> String {
     let name = &r.name;
     if recipe.regions.contains_key(name) {
         return "write `layers = 3` in its `[mesh.regions]` entry (or `min_layers = 3` in `[mesh]`) \

@@ -44,6 +44,10 @@ pub struct TetQuality {
     pub pct_lt_0_2: f64,
     pub pct_lt_0_1: f64,
     pub min_dihedral_deg: f64,
+    /// The centroid of the region's tet with that angle (the first in tet order), so that a
+    /// bad tet can be found and explained; `None` for an empty region.
+    #[serde(default)]
+    pub min_dihedral_at: Option<[f64; 3]>,
     /// The sharpest angle (degrees) the region's surface triangles leave its tets round an
     /// edge, which its smallest dihedral angle cannot exceed ([`bound`]), and where; `None`
     /// where no two surface triangles meet at an edge of its tets.
@@ -148,11 +152,13 @@ fn tet_row(
     bound: Option<bound::Bound>,
 ) -> TetQuality {
     let mut q = Vec::with_capacity(sel.len());
-    let mut dmin = f64::INFINITY;
+    let (mut dmin, mut worst) = (f64::INFINITY, None);
     for &t in sel {
         let (ratio, dihedral) = measures[t];
         q.push(ratio);
-        dmin = dmin.min(dihedral);
+        if dihedral < dmin || worst.is_none() {
+            (dmin, worst) = (dihedral, Some(t));
+        }
     }
     let (avg, sd, min, _) = moments(&q);
     TetQuality {
@@ -166,11 +172,18 @@ fn tet_row(
         pct_lt_0_2: pct(&q, |v| v < 0.2),
         pct_lt_0_1: pct(&q, |v| v < 0.1),
         min_dihedral_deg: if sel.is_empty() { f64::NAN } else { dmin },
+        min_dihedral_at: worst.map(|t| centroid(mesh, t)),
         min_dihedral_bound_deg: bound.map(|b| b.deg),
         min_dihedral_bound_at: bound.map(|b| b.at),
         avg_paper: PAPER_MEAN_RATIO_SCALE * avg,
         min_paper: PAPER_MEAN_RATIO_SCALE * min,
     }
+}
+
+/// The centroid of tet `t` of `mesh`.
+fn centroid(mesh: &VolumeMesh, t: usize) -> [f64; 3] {
+    let corners = mesh.tets[t].map(|v| node(mesh, v));
+    [0, 1, 2].map(|k| corners.iter().map(|c| c[k]).sum::<f64>() / 4.0)
 }
 
 /// Splits element indices by their group tag; tags beyond `n_groups` are ignored here (the

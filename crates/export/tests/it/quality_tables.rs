@@ -257,3 +257,25 @@ print("JSON", json.dumps(cm.stats(q, hi=[1.15, 1.5])))
         render_table1(&t1)
     );
 }
+
+#[test]
+fn each_regions_worst_tet_is_placed_at_the_centroid_of_a_tet_with_its_smallest_angle() {
+    let mesh = jittered();
+    let rows = table2(&mesh);
+    for (k, row) in rows.iter().enumerate().filter(|(_, r)| r.name != "all") {
+        let at = row.min_dihedral_at.expect("a place");
+        let worst = (mesh.tets.iter().zip(&mesh.tet_region))
+            .filter(|(_, r)| **r as usize == k)
+            .map(|(t, _)| t.map(|v| mesh.nodes[v as usize]))
+            .find(|c| {
+                (0..3).all(|d| (c.iter().map(|p| p[d]).sum::<f64>() / 4.0 - at[d]).abs() < 1e-9)
+            })
+            .unwrap_or_else(|| panic!("{}: no tet of the region is centred at {at:?}", row.name));
+        let [a, b, c, d] = worst;
+        let angle = export::quality::measures::tet_min_dihedral_deg(&a, &b, &c, &d);
+        assert_eq!(angle, row.min_dihedral_deg, "{}", row.name);
+    }
+    // The whole mesh's row names the worst of all.
+    let all = rows.last().expect("the row of all");
+    assert!(all.min_dihedral_at.is_some());
+}
