@@ -77,7 +77,7 @@ impl fmt::Display for RebuildReason {
             }
             RebuildReason::BuildStopped => f.write_str("build stopped after a failure"),
             RebuildReason::Unfocused => {
-                f.write_str("not needed by what failed before, which did not mesh again")
+                f.write_str("not needed by what failed before, which failed again")
             }
         }
     }
@@ -123,5 +123,9 @@ mod tests {
             "cache entry missing"
         );
         assert_eq!(RebuildReason::UpToDate.to_string(), "up to date");
+        assert_eq!(
+            RebuildReason::Unfocused.to_string(),
+            "not needed by what failed before, which failed again"
+        );
     }
 }
