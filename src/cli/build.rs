@@ -415,28 +415,13 @@ fn thin_at_worst(
     report: &BuildReport,
     quality: &serde_json::Value,
 ) -> Option<String> {
-    let worst = (quality["table2"].as_array()?.iter())
-        .filter(|r| r["name"] != "all")
-        .filter_map(|r| Some((r, r["min_dihedral_deg"].as_f64()?)))
-        .min_by(|a, b| a.1.total_cmp(&b.1))?;
-    let (row, dihedral) = worst;
-    let bound = row["min_dihedral_bound_deg"].as_f64();
-    if dihedral >= SHARP_DEG || bound.is_some_and(|b| b < SHARP_DEG) {
-        return None;
-    }
-    let at: Vec<f64> = (row["min_dihedral_at"].as_array()?.iter())
-        .filter_map(|x| x.as_f64())
-        .collect();
-    let worst = plan::ops::WorstTet {
-        region: row["name"].as_str()?,
-        dihedral,
-        at: at.try_into().ok()?,
-    };
-    plan::ops::thin_at_worst(recipe, &built_model(report)?, &worst)
+    let table2: Vec<export::quality::TetQuality> =
+        serde_json::from_value(quality["table2"].clone()).ok()?;
+    plan::ops::thin_at_worst(recipe, &built_model(report)?, &table2)
 }
 
 /// The seed's bar on the smallest dihedral angle (degrees).
-const SHARP_DEG: f64 = 10.0;
+const SHARP_DEG: f64 = plan::ops::DIHEDRAL_BAR;
 
 /// The committed lock file, for `--locked`.
 fn read_lock(lock_file: &Path) -> Result<LockFile, Failure> {

@@ -269,6 +269,13 @@ fn report_input<'a>(
         }
     }
     let mesh = mesh_facts(recipe, report, derivations)?;
+    if let Some(m) = &model {
+        warnings.extend(crate::plan::ops::thin_at_worst(
+            recipe,
+            m,
+            &mesh.quality.table2,
+        ));
+    }
     let wells = well_summaries(recipe, report, &surfaces, &mesh)?;
     let steps = report
         .nodes

@@ -471,7 +471,15 @@ fn a_detachments_worst_tet_is_put_down_to_the_slab_under_its_flat_with_what_to_w
         warning.contains("meshed at 250") && warning.contains("layers = 3"),
         "{warning}"
     );
-    // A region that is thick where its worst tet is gets no such warning: the shipped example.
+    // The report keeps it with the build's other warnings.
+    let report = std::fs::read(dir.path().join("out/report.json")).expect("the report");
+    let report: serde_json::Value = serde_json::from_slice(&report).expect("JSON");
+    let kept = (report["warnings"].as_array().expect("warnings").iter())
+        .filter_map(|w| w.as_str())
+        .any(|w| w.contains("is where the region is only"));
+    assert!(kept, "{}", report["warnings"]);
+    // A region thin all over is told once, by the thin-region warning: the shipped example's
+    // reservoir, where its worst tet is.
     let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("recipes/didactic.toml");
     let scratch = tempfile::tempdir().expect("a scratch folder");
     let out = Command::new(env!("CARGO_BIN_EXE_recipe"))
@@ -482,6 +490,10 @@ fn a_detachments_worst_tet_is_put_down_to_the_slab_under_its_flat_with_what_to_w
         .expect("the recipe binary runs");
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("region `reservoir_E` is about 35.0 thick"),
+        "{err}"
+    );
     assert!(!err.contains("is where the region is only"), "{err}");
 }
 

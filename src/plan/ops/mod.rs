@@ -40,7 +40,7 @@ pub use sizes::short as short_number;
 pub use sizes::{
     THIN_REGIONS_TOLD, ThinRegion, one_across_summary, short_curve_warnings, thin_region_warnings,
 };
-pub use thin_worst::{WorstTet, thin_at_worst};
+pub use thin_worst::{DIHEDRAL_BAR, thin_at_worst};
 pub use vanished::vanished_surface_warnings;
 
 pub use curves::{

@@ -21,23 +21,31 @@
 use super::ModelData;
 use super::sizes::{layers_of, region_sizes, short, three_layers};
 use crate::recipe::Recipe;
+use export::quality::TetQuality;
 use geom::TriMesh;
 
-/// A region's worst tet: the region, its smallest dihedral angle (degrees) and where.
-pub struct WorstTet<'a> {
-    pub region: &'a str,
-    pub dihedral: f64,
-    pub at: [f64; 3],
-}
+/// The seed's bar on the smallest dihedral angle (degrees).
+pub const DIHEDRAL_BAR: f64 = 10.0;
 
 /// A region thinner than this share of its size is under one element across.
 const THIN_SHARE: f64 = 0.5;
 
-/// The warning for `worst` when its region of `model` is thinner there than half its size, with
-/// what to write in `recipe`; `None` when it is not (or the place is not in a region of it).
-pub fn thin_at_worst(recipe: &Recipe, model: &ModelData, worst: &WorstTet) -> Option<String> {
+/// The warning for the worst tet of Table 2's regions (`table2`, the whole mesh's row `all`
+/// left out) when it is under [`DIHEDRAL_BAR`], its region's surfaces allow more, and the
+/// region of `model` is thinner there than half its size, with what to write in `recipe`.
+pub fn thin_at_worst(recipe: &Recipe, model: &ModelData, table2: &[TetQuality]) -> Option<String> {
+    let row = (table2.iter())
+        .filter(|r| r.name != "all")
+        .min_by(|a, b| a.min_dihedral_deg.total_cmp(&b.min_dihedral_deg))?;
+    // Under the bar (an empty region's angle is not a number), and not where the surfaces meet.
+    let under = row.min_dihedral_deg < DIHEDRAL_BAR;
+    let explained = row.min_dihedral_bound_deg.is_some_and(|b| b < DIHEDRAL_BAR);
+    if !under || explained {
+        return None;
+    }
+    let at = row.min_dihedral_at?;
     let regions = &model.regions.regions;
-    let k = regions.iter().position(|r| r.name == worst.region)?;
+    let k = regions.iter().position(|r| r.name == row.name)?;
     let r = &regions[k];
     // A layered region is sized from its thickness where it thins, and its thin parts' own
     // warnings say where that was held back; one thin all over is told by the thin regions'.
@@ -47,17 +55,17 @@ pub fn thin_at_worst(recipe: &Recipe, model: &ModelData, worst: &WorstTet) -> Op
         return None;
     }
     let meshes: Vec<&TriMesh> = model.patches.iter().map(|p| &p.mesh).collect();
-    let t = model::thickness::thickness_near(&meshes, &r.sides, worst.at)?;
+    let t = model::thickness::thickness_near(&meshes, &r.sides, at)?;
     if t >= THIN_SHARE * own.size {
         return None;
     }
-    let [x, y, z] = worst.at.map(|c| format!("{c:.1}"));
+    let [x, y, z] = at.map(|c| format!("{c:.1}"));
     Some(format!(
         "region `{}`'s worst tet ({:.2}°) is where the region is only {} thick, near ({x}, {y}, \
          {z}), but it is meshed at {} (`{}.size`): its tets there are flat whatever the mesher \
          does; a count across sizes it from its thickness where it thins: {}",
         r.name,
-        worst.dihedral,
+        row.min_dihedral_deg,
         short(t),
         short(own.size),
         own.path,
