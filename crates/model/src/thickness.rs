@@ -133,7 +133,8 @@ pub fn thickness_near(meshes: &[&TriMesh], sides: &[FaceUse], at: [f64; 3]) -> O
         .take(NEAR_WALLS)
         .map(|b| {
             let i = b.data as usize;
-            let p = nearest_on(&inside.walls[i].corners, &at);
+            let [a, b, c] = &inside.walls[i].corners;
+            let (p, _) = geom::closest::closest_on_triangle(&at, a, b, c);
             (geom::predicates::dist(&p, &at), i, p)
         })
         .collect();
@@ -144,40 +145,6 @@ pub fn thickness_near(meshes: &[&TriMesh], sides: &[FaceUse], at: [f64; 3]) -> O
         let p = [0, 1, 2].map(|k| p[k] + 1e-3 * (c[k] - p[k]));
         inside.across_to_opposite(i, &p)
     })
-}
-
-/// The point of triangle `c` nearest `p`: its projection onto the plane when that falls inside,
-/// else the nearest point of its edges.
-fn nearest_on(c: &[[f64; 3]; 3], p: &[f64; 3]) -> [f64; 3] {
-    let (e1, e2) = (sub(&c[1], &c[0]), sub(&c[2], &c[0]));
-    let n = cross(&e1, &e2);
-    let nn = dot(&n, &n);
-    if nn > 0.0 {
-        let w = sub(p, &c[0]);
-        let (u, v) = (dot(&cross(&w, &e2), &n) / nn, dot(&cross(&e1, &w), &n) / nn);
-        if u >= 0.0 && v >= 0.0 && u + v <= 1.0 {
-            return [0, 1, 2].map(|k| c[0][k] + u * e1[k] + v * e2[k]);
-        }
-    }
-    let on_edge = |a: &[f64; 3], b: &[f64; 3]| {
-        let ab = sub(b, a);
-        let len = dot(&ab, &ab);
-        let t = if len > 0.0 {
-            (dot(&sub(p, a), &ab) / len).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        [0, 1, 2].map(|k| a[k] + t * ab[k])
-    };
-    let far = |q: &[f64; 3]| dot(&sub(q, p), &sub(q, p));
-    [
-        on_edge(&c[0], &c[1]),
-        on_edge(&c[1], &c[2]),
-        on_edge(&c[2], &c[0]),
-    ]
-    .into_iter()
-    .min_by(|a, b| far(a).total_cmp(&far(b)))
-    .unwrap_or(c[0])
 }
 
 /// `p` moved a hundredth of the way towards `to`: a ray from a wall's corner or edge would run
