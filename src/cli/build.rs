@@ -415,8 +415,10 @@ fn thin_at_worst(
     report: &BuildReport,
     quality: &serde_json::Value,
 ) -> Option<String> {
-    let table2: Vec<export::quality::TetQuality> =
-        serde_json::from_value(quality["table2"].clone()).ok()?;
+    // Row by row: an empty region's row (its angles written as null) is left out, not all.
+    let table2: Vec<export::quality::TetQuality> = (quality["table2"].as_array()?.iter())
+        .filter_map(|row| serde_json::from_value(row.clone()).ok())
+        .collect();
     plan::ops::thin_at_worst(recipe, &built_model(report)?, &table2)
 }
 
