@@ -1,10 +1,10 @@
 //! From imported surfaces to the model a mesher can take: exact intersection and splitting
 //! (`intersect`), the patches of each split surface (`patches`), which patches the recipe's trims
-//! discard (`trims`), the regions the patches bound (`regions`), the half-edge structure of one
-//! surface (`topology`), curve subdivision (`discretize`), the room it has (`clearance`) and the
-//! sizes the patches' curvature and width ask of it (`curvature`, `width`), how
-//! thick each region is (`thickness`), and, at the crate root, the model's topology and the FE
-//! assembly along it.
+//! discard (`trims`), the patches a discarded part's trace split, joined again (`rejoin`), the
+//! regions the patches bound (`regions`), the half-edge structure of one surface (`topology`),
+//! curve subdivision (`discretize`), the room it has (`clearance`) and the sizes the patches'
+//! curvature and width ask of it (`curvature`, `width`), how thick each region is
+//! (`thickness`), and, at the crate root, the model's topology and the FE assembly along it.
 //!
 //! The root: the topological model of the conforming, trimmed patches — its vertices and
 //! curves, with stable names, and which curves bound (or constrain) which patch.
@@ -43,6 +43,7 @@ pub mod intersect;
 mod kinks;
 pub mod patches;
 pub mod regions;
+pub mod rejoin;
 pub mod thickness;
 pub mod tips;
 pub mod topology;

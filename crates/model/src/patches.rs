@@ -61,8 +61,18 @@ pub fn patches_at_creases(
     normals: &[[f64; 3]],
     kink_deg: f64,
 ) -> Vec<Patch> {
+    components(surface, split, creased(split, normals, kink_deg))
+}
+
+/// Whether two triangles of `split` meet at a crease: their original triangles (unit normals
+/// `normals`) bend by more than `kink_deg`. Triangles of one original triangle never do.
+pub fn creased<'a>(
+    split: &'a SplitSurface,
+    normals: &'a [[f64; 3]],
+    kink_deg: f64,
+) -> impl Fn((u32, u32)) -> bool + 'a {
     let cos_max = kink_deg.to_radians().cos();
-    components(surface, split, |(t, u)| {
+    move |(t, u)| {
         let (a, b) = (split.parent[t as usize], split.parent[u as usize]);
         if a == b {
             return false;
@@ -71,7 +81,7 @@ pub fn patches_at_creases(
             return false;
         };
         *n != [0.0; 3] && *m != [0.0; 3] && dot(n, m) < cos_max
-    })
+    }
 }
 
 /// The components of `split`'s triangles across edges that carry exactly two triangles, are not
@@ -164,7 +174,7 @@ fn components(
 
 /// The patches (unnamed) made of each group of `m`'s triangles, each with its own compact mesh,
 /// in canonical order: by their sorted vertex coordinates, then by their triangles.
-fn extract(m: &TriMesh, groups: Vec<Vec<u32>>) -> Vec<Patch> {
+pub(crate) fn extract(m: &TriMesh, groups: Vec<Vec<u32>>) -> Vec<Patch> {
     // Local vertex numbers, reset after each patch (u32::MAX = not yet used by this patch).
     let mut local: Vec<u32> = vec![u32::MAX; m.vertices.len()];
     let mut out: Vec<(Vec<[f64; 3]>, Patch)> = groups

@@ -83,16 +83,20 @@ pub fn cases() -> Vec<Case> {
 ///   rims are crumpled into sliver facets (their neighbours bend away by 30° to 115°), each a
 ///   patch of its own between creases, with corners of a few degrees: tets on them reach 5.0°.
 /// - `onlap`: H1 onlaps U at 2.0°; meshes, but the surface meshes meet at the tip at about 1°
-///   (1.02° at the sharpest), and tets there reach 1.2°.
-/// - `onlap_under_a_degree`: the same at 0.86°; meshes, at 0.16°. While every turn of `H1/U`
+///   (0.96° at the sharpest), and the wedge, one element across, reaches 0.45° there (1.26° with
+///   `refine_close_curves = true`, which its warnings give). The regions beside it meet the
+///   bars: the part of H1 discarded above U leaves no curve on the box (`model::rejoin`).
+/// - `onlap_under_a_degree`: the same at 0.86°; meshes, at 0.13°. While every turn of `H1/U`
 ///   sharper than the kink angle cut it, however short the jog, the meshes of U and H1 crossed
 ///   near the tip, and the build refined along `H1/U` to a tenth of the size and built again
 ///   (0.31°, at 266,000 tets against 203,000).
-/// - `downlap`: the onlap upside down, at 2.0°; meshes, at 1.2°. In both, the two surfaces
+/// - `downlap`: the onlap upside down, at 2.0°; meshes, at 1.2°, and its other regions meet the
+///   bars. In both, the two surfaces
 ///   cross again and again near the tip, so the box side holds nodes of the tip a few metres
 ///   apart; the curves there grade from them (`model::tips`), else needles (0.11°).
 /// - `fault_splay_at_one_degree`: the fault splay with F2 only 1° steeper than F1; meshes, at
-///   0.77°, its wedge's bound (planar faults leave no crossings at the branch line).
+///   0.89°, near its wedge's bound of 1.0° (planar faults leave no crossings at the branch line);
+///   the region above the splay reaches 2.7° beside it.
 /// - `detachment`: a thrust's flat 10 m above a horizon; meshes, but the slab between is one
 ///   element across under the flat, at 1.8° (2.6° with `min_layers = 3`, which takes the
 ///   region's median thickness, and the ramp makes that large).

@@ -1,7 +1,9 @@
 //! `model`: the topological model. Each surface first drops the triangles it holds in common
 //! with a surface named before it (`model::intersect::shared`; its intersections are made again
 //! without them). Every surface (imports and box sides) is split along all its
-//! intersection curves, cut into patches, the patches outside the box are trimmed away, and the
+//! intersection curves, cut into patches, the patches outside the box are trimmed away, the
+//! patches of a surface split only by what the trims discarded are joined again
+//! (`model::rejoin`), and the
 //! regions are found by face-uses, faults being the surfaces allowed to dangle; then the model's
 //! vertices, named curves and patch boundaries are derived (the `model` crate). Inputs: the box
 //! (when `has_box`; a sealed model may have none), then the surfaces (`n_surfaces`, in name order), then the intersections. The expander attached
@@ -14,6 +16,7 @@ use geom::{BBox, Tolerances, TriMesh};
 use model::conformity::{NearMiss, near_misses};
 use model::curvature::curvature_sizes;
 use model::intersect::{Intersection, shared, split};
+use model::rejoin::rejoin;
 use model::thickness::region_thickness;
 use model::tips::tip_sizes;
 use model::touches::touch_points;
@@ -117,7 +120,8 @@ impl Operation for ModelOp {
         // 32: a triangle moved to mend a chart's crossing takes the few triangles that would
         //     leave its new chart touching itself at its corner.
         // 33: a chart that a curve cuts into a strip along it joins the chart beside it.
-        33
+        // 34: patches of one surface split only by a discarded surface's trace are one.
+        34
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -216,9 +220,19 @@ impl Operation for ModelOp {
             .zip(&normals)
             .map(|(s, n)| patches::Charting::new(&s.mesh, n, chart_deg))
             .collect();
+        let creases: Vec<_> = (split.iter().zip(&normals))
+            .map(|(sp, n)| patches::creased(sp, n, self.tolerances.crease_angle_deg))
+            .collect();
+        let (rejoined, joined) = rejoin(
+            (all.into_iter().zip(&outcome.keep))
+                .filter_map(|(p, k)| k.then_some(p))
+                .collect(),
+            &split,
+            &|i, pair| creases[i](pair),
+        );
         let mut kept: Vec<ModelPatch> = Vec::new();
         let mut input: Vec<regions::PatchIn> = Vec::new();
-        for ((i, p), _) in all.into_iter().zip(&outcome.keep).filter(|(_, k)| **k) {
+        for (i, p) in rejoined {
             let whole = p.name.clone();
             let part = p
                 .triangles
@@ -307,6 +321,7 @@ impl Operation for ModelOp {
         .count("curves", n_curves)
         .count("patches", input.len() as u64)
         .count("trimmed_patches", trimmed)
+        .count("rejoined_patches", joined as u64)
         .count("regions", model.regions.len() as u64)
         .count("dangling_patches", model.dangling.len() as u64);
         let names: Vec<&str> = model.regions.iter().map(|r| r.name.as_str()).collect();
