@@ -390,7 +390,7 @@ fn mesh_summary(quality: &serde_json::Value) -> Option<String> {
 }
 
 /// Where a region's surfaces leave its tets an angle under the seed's dihedral bar
-/// ([`SHARP_DEG`]), the angle and its place, said after the region's name: no mesh of that
+/// ([`plan::ops::DIHEDRAL_BAR`]), the angle and its place, said after the region's name: no mesh of that
 /// boundary does better there.
 fn sharp_boundary(row: &serde_json::Value) -> String {
     let (Some(deg), Some(at)) = (
@@ -401,7 +401,7 @@ fn sharp_boundary(row: &serde_json::Value) -> String {
     };
     let at: Vec<f64> = at.iter().filter_map(|x| x.as_f64()).collect();
     match at[..] {
-        [x, y, z] if deg < SHARP_DEG => {
+        [x, y, z] if deg < plan::ops::DIHEDRAL_BAR => {
             format!(", whose surfaces meet at {deg:.2}° near ({x:.1}, {y:.1}, {z:.1})")
         }
         _ => String::new(),
@@ -421,9 +421,6 @@ fn thin_at_worst(
         .collect();
     plan::ops::thin_at_worst(recipe, &built_model(report)?, &table2)
 }
-
-/// The seed's bar on the smallest dihedral angle (degrees).
-const SHARP_DEG: f64 = plan::ops::DIHEDRAL_BAR;
 
 /// The committed lock file, for `--locked`.
 fn read_lock(lock_file: &Path) -> Result<LockFile, Failure> {
