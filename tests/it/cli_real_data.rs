@@ -162,14 +162,19 @@ dir = "out/tkc"
     )
 }
 
-/// Builds `recipe` in a scratch folder; returns it and the model's region names.
-fn build_tkc(recipe: &str) -> (Scratch, Vec<String>) {
+/// Builds `recipe`, written as `file` in a scratch folder; returns it and the build's JSON.
+fn build_json(recipe: &str, file: &str) -> (Scratch, serde_json::Value) {
     let s = Scratch::didactic();
-    std::fs::write(s.path("tkc.toml"), recipe).unwrap();
-    let out = s.recipe_cmd(&["build", "--json", "tkc.toml"]);
+    std::fs::write(s.path(file), recipe).unwrap();
+    let out = s.recipe_cmd(&["build", "--json", file]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
-    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    (s, serde_json::from_slice(&out.stdout).unwrap())
+}
+
+/// Builds `recipe` in a scratch folder; returns it and the model's region names.
+fn build_tkc(recipe: &str) -> (Scratch, Vec<String>) {
+    let (s, r) = build_json(recipe, "tkc.toml");
     let regions = (r["model"]["regions"].as_array().expect("regions").iter())
         .map(|g| g["name"].as_str().expect("a name").to_string())
         .collect();
@@ -300,6 +305,29 @@ fn every_tkc_body_alone_in_a_box_meshes_as_read() {
         assert!(worst > bar, "{body}: worst dihedral {worst}°");
         passes_check_mesh(&s.path("out/body/body.msh"), 2, body);
     }
+}
+
+#[test]
+fn a_rough_closed_tkc_body_retriangulates_piece_by_piece_and_meshes() {
+    // A closed body has no border: re-triangulated whole, it had no loop to flatten ("the patch
+    // has no boundary loop"). Cut as the model cuts it (creases, charts), each piece is meshed
+    // on the old support and the pieces welded.
+    let Some(shared) = paths::shared("data/gocad/simpeg-research__Astic-2020-JointInversion")
+    else {
+        return;
+    };
+    let text = tkc_body(&shared, "PK2").replace(".ts\" }", ".ts\", retriangulate = 15.0 }");
+    assert!(text.contains("retriangulate = 15.0"), "{text}");
+    let (s, r) = build_json(&text, "body.toml");
+    let support = (r["nodes"].as_array().expect("nodes").iter())
+        .find(|n| n["name"] == "support:PK2")
+        .expect("a support node");
+    let (given, now) = (
+        support["counts"]["given_triangles"].as_u64().unwrap(),
+        support["counts"]["support_triangles"].as_u64().unwrap(),
+    );
+    assert!(now > given, "{given} triangles became {now}");
+    passes_check_mesh(&s.path("out/body/body.msh"), 2, "PK2");
 }
 
 #[test]

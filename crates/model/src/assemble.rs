@@ -107,19 +107,24 @@ fn face_sets(
 
 /// Welds points by exact coordinates, in order of first appearance.
 #[derive(Default)]
-struct Welder {
+pub(crate) struct Welder {
     ids: HashMap<[u64; 3], u32>,
     points: Vec<[f64; 3]>,
 }
 
 impl Welder {
-    fn id(&mut self, p: &[f64; 3]) -> u32 {
+    pub(crate) fn id(&mut self, p: &[f64; 3]) -> u32 {
         let next = self.points.len() as u32;
         let id = *self.ids.entry(point_key(p)).or_insert(next);
         if id == next {
             self.points.push(*p);
         }
         id
+    }
+
+    /// The welded points, in order of first appearance.
+    pub(crate) fn into_points(self) -> Vec<[f64; 3]> {
+        self.points
     }
 }
 

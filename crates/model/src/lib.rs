@@ -44,6 +44,7 @@ mod kinks;
 pub mod patches;
 pub mod regions;
 pub mod rejoin;
+pub mod remesh;
 pub mod thickness;
 pub mod tips;
 pub mod topology;
@@ -131,6 +132,28 @@ pub struct ModelTopology {
     pub curves: Vec<Curve>,
     /// Parallel to the patches given to [`build_topology`].
     pub patches: Vec<PatchBoundary>,
+}
+
+impl ModelTopology {
+    /// The fewest segments each curve needs so that every patch loop has at least three nodes:
+    /// two on each curve of a loop of two, three on a closed curve that is a loop alone (small
+    /// patches cut off by creases or intersections are often bounded so).
+    pub fn min_segments(&self) -> Vec<u32> {
+        let mut min = vec![1u32; self.curves.len()];
+        for lp in self.patches.iter().flat_map(|p| &p.loops) {
+            let need = match lp.len() {
+                1 => 3,
+                2 => 2,
+                _ => 1,
+            };
+            for u in lp {
+                if let Some(m) = min.get_mut(u.curve as usize) {
+                    *m = (*m).max(need);
+                }
+            }
+        }
+        min
+    }
 }
 
 /// Why the model's topology or an FE assembly could not be built: a message naming the patch,

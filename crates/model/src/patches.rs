@@ -86,7 +86,7 @@ pub fn creased<'a>(
 
 /// The components of `split`'s triangles across edges that carry exactly two triangles, are not
 /// curve edges, and on which `crease` (given the two triangles) is false.
-fn components(
+pub(crate) fn components(
     surface: &str,
     split: &SplitSurface,
     crease: impl Fn((u32, u32)) -> bool,

@@ -2,7 +2,9 @@
 //! given size before intersection, preserving its shape (the new nodes lie on the old support)
 //! and its borders (border vertices where the border turns by more than
 //! `Tolerances::kink_angle_deg` are kept bit for bit; the border between them is resampled at
-//! about `size` by arc length, on the old border edges).
+//! about `size` by arc length, on the old border edges). It meshes one piece that flattens, as
+//! any patch; `model::remesh` cuts a surface of any shape (closed, a tube, creased, of several
+//! TFACEs) into such pieces first.
 
 use super::{PatchInput, SurfaceMeshError, SurfaceSize, dist, mesh_patch, param};
 use geom::predicates::{dot, sub};

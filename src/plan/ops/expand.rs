@@ -25,7 +25,6 @@ use super::{AssembleOp, ExportOp, ModelData, PatchExtractOp, SurfaceMeshOp, TetM
 use crate::recipe::{self, Recipe};
 use engine::{Artifact, Expander, Expansion, NodeId, OpError};
 use geom::mesh::RegionGroup;
-use model::ModelTopology;
 use model::regions::FaceUse;
 use std::sync::Arc;
 use surface_mesh::{MAX_SURFACE_GROWTH, SurfaceSize};
@@ -127,7 +126,7 @@ impl Expander for ModelExpander {
             .group_patches(&patch_names)
             .map_err(|d| recipe::render(&d))?;
         let model_node = x.node("model").ok_or("no `model` node")?;
-        let min_segments = min_segments(topo);
+        let min_segments = topo.min_segments();
         let region_sizes = sizes::region_sizes(&self.recipe, &model);
         let patch_sizes = sizes::patch_sizes(&self.recipe, &model, &region_sizes);
         let curve_caps = sizes::curve_caps(&self.recipe, &model, &region_sizes);
@@ -350,74 +349,4 @@ fn add_known(
         out.extend(refine::Placed::known(node, &refinement));
     }
     Ok(out)
-}
-
-/// The fewest segments each curve needs so that every patch loop has at least three nodes: two
-/// on each curve of a loop of two, three on a closed curve that is a loop alone (small patches
-/// cut off by creases or intersections are often bounded so).
-fn min_segments(topo: &ModelTopology) -> Vec<u32> {
-    let mut min = vec![1u32; topo.curves.len()];
-    for lp in topo.patches.iter().flat_map(|p| &p.loops) {
-        let need = match lp.len() {
-            1 => 3,
-            2 => 2,
-            _ => 1,
-        };
-        for u in lp {
-            if let Some(m) = min.get_mut(u.curve as usize) {
-                *m = (*m).max(need);
-            }
-        }
-    }
-    min
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use model::{Curve, CurveUse, PatchBoundary};
-
-    fn curve(k: usize) -> Curve {
-        Curve {
-            name: format!("c{k}"),
-            surfaces: vec!["s".into()],
-            patches: vec![0],
-            points: vec![[k as f64, 0.0, 0.0], [k as f64 + 1.0, 0.0, 0.0]],
-            closed: false,
-            clearance: Vec::new(),
-            curvature_size: Vec::new(),
-            narrow_size: Vec::new(),
-        }
-    }
-
-    fn uses(curves: &[u32]) -> Vec<CurveUse> {
-        curves
-            .iter()
-            .map(|&curve| CurveUse {
-                curve,
-                reversed: false,
-            })
-            .collect()
-    }
-
-    #[test]
-    fn every_loop_gets_three_nodes_whatever_the_sizes_say() {
-        let topo = ModelTopology {
-            vertices: Vec::new(),
-            curves: (0..7).map(curve).collect(),
-            patches: vec![
-                PatchBoundary {
-                    // A closed curve alone, and a loop of two curves (a hole).
-                    loops: vec![uses(&[0]), uses(&[1, 2])],
-                    constraints: Vec::new(),
-                },
-                PatchBoundary {
-                    // Three curves, and curve 2 again in a loop of three.
-                    loops: vec![uses(&[3, 4, 5]), uses(&[2, 5, 6])],
-                    constraints: Vec::new(),
-                },
-            ],
-        };
-        assert_eq!(min_segments(&topo), vec![3, 2, 2, 1, 1, 1, 1]);
-    }
 }

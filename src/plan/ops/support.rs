@@ -8,14 +8,14 @@
 //!   `import:<surface>`; other surfaces keep their graph and their keys.
 //! - It runs before intersection, so the curves are cut exactly on the support the FE mesh is
 //!   made on; borders, TFACE borders, creases and BSTONEs stay where they were (see
-//!   `surface_mesh::refine_smooth` and `retriangulate_keeping`).
-//! - Re-triangulation meshes a surface as one piece, so a surface of several TFACEs is refused
-//!   (merging them would lose the borders between them) with what to change.
+//!   `surface_mesh::refine_smooth` and `model::remesh`).
+//! - Re-triangulation meshes the surface piece by piece, cut as the model cuts it (TFACEs,
+//!   creases, charts), so closed bodies, tubes and folded box TSurfs re-triangulate too.
 
 use super::SurfaceData;
 use engine::{Artifact, OpError, Operation, Output, Params, RunContext};
 use geom::{Tolerances, TriMesh};
-use surface_mesh::{SupportSmoothing, refine_smooth, retriangulate_keeping};
+use surface_mesh::{SupportSmoothing, refine_smooth};
 
 pub struct SupportOp {
     pub surface: String,
@@ -34,7 +34,8 @@ impl Operation for SupportOp {
         // 2: re-triangulation keeps the corners of the recipe's kink angle, not the default's.
         // 3: the surface mesher inserts the border's nodes in a biased randomized order.
         // 4: the tet mesher's biased randomized order.
-        4
+        // 5: re-triangulation piece by piece (TFACEs, creases, charts), every tolerance keyed.
+        5
     }
     fn params(&self) -> Params {
         let mut p = Params::new();
@@ -47,9 +48,12 @@ impl Operation for SupportOp {
             p.set(&key("smooth.levels"), s.levels).expect("finite");
             p.set(&key("smooth.passes"), s.passes).expect("finite");
         }
-        // Both keep the support's corners: turns above the kink angle.
-        p.set("tolerances.kink_angle_deg", self.tolerances.kink_angle_deg)
-            .expect("validated finite");
+        // Both keep the support's corners (turns above the kink angle); re-triangulation cuts
+        // at creases and into charts and meshes within the support distance.
+        for (name, value) in self.tolerances.fields() {
+            p.set(&format!("tolerances.{name}"), value)
+                .expect("validated finite");
+        }
         p
     }
     fn run(&self, _ctx: &dyn RunContext, inputs: &[Artifact]) -> Result<Output, OpError> {
@@ -80,25 +84,19 @@ impl SupportOp {
         OpError::from(format!("surfaces.{}.{key}: {why}", self.surface))
     }
 
-    /// Replaces `s`'s support by one re-triangulated at `size`, its BSTONEs kept and renumbered.
+    /// Replaces `s`'s support by one re-triangulated at `size`, its TFACEs and BSTONEs kept (the
+    /// BSTONEs renumbered).
     fn retriangulated(&self, s: &mut SurfaceData, size: f64) -> Result<(), OpError> {
-        let mut parts = s.triangle_part.clone();
-        parts.sort_unstable();
-        parts.dedup();
-        if parts.len() > 1 {
-            return Err(self.fail(
-                "retriangulate",
-                &format!(
-                    "`{}` has {} parts (TFACEs), and re-triangulating meshes it as one piece, which would lose the borders between them; remove `retriangulate`, or import each TFACE as its own surface",
-                    self.surface,
-                    parts.len()
-                ),
-            ));
-        }
-        let kink = self.tolerances.kink_angle_deg;
-        let mesh = retriangulate_keeping(&s.mesh, size, &s.bstones, kink)
-            .map_err(|e| self.fail("retriangulate", &e.to_string()))?;
-        s.bstones = renumbered(&s.mesh, &s.bstones, &mesh).map_err(|p| {
+        let out = model::remesh::remesh(
+            &self.surface,
+            &s.mesh,
+            &s.triangle_part,
+            &s.bstones,
+            size,
+            &self.tolerances,
+        )
+        .map_err(|e| self.fail("retriangulate", &e.to_string()))?;
+        s.bstones = renumbered(&s.mesh, &s.bstones, &out.mesh).map_err(|p| {
             self.fail(
                 "retriangulate",
                 &format!(
@@ -107,8 +105,8 @@ impl SupportOp {
                 ),
             )
         })?;
-        s.triangle_part = vec![0; mesh.triangles.len()];
-        s.mesh = mesh;
+        s.triangle_part = out.parts;
+        s.mesh = out.mesh;
         Ok(())
     }
 }

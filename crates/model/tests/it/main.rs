@@ -11,6 +11,7 @@ mod intersect_support;
 mod model_topology;
 mod regions_cases;
 mod regions_ringmesh;
+mod remesh_shapes;
 mod split_cfm;
 mod split_corpus;
 mod split_crossing;

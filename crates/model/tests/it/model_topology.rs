@@ -8,7 +8,7 @@ use model::intersect::split::split_model;
 use model::intersect::{SurfaceRef, box_sides, intersect};
 use model::patches::{inside_box, patches};
 use model::regions::PatchIn;
-use model::{ModelTopology, build_topology};
+use model::{Curve, CurveUse, ModelTopology, PatchBoundary, build_topology};
 
 const X: f64 = 500_000.0;
 const Y: f64 = 7_000_000.0;
@@ -235,4 +235,48 @@ fn names_and_curves_do_not_depend_on_the_order_of_the_patches() {
         assert_eq!(t.patches[i].constraints, r.patches[n - 1 - i].constraints);
         assert_eq!(t.patches[i].loops.len(), r.patches[n - 1 - i].loops.len());
     }
+}
+
+fn curve(k: usize) -> Curve {
+    Curve {
+        name: format!("c{k}"),
+        surfaces: vec!["s".into()],
+        patches: vec![0],
+        points: vec![[k as f64, 0.0, 0.0], [k as f64 + 1.0, 0.0, 0.0]],
+        closed: false,
+        clearance: Vec::new(),
+        curvature_size: Vec::new(),
+        narrow_size: Vec::new(),
+    }
+}
+
+fn uses(curves: &[u32]) -> Vec<CurveUse> {
+    curves
+        .iter()
+        .map(|&curve| CurveUse {
+            curve,
+            reversed: false,
+        })
+        .collect()
+}
+
+#[test]
+fn every_loop_gets_three_nodes_whatever_the_sizes_say() {
+    let topo = ModelTopology {
+        vertices: Vec::new(),
+        curves: (0..7).map(curve).collect(),
+        patches: vec![
+            PatchBoundary {
+                // A closed curve alone, and a loop of two curves (a hole).
+                loops: vec![uses(&[0]), uses(&[1, 2])],
+                constraints: Vec::new(),
+            },
+            PatchBoundary {
+                // Three curves, and curve 2 again in a loop of three.
+                loops: vec![uses(&[3, 4, 5]), uses(&[2, 5, 6])],
+                constraints: Vec::new(),
+            },
+        ],
+    };
+    assert_eq!(topo.min_segments(), vec![3, 2, 2, 1, 1, 1, 1]);
 }
