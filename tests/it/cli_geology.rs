@@ -345,6 +345,22 @@ fn a_lens_rim_meshed_without_creases_has_its_folds_repaired_and_meshes() {
     meshes_validly(&case);
 }
 
+#[test]
+fn a_closed_salt_diapir_and_a_lens_retriangulated_piece_by_piece_mesh_into_their_regions() {
+    // Re-triangulated as one piece, a body closed on itself had no border loop to flatten ("the
+    // patch has no boundary loop"); cut as the model cuts it (`model::remesh`), it
+    // re-triangulates, and the model meshes on the new support.
+    for name in ["closed_salt_diapir", "lens"] {
+        let case = case(name);
+        let recipe = (case.recipe).replace(
+            "kind = \"other\" }",
+            "kind = \"other\", retriangulate = 60.0 }",
+        );
+        assert!(recipe.contains("retriangulate"), "{name}: {recipe}");
+        meshes_validly(&Case { recipe, ..case });
+    }
+}
+
 /// Builds `case` with its recipe's trims replaced by `trims`; returns the scratch folder and the
 /// build's JSON report, after checking the mesh with `regions` regions.
 fn build_with_trims(case: &Case, trims: &str, regions: usize) -> serde_json::Value {
