@@ -1,6 +1,6 @@
 //! Re-triangulating one imported surface at a size, whatever its shape: a closed body with no
-//! border at all (a lens, a salt body), a tube, a cup, a box TSurf folded round the box's edges,
-//! a surface of several TFACEs.
+//! border at all (a lens, a salt body), a tube, a box TSurf folded round the box's edges, a
+//! surface of several TFACEs.
 //!
 //! Decisions and why:
 //! - The surface is cut as the model cuts it: at its TFACE borders, at its creases
@@ -8,8 +8,9 @@
 //!   (`Tolerances::chart_angle_deg`). The pieces' borders are found as the model's curves
 //!   (`build_topology`, corners where the border turns by more than the kink angle), each curve
 //!   is discretized once, and each piece is meshed by the surface mesher on the old support. Met
-//!   whole, the surface mesher flattens one piece: a closed surface has no border loop to
-//!   flatten, a tube or a cup folds, and the creases and TFACE borders were smoothed away.
+//!   whole, a closed surface has no border loop to flatten (every closed body of the geology
+//!   corpus and every TKC kimberlite failed so), and its creases and TFACE borders, with no
+//!   constraint along them, were not kept.
 //! - The meshes are welded by exact coordinates: every node two pieces share comes bit for bit
 //!   from one curve's discretization, so nothing is merged by distance.
 //! - Kept vertices (a file's corner marks) stay bit for bit: a curve end already, else a pin of
