@@ -58,14 +58,9 @@ pub fn remesh(
     .pop()
     .ok_or_else(|| ModelError::new(format!("`{name}` did not split"), None))?;
     let pieces = pieces(name, mesh, parts, &split, tol);
-    let part_of = |p: &Patch| {
-        let t = p.triangles.first().map_or(0, |&t| t as usize);
-        let original = split.parent.get(t).copied().unwrap_or(0) as usize;
-        parts.get(original).copied().unwrap_or(0)
-    };
-    let piece_parts: Vec<u32> = pieces.iter().map(|(p, _)| part_of(p)).collect();
+    let piece_parts: Vec<u32> = pieces.iter().map(|&(_, _, part)| part).collect();
     let input: Vec<PatchIn> = (pieces.into_iter())
-        .map(|(p, chart_of)| PatchIn {
+        .map(|(p, chart_of, _)| PatchIn {
             name: p.name,
             surface: name.to_string(),
             mesh: p.mesh,
@@ -99,14 +94,14 @@ pub fn remesh(
 }
 
 /// The pieces of `split` (of `mesh`, surface `name`): cut at TFACE borders and creases, then
-/// into charts; each with the name of the patch it is a chart of, if it is one.
+/// into charts; each with the name of the patch it is a chart of, if it is one, and its part.
 fn pieces(
     name: &str,
     mesh: &TriMesh,
     parts: &[u32],
     split: &SplitSurface,
     tol: &Tolerances,
-) -> Vec<(Patch, Option<String>)> {
+) -> Vec<(Patch, Option<String>, u32)> {
     let normals = geom::facets::facet_normals(mesh, tol);
     let crease = creased(split, &normals, tol.crease_angle_deg);
     let part = |t: u32| {
@@ -118,13 +113,11 @@ fn pieces(
     let mut out = Vec::new();
     for patch in components(name, split, cut) {
         let whole = patch.name.clone();
+        // Cut at every TFACE border, a patch lies in one part.
+        let in_part = patch.triangles.first().map_or(0, |&t| part(t));
         let charts = charting.cut(patch, split);
         let cut_up = charts.len() > 1;
-        out.extend(
-            charts
-                .into_iter()
-                .map(|c| (c, cut_up.then(|| whole.clone()))),
-        );
+        out.extend((charts.into_iter()).map(|c| (c, cut_up.then(|| whole.clone()), in_part)));
     }
     out
 }
